@@ -1,0 +1,34 @@
+#include <iomanip>
+#include <iostream>
+
+#include "apps/commands.h"
+#include "apps/program_loader.h"
+#include "interpreters/set_registry.h"
+#include "interpreters/turtle_commands.h"
+#include "lang/builtins.h"
+
+namespace ontogen::app {
+
+int runHelp() {
+  std::cout << "ontogen: grows cell-language programs and realises them as geometry and text.\n\n"
+               "Commands:\n"
+               "  ontogen check FILE                    parse and check a program\n"
+               "  ontogen run FILE [options]            develop and write one output per frame\n"
+               "  ontogen word FILE --at T1,T2 [--json] print the derivation word at those times\n"
+               "  ontogen help                          this text\n\n"
+               "Interpretation sets:";
+  for (const auto& name : interpretationSetNames()) std::cout << " " << name;
+  std::cout << "\n\nTurtle commands (set 'geometry'):\n";
+  for (const TurtleCommand& command : turtleCommands())
+    std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";
+  std::cout << "\nFunctions:\n";
+  for (const BuiltinFunction& function : builtinFunctions())
+    std::cout << "  " << std::left << std::setw(22) << function.signature << function.doc << "\n";
+  std::cout << "  " << std::left << std::setw(22) << "if(c, a, b)" << "a if c is not 0, else b (only one is evaluated)\n";
+  std::cout << "\nConstants:\n";
+  for (const BuiltinConstant& constant : builtinConstants())
+    std::cout << "  " << std::left << std::setw(22) << constant.name << constant.doc << "\n";
+  return kExitOk;
+}
+
+}  // namespace ontogen::app

@@ -1,0 +1,81 @@
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <system_error>
+
+#include "apps/commands.h"
+#include "apps/program_loader.h"
+#include "apps/progress_bar.h"
+#include "interpreters/interpret.h"
+#include "interpreters/set_registry.h"
+
+namespace ontogen::app {
+
+int runRun(const RunOptions& options) {
+  auto loaded = loadProgram(options.common.file, options.common.system);
+  if (!loaded) return kExitProgramError;
+  const Program& program = *loaded->program;
+
+  std::vector<std::unique_ptr<InterpretationSet>> sets;
+  for (const auto& name : options.sets) {
+    auto set = makeInterpretationSet(name, program.rootSystem().settings);
+    if (!set) {
+      std::cerr << "ontogen: error: unknown interpretation set '" << name << "' (known:";
+      for (const auto& known : interpretationSetNames()) std::cerr << " " << known;
+      std::cerr << ")\n";
+      return kExitUsage;
+    }
+    sets.push_back(std::move(set));
+  }
+  std::error_code error;
+  std::filesystem::create_directories(options.out, error);
+  if (error) {
+    std::cerr << "ontogen: error: cannot create the output directory '" << options.out << "': " << error.message()
+              << "\n";
+    return kExitOutputError;
+  }
+
+  WorldDef def;
+  def.seed = options.common.seed.value_or(program.seed);
+  def.limits = options.common.limits;
+  double dt = options.common.step.value_or(program.dt);
+  double until = options.until.value_or(program.until);
+  int frames = options.frames;
+  auto started = std::chrono::steady_clock::now();
+  size_t written = 0;
+  try {
+    World world(loaded->program, def);
+    ProgressBar progress("growing " + loaded->stem);
+    for (int frame = 0; frame < frames; ++frame) {
+      // Frames are spread over [0, until] (one frame: the state at `until`).
+      double t = frames == 1 ? until : until * frame / (frames - 1);
+      world.advanceTo(t, dt);
+      for (auto& set : sets) {
+        FrameTarget target{options.out, loaded->stem, frame, frames, world.time()};
+        written += interpretFrame(world, *set, target).size();
+      }
+      progress.update(frame + 1, frames);
+    }
+    progress.finish();
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (options.stats) {
+      const WorldStats& stats = world.stats();
+      std::cout << "time " << world.time() << ", cells " << world.rootPool().size() << ", steps " << stats.steps
+                << ", events " << stats.events << ", cells born " << stats.cellsBorn << ", rule firings "
+                << stats.ruleFirings << ", files " << written << ", wall " << seconds << " s\n";
+    }
+  } catch (const LimitError& limit) {
+    std::cerr << "\nontogen: error: " << limit.what() << "\n";
+    return kExitModelError;
+  } catch (const ModelError& model) {
+    std::cerr << "\n" << model.what();
+    return kExitModelError;
+  } catch (const OutputError& output) {
+    std::cerr << "\nontogen: error: " << output.what() << "\n";
+    return kExitOutputError;
+  }
+  std::cerr << "wrote " << written << " file" << (written == 1 ? "" : "s") << " to " << options.out << "\n";
+  return kExitOk;
+}
+
+}  // namespace ontogen::app

@@ -1,0 +1,41 @@
+#include <iostream>
+
+#include "apps/commands.h"
+#include "apps/program_loader.h"
+#include "core/word.h"
+
+namespace ontogen::app {
+
+int runWord(const WordOptions& options) {
+  auto loaded = loadProgram(options.common.file, options.common.system);
+  if (!loaded) return kExitProgramError;
+  const Program& program = *loaded->program;
+  WorldDef def;
+  def.seed = options.common.seed.value_or(program.seed);
+  def.limits = options.common.limits;
+  double dt = options.common.step.value_or(program.dt);
+  std::vector<WordAtTime> words;
+  try {
+    auto world = std::make_unique<World>(loaded->program, def);
+    for (double t : options.times) {
+      if (t < world->time()) world = std::make_unique<World>(loaded->program, def);  // time runs forward only
+      world->advanceTo(t, dt);
+      words.push_back({t, captureWord(*world)});
+    }
+  } catch (const LimitError& error) {
+    std::cerr << "ontogen: error: " << error.what() << "\n";
+    return kExitModelError;
+  } catch (const ModelError& error) {
+    std::cerr << error.what();
+    return kExitModelError;
+  }
+  if (options.json) {
+    writeWordJson(std::cout, words);
+  } else {
+    for (const auto& word : words)
+      std::cout << "t = " << formatExact(word.time) << ": " << formatWord(word.cells, options.precision) << "\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace ontogen::app

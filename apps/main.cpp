@@ -1,0 +1,80 @@
+// The ontogen executable: parses the command line and dispatches to apps/command_*.cpp.
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "apps/commands.h"
+#include "apps/program_loader.h"
+
+namespace {
+
+using namespace ontogen::app;
+
+void addCommon(CLI::App& command, CommonOptions& options) {
+  command.add_option("file", options.file, "The program (.cell)")->required()->check(CLI::ExistingFile);
+  command.add_option("--system", options.system, "The root system (default: the first in the file)");
+}
+
+void addDevelopment(CLI::App& command, CommonOptions& options) {
+  command.add_option("--seed", options.seed, "Seed of every stochastic choice (default: #seed, else 1)");
+  command.add_option("--step", options.step, "Step of the development, seconds (default: #dt, else 1)")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--max-cells", options.limits.maxCells, "Stop if the model grows past N cells")
+      ->capture_default_str();
+  command.add_option_function<uint64_t>(
+             "--max-memory", [&options](uint64_t mib) { options.limits.maxMemoryBytes = mib << 20; },
+             "Stop if the pools pass this many MiB (default 8192)")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--max-events", options.limits.maxEventsPerStep, "Stop after N terminal events in one step")
+      ->capture_default_str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ontogen: a simulator of hierarchical, cellular development for generative media"};
+  app.require_subcommand(1);
+
+  CommonOptions check;
+  auto* checkCommand = app.add_subcommand("check", "Parse and check a program");
+  addCommon(*checkCommand, check);
+
+  RunOptions run;
+  auto* runCommand = app.add_subcommand("run", "Develop a program and write one output per frame");
+  addCommon(*runCommand, run.common);
+  addDevelopment(*runCommand, run.common);
+  runCommand->add_option("--until", run.until, "End of the run, seconds of developmental time (default: #until)")
+      ->check(CLI::NonNegativeNumber);
+  runCommand->add_option("--frames", run.frames, "Frames spread over [0, until]; 1: the end only")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  runCommand->add_option("--interpret", run.sets, "Interpretation sets, comma-separated (geometry, trace)")
+      ->delimiter(',')
+      ->capture_default_str();
+  runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
+  runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
+
+  WordOptions word;
+  auto* wordCommand = app.add_subcommand("word", "Print the derivation word at given times");
+  addCommon(*wordCommand, word.common);
+  addDevelopment(*wordCommand, word.common);
+  wordCommand->add_option("--at", word.times, "Global times, comma-separated")->required()->delimiter(',');
+  wordCommand->add_flag("--json", word.json, "Print one JSON object");
+  wordCommand->add_option("--precision", word.precision, "Significant digits of the text form")
+      ->check(CLI::Range(1, 17))
+      ->capture_default_str();
+
+  app.add_subcommand("help", "List commands, turtle commands and functions");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    int code = app.exit(error);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
+  if (checkCommand->parsed()) return runCheck(check);
+  if (runCommand->parsed()) return runRun(run);
+  if (wordCommand->parsed()) return runWord(word);
+  return runHelp();
+}

@@ -1,0 +1,31 @@
+#pragma once
+// Reading and compiling a program for the commands of the ontogen executable; the only
+// place (with the commands) that writes to the terminal.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "lang/program.h"
+
+namespace ontogen::app {
+
+/// Exit codes of the ontogen executable (documented in README.md).
+enum ExitCode {
+  kExitOk = 0,
+  kExitProgramError = 1,  ///< the program has errors (diagnostics printed)
+  kExitUsage = 2,         ///< bad command line
+  kExitModelError = 3,    ///< the model failed or passed a limit while it ran
+  kExitOutputError = 4,   ///< an output could not be written
+};
+
+struct LoadedProgram {
+  std::shared_ptr<const Program> program;
+  std::string stem;  ///< file name without directory and extension: names outputs
+};
+
+/// Reads and compiles a program file. On failure prints the diagnostics (or the I/O
+/// error) to stderr and returns nothing.
+std::optional<LoadedProgram> loadProgram(const std::string& path, const std::string& rootSystem = {});
+
+}  // namespace ontogen::app

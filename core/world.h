@@ -1,0 +1,103 @@
+#pragma once
+// A world grows one compiled program (paper 002: the world creates, removes and
+// interprets cells). It owns the root system's pool and the global time, and nothing
+// global: several worlds can run side by side, and a world is cheap to copy.
+//
+// One step from t to t1 (docs/LANGUAGE.md, "Order of events in a step"):
+//  1. at t, every alive cell evaluates its per-step rules against the word as it was at
+//     t (parallel development); state calculations and actions take effect together;
+//  2. over (t, t1], cells age; a cell whose age reaches its terminal age at t_e is
+//     replaced at exactly t_e by its terminal rule's successors, which are born with
+//     their birth age and age on for the rest of the step. Events at the same instant
+//     happen together, each cell seeing its neighbours as they were just before.
+// Ages are never stored: a cell keeps its birth time, so the word at time t does not
+// depend on the step size for timed L-systems.
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "lang/program.h"
+#include "pools/linear_pool.h"
+
+namespace ontogen {
+
+/// Growth limits: a model that passes one stops with a LimitError, not an out-of-memory kill.
+struct WorldLimits {
+  /// Most cells in the root pool. 100 M cells take about 5 GB with double buffering.
+  uint64_t maxCells = 100'000'000;
+  /// Most bytes the pools may hold. 8 GiB leaves room on a 16 GB machine.
+  uint64_t maxMemoryBytes = 8ull << 30;
+  /// Most terminal events in one step: a lifetime far shorter than the step would
+  /// otherwise spin for ever renewing one cell.
+  uint64_t maxEventsPerStep = 200'000'000;
+};
+
+struct WorldDef {
+  uint64_t seed = 1;  ///< seed of every stochastic choice and function
+  WorldLimits limits;
+};
+
+/// A limit was passed; the message names the limit and how to raise it.
+struct LimitError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A model failed while it ran (e.g. a birth age not below the terminal age); the
+/// message names the cell, the rule and its location like a compiler diagnostic.
+struct ModelError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct WorldStats {
+  uint64_t steps = 0;
+  uint64_t events = 0;       ///< terminal-age events
+  uint64_t ruleFirings = 0;  ///< per-step rules that fired an action or a calculation
+  uint64_t cellsBorn = 0;
+};
+
+class World {
+ public:
+  World(std::shared_ptr<const Program> program, WorldDef def = {});
+  World(const World& other);
+  World& operator=(const World&) = delete;
+
+  const Program& program() const { return *program_; }
+  const SystemDefinition& rootSystem() const { return program_->rootSystem(); }
+  const LinearPool& rootPool() const { return pool_; }
+  double time() const { return time_; }
+  uint64_t seed() const { return def_.seed; }
+  const WorldStats& stats() const { return stats_; }
+
+  /// Develops by steps of at most `dt` until `target` (no-op if target ≤ time()).
+  void advanceTo(double target, double dt);
+  /// Develops one step of length dt.
+  void step(double dt);
+
+  /// Age of a cell of the root pool at the current time.
+  double ageOf(const CellRecord& cell) const { return time_ - cell.birth; }
+  /// The parameters of a cell after its development function: λ' = g(λ, τ, β) · λ
+  /// (paper 000, eq. 3). Equal to the state when the master has no function.
+  void developedValues(const CellRecord& cell, std::vector<double>& out) const;
+
+ private:
+  friend class LinearDevelopment;
+  void seedAxiom();
+
+  std::shared_ptr<const Program> program_;
+  WorldDef def_;
+  LinearPool pool_;
+  double time_ = 0;
+  WorldStats stats_;
+  // The next word is built here and swapped with the pool's (kept to reuse the memory).
+  std::vector<CellRecord> scratchCells_;
+  std::vector<double> scratchState_;
+};
+
+/// Tolerance for "at the same instant": events within it of each other or of a step's
+/// end count as simultaneous. Relative, so long runs keep the same meaning.
+inline double timeTolerance(double t) { return 1e-9 * (t < 1 ? 1 : t); }
+
+}  // namespace ontogen

@@ -1,0 +1,50 @@
+#include "interpreters/interpret.h"
+
+namespace ontogen {
+
+namespace {
+constexpr uint64_t kInterpretSalt = 0x494e54455250ull;  // draws of interpretation blocks
+}
+
+void interpretWord(const World& world, InterpretationSet& set) {
+  const Program& program = world.program();
+  const LinearPool& pool = world.rootPool();
+  FunctionTable functions = program.functionTable();
+  std::vector<double> frame;
+  std::vector<double> args;
+  std::vector<double> developed;
+  // Whether the set knows each master's command, asked once per master, not per cell.
+  std::vector<int8_t> known(program.masters.size(), -1);
+  for (const CellRecord& cell : pool.cells()) {
+    const MasterCell& master = program.masters[cell.master];
+    if (const InterpretationBlock* block = master.interpretation(set.name())) {
+      const double* state = pool.stateOf(cell);
+      frame.assign(state, state + master.stateCount());
+      frame.push_back(world.ageOf(cell));
+      frame.push_back(master.lifetime);
+      frame.push_back(world.time());
+      RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
+      EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
+      for (const Instruction& instruction : block->instructions) {
+        args.clear();
+        for (const CompiledExpression& arg : instruction.args) args.push_back(arg.evaluate(context));
+        set.execute(instruction.command, args);
+      }
+      continue;
+    }
+    int8_t& knows = known[cell.master];
+    if (knows < 0) knows = set.knows(master.command) ? 1 : 0;
+    if (!knows) continue;
+    world.developedValues(cell, developed);
+    set.execute(master.command, developed);
+  }
+}
+
+std::vector<std::filesystem::path> interpretFrame(const World& world, InterpretationSet& set,
+                                                  const FrameTarget& target) {
+  set.beginFrame(target);
+  interpretWord(world, set);
+  return set.endFrame();
+}
+
+}  // namespace ontogen

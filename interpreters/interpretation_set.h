@@ -1,0 +1,47 @@
+#pragma once
+// An interpretation set realises a developed world: the interpreter walks the cells in
+// pool order and hands each instruction (a command name and its evaluated arguments)
+// to the set chosen by name at run time. Sets never print; they report problems by
+// throwing OutputError and write files only in endFrame.
+
+#include <filesystem>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ontogen {
+
+/// A failure to write an output (disk, permissions); carries a message for the user.
+struct OutputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Where a frame's outputs go: DIR/<stem>[_<frame, 4 digits>].<ext>.
+struct FrameTarget {
+  std::filesystem::path directory;
+  std::string stem;       ///< the model's name
+  int frame = 0;          ///< index of the frame, from 0
+  int frameCount = 1;     ///< frames in the run; a single frame gets no number in its name
+  double time = 0;        ///< global time of the frame, seconds of developmental time
+};
+
+class InterpretationSet {
+ public:
+  virtual ~InterpretationSet() = default;
+
+  /// The name programs use in `interpret NAME { ... }` and `--interpret NAME`.
+  virtual std::string_view name() const = 0;
+  /// True if the set executes this command (so the interpreter can tell a user symbol
+  /// with no meaning from one the set draws).
+  virtual bool knows(std::string_view command) const = 0;
+  /// Resets the set's state (turtle, buffers) for a new frame.
+  virtual void beginFrame(const FrameTarget& target) = 0;
+  /// Executes one instruction. Unknown commands are ignored (knows() says which).
+  virtual void execute(std::string_view command, std::span<const double> args) = 0;
+  /// Finishes the frame and writes its outputs; returns the paths written.
+  virtual std::vector<std::filesystem::path> endFrame() = 0;
+};
+
+}  // namespace ontogen

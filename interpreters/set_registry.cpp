@@ -1,0 +1,46 @@
+#include "interpreters/set_registry.h"
+
+#include "interpreters/geometry_set.h"
+#include "interpreters/trace_set.h"
+#include "interpreters/turtle_commands.h"
+
+namespace ontogen {
+
+std::vector<std::string> interpretationSetNames() { return {"geometry", "trace"}; }
+
+std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings) {
+  if (name == "geometry") {
+    GeometrySetDef def;
+    def.turtle.step = settings.step;
+    def.turtle.angle = settings.angle;
+    def.turtle.yawAngle = settings.yawAngle;
+    def.turtle.radius = settings.radius;
+    def.turtle.radians = settings.radians;
+    return std::make_unique<GeometrySet>(def);
+  }
+  if (name == "trace") return std::make_unique<TraceSet>();
+  return nullptr;
+}
+
+std::vector<CommandSetInfo> commandSets() {
+  std::vector<CommandSetInfo> sets;
+  sets.push_back({"geometry", [](std::string_view command) -> const CommandInfo* {
+                    // The table is static, so the infos made from it can be too.
+                    static const std::vector<CommandInfo> infos = [] {
+                      std::vector<CommandInfo> list;
+                      for (const TurtleCommand& c : turtleCommands()) list.push_back({c.name, c.minArity, c.maxArity});
+                      return list;
+                    }();
+                    for (const CommandInfo& info : infos)
+                      if (info.name == command) return &info;
+                    return nullptr;
+                  }});
+  sets.push_back({"trace", [](std::string_view command) -> const CommandInfo* {
+                    static thread_local CommandInfo any;
+                    any = {command, 0, -1};
+                    return &any;
+                  }});
+  return sets;
+}
+
+}  // namespace ontogen

@@ -1,0 +1,25 @@
+#pragma once
+// The interpretation sets ontogen knows, by name: one place to make a set for a run
+// and to tell the compiler which commands each set accepts.
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "interpreters/interpretation_set.h"
+#include "lang/compiler.h"
+#include "lang/program.h"
+
+namespace ontogen {
+
+/// Names of the sets, in the order `ontogen help` lists them.
+std::vector<std::string> interpretationSetNames();
+
+/// A new set configured from a system's settings, or null if there is no such set.
+std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings);
+
+/// For the compiler: the commands of every set (the trace set accepts any).
+std::vector<CommandSetInfo> commandSets();
+
+}  // namespace ontogen

@@ -1,0 +1,58 @@
+#pragma once
+// The table of turtle commands of the "geometry" interpretation set. The turtle executes
+// from it, the interpreter checks arities against it, error messages quote its
+// signatures and `ontogen help` prints it.
+//
+// Frame and rotations (ABOP, Prusinkiewicz & Lindenmayer 1990, ch. 1.5): the turtle
+// carries a right-handed orthonormal frame H (heading), L (left), U (up), H x L = U,
+// starting at H = (0,1,0), L = (-1,0,0), U = (0,0,1). ABOP's matrices R_U, R_L, R_H are
+// read so that every command does what its name says:
+//   + turns left:   H rotates towards L  (about U)     - the opposite
+//   & pitches down: H rotates towards -U (about L)     ^ the opposite
+//   \ rolls left:   L rotates towards -U (about H)     / the opposite
+// Angles are degrees unless TurtleDef::radians; lengths are model units.
+
+#include <span>
+#include <string_view>
+
+namespace ontogen {
+
+/// What a turtle command does; the turtle dispatches on it.
+enum class TurtleOp {
+  Forward,         ///< F
+  Move,            ///< f
+  TurnLeft,        ///< +
+  TurnRight,       ///< -
+  PitchDown,       ///< &
+  PitchUp,         ///< ^
+  RollLeft,        ///< backslash
+  RollRight,       ///< /
+  YawLeft,         ///< <
+  YawRight,        ///< >
+  TurnAround,      ///< |
+  Push,            ///< [
+  Pop,             ///< ]
+  SetRadius,       ///< !
+  Cylinder,        ///< cC
+  Disc,            ///< disc
+  Sphere,          ///< sphere
+  RollHorizontal,  ///< $
+};
+
+/// One row of the table.
+struct TurtleCommand {
+  std::string_view name;       ///< the command as it appears in a word, e.g. "cC"
+  TurtleOp op;
+  int minArity;                ///< fewer arguments are an error
+  int maxArity;                ///< more arguments are an error
+  std::string_view signature;  ///< e.g. "cC(l, capped)"
+  std::string_view doc;        ///< one line, with units and defaults
+};
+
+/// Every turtle command, in the order `ontogen help` lists them.
+std::span<const TurtleCommand> turtleCommands();
+
+/// The command named `name`, or nullptr when the turtle does not know it.
+const TurtleCommand* findTurtleCommand(std::string_view name);
+
+}  // namespace ontogen

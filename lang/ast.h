@@ -1,0 +1,150 @@
+#pragma once
+// The syntax tree the parser builds. It mirrors the text closely (cells, systems and
+// L-system blocks as written); lang/compiler.h checks it and lowers everything,
+// L-systems included, into the one cell model of lang/program.h.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lang/source.h"
+#include "lang/token.h"
+
+namespace ontogen::ast {
+
+struct Expr;
+using ExprPtr = std::unique_ptr<Expr>;
+
+struct Expr {
+  enum class Kind { Number, Name, Unary, Binary, Call, Member };
+  Kind kind = Kind::Number;
+  SourceSpan span;
+  double number = 0;          ///< Number
+  std::string name;           ///< Name, Call (function), Member (field: `parent.x`)
+  TokenKind op = TokenKind::EndOfFile;  ///< Unary, Binary
+  std::vector<ExprPtr> args;  ///< operands or call arguments; Member: the object
+};
+
+/// `X`, `X(a, b)`, `(X(a, b), age)` or `me`: a module in an axiom, a successor, a context
+/// pattern or an interpretation block.
+struct Module {
+  SourceSpan span;
+  std::string label;  ///< "me" for the current cell
+  bool isMe = false;
+  bool hasArgs = false;       ///< `X()` and `X` differ only here
+  std::vector<ExprPtr> args;  ///< patterns: Name expressions (formal parameters)
+  ExprPtr age;                ///< birth age (successor) or terminal age (predecessor), may be null
+};
+
+/// `x = e`, `x += e` ..., `rate(x) = e`.
+struct Assignment {
+  SourceSpan span;
+  std::string target;
+  SourceSpan targetSpan;
+  TokenKind op = TokenKind::Equal;
+  bool isRate = false;
+  ExprPtr value;
+};
+
+/// A rule of a cell or a production of an L-system, in one shape:
+/// {left} predecessor {right} : predicate : calculations -> successors : probability.
+struct Rule {
+  SourceSpan span;
+  std::string name;            ///< `p1` in `p1: ...`, may be empty
+  bool terminal = false;       ///< fires when the cell reaches its terminal age
+  bool hasContext = false;
+  std::vector<Module> left;    ///< nearest last
+  Module predecessor;          ///< L-systems: the strict predecessor; cells: `me`
+  std::vector<Module> right;   ///< nearest first
+  ExprPtr predicate;           ///< may be null
+  std::vector<Assignment> calculations;
+  bool hasAction = false;      ///< `->` present
+  std::vector<Module> successors;  ///< empty with hasAction: delete
+  ExprPtr probability;         ///< stochastic productions, may be null
+};
+
+struct Define {
+  SourceSpan span;
+  std::string name;
+  ExprPtr value;
+};
+
+/// `equiv f mov`: the user symbol `mov` is interpreted as the command `f`.
+struct Equiv {
+  SourceSpan span;
+  std::string command;
+  std::string symbol;
+};
+
+/// `#angle 90`, `#radians` ...: interpretation settings.
+struct Setting {
+  SourceSpan span;
+  std::string name;
+  ExprPtr value;  ///< may be null (#radians)
+};
+
+struct Parameter {
+  SourceSpan span;
+  std::string name;
+  ExprPtr defaultValue;  ///< may be null
+};
+
+struct Interpretation {
+  SourceSpan span;
+  std::string setName;
+  std::vector<Module> instructions;
+};
+
+/// `g mov(tau, beta) = 1 - cos(2 * pi * tau / beta)`.
+struct DevelopmentFunction {
+  SourceSpan span;
+  std::string name;
+  std::vector<Parameter> params;
+  ExprPtr body;
+};
+
+struct Cell {
+  SourceSpan span;
+  SourceSpan nameSpan;
+  std::string name;
+  std::vector<Parameter> state;
+  ExprPtr lifetime;  ///< terminal age, may be null (lives for ever)
+  SourceSpan lifetimeSpan;
+  std::vector<Rule> rules;
+  std::vector<Interpretation> interpretations;
+};
+
+/// A symbol list after `ignore:` or `consider:`.
+struct SymbolList {
+  SourceSpan span;
+  std::vector<std::string> symbols;
+};
+
+struct System {
+  SourceSpan span;
+  SourceSpan nameSpan;
+  std::string name;
+  bool isLSystem = false;
+  std::string poolKind = "linear";
+  SourceSpan poolSpan;
+  std::vector<Module> axiom;
+  SourceSpan axiomSpan;
+  std::vector<Define> defines;          ///< scoped to the block
+  std::vector<Equiv> equivs;            ///< scoped to the block
+  std::vector<Setting> settings;        ///< scoped to the block
+  std::vector<Rule> productions;        ///< L-systems
+  std::vector<DevelopmentFunction> functions;
+  std::vector<SymbolList> ignore;
+  std::vector<SymbolList> consider;
+};
+
+struct Program {
+  std::vector<Define> defines;
+  std::vector<Equiv> equivs;
+  std::vector<Setting> settings;
+  std::vector<DevelopmentFunction> functions;
+  std::vector<Cell> cells;
+  std::vector<System> systems;
+};
+
+}  // namespace ontogen::ast

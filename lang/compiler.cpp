@@ -1,0 +1,764 @@
+#include "lang/compiler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
+#include <unordered_map>
+
+#include "lang/expression_compiler.h"
+#include "lang/parser.h"
+
+namespace ontogen {
+
+int Program::findMaster(std::string_view label, int scope) const {
+  int global = -1;
+  for (size_t i = 0; i < masters.size(); ++i) {
+    if (masters[i].label != label) continue;
+    if (masters[i].scope == scope) return static_cast<int>(i);
+    if (masters[i].scope == -1) global = static_cast<int>(i);
+  }
+  return global;
+}
+
+namespace {
+
+// Names that read a cell's internal, read-only state.
+bool isAgeName(std::string_view name) { return name == "age" || name == "tau" || name == "τ"; }
+bool isTerminalAgeName(std::string_view name) { return name == "beta" || name == "β" || name == "lifetime"; }
+bool isTimeName(std::string_view name) { return name == "time"; }
+bool isReadOnlyName(std::string_view name) {
+  return isAgeName(name) || isTerminalAgeName(name) || isTimeName(name) || name == "status" || name == "id";
+}
+
+constexpr int kAgeOffset = 0;       // slots after the state values
+constexpr int kTerminalOffset = 1;
+constexpr int kTimeOffset = 2;
+constexpr int kInternalSlots = 3;
+constexpr size_t kMaxContext = 64;  // matches the engine's buffer of matched cells
+
+/// Constants visible in a scope: the block's #defines, then the program's, then built-ins.
+struct ConstantScope {
+  std::map<std::string, double, std::less<>> values;
+  const ConstantScope* outer = nullptr;
+
+  std::optional<double> find(std::string_view name) const {
+    if (auto it = values.find(name); it != values.end()) return it->second;
+    if (outer) return outer->find(name);
+    if (name == "π") return M_PI;
+    if (const BuiltinConstant* constant = findConstant(name)) return constant->value;
+    return std::nullopt;
+  }
+};
+
+/// Everything a system block sees: constants, equivs, functions, its index.
+struct Scope {
+  int system = -1;  // -1: the program's top level
+  ConstantScope constants;
+  std::map<std::string, std::string, std::less<>> equivs;  // symbol -> command
+  std::map<std::string, int, std::less<>> functions;       // name -> index
+  const Scope* outer = nullptr;
+
+  int findFunction(std::string_view name) const {
+    if (auto it = functions.find(name); it != functions.end()) return it->second;
+    return outer ? outer->findFunction(name) : -1;
+  }
+  const std::string* findEquiv(std::string_view symbol) const {
+    if (auto it = equivs.find(symbol); it != equivs.end()) return &it->second;
+    return outer ? outer->findEquiv(symbol) : nullptr;
+  }
+};
+
+class Compiler {
+ public:
+  Compiler(const ast::Program& tree, DiagnosticSink& sink, const CompileOptions& options)
+      : tree_(tree), sink_(sink), options_(options) {}
+
+  std::unique_ptr<Program> run(std::unique_ptr<SourceFile> source) {
+    program_ = std::make_unique<Program>();
+    program_->sources.push_back(std::move(source));
+    global_.system = -1;
+    defines(tree_.defines, global_);
+    equivs(tree_.equivs, global_);
+    settings(tree_.settings, globalSettings_, &global_);
+    functions(tree_.functions, global_);
+    declareCells();
+    for (size_t i = 0; i < tree_.systems.size(); ++i) declareSystem(tree_.systems[i], static_cast<int>(i));
+    compileCells();
+    for (size_t i = 0; i < tree_.systems.size(); ++i) compileSystem(tree_.systems[i], static_cast<int>(i));
+    finishMasters();
+    chooseRoot();
+    if (sink_.hasErrors()) return nullptr;
+    return std::move(program_);
+  }
+
+ private:
+  // ---- constants, equivs, settings, functions ----
+  NameLookup constantLookup(const Scope& scope) {
+    NameLookup names;
+    names.constant = [&scope](std::string_view name) { return scope.constants.find(name); };
+    return names;
+  }
+
+  void defines(const std::vector<ast::Define>& list, Scope& scope) {
+    for (const auto& define : list) {
+      if (scope.constants.values.count(define.name)) {
+        sink_.error(define.span, "'" + define.name + "' is defined twice");
+        continue;
+      }
+      if (findConstant(define.name) || findBuiltin(define.name)) {
+        sink_.error(define.span, "'" + define.name + "' is a built-in name and cannot be redefined");
+        continue;
+      }
+      auto value = evaluateConstant(*define.value, constantLookup(scope), sink_, "the value of #define");
+      if (value) scope.constants.values[define.name] = *value;
+    }
+  }
+
+  void equivs(const std::vector<ast::Equiv>& list, Scope& scope) {
+    for (const auto& equiv : list) {
+      if (scope.equivs.count(equiv.symbol)) {
+        sink_.error(equiv.span, "'" + equiv.symbol + "' already has an equiv");
+        continue;
+      }
+      scope.equivs[equiv.symbol] = equiv.command;
+    }
+  }
+
+  void settings(const std::vector<ast::Setting>& list, InterpretSettings& target, const Scope* scope) {
+    for (const auto& setting : list) {
+      if (setting.name == "radians") {
+        target.radians = true;
+        continue;
+      }
+      if (setting.name == "degrees") {
+        target.radians = false;
+        continue;
+      }
+      auto value = evaluateConstant(*setting.value, constantLookup(*scope), sink_, "#" + setting.name);
+      if (!value) continue;
+      if (setting.name == "angle") {
+        target.angle = *value;
+        target.yawAngle = *value;
+      } else if (setting.name == "yawangle") {
+        target.yawAngle = *value;
+      } else if (setting.name == "length") {
+        target.step = *value;
+      } else if (setting.name == "until") {
+        if (!(*value > 0)) sink_.error(setting.span, "#until must be greater than 0");
+        else program_->until = *value;
+      } else if (setting.name == "dt") {
+        if (!(*value > 0)) sink_.error(setting.span, "#dt must be greater than 0");
+        else program_->dt = *value;
+      } else if (setting.name == "radius") {
+        target.radius = *value;
+      } else if (setting.name == "seed") {
+        if (*value < 0 || *value != std::floor(*value)) {
+          sink_.error(setting.span, "#seed must be a whole number ≥ 0");
+          continue;
+        }
+        program_->seed = static_cast<uint64_t>(*value);
+        program_->hasSeed = true;
+      }
+    }
+  }
+
+  void functions(const std::vector<ast::DevelopmentFunction>& list, Scope& scope) {
+    // Declare first so that functions can call each other in any order.
+    std::vector<int> indices;
+    for (const auto& function : list) {
+      if (scope.functions.count(function.name)) {
+        sink_.error(function.span, "development function '" + function.name + "' is defined twice");
+        indices.push_back(-1);
+        continue;
+      }
+      if (findBuiltin(function.name)) {
+        sink_.error(function.span, "'" + function.name + "' is a built-in function and cannot be redefined");
+        indices.push_back(-1);
+        continue;
+      }
+      DevelopmentFunction definition;
+      definition.name = function.name;
+      definition.arity = static_cast<int>(function.params.size());
+      definition.span = function.span;
+      int moduleParam = 0;
+      for (const auto& param : function.params) {
+        if (isAgeName(param.name)) definition.sources.push_back(DevelopmentFunction::kFromAge);
+        else if (isTerminalAgeName(param.name)) definition.sources.push_back(DevelopmentFunction::kFromTerminalAge);
+        else definition.sources.push_back(moduleParam++);
+      }
+      int index = static_cast<int>(program_->functions.size());
+      program_->functions.push_back(std::move(definition));
+      program_->functionBodies.emplace_back();
+      scope.functions[function.name] = index;
+      indices.push_back(index);
+    }
+    for (size_t i = 0; i < list.size(); ++i) {
+      if (indices[i] < 0) continue;
+      const auto& function = list[i];
+      std::map<std::string, int, std::less<>> slots;
+      for (size_t p = 0; p < function.params.size(); ++p) {
+        if (slots.count(function.params[p].name))
+          sink_.error(function.params[p].span, "parameter '" + function.params[p].name + "' appears twice");
+        slots[function.params[p].name] = static_cast<int>(p);
+      }
+      NameLookup names = constantLookup(scope);
+      names.slot = [&slots](std::string_view name) {
+        auto it = slots.find(name);
+        return it == slots.end() ? -1 : it->second;
+      };
+      addFunctions(names, scope);
+      names.unknownHint = [](std::string_view name) -> std::string {
+        if (isAgeName(name) || isTerminalAgeName(name))
+          return "list it among the function's parameters, as in 'g mov(tau, beta) = ...'";
+        return {};
+      };
+      program_->functionBodies[indices[i]] = compileExpression(*function.body, names, sink_);
+    }
+    checkRecursion();
+  }
+
+  void addFunctions(NameLookup& names, const Scope& scope) {
+    names.function = [&scope](std::string_view name) { return scope.findFunction(name); };
+    names.functionArity = [this](int index) { return program_->functions[index].arity; };
+  }
+
+  // A development function that calls itself, directly or not, would never return.
+  void checkRecursion() {
+    size_t count = program_->functions.size();
+    std::vector<int> state(count, 0);  // 0 new, 1 on the path, 2 done
+    std::function<bool(size_t)> visit = [&](size_t f) -> bool {
+      if (state[f] == 1) return true;
+      if (state[f] == 2) return false;
+      state[f] = 1;
+      for (int call : program_->functionBodies[f].calledFunctions())
+        if (visit(static_cast<size_t>(call))) {
+          if (state[f] == 1 && !reportedRecursion_.count(f)) {
+            reportedRecursion_.insert(f);
+            sink_.error(program_->functions[f].span,
+                        "development function '" + program_->functions[f].name + "' calls itself; it would never end");
+          }
+          state[f] = 2;
+          return true;
+        }
+      state[f] = 2;
+      return false;
+    };
+    for (size_t f = 0; f < count; ++f) visit(f);
+  }
+
+  // ---- masters ----
+  int addMaster(std::string label, int scope, SourceSpan span) {
+    MasterCell master;
+    master.label = std::move(label);
+    master.scope = scope;
+    master.span = span;
+    program_->masters.push_back(std::move(master));
+    arityKnown_.push_back(false);
+    return static_cast<int>(program_->masters.size() - 1);
+  }
+
+  void declareCells() {
+    for (const auto& cell : tree_.cells) {
+      if (program_->findMaster(cell.name, -1) >= 0) {
+        sink_.error(cell.nameSpan, "cell '" + cell.name + "' is defined twice");
+        continue;
+      }
+      int index = addMaster(cell.name, -1, cell.nameSpan);
+      MasterCell& master = program_->masters[index];
+      master.declared = true;
+      arityKnown_[index] = true;
+      std::set<std::string> seen;
+      for (const auto& param : cell.state) {
+        if (!seen.insert(param.name).second) sink_.error(param.span, "state variable '" + param.name + "' appears twice");
+        if (isReadOnlyName(param.name))
+          sink_.error(param.span, "'" + param.name + "' is the cell's read-only internal state; choose another name");
+        master.stateNames.push_back(param.name);
+        double value = 0;
+        if (param.defaultValue) {
+          auto constant = evaluateConstant(*param.defaultValue, constantLookup(global_), sink_, "a default value");
+          if (constant) value = *constant;
+        }
+        program_->masters[index].defaults.push_back(value);
+      }
+      if (cell.lifetime) {
+        auto value = evaluateConstant(*cell.lifetime, constantLookup(global_), sink_, "the lifetime");
+        if (value) {
+          if (!(*value > 0)) sink_.error(cell.lifetimeSpan, "the lifetime must be greater than 0");
+          else program_->masters[index].lifetime = *value;
+        }
+      }
+      cellMaster_[&cell] = index;
+    }
+  }
+
+  // Finds or creates the master a module label refers to in a scope, and checks that
+  // every use gives it the same number of parameters.
+  int resolveModule(const ast::Module& module, int scope) {
+    int index = program_->findMaster(module.label, scope);
+    if (index < 0 || (scope >= 0 && program_->masters[index].scope != scope)) index = addMaster(module.label, scope, module.span);
+    MasterCell& master = program_->masters[index];
+    int count = static_cast<int>(module.args.size());
+    if (!arityKnown_[index]) {
+      arityKnown_[index] = true;
+      master.span = module.span;
+      for (int i = 0; i < count; ++i) {
+        std::string name = "p" + std::to_string(i + 1);
+        if (module.args[i]->kind == ast::Expr::Kind::Name) name = module.args[i]->name;
+        master.stateNames.push_back(name);
+        master.defaults.push_back(0);
+      }
+    } else if (master.declared && scope == -1) {
+      if (count > static_cast<int>(master.stateCount()))
+        sink_.error(module.span, "cell '" + master.label + "' has " + std::to_string(master.stateCount()) +
+                                     " state variable" + (master.stateCount() == 1 ? "" : "s") + ", given " +
+                                     std::to_string(count));
+    } else if (count != static_cast<int>(master.stateCount())) {
+      sink_.error(module.span, "'" + master.label + "' has " + std::to_string(master.stateCount()) + " parameter" +
+                                   (master.stateCount() == 1 ? "" : "s") + " elsewhere (first at line " +
+                                   std::to_string(master.span.line()) + "), but " + std::to_string(count) + " here");
+    }
+    return index;
+  }
+
+  // ---- systems ----
+  void declareSystem(const ast::System& system, int index) {
+    SystemDefinition definition;
+    definition.name = system.name;
+    definition.span = system.nameSpan;
+    definition.isLSystem = system.isLSystem;
+    for (const auto& other : program_->systems)
+      if (other.name == system.name) sink_.error(system.nameSpan, "system '" + system.name + "' is defined twice");
+    if (system.poolKind == "linear") {
+      definition.poolKind = PoolKind::Linear;
+    } else if (system.poolKind == "grid" || system.poolKind == "spatial") {
+      sink_.error(system.poolSpan, "the " + system.poolKind +
+                                       " pool is not available in this version; use 'pool linear'");
+    } else {
+      sink_.error(system.poolSpan, "unknown pool kind '" + system.poolKind + "' (expected linear, grid or spatial)");
+    }
+    auto scope = std::make_unique<Scope>();
+    scope->system = system.isLSystem ? index : -1;
+    scope->outer = &global_;
+    scope->constants.outer = &global_.constants;
+    definition.settings = globalSettings_;
+    program_->systems.push_back(std::move(definition));
+    defines(system.defines, *scope);
+    equivs(system.equivs, *scope);
+    settings(system.settings, program_->systems.back().settings, scope.get());
+    if (system.isLSystem) functions(system.functions, *scope);
+    scopes_.push_back(std::move(scope));
+  }
+
+  void compileSystem(const ast::System& system, int index) {
+    Scope& scope = *scopes_[index];
+    int moduleScope = system.isLSystem ? index : -1;
+    if (system.isLSystem) compileProductions(system, scope, index);
+    // Axiom: values are compiled now and evaluated when a world is made.
+    std::vector<AxiomCell> axiom;
+    for (const auto& module : system.axiom) {
+      if (module.isMe) continue;
+      int master = resolveModule(module, moduleScope);
+      AxiomCell cell;
+      cell.master = master;
+      const MasterCell& definition = program_->masters[master];
+      NameLookup names = constantLookup(scope);
+      addFunctions(names, scope);
+      for (uint32_t i = 0; i < definition.stateCount(); ++i) {
+        if (i < module.args.size()) {
+          auto value = evaluateConstant(*module.args[i], names, sink_, "an axiom value");
+          cell.values.push_back(value.value_or(0));
+        } else {
+          cell.values.push_back(definition.defaults[i]);
+        }
+      }
+      if (module.age) cell.age = evaluateConstant(*module.age, names, sink_, "an axiom age").value_or(0);
+      axiom.push_back(std::move(cell));
+    }
+    program_->systems[index].axiom = std::move(axiom);
+    ignoreLists_.push_back({index, &system});
+  }
+
+  void compileProductions(const ast::System& system, Scope& scope, int index) {
+    // Terminal ages: one per symbol; untimed productions live one time unit.
+    std::map<int, std::pair<double, SourceSpan>> terminal;
+    std::vector<std::pair<int, const ast::Rule*>> productions;
+    for (const auto& production : system.productions) {
+      int master = resolveModule(production.predecessor, index);
+      double age = 1.0;
+      if (production.predecessor.age) {
+        auto value = evaluateConstant(*production.predecessor.age, constantLookup(scope), sink_, "a terminal age");
+        if (!value) continue;
+        age = *value;
+        if (!(age > 0)) {
+          sink_.error(production.predecessor.age->span, "the terminal age must be greater than 0");
+          continue;
+        }
+      }
+      auto [it, inserted] = terminal.emplace(master, std::make_pair(age, production.predecessor.span));
+      if (!inserted && it->second.first != age) {
+        sink_.error(production.predecessor.span,
+                    "'" + production.predecessor.label + "' has terminal age " + formatNumber(age) +
+                        " here but " + formatNumber(it->second.first) + " at line " +
+                        std::to_string(it->second.second.line()) + "; a symbol has one terminal age");
+        continue;
+      }
+      productions.push_back({master, &production});
+    }
+    for (auto& [master, age] : terminal) {
+      program_->masters[master].lifetime = age.first;
+      program_->masters[master].declared = true;
+    }
+    for (auto& [master, production] : productions) {
+      CompiledRule rule = compileRule(*production, master, index, scope, /*lsystem=*/true);
+      program_->masters[master].terminalRules.push_back(std::move(rule));
+    }
+    // Development functions named after a symbol develop it.
+    for (const auto& function : system.functions) {
+      int master = program_->findMaster(function.name, index);
+      int functionIndex = scope.findFunction(function.name);
+      if (functionIndex < 0) continue;
+      if (master < 0 || program_->masters[master].scope != index) {
+        // A helper function only called from others (allowed), unless nothing calls it.
+        continue;
+      }
+      const DevelopmentFunction& definition = program_->functions[functionIndex];
+      int moduleParams = 0;
+      for (int source : definition.sources) moduleParams += source >= 0;
+      if (moduleParams > static_cast<int>(program_->masters[master].stateCount())) {
+        sink_.error(function.span, "development function '" + function.name + "' names " +
+                                       std::to_string(moduleParams) + " module parameters, but '" + function.name +
+                                       "' has " + std::to_string(program_->masters[master].stateCount()));
+        continue;
+      }
+      program_->masters[master].developmentFunction = functionIndex;
+    }
+  }
+
+  static std::string formatNumber(double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", value);
+    return buffer;
+  }
+
+  // ---- cells ----
+  void compileCells() {
+    for (const auto& cell : tree_.cells) {
+      auto it = cellMaster_.find(&cell);
+      if (it == cellMaster_.end()) continue;
+      int master = it->second;
+      bool anyTerminal = false;
+      for (const auto& rule : cell.rules) {
+        CompiledRule compiled = compileRule(rule, master, -1, global_, /*lsystem=*/false);
+        if (rule.terminal) {
+          anyTerminal = true;
+          program_->masters[master].terminalRules.push_back(std::move(compiled));
+        } else {
+          program_->masters[master].rules.push_back(std::move(compiled));
+        }
+      }
+      if (anyTerminal && program_->masters[master].lifetime == kForever)
+        sink_.error(cell.nameSpan, "cell '" + cell.name + "' has 'terminal:' rules but no lifetime; add 'lifetime 1;'");
+      for (const auto& block : cell.interpretations) compileInterpretation(block, master);
+    }
+  }
+
+  CompiledRule compileRule(const ast::Rule& rule, int master, int scopeIndex, const Scope& scope, bool lsystem) {
+    CompiledRule compiled;
+    compiled.name = rule.name;
+    compiled.span = rule.span;
+    const MasterCell& self = program_->masters[master];
+    const int stateCount = static_cast<int>(self.stateCount());
+    std::map<std::string, int, std::less<>> slots;
+    std::map<std::string, SourceSpan, std::less<>> where;
+    auto bind = [&](const std::string& name, int slot, SourceSpan span) {
+      if (isReadOnlyName(name)) {
+        sink_.error(span, "'" + name + "' is read-only internal state and cannot be a parameter name");
+        return;
+      }
+      if (!slots.emplace(name, slot).second)
+        sink_.error(span, "'" + name + "' is already bound in this rule (at line " + std::to_string(where[name].line()) +
+                              ":" + std::to_string(where[name].column()) + ")");
+      else where[name] = span;
+    };
+    if (lsystem) {
+      for (size_t i = 0; i < rule.predecessor.args.size(); ++i)
+        bind(rule.predecessor.args[i]->name, static_cast<int>(i), rule.predecessor.args[i]->span);
+    } else {
+      for (int i = 0; i < stateCount; ++i) {
+        slots[self.stateNames[i]] = i;
+        where[self.stateNames[i]] = self.span;
+      }
+      if (rule.predecessor.isMe && rule.predecessor.hasArgs)
+        sink_.error(rule.predecessor.span, "'me' takes no parameters; the cell's state is read by name");
+    }
+    int nextSlot = stateCount + kInternalSlots;
+    auto contextBinding = [&](const ast::Module& module, bool leftSide) {
+      ContextBinding binding;
+      if (module.label == "[" || module.label == "]") {
+        if (leftSide) sink_.error(module.span, "a left context cannot contain brackets; it follows the path to the root");
+        binding.item.kind = module.label == "[" ? ContextItem::Kind::BranchOpen : ContextItem::Kind::BranchClose;
+        return binding;
+      }
+      int contextMaster = resolveModule(module, lsystem ? scopeIndex : -1);
+      binding.item.master = static_cast<uint32_t>(contextMaster);
+      if (!module.args.empty()) {
+        binding.firstSlot = nextSlot;
+        binding.count = static_cast<int>(module.args.size());
+        if (binding.count != static_cast<int>(program_->masters[contextMaster].stateCount()))
+          sink_.error(module.span, "'" + module.label + "' has " +
+                                       std::to_string(program_->masters[contextMaster].stateCount()) +
+                                       " state values; a context binds all of them or none");
+        for (const auto& arg : module.args) bind(arg->name, nextSlot++, arg->span);
+      }
+      return binding;
+    };
+    // Left context nearest first.
+    for (auto it = rule.left.rbegin(); it != rule.left.rend(); ++it) compiled.left.push_back(contextBinding(*it, true));
+    for (const auto& module : rule.right) compiled.right.push_back(contextBinding(module, false));
+    compiled.frameSize = nextSlot;
+    for (const auto& binding : compiled.left) compiled.leftItems.push_back(binding.item);
+    for (const auto& binding : compiled.right) compiled.rightItems.push_back(binding.item);
+    if (compiled.leftItems.size() > kMaxContext || compiled.rightItems.size() > kMaxContext)
+      sink_.error(rule.span, "a context has at most " + std::to_string(kMaxContext) + " modules on each side");
+
+    NameLookup names = ruleLookup(slots, stateCount, scope);
+    if (rule.predicate) compiled.predicate = compileExpression(*rule.predicate, names, sink_);
+    for (const auto& assignment : rule.calculations) {
+      StateCalculation calculation;
+      calculation.span = assignment.span;
+      if (assignment.isRate) {
+        sink_.error(assignment.span, "'rate' (continuous integration) is not available in this version");
+        continue;
+      }
+      if (isReadOnlyName(assignment.target)) {
+        sink_.error(assignment.targetSpan, "'" + assignment.target + "' is read-only internal state");
+        continue;
+      }
+      auto it = std::find(self.stateNames.begin(), self.stateNames.end(), assignment.target);
+      if (lsystem || it == self.stateNames.end()) {
+        sink_.error(assignment.targetSpan,
+                    slots.count(assignment.target)
+                        ? "'" + assignment.target + "' belongs to a neighbour; a cell writes only its own state"
+                        : "'" + assignment.target + "' is not a state variable of '" + self.label + "'");
+        continue;
+      }
+      calculation.slot = static_cast<int>(it - self.stateNames.begin());
+      calculation.value = compileExpression(*combine(assignment), names, sink_);
+      compiled.calculations.push_back(std::move(calculation));
+    }
+    compiled.hasAction = rule.hasAction;
+    for (const auto& successor : rule.successors) {
+      SuccessorTemplate result;
+      result.span = successor.span;
+      if (successor.isMe) {
+        if (lsystem) sink_.error(successor.span, "'me' is not part of the L-system notation; repeat the module");
+        result.isMe = true;
+        if (successor.hasArgs) sink_.error(successor.span, "'me' takes no parameters; set state before '->'");
+        compiled.successors.push_back(std::move(result));
+        continue;
+      }
+      int successorMaster = resolveModule(successor, lsystem ? scopeIndex : -1);
+      result.master = static_cast<uint32_t>(successorMaster);
+      const MasterCell& target = program_->masters[successorMaster];
+      for (uint32_t i = 0; i < target.stateCount(); ++i) {
+        if (i < successor.args.size()) result.args.push_back(compileExpression(*successor.args[i], names, sink_));
+        else result.args.push_back(CompiledExpression::constant(target.defaults[i]));
+      }
+      if (successor.age) result.birthAge = compileExpression(*successor.age, names, sink_);
+      compiled.successors.push_back(std::move(result));
+    }
+    if (rule.probability) {
+      compiled.probability = compileExpression(*rule.probability, names, sink_);
+      if (compiled.probability.isConstant() && !(compiled.probability.constantValue() >= 0))
+        sink_.error(rule.probability->span, "a probability must be ≥ 0");
+    }
+    return compiled;
+  }
+
+  // `x += e` is compiled as `x = x + e`.
+  std::unique_ptr<ast::Expr> combine(const ast::Assignment& assignment) {
+    auto copy = cloneExpr(*assignment.value);
+    if (assignment.op == TokenKind::Equal) return copy;
+    auto target = std::make_unique<ast::Expr>();
+    target->kind = ast::Expr::Kind::Name;
+    target->name = assignment.target;
+    target->span = assignment.targetSpan;
+    auto node = std::make_unique<ast::Expr>();
+    node->kind = ast::Expr::Kind::Binary;
+    node->span = assignment.span;
+    node->op = assignment.op == TokenKind::PlusEqual    ? TokenKind::Plus
+               : assignment.op == TokenKind::MinusEqual ? TokenKind::Minus
+               : assignment.op == TokenKind::StarEqual  ? TokenKind::Star
+                                                        : TokenKind::Slash;
+    node->args.push_back(std::move(target));
+    node->args.push_back(std::move(copy));
+    return node;
+  }
+
+  static std::unique_ptr<ast::Expr> cloneExpr(const ast::Expr& expr) {
+    auto copy = std::make_unique<ast::Expr>();
+    copy->kind = expr.kind;
+    copy->span = expr.span;
+    copy->number = expr.number;
+    copy->name = expr.name;
+    copy->op = expr.op;
+    for (const auto& arg : expr.args) copy->args.push_back(cloneExpr(*arg));
+    return copy;
+  }
+
+  NameLookup ruleLookup(const std::map<std::string, int, std::less<>>& slots, int stateCount, const Scope& scope) {
+    NameLookup names = constantLookup(scope);
+    names.slot = [&slots, stateCount](std::string_view name) -> int {
+      if (auto it = slots.find(name); it != slots.end()) return it->second;
+      if (isAgeName(name)) return stateCount + kAgeOffset;
+      if (isTerminalAgeName(name)) return stateCount + kTerminalOffset;
+      if (isTimeName(name)) return stateCount + kTimeOffset;
+      return -1;
+    };
+    addFunctions(names, scope);
+    names.unknownHint = [](std::string_view) { return std::string(); };
+    // Copy the lookup state that the lambdas above refer to by reference only while the
+    // caller's maps live: compileRule uses names before returning.
+    return names;
+  }
+
+  void compileInterpretation(const ast::Interpretation& block, int master) {
+    InterpretationBlock compiled;
+    compiled.setName = block.setName;
+    compiled.span = block.span;
+    const CommandSetInfo* set = nullptr;
+    if (!options_.commandSets.empty()) {
+      for (const auto& candidate : options_.commandSets)
+        if (candidate.name == block.setName) set = &candidate;
+      if (!set) {
+        std::string known;
+        for (const auto& candidate : options_.commandSets) known += (known.empty() ? "" : ", ") + candidate.name;
+        sink_.error(block.span, "unknown interpretation set '" + block.setName + "' (known: " + known + ")");
+        return;
+      }
+    }
+    const MasterCell& self = program_->masters[master];
+    std::map<std::string, int, std::less<>> slots;
+    for (uint32_t i = 0; i < self.stateCount(); ++i) slots[self.stateNames[i]] = static_cast<int>(i);
+    NameLookup names = ruleLookup(slots, static_cast<int>(self.stateCount()), global_);
+    for (const auto& module : block.instructions) {
+      Instruction instruction;
+      instruction.span = module.span;
+      const std::string* equiv = global_.findEquiv(module.label);
+      instruction.command = equiv ? *equiv : module.label;
+      if (set) {
+        const CommandInfo* info = set->find(instruction.command);
+        if (!info) {
+          sink_.error(module.span, "'" + module.label + "' is not a command of the '" + block.setName + "' set");
+          continue;
+        }
+        int count = static_cast<int>(module.args.size());
+        if (count < info->minArity || (info->maxArity >= 0 && count > info->maxArity)) {
+          sink_.error(module.span, "'" + module.label + "' takes " + std::to_string(info->minArity) +
+                                       (info->maxArity == info->minArity ? ""
+                                        : info->maxArity < 0 ? " or more"
+                                                             : " to " + std::to_string(info->maxArity)) +
+                                       " arguments, given " + std::to_string(count));
+          continue;
+        }
+      }
+      for (const auto& arg : module.args) instruction.args.push_back(compileExpression(*arg, names, sink_));
+      compiled.instructions.push_back(std::move(instruction));
+    }
+    program_->masters[master].interpretations.push_back(std::move(compiled));
+  }
+
+  // ---- finishing ----
+  void finishMasters() {
+    for (auto& master : program_->masters) {
+      const Scope* scope = master.scope >= 0 ? scopes_[master.scope].get() : &global_;
+      const std::string* equiv = scope->findEquiv(master.label);
+      master.command = equiv ? *equiv : master.label;
+      if (master.command == "[") master.symbolClass = kSymbolBranchOpen;
+      if (master.command == "]") master.symbolClass = kSymbolBranchClose;
+    }
+    for (auto& [index, system] : ignoreLists_) {
+      SystemDefinition& definition = program_->systems[index];
+      definition.symbolClass.resize(program_->masters.size());
+      for (size_t m = 0; m < program_->masters.size(); ++m) definition.symbolClass[m] = program_->masters[m].symbolClass;
+      if (!system->ignore.empty() && !system->consider.empty())
+        sink_.error(system->consider.front().span, "a system has either 'ignore' or 'consider', not both");
+      std::set<std::string> listed;
+      for (const auto& list : system->ignore) listed.insert(list.symbols.begin(), list.symbols.end());
+      for (const auto& list : system->consider) listed.insert(list.symbols.begin(), list.symbols.end());
+      bool consider = !system->consider.empty();
+      if (listed.empty()) continue;
+      for (size_t m = 0; m < program_->masters.size(); ++m) {
+        const MasterCell& master = program_->masters[m];
+        if (master.symbolClass != kSymbolModule) continue;
+        bool inList = listed.count(master.label) > 0;
+        if (inList != consider) definition.symbolClass[m] |= kSymbolIgnored;
+      }
+    }
+    for (size_t s = 0; s < program_->systems.size(); ++s) {
+      SystemDefinition& definition = program_->systems[s];
+      for (const auto& master : program_->masters) {
+        if (!visibleIn(master, static_cast<int>(s))) continue;
+        for (const auto& rule : master.terminalRules) {
+          if (rule.hasContext()) definition.terminalContext = true;
+          if (rule.probability.empty() == false) definition.stochastic = true;
+        }
+        if (!master.rules.empty()) definition.sampledRules = true;
+      }
+    }
+  }
+
+  bool visibleIn(const MasterCell& master, int system) const {
+    return master.scope == -1 || master.scope == system;
+  }
+
+  void chooseRoot() {
+    if (program_->systems.empty()) {
+      sink_.error(SourceSpan{program_->sources.front().get(), 0, 0},
+                  "the program defines no system or lsystem to grow");
+      return;
+    }
+    program_->root = 0;
+    if (!options_.rootSystem.empty()) {
+      for (size_t i = 0; i < program_->systems.size(); ++i)
+        if (program_->systems[i].name == options_.rootSystem) {
+          program_->root = static_cast<int>(i);
+          return;
+        }
+      std::string known;
+      for (const auto& system : program_->systems) known += (known.empty() ? "" : ", ") + system.name;
+      sink_.error(SourceSpan{}, "no system named '" + options_.rootSystem + "' (the program has: " + known + ")");
+    }
+  }
+
+  const ast::Program& tree_;
+  DiagnosticSink& sink_;
+  const CompileOptions& options_;
+  std::unique_ptr<Program> program_;
+  Scope global_;
+  InterpretSettings globalSettings_;
+  std::vector<std::unique_ptr<Scope>> scopes_;
+  std::vector<bool> arityKnown_;
+  std::unordered_map<const ast::Cell*, int> cellMaster_;
+  std::vector<std::pair<int, const ast::System*>> ignoreLists_;
+  std::set<size_t> reportedRecursion_;
+};
+
+}  // namespace
+
+std::unique_ptr<Program> compile(const ast::Program& tree, std::unique_ptr<SourceFile> source, DiagnosticSink& sink,
+                                 const CompileOptions& options) {
+  return Compiler(tree, sink, options).run(std::move(source));
+}
+
+std::unique_ptr<Program> compileSource(std::string name, std::string text, DiagnosticSink& sink,
+                                       const CompileOptions& options) {
+  auto source = std::make_unique<SourceFile>(std::move(name), std::move(text));
+  ast::Program tree = parse(*source, sink);
+  if (sink.hasErrors()) return nullptr;
+  return compile(tree, std::move(source), sink, options);
+}
+
+}  // namespace ontogen

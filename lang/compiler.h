@@ -1,0 +1,45 @@
+#pragma once
+// Checks a parsed program and lowers it to the cell model (lang/program.h): cells and
+// L-system modules become master cells, productions become terminal rules, successor
+// words become actions, every expression is compiled once. Errors go to the sink with
+// their location; compilation goes on to report as many as it can.
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lang/ast.h"
+#include "lang/diagnostics.h"
+#include "lang/program.h"
+
+namespace ontogen {
+
+/// An instruction an interpretation set understands (for checking interpretation blocks).
+struct CommandInfo {
+  std::string_view name;
+  int minArity = 0;
+  int maxArity = 0;  ///< -1: any
+};
+
+/// A set the program may name in `interpret SET { ... }`.
+struct CommandSetInfo {
+  std::string name;
+  std::function<const CommandInfo*(std::string_view)> find;
+};
+
+struct CompileOptions {
+  std::vector<CommandSetInfo> commandSets;  ///< empty: interpretation blocks are not checked
+  std::string rootSystem;                   ///< empty: the first system of the program
+};
+
+/// Compiles a parsed program whose text is `source`. Returns null when there were errors.
+std::unique_ptr<Program> compile(const ast::Program& tree, std::unique_ptr<SourceFile> source,
+                                 DiagnosticSink& sink, const CompileOptions& options = {});
+
+/// Parses and compiles a program text in one call.
+std::unique_ptr<Program> compileSource(std::string name, std::string text, DiagnosticSink& sink,
+                                       const CompileOptions& options = {});
+
+}  // namespace ontogen

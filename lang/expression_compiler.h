@@ -1,0 +1,36 @@
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string_view>
+
+#include "lang/ast.h"
+#include "lang/diagnostics.h"
+#include "lang/expression.h"
+
+namespace ontogen {
+
+/// How the expression compiler resolves names; the rule or block being compiled supplies it.
+struct NameLookup {
+  /// Frame slot of a name, or -1.
+  std::function<int(std::string_view)> slot;
+  /// Value of a named constant (#define, pi, true ...), if the name is one.
+  std::function<std::optional<double>(std::string_view)> constant;
+  /// Index of a user function (development function), or -1.
+  std::function<int(std::string_view)> function;
+  /// Arity of a user function.
+  std::function<int(int)> functionArity;
+  /// Extra advice for an unknown name (e.g. "declare it as a state variable"), may be empty.
+  std::function<std::string(std::string_view)> unknownHint;
+};
+
+/// Compiles one expression: resolves names, checks calls and folds constants. Reports
+/// errors to the sink and returns an empty expression if there were any.
+CompiledExpression compileExpression(const ast::Expr& expr, const NameLookup& names, DiagnosticSink& sink);
+
+/// Evaluates an expression that must be constant (a #define, a terminal age). Reports
+/// `what` in the error when it is not.
+std::optional<double> evaluateConstant(const ast::Expr& expr, const NameLookup& names, DiagnosticSink& sink,
+                                       std::string_view what);
+
+}  // namespace ontogen

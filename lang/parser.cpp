@@ -1,0 +1,834 @@
+#include "lang/parser.h"
+
+#include <climits>
+#include <optional>
+
+#include "lang/lexer.h"
+
+namespace ontogen {
+namespace {
+
+using namespace ast;
+
+// Thrown to unwind to the enclosing statement after an error was reported (or, while
+// speculating, instead of reporting it).
+struct SyntaxError {};
+
+bool isSymbolToken(TokenKind kind) {
+  switch (kind) {
+    case TokenKind::Plus: case TokenKind::Minus: case TokenKind::Caret: case TokenKind::Amp:
+    case TokenKind::Slash: case TokenKind::Backslash: case TokenKind::Pipe: case TokenKind::Bang:
+    case TokenKind::Less: case TokenKind::Greater: case TokenKind::LBracket: case TokenKind::RBracket:
+    case TokenKind::Dollar: case TokenKind::Tilde: case TokenKind::At: case TokenKind::Percent:
+      return true;
+    default:
+      return false;
+  }
+}
+
+std::string symbolSpelling(const Token& token) {
+  if (token.kind == TokenKind::Identifier) return token.text;
+  std::string_view name = tokenKindName(token.kind);  // "'+'"
+  return std::string(name.substr(1, name.size() - 2));
+}
+
+class Parser {
+ public:
+  Parser(const SourceFile& file, DiagnosticSink& sink) : sink_(sink) { tokens_ = lex(file, sink); }
+
+  Program run() {
+    Program program;
+    while (!check(TokenKind::EndOfFile)) {
+      size_t before = pos_;
+      try {
+        topLevel(program);
+      } catch (const SyntaxError&) {
+        synchronize();
+      }
+      if (pos_ == before) advance();  // never loop on a token nobody consumes
+    }
+    return program;
+  }
+
+ private:
+  // ---- token access ----
+  const Token& peek(size_t ahead = 0) const {
+    size_t index = std::min(pos_ + ahead, tokens_.size() - 1);
+    return tokens_[index];
+  }
+  const Token& previous() const { return tokens_[pos_ == 0 ? 0 : pos_ - 1]; }
+  bool check(TokenKind kind) const { return peek().kind == kind; }
+  bool checkWord(std::string_view word) const { return check(TokenKind::Identifier) && peek().text == word; }
+  const Token& advance() {
+    const Token& token = tokens_[pos_];
+    if (pos_ + 1 < tokens_.size()) ++pos_;
+    return token;
+  }
+  bool match(TokenKind kind) {
+    if (!check(kind)) return false;
+    advance();
+    return true;
+  }
+
+  [[noreturn]] void fail(const SourceSpan& span, std::string message) {
+    if (speculating_ == 0) {
+      // An Error token was already reported by the lexer: stay silent on it.
+      if (peek().kind != TokenKind::Error) sink_.error(span, std::move(message));
+    }
+    throw SyntaxError{};
+  }
+  [[noreturn]] void failHere(std::string expected) {
+    const Token& token = peek();
+    std::string found = token.kind == TokenKind::Identifier ? "'" + token.text + "'"
+                        : token.kind == TokenKind::Number   ? "number '" + token.text + "'"
+                                                            : std::string(tokenKindName(token.kind));
+    fail(token.span, "expected " + expected + ", found " + found);
+  }
+  const Token& expect(TokenKind kind, std::string_view what) {
+    if (!check(kind)) failHere(std::string(tokenKindName(kind)) + std::string(what));
+    return advance();
+  }
+
+  // ---- statement ends ----
+  // Cells and systems separate statements with ';'. L-system blocks and directives are
+  // line-based: a statement ends where a later line starts at or left of the column the
+  // statement started in (so indented lines continue it), or at ';' or '}'.
+  struct Statement {
+    bool lineBased = false;
+    int startColumn = INT_MAX;
+  };
+
+  bool atStatementEnd() const {
+    const Token& token = peek();
+    if (token.kind == TokenKind::Semicolon || token.kind == TokenKind::RBrace || token.kind == TokenKind::EndOfFile)
+      return true;
+    if (!statement_.lineBased || depth_ > 0 || pos_ == 0) return false;
+    return token.line > previous().line && token.column <= statement_.startColumn;
+  }
+
+  template <typename F>
+  auto inStatement(Statement statement, F&& body) {
+    Statement saved = statement_;
+    int savedDepth = depth_;
+    statement_ = statement;
+    depth_ = 0;
+    struct Restore {
+      Parser* parser;
+      Statement statement;
+      int depth;
+      ~Restore() {
+        parser->statement_ = statement;
+        parser->depth_ = depth;
+      }
+    } restore{this, saved, savedDepth};
+    return body();
+  }
+
+  void endStatement() {
+    if (match(TokenKind::Semicolon)) return;
+    if (check(TokenKind::RBrace) || check(TokenKind::EndOfFile)) return;
+    if (statement_.lineBased && atStatementEnd()) return;
+    failHere("';' or the end of the statement");
+  }
+
+  // Skips to a point where a new statement can start.
+  void synchronize() {
+    int braces = 0;
+    int line = peek().line;
+    while (!check(TokenKind::EndOfFile)) {
+      const Token& token = peek();
+      if (statement_.lineBased && braces == 0 && token.line > line && token.column <= statement_.startColumn) return;
+      if (token.kind == TokenKind::Semicolon && braces == 0) {
+        advance();
+        return;
+      }
+      if (token.kind == TokenKind::LBrace) ++braces;
+      if (token.kind == TokenKind::RBrace) {
+        if (braces == 0) return;
+        --braces;
+        if (braces == 0 && !statement_.lineBased) {
+          advance();
+          return;
+        }
+      }
+      line = token.line;
+      advance();
+    }
+  }
+
+  // ---- top level ----
+  void topLevel(Program& program) {
+    Statement top{};
+    statement_ = top;
+    if (check(TokenKind::Directive)) return directive(program.defines, program.settings);
+    if (checkWord("equiv")) return program.equivs.push_back(equiv(Statement{true, peek().column}));
+    if (checkWord("cell")) return program.cells.push_back(cell());
+    if (checkWord("system")) return program.systems.push_back(system());
+    if (checkWord("lsystem")) return program.systems.push_back(lsystem());
+    if ((checkWord("g") || checkWord("develop")) && peek(1).kind == TokenKind::Identifier)
+      return program.functions.push_back(inStatement(Statement{true, peek().column}, [&] { return function(); }));
+    failHere("'cell', 'system', 'lsystem', 'equiv', 'g' or a directive such as '#define'");
+  }
+
+  void directive(std::vector<Define>& defines, std::vector<Setting>& settings) {
+    const Token& hash = advance();
+    inStatement(Statement{true, INT_MAX}, [&] {
+      if (hash.text == "define") {
+        Define define;
+        const Token& name = peek();
+        if (name.kind != TokenKind::Identifier) failHere("a name after #define");
+        advance();
+        define.name = name.text;
+        if (atStatementEnd()) fail(name.span, "expected a value after '#define " + name.text + "'");
+        define.value = expression();
+        define.span = hash.span.to(previous().span);
+        defines.push_back(std::move(define));
+      } else if (hash.text == "angle" || hash.text == "yawangle" || hash.text == "length" ||
+                 hash.text == "radius" || hash.text == "seed" || hash.text == "until" || hash.text == "dt") {
+        Setting setting{hash.span, hash.text, nullptr};
+        if (atStatementEnd()) fail(hash.span, "expected a value after '#" + hash.text + "'");
+        setting.value = expression();
+        setting.span = hash.span.to(previous().span);
+        settings.push_back(std::move(setting));
+      } else if (hash.text == "radians" || hash.text == "degrees") {
+        settings.push_back(Setting{hash.span, hash.text, nullptr});
+      } else {
+        fail(hash.span, "unknown directive '#" + hash.text +
+                            "' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, #seed, #until, #dt)");
+      }
+      if (match(TokenKind::Semicolon)) return;
+      if (!atStatementEnd()) failHere("the end of the line after the directive");
+    });
+  }
+
+  Equiv equiv(Statement statement) {
+    return inStatement(statement, [&] {
+      Equiv result;
+      const Token& keyword = advance();
+      const Token& command = peek();
+      if (command.kind != TokenKind::Identifier && !isSymbolToken(command.kind))
+        failHere("a command after 'equiv' (as in 'equiv f mov')");
+      advance();
+      const Token& symbol = peek();
+      if (symbol.kind != TokenKind::Identifier && !isSymbolToken(symbol.kind))
+        failHere("the symbol that stands for '" + symbolSpelling(command) + "' (as in 'equiv f mov')");
+      advance();
+      result.command = symbolSpelling(command);
+      result.symbol = symbolSpelling(symbol);
+      result.span = keyword.span.to(symbol.span);
+      endStatement();
+      return result;
+    });
+  }
+
+  // ---- cells ----
+  Cell cell() {
+    Cell result;
+    const Token& keyword = advance();
+    const Token& name = expect(TokenKind::Identifier, " (the cell's label)");
+    result.name = name.text;
+    result.nameSpan = name.span;
+    if (check(TokenKind::LParen)) result.state = parameters();
+    expect(TokenKind::LBrace, " to open the cell's body");
+    while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
+      size_t before = pos_;
+      try {
+        cellItem(result);
+      } catch (const SyntaxError&) {
+        synchronize();
+      }
+      if (pos_ == before) advance();
+    }
+    const Token& close = expect(TokenKind::RBrace, " to close the cell");
+    result.span = keyword.span.to(close.span);
+    return result;
+  }
+
+  void cellItem(Cell& cell) {
+    statement_ = Statement{};
+    if (checkWord("rules")) {
+      advance();
+      expect(TokenKind::LBrace, " after 'rules'");
+      while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
+        size_t before = pos_;
+        try {
+          cell.rules.push_back(cellRule());
+        } catch (const SyntaxError&) {
+          synchronize();
+        }
+        if (pos_ == before) advance();
+      }
+      expect(TokenKind::RBrace, " to close 'rules'");
+      return;
+    }
+    if (checkWord("interpret")) {
+      Interpretation interpretation;
+      const Token& keyword = advance();
+      const Token& name = expect(TokenKind::Identifier, " (the interpretation set, e.g. 'geometry')");
+      interpretation.setName = name.text;
+      expect(TokenKind::LBrace, " to open the interpretation block");
+      while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
+        if (match(TokenKind::Semicolon)) continue;
+        if (!canStartModule()) failHere("an instruction such as 'F(1)' or '}'");
+        interpretation.instructions.push_back(module(ModuleUse::Instruction));
+      }
+      const Token& close = expect(TokenKind::RBrace, " to close the interpretation block");
+      interpretation.span = keyword.span.to(close.span);
+      cell.interpretations.push_back(std::move(interpretation));
+      return;
+    }
+    if (checkWord("lifetime")) {
+      const Token& keyword = advance();
+      cell.lifetime = expression();
+      cell.lifetimeSpan = keyword.span.to(previous().span);
+      endStatement();
+      return;
+    }
+    failHere("'rules', 'interpret', 'lifetime' or '}' in the cell");
+  }
+
+  std::vector<Parameter> parameters() {
+    std::vector<Parameter> result;
+    expect(TokenKind::LParen, "");
+    ++depth_;
+    if (!check(TokenKind::RParen)) {
+      do {
+        Parameter parameter;
+        const Token& name = expect(TokenKind::Identifier, " (a parameter name)");
+        parameter.name = name.text;
+        parameter.span = name.span;
+        if (match(TokenKind::Equal)) {
+          parameter.defaultValue = expression();
+          parameter.span = name.span.to(previous().span);
+        }
+        result.push_back(std::move(parameter));
+      } while (match(TokenKind::Comma));
+    }
+    --depth_;
+    expect(TokenKind::RParen, " to close the parameter list");
+    return result;
+  }
+
+  // Colons at nesting depth 0 before the arrow divide a cell rule into
+  // {context} : predicate : body.
+  Rule cellRule() {
+    Rule rule;
+    const Token& first = peek();
+    if (checkWord("terminal") && peek(1).kind == TokenKind::Colon) {
+      advance();
+      advance();
+      rule.terminal = true;
+    }
+    int colons = 0;
+    bool contextFirst = false;
+    {
+      int depth = 0;
+      bool seenColon = false;
+      for (size_t i = pos_; i < tokens_.size(); ++i) {
+        const Token& token = tokens_[i];
+        if (token.kind == TokenKind::LParen) ++depth;
+        if (token.kind == TokenKind::RParen) --depth;
+        if (depth > 0) continue;
+        if (token.kind == TokenKind::Semicolon || token.kind == TokenKind::RBrace ||
+            token.kind == TokenKind::EndOfFile || token.kind == TokenKind::Arrow)
+          break;
+        if (token.kind == TokenKind::Colon) {
+          ++colons;
+          seenColon = true;
+        }
+        if (!seenColon && token.kind == TokenKind::Identifier && token.text == "me") contextFirst = true;
+      }
+    }
+    if (colons > 2)
+      fail(peek().span, "a rule has at most three parts ({context} : predicate : body), found " +
+                            std::to_string(colons + 1));
+    if (colons >= 1 && (contextFirst || colons == 2)) {
+      context(rule, /*lsystem=*/false);
+      expect(TokenKind::Colon, " after the context");
+      --colons;
+    }
+    if (colons == 1) {
+      rule.predicate = expression();
+      expect(TokenKind::Colon, " after the predicate");
+    }
+    ruleBody(rule);
+    rule.span = first.span.to(previous().span);
+    endStatement();
+    return rule;
+  }
+
+  // A cell's context: modules around exactly one `me`.
+  void context(Rule& rule, bool lsystem) {
+    (void)lsystem;
+    rule.hasContext = true;
+    bool seenMe = false;
+    while (canStartModule()) {
+      Module item = module(ModuleUse::Pattern);
+      if (item.isMe) {
+        if (seenMe) fail(item.span, "'me' appears twice in the context");
+        seenMe = true;
+        rule.predecessor = std::move(item);
+      } else if (seenMe) {
+        rule.right.push_back(std::move(item));
+      } else {
+        rule.left.push_back(std::move(item));
+      }
+    }
+    if (!seenMe) fail(peek().span, "a context names the current cell with 'me', as in 'A(y) me B(z)'");
+  }
+
+  void ruleBody(Rule& rule) {
+    while (!check(TokenKind::Arrow) && !atStatementEnd() && !check(TokenKind::Colon)) {
+      rule.calculations.push_back(assignment());
+      if (!match(TokenKind::Comma)) break;
+    }
+    if (match(TokenKind::Arrow)) {
+      rule.hasAction = true;
+      successors(rule);
+    }
+  }
+
+  Assignment assignment() {
+    Assignment result;
+    const Token& first = peek();
+    if (checkWord("rate") && peek(1).kind == TokenKind::LParen) {
+      advance();
+      advance();
+      const Token& target = expect(TokenKind::Identifier, " (the state variable of 'rate')");
+      expect(TokenKind::RParen, " after the variable of 'rate'");
+      result.isRate = true;
+      result.target = target.text;
+      result.targetSpan = target.span;
+    } else {
+      if (!check(TokenKind::Identifier)) failHere("a state calculation such as 'x = x + 1' or '->'");
+      const Token& target = advance();
+      result.target = target.text;
+      result.targetSpan = target.span;
+    }
+    switch (peek().kind) {
+      case TokenKind::Equal: case TokenKind::PlusEqual: case TokenKind::MinusEqual:
+      case TokenKind::StarEqual: case TokenKind::SlashEqual:
+        result.op = advance().kind;
+        break;
+      default:
+        failHere("'=' in the state calculation of '" + result.target + "'");
+    }
+    if (result.isRate && result.op != TokenKind::Equal) fail(previous().span, "'rate(x)' is set with '='");
+    result.value = expression();
+    result.span = first.span.to(previous().span);
+    return result;
+  }
+
+  void successors(Rule& rule) {
+    if (match(TokenKind::EmptySet)) {
+    } else {
+      while (!atStatementEnd() && canStartModule()) rule.successors.push_back(module(ModuleUse::Successor));
+    }
+    if (match(TokenKind::Colon)) rule.probability = expression();
+  }
+
+  // ---- modules ----
+  enum class ModuleUse { Pattern, Successor, Axiom, Instruction, Predecessor };
+
+  bool canStartModule() const {
+    const Token& token = peek();
+    if (token.kind == TokenKind::Identifier || token.kind == TokenKind::LParen) return true;
+    return isSymbolToken(token.kind);
+  }
+
+  // `X`, `X(args)` (the '(' must touch the label), `(X(args), age)` or `me`.
+  Module module(ModuleUse use) {
+    Module result;
+    const Token& first = peek();
+    if (check(TokenKind::LParen)) {
+      advance();
+      ++depth_;
+      Module inner = bareModule(use);
+      if (use == ModuleUse::Instruction || use == ModuleUse::Pattern)
+        fail(first.span, "a timed module '(X, age)' cannot stand here");
+      expect(TokenKind::Comma, " and an age, as in '(A(x), 0.5)'");
+      inner.age = expression();
+      --depth_;
+      const Token& close = expect(TokenKind::RParen, " to close the timed module");
+      inner.span = first.span.to(close.span);
+      return inner;
+    }
+    return bareModule(use);
+  }
+
+  Module bareModule(ModuleUse use) {
+    Module result;
+    const Token& label = peek();
+    if (label.kind != TokenKind::Identifier && !isSymbolToken(label.kind)) failHere("a module such as 'A' or 'F(1)'");
+    advance();
+    result.label = symbolSpelling(label);
+    result.span = label.span;
+    if (label.kind == TokenKind::Identifier && label.text == "me") {
+      if (use == ModuleUse::Axiom || use == ModuleUse::Instruction || use == ModuleUse::Predecessor)
+        fail(label.span, "'me' names the current cell and can only stand in a rule");
+      result.isMe = true;
+    }
+    if (check(TokenKind::LParen) && peek().span.begin == label.span.end) {
+      advance();
+      ++depth_;
+      result.hasArgs = true;
+      if (!check(TokenKind::RParen)) {
+        do {
+          if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
+            const Token& name = peek();
+            if (name.kind != TokenKind::Identifier)
+              failHere("a parameter name (patterns bind names, as in 'A(x)')");
+            advance();
+            auto expr = std::make_unique<Expr>();
+            expr->kind = Expr::Kind::Name;
+            expr->name = name.text;
+            expr->span = name.span;
+            result.args.push_back(std::move(expr));
+          } else {
+            result.args.push_back(expression());
+          }
+        } while (match(TokenKind::Comma));
+      }
+      --depth_;
+      const Token& close = expect(TokenKind::RParen, " to close the arguments of '" + result.label + "'");
+      result.span = label.span.to(close.span);
+    }
+    return result;
+  }
+
+  // ---- systems ----
+  System system() {
+    System result;
+    const Token& keyword = advance();
+    const Token& name = expect(TokenKind::Identifier, " (the system's name)");
+    result.name = name.text;
+    result.nameSpan = name.span;
+    expect(TokenKind::LBrace, " to open the system");
+    while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
+      size_t before = pos_;
+      try {
+        statement_ = Statement{};
+        systemItem(result);
+      } catch (const SyntaxError&) {
+        synchronize();
+      }
+      if (pos_ == before) advance();
+    }
+    const Token& close = expect(TokenKind::RBrace, " to close the system");
+    result.span = keyword.span.to(close.span);
+    return result;
+  }
+
+  void systemItem(System& system) {
+    if (match(TokenKind::Semicolon)) return;
+    if (check(TokenKind::Directive)) return directive(system.defines, system.settings);
+    if (checkWord("equiv")) return system.equivs.push_back(equiv(Statement{}));
+    if (checkWord("pool")) {
+      const Token& keyword = advance();
+      const Token& kind = expect(TokenKind::Identifier, " (the pool kind: linear, grid or spatial)");
+      system.poolKind = kind.text;
+      system.poolSpan = keyword.span.to(kind.span);
+      endStatement();
+      return;
+    }
+    if (checkWord("axiom")) return axiom(system);
+    if (checkWord("ignore") || checkWord("consider")) return symbolList(system);
+    failHere("'pool', 'axiom', 'ignore', 'consider', 'equiv', a directive or '}' in the system");
+  }
+
+  void axiom(System& system) {
+    const Token& keyword = advance();
+    match(TokenKind::Colon);
+    if (!system.axiom.empty()) fail(keyword.span, "the system already has an axiom");
+    while (!atStatementEnd() && canStartModule()) system.axiom.push_back(module(ModuleUse::Axiom));
+    system.axiomSpan = keyword.span.to(previous().span);
+    if (system.axiom.empty()) fail(keyword.span, "the axiom is empty: give at least one cell, as in 'axiom A(1)'");
+    endStatement();
+  }
+
+  void symbolList(System& system) {
+    const Token& keyword = advance();
+    match(TokenKind::Colon);
+    SymbolList list;
+    while (!atStatementEnd() && (check(TokenKind::Identifier) || isSymbolToken(peek().kind))) {
+      if (check(TokenKind::LBracket) || check(TokenKind::RBracket))
+        fail(peek().span, "brackets delimit branches and cannot be ignored");
+      list.symbols.push_back(symbolSpelling(advance()));
+    }
+    list.span = keyword.span.to(previous().span);
+    (keyword.text == "ignore" ? system.ignore : system.consider).push_back(std::move(list));
+    endStatement();
+  }
+
+  // ---- L-systems (paper 000 notation, line-based) ----
+  System lsystem() {
+    System result;
+    result.isLSystem = true;
+    const Token& keyword = advance();
+    const Token& name = expect(TokenKind::Identifier, " (the L-system's name)");
+    result.name = name.text;
+    result.nameSpan = name.span;
+    expect(TokenKind::LBrace, " to open the L-system");
+    while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
+      size_t before = pos_;
+      Statement line{true, peek().column};
+      statement_ = line;
+      try {
+        inStatement(line, [&] { lsystemItem(result); });
+      } catch (const SyntaxError&) {
+        statement_ = line;
+        synchronize();
+      }
+      if (pos_ == before) advance();
+    }
+    const Token& close = expect(TokenKind::RBrace, " to close the L-system");
+    result.span = keyword.span.to(close.span);
+    return result;
+  }
+
+  void lsystemItem(System& system) {
+    if (match(TokenKind::Semicolon)) return;
+    if (check(TokenKind::Directive)) return directive(system.defines, system.settings);
+    if (checkWord("equiv")) return system.equivs.push_back(equiv(statement_));
+    if (checkWord("axiom") && (peek(1).kind == TokenKind::Colon || peek(1).line == peek().line) &&
+        peek(1).kind != TokenKind::Arrow && peek(1).kind != TokenKind::Less && peek(1).kind != TokenKind::Greater)
+      return axiom(system);
+    if ((checkWord("ignore") || checkWord("consider")) && peek(1).kind == TokenKind::Colon) return symbolList(system);
+    if ((checkWord("g") || checkWord("develop")) &&
+        (peek(1).kind == TokenKind::Identifier || isSymbolToken(peek(1).kind)) && peek(2).kind == TokenKind::LParen)
+      return system.functions.push_back(function());
+    system.productions.push_back(production());
+  }
+
+  DevelopmentFunction function() {
+    DevelopmentFunction result;
+    const Token& keyword = advance();
+    const Token& name = advance();
+    result.name = symbolSpelling(name);
+    result.params = parameters();
+    expect(TokenKind::Equal, " after the development function's parameters");
+    result.body = expression();
+    result.span = keyword.span.to(previous().span);
+    endStatement();
+    return result;
+  }
+
+  // [label ':'] [left '<'] predecessor ['>' right] [':' condition] '->' successors [':' probability]
+  Rule production() {
+    const Token& first = peek();
+    if (check(TokenKind::Identifier) && peek(1).kind == TokenKind::Colon) {
+      // `p1: A -> B` or `A : cond -> B`: try the label first, then fall back.
+      size_t saved = pos_;
+      ++speculating_;
+      try {
+        std::string name = advance().text;
+        advance();
+        Rule rule = productionAfterLabel(first);
+        --speculating_;
+        rule.name = name;
+        return rule;
+      } catch (const SyntaxError&) {
+        --speculating_;
+        pos_ = saved;
+      }
+    }
+    return productionAfterLabel(first);
+  }
+
+  Rule productionAfterLabel(const Token& first) {
+    Rule rule;
+    rule.terminal = true;
+    std::vector<Module> items;
+    while (canStartModule() && !check(TokenKind::Less) && !check(TokenKind::Greater))
+      items.push_back(module(ModuleUse::Predecessor));
+    if (match(TokenKind::Less)) {
+      rule.hasContext = true;
+      rule.left = std::move(items);
+      items.clear();
+      if (!canStartModule()) failHere("the predecessor after '<'");
+      items.push_back(module(ModuleUse::Predecessor));
+    }
+    if (items.size() != 1) {
+      if (items.empty()) failHere("a production such as 'A(x) -> B(x + 1)'");
+      fail(items[1].span, "a production has one predecessor module; put context before '<' or after '>'");
+    }
+    rule.predecessor = std::move(items.front());
+    if (match(TokenKind::Greater)) {
+      rule.hasContext = true;
+      while (canStartModule()) rule.right.push_back(module(ModuleUse::Predecessor));
+      if (rule.right.empty()) failHere("a right context after '>'");
+    }
+    if (match(TokenKind::Colon)) rule.predicate = expression();
+    if (!match(TokenKind::Arrow)) failHere("'->' in the production");
+    rule.hasAction = true;
+    successors(rule);
+    rule.span = first.span.to(previous().span);
+    endStatement();
+    return rule;
+  }
+
+  // ---- expressions, C precedence; '^' is power and binds tighter than unary minus ----
+  ExprPtr expression() { return logicalOr(); }
+
+  ExprPtr binary(TokenKind op, ExprPtr left, ExprPtr right) {
+    auto node = std::make_unique<Expr>();
+    node->kind = Expr::Kind::Binary;
+    node->op = op;
+    node->span = left->span.to(right->span);
+    node->args.push_back(std::move(left));
+    node->args.push_back(std::move(right));
+    return node;
+  }
+
+  bool operatorAhead(std::initializer_list<TokenKind> kinds) const {
+    if (atStatementEnd()) return false;
+    for (TokenKind kind : kinds)
+      if (check(kind)) return true;
+    return false;
+  }
+
+  ExprPtr logicalOr() {
+    ExprPtr left = logicalAnd();
+    while (operatorAhead({TokenKind::PipePipe, TokenKind::Pipe})) {
+      advance();
+      left = binary(TokenKind::PipePipe, std::move(left), logicalAnd());
+    }
+    return left;
+  }
+  ExprPtr logicalAnd() {
+    ExprPtr left = equality();
+    while (operatorAhead({TokenKind::AmpAmp, TokenKind::Amp})) {
+      advance();
+      left = binary(TokenKind::AmpAmp, std::move(left), equality());
+    }
+    return left;
+  }
+  ExprPtr equality() {
+    ExprPtr left = relational();
+    for (;;) {
+      if (operatorAhead({TokenKind::EqualEqual, TokenKind::BangEqual})) {
+        TokenKind op = advance().kind;
+        left = binary(op, std::move(left), relational());
+      } else if (depth_ > 0 && check(TokenKind::Equal)) {
+        fail(peek().span, "'=' assigns; compare with '=='");
+      } else {
+        return left;
+      }
+    }
+  }
+  ExprPtr relational() {
+    ExprPtr left = additive();
+    while (operatorAhead({TokenKind::Less, TokenKind::LessEqual, TokenKind::Greater, TokenKind::GreaterEqual})) {
+      TokenKind op = advance().kind;
+      left = binary(op, std::move(left), additive());
+    }
+    return left;
+  }
+  ExprPtr additive() {
+    ExprPtr left = multiplicative();
+    while (operatorAhead({TokenKind::Plus, TokenKind::Minus})) {
+      TokenKind op = advance().kind;
+      left = binary(op, std::move(left), multiplicative());
+    }
+    return left;
+  }
+  ExprPtr multiplicative() {
+    ExprPtr left = unary();
+    while (operatorAhead({TokenKind::Star, TokenKind::Slash, TokenKind::Percent})) {
+      TokenKind op = advance().kind;
+      left = binary(op, std::move(left), unary());
+    }
+    return left;
+  }
+  ExprPtr unary() {
+    if (check(TokenKind::Minus) || check(TokenKind::Plus) || check(TokenKind::Bang)) {
+      const Token& op = advance();
+      ExprPtr operand = unary();
+      if (op.kind == TokenKind::Plus) return operand;
+      auto node = std::make_unique<Expr>();
+      node->kind = Expr::Kind::Unary;
+      node->op = op.kind;
+      node->span = op.span.to(operand->span);
+      node->args.push_back(std::move(operand));
+      return node;
+    }
+    return power();
+  }
+  ExprPtr power() {
+    ExprPtr base = postfix();
+    if (operatorAhead({TokenKind::Caret})) {
+      advance();
+      ExprPtr exponent = unary();  // right-associative; allows 2^-1
+      return binary(TokenKind::Caret, std::move(base), std::move(exponent));
+    }
+    return base;
+  }
+  ExprPtr postfix() {
+    ExprPtr node = primary();
+    while (check(TokenKind::Dot) && !atStatementEnd()) {
+      advance();
+      const Token& field = expect(TokenKind::Identifier, " (a state variable after '.')");
+      auto member = std::make_unique<Expr>();
+      member->kind = Expr::Kind::Member;
+      member->name = field.text;
+      member->span = node->span.to(field.span);
+      member->args.push_back(std::move(node));
+      node = std::move(member);
+    }
+    return node;
+  }
+  ExprPtr primary() {
+    const Token& token = peek();
+    if (token.kind == TokenKind::Number) {
+      advance();
+      auto node = std::make_unique<Expr>();
+      node->kind = Expr::Kind::Number;
+      node->number = token.number;
+      node->span = token.span;
+      return node;
+    }
+    if (token.kind == TokenKind::Identifier) {
+      advance();
+      auto node = std::make_unique<Expr>();
+      node->name = token.text;
+      node->span = token.span;
+      if (check(TokenKind::LParen)) {
+        advance();
+        ++depth_;
+        node->kind = Expr::Kind::Call;
+        if (!check(TokenKind::RParen)) {
+          do node->args.push_back(expression());
+          while (match(TokenKind::Comma));
+        }
+        --depth_;
+        const Token& close = expect(TokenKind::RParen, " to close the call of '" + token.text + "'");
+        node->span = token.span.to(close.span);
+        return node;
+      }
+      node->kind = Expr::Kind::Name;
+      return node;
+    }
+    if (token.kind == TokenKind::LParen) {
+      advance();
+      ++depth_;
+      ExprPtr inner = expression();
+      --depth_;
+      expect(TokenKind::RParen, " to close the parenthesis");
+      return inner;
+    }
+    failHere("an expression");
+  }
+
+  DiagnosticSink& sink_;
+  std::vector<Token> tokens_;
+  size_t pos_ = 0;
+  Statement statement_;
+  int depth_ = 0;        // parentheses open in the current statement
+  int speculating_ = 0;  // > 0: errors unwind without being reported
+};
+
+}  // namespace
+
+ast::Program parse(const SourceFile& file, DiagnosticSink& sink) { return Parser(file, sink).run(); }
+
+}  // namespace ontogen

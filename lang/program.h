@@ -1,0 +1,163 @@
+#pragma once
+// The compiled program: the one cell model every source form lowers to (paper 002).
+// Cells, L-system modules and turtle symbols are all master cells; a system holds an
+// axiom and a pool kind. Expressions are compiled against fixed frame layouts:
+//
+//   rule frame:        [state 0..n-1] [age] [terminal age] [time] [context values...]
+//   instruction frame: [state 0..n-1] [age] [terminal age] [time]
+//
+// so evaluation is a walk over bytecode reading doubles from one small array.
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "lang/expression.h"
+#include "lang/source.h"
+#include "pools/cell_record.h"
+#include "pools/linear_pool.h"
+
+namespace ontogen {
+
+using MasterId = uint32_t;
+inline constexpr double kForever = std::numeric_limits<double>::infinity();
+
+/// A module of a context pattern and where its state goes in the rule frame.
+struct ContextBinding {
+  ContextItem item;
+  int firstSlot = -1;  ///< frame slot of its first state value, -1 when nothing is bound
+  int count = 0;       ///< number of state values bound
+};
+
+/// A cell to create: `B(x / 2)`, `(C(j + 1), 0.5)` or `me`.
+struct SuccessorTemplate {
+  bool isMe = false;
+  MasterId master = 0;
+  std::vector<CompiledExpression> args;  ///< one per state value of the master (defaults filled in)
+  CompiledExpression birthAge;           ///< empty: 0
+  SourceSpan span;
+};
+
+struct StateCalculation {
+  int slot = 0;  ///< state index of the cell (also its frame slot)
+  bool isRate = false;
+  CompiledExpression value;  ///< already combined for `+=` and friends
+  SourceSpan span;
+};
+
+struct CompiledRule {
+  std::string name;  ///< `p1`, or empty
+  SourceSpan span;
+  std::vector<ContextBinding> left;   ///< nearest first
+  std::vector<ContextBinding> right;  ///< text order
+  std::vector<ContextItem> leftItems;   ///< the items of `left`, contiguous for the pool
+  std::vector<ContextItem> rightItems;  ///< the items of `right`
+  CompiledExpression predicate;       ///< empty: always true
+  std::vector<StateCalculation> calculations;
+  bool hasAction = false;
+  std::vector<SuccessorTemplate> successors;
+  CompiledExpression probability;  ///< empty: not stochastic
+  int frameSize = 0;
+
+  bool hasContext() const { return !left.empty() || !right.empty(); }
+};
+
+/// An instruction of an interpretation block, e.g. `F(1 + age)`.
+struct Instruction {
+  std::string command;
+  std::vector<CompiledExpression> args;
+  SourceSpan span;
+};
+
+struct InterpretationBlock {
+  std::string setName;
+  std::vector<Instruction> instructions;
+  SourceSpan span;
+};
+
+/// A development function g(params, tau, beta) (paper 000, section 3.3).
+struct DevelopmentFunction {
+  std::string name;
+  int arity = 0;
+  /// Where each parameter comes from when the function develops a module:
+  /// kFromAge, kFromTerminalAge, or the index of a module parameter.
+  std::vector<int> sources;
+  static constexpr int kFromAge = -1;
+  static constexpr int kFromTerminalAge = -2;
+  SourceSpan span;
+};
+
+struct MasterCell {
+  std::string label;
+  SourceSpan span;
+  bool declared = false;  ///< a `cell` (or an L-system module with productions), not only a symbol
+  int scope = -1;         ///< system index of the L-system that owns the symbol, -1: global
+  std::vector<std::string> stateNames;
+  std::vector<double> defaults;
+  double lifetime = kForever;  ///< terminal age β, seconds
+  std::vector<CompiledRule> rules;          ///< evaluated once per step, in order
+  std::vector<CompiledRule> terminalRules;  ///< evaluated when age reaches lifetime
+  std::vector<InterpretationBlock> interpretations;
+  int developmentFunction = -1;  ///< index into Program::functions
+  std::string command;           ///< the instruction this symbol stands for (label or equiv)
+  uint8_t symbolClass = kSymbolModule;
+
+  const InterpretationBlock* interpretation(std::string_view set) const {
+    for (const auto& block : interpretations)
+      if (block.setName == set) return &block;
+    return nullptr;
+  }
+  uint32_t stateCount() const { return static_cast<uint32_t>(stateNames.size()); }
+};
+
+/// Interpretation settings of a system (`#angle`, `#step`, ...). Angles in the unit the
+/// program chose (degrees unless #radians).
+struct InterpretSettings {
+  double angle = 90;
+  double yawAngle = 90;
+  double step = 1;    ///< default move length (#length)
+  double radius = 0;  ///< default cylinder radius (#radius); 0 draws lines
+  bool radians = false;
+};
+
+struct AxiomCell {
+  MasterId master = 0;
+  std::vector<double> values;
+  double age = 0;
+};
+
+struct SystemDefinition {
+  std::string name;
+  SourceSpan span;
+  bool isLSystem = false;
+  PoolKind poolKind = PoolKind::Linear;
+  std::vector<AxiomCell> axiom;
+  std::vector<uint8_t> symbolClass;  ///< per master: branch brackets and ignored symbols
+  InterpretSettings settings;
+  bool terminalContext = false;  ///< some terminal rule of this system's cells reads context
+  bool sampledRules = false;     ///< some cell of this system has per-step rules
+  bool stochastic = false;
+};
+
+struct Program {
+  std::vector<std::unique_ptr<SourceFile>> sources;
+  std::vector<MasterCell> masters;
+  std::vector<CompiledExpression> functionBodies;
+  std::vector<DevelopmentFunction> functions;
+  std::vector<SystemDefinition> systems;
+  int root = 0;          ///< index of the root system
+  uint64_t seed = 1;     ///< default seed (#seed), overridden by --seed
+  bool hasSeed = false;
+  double until = 10;     ///< default end of a run (#until), seconds of developmental time
+  double dt = 1;         ///< default step (#dt); rules without a terminal age fire once per step
+
+  FunctionTable functionTable() const { return FunctionTable{functionBodies}; }
+  const SystemDefinition& rootSystem() const { return systems[root]; }
+  /// The master with this label visible in a scope (an L-system's own symbols first).
+  int findMaster(std::string_view label, int scope = -1) const;
+};
+
+}  // namespace ontogen

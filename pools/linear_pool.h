@@ -1,0 +1,55 @@
+#pragma once
+// The linear pool: the L-system string. Cells are kept in one array in word order;
+// successors are written in place of their predecessor when the engine rebuilds the
+// word. Context is branch-aware as in The Algorithmic Beauty of Plants, section 1.8:
+//  - the left context is found on the path towards the root: a `[` to the left is left
+//    behind (its parent comes before it) and a complete branch `[...]` is skipped;
+//  - the right context skips whole branches unless the pattern enters one with `[`; a
+//    `]` in the pattern skips the rest of the current branch; the end of the current
+//    branch (`]`) has no right neighbour;
+//  - symbols marked kSymbolIgnored are left out in both directions.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "pools/pool.h"
+
+namespace ontogen {
+
+/// One position of a context pattern: a module of a given master, or a bracket.
+struct ContextItem {
+  enum class Kind : uint8_t { Module, BranchOpen, BranchClose };
+  Kind kind = Kind::Module;
+  uint32_t master = 0;
+};
+
+class LinearPool final : public Pool {
+ public:
+  PoolKind kind() const override { return PoolKind::Linear; }
+  int contextDimension() const override { return 1; }
+  std::unique_ptr<Pool> clone() const override { return std::make_unique<LinearPool>(*this); }
+
+  /// Computes the matching bracket of every `[` and `]` for the current cells.
+  /// classOf[master] is the SymbolClass of each master. Call after the word changes and
+  /// before matching.
+  void indexBranches(std::span<const uint8_t> classOf);
+
+  /// Matches a left context given nearest-first (for `A B < C`: B, then A). On success
+  /// matched[k] is the index of the cell that matched items[k].
+  bool matchLeft(size_t index, std::span<const ContextItem> items, std::span<const uint8_t> classOf,
+                 uint32_t* matched) const;
+  /// Matches a right context given in text order. Brackets in items enter a branch (`[`)
+  /// or leave the current one (`]`); matched[k] is meaningful for module items only.
+  bool matchRight(size_t index, std::span<const ContextItem> items, std::span<const uint8_t> classOf,
+                  uint32_t* matched) const;
+
+  /// Matching bracket of cell i, or kNoPartner (an unmatched bracket or not a bracket).
+  uint32_t partnerOf(size_t i) const { return partner_[i]; }
+  static constexpr uint32_t kNoPartner = UINT32_MAX;
+
+ private:
+  std::vector<uint32_t> partner_;
+};
+
+}  // namespace ontogen

@@ -1,0 +1,56 @@
+#pragma once
+// A pool is the neighbourhood structure cells live in (paper 002, section 2.1). Pools are
+// polymorphic: the engine makes one virtual call per pool and step, never per cell. Each
+// kind interprets context its own way: the linear pool as left/right neighbours in a
+// bracketed string; the grid pool (N-D, von Neumann or Moore) and the spatial pool
+// (Euclidean distance) follow the same interface.
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "pools/cell_record.h"
+
+namespace ontogen {
+
+enum class PoolKind { Linear, Grid, Spatial };
+
+std::string_view poolKindName(PoolKind kind);
+
+class Pool {
+ public:
+  virtual ~Pool() = default;
+
+  virtual PoolKind kind() const = 0;
+  /// Dimensions a context relation must have to make sense in this pool (linear: 1).
+  virtual int contextDimension() const = 0;
+  /// A deep copy (worlds are cheap to copy for evolution and sweeps).
+  virtual std::unique_ptr<Pool> clone() const = 0;
+
+  /// Cells in pool order (the order interpretation walks them).
+  std::span<const CellRecord> cells() const { return cells_; }
+  std::span<CellRecord> cells() { return cells_; }
+  size_t size() const { return cells_.size(); }
+  /// The state values of a cell (count given by its master).
+  const double* stateOf(const CellRecord& cell) const { return state_.data() + cell.state; }
+  double* stateOf(const CellRecord& cell) { return state_.data() + cell.state; }
+  std::span<const double> stateArena() const { return state_; }
+
+  /// Approximate bytes held, for the memory limit.
+  size_t bytes() const { return cells_.capacity() * sizeof(CellRecord) + state_.capacity() * sizeof(double); }
+
+  /// Appends a cell with `count` state values copied from `values`.
+  void append(CellRecord cell, const double* values, uint32_t count);
+  /// Replaces the contents with another pool's (same kind), reusing storage.
+  void swapContents(std::vector<CellRecord>& cells, std::vector<double>& state);
+  void reserve(size_t cells, size_t values);
+  void clear();
+
+ protected:
+  std::vector<CellRecord> cells_;
+  std::vector<double> state_;
+};
+
+}  // namespace ontogen
