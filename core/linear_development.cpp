@@ -2,12 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "lang/diagnostics.h"
 
 namespace ontogen {
 
 namespace {
+std::string formatNumber(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+
 constexpr uint64_t kStepRuleSalt = 0x5354455052554c45ull;  // keeps per-step draws apart from terminal ones
 constexpr size_t kLimitCheckInterval = 1 << 16;           // cells between memory checks
 }  // namespace
@@ -235,12 +242,12 @@ void LinearDevelopment::emitSuccessors(const CompiledRule& rule, const CellRecor
     for (uint32_t j = 0; j < count; ++j) values_[j] = successor.args[j].evaluate(context);
     double age = successor.birthAge.empty() ? 0.0 : successor.birthAge.evaluate(context);
     if (!(age >= 0) || age >= target.lifetime) {
-      modelError(successor.span, "'" + target.label + "' would be born with age " + std::to_string(age) +
+      modelError(successor.span, "'" + target.label + "' would be born with age " + formatNumber(age) +
                                      (age >= target.lifetime ? ", not below its terminal age " +
-                                                                   std::to_string(target.lifetime)
+                                                                   formatNumber(target.lifetime)
                                                              : ", but ages are ≥ 0") +
                                      " (in a rule of '" + program_.masters[cell.master].label +
-                                     "' at t = " + std::to_string(when) + ")");
+                                     "' at t = " + formatNumber(when) + ")");
     }
     CellRecord born;
     born.master = successor.master;

@@ -19,7 +19,7 @@ std::vector<WordCell> captureWord(const World& world) {
     entry.params.assign(state, state + master.stateCount());
     world.developedValues(cell, entry.developed);
     entry.age = world.ageOf(cell);
-    entry.timed = master.lifetime != kForever;
+    entry.timed = master.timedNotation;
     entry.id = cell.id;
     word.push_back(std::move(entry));
   }

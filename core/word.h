@@ -17,7 +17,7 @@ struct WordCell {
   std::vector<double> params;     ///< the actual parameters (state values in declaration order)
   std::vector<double> developed;  ///< after the development function (= params without one)
   double age = 0;                 ///< seconds
-  bool timed = false;             ///< has a finite terminal age
+  bool timed = false;             ///< written in timed notation: printed as (X, age)
   uint64_t id = 0;
 };
 

@@ -17,11 +17,11 @@ namespace ontogen {
 
 /// Settings of the set; validated when it is created.
 struct GeometrySetDef {
-  TurtleDef turtle;
+  TurtleDef turtle{};
   bool writeSvg = true;  ///< write <stem>.svg each frame
   bool writeObj = true;  ///< write <stem>.obj each frame
-  SvgOptions svg;        ///< picture size and number format of the SVG
-  MeshDef mesh;          ///< tessellation of cylinders, discs and spheres
+  SvgOptions svg{};      ///< picture size and number format of the SVG
+  MeshDef mesh{};        ///< tessellation of cylinders, discs and spheres
 };
 
 /// Turtle geometry written as SVG and OBJ.

@@ -75,7 +75,8 @@ class Compiler {
   Compiler(const ast::Program& tree, DiagnosticSink& sink, const CompileOptions& options)
       : tree_(tree), sink_(sink), options_(options) {}
 
-  std::unique_ptr<Program> run(std::unique_ptr<SourceFile> source) {
+  std::unique_ptr<Program> run(std::shared_ptr<const SourceFile> source) {
+    sink_.retain(source);
     program_ = std::make_unique<Program>();
     program_->sources.push_back(std::move(source));
     global_.system = -1;
@@ -287,6 +288,7 @@ class Compiler {
         if (value) {
           if (!(*value > 0)) sink_.error(cell.lifetimeSpan, "the lifetime must be greater than 0");
           else program_->masters[index].lifetime = *value;
+          program_->masters[index].timedNotation = true;
         }
       }
       cellMaster_[&cell] = index;
@@ -299,6 +301,7 @@ class Compiler {
     int index = program_->findMaster(module.label, scope);
     if (index < 0 || (scope >= 0 && program_->masters[index].scope != scope)) index = addMaster(module.label, scope, module.span);
     MasterCell& master = program_->masters[index];
+    if (module.age) master.timedNotation = true;
     int count = static_cast<int>(module.args.size());
     if (!arityKnown_[index]) {
       arityKnown_[index] = true;
@@ -748,14 +751,15 @@ class Compiler {
 
 }  // namespace
 
-std::unique_ptr<Program> compile(const ast::Program& tree, std::unique_ptr<SourceFile> source, DiagnosticSink& sink,
+std::unique_ptr<Program> compile(const ast::Program& tree, std::shared_ptr<const SourceFile> source, DiagnosticSink& sink,
                                  const CompileOptions& options) {
   return Compiler(tree, sink, options).run(std::move(source));
 }
 
 std::unique_ptr<Program> compileSource(std::string name, std::string text, DiagnosticSink& sink,
                                        const CompileOptions& options) {
-  auto source = std::make_unique<SourceFile>(std::move(name), std::move(text));
+  auto source = std::make_shared<const SourceFile>(std::move(name), std::move(text));
+  sink.retain(source);
   ast::Program tree = parse(*source, sink);
   if (sink.hasErrors()) return nullptr;
   return compile(tree, std::move(source), sink, options);

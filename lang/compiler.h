@@ -35,7 +35,7 @@ struct CompileOptions {
 };
 
 /// Compiles a parsed program whose text is `source`. Returns null when there were errors.
-std::unique_ptr<Program> compile(const ast::Program& tree, std::unique_ptr<SourceFile> source,
+std::unique_ptr<Program> compile(const ast::Program& tree, std::shared_ptr<const SourceFile> source,
                                  DiagnosticSink& sink, const CompileOptions& options = {});
 
 /// Parses and compiles a program text in one call.

@@ -3,6 +3,7 @@
 // print. formatDiagnostic renders one the way clang does: location, message, the
 // source line and a caret under the span.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -30,9 +31,12 @@ class DiagnosticSink {
   bool hasErrors() const { return errors_ > 0; }
   const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
   void clear();
+  /// Keeps a source file alive as long as the sink, so diagnostics can always show it.
+  void retain(std::shared_ptr<const SourceFile> file) { files_.push_back(std::move(file)); }
 
  private:
   std::vector<Diagnostic> diagnostics_;
+  std::vector<std::shared_ptr<const SourceFile>> files_;
   int errors_ = 0;
 };
 

@@ -576,8 +576,15 @@ class Parser {
       try {
         inStatement(line, [&] { lsystemItem(result); });
       } catch (const SyntaxError&) {
-        statement_ = line;
-        synchronize();
+        // Line-based recovery: the statement ends at the next line that starts at or
+        // left of its first column, even if an open '(' swallowed line breaks.
+        pos_ = before;
+        int startLine = peek().line;
+        advance();
+        while (!check(TokenKind::EndOfFile) && !check(TokenKind::RBrace) &&
+               !(peek().line > startLine && peek().column <= line.startColumn)) {
+          if (advance().kind == TokenKind::Semicolon) break;
+        }
       }
       if (pos_ == before) advance();
     }

@@ -98,6 +98,9 @@ struct MasterCell {
   std::vector<std::string> stateNames;
   std::vector<double> defaults;
   double lifetime = kForever;  ///< terminal age β, seconds
+  /// Written with ages somewhere, `(X, 3)` or a cell's lifetime: words print it as
+  /// `(X, age)`. Untimed L-system symbols print bare, as generations do.
+  bool timedNotation = false;
   std::vector<CompiledRule> rules;          ///< evaluated once per step, in order
   std::vector<CompiledRule> terminalRules;  ///< evaluated when age reaches lifetime
   std::vector<InterpretationBlock> interpretations;
@@ -143,7 +146,7 @@ struct SystemDefinition {
 };
 
 struct Program {
-  std::vector<std::unique_ptr<SourceFile>> sources;
+  std::vector<std::shared_ptr<const SourceFile>> sources;  ///< the texts spans point into
   std::vector<MasterCell> masters;
   std::vector<CompiledExpression> functionBodies;
   std::vector<DevelopmentFunction> functions;

@@ -1,5 +1,6 @@
 #include "interpreters/geometry_set.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -76,13 +75,11 @@ ObjFile parseObj(const std::string& text) {
     } else if (tag == "f") {
       std::array<std::pair<long, long>, 3> face;
       for (auto& [vertex, normal] : face) {
-        std::string corner;
-        fields >> corner;
-        std::smatch m;
-        if (!std::regex_match(corner, m, std::regex("([0-9]+)//([0-9]+)"))) error("bad corner");
-        else {
-          vertex = std::stol(m[1]);
-          normal = std::stol(m[2]);
+        // "v//n": two numbers around a double slash.
+        char slash1 = 0;
+        char slash2 = 0;
+        if (!(fields >> vertex >> slash1 >> slash2 >> normal) || slash1 != '/' || slash2 != '/') {
+          error("bad corner");
         }
       }
       std::string extra;
@@ -220,10 +217,14 @@ std::pair<int, std::string> runCommand(const std::string& command) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
 
+/// The number after "\nfield:" in assimp's report, or -1.
 long reported(const std::string& output, const std::string& field) {
-  std::smatch m;
-  if (!std::regex_search(output, m, std::regex("\n" + field + ":\\s+([0-9]+)"))) return -1;
-  return std::stol(m[1]);
+  std::size_t at = output.find("\n" + field + ":");
+  if (at == std::string::npos) return -1;
+  std::istringstream in(output.substr(at + field.size() + 2));
+  long value = -1;
+  in >> value;
+  return value;
 }
 
 TEST(ObjWriterTest, AssimpReadsTheFile) {

@@ -1,0 +1,134 @@
+// The example models of models/: their words and their geometry, by value.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+
+#include "core/word.h"
+#include "core/world.h"
+#include "interpreters/geometry_set.h"
+#include "interpreters/interpret.h"
+#include "test_support.h"
+
+namespace ontogen {
+namespace {
+
+using testing_support::compileModel;
+
+std::string labels(const World& world) {
+  std::string text;
+  for (const WordCell& cell : captureWord(world)) text += cell.label;
+  return text;
+}
+
+// Interprets the world with the geometry set without writing files.
+struct Drawn {
+  size_t segments = 0;
+  glm::dvec3 end{0.0};
+};
+
+Drawn draw(const World& world) {
+  GeometrySetDef def;
+  const InterpretSettings& settings = world.rootSystem().settings;
+  def.turtle.angle = settings.angle;
+  def.turtle.yawAngle = settings.yawAngle;
+  def.turtle.step = settings.step;
+  def.turtle.radius = settings.radius;
+  def.turtle.radians = settings.radians;
+  GeometrySet set(def);
+  set.beginFrame(FrameTarget{});
+  interpretWord(world, set);
+  return {set.geometry().segmentCount() + set.geometry().cylinders().size(), set.turtle().state().position};
+}
+
+TEST(Models, ThueMorseGenerations) {
+  World world(compileModel("thue_morse.cell"));
+  const char* expected[] = {"a", "ab", "abba", "abbabaab", "abbabaabbaababba"};
+  for (int n = 0; n <= 4; ++n) {
+    world.advanceTo(n, 1);
+    EXPECT_EQ(labels(world), expected[n]) << "generation " << n;
+  }
+  world.advanceTo(12, 1);
+  EXPECT_EQ(world.rootPool().size(), 4096u);
+  // The n-th symbol is the parity of the number of ones in n's binary form.
+  auto word = captureWord(world);
+  for (size_t i = 0; i < word.size(); ++i)
+    ASSERT_EQ(word[i].label, std::popcount(i) % 2 ? "b" : "a") << i;
+}
+
+TEST(Models, DragonCurveSegmentsAndEndPoint) {
+  World world(compileModel("dragon.cell"));
+  for (int n : {1, 4, 10}) {
+    world.advanceTo(n, 1);
+    Drawn drawn = draw(world);
+    EXPECT_EQ(drawn.segments, 1u << n) << "generation " << n;
+    // With + a left turn (multiplication by i) and the first step along +y (i), the end
+    // is (1 + i)^n * i.
+    std::complex<double> end = std::pow(std::complex<double>(1, 1), n) * std::complex<double>(0, 1);
+    EXPECT_NEAR(drawn.end.x, end.real(), 1e-9) << "generation " << n;
+    EXPECT_NEAR(drawn.end.y, end.imag(), 1e-9) << "generation " << n;
+  }
+}
+
+TEST(Models, KochCurveSegmentsAndReach) {
+  World world(compileModel("koch.cell"));
+  world.advanceTo(5, 1);
+  Drawn drawn = draw(world);
+  EXPECT_EQ(drawn.segments, 3125u);  // 5^5
+  EXPECT_NEAR(drawn.end.x, 0, 1e-9);
+  EXPECT_NEAR(drawn.end.y, 243, 1e-9);  // 3^5 along the first heading
+}
+
+TEST(Models, BranchingSegmentsAndBalancedBrackets) {
+  World world(compileModel("branching.cell"));
+  world.advanceTo(4, 1);
+  EXPECT_EQ(draw(world).segments, 625u);  // 5^4
+  int depth = 0;
+  for (const WordCell& cell : captureWord(world)) {
+    depth += cell.label == "[" ? 1 : cell.label == "]" ? -1 : 0;
+    ASSERT_GE(depth, 0);
+  }
+  EXPECT_EQ(depth, 0);
+}
+
+TEST(Models, AnabaenaFollowsAbopGenerations) {
+  World world(compileModel("anabaena.cell"));
+  const char* expected[] = {"ar", "albr", "blarar", "alalbralbr", "blarblararblarar"};
+  for (int n = 0; n <= 4; ++n) {
+    world.advanceTo(n, 0.25);
+    EXPECT_EQ(labels(world), expected[n]) << "generation " << n;
+  }
+  // The counts follow Fibonacci's sequence.
+  size_t previous = 5, current = 8;
+  for (int n = 5; n <= 12; ++n) {
+    world.advanceTo(n, 0.5);
+    size_t next = previous + current;
+    previous = current;
+    current = next;
+    EXPECT_EQ(world.rootPool().size(), current) << "generation " << n;
+  }
+}
+
+TEST(Models, AnabaenaCellsGrowContinuouslyBetweenDivisions) {
+  World world(compileModel("anabaena.cell"));
+  world.advanceTo(0.5, 0.5);
+  Drawn half = draw(world);
+  // ar at age 0.5: F(0.6 + 0.15) f(0.1)
+  EXPECT_NEAR(half.end.y, 0.85, 1e-12);
+}
+
+TEST(Models, PistonDrawsItsParts) {
+  World world(compileModel("piston.cell"));
+  world.advanceTo(1.04, 0.04);
+  GeometrySet set;
+  set.beginFrame(FrameTarget{});
+  interpretWord(world, set);
+  EXPECT_EQ(set.geometry().cylinders().size(), 2u);  // piston and connecting rod
+  EXPECT_EQ(set.geometry().discs().size(), 1u);      // the flywheel
+  EXPECT_NEAR(set.geometry().cylinders()[0].radius, 10, 1e-12);
+  EXPECT_NEAR(set.geometry().cylinders()[1].radius, 2, 1e-12);
+}
+
+}  // namespace
+}  // namespace ontogen

@@ -1,0 +1,129 @@
+// Walks tests/programs/*.cell: one small program per behaviour, with what it must do
+// written in the file as comments:
+//   // expect-word T: WORD        the derivation word at time T (6 significant digits)
+//   // expect-error L:C: TEXT     an error at line L, column C whose message contains TEXT
+//   // expect-run-error: TEXT     developing on past the last expected word (1000 s) fails with TEXT
+//   // step: DT                   the step used to develop (default: the program's #dt)
+//   // seed: S                    the seed (default 1)
+// A file with expect-error lines must report exactly those errors and no others.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "core/word.h"
+#include "core/world.h"
+#include "interpreters/set_registry.h"
+#include "lang/compiler.h"
+
+namespace ontogen {
+namespace {
+
+struct Expectations {
+  std::vector<std::pair<double, std::string>> words;
+  std::vector<std::tuple<int, int, std::string>> errors;
+  std::string runError;
+  std::optional<double> step;
+  uint64_t seed = 1;
+};
+
+std::string readFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Expectations expectationsOf(const std::string& text) {
+  Expectations result;
+  std::istringstream lines(text);
+  std::string line;
+  std::smatch m;
+  static const std::regex word(R"(//\s*expect-word\s+([-0-9.eE+]+):\s?(.*)$)");
+  static const std::regex error(R"(//\s*expect-error\s+(\d+):(\d+):\s?(.*)$)");
+  static const std::regex runError(R"(//\s*expect-run-error:\s?(.*)$)");
+  static const std::regex step(R"(//\s*step:\s*([-0-9.eE+]+))");
+  static const std::regex seed(R"(//\s*seed:\s*(\d+))");
+  while (std::getline(lines, line)) {
+    if (std::regex_search(line, m, word)) result.words.push_back({std::stod(m[1]), m[2]});
+    else if (std::regex_search(line, m, error)) result.errors.push_back({std::stoi(m[1]), std::stoi(m[2]), m[3]});
+    else if (std::regex_search(line, m, runError)) result.runError = m[1];
+    else if (std::regex_search(line, m, step)) result.step = std::stod(m[1]);
+    else if (std::regex_search(line, m, seed)) result.seed = std::stoull(m[1]);
+  }
+  return result;
+}
+
+class ProgramFile : public testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(ProgramFile, BehavesAsWritten) {
+  const auto& path = GetParam();
+  std::string text = readFile(path);
+  Expectations expected = expectationsOf(text);
+  ASSERT_TRUE(!expected.words.empty() || !expected.errors.empty() || !expected.runError.empty())
+      << path << " states no expectation";
+  DiagnosticSink sink;
+  CompileOptions options;
+  options.commandSets = commandSets();
+  std::shared_ptr<const Program> program = compileSource(path.filename().string(), text, sink, options);
+
+  std::vector<std::tuple<int, int, std::string>> reported;
+  for (const auto& d : sink.diagnostics())
+    if (d.severity == Severity::Error) reported.push_back({d.span.line(), d.span.column(), d.message});
+  for (const auto& [line, column, message] : expected.errors) {
+    bool found = false;
+    for (const auto& [l, c, m] : reported) found |= l == line && c == column && m.find(message) != std::string::npos;
+    EXPECT_TRUE(found) << "expected error at " << line << ":" << column << " containing '" << message
+                       << "'; reported:\n"
+                       << formatDiagnostics(sink);
+  }
+  EXPECT_EQ(reported.size(), expected.errors.size()) << formatDiagnostics(sink);
+  if (!expected.errors.empty()) {
+    EXPECT_EQ(program, nullptr);
+    return;
+  }
+  ASSERT_NE(program, nullptr) << formatDiagnostics(sink);
+
+  WorldDef def;
+  def.seed = expected.seed;
+  World world(program, def);
+  double step = expected.step.value_or(program->dt);
+  try {
+    for (const auto& [time, word] : expected.words) {
+      world.advanceTo(time, step);
+      EXPECT_EQ(formatWord(captureWord(world)), word) << "at t = " << time;
+    }
+    if (!expected.runError.empty()) {
+      world.advanceTo(world.time() + 1000, step);
+      ADD_FAILURE() << "expected the run to fail with '" << expected.runError << "'";
+    }
+  } catch (const std::exception& error) {
+    if (expected.runError.empty()) {
+      ADD_FAILURE() << "the run failed: " << error.what();
+    } else {
+      EXPECT_NE(std::string(error.what()).find(expected.runError), std::string::npos) << error.what();
+    }
+  }
+}
+
+std::vector<std::filesystem::path> programFiles() {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(ONTOGEN_SOURCE_DIR "/tests/programs"))
+    if (entry.path().extension() == ".cell") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+INSTANTIATE_TEST_SUITE_P(Programs, ProgramFile, testing::ValuesIn(programFiles()),
+                         [](const testing::TestParamInfo<std::filesystem::path>& info) {
+                           std::string name = info.param.stem().string();
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace ontogen
