@@ -9,11 +9,16 @@
 #include <sstream>
 #include <string>
 
+#include "core/world.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 #include "lang/program.h"
 
 namespace ontogen::bench {
+
+/// Every benchmark world: seed 1, default limits. (`.limits` is spelled out because GCC 12
+/// warns on a designated initializer that leaves out a member without a `{}` default.)
+inline const WorldDef kBenchWorld{.seed = 1, .limits = {}};
 
 /// A compiled program, or the diagnostics that stopped it.
 struct Compiled {

@@ -46,7 +46,7 @@ void BM_ContextSignal(benchmark::State& state) {
   }
   const int steps = static_cast<int>(state.range(0));
   for (auto _ : state) {
-    World world(compiled.program, WorldDef{.seed = 1});
+    World world(compiled.program, kBenchWorld);
     world.advanceTo(steps, 1.0);
     state.PauseTiming();
     std::string error = checkSignal(*compiled.program, world, steps);

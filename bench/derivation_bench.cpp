@@ -34,7 +34,7 @@ void deriveFromAxiom(benchmark::State& state, const Compiled& compiled, uint64_t
   }
   const int n = static_cast<int>(state.range(0));
   for (auto _ : state) {
-    World world(compiled.program, WorldDef{.seed = 1});
+    World world(compiled.program, kBenchWorld);
     world.advanceTo(n, 1.0);
     if (world.rootPool().size() != expectedSize) {
       state.SkipWithError(("word of " + std::to_string(world.rootPool().size()) + " modules, expected " +

@@ -27,7 +27,7 @@ void BM_PistonInterpretFrame(benchmark::State& state) {
     state.SkipWithError(compiled.error.c_str());
     return;
   }
-  World world(compiled.program, WorldDef{.seed = 1});
+  World world(compiled.program, kBenchWorld);
   world.advanceTo(kPistonFrameTime, kPistonStep);
   std::unique_ptr<InterpretationSet> set = makeInterpretationSet("geometry", compiled.program->rootSystem().settings);
   for (auto _ : state) {
@@ -45,7 +45,7 @@ void BM_PistonCaptureWord(benchmark::State& state) {
     state.SkipWithError(compiled.error.c_str());
     return;
   }
-  World world(compiled.program, WorldDef{.seed = 1});
+  World world(compiled.program, kBenchWorld);
   world.advanceTo(kPistonFrameTime, kPistonStep);
   for (auto _ : state) {
     std::vector<WordCell> word = captureWord(world);
@@ -62,7 +62,7 @@ void BM_PistonStepAndInterpret(benchmark::State& state) {
     state.SkipWithError(compiled.error.c_str());
     return;
   }
-  World world(compiled.program, WorldDef{.seed = 1});
+  World world(compiled.program, kBenchWorld);
   world.advanceTo(kPistonFrameTime, kPistonStep);
   std::unique_ptr<InterpretationSet> set = makeInterpretationSet("geometry", compiled.program->rootSystem().settings);
   for (auto _ : state) {
@@ -83,7 +83,7 @@ void BM_KochInterpret(benchmark::State& state) {
     return;
   }
   const int n = static_cast<int>(state.range(0));
-  World world(compiled.program, WorldDef{.seed = 1});
+  World world(compiled.program, kBenchWorld);
   world.advanceTo(n, 1.0);
   std::unique_ptr<InterpretationSet> set = makeInterpretationSet("geometry", compiled.program->rootSystem().settings);
   for (auto _ : state) {

@@ -33,7 +33,7 @@ void BM_PistonPeriods(benchmark::State& state) {
   uint64_t steps = 0;
   uint64_t events = 0;
   for (auto _ : state) {
-    World world(compiled.program, WorldDef{.seed = 1});
+    World world(compiled.program, kBenchWorld);
     world.advanceTo(until, kStep);
     const WorldStats& stats = world.stats();
     if (stats.steps != expectedSteps || stats.events != expectedEvents ||

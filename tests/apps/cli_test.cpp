@@ -1,0 +1,161 @@
+// The ontogen executable as a user meets it: exit codes, messages, files written.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+fs::path scratch(const std::string& name) {
+  fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "cli_test" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Result ontogen(const std::string& args) {
+  fs::path errFile = fs::path(ONTOGEN_BINARY_DIR) / "cli_test" / "stderr.txt";
+  fs::create_directories(errFile.parent_path());
+  std::string command = std::string(ONTOGEN_EXECUTABLE) + " " + args + " 2>" + errFile.string();
+  Result result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.out.append(buffer.data(), n);
+  int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.err = readFile(errFile);
+  return result;
+}
+
+std::string model(const std::string& name) { return std::string(ONTOGEN_SOURCE_DIR) + "/models/" + name; }
+
+fs::path writeProgram(const fs::path& dir, const std::string& text) {
+  fs::path path = dir / "program.cell";
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Cli, CheckAcceptsEveryModel) {
+  for (const auto& entry : fs::directory_iterator(std::string(ONTOGEN_SOURCE_DIR) + "/models")) {
+    if (entry.path().extension() != ".cell") continue;
+    Result result = ontogen("check " + entry.path().string());
+    EXPECT_EQ(result.exitCode, 0) << entry.path() << "\n" << result.err;
+    EXPECT_NE(result.out.find(": ok"), std::string::npos);
+  }
+}
+
+TEST(Cli, BadProgramGivesLocatedErrorsAndWritesNothing) {
+  fs::path dir = scratch("bad");
+  fs::path program = writeProgram(dir, "lsystem a {\n  axiom A(1)\n  A(x) -> A(y + 1)\n  A(x) -> B(sin())\n}\n");
+  fs::path out = dir / "out";
+  Result result = ontogen("run " + program.string() + " --out " + out.string());
+  EXPECT_EQ(result.exitCode, 1);
+  EXPECT_NE(result.err.find(program.string() + ":3:13: error: unknown name 'y'\n  A(x) -> A(y + 1)\n            ^\n"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find(":4:13: error: 'sin' takes 1 argument"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("2 errors in"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, WordJsonReproducesTable1OfPaper000) {
+  Result result = ontogen("word " + model("piston.cell") + " --at 0,0.04,1.04,4.04 --json");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  auto json = nlohmann::json::parse(result.out);
+  ASSERT_EQ(json["times"].size(), 4u);
+  EXPECT_EQ(json["times"][0]["cells"][0]["label"], "piston");
+  const auto& at104 = json["times"][2];
+  EXPECT_DOUBLE_EQ(at104["t"].get<double>(), 1.04);
+  const auto& cells = at104["cells"];
+  ASSERT_EQ(cells.size(), 12u);
+  EXPECT_EQ(cells[0]["label"], "mov");
+  EXPECT_NEAR(cells[0]["developed"][0].get<double>(), 50, 1e-9);
+  EXPECT_NEAR(cells[0]["params"][0].get<double>(), 50, 0);
+  EXPECT_NEAR(cells[0]["age"].get<double>(), 1, 1e-9);
+  EXPECT_NEAR(cells[3]["developed"][0].get<double>(), std::asin(0.25), 1e-12);
+  EXPECT_NEAR(cells[6]["developed"][0].get<double>(), std::asin(0.25) + M_PI / 2, 1e-12);
+  EXPECT_EQ(cells[1]["label"], "!");
+  EXPECT_EQ(cells[1]["developed"], nlohmann::json::parse("[10]"));
+}
+
+TEST(Cli, WordTextInTheStyleOfTable1) {
+  Result result = ontogen("word " + model("piston.cell") + " --at 1.04 --precision 3");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 1.04: (mov(50), 1) !(10) cC(60, 1) (bend(0.253), 1) !(2) cC(200, 1) (turn(1.82), 1) f(50) "
+            "+(1.57) [ disc(0, 50) ]\n");
+}
+
+TEST(Cli, RunWritesOneNumberedOutputPerFrame) {
+  fs::path out = scratch("frames");
+  Result result = ontogen("run " + model("piston.cell") + " --until 4 --frames 3 --interpret geometry,trace --out " +
+                          out.string() + " --stats");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  for (const char* name : {"piston_0000.svg", "piston_0001.obj", "piston_0002.txt"})
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  EXPECT_FALSE(fs::exists(out / "piston_0003.svg"));
+  EXPECT_NE(result.out.find("cells 12"), std::string::npos) << result.out;
+  std::string trace = readFile(out / "piston_0000.txt");
+  EXPECT_EQ(trace, "piston\n");
+}
+
+TEST(Cli, SameSeedSameOutputDifferentSeedDifferent) {
+  fs::path dir = scratch("seed");
+  fs::path program = writeProgram(dir, "lsystem s {\n  axiom A\n  A -> A B : 0.5\n  A -> B A : 0.5\n}\n");
+  std::string word = "word " + program.string() + " --at 12 --json";
+  Result a = ontogen(word + " --seed 3");
+  Result b = ontogen(word + " --seed 3");
+  Result c = ontogen(word + " --seed 4");
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  EXPECT_EQ(a.out, b.out);
+  EXPECT_NE(a.out, c.out);
+}
+
+TEST(Cli, RunawayGrowthStopsWithTheLimitNamed) {
+  fs::path dir = scratch("limit");
+  fs::path program = writeProgram(dir, "lsystem s {\n  axiom A\n  A -> A A\n}\n");
+  Result result = ontogen("run " + program.string() + " --until 40 --max-cells 100000 --out " + (dir / "out").string());
+  EXPECT_EQ(result.exitCode, 3);
+  EXPECT_NE(result.err.find("past 100000 cells"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("--max-cells"), std::string::npos) << result.err;
+}
+
+TEST(Cli, UsageErrorsExitWith2) {
+  EXPECT_EQ(ontogen("run /no/such/file.cell").exitCode, 2);
+  EXPECT_EQ(ontogen("frobnicate").exitCode, 2);
+  EXPECT_EQ(ontogen("run " + model("koch.cell") + " --interpret nonsense --out /tmp/x").exitCode, 2);
+}
+
+TEST(Cli, HelpListsTheTables) {
+  Result result = ontogen("help");
+  EXPECT_EQ(result.exitCode, 0);
+  EXPECT_NE(result.out.find("besselj(n, x)"), std::string::npos);
+  EXPECT_NE(result.out.find("cC(l, capped)"), std::string::npos);
+}
+
+}  // namespace
