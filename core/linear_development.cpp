@@ -39,10 +39,10 @@ LinearDevelopment::LinearDevelopment(World& world)
   values_.resize(values);
 }
 
-void LinearDevelopment::step(double t1) {
+void LinearDevelopment::step(double t1, bool stepRules) {
   double t = world_.time_;
   eventsThisStep_ = 0;
-  if (system_.sampledRules) applyStepRules(t);
+  if (system_.sampledRules && stepRules) applyStepRules(t);
   if (system_.terminalContext) expireInTimeOrder(t1);
   else expireContextFree(t1);
   world_.time_ = t1;
@@ -168,26 +168,23 @@ const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule
     if (rule.probability.empty()) return &rule;
     // A stochastic production: choose among it and the later matching stochastic
     // alternatives, weighted by their probabilities.
-    double weights[64];
-    const CompiledRule* candidates[64];
-    size_t count = 0;
+    candidates_.clear();
     double total = 0;
-    for (size_t s = r; s < rules.size() && count < 64; ++s) {
+    for (size_t s = r; s < rules.size(); ++s) {
       if (rules[s].probability.empty() || (s != r && !matches(rules[s]))) continue;
       double weight = std::max(0.0, rules[s].probability.evaluate(context));
-      candidates[count] = &rules[s];
-      weights[count++] = weight;
+      candidates_.push_back({&rules[s], weight});
       total += weight;
     }
     if (!(total > 0)) return nullptr;
     double x = random.uniform() * total;
-    const CompiledRule* chosen = candidates[count - 1];
-    for (size_t c = 0; c < count; ++c) {
-      if (x < weights[c]) {
-        chosen = candidates[c];
+    const CompiledRule* chosen = candidates_.back().first;
+    for (const auto& [candidate, weight] : candidates_) {
+      if (x < weight) {
+        chosen = candidate;
         break;
       }
-      x -= weights[c];
+      x -= weight;
     }
     if (chosen->hasContext()) matchContext(*chosen, static_cast<size_t>(index), frame);  // rebind its values
     return chosen;
@@ -227,7 +224,8 @@ void LinearDevelopment::expire(const CellRecord& cell, const double* state, doub
 
 void LinearDevelopment::emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame,
                                        double when, bool renewMe, const EvalContext& context) {
-  uint64_t lineage = mixKey(cell.id, keyOf(when));
+  // Per-step births get other ids than terminal births of the same cell at the same instant.
+  uint64_t lineage = mixKey(cell.id, keyOf(when)) ^ (renewMe ? 0 : kStepRuleSalt);
   uint64_t k = 0;
   for (const SuccessorTemplate& successor : rule.successors) {
     ++k;

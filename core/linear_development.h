@@ -13,8 +13,9 @@ class LinearDevelopment {
  public:
   explicit LinearDevelopment(World& world);
 
-  /// Develops the world's root pool from world.time() to t1.
-  void step(double t1);
+  /// Develops the world's root pool from world.time() to t1; per-step rules fire at
+  /// the start when `stepRules` (the world decides: only on its step grid).
+  void step(double t1, bool stepRules);
 
  private:
   void applyStepRules(double t);
@@ -52,6 +53,7 @@ class LinearDevelopment {
   std::vector<CellRecord> expandedCells_;
   std::vector<double> expandedState_;
   std::vector<double> values_;
+  std::vector<std::pair<const CompiledRule*, double>> candidates_;  // stochastic alternatives
   std::vector<CellRecord> work_;  // cells still to expire, last = next
   std::vector<double> workState_;
   uint64_t eventsThisStep_ = 0;

@@ -2,6 +2,8 @@
 
 #include "core/linear_development.h"
 
+#include <cmath>
+
 namespace ontogen {
 
 World::World(std::shared_ptr<const Program> program, WorldDef def) : program_(std::move(program)), def_(def) {
@@ -26,16 +28,22 @@ void World::seedAxiom() {
 
 void World::advanceTo(double target, double dt) {
   if (!(dt > 0)) throw std::invalid_argument("the step must be greater than 0");
+  // Steps follow the grid k * dt, so per-step rules fire at the same instants whichever
+  // times the caller stops at (frames, --at); a stop between grid points develops the
+  // terminal events up to it and fires no per-step rule there.
   while (time_ < target - timeTolerance(target)) {
-    double next = time_ + dt;
+    double k = std::floor(time_ / dt + 1e-9);
+    bool onGrid = std::abs(time_ - k * dt) <= timeTolerance(time_);
+    double next = (k + 1) * dt;
     if (next > target - timeTolerance(target)) next = target;
-    step(next - time_);
+    LinearDevelopment development(*this);
+    development.step(next, onGrid);
   }
 }
 
 void World::step(double dt) {
   LinearDevelopment development(*this);
-  development.step(time_ + dt);
+  development.step(time_ + dt, true);
 }
 
 void World::developedValues(const CellRecord& cell, std::vector<double>& out) const {
@@ -53,7 +61,8 @@ void World::developedValues(const CellRecord& cell, std::vector<double>& out) co
                                                                  : state[source];
   }
   FunctionTable table = program_->functionTable();
-  RandomStream random(mixKey(mixKey(def_.seed, cell.id), keyOf(time_)));
+  constexpr uint64_t kDevelopSalt = 0x444556454c4f50ull;  // apart from the cell's rule draws
+  RandomStream random(mixKey(mixKey(def_.seed ^ kDevelopSalt, cell.id), keyOf(time_)));
   EvalContext context{frame, EvalEnvironment{&random, def_.seed}, &table};
   double g = program_->functionBodies[master.developmentFunction].evaluate(context);
   for (double& value : out) value *= g;

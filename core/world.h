@@ -71,9 +71,11 @@ class World {
   uint64_t seed() const { return def_.seed; }
   const WorldStats& stats() const { return stats_; }
 
-  /// Develops by steps of at most `dt` until `target` (no-op if target ≤ time()).
+  /// Develops until `target` (no-op if target ≤ time()) in steps on the grid k · dt:
+  /// per-step rules fire at grid instants only, so stopping at other times (frames)
+  /// does not change the development.
   void advanceTo(double target, double dt);
-  /// Develops one step of length dt.
+  /// Develops one step of length dt from the current time, per-step rules included.
   void step(double dt);
 
   /// Age of a cell of the root pool at the current time.

@@ -70,25 +70,25 @@ struct Triangle {
 
 /// Every surface of a frame in one indexed triangle mesh.
 struct Mesh {
-  std::vector<glm::dvec3> positions;
-  std::vector<glm::dvec3> normals;  ///< unit length
-  std::vector<Triangle> triangles;
+  std::vector<glm::dvec3> positions;  ///< model units
+  std::vector<glm::dvec3> normals;    ///< unit length
+  std::vector<Triangle> triangles;    ///< anticlockwise seen from outside
 };
 
 namespace detail {
-/// cos and sin of 2 pi i / n for i in 0..n-1.
+/// cos and sin of 2 pi i / n for i in 0..n-1, computed once per Geometry.
 struct UnitCircle {
-  explicit UnitCircle(int sides);
-  std::vector<double> cos;
-  std::vector<double> sin;
+  explicit UnitCircle(int sides);  ///< sides >= 1
+  std::vector<double> cos;         ///< cos(2 pi i / sides)
+  std::vector<double> sin;         ///< sin(2 pi i / sides)
 };
 }  // namespace detail
 
 /// An axis-aligned box; empty until something is added.
 struct Box {
-  glm::dvec3 min{0.0};
-  glm::dvec3 max{0.0};
-  bool empty = true;
+  glm::dvec3 min{0.0};  ///< model units; meaningless while empty
+  glm::dvec3 max{0.0};  ///< model units; meaningless while empty
+  bool empty = true;    ///< true until the first add
 
   /// Grows the box to hold point.
   void add(const glm::dvec3& point);
@@ -97,7 +97,9 @@ struct Box {
 /// The primitives of one frame. Degenerate input (zero length or radius) adds nothing.
 class Geometry {
  public:
-  /// Throws std::invalid_argument when a MeshDef field is out of range (3..1024).
+  /// Throws std::invalid_argument when a MeshDef field is out of range (sides 3..1024,
+  /// stacks 2..1024). The add functions throw std::length_error once the mesh would need
+  /// more than 2^32 - 1 positions or normals (OBJ indices are kept in 32 bits).
   explicit Geometry(const MeshDef& def = {});
 
   /// Removes everything; keeps the tessellation settings.
@@ -117,16 +119,22 @@ class Geometry {
   /// Adds a sphere; its poles lie along world z.
   void addSphere(const glm::dvec3& centre, double radius);
 
+  /// The zero-radius lines, in the order they were drawn.
   const std::vector<Segment>& segments() const { return segments_; }
+  /// The cylinders, discs and spheres as drawn; their triangles are all in mesh().
   const std::vector<CylinderPrimitive>& cylinders() const { return cylinders_; }
-  const std::vector<DiscPrimitive>& discs() const { return discs_; }
-  const std::vector<SpherePrimitive>& spheres() const { return spheres_; }
+  const std::vector<DiscPrimitive>& discs() const { return discs_; }      ///< see cylinders()
+  const std::vector<SpherePrimitive>& spheres() const { return spheres_; }  ///< see cylinders()
+  /// Every surface, tessellated.
   const Mesh& mesh() const { return mesh_; }
+  /// The tessellation settings.
   const MeshDef& meshDef() const { return def_; }
 
   /// Holds every segment end and every mesh position (surfaces as tessellated).
   const Box& bounds() const { return bounds_; }
+  /// Number of zero-radius lines.
   std::size_t segmentCount() const { return segments_.size(); }
+  /// Number of triangles of the mesh.
   std::size_t triangleCount() const { return mesh_.triangles.size(); }
   /// True when there is nothing to draw.
   bool empty() const { return segments_.empty() && mesh_.triangles.empty(); }

@@ -17,7 +17,7 @@ namespace ontogen {
 
 /// Settings of the set; validated when it is created.
 struct GeometrySetDef {
-  TurtleDef turtle{};
+  TurtleDef turtle{};    ///< step, angles and initial radius
   bool writeSvg = true;  ///< write <stem>.svg each frame
   bool writeObj = true;  ///< write <stem>.obj each frame
   SvgOptions svg{};      ///< picture size and number format of the SVG
@@ -42,6 +42,7 @@ class GeometrySet : public InterpretationSet {
   const Geometry& geometry() const { return geometry_; }
   /// The turtle's warnings (unmatched ], bad arguments) for the same frame.
   const TurtleWarnings& warnings() const { return turtle_.warnings(); }
+  /// The turtle, in its state at the end of the word executed so far.
   const Turtle& turtle() const { return turtle_; }
 
   /// DIR/<stem>.<extension>, or DIR/<stem>_<frame, 4 digits at least>.<extension> when

@@ -152,6 +152,9 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
       } else {
         geometry.addSegment(s.position, end);
       }
+      // cC moves like F: in the piston of paper 000 (Fig. 5) the connecting rod starts
+      // at the piston's end and the crank at the rod's, which closes the mechanism.
+      s.position = end;
       break;
     }
     case TurtleOp::Disc: {

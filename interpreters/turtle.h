@@ -30,7 +30,7 @@ struct TurtleDef {
 
 /// Everything [ saves and ] restores.
 struct TurtleState {
-  glm::dvec3 position{0.0, 0.0, 0.0};
+  glm::dvec3 position{0.0, 0.0, 0.0};  ///< model units
   glm::dvec3 heading{0.0, 1.0, 0.0};  ///< H, unit
   glm::dvec3 left{-1.0, 0.0, 0.0};    ///< L, unit
   glm::dvec3 up{0.0, 0.0, 1.0};       ///< U = H x L, unit
@@ -59,10 +59,13 @@ class Turtle {
   /// The same, for a command already looked up in the table.
   void execute(const TurtleCommand& command, std::span<const double> args, Geometry& geometry);
 
+  /// Position, frame and radius now.
   const TurtleState& state() const { return state_; }
   /// Depth of the [ ] stack.
   std::size_t depth() const { return stack_.size(); }
+  /// What was skipped since the last reset.
   const TurtleWarnings& warnings() const { return warnings_; }
+  /// The settings the turtle was created with.
   const TurtleDef& def() const { return def_; }
 
  private:

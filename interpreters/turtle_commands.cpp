@@ -38,7 +38,7 @@ constexpr std::array kCommands = {
                   "set the radius of following cylinders to r units (0: lines)"},
     TurtleCommand{"cC", TurtleOp::Cylinder, 0, 2, "cC(l, capped)",
                   "draw a cylinder of the current radius, l units (default: step) along H, "
-                  "without moving; capped != 0 closes both ends"},
+                  "and move to its end like F; capped != 0 closes both ends"},
     TurtleCommand{"disc", TurtleOp::Disc, 1, 2, "disc(inner, outer)",
                   "draw an annulus of radii inner..outer units (one argument: a full disc "
                   "of that radius) centred at the turtle in the H-L plane, without moving"},

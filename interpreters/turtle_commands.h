@@ -42,7 +42,7 @@ enum class TurtleOp {
 /// One row of the table.
 struct TurtleCommand {
   std::string_view name;       ///< the command as it appears in a word, e.g. "cC"
-  TurtleOp op;
+  TurtleOp op;                 ///< what the turtle does
   int minArity;                ///< fewer arguments are an error
   int maxArity;                ///< more arguments are an error
   std::string_view signature;  ///< e.g. "cC(l, capped)"

@@ -126,6 +126,8 @@ struct System {
   std::string name;
   bool isLSystem = false;
   std::string poolKind = "linear";
+  std::vector<ExprPtr> poolArgs;          ///< `grid(64, 64)`: sizes; `spatial(2.5)`: radius
+  std::vector<std::string> poolOptions;   ///< `wrap`, `moore`, ...
   SourceSpan poolSpan;
   std::vector<Module> axiom;
   SourceSpan axiomSpan;

@@ -88,6 +88,7 @@ class Compiler {
     for (size_t i = 0; i < tree_.systems.size(); ++i) declareSystem(tree_.systems[i], static_cast<int>(i));
     compileCells();
     for (size_t i = 0; i < tree_.systems.size(); ++i) compileSystem(tree_.systems[i], static_cast<int>(i));
+    attachDevelopmentFunctions();
     finishMasters();
     chooseRoot();
     if (sink_.hasErrors()) return nullptr;
@@ -335,6 +336,8 @@ class Compiler {
       if (other.name == system.name) sink_.error(system.nameSpan, "system '" + system.name + "' is defined twice");
     if (system.poolKind == "linear") {
       definition.poolKind = PoolKind::Linear;
+      if (!system.poolArgs.empty() || !system.poolOptions.empty())
+        sink_.error(system.poolSpan, "the linear pool takes no arguments or options");
     } else if (system.poolKind == "grid" || system.poolKind == "spatial") {
       sink_.error(system.poolSpan, "the " + system.poolKind +
                                        " pool is not available in this version; use 'pool linear'");
@@ -348,6 +351,9 @@ class Compiler {
     definition.settings = globalSettings_;
     program_->systems.push_back(std::move(definition));
     defines(system.defines, *scope);
+    if (!system.isLSystem && !system.equivs.empty())
+      sink_.error(system.equivs.front().span,
+                  "cells are shared by every system, so their equivs are too: write 'equiv' at the top level");
     equivs(system.equivs, *scope);
     settings(system.settings, program_->systems.back().settings, scope.get());
     if (system.isLSystem) functions(system.functions, *scope);
@@ -376,7 +382,14 @@ class Compiler {
           cell.values.push_back(definition.defaults[i]);
         }
       }
-      if (module.age) cell.age = evaluateConstant(*module.age, names, sink_, "an axiom age").value_or(0);
+      if (module.age) {
+        cell.age = evaluateConstant(*module.age, names, sink_, "an axiom age").value_or(0);
+        const MasterCell& target = program_->masters[master];
+        if (cell.age < 0 || cell.age >= target.lifetime)
+          sink_.error(module.age->span, "'" + module.label + "' cannot start with age " + formatNumber(cell.age) +
+                                            (cell.age < 0 ? "; ages are ≥ 0"
+                                                          : ", not below its terminal age " + formatNumber(target.lifetime)));
+      }
       axiom.push_back(std::move(cell));
     }
     program_->systems[index].axiom = std::move(axiom);
@@ -417,25 +430,27 @@ class Compiler {
       CompiledRule rule = compileRule(*production, master, index, scope, /*lsystem=*/true);
       program_->masters[master].terminalRules.push_back(std::move(rule));
     }
-    // Development functions named after a symbol develop it.
-    for (const auto& function : system.functions) {
-      int master = program_->findMaster(function.name, index);
-      int functionIndex = scope.findFunction(function.name);
+  }
+
+  // A development function named after a symbol develops it: an L-system's functions
+  // its own symbols, top-level functions the program's cells and symbols. Functions
+  // named after no symbol are helpers that others call.
+  void attachDevelopmentFunctions() {
+    for (size_t m = 0; m < program_->masters.size(); ++m) {
+      MasterCell& master = program_->masters[m];
+      const Scope& scope = master.scope >= 0 ? *scopes_[master.scope] : global_;
+      int functionIndex = scope.findFunction(master.label);
       if (functionIndex < 0) continue;
-      if (master < 0 || program_->masters[master].scope != index) {
-        // A helper function only called from others (allowed), unless nothing calls it.
-        continue;
-      }
       const DevelopmentFunction& definition = program_->functions[functionIndex];
       int moduleParams = 0;
       for (int source : definition.sources) moduleParams += source >= 0;
-      if (moduleParams > static_cast<int>(program_->masters[master].stateCount())) {
-        sink_.error(function.span, "development function '" + function.name + "' names " +
-                                       std::to_string(moduleParams) + " module parameters, but '" + function.name +
-                                       "' has " + std::to_string(program_->masters[master].stateCount()));
+      if (moduleParams > static_cast<int>(master.stateCount())) {
+        sink_.error(definition.span, "development function '" + definition.name + "' names " +
+                                         std::to_string(moduleParams) + " module parameters, but '" + master.label +
+                                         "' has " + std::to_string(master.stateCount()));
         continue;
       }
-      program_->masters[master].developmentFunction = functionIndex;
+      master.developmentFunction = functionIndex;
     }
   }
 
@@ -471,8 +486,12 @@ class Compiler {
     CompiledRule compiled;
     compiled.name = rule.name;
     compiled.span = rule.span;
-    const MasterCell& self = program_->masters[master];
-    const int stateCount = static_cast<int>(self.stateCount());
+    // Copies, not a reference: resolving context and successor labels may add masters.
+    struct {
+      std::string label;
+      std::vector<std::string> stateNames;
+    } self{program_->masters[master].label, program_->masters[master].stateNames};
+    const int stateCount = static_cast<int>(self.stateNames.size());
     std::map<std::string, int, std::less<>> slots;
     std::map<std::string, SourceSpan, std::less<>> where;
     auto bind = [&](const std::string& name, int slot, SourceSpan span) {
@@ -480,19 +499,20 @@ class Compiler {
         sink_.error(span, "'" + name + "' is read-only internal state and cannot be a parameter name");
         return;
       }
-      if (!slots.emplace(name, slot).second)
+      if (slots.emplace(name, slot).second) {
+        where[name] = span;
+      } else if (!where.count(name)) {
+        sink_.error(span, "'" + name + "' is already a state variable of '" + self.label + "'");
+      } else {
         sink_.error(span, "'" + name + "' is already bound in this rule (at line " + std::to_string(where[name].line()) +
                               ":" + std::to_string(where[name].column()) + ")");
-      else where[name] = span;
+      }
     };
     if (lsystem) {
       for (size_t i = 0; i < rule.predecessor.args.size(); ++i)
         bind(rule.predecessor.args[i]->name, static_cast<int>(i), rule.predecessor.args[i]->span);
     } else {
-      for (int i = 0; i < stateCount; ++i) {
-        slots[self.stateNames[i]] = i;
-        where[self.stateNames[i]] = self.span;
-      }
+      for (int i = 0; i < stateCount; ++i) slots[self.stateNames[i]] = i;
       if (rule.predecessor.isMe && rule.predecessor.hasArgs)
         sink_.error(rule.predecessor.span, "'me' takes no parameters; the cell's state is read by name");
     }

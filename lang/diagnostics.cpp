@@ -40,15 +40,21 @@ std::string formatDiagnostic(const Diagnostic& d) {
   std::string_view text = file.lineText(line);
   out.append(text);
   out += "\n";
-  // Tabs in the prefix are kept so the caret lines up under the same columns.
+  // One caret column per character (UTF-8 continuation bytes take none); tabs are kept
+  // so the caret lines up under the same columns.
+  auto isContinuation = [](char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; };
   std::string caret;
-  for (int i = 0; i < column - 1 && i < static_cast<int>(text.size()); ++i)
-    caret += text[i] == '\t' ? '\t' : ' ';
+  size_t start = std::min<size_t>(text.size(), column - 1);
+  for (size_t i = 0; i < start; ++i)
+    if (!isContinuation(text[i])) caret += text[i] == '\t' ? '\t' : ' ';
   caret += '^';
-  int lineEnd = column - 1 + static_cast<int>(text.size() - std::min<size_t>(text.size(), column - 1));
-  int width = static_cast<int>(d.span.end) - static_cast<int>(d.span.begin);
-  int room = lineEnd - column;
-  for (int i = 1; i < std::min(width, room + 1); ++i) caret += '~';
+  size_t end = std::min<size_t>(text.size(), start + (d.span.end - d.span.begin));
+  bool first = true;
+  for (size_t i = start; i < end; ++i) {
+    if (isContinuation(text[i])) continue;
+    if (!first) caret += '~';
+    first = false;
+  }
   out += caret + "\n";
   return out;
 }

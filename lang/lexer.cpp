@@ -91,6 +91,12 @@ class Lexer {
   }
 
  private:
+  bool atUtf8Operator() const {
+    for (const auto& op : kUtf8Operators)
+      if (text_.compare(pos_, std::strlen(op.bytes), op.bytes) == 0) return true;
+    return false;
+  }
+
   char peek(size_t ahead = 0) const { return pos_ + ahead < text_.size() ? text_[pos_ + ahead] : '\0'; }
 
   void skipSpaceAndComments() {
@@ -161,7 +167,8 @@ class Lexer {
     }
     if (std::isdigit(c) || (c == '.' && std::isdigit(static_cast<unsigned char>(peek(1))))) return number(begin);
     if (isIdentStart(c)) {
-      while (pos_ < text_.size() && isIdentChar(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+      // UTF-8 letters continue a name, but the UTF-8 operators end it: `x≤1` is three tokens.
+      while (pos_ < text_.size() && isIdentChar(static_cast<unsigned char>(text_[pos_])) && !atUtf8Operator()) ++pos_;
       return make(TokenKind::Identifier, begin, text_.substr(begin, pos_ - begin));
     }
     if (c == '#') {

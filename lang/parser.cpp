@@ -172,6 +172,15 @@ class Parser {
 
   void directive(std::vector<Define>& defines, std::vector<Setting>& settings) {
     const Token& hash = advance();
+    try {
+      directiveBody(hash, defines, settings);
+    } catch (const SyntaxError&) {
+      // A directive is one line: recover at the next one.
+      while (!check(TokenKind::EndOfFile) && peek().line == hash.line) advance();
+    }
+  }
+
+  void directiveBody(const Token& hash, std::vector<Define>& defines, std::vector<Setting>& settings) {
     inStatement(Statement{true, INT_MAX}, [&] {
       if (hash.text == "define") {
         Define define;
@@ -267,10 +276,21 @@ class Parser {
       const Token& name = expect(TokenKind::Identifier, " (the interpretation set, e.g. 'geometry')");
       interpretation.setName = name.text;
       expect(TokenKind::LBrace, " to open the interpretation block");
-      while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
-        if (match(TokenKind::Semicolon)) continue;
-        if (!canStartModule()) failHere("an instruction such as 'F(1)' or '}'");
-        interpretation.instructions.push_back(module(ModuleUse::Instruction));
+      try {
+        while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
+          if (match(TokenKind::Semicolon)) continue;
+          if (!canStartModule()) failHere("an instruction such as 'F(1)' or '}'");
+          interpretation.instructions.push_back(module(ModuleUse::Instruction));
+        }
+      } catch (const SyntaxError&) {
+        // Skip to the block's own '}' so that the cell goes on.
+        int parens = 0;
+        while (!check(TokenKind::EndOfFile) && !(parens == 0 && check(TokenKind::RBrace))) {
+          if (check(TokenKind::LParen)) ++parens;
+          if (check(TokenKind::RParen) && parens > 0) --parens;
+          if (check(TokenKind::LBrace)) break;
+          advance();
+        }
       }
       const Token& close = expect(TokenKind::RBrace, " to close the interpretation block");
       interpretation.span = keyword.span.to(close.span);
@@ -446,6 +466,7 @@ class Parser {
       Module inner = bareModule(use);
       if (use == ModuleUse::Instruction || use == ModuleUse::Pattern)
         fail(first.span, "a timed module '(X, age)' cannot stand here");
+      if (inner.isMe) fail(first.span, "'me' keeps its own age; it takes no birth age");
       expect(TokenKind::Comma, " and an age, as in '(A(x), 0.5)'");
       inner.age = expression();
       --depth_;
@@ -527,7 +548,19 @@ class Parser {
       const Token& keyword = advance();
       const Token& kind = expect(TokenKind::Identifier, " (the pool kind: linear, grid or spatial)");
       system.poolKind = kind.text;
-      system.poolSpan = keyword.span.to(kind.span);
+      // `pool grid(64, 64) wrap moore;`: sizes or a radius, then option words.
+      if (check(TokenKind::LParen) && peek().span.begin == kind.span.end) {
+        advance();
+        ++depth_;
+        if (!check(TokenKind::RParen)) {
+          do system.poolArgs.push_back(expression());
+          while (match(TokenKind::Comma));
+        }
+        --depth_;
+        expect(TokenKind::RParen, " to close the pool's arguments");
+      }
+      while (check(TokenKind::Identifier) && !atStatementEnd()) system.poolOptions.push_back(advance().text);
+      system.poolSpan = keyword.span.to(previous().span);
       endStatement();
       return;
     }
@@ -613,6 +646,8 @@ class Parser {
     const Token& name = advance();
     result.name = symbolSpelling(name);
     result.params = parameters();
+    for (const auto& param : result.params)
+      if (param.defaultValue) fail(param.span, "a development function's parameters take no default values");
     expect(TokenKind::Equal, " after the development function's parameters");
     result.body = expression();
     result.span = keyword.span.to(previous().span);
@@ -665,6 +700,9 @@ class Parser {
       while (canStartModule()) rule.right.push_back(module(ModuleUse::Predecessor));
       if (rule.right.empty()) failHere("a right context after '>'");
     }
+    for (const auto* side : {&rule.left, &rule.right})
+      for (const Module& item : *side)
+        if (item.age) fail(item.span, "a context module has no terminal age; write it without '(..., age)'");
     if (match(TokenKind::Colon)) rule.predicate = expression();
     if (!match(TokenKind::Arrow)) failHere("'->' in the production");
     rule.hasAction = true;
@@ -675,7 +713,17 @@ class Parser {
   }
 
   // ---- expressions, C precedence; '^' is power and binds tighter than unary minus ----
-  ExprPtr expression() { return logicalOr(); }
+  // Deeper nesting than this is no program a person writes; it would only exhaust the stack.
+  static constexpr int kMaxNesting = 200;
+
+  ExprPtr expression() {
+    if (++nesting_ > kMaxNesting) fail(peek().span, "expression nested too deeply (more than 200 levels)");
+    struct Leave {
+      int& nesting;
+      ~Leave() { --nesting; }
+    } leave{nesting_};
+    return logicalOr();
+  }
 
   ExprPtr binary(TokenKind op, ExprPtr left, ExprPtr right) {
     auto node = std::make_unique<Expr>();
@@ -750,7 +798,9 @@ class Parser {
   ExprPtr unary() {
     if (check(TokenKind::Minus) || check(TokenKind::Plus) || check(TokenKind::Bang)) {
       const Token& op = advance();
+      if (++nesting_ > kMaxNesting) fail(op.span, "expression nested too deeply (more than 200 levels)");
       ExprPtr operand = unary();
+      --nesting_;
       if (op.kind == TokenKind::Plus) return operand;
       auto node = std::make_unique<Expr>();
       node->kind = Expr::Kind::Unary;
@@ -832,6 +882,7 @@ class Parser {
   Statement statement_;
   int depth_ = 0;        // parentheses open in the current statement
   int speculating_ = 0;  // > 0: errors unwind without being reported
+  int nesting_ = 0;      // expressions being parsed inside each other
 };
 
 }  // namespace

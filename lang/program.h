@@ -116,7 +116,7 @@ struct MasterCell {
   uint32_t stateCount() const { return static_cast<uint32_t>(stateNames.size()); }
 };
 
-/// Interpretation settings of a system (`#angle`, `#step`, ...). Angles in the unit the
+/// Interpretation settings of a system (`#angle`, `#length`, ...). Angles in the unit the
 /// program chose (degrees unless #radians).
 struct InterpretSettings {
   double angle = 90;
