@@ -54,13 +54,16 @@ void LinearDevelopment::step(double t1, bool stepRules) {
 void LinearDevelopment::beginWord() {
   nextCells_.clear();
   nextState_.clear();
-  nextCells_.reserve(pool_.size() + pool_.size() / 4);
-  nextState_.reserve(pool_.stateArena().size() + pool_.stateArena().size() / 4);
+  // Expect the word to grow as it did last time (L-systems grow geometrically).
+  double growth = std::max(1.25, world_.lastGrowth_ * 1.05);
+  nextCells_.reserve(static_cast<size_t>(pool_.size() * growth) + 16);
+  nextState_.reserve(static_cast<size_t>(pool_.stateArena().size() * growth) + 16);
   outCells_ = &nextCells_;
   outState_ = &nextState_;
 }
 
 void LinearDevelopment::finishWord() {
+  if (pool_.size() > 0) world_.lastGrowth_ = static_cast<double>(nextCells_.size()) / pool_.size();
   pool_.swapContents(nextCells_, nextState_);
   checkLimits(pool_.size());
 }
@@ -277,12 +280,26 @@ void LinearDevelopment::expireContextFree(double t1) {
       emit(cell, pool_.stateOf(cell), master.stateCount());
       continue;
     }
+    // Expire straight into the word: in most steps the successors live past the horizon
+    // and stay where they are written.
+    const size_t firstBorn = nextCells_.size();
+    expire(cell, pool_.stateOf(cell), cell.birth + master.lifetime, -1);
+    bool chained = false;
+    for (size_t i = firstBorn; i < nextCells_.size() && !chained; ++i)
+      chained = nextCells_[i].birth + masters[nextCells_[i].master].lifetime <= horizon;
+    if (!chained) continue;
+    // Some successors expire within the step too: take them back and expand depth first.
     work_.clear();
     workState_.clear();
-    CellRecord first = cell;
-    first.state = 0;
-    workState_.assign(pool_.stateOf(cell), pool_.stateOf(cell) + master.stateCount());
-    work_.push_back(first);
+    const uint32_t stateBase = nextCells_[firstBorn].state;
+    workState_.assign(nextState_.begin() + stateBase, nextState_.end());
+    for (size_t i = nextCells_.size(); i-- > firstBorn;) {
+      CellRecord pending = nextCells_[i];
+      pending.state -= stateBase;
+      work_.push_back(pending);
+    }
+    nextCells_.resize(firstBorn);
+    nextState_.resize(stateBase);
     while (!work_.empty()) {
       CellRecord item = work_.back();
       work_.pop_back();

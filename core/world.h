@@ -37,7 +37,7 @@ struct WorldLimits {
 
 struct WorldDef {
   uint64_t seed = 1;  ///< seed of every stochastic choice and function
-  WorldLimits limits;
+  WorldLimits limits{};
 };
 
 /// A limit was passed; the message names the limit and how to raise it.
@@ -96,6 +96,7 @@ class World {
   // The next word is built here and swapped with the pool's (kept to reuse the memory).
   std::vector<CellRecord> scratchCells_;
   std::vector<double> scratchState_;
+  double lastGrowth_ = 1;  ///< size ratio of the last rebuilt word, to reserve the next
 };
 
 /// Tolerance for "at the same instant": events within it of each other or of a step's

@@ -25,9 +25,12 @@ void expectWord(const std::vector<WordCell>& word, const std::vector<Expected>& 
     SCOPED_TRACE("module " + std::to_string(i) + " (" + expected[i].label + ")");
     EXPECT_EQ(word[i].label, expected[i].label);
     ASSERT_EQ(word[i].developed.size(), expected[i].developed.size());
-    for (size_t p = 0; p < expected[i].developed.size(); ++p)
+    for (size_t p = 0; p < expected[i].developed.size(); ++p) {
       EXPECT_NEAR(word[i].developed[p], expected[i].developed[p], tolerance);
-    if (!std::isnan(expected[i].age)) EXPECT_NEAR(word[i].age, expected[i].age, 1e-9);
+    }
+    if (!std::isnan(expected[i].age)) {
+      EXPECT_NEAR(word[i].age, expected[i].age, 1e-9);
+    }
   }
 }
 
