@@ -16,9 +16,8 @@
 
 namespace ontogen::bench {
 
-/// Every benchmark world: seed 1, default limits. (`.limits` is spelled out because GCC 12
-/// warns on a designated initializer that leaves out a member without a `{}` default.)
-inline const WorldDef kBenchWorld{.seed = 1, .limits = {}};
+/// Every benchmark world: seed 1, default limits.
+inline const WorldDef kBenchWorld{.seed = 1};
 
 /// A compiled program, or the diagnostics that stopped it.
 struct Compiled {

@@ -91,6 +91,18 @@ void LinearDevelopment::checkLimits(size_t cells) {
   throw ModelError(formatDiagnostic(Diagnostic{Severity::Error, span, message}));
 }
 
+// The rule frame of lang/program.h: [state...] [age] [terminal age] [time] [context...].
+double* LinearDevelopment::loadFrame(const CellRecord& cell, const double* state, double when) {
+  const MasterCell& master = program_.masters[cell.master];
+  const uint32_t n = master.stateCount();
+  double* frame = frame_.data();
+  std::copy(state, state + n, frame);
+  frame[n] = when - cell.birth;
+  frame[n + 1] = master.lifetime;
+  frame[n + 2] = when;
+  return frame;
+}
+
 // ---- per-step rules ----
 
 void LinearDevelopment::applyStepRules(double t) {
@@ -109,11 +121,7 @@ void LinearDevelopment::applyStepRules(double t) {
 void LinearDevelopment::fireStepRules(const CellRecord& cell, const double* state, double t, size_t index) {
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
-  double* frame = frame_.data();
-  std::copy(state, state + n, frame);
-  frame[n] = t - cell.birth;
-  frame[n + 1] = master.lifetime;
-  frame[n + 2] = t;
+  double* frame = loadFrame(cell, state, t);
   RandomStream random(mixKey(mixKey(world_.def_.seed ^ kStepRuleSalt, cell.id), keyOf(t)));
   EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_};
   for (const CompiledRule& rule : master.rules) {
@@ -203,11 +211,7 @@ void LinearDevelopment::expire(const CellRecord& cell, const double* state, doub
   ++world_.stats_.events;
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
-  double* frame = frame_.data();
-  std::copy(state, state + n, frame);
-  frame[n] = when - cell.birth;
-  frame[n + 1] = master.lifetime;
-  frame[n + 2] = when;
+  double* frame = loadFrame(cell, state, when);
   RandomStream random(mixKey(mixKey(world_.def_.seed, cell.id), keyOf(when)));
   EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_};
   const CompiledRule* rule = chooseRule(master.terminalRules, index, frame, random, context);

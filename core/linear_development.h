@@ -27,6 +27,7 @@ class LinearDevelopment {
   void expire(const CellRecord& cell, const double* state, double when, int64_t index);
   void fireStepRules(const CellRecord& cell, const double* state, double t, size_t index);
 
+  double* loadFrame(const CellRecord& cell, const double* state, double when);
   bool matchContext(const CompiledRule& rule, size_t index, double* frame);
   const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
                                  RandomStream& random, const EvalContext& context);

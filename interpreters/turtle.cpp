@@ -57,6 +57,17 @@ bool Turtle::execute(std::string_view command, std::span<const double> args,
   return true;
 }
 
+void Turtle::drawForward(double distance, bool capped, Geometry& geometry) {
+  TurtleState& s = state_;
+  glm::dvec3 end = s.position + s.heading * distance;
+  if (s.radius > 0) {
+    geometry.addCylinder(s.position, end, s.radius, capped, s.left);
+  } else {
+    geometry.addSegment(s.position, end);
+  }
+  s.position = end;
+}
+
 double Turtle::length(std::span<const double> args) const {
   return args.empty() ? def_.step : args[0];
 }
@@ -100,16 +111,9 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
   }
   TurtleState& s = state_;
   switch (command.op) {
-    case TurtleOp::Forward: {
-      glm::dvec3 end = s.position + s.heading * length(args);
-      if (s.radius > 0) {
-        geometry.addCylinder(s.position, end, s.radius, false, s.left);
-      } else {
-        geometry.addSegment(s.position, end);
-      }
-      s.position = end;
+    case TurtleOp::Forward:
+      drawForward(length(args), /*capped=*/false, geometry);
       break;
-    }
     case TurtleOp::Move:
       s.position += s.heading * length(args);
       break;
@@ -144,19 +148,11 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
         s.radius = args[0];
       }
       break;
-    case TurtleOp::Cylinder: {
-      glm::dvec3 end = s.position + s.heading * length(args);
-      bool capped = count > 1 && args[1] != 0;
-      if (s.radius > 0) {
-        geometry.addCylinder(s.position, end, s.radius, capped, s.left);
-      } else {
-        geometry.addSegment(s.position, end);
-      }
+    case TurtleOp::Cylinder:
       // cC moves like F: in the piston of paper 000 (Fig. 5) the connecting rod starts
       // at the piston's end and the crank at the rod's, which closes the mechanism.
-      s.position = end;
+      drawForward(length(args), /*capped=*/count > 1 && args[1] != 0, geometry);
       break;
-    }
     case TurtleOp::Disc: {
       double inner = count > 1 ? args[0] : 0.0;
       double outer = count > 1 ? args[1] : args[0];

@@ -70,6 +70,8 @@ class Turtle {
 
  private:
   double length(std::span<const double> args) const;
+  /// Draws a cylinder of the current radius (a line when 0) along H and moves to its end.
+  void drawForward(double distance, bool capped, Geometry& geometry);
   double angle(std::span<const double> args, double fallback) const;
   /// a' = a cos t + b sin t, b' = b cos t - a sin t: a turns towards b by t radians.
   void rotate(glm::dvec3& a, glm::dvec3& b, double radians);

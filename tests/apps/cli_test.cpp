@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -37,7 +38,8 @@ std::string readFile(const fs::path& path) {
 }
 
 Result ontogen(const std::string& args) {
-  fs::path errFile = fs::path(ONTOGEN_BINARY_DIR) / "cli_test" / "stderr.txt";
+  // One file per process: ctest runs the tests of this file in parallel processes.
+  fs::path errFile = fs::path(ONTOGEN_BINARY_DIR) / "cli_test" / ("stderr_" + std::to_string(getpid()) + ".txt");
   fs::create_directories(errFile.parent_path());
   std::string command = std::string(ONTOGEN_EXECUTABLE) + " " + args + " 2>" + errFile.string();
   Result result;
