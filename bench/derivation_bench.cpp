@@ -37,8 +37,9 @@ void deriveFromAxiom(benchmark::State& state, const Compiled& compiled, uint64_t
     World world(compiled.program, kBenchWorld);
     world.advanceTo(n, 1.0);
     if (world.rootPool().size() != expectedSize) {
-      state.SkipWithError(("word of " + std::to_string(world.rootPool().size()) + " modules, expected " +
-                           std::to_string(expectedSize)).c_str());
+      state.SkipWithError(
+          ("word of " + std::to_string(world.rootPool().size()) + " modules, expected " + std::to_string(expectedSize))
+              .c_str());
       return;
     }
     // The content check reads the whole word: keep it out of the measured time.
@@ -51,9 +52,8 @@ void deriveFromAxiom(benchmark::State& state, const Compiled& compiled, uint64_t
     state.ResumeTiming();  // the world's destruction is part of the run, as for the hand-written one
   }
   state.counters["modules"] = static_cast<double>(expectedSize);
-  state.counters["modules/s"] =
-      benchmark::Counter(static_cast<double>(expectedSize) * static_cast<double>(state.iterations()),
-                         benchmark::Counter::kIsRate);
+  state.counters["modules/s"] = benchmark::Counter(
+      static_cast<double>(expectedSize) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
 // ---- Koch: F -> F+F-F-F+F ----
@@ -96,8 +96,7 @@ std::string checkThueMorse(const Program& program, const World& world, int) {
   if (!a || !b) return "no module a or b";
   auto cells = world.rootPool().cells();
   for (size_t i = 0; i < cells.size(); ++i)
-    if (cells[i].master != (std::popcount(i) % 2 ? *b : *a))
-      return "Thue-Morse: wrong symbol at " + std::to_string(i);
+    if (cells[i].master != (std::popcount(i) % 2 ? *b : *a)) return "Thue-Morse: wrong symbol at " + std::to_string(i);
   return {};
 }
 
@@ -123,7 +122,8 @@ std::string checkParametric(const Program& program, const World& world, int n) {
   if (!a || !b) return "no module A or B";
   const LinearPool& pool = world.rootPool();
   auto cells = pool.cells();
-  if (cells[0].master != *a || *pool.stateOf(cells[0]) != 1.0 + n) return "parametric: the first module is not A(1 + n)";
+  if (cells[0].master != *a || *pool.stateOf(cells[0]) != 1.0 + n)
+    return "parametric: the first module is not A(1 + n)";
   for (size_t i = 1; i < cells.size(); ++i)
     if (cells[i].master != *b) return "parametric: module " + std::to_string(i) + " is not B";
   return {};

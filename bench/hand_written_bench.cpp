@@ -32,8 +32,10 @@ void BM_KochHandWritten(benchmark::State& state) {
     for (int generation = 0; generation < n; ++generation) {
       next.clear();
       for (char symbol : word) {
-        if (symbol == 'F') next.insert(next.end(), kKochSuccessor.begin(), kKochSuccessor.end());
-        else next.push_back(symbol);
+        if (symbol == 'F')
+          next.insert(next.end(), kKochSuccessor.begin(), kKochSuccessor.end());
+        else
+          next.push_back(symbol);
       }
       word.swap(next);
     }
@@ -48,8 +50,8 @@ void BM_KochHandWritten(benchmark::State& state) {
     state.ResumeTiming();
   }
   state.counters["modules"] = static_cast<double>(expected);
-  state.counters["modules/s"] = benchmark::Counter(static_cast<double>(expected) * static_cast<double>(state.iterations()),
-                                                   benchmark::Counter::kIsRate);
+  state.counters["modules/s"] = benchmark::Counter(
+      static_cast<double>(expected) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_KochHandWritten)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
 

@@ -14,9 +14,9 @@
 namespace ontogen::bench {
 namespace {
 
-constexpr double kPeriod = 4;      // ρ of the model, seconds
-constexpr double kBuildAge = 0.04; // E: p1 builds the mechanism at this time, seconds
-constexpr double kStep = 0.04;     // seconds, the model's #dt (25 frames per second)
+constexpr double kPeriod = 4;             // ρ of the model, seconds
+constexpr double kBuildAge = 0.04;        // E: p1 builds the mechanism at this time, seconds
+constexpr double kStep = 0.04;            // seconds, the model's #dt (25 frames per second)
 constexpr size_t kMechanismModules = 12;  // the word p1 builds: mov ! cC bend ! cC turn f + [ disc ]
 
 void BM_PistonPeriods(benchmark::State& state) {
