@@ -55,9 +55,14 @@ void LinearDevelopment::beginWord() {
   nextCells_.clear();
   nextState_.clear();
   // Expect the word to grow as it did last time (L-systems grow geometrically).
+  // Capped by the cell limit: a word that would pass it stops the run anyway. Reserved
+  // pages that are never written cost no memory, so the limit counts what is written.
   double growth = std::max(1.25, world_.lastGrowth_ * 1.05);
-  nextCells_.reserve(static_cast<size_t>(pool_.size() * growth) + 16);
-  nextState_.reserve(static_cast<size_t>(pool_.stateArena().size() * growth) + 16);
+  double cap = static_cast<double>(world_.def_.limits.maxCells) + 16;
+  double cells = std::min(pool_.size() * growth + 16, cap);
+  double values = std::min(pool_.stateArena().size() * growth + 16, cap * std::max<size_t>(1, values_.size()));
+  nextCells_.reserve(static_cast<size_t>(cells));
+  nextState_.reserve(static_cast<size_t>(values));
   outCells_ = &nextCells_;
   outState_ = &nextState_;
 }
@@ -71,9 +76,14 @@ void LinearDevelopment::finishWord() {
 void LinearDevelopment::emit(const CellRecord& cell, const double* values, uint32_t count) {
   CellRecord copy = cell;
   copy.state = static_cast<uint32_t>(outState_->size());
-  outState_->insert(outState_->end(), values, values + count);
-  outCells_->push_back(copy);
-  if (outCells_->size() % kLimitCheckInterval == 0) checkLimits(outCells_->size());
+  if (count > 0) outState_->insert(outState_->end(), values, values + count);
+  pushCell(copy);
+}
+
+void LinearDevelopment::pushCell(const CellRecord& cell) {
+  outCells_->push_back(cell);
+  if (outCells_->size() % kLimitCheckInterval == 0) [[unlikely]]
+    checkLimits(outCells_->size());
 }
 
 void LinearDevelopment::checkLimits(size_t cells) {
@@ -81,7 +91,7 @@ void LinearDevelopment::checkLimits(size_t cells) {
   if (cells > limits.maxCells)
     throw LimitError("the model grew past " + std::to_string(limits.maxCells) +
                      " cells, the cell limit; raise it with --max-cells N");
-  size_t bytes = pool_.bytes() + nextCells_.capacity() * sizeof(CellRecord) + nextState_.capacity() * sizeof(double);
+  size_t bytes = pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double);
   if (bytes > limits.maxMemoryBytes)
     throw LimitError("the model's pools passed " + std::to_string(limits.maxMemoryBytes >> 20) +
                      " MiB, the memory limit; raise it with --max-memory MIB");
@@ -234,8 +244,15 @@ void LinearDevelopment::emitSuccessors(const CompiledRule& rule, const CellRecor
   // Per-step births get other ids than terminal births of the same cell at the same instant.
   uint64_t lineage = mixKey(cell.id, keyOf(when)) ^ (renewMe ? 0 : kStepRuleSalt);
   uint64_t k = 0;
+  uint64_t born = 0;
   for (const SuccessorTemplate& successor : rule.successors) {
     ++k;
+    if (successor.stateless) {
+      // The common case of a bare symbol born at age 0: nothing to evaluate or check.
+      pushCell(CellRecord{successor.master, static_cast<uint32_t>(outState_->size()), when, mixKey(lineage, k)});
+      ++born;
+      continue;
+    }
     if (successor.isMe) {
       CellRecord me = cell;
       if (renewMe) me.birth = when;
@@ -254,13 +271,10 @@ void LinearDevelopment::emitSuccessors(const CompiledRule& rule, const CellRecor
                                      " (in a rule of '" + program_.masters[cell.master].label +
                                      "' at t = " + formatNumber(when) + ")");
     }
-    CellRecord born;
-    born.master = successor.master;
-    born.birth = when - age;
-    born.id = mixKey(lineage, k);
-    emit(born, values_.data(), count);
-    ++world_.stats_.cellsBorn;
+    emit(CellRecord{successor.master, 0, when - age, mixKey(lineage, k)}, values_.data(), count);
+    ++born;
   }
+  world_.stats_.cellsBorn += born;
 }
 
 // Without context in terminal rules, each cell develops on its own: expand it, and its
@@ -314,8 +328,8 @@ void LinearDevelopment::expireContextFree(double t1) {
         continue;
       }
       // Expire into a side list, then push its results so the leftmost comes out first.
-      std::vector<CellRecord>* savedCells = outCells_;
-      std::vector<double>* savedState = outState_;
+      CellArray* savedCells = outCells_;
+      StateArray* savedState = outState_;
       expandedCells_.clear();
       expandedState_.clear();
       outCells_ = &expandedCells_;

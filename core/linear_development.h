@@ -34,6 +34,7 @@ class LinearDevelopment {
   void emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
                       bool renewMe, const EvalContext& context);
   void emit(const CellRecord& cell, const double* values, uint32_t count);
+  void pushCell(const CellRecord& cell);
   void beginWord();
   void finishWord();
   void checkLimits(size_t cells);
@@ -46,17 +47,17 @@ class LinearDevelopment {
   FunctionTable functions_;
   std::vector<double> frame_;
   // The word being built and, for context-free expansion, a stack of cells still to expire.
-  std::vector<CellRecord>& nextCells_;
-  std::vector<double>& nextState_;
+  CellArray& nextCells_;
+  StateArray& nextState_;
   // Where emit() writes: the next word, or the scratch list of a context-free expansion.
-  std::vector<CellRecord>* outCells_ = nullptr;
-  std::vector<double>* outState_ = nullptr;
-  std::vector<CellRecord> expandedCells_;
-  std::vector<double> expandedState_;
+  CellArray* outCells_ = nullptr;
+  StateArray* outState_ = nullptr;
+  CellArray expandedCells_;
+  StateArray expandedState_;
   std::vector<double> values_;
   std::vector<std::pair<const CompiledRule*, double>> candidates_;  // stochastic alternatives
-  std::vector<CellRecord> work_;  // cells still to expire, last = next
-  std::vector<double> workState_;
+  CellArray work_;  // cells still to expire, last = next
+  StateArray workState_;
   uint64_t eventsThisStep_ = 0;
   uint32_t matched_[64];  // cells matched by the context being tested (patterns are short)
 };

@@ -94,8 +94,8 @@ class World {
   double time_ = 0;
   WorldStats stats_;
   // The next word is built here and swapped with the pool's (kept to reuse the memory).
-  std::vector<CellRecord> scratchCells_;
-  std::vector<double> scratchState_;
+  CellArray scratchCells_;
+  StateArray scratchState_;
   double lastGrowth_ = 1;  ///< size ratio of the last rebuilt word, to reserve the next
 };
 

@@ -590,6 +590,9 @@ class Compiler {
         else result.args.push_back(CompiledExpression::constant(target.defaults[i]));
       }
       if (successor.age) result.birthAge = compileExpression(*successor.age, names, sink_);
+      bool bornAtZero = result.birthAge.empty() ||
+                        (result.birthAge.isConstant() && result.birthAge.constantValue() == 0.0);
+      result.stateless = target.stateCount() == 0 && bornAtZero && target.lifetime > 0;
       compiled.successors.push_back(std::move(result));
     }
     if (rule.probability) {

@@ -39,6 +39,8 @@ struct SuccessorTemplate {
   std::vector<CompiledExpression> args;  ///< one per state value of the master (defaults filled in)
   CompiledExpression birthAge;           ///< empty: 0
   SourceSpan span;
+  /// Not `me`, no state and born at age 0: the engine copies it without evaluating.
+  bool stateless = false;
 };
 
 struct StateCalculation {

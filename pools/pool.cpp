@@ -19,7 +19,7 @@ void Pool::append(CellRecord cell, const double* values, uint32_t count) {
   cells_.push_back(cell);
 }
 
-void Pool::swapContents(std::vector<CellRecord>& cells, std::vector<double>& state) {
+void Pool::swapContents(CellArray& cells, StateArray& state) {
   cells_.swap(cells);
   state_.swap(state);
 }

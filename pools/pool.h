@@ -12,8 +12,13 @@
 #include <vector>
 
 #include "pools/cell_record.h"
+#include "pools/large_page_allocator.h"
 
 namespace ontogen {
+
+/// The arrays a pool keeps its cells and their state in.
+using CellArray = std::vector<CellRecord, LargePageAllocator<CellRecord>>;
+using StateArray = std::vector<double, LargePageAllocator<double>>;
 
 enum class PoolKind { Linear, Grid, Spatial };
 
@@ -38,19 +43,20 @@ class Pool {
   double* stateOf(const CellRecord& cell) { return state_.data() + cell.state; }
   std::span<const double> stateArena() const { return state_; }
 
-  /// Approximate bytes held, for the memory limit.
-  size_t bytes() const { return cells_.capacity() * sizeof(CellRecord) + state_.capacity() * sizeof(double); }
+  /// Bytes in use, for the memory limit. Capacity reserved beyond the size is not
+  /// counted: pages never written are never mapped.
+  size_t bytes() const { return cells_.size() * sizeof(CellRecord) + state_.size() * sizeof(double); }
 
   /// Appends a cell with `count` state values copied from `values`.
   void append(CellRecord cell, const double* values, uint32_t count);
   /// Replaces the contents with another pool's (same kind), reusing storage.
-  void swapContents(std::vector<CellRecord>& cells, std::vector<double>& state);
+  void swapContents(CellArray& cells, StateArray& state);
   void reserve(size_t cells, size_t values);
   void clear();
 
  protected:
-  std::vector<CellRecord> cells_;
-  std::vector<double> state_;
+  CellArray cells_;
+  StateArray state_;
 };
 
 }  // namespace ontogen

@@ -103,6 +103,19 @@ TEST(World, MemoryLimitStopsGrowthWithAMessage) {
   EXPECT_THROW(world.advanceTo(30, 1), LimitError);
 }
 
+// A word that grew tenfold once and then stays the same size must not trip the memory
+// limit through the room reserved for a growth that does not come.
+TEST(World, MemoryLimitCountsCellsWrittenNotRoomReserved) {
+  auto program = compileOrFail(
+      "lsystem a { axiom S\n S -> T T T T T T T T T T\n T -> U U U U U U U U U U\n"
+      " U -> V V V V V V V V V V\n V -> V\n }");
+  WorldDef def;
+  def.limits.maxMemoryBytes = 100'000;  // 1000 cells of 24 bytes, twice, fit; 10,500 reserved would not
+  World world(program, def);
+  EXPECT_NO_THROW(world.advanceTo(12, 1));
+  EXPECT_EQ(world.rootPool().size(), 1000u);
+}
+
 TEST(World, RunawayRenewalHitsTheEventLimit) {
   auto program = compileOrFail("lsystem a { axiom (A, 0)\n (A, 1e-9) -> (A, 0)\n }");
   WorldDef def;
