@@ -38,6 +38,7 @@ int runRun(const RunOptions& options) {
   WorldDef def;
   def.seed = options.common.seed.value_or(program.seed);
   def.limits = options.common.limits;
+  def.threads = options.common.threads;
   double dt = options.common.step.value_or(program.dt);
   double until = options.until.value_or(program.until);
   int frames = options.frames;

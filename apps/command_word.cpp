@@ -13,6 +13,7 @@ int runWord(const WordOptions& options) {
   WorldDef def;
   def.seed = options.common.seed.value_or(program.seed);
   def.limits = options.common.limits;
+  def.threads = options.common.threads;
   double dt = options.common.step.value_or(program.dt);
   std::vector<WordAtTime> words;
   try {

@@ -17,6 +17,7 @@ struct CommonOptions {
   std::optional<uint64_t> seed;     ///< empty: the program's #seed, else 1
   std::optional<double> step;       ///< empty: the program's #dt
   WorldLimits limits;
+  unsigned threads = 0;             ///< 0: all cores
 };
 
 struct RunOptions {

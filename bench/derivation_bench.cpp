@@ -120,7 +120,7 @@ std::string checkParametric(const Program& program, const World& world, int n) {
   auto a = masterOf(program, "A");
   auto b = masterOf(program, "B");
   if (!a || !b) return "no module A or B";
-  const LinearPool& pool = world.rootPool();
+  const Pool& pool = world.rootPool();
   auto cells = pool.cells();
   if (cells[0].master != *a || *pool.stateOf(cells[0]) != 1.0 + n)
     return "parametric: the first module is not A(1 + n)";

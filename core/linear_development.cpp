@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/rate_integrator.h"
 #include "lang/diagnostics.h"
 
 namespace ontogen {
@@ -16,7 +17,7 @@ std::string formatNumber(double value) {
 }
 
 constexpr uint64_t kStepRuleSalt = 0x5354455052554c45ull;  // keeps per-step draws apart from terminal ones
-constexpr size_t kLimitCheckInterval = 1 << 16;           // cells between memory checks
+constexpr size_t kLimitCheckInterval = 1 << 16;            // cells between memory checks
 }  // namespace
 
 LinearDevelopment::LinearDevelopment(World& world)
@@ -26,11 +27,13 @@ LinearDevelopment::LinearDevelopment(World& world)
       pool_(world.pool_),
       functions_(program_.functionTable()),
       nextCells_(world.scratchCells_),
-      nextState_(world.scratchState_) {
+      nextState_(world.scratchState_),
+      view_(world.pool_, world.rootSystem().symbolClass),
+      aggregates_(*world.program_, view_) {
   size_t frame = 0;
   size_t values = 1;
   for (const MasterCell& master : program_.masters) {
-    frame = std::max<size_t>(frame, master.stateCount() + 3);
+    frame = std::max<size_t>(frame, master.stateCount() + FrameSlot::kCount);
     values = std::max<size_t>(values, master.stateCount());
     for (const auto& rule : master.rules) frame = std::max<size_t>(frame, rule.frameSize);
     for (const auto& rule : master.terminalRules) frame = std::max<size_t>(frame, rule.frameSize);
@@ -43,10 +46,38 @@ void LinearDevelopment::step(double t1, bool stepRules) {
   double t = world_.time_;
   eventsThisStep_ = 0;
   if (system_.sampledRules && stepRules) applyStepRules(t);
-  if (system_.terminalContext) expireInTimeOrder(t1);
-  else expireContextFree(t1);
+  if (system_.rates)
+    integrateAndExpire(t, t1);
+  else
+    expireUntil(t1);
   world_.time_ = t1;
   ++world_.stats_.steps;
+}
+
+void LinearDevelopment::expireUntil(double t1) {
+  if (system_.terminalContext)
+    expireInTimeOrder(t1);
+  else
+    expireContextFree(t1);
+}
+
+// Rates are integrated up to each terminal event, the event happens at its instant, and
+// integration goes on with the new word: a cell's successors start from its values at
+// the instant it expired.
+void LinearDevelopment::integrateAndExpire(double t, double t1) {
+  const auto& masters = program_.masters;
+  double now = t;
+  RateIntegrator& rates = world_.rates();
+  while (now < t1 - timeTolerance(t1)) {
+    double next = kForever;
+    for (const CellRecord& cell : pool_.cells()) next = std::min(next, cell.birth + masters[cell.master].lifetime);
+    const double until = next < t1 ? std::max(next, now) : t1;
+    pool_.indexBranches(system_.symbolClass);
+    rates.integrate(pool_, view_, now, until);
+    world_.stats_.rateEquations = rates.activeEquations();
+    expireUntil(until);
+    now = until;
+  }
 }
 
 // ---- output ----
@@ -101,15 +132,21 @@ void LinearDevelopment::checkLimits(size_t cells) {
   throw ModelError(formatDiagnostic(Diagnostic{Severity::Error, span, message}));
 }
 
-// The rule frame of lang/program.h: [state...] [age] [terminal age] [time] [context...].
-double* LinearDevelopment::loadFrame(const CellRecord& cell, const double* state, double when) {
+// The rule frame of lang/program.h: [state...] [internal state] [context...]. The
+// position (me.x) is the index in the word at the start of the step; a cell born and
+// expiring within one step has its ancestor's.
+double* LinearDevelopment::loadFrame(const CellRecord& cell, const double* state, double when, int64_t position) {
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
   double* frame = frame_.data();
   std::copy(state, state + n, frame);
-  frame[n] = when - cell.birth;
-  frame[n + 1] = master.lifetime;
-  frame[n + 2] = when;
+  frame[n + FrameSlot::kAge] = when - cell.birth;
+  frame[n + FrameSlot::kTerminalAge] = master.lifetime;
+  frame[n + FrameSlot::kTime] = when;
+  frame[n + FrameSlot::kId] = static_cast<double>(cell.id & ((uint64_t{1} << 53) - 1));
+  frame[n + FrameSlot::kX] = static_cast<double>(position);
+  frame[n + FrameSlot::kY] = 0;
+  frame[n + FrameSlot::kZ] = 0;
   return frame;
 }
 
@@ -122,8 +159,10 @@ void LinearDevelopment::applyStepRules(double t) {
   for (size_t i = 0; i < cells.size(); ++i) {
     const CellRecord& cell = cells[i];
     const MasterCell& master = program_.masters[cell.master];
-    if (master.rules.empty()) emit(cell, pool_.stateOf(cell), master.stateCount());
-    else fireStepRules(cell, pool_.stateOf(cell), t, i);
+    if (master.rules.empty())
+      emit(cell, pool_.stateOf(cell), master.stateCount());
+    else
+      fireStepRules(cell, pool_.stateOf(cell), t, i);
   }
   finishWord();
 }
@@ -131,16 +170,19 @@ void LinearDevelopment::applyStepRules(double t) {
 void LinearDevelopment::fireStepRules(const CellRecord& cell, const double* state, double t, size_t index) {
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
-  double* frame = loadFrame(cell, state, t);
+  double* frame = loadFrame(cell, state, t, static_cast<int64_t>(index));
   RandomStream random(mixKey(mixKey(world_.def_.seed ^ kStepRuleSalt, cell.id), keyOf(t)));
-  EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_};
+  aggregates_.focus(index, pool_.stateArena().data());
+  EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_, &aggregates_};
   for (const CompiledRule& rule : master.rules) {
+    if (!rule.hasDiscrete) continue;  // rate-only rules act while integrating
+    aggregates_.useRule(rule);
     if (rule.hasContext() && !matchContext(rule, index, frame)) continue;
     if (!rule.predicate.empty() && rule.predicate.evaluate(context) == 0.0) continue;
     // Per-step rules with a probability fire with that probability when they match.
     if (!rule.probability.empty() && !(random.uniform() < rule.probability.evaluate(context))) continue;
     for (const StateCalculation& calculation : rule.calculations)
-      frame[calculation.slot] = calculation.value.evaluate(context);
+      if (!calculation.isRate) frame[calculation.slot] = calculation.value.evaluate(context);
     ++world_.stats_.ruleFirings;
     if (rule.hasAction) {
       emitSuccessors(rule, cell, frame, t, /*renewMe=*/false, context);
@@ -177,9 +219,10 @@ bool LinearDevelopment::matchContext(const CompiledRule& rule, size_t index, dou
 
 // ---- terminal ages ----
 
-const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule>& rules, int64_t index,
-                                                  double* frame, RandomStream& random, const EvalContext& context) {
+const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
+                                                  RandomStream& random, const EvalContext& context) {
   auto matches = [&](const CompiledRule& rule) {
+    aggregates_.useRule(rule);
     if (rule.hasContext() && (index < 0 || !matchContext(rule, static_cast<size_t>(index), frame))) return false;
     return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0;
   };
@@ -207,13 +250,15 @@ const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule
       }
       x -= weight;
     }
+    aggregates_.useRule(*chosen);
     if (chosen->hasContext()) matchContext(*chosen, static_cast<size_t>(index), frame);  // rebind its values
     return chosen;
   }
   return nullptr;
 }
 
-void LinearDevelopment::expire(const CellRecord& cell, const double* state, double when, int64_t index) {
+void LinearDevelopment::expire(const CellRecord& cell, const double* state, double when, int64_t index,
+                               int64_t position) {
   if (++eventsThisStep_ > world_.def_.limits.maxEventsPerStep)
     throw LimitError("more than " + std::to_string(world_.def_.limits.maxEventsPerStep) +
                      " terminal-age events in one step (near t = " + std::to_string(when) +
@@ -221,9 +266,10 @@ void LinearDevelopment::expire(const CellRecord& cell, const double* state, doub
   ++world_.stats_.events;
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
-  double* frame = loadFrame(cell, state, when);
+  double* frame = loadFrame(cell, state, when, position);
   RandomStream random(mixKey(mixKey(world_.def_.seed, cell.id), keyOf(when)));
-  EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_};
+  if (index >= 0) aggregates_.focus(static_cast<size_t>(index), pool_.stateArena().data());
+  EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_, &aggregates_};
   const CompiledRule* rule = chooseRule(master.terminalRules, index, frame, random, context);
   if (rule) {
     for (const StateCalculation& calculation : rule->calculations)
@@ -264,12 +310,11 @@ void LinearDevelopment::emitSuccessors(const CompiledRule& rule, const CellRecor
     for (uint32_t j = 0; j < count; ++j) values_[j] = successor.args[j].evaluate(context);
     double age = successor.birthAge.empty() ? 0.0 : successor.birthAge.evaluate(context);
     if (!(age >= 0) || age >= target.lifetime) {
-      modelError(successor.span, "'" + target.label + "' would be born with age " + formatNumber(age) +
-                                     (age >= target.lifetime ? ", not below its terminal age " +
-                                                                   formatNumber(target.lifetime)
-                                                             : ", but ages are ≥ 0") +
-                                     " (in a rule of '" + program_.masters[cell.master].label +
-                                     "' at t = " + formatNumber(when) + ")");
+      modelError(successor.span,
+                 "'" + target.label + "' would be born with age " + formatNumber(age) +
+                     (age >= target.lifetime ? ", not below its terminal age " + formatNumber(target.lifetime)
+                                             : ", but ages are ≥ 0") +
+                     " (in a rule of '" + program_.masters[cell.master].label + "' at t = " + formatNumber(when) + ")");
     }
     emit(CellRecord{successor.master, 0, when - age, mixKey(lineage, k)}, values_.data(), count);
     ++born;
@@ -292,7 +337,8 @@ void LinearDevelopment::expireContextFree(double t1) {
     }
   if (!any) return;
   beginWord();
-  for (const CellRecord& cell : cells) {
+  for (size_t position = 0; position < cells.size(); ++position) {
+    const CellRecord& cell = cells[position];
     const MasterCell& master = masters[cell.master];
     if (cell.birth + master.lifetime > horizon) {
       emit(cell, pool_.stateOf(cell), master.stateCount());
@@ -301,7 +347,7 @@ void LinearDevelopment::expireContextFree(double t1) {
     // Expire straight into the word: in most steps the successors live past the horizon
     // and stay where they are written.
     const size_t firstBorn = nextCells_.size();
-    expire(cell, pool_.stateOf(cell), cell.birth + master.lifetime, -1);
+    expire(cell, pool_.stateOf(cell), cell.birth + master.lifetime, -1, static_cast<int64_t>(position));
     bool chained = false;
     for (size_t i = firstBorn; i < nextCells_.size() && !chained; ++i)
       chained = nextCells_[i].birth + masters[nextCells_[i].master].lifetime <= horizon;
@@ -334,7 +380,7 @@ void LinearDevelopment::expireContextFree(double t1) {
       expandedState_.clear();
       outCells_ = &expandedCells_;
       outState_ = &expandedState_;
-      expire(item, workState_.data() + item.state, death, -1);
+      expire(item, workState_.data() + item.state, death, -1, static_cast<int64_t>(position));
       outCells_ = savedCells;
       outState_ = savedState;
       uint32_t base = static_cast<uint32_t>(workState_.size());
@@ -368,8 +414,10 @@ void LinearDevelopment::expireInTimeOrder(double t1) {
       const CellRecord& cell = cells[i];
       const MasterCell& master = masters[cell.master];
       double death = cell.birth + master.lifetime;
-      if (death <= instant) expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i));
-      else emit(cell, pool_.stateOf(cell), master.stateCount());
+      if (death <= instant)
+        expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
+      else
+        emit(cell, pool_.stateOf(cell), master.stateCount());
     }
     finishWord();
   }

@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include "core/pool_view.h"
+#include "core/rule_evaluator.h"
 #include "core/world.h"
 
 namespace ontogen {
@@ -19,20 +21,23 @@ class LinearDevelopment {
 
  private:
   void applyStepRules(double t);
+  void integrateAndExpire(double t, double t1);
+  void expireUntil(double t1);
   void expireContextFree(double t1);
   void expireInTimeOrder(double t1);
 
   /// Fires the terminal rules of a cell that reached its terminal age at `when`.
   /// `index` is its position in the current word (for context), or -1 for a newborn.
-  void expire(const CellRecord& cell, const double* state, double when, int64_t index);
+  /// `position` is the index of the cell (or its ancestor) in the word at the step's start.
+  void expire(const CellRecord& cell, const double* state, double when, int64_t index, int64_t position);
   void fireStepRules(const CellRecord& cell, const double* state, double t, size_t index);
 
-  double* loadFrame(const CellRecord& cell, const double* state, double when);
+  double* loadFrame(const CellRecord& cell, const double* state, double when, int64_t position);
   bool matchContext(const CompiledRule& rule, size_t index, double* frame);
   const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
                                  RandomStream& random, const EvalContext& context);
-  void emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
-                      bool renewMe, const EvalContext& context);
+  void emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when, bool renewMe,
+                      const EvalContext& context);
   void emit(const CellRecord& cell, const double* values, uint32_t count);
   void pushCell(const CellRecord& cell);
   void beginWord();
@@ -56,10 +61,12 @@ class LinearDevelopment {
   StateArray expandedState_;
   std::vector<double> values_;
   std::vector<std::pair<const CompiledRule*, double>> candidates_;  // stochastic alternatives
-  CellArray work_;  // cells still to expire, last = next
+  CellArray work_;                                                  // cells still to expire, last = next
   StateArray workState_;
   uint64_t eventsThisStep_ = 0;
-  uint32_t matched_[64];  // cells matched by the context being tested (patterns are short)
+  LinearPoolView view_;
+  RuleEvaluator aggregates_;  // answers count(), sum(x) ... for the cell being evaluated
+  uint32_t matched_[64];      // cells matched by the context being tested (patterns are short)
 };
 
 }  // namespace ontogen

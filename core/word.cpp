@@ -9,11 +9,19 @@ namespace ontogen {
 std::vector<WordCell> captureWord(const World& world) {
   std::vector<WordCell> word;
   const Program& program = world.program();
-  const LinearPool& pool = world.rootPool();
+  const Pool& pool = world.rootPool();
   word.reserve(pool.size());
-  for (const CellRecord& cell : pool.cells()) {
+  const bool grid = world.rootSystem().poolKind == PoolKind::Grid;
+  const int dimensions = world.rootSystem().grid.dimensions;
+  const auto cells = pool.cells();
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
     WordCell entry;
+    if (grid) {
+      const auto position = world.positionOf(i);
+      entry.position.assign(position.begin(), position.begin() + dimensions);
+    }
     entry.label = master.label;
     const double* state = pool.stateOf(cell);
     entry.params.assign(state, state + master.stateCount());
@@ -46,8 +54,10 @@ std::string formatWord(const std::vector<WordCell>& word, int precision) {
       }
       module += ')';
     }
-    if (cell.timed) text += "(" + module + ", " + formatShort(cell.age, precision) + ")";
-    else text += module;
+    if (cell.timed)
+      text += "(" + module + ", " + formatShort(cell.age, precision) + ")";
+    else
+      text += module;
   }
   return text;
 }
@@ -64,10 +74,18 @@ static void writeString(std::ostream& out, const std::string& text) {
   out << '"';
   for (unsigned char c : text) {
     switch (c) {
-      case '"': out << "\\\""; break;
-      case '\\': out << "\\\\"; break;
-      case '\n': out << "\\n"; break;
-      case '\t': out << "\\t"; break;
+      case '"':
+        out << "\\\"";
+        break;
+      case '\\':
+        out << "\\\\";
+        break;
+      case '\n':
+        out << "\\n";
+        break;
+      case '\t':
+        out << "\\t";
+        break;
       default:
         if (c < 0x20) {
           char escaped[8];
@@ -99,7 +117,12 @@ void writeWordJson(std::ostream& out, const std::vector<WordAtTime>& words) {
       writeArray(out, cells[c].params);
       out << ", \"developed\": ";
       writeArray(out, cells[c].developed);
-      out << ", \"age\": " << formatExact(cells[c].age) << "}";
+      out << ", \"age\": " << formatExact(cells[c].age);
+      if (!cells[c].position.empty()) {
+        out << ", \"position\": ";
+        writeArray(out, cells[c].position);
+      }
+      out << "}";
     }
     out << (cells.empty() ? "]}" : "\n  ]}");
   }

@@ -19,6 +19,7 @@ struct WordCell {
   double age = 0;                 ///< seconds
   bool timed = false;             ///< written in timed notation: printed as (X, age)
   uint64_t id = 0;
+  std::vector<double> position;  ///< grid coordinates (empty in a linear pool, where the order says it)
 };
 
 struct WordAtTime {

@@ -13,6 +13,7 @@
 // Ages are never stored: a cell keeps its birth time, so the word at time t does not
 // depend on the step size for timed L-systems.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "lang/program.h"
+#include "pools/grid_pool.h"
 #include "pools/linear_pool.h"
 
 namespace ontogen {
@@ -38,6 +40,9 @@ struct WorldLimits {
 struct WorldDef {
   uint64_t seed = 1;  ///< seed of every stochastic choice and function
   WorldLimits limits{};
+  /// Threads for rules and rates over large pools (0: all cores). The result does not
+  /// depend on it.
+  unsigned threads = 1;
 };
 
 /// A limit was passed; the message names the limit and how to raise it.
@@ -56,17 +61,25 @@ struct WorldStats {
   uint64_t events = 0;       ///< terminal-age events
   uint64_t ruleFirings = 0;  ///< per-step rules that fired an action or a calculation
   uint64_t cellsBorn = 0;
+  uint64_t crowded = 0;        ///< grid successors that found no free site and were not born
+  uint64_t rateEquations = 0;  ///< rate equations integrated in the last step
 };
+
+class RateIntegrator;
 
 class World {
  public:
   World(std::shared_ptr<const Program> program, WorldDef def = {});
   World(const World& other);
   World& operator=(const World&) = delete;
+  ~World();
 
   const Program& program() const { return *program_; }
   const SystemDefinition& rootSystem() const { return program_->rootSystem(); }
-  const LinearPool& rootPool() const { return pool_; }
+  /// The root system's pool, whatever its kind.
+  const Pool& rootPool() const;
+  const LinearPool& linearPool() const { return pool_; }
+  const GridPool& gridPool() const { return grid_; }
   double time() const { return time_; }
   uint64_t seed() const { return def_.seed; }
   const WorldStats& stats() const { return stats_; }
@@ -78,6 +91,8 @@ class World {
   /// Develops one step of length dt from the current time, per-step rules included.
   void step(double dt);
 
+  /// Position of the i-th cell of the root pool: its index (linear) or grid coordinates.
+  std::array<double, 3> positionOf(size_t i) const;
   /// Age of a cell of the root pool at the current time.
   double ageOf(const CellRecord& cell) const { return time_ - cell.birth; }
   /// The parameters of a cell after its development function: λ' = g(λ, τ, β) · λ
@@ -86,11 +101,17 @@ class World {
 
  private:
   friend class LinearDevelopment;
+  friend class GridDevelopment;
   void seedAxiom();
+  void seedGrid();
+  void developStep(double t1, bool stepRules);
+  RateIntegrator& rates();
 
   std::shared_ptr<const Program> program_;
   WorldDef def_;
   LinearPool pool_;
+  GridPool grid_;
+  std::unique_ptr<RateIntegrator> rates_;  // made on first use; not copied
   double time_ = 0;
   WorldStats stats_;
   // The next word is built here and swapped with the pool's (kept to reuse the memory).
@@ -101,6 +122,8 @@ class World {
 
 /// Tolerance for "at the same instant": events within it of each other or of a step's
 /// end count as simultaneous. Relative, so long runs keep the same meaning.
-inline double timeTolerance(double t) { return 1e-9 * (t < 1 ? 1 : t); }
+inline double timeTolerance(double t) {
+  return 1e-9 * (t < 1 ? 1 : t);
+}
 
 }  // namespace ontogen

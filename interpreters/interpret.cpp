@@ -8,21 +8,30 @@ constexpr uint64_t kInterpretSalt = 0x494e54455250ull;  // draws of interpretati
 
 void interpretWord(const World& world, InterpretationSet& set) {
   const Program& program = world.program();
-  const LinearPool& pool = world.rootPool();
+  const Pool& pool = world.rootPool();
   FunctionTable functions = program.functionTable();
   std::vector<double> frame;
   std::vector<double> args;
   std::vector<double> developed;
   // Whether the set knows each master's command, asked once per master, not per cell.
   std::vector<int8_t> known(program.masters.size(), -1);
-  for (const CellRecord& cell : pool.cells()) {
+  const auto cells = pool.cells();
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
     if (const InterpretationBlock* block = master.interpretation(set.name())) {
       const double* state = pool.stateOf(cell);
       frame.assign(state, state + master.stateCount());
-      frame.push_back(world.ageOf(cell));
-      frame.push_back(master.lifetime);
-      frame.push_back(world.time());
+      frame.resize(master.stateCount() + FrameSlot::kCount);
+      double* internal = frame.data() + master.stateCount();
+      internal[FrameSlot::kAge] = world.ageOf(cell);
+      internal[FrameSlot::kTerminalAge] = master.lifetime;
+      internal[FrameSlot::kTime] = world.time();
+      internal[FrameSlot::kId] = static_cast<double>(cell.id & ((uint64_t{1} << 53) - 1));
+      const auto position = world.positionOf(i);
+      internal[FrameSlot::kX] = position[0];
+      internal[FrameSlot::kY] = position[1];
+      internal[FrameSlot::kZ] = position[2];
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
       for (const Instruction& instruction : block->instructions) {

@@ -120,6 +120,14 @@ struct SymbolList {
   std::vector<std::string> symbols;
 };
 
+/// `fill A(e)` or `at(x, y) A(1)` in a grid system.
+struct Placement {
+  SourceSpan span;
+  bool fill = false;
+  std::vector<ExprPtr> at;  ///< coordinates of `at`
+  Module module;
+};
+
 struct System {
   SourceSpan span;
   SourceSpan nameSpan;
@@ -131,6 +139,7 @@ struct System {
   SourceSpan poolSpan;
   std::vector<Module> axiom;
   SourceSpan axiomSpan;
+  std::vector<Placement> placements;    ///< grid pools
   std::vector<Define> defines;          ///< scoped to the block
   std::vector<Equiv> equivs;            ///< scoped to the block
   std::vector<Setting> settings;        ///< scoped to the block

@@ -32,10 +32,17 @@ bool isReadOnlyName(std::string_view name) {
   return isAgeName(name) || isTerminalAgeName(name) || isTimeName(name) || name == "status" || name == "id";
 }
 
-constexpr int kAgeOffset = 0;       // slots after the state values
-constexpr int kTerminalOffset = 1;
-constexpr int kTimeOffset = 2;
-constexpr int kInternalSlots = 3;
+// The slot of internal state a name reads, after the state values, or -1.
+int internalSlot(std::string_view name) {
+  if (isAgeName(name) || name == "me.age") return FrameSlot::kAge;
+  if (isTerminalAgeName(name)) return FrameSlot::kTerminalAge;
+  if (isTimeName(name)) return FrameSlot::kTime;
+  if (name == "id" || name == "me.id") return FrameSlot::kId;
+  if (name == "me.x") return FrameSlot::kX;
+  if (name == "me.y") return FrameSlot::kY;
+  if (name == "me.z") return FrameSlot::kZ;
+  return -1;
+}
 constexpr size_t kMaxContext = 64;  // matches the engine's buffer of matched cells
 
 /// Constants visible in a scope: the block's #defines, then the program's, then built-ins.
@@ -153,6 +160,9 @@ class Compiler {
       } else if (setting.name == "dt") {
         if (!(*value > 0)) sink_.error(setting.span, "#dt must be greater than 0");
         else program_->dt = *value;
+      } else if (setting.name == "tolerance") {
+        if (!(*value > 0) || *value >= 1) sink_.error(setting.span, "#tolerance is between 0 and 1, as in 1e-6");
+        else program_->rateTolerance = *value;
       } else if (setting.name == "radius") {
         target.radius = *value;
       } else if (setting.name == "seed") {
@@ -338,9 +348,10 @@ class Compiler {
       definition.poolKind = PoolKind::Linear;
       if (!system.poolArgs.empty() || !system.poolOptions.empty())
         sink_.error(system.poolSpan, "the linear pool takes no arguments or options");
-    } else if (system.poolKind == "grid" || system.poolKind == "spatial") {
-      sink_.error(system.poolSpan, "the " + system.poolKind +
-                                       " pool is not available in this version; use 'pool linear'");
+    } else if (system.poolKind == "grid") {
+      definition.poolKind = PoolKind::Grid;
+    } else if (system.poolKind == "spatial") {
+      sink_.error(system.poolSpan, "the spatial pool is not available in this version; use 'pool linear' or 'pool grid'");
     } else {
       sink_.error(system.poolSpan, "unknown pool kind '" + system.poolKind + "' (expected linear, grid or spatial)");
     }
@@ -357,7 +368,110 @@ class Compiler {
     equivs(system.equivs, *scope);
     settings(system.settings, program_->systems.back().settings, scope.get());
     if (system.isLSystem) functions(system.functions, *scope);
+    if (program_->systems.back().poolKind == PoolKind::Grid) gridShape(system, *scope, program_->systems.back());
     scopes_.push_back(std::move(scope));
+  }
+
+  // `pool grid(nx [, ny [, nz]]) [wrap | clamp | closed] [vonneumann | moore]`
+  void gridShape(const ast::System& system, const Scope& scope, SystemDefinition& definition) {
+    GridShape& shape = definition.grid;
+    if (system.poolArgs.empty() || system.poolArgs.size() > 3) {
+      sink_.error(system.poolSpan, "a grid has 1 to 3 sizes, as in 'pool grid(64, 64)'");
+      return;
+    }
+    shape.dimensions = static_cast<int>(system.poolArgs.size());
+    uint64_t sites = 1;
+    for (size_t axis = 0; axis < system.poolArgs.size(); ++axis) {
+      auto value = evaluateConstant(*system.poolArgs[axis], constantLookup(scope), sink_, "a grid size");
+      if (!value) return;
+      if (!(*value >= 1) || *value != std::floor(*value) || *value > 1e9) {
+        sink_.error(system.poolArgs[axis]->span, "a grid size is a whole number ≥ 1, not " + formatNumber(*value));
+        return;
+      }
+      shape.size[axis] = static_cast<uint32_t>(*value);
+      sites *= shape.size[axis];
+    }
+    if (sites >= GridPool::kEmpty) {
+      sink_.error(system.poolSpan, "a grid has fewer than 4294967295 sites; this one has " + std::to_string(sites));
+      return;
+    }
+    bool boundarySet = false, neighbourhoodSet = false;
+    for (const auto& option : system.poolOptions) {
+      bool* set = nullptr;
+      if (option == "wrap" || option == "clamp" || option == "closed") {
+        set = &boundarySet;
+        shape.boundary = option == "wrap" ? GridBoundary::Wrap : option == "clamp" ? GridBoundary::Clamp
+                                                                                   : GridBoundary::Closed;
+      } else if (option == "moore" || option == "vonneumann") {
+        set = &neighbourhoodSet;
+        shape.neighbourhood = option == "moore" ? GridNeighbourhood::Moore : GridNeighbourhood::VonNeumann;
+      } else {
+        sink_.error(system.poolSpan, "unknown grid option '" + option +
+                                         "' (expected wrap, clamp or closed, and vonneumann or moore)");
+        continue;
+      }
+      if (*set) sink_.error(system.poolSpan, "the grid's " + std::string(set == &boundarySet ? "boundary" : "neighbourhood") +
+                                                 " is given twice");
+      *set = true;
+    }
+  }
+
+  // `fill A(e)` and `at(x, y) A(1)`. Values are compiled against a frame of internal
+  // state only, so they may read the site's me.x, me.y, me.z (and draw random numbers).
+  void compilePlacements(const ast::System& system, Scope& scope, SystemDefinition& definition) {
+    if (system.placements.empty()) return;
+    if (definition.poolKind != PoolKind::Grid) {
+      sink_.error(system.placements.front().span, "'fill' and 'at' place cells in a grid pool; this system's pool is " +
+                                                      std::string(poolKindName(definition.poolKind)));
+      return;
+    }
+    std::map<std::string, int, std::less<>> none;
+    NameLookup names = ruleLookup(none, 0, scope);
+    for (const auto& placement : system.placements) {
+      GridPlacement compiled;
+      compiled.fill = placement.fill;
+      compiled.span = placement.span;
+      if (placement.module.isMe) {
+        sink_.error(placement.module.span, "'me' is not a cell to place; name a cell");
+        continue;
+      }
+      if (!placement.fill) {
+        if (static_cast<int>(placement.at.size()) != definition.grid.dimensions) {
+          sink_.error(placement.span, "the grid has " + std::to_string(definition.grid.dimensions) +
+                                          " dimension" + (definition.grid.dimensions == 1 ? "" : "s") + ", so 'at' takes " +
+                                          std::to_string(definition.grid.dimensions) + " coordinate" +
+                                          (definition.grid.dimensions == 1 ? "" : "s"));
+          continue;
+        }
+        bool ok = true;
+        for (size_t axis = 0; axis < placement.at.size(); ++axis) {
+          auto value = evaluateConstant(*placement.at[axis], constantLookup(scope), sink_, "a site coordinate");
+          if (!value) {
+            ok = false;
+            continue;
+          }
+          if (!(*value >= 0) || *value != std::floor(*value) || *value >= definition.grid.size[axis]) {
+            sink_.error(placement.at[axis]->span, "coordinate " + formatNumber(*value) + " is outside the grid (0 to " +
+                                                      std::to_string(definition.grid.size[axis] - 1) + ")");
+            ok = false;
+            continue;
+          }
+          compiled.at[axis] = static_cast<int64_t>(*value);
+        }
+        if (!ok) continue;
+      }
+      int master = resolveModule(placement.module, -1);
+      compiled.master = static_cast<MasterId>(master);
+      const MasterCell& target = program_->masters[master];
+      if (placement.module.age) sink_.error(placement.module.age->span, "cells placed in a grid start with age 0");
+      for (uint32_t i = 0; i < target.stateCount(); ++i) {
+        if (i < placement.module.args.size())
+          compiled.values.push_back(compileExpression(*placement.module.args[i], names, sink_));
+        else
+          compiled.values.push_back(CompiledExpression::constant(target.defaults[i]));
+      }
+      definition.placements.push_back(std::move(compiled));
+    }
   }
 
   void compileSystem(const ast::System& system, int index) {
@@ -393,6 +507,12 @@ class Compiler {
       axiom.push_back(std::move(cell));
     }
     program_->systems[index].axiom = std::move(axiom);
+    compilePlacements(system, scope, program_->systems[index]);
+    if (program_->systems[index].poolKind == PoolKind::Grid &&
+        program_->systems[index].axiom.size() > program_->systems[index].grid.siteCount())
+      sink_.error(system.axiomSpan, "the axiom has " + std::to_string(program_->systems[index].axiom.size()) +
+                                        " cells, more than the grid's " +
+                                        std::to_string(program_->systems[index].grid.siteCount()) + " sites");
     ignoreLists_.push_back({index, &system});
   }
 
@@ -516,7 +636,7 @@ class Compiler {
       if (rule.predecessor.isMe && rule.predecessor.hasArgs)
         sink_.error(rule.predecessor.span, "'me' takes no parameters; the cell's state is read by name");
     }
-    int nextSlot = stateCount + kInternalSlots;
+    int nextSlot = stateCount + FrameSlot::kCount;
     auto contextBinding = [&](const ast::Module& module, bool leftSide) {
       ContextBinding binding;
       if (module.label == "[" || module.label == "]") {
@@ -546,16 +666,27 @@ class Compiler {
     if (compiled.leftItems.size() > kMaxContext || compiled.rightItems.size() > kMaxContext)
       sink_.error(rule.span, "a context has at most " + std::to_string(kMaxContext) + " modules on each side");
 
-    NameLookup names = ruleLookup(slots, stateCount, scope);
+    NameLookup names = ruleLookup(slots, stateCount, scope, &compiled.aggregates, lsystem ? scopeIndex : -1);
     if (rule.predicate) compiled.predicate = compileExpression(*rule.predicate, names, sink_);
     for (const auto& assignment : rule.calculations) {
       StateCalculation calculation;
       calculation.span = assignment.span;
       if (assignment.isRate) {
-        sink_.error(assignment.span, "'rate' (continuous integration) is not available in this version");
-        continue;
+        if (lsystem) {
+          sink_.error(assignment.span, "'rate' belongs to the cell language; write the module as a cell");
+          continue;
+        }
+        if (rule.terminal) {
+          sink_.error(assignment.span, "'rate' integrates while a cell lives; a terminal rule fires once");
+          continue;
+        }
+        if (assignment.op != TokenKind::Equal) {
+          sink_.error(assignment.span, "write 'rate(x) = e': the rate is the derivative itself");
+          continue;
+        }
+        calculation.isRate = true;
       }
-      if (isReadOnlyName(assignment.target)) {
+      if (isReadOnlyName(assignment.target) || internalSlot(assignment.target) >= 0) {
         sink_.error(assignment.targetSpan, "'" + assignment.target + "' is read-only internal state");
         continue;
       }
@@ -569,9 +700,11 @@ class Compiler {
       }
       calculation.slot = static_cast<int>(it - self.stateNames.begin());
       calculation.value = compileExpression(*combine(assignment), names, sink_);
+      (calculation.isRate ? compiled.hasRate : compiled.hasDiscrete) = true;
       compiled.calculations.push_back(std::move(calculation));
     }
     compiled.hasAction = rule.hasAction;
+    if (rule.hasAction) compiled.hasDiscrete = true;
     for (const auto& successor : rule.successors) {
       SuccessorTemplate result;
       result.span = successor.span;
@@ -634,20 +767,87 @@ class Compiler {
     return copy;
   }
 
-  NameLookup ruleLookup(const std::map<std::string, int, std::less<>>& slots, int stateCount, const Scope& scope) {
+  NameLookup ruleLookup(const std::map<std::string, int, std::less<>>& slots, int stateCount, const Scope& scope,
+                        std::vector<AggregateQuery>* aggregates = nullptr, int moduleScope = -1) {
     NameLookup names = constantLookup(scope);
     names.slot = [&slots, stateCount](std::string_view name) -> int {
       if (auto it = slots.find(name); it != slots.end()) return it->second;
-      if (isAgeName(name)) return stateCount + kAgeOffset;
-      if (isTerminalAgeName(name)) return stateCount + kTerminalOffset;
-      if (isTimeName(name)) return stateCount + kTimeOffset;
-      return -1;
+      int internal = internalSlot(name);
+      return internal < 0 ? -1 : stateCount + internal;
     };
+    if (aggregates)
+      names.aggregate = [this, aggregates, moduleScope](const ast::Expr& call, DiagnosticSink& sink) {
+        return registerAggregate(call, sink, *aggregates, moduleScope);
+      };
     addFunctions(names, scope);
     names.unknownHint = [](std::string_view) { return std::string(); };
     // Copy the lookup state that the lambdas above refer to by reference only while the
     // caller's maps live: compileRule uses names before returning.
     return names;
+  }
+
+  // `count()`, `count(A)`, `sum(x)`, `mean(A.x)`, `min(x)`, `max(x)`: one query per text.
+  int registerAggregate(const ast::Expr& call, DiagnosticSink& sink, std::vector<AggregateQuery>& queries,
+                        int moduleScope) {
+    const ast::Expr* arg = call.args.empty() ? nullptr : call.args[0].get();
+    std::string argText = !arg                                      ? ""
+                          : arg->kind == ast::Expr::Kind::Name      ? arg->name
+                          : arg->kind == ast::Expr::Kind::Member    ? memberPath(*arg)
+                                                                    : "?";
+    std::string text = call.name + "(" + argText + ")";
+    for (size_t i = 0; i < queries.size(); ++i)
+      if (queries[i].text == text) return static_cast<int>(i);
+    AggregateQuery query;
+    query.text = text;
+    query.kind = call.name == "count" ? AggregateKind::Count
+                 : call.name == "sum" ? AggregateKind::Sum
+                 : call.name == "mean" ? AggregateKind::Mean
+                 : call.name == "min" ? AggregateKind::Min
+                                      : AggregateKind::Max;
+    auto findLabel = [&](const std::string& label, SourceSpan span) {
+      int master = program_->findMaster(label, moduleScope);
+      if (master < 0) sink.error(span, "no cell is called '" + label + "'");
+      return master;
+    };
+    if (query.kind == AggregateKind::Count) {
+      if (arg) {
+        if (arg->kind != ast::Expr::Kind::Name) {
+          sink.error(arg->span, "count() takes a cell label, as in count(A), or nothing");
+          return -1;
+        }
+        query.label = findLabel(arg->name, arg->span);
+        if (query.label < 0) return -1;
+      }
+    } else {
+      std::string variable;
+      if (arg->kind == ast::Expr::Kind::Name) {
+        variable = arg->name;
+      } else if (!memberPath(*arg).empty()) {
+        query.label = findLabel(arg->args[0]->name, arg->args[0]->span);
+        if (query.label < 0) return -1;
+        variable = arg->name;
+      } else {
+        sink.error(arg->span, "'" + call.name + "' over neighbours takes a state variable, as in " + call.name +
+                                  "(x) or " + call.name + "(A.x)");
+        return -1;
+      }
+      bool any = false;
+      for (size_t m = 0; m < program_->masters.size(); ++m) {
+        const auto& names = program_->masters[m].stateNames;
+        auto it = std::find(names.begin(), names.end(), variable);
+        bool has = it != names.end() && (query.label < 0 || query.label == static_cast<int>(m));
+        query.slotOf.push_back(has ? static_cast<int>(it - names.begin()) : -1);
+        any = any || has;
+      }
+      if (!any) {
+        sink.error(arg->span, query.label >= 0 ? "'" + program_->masters[query.label].label +
+                                                     "' has no state variable '" + variable + "'"
+                                               : "no cell has a state variable '" + variable + "'");
+        return -1;
+      }
+    }
+    queries.push_back(std::move(query));
+    return static_cast<int>(queries.size() - 1);
   }
 
   void compileInterpretation(const ast::Interpretation& block, int master) {
@@ -725,15 +925,54 @@ class Compiler {
     }
     for (size_t s = 0; s < program_->systems.size(); ++s) {
       SystemDefinition& definition = program_->systems[s];
-      for (const auto& master : program_->masters) {
+      std::vector<bool> grows = reachable(definition);
+      for (size_t m = 0; m < program_->masters.size(); ++m) {
+        const MasterCell& master = program_->masters[m];
         if (!visibleIn(master, static_cast<int>(s))) continue;
         for (const auto& rule : master.terminalRules) {
-          if (rule.hasContext()) definition.terminalContext = true;
+          if (rule.hasContext() || !rule.aggregates.empty()) definition.terminalContext = true;
           if (rule.probability.empty() == false) definition.stochastic = true;
         }
         if (!master.rules.empty()) definition.sampledRules = true;
+        for (const auto& rule : master.rules) {
+          if (rule.hasRate) definition.rates = true;
+          if (definition.poolKind == PoolKind::Grid && grows[m] && rule.hasContext() &&
+              definition.grid.dimensions != 1)
+            sink_.error(rule.span, "this context has 1 dimension ('A me B'), but the pool of system '" +
+                                       definition.name + "' is a " + std::to_string(definition.grid.dimensions) +
+                                       "-D grid; read its neighbours with count(), sum(x), mean(x), min(x) or "
+                                       "max(x)");
+        }
+        if (definition.poolKind == PoolKind::Grid && grows[m] && !master.terminalRules.empty())
+          sink_.error(master.terminalRules.front().span,
+                      "terminal rules (lifetimes) in a grid pool are not available in this version; use a "
+                      "per-step rule with 'age > ...'");
       }
     }
+  }
+
+  // The masters a system's pool can hold: its axiom and placements, and every successor
+  // of their rules, transitively.
+  std::vector<bool> reachable(const SystemDefinition& system) const {
+    std::vector<bool> seen(program_->masters.size(), false);
+    std::vector<MasterId> pending;
+    auto visit = [&](MasterId m) {
+      if (m < seen.size() && !seen[m]) {
+        seen[m] = true;
+        pending.push_back(m);
+      }
+    };
+    for (const auto& cell : system.axiom) visit(cell.master);
+    for (const auto& placement : system.placements) visit(placement.master);
+    while (!pending.empty()) {
+      const MasterCell& master = program_->masters[pending.back()];
+      pending.pop_back();
+      for (const auto* rules : {&master.rules, &master.terminalRules})
+        for (const auto& rule : *rules)
+          for (const auto& successor : rule.successors)
+            if (!successor.isMe) visit(successor.master);
+    }
+    return seen;
   }
 
   bool visibleIn(const MasterCell& master, int system) const {

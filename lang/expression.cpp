@@ -17,6 +17,12 @@ std::vector<int> CompiledExpression::calledFunctions() const {
   return called;
 }
 
+bool CompiledExpression::aggregates() const {
+  for (const Bytecode& in : code_)
+    if (in.op == OpCode::Aggregate) return true;
+  return false;
+}
+
 void ExpressionBuilder::emitConst(double value) {
   expr_.constants_.push_back(value);
   emit(OpCode::Const, static_cast<int32_t>(expr_.constants_.size() - 1));
@@ -25,14 +31,32 @@ void ExpressionBuilder::emitConst(double value) {
 void ExpressionBuilder::emit(OpCode op, int32_t operand, uint8_t count) {
   expr_.code_.push_back({op, count, operand});
   switch (op) {
-    case OpCode::Const: case OpCode::Load: ++depth_; break;
-    case OpCode::Add: case OpCode::Sub: case OpCode::Mul: case OpCode::Div: case OpCode::Mod:
-    case OpCode::Pow: case OpCode::Less: case OpCode::LessEqual: case OpCode::Greater:
-    case OpCode::GreaterEqual: case OpCode::Equal: case OpCode::NotEqual: case OpCode::JumpIfFalse:
+    case OpCode::Const:
+    case OpCode::Load:
+    case OpCode::Aggregate:
+      ++depth_;
+      break;
+    case OpCode::Add:
+    case OpCode::Sub:
+    case OpCode::Mul:
+    case OpCode::Div:
+    case OpCode::Mod:
+    case OpCode::Pow:
+    case OpCode::Less:
+    case OpCode::LessEqual:
+    case OpCode::Greater:
+    case OpCode::GreaterEqual:
+    case OpCode::Equal:
+    case OpCode::NotEqual:
+    case OpCode::JumpIfFalse:
       --depth_;
       break;
-    case OpCode::CallBuiltin: case OpCode::CallFunction: depth_ -= count - 1; break;
-    default: break;
+    case OpCode::CallBuiltin:
+    case OpCode::CallFunction:
+      depth_ -= count - 1;
+      break;
+    default:
+      break;
   }
   if (depth_ > maxDepth_) maxDepth_ = depth_;
 }
@@ -45,33 +69,84 @@ double CompiledExpression::run(const EvalContext& context) const {
   for (size_t pc = 0; pc < size; ++pc) {
     const Bytecode& in = code[pc];
     switch (in.op) {
-      case OpCode::Const: stack[++top] = constants_[in.operand]; break;
-      case OpCode::Load: stack[++top] = context.frame[in.operand]; break;
-      case OpCode::Neg: stack[top] = -stack[top]; break;
-      case OpCode::Not: stack[top] = stack[top] == 0.0 ? 1.0 : 0.0; break;
-      case OpCode::Truth: stack[top] = stack[top] != 0.0 ? 1.0 : 0.0; break;
-      case OpCode::Add: --top; stack[top] += stack[top + 1]; break;
-      case OpCode::Sub: --top; stack[top] -= stack[top + 1]; break;
-      case OpCode::Mul: --top; stack[top] *= stack[top + 1]; break;
-      case OpCode::Div: --top; stack[top] /= stack[top + 1]; break;
-      case OpCode::Mod: --top; stack[top] = std::fmod(stack[top], stack[top + 1]); break;
-      case OpCode::Pow: --top; stack[top] = std::pow(stack[top], stack[top + 1]); break;
-      case OpCode::Less: --top; stack[top] = stack[top] < stack[top + 1]; break;
-      case OpCode::LessEqual: --top; stack[top] = stack[top] <= stack[top + 1]; break;
-      case OpCode::Greater: --top; stack[top] = stack[top] > stack[top + 1]; break;
-      case OpCode::GreaterEqual: --top; stack[top] = stack[top] >= stack[top + 1]; break;
-      case OpCode::Equal: --top; stack[top] = stack[top] == stack[top + 1]; break;
-      case OpCode::NotEqual: --top; stack[top] = stack[top] != stack[top + 1]; break;
+      case OpCode::Const:
+        stack[++top] = constants_[in.operand];
+        break;
+      case OpCode::Load:
+        stack[++top] = context.frame[in.operand];
+        break;
+      case OpCode::Neg:
+        stack[top] = -stack[top];
+        break;
+      case OpCode::Not:
+        stack[top] = stack[top] == 0.0 ? 1.0 : 0.0;
+        break;
+      case OpCode::Truth:
+        stack[top] = stack[top] != 0.0 ? 1.0 : 0.0;
+        break;
+      case OpCode::Add:
+        --top;
+        stack[top] += stack[top + 1];
+        break;
+      case OpCode::Sub:
+        --top;
+        stack[top] -= stack[top + 1];
+        break;
+      case OpCode::Mul:
+        --top;
+        stack[top] *= stack[top + 1];
+        break;
+      case OpCode::Div:
+        --top;
+        stack[top] /= stack[top + 1];
+        break;
+      case OpCode::Mod:
+        --top;
+        stack[top] = std::fmod(stack[top], stack[top + 1]);
+        break;
+      case OpCode::Pow:
+        --top;
+        stack[top] = std::pow(stack[top], stack[top + 1]);
+        break;
+      case OpCode::Less:
+        --top;
+        stack[top] = stack[top] < stack[top + 1];
+        break;
+      case OpCode::LessEqual:
+        --top;
+        stack[top] = stack[top] <= stack[top + 1];
+        break;
+      case OpCode::Greater:
+        --top;
+        stack[top] = stack[top] > stack[top + 1];
+        break;
+      case OpCode::GreaterEqual:
+        --top;
+        stack[top] = stack[top] >= stack[top + 1];
+        break;
+      case OpCode::Equal:
+        --top;
+        stack[top] = stack[top] == stack[top + 1];
+        break;
+      case OpCode::NotEqual:
+        --top;
+        stack[top] = stack[top] != stack[top + 1];
+        break;
       case OpCode::JumpIfFalse:
         if (stack[top--] == 0.0) pc = static_cast<size_t>(in.operand) - 1;
         break;
-      case OpCode::Jump: pc = static_cast<size_t>(in.operand) - 1; break;
+      case OpCode::Jump:
+        pc = static_cast<size_t>(in.operand) - 1;
+        break;
       case OpCode::CallBuiltin: {
         top -= in.count - 1;
         EvalEnvironment environment = context.environment;
         stack[top] = builtinFunctions()[in.operand].fn(&stack[top], in.count, environment);
         break;
       }
+      case OpCode::Aggregate:
+        stack[++top] = context.neighbours->aggregate(in.operand);
+        break;
       case OpCode::CallFunction: {
         top -= in.count - 1;
         EvalContext inner = context;

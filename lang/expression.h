@@ -12,16 +12,28 @@
 namespace ontogen {
 
 enum class OpCode : uint8_t {
-  Const,        ///< push constants[operand]
-  Load,         ///< push frame[operand]
-  Neg, Not,
-  Add, Sub, Mul, Div, Mod, Pow,
-  Less, LessEqual, Greater, GreaterEqual, Equal, NotEqual,
-  JumpIfFalse,  ///< pop; jump to operand if 0 (the result of && / || / if)
-  Jump,         ///< jump to operand
-  Truth,        ///< replace top with 0 or 1
-  CallBuiltin,  ///< call builtinFunctions()[operand] with `count` arguments
-  CallFunction, ///< call the program's function[operand] with `count` arguments
+  Const,  ///< push constants[operand]
+  Load,   ///< push frame[operand]
+  Neg,
+  Not,
+  Add,
+  Sub,
+  Mul,
+  Div,
+  Mod,
+  Pow,
+  Less,
+  LessEqual,
+  Greater,
+  GreaterEqual,
+  Equal,
+  NotEqual,
+  JumpIfFalse,   ///< pop; jump to operand if 0 (the result of && / || / if)
+  Jump,          ///< jump to operand
+  Truth,         ///< replace top with 0 or 1
+  CallBuiltin,   ///< call builtinFunctions()[operand] with `count` arguments
+  CallFunction,  ///< call the program's function[operand] with `count` arguments
+  Aggregate,     ///< push the neighbour aggregate number `operand` of the rule being evaluated
 };
 
 struct Bytecode {
@@ -37,11 +49,22 @@ struct FunctionTable {
   std::span<const CompiledExpression> bodies;
 };
 
+/// Answers a rule's neighbour aggregates (`count(A)`, `sum(x)`, ...) for the cell being
+/// evaluated; the engine implements it for each pool kind.
+class NeighbourAggregates {
+ public:
+  virtual double aggregate(int query) const = 0;
+
+ protected:
+  ~NeighbourAggregates() = default;
+};
+
 /// What an evaluation reads besides the frame.
 struct EvalContext {
   const double* frame = nullptr;
   EvalEnvironment environment;
   const FunctionTable* functions = nullptr;
+  const NeighbourAggregates* neighbours = nullptr;  ///< set where the expression may aggregate
 };
 
 class CompiledExpression {
@@ -68,6 +91,8 @@ class CompiledExpression {
   size_t instructionCount() const { return code_.size(); }
   /// Indices of the user functions this expression calls (for recursion checks).
   std::vector<int> calledFunctions() const;
+  /// True if the expression reads neighbour aggregates.
+  bool aggregates() const;
 
   /// Deepest stack the code needs; bounded by kMaxStack at compile time.
   static constexpr int kMaxStack = 64;  // nesting deeper than 64 operands is not a program people write

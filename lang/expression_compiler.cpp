@@ -28,7 +28,8 @@ class ExpressionCompiler {
   // Pass 1: report every unknown name and bad call in the expression.
   void check(const Expr& expr) {
     switch (expr.kind) {
-      case Expr::Kind::Number: return;
+      case Expr::Kind::Number:
+        return;
       case Expr::Kind::Name: {
         if (names_.slot && names_.slot(expr.name) >= 0) return;
         if (names_.constant && names_.constant(expr.name)) return;
@@ -40,22 +41,38 @@ class ExpressionCompiler {
         sink_.error(expr.span, message);
         return;
       }
-      case Expr::Kind::Member:
-        sink_.error(expr.span, "'" + std::string(expr.args[0]->kind == Expr::Kind::Name ? expr.args[0]->name : "") +
-                                   "." + expr.name +
-                                   "': reading a parent's or the root's state needs system hierarchies, "
-                                   "which this version does not have yet");
+      case Expr::Kind::Member: {
+        std::string path = memberPath(expr);
+        if (names_.slot && !path.empty() && names_.slot(path) >= 0) return;
+        std::string base = expr.args[0]->kind == Expr::Kind::Name ? expr.args[0]->name : "";
+        if (base == "me")
+          sink_.error(expr.span, "'" + path +
+                                     "' is not internal state of a cell (known: me.age, me.id, me.x, "
+                                     "me.y, me.z)");
+        else
+          sink_.error(expr.span, "'" + path +
+                                     "': reading a parent's or the root's state needs system hierarchies, "
+                                     "which this version does not have yet");
         return;
+      }
       case Expr::Kind::Unary:
       case Expr::Kind::Binary:
         for (const auto& arg : expr.args) check(*arg);
         return;
       case Expr::Kind::Call: {
+        if (isAggregateCall(expr)) {
+          if (!names_.aggregate)
+            sink_.error(expr.span, "'" + expr.name + "(...)' aggregates over neighbours and is read in rules only");
+          else
+            names_.aggregate(expr, sink_);
+          return;
+        }
         for (const auto& arg : expr.args) check(*arg);
         int count = static_cast<int>(expr.args.size());
         if (expr.name == "if") {
-          if (count != 3) sink_.error(expr.span, "'if' takes 3 arguments (if(condition, then, else)), given " +
-                                                     std::to_string(count));
+          if (count != 3)
+            sink_.error(expr.span,
+                        "'if' takes 3 arguments (if(condition, then, else)), given " + std::to_string(count));
           return;
         }
         if (names_.function) {
@@ -75,12 +92,11 @@ class ExpressionCompiler {
         }
         if (count < builtin->minArity || (builtin->maxArity >= 0 && count > builtin->maxArity)) {
           std::string expected = builtin->minArity == builtin->maxArity ? std::to_string(builtin->minArity)
-                                 : builtin->maxArity < 0 ? "at least " + std::to_string(builtin->minArity)
-                                                         : std::to_string(builtin->minArity) + " to " +
-                                                               std::to_string(builtin->maxArity);
-          sink_.error(expr.span, "'" + expr.name + "' takes " + expected + " argument" +
-                                     (expected == "1" ? "" : "s") + " (" + std::string(builtin->signature) +
-                                     "), given " + std::to_string(count));
+                                 : builtin->maxArity < 0
+                                     ? "at least " + std::to_string(builtin->minArity)
+                                     : std::to_string(builtin->minArity) + " to " + std::to_string(builtin->maxArity);
+          sink_.error(expr.span, "'" + expr.name + "' takes " + expected + " argument" + (expected == "1" ? "" : "s") +
+                                     " (" + std::string(builtin->signature) + "), given " + std::to_string(count));
         }
         return;
       }
@@ -90,11 +106,13 @@ class ExpressionCompiler {
   // The value of a subtree that depends on no frame slot and draws no random number.
   std::optional<double> fold(const Expr& expr) {
     switch (expr.kind) {
-      case Expr::Kind::Number: return expr.number;
+      case Expr::Kind::Number:
+        return expr.number;
       case Expr::Kind::Name:
         if (names_.slot && names_.slot(expr.name) >= 0) return std::nullopt;
         return names_.constant(expr.name);
-      case Expr::Kind::Member: return std::nullopt;
+      case Expr::Kind::Member:
+        return std::nullopt;
       case Expr::Kind::Unary: {
         auto value = fold(*expr.args[0]);
         if (!value) return std::nullopt;
@@ -110,6 +128,7 @@ class ExpressionCompiler {
         return binaryValue(expr.op, *left, *right);
       }
       case Expr::Kind::Call: {
+        if (isAggregateCall(expr)) return std::nullopt;
         if (expr.name == "if") {
           auto condition = fold(*expr.args[0]);
           if (!condition) return std::nullopt;
@@ -133,39 +152,67 @@ class ExpressionCompiler {
 
   static double binaryValue(TokenKind op, double a, double b) {
     switch (op) {
-      case TokenKind::Plus: return a + b;
-      case TokenKind::Minus: return a - b;
-      case TokenKind::Star: return a * b;
-      case TokenKind::Slash: return a / b;
-      case TokenKind::Percent: return std::fmod(a, b);
-      case TokenKind::Caret: return std::pow(a, b);
-      case TokenKind::Less: return a < b;
-      case TokenKind::LessEqual: return a <= b;
-      case TokenKind::Greater: return a > b;
-      case TokenKind::GreaterEqual: return a >= b;
-      case TokenKind::EqualEqual: return a == b;
-      case TokenKind::BangEqual: return a != b;
-      case TokenKind::AmpAmp: return (a != 0.0 && b != 0.0) ? 1.0 : 0.0;
-      case TokenKind::PipePipe: return (a != 0.0 || b != 0.0) ? 1.0 : 0.0;
-      default: return 0.0;
+      case TokenKind::Plus:
+        return a + b;
+      case TokenKind::Minus:
+        return a - b;
+      case TokenKind::Star:
+        return a * b;
+      case TokenKind::Slash:
+        return a / b;
+      case TokenKind::Percent:
+        return std::fmod(a, b);
+      case TokenKind::Caret:
+        return std::pow(a, b);
+      case TokenKind::Less:
+        return a < b;
+      case TokenKind::LessEqual:
+        return a <= b;
+      case TokenKind::Greater:
+        return a > b;
+      case TokenKind::GreaterEqual:
+        return a >= b;
+      case TokenKind::EqualEqual:
+        return a == b;
+      case TokenKind::BangEqual:
+        return a != b;
+      case TokenKind::AmpAmp:
+        return (a != 0.0 && b != 0.0) ? 1.0 : 0.0;
+      case TokenKind::PipePipe:
+        return (a != 0.0 || b != 0.0) ? 1.0 : 0.0;
+      default:
+        return 0.0;
     }
   }
 
   static OpCode opcodeOf(TokenKind op) {
     switch (op) {
-      case TokenKind::Plus: return OpCode::Add;
-      case TokenKind::Minus: return OpCode::Sub;
-      case TokenKind::Star: return OpCode::Mul;
-      case TokenKind::Slash: return OpCode::Div;
-      case TokenKind::Percent: return OpCode::Mod;
-      case TokenKind::Caret: return OpCode::Pow;
-      case TokenKind::Less: return OpCode::Less;
-      case TokenKind::LessEqual: return OpCode::LessEqual;
-      case TokenKind::Greater: return OpCode::Greater;
-      case TokenKind::GreaterEqual: return OpCode::GreaterEqual;
-      case TokenKind::EqualEqual: return OpCode::Equal;
-      case TokenKind::BangEqual: return OpCode::NotEqual;
-      default: return OpCode::Add;
+      case TokenKind::Plus:
+        return OpCode::Add;
+      case TokenKind::Minus:
+        return OpCode::Sub;
+      case TokenKind::Star:
+        return OpCode::Mul;
+      case TokenKind::Slash:
+        return OpCode::Div;
+      case TokenKind::Percent:
+        return OpCode::Mod;
+      case TokenKind::Caret:
+        return OpCode::Pow;
+      case TokenKind::Less:
+        return OpCode::Less;
+      case TokenKind::LessEqual:
+        return OpCode::LessEqual;
+      case TokenKind::Greater:
+        return OpCode::Greater;
+      case TokenKind::GreaterEqual:
+        return OpCode::GreaterEqual;
+      case TokenKind::EqualEqual:
+        return OpCode::Equal;
+      case TokenKind::BangEqual:
+        return OpCode::NotEqual;
+      default:
+        return OpCode::Add;
     }
   }
 
@@ -176,9 +223,15 @@ class ExpressionCompiler {
       return;
     }
     switch (expr.kind) {
-      case Expr::Kind::Number: builder_.emitConst(expr.number); return;
-      case Expr::Kind::Name: builder_.emit(OpCode::Load, names_.slot(expr.name)); return;
-      case Expr::Kind::Member: return;
+      case Expr::Kind::Number:
+        builder_.emitConst(expr.number);
+        return;
+      case Expr::Kind::Name:
+        builder_.emit(OpCode::Load, names_.slot(expr.name));
+        return;
+      case Expr::Kind::Member:
+        builder_.emit(OpCode::Load, names_.slot(memberPath(expr)));
+        return;
       case Expr::Kind::Unary:
         emit(*expr.args[0]);
         builder_.emit(expr.op == TokenKind::Minus ? OpCode::Neg : OpCode::Not);
@@ -192,7 +245,9 @@ class ExpressionCompiler {
         emit(*expr.args[1]);
         builder_.emit(opcodeOf(expr.op));
         return;
-      case Expr::Kind::Call: emitCall(expr); return;
+      case Expr::Kind::Call:
+        emitCall(expr);
+        return;
     }
   }
 
@@ -215,6 +270,10 @@ class ExpressionCompiler {
   }
 
   void emitCall(const Expr& expr) {
+    if (isAggregateCall(expr)) {
+      builder_.emit(OpCode::Aggregate, names_.aggregate(expr, sink_));
+      return;
+    }
     if (expr.name == "if") {
       emit(*expr.args[0]);
       size_t toElse = builder_.position();
@@ -250,6 +309,23 @@ class ExpressionCompiler {
 };
 
 }  // namespace
+
+bool isAggregateCall(const ast::Expr& call) {
+  if (call.kind != Expr::Kind::Call) return false;
+  const size_t count = call.args.size();
+  if (call.name == "count") return count <= 1;
+  if (call.name == "sum" || call.name == "mean") return count == 1;
+  // min(x) / max(x) over neighbours name a variable; min(1) is the two-argument function
+  // called wrongly, and gets that message.
+  if (call.name == "min" || call.name == "max")
+    return count == 1 && (call.args[0]->kind == Expr::Kind::Name || call.args[0]->kind == Expr::Kind::Member);
+  return false;
+}
+
+std::string memberPath(const ast::Expr& member) {
+  if (member.kind != Expr::Kind::Member || member.args.empty() || member.args[0]->kind != Expr::Kind::Name) return "";
+  return member.args[0]->name + "." + member.name;
+}
 
 CompiledExpression compileExpression(const ast::Expr& expr, const NameLookup& names, DiagnosticSink& sink) {
   return ExpressionCompiler(names, sink).run(expr);

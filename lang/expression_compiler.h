@@ -20,9 +20,20 @@ struct NameLookup {
   std::function<int(std::string_view)> function;
   /// Arity of a user function.
   std::function<int(int)> functionArity;
+  /// Registers a neighbour aggregate call (`count(A)`, `sum(x)`, `mean(A.x)` ...) and
+  /// returns its index, or -1 after reporting why it is wrong. Absent where aggregates
+  /// cannot be read (outside rules). Called again for the same call: same index, no report.
+  std::function<int(const ast::Expr& call, DiagnosticSink& sink)> aggregate;
   /// Extra advice for an unknown name (e.g. "declare it as a state variable"), may be empty.
   std::function<std::string(std::string_view)> unknownHint;
 };
+
+/// True for a call that names a neighbour aggregate: count(), count(A), sum(x), mean(x),
+/// and min(x) / max(x) with one argument (with two they are the ordinary functions).
+bool isAggregateCall(const ast::Expr& call);
+
+/// The text of `a.b` (`me.x`, `parent.length`), or "" for other shapes.
+std::string memberPath(const ast::Expr& member);
 
 /// Compiles one expression: resolves names, checks calls and folds constants. Reports
 /// errors to the sink and returns an empty expression if there were any.

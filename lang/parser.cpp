@@ -193,7 +193,8 @@ class Parser {
         define.span = hash.span.to(previous().span);
         defines.push_back(std::move(define));
       } else if (hash.text == "angle" || hash.text == "yawangle" || hash.text == "length" ||
-                 hash.text == "radius" || hash.text == "seed" || hash.text == "until" || hash.text == "dt") {
+                 hash.text == "radius" || hash.text == "seed" || hash.text == "until" || hash.text == "dt" ||
+                 hash.text == "tolerance") {
         Setting setting{hash.span, hash.text, nullptr};
         if (atStatementEnd()) fail(hash.span, "expected a value after '#" + hash.text + "'");
         setting.value = expression();
@@ -203,7 +204,7 @@ class Parser {
         settings.push_back(Setting{hash.span, hash.text, nullptr});
       } else {
         fail(hash.span, "unknown directive '#" + hash.text +
-                            "' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, #seed, #until, #dt)");
+                            "' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, #seed, #until, #dt, #tolerance)");
       }
       if (match(TokenKind::Semicolon)) return;
       if (!atStatementEnd()) failHere("the end of the line after the directive");
@@ -565,8 +566,29 @@ class Parser {
       return;
     }
     if (checkWord("axiom")) return axiom(system);
+    if (checkWord("fill") || (checkWord("at") && peek(1).kind == TokenKind::LParen)) return placement(system);
     if (checkWord("ignore") || checkWord("consider")) return symbolList(system);
-    failHere("'pool', 'axiom', 'ignore', 'consider', 'equiv', a directive or '}' in the system");
+    failHere("'pool', 'axiom', 'fill', 'at', 'ignore', 'consider', 'equiv', a directive or '}' in the system");
+  }
+
+  // `fill A(e)` and `at(x, y) A(1)`: cells of a grid system.
+  void placement(System& system) {
+    Placement result;
+    const Token& keyword = advance();
+    result.fill = keyword.text == "fill";
+    if (!result.fill) {
+      expect(TokenKind::LParen, " after 'at'");
+      ++depth_;
+      do result.at.push_back(expression());
+      while (match(TokenKind::Comma));
+      --depth_;
+      expect(TokenKind::RParen, " to close the site's coordinates");
+    }
+    if (!canStartModule()) failHere("a cell, as in '" + std::string(result.fill ? "fill A(0)" : "at(1, 2) A(0)") + "'");
+    result.module = module(ModuleUse::Axiom);
+    result.span = keyword.span.to(previous().span);
+    system.placements.push_back(std::move(result));
+    endStatement();
   }
 
   void axiom(System& system) {

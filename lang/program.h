@@ -3,8 +3,11 @@
 // Cells, L-system modules and turtle symbols are all master cells; a system holds an
 // axiom and a pool kind. Expressions are compiled against fixed frame layouts:
 //
-//   rule frame:        [state 0..n-1] [age] [terminal age] [time] [context values...]
-//   instruction frame: [state 0..n-1] [age] [terminal age] [time]
+//   rule frame:        [state 0..n-1] [internal state] [context values...]
+//   instruction frame: [state 0..n-1] [internal state]
+//
+// where the internal state is the slots of FrameSlot: age, terminal age, time, id and
+// the cell's position in its pool.
 //
 // so evaluation is a walk over bytecode reading doubles from one small array.
 
@@ -18,12 +21,38 @@
 #include "lang/expression.h"
 #include "lang/source.h"
 #include "pools/cell_record.h"
+#include "pools/grid_pool.h"
 #include "pools/linear_pool.h"
 
 namespace ontogen {
 
 using MasterId = uint32_t;
 inline constexpr double kForever = std::numeric_limits<double>::infinity();
+
+/// Read-only internal state, in the slots after a cell's state values.
+struct FrameSlot {
+  static constexpr int kAge = 0;          ///< `age`, `tau`, `me.age`
+  static constexpr int kTerminalAge = 1;  ///< `beta`, `lifetime`
+  static constexpr int kTime = 2;         ///< `time`: the global time
+  static constexpr int kId = 3;           ///< `id`, `me.id`: the low 53 bits of the stable id
+  static constexpr int kX = 4;            ///< `me.x`: index in a linear pool, first grid coordinate
+  static constexpr int kY = 5;            ///< `me.y`: second grid coordinate (0 elsewhere)
+  static constexpr int kZ = 6;            ///< `me.z`: third grid coordinate (0 elsewhere)
+  static constexpr int kCount = 7;
+};
+
+/// A reduction over the neighbours of a cell: `count()`, `count(A)`, `sum(x)`,
+/// `mean(A.x)`, `min(x)`, `max(x)`.
+enum class AggregateKind : uint8_t { Count, Sum, Mean, Min, Max };
+
+struct AggregateQuery {
+  AggregateKind kind = AggregateKind::Count;
+  int label = -1;  ///< the master neighbours must have, -1: any
+  /// Per master: index of the variable in its state, -1 where it has none (neighbours
+  /// without the variable are left out). Empty for count.
+  std::vector<int> slotOf;
+  std::string text;  ///< as written, to share one query between uses
+};
 
 /// A module of a context pattern and where its state goes in the rule frame.
 struct ContextBinding {
@@ -62,7 +91,10 @@ struct CompiledRule {
   bool hasAction = false;
   std::vector<SuccessorTemplate> successors;
   CompiledExpression probability;  ///< empty: not stochastic
+  std::vector<AggregateQuery> aggregates;  ///< read by OpCode::Aggregate in this rule's expressions
   int frameSize = 0;
+  bool hasRate = false;      ///< some calculation is `rate(x) = e`
+  bool hasDiscrete = false;  ///< some calculation is not a rate, or the rule has an action
 
   bool hasContext() const { return !left.empty() || !right.empty(); }
 };
@@ -134,16 +166,29 @@ struct AxiomCell {
   double age = 0;
 };
 
+/// `fill A(e)` (every site; values may read the site's `me.x`, `me.y`, `me.z`) or
+/// `at(x, y) A(1)` (one site) in a grid system.
+struct GridPlacement {
+  bool fill = false;
+  GridCoordinates at{0, 0, 0};
+  MasterId master = 0;
+  std::vector<CompiledExpression> values;  ///< frame: FrameSlot layout with no state values
+  SourceSpan span;
+};
+
 struct SystemDefinition {
   std::string name;
   SourceSpan span;
   bool isLSystem = false;
   PoolKind poolKind = PoolKind::Linear;
+  GridShape grid;  ///< for a grid pool
   std::vector<AxiomCell> axiom;
+  std::vector<GridPlacement> placements;  ///< grid pools: after the axiom, in text order
   std::vector<uint8_t> symbolClass;  ///< per master: branch brackets and ignored symbols
   InterpretSettings settings;
   bool terminalContext = false;  ///< some terminal rule of this system's cells reads context
   bool sampledRules = false;     ///< some cell of this system has per-step rules
+  bool rates = false;            ///< some cell of this system integrates `rate` variables
   bool stochastic = false;
 };
 
@@ -158,6 +203,9 @@ struct Program {
   bool hasSeed = false;
   double until = 10;     ///< default end of a run (#until), seconds of developmental time
   double dt = 1;         ///< default step (#dt); rules without a terminal age fire once per step
+  /// #tolerance: integrate `rate` adaptively (Dormand-Prince) to this absolute and
+  /// relative error; 0: classic Runge-Kutta 4, one step per world step.
+  double rateTolerance = 0;
 
   FunctionTable functionTable() const { return FunctionTable{functionBodies}; }
   const SystemDefinition& rootSystem() const { return systems[root]; }

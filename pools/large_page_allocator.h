@@ -40,8 +40,10 @@ class LargePageAllocator {
   }
 
   void deallocate(T* block, size_t count) noexcept {
-    if (count * sizeof(T) < kLargePageBytes) ::operator delete(block);
-    else std::free(block);
+    if (count * sizeof(T) < kLargePageBytes)
+      ::operator delete(block);
+    else
+      std::free(block);
   }
 
   template <class U>

@@ -31,7 +31,9 @@ bool LinearPool::matchLeft(size_t index, std::span<const ContextItem> items, std
       if (symbol & (kSymbolBranchOpen | kSymbolIgnored)) continue;  // leave the branch / ignore
       break;
     }
-    if (items[k].kind != ContextItem::Kind::Module || cells_[pos].master != items[k].master) return false;
+    if (items[k].kind != ContextItem::Kind::Any &&
+        (items[k].kind != ContextItem::Kind::Module || cells_[pos].master != items[k].master))
+      return false;
     matched[k] = static_cast<uint32_t>(pos);
   }
   return true;
@@ -73,7 +75,7 @@ bool LinearPool::matchRight(size_t index, std::span<const ContextItem> items, st
     }
     if (item.kind == ContextItem::Kind::BranchOpen) {
       if (!(classOf[cells_[pos].master] & kSymbolBranchOpen)) return false;
-    } else if (cells_[pos].master != item.master) {
+    } else if (item.kind != ContextItem::Kind::Any && cells_[pos].master != item.master) {
       return false;
     }
     matched[k] = static_cast<uint32_t>(pos);

@@ -19,7 +19,7 @@ namespace ontogen {
 
 /// One position of a context pattern: a module of a given master, or a bracket.
 struct ContextItem {
-  enum class Kind : uint8_t { Module, BranchOpen, BranchClose };
+  enum class Kind : uint8_t { Module, BranchOpen, BranchClose, Any };  ///< Any: any module
   Kind kind = Kind::Module;
   uint32_t master = 0;
 };

@@ -6,9 +6,12 @@ namespace ontogen {
 
 std::string_view poolKindName(PoolKind kind) {
   switch (kind) {
-    case PoolKind::Linear: return "linear";
-    case PoolKind::Grid: return "grid";
-    case PoolKind::Spatial: return "spatial";
+    case PoolKind::Linear:
+      return "linear";
+    case PoolKind::Grid:
+      return "grid";
+    case PoolKind::Spatial:
+      return "spatial";
   }
   return "linear";
 }

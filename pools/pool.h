@@ -42,6 +42,8 @@ class Pool {
   const double* stateOf(const CellRecord& cell) const { return state_.data() + cell.state; }
   double* stateOf(const CellRecord& cell) { return state_.data() + cell.state; }
   std::span<const double> stateArena() const { return state_; }
+  /// The state values themselves, for an integrator that advances them in place.
+  StateArray& stateValues() { return state_; }
 
   /// Bytes in use, for the memory limit. Capacity reserved beyond the size is not
   /// counted: pages never written are never mapped.

@@ -1,0 +1,53 @@
+#include "core/pool_view.h"
+
+namespace ontogen {
+
+int LinearPoolView::neighbours(size_t i, uint32_t* out) const {
+  static constexpr ContextItem kAny[1] = {ContextItem{ContextItem::Kind::Any, 0}};
+  int n = 0;
+  uint32_t matched[1];
+  if (pool_.matchLeft(i, kAny, classOf_, matched)) out[n++] = matched[0];
+  if (pool_.matchRight(i, kAny, classOf_, matched)) out[n++] = matched[0];
+  return n;
+}
+
+bool LinearPoolView::matchContext(const CompiledRule& rule, size_t i, uint32_t* left, uint32_t* right) const {
+  if (!rule.leftItems.empty() && !pool_.matchLeft(i, rule.leftItems, classOf_, left)) return false;
+  return rule.rightItems.empty() || pool_.matchRight(i, rule.rightItems, classOf_, right);
+}
+
+int GridPoolView::neighbours(size_t i, uint32_t* out) const {
+  uint32_t sites[GridPool::kMaxNeighbours];
+  const int count = pool_.neighbourSites(pool_.siteOf(i), sites);
+  int n = 0;
+  for (int k = 0; k < count; ++k) {
+    if (sites[k] == GridPool::kEmpty) continue;
+    const uint32_t cell = pool_.cellAt(sites[k]);
+    if (cell != GridPool::kEmpty) out[n++] = cell;
+  }
+  return n;
+}
+
+bool GridPoolView::matchContext(const CompiledRule& rule, size_t i, uint32_t* left, uint32_t* right) const {
+  // Only 1-D grids take positional context (the compiler checks the dimension).
+  const GridCoordinates here = pool_.coordinates(pool_.siteOf(i));
+  auto match = [&](const std::vector<ContextItem>& items, int direction, uint32_t* matched) {
+    for (size_t k = 0; k < items.size(); ++k) {
+      const uint32_t site = pool_.siteAt({here[0] + direction * static_cast<int64_t>(k + 1), 0, 0});
+      if (site == GridPool::kEmpty) return false;
+      const uint32_t cell = pool_.cellAt(site);
+      if (cell == GridPool::kEmpty) return false;
+      if (items[k].kind != ContextItem::Kind::Any && pool_.cells()[cell].master != items[k].master) return false;
+      matched[k] = cell;
+    }
+    return true;
+  };
+  return match(rule.leftItems, -1, left) && match(rule.rightItems, 1, right);
+}
+
+std::array<double, 3> GridPoolView::position(size_t i) const {
+  const GridCoordinates c = pool_.coordinates(pool_.siteOf(i));
+  return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
+}
+
+}  // namespace ontogen

@@ -1,0 +1,101 @@
+#include "core/rate_integrator.h"
+
+#include <algorithm>
+#include <boost/numeric/odeint.hpp>
+
+#include "core/parallel_for.h"
+
+namespace ontogen {
+
+namespace {
+constexpr uint64_t kRateSalt = 0x52415445ull;  // draws in rate expressions
+}
+
+RateIntegrator::RateIntegrator(const Program& program, uint64_t seed, unsigned threads)
+    : program_(program), seed_(seed), threads_(std::max(1u, threads)), functions_(program.functionTable()) {}
+
+RateIntegrator::~RateIntegrator() = default;
+
+void RateIntegrator::activate(const Pool& pool, double t0) {
+  const auto cells = pool.cells();
+  const double* arena = pool.stateArena().data();
+  chunkEquations_.resize(threads_);
+  for (auto& chunk : chunkEquations_) chunk.clear();
+  parallelFor(cells.size(), threads_, [&](size_t begin, size_t end, unsigned worker) {
+    RuleEvaluator& evaluator = *evaluators_[worker];
+    std::vector<Equation>& out = chunkEquations_[worker];
+    for (size_t i = begin; i < end; ++i) {
+      const MasterCell& master = program_.masters[cells[i].master];
+      const size_t first = out.size();
+      for (const CompiledRule& rule : master.rules) {
+        if (!rule.hasRate) continue;
+        double* frame = evaluator.load(i, arena, t0);
+        if (!evaluator.bind(rule)) continue;
+        RandomStream random(mixKey(mixKey(seed_ ^ kRateSalt, cells[i].id), keyOf(t0)));
+        EvalContext context{frame, EvalEnvironment{&random, seed_}, &functions_, &evaluator};
+        if (!rule.predicate.empty() && rule.predicate.evaluate(context) == 0.0) continue;
+        for (const StateCalculation& calculation : rule.calculations) {
+          if (!calculation.isRate) continue;
+          // A later rule's rate for the same variable replaces an earlier one.
+          auto same = std::find_if(out.begin() + first, out.end(),
+                                   [&](const Equation& e) { return e.calculation->slot == calculation.slot; });
+          if (same != out.end()) out.erase(same);
+          out.push_back({static_cast<uint32_t>(i), &rule, &calculation});
+        }
+      }
+      // Group a cell's equations by rule, so one frame load serves each rule.
+      std::stable_sort(out.begin() + first, out.end(),
+                       [](const Equation& a, const Equation& b) { return a.rule < b.rule; });
+    }
+  });
+  equations_.clear();
+  for (const auto& chunk : chunkEquations_) equations_.insert(equations_.end(), chunk.begin(), chunk.end());
+}
+
+void RateIntegrator::derivative(const Pool& pool, const StateArray& x, StateArray& dxdt, double t) {
+  std::fill(dxdt.begin(), dxdt.end(), 0.0);
+  const auto cells = pool.cells();
+  parallelFor(equations_.size(), threads_, [&](size_t begin, size_t end, unsigned worker) {
+    RuleEvaluator& evaluator = *evaluators_[worker];
+    RandomStream random;
+    EvalContext context{nullptr, EvalEnvironment{&random, seed_}, &functions_, &evaluator};
+    uint32_t loadedCell = UINT32_MAX;
+    const CompiledRule* loadedRule = nullptr;
+    for (size_t e = begin; e < end; ++e) {
+      const Equation& equation = equations_[e];
+      if (equation.cell != loadedCell || equation.rule != loadedRule) {
+        context.frame = evaluator.load(equation.cell, x.data(), t);
+        evaluator.bind(*equation.rule);  // the structure does not change while integrating
+        random = RandomStream(mixKey(mixKey(seed_ ^ kRateSalt, cells[equation.cell].id), keyOf(t)));
+        loadedCell = equation.cell;
+        loadedRule = equation.rule;
+      }
+      dxdt[cells[equation.cell].state + equation.calculation->slot] = equation.calculation->value.evaluate(context);
+    }
+  });
+}
+
+void RateIntegrator::integrate(Pool& pool, const PoolView& view, double t0, double t1) {
+  if (!(t1 > t0)) return;
+  while (evaluators_.size() < threads_) evaluators_.push_back(std::make_unique<RuleEvaluator>(program_, view));
+  if (view_ != &view) {
+    // Evaluators hold the view they were made with.
+    for (auto& evaluator : evaluators_) evaluator = std::make_unique<RuleEvaluator>(program_, view);
+    view_ = &view;
+  }
+  activate(pool, t0);
+  if (equations_.empty()) return;
+  namespace odeint = boost::numeric::odeint;
+  auto system = [&](const StateArray& x, StateArray& dxdt, double t) { derivative(pool, x, dxdt, t); };
+  StateArray& x = pool.stateValues();
+  if (program_.rateTolerance > 0) {
+    const double tolerance = program_.rateTolerance;
+    odeint::integrate_adaptive(odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<StateArray>()),
+                               system, x, t0, t1, t1 - t0);
+  } else {
+    odeint::runge_kutta4<StateArray> stepper;
+    stepper.do_step(system, x, t0, t1 - t0);
+  }
+}
+
+}  // namespace ontogen

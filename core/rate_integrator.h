@@ -1,0 +1,51 @@
+#pragma once
+// The `rate` operator (paper 002, section 2.3): `rate(x) = e` makes x a continuous
+// variable. All rate variables of a pool form one ODE system, integrated with
+// Boost.Odeint over each world step: classic Runge-Kutta 4 with one step per world step,
+// or, with `#tolerance`, an adaptive Dormand-Prince stepper.
+//
+// When values are read (docs/LANGUAGE.md, "Order of events in a step"): a rule's rate
+// equations are switched on for the step when its context and predicate hold in the
+// state right after the step's discrete changes (at t+); while integrating, `e` reads
+// the cell's and its neighbours' values at the integrator's own stage times, so
+// coupled cells (diffusion) are integrated together, not one after the other.
+
+#include <memory>
+#include <vector>
+
+#include "core/pool_view.h"
+#include "core/rule_evaluator.h"
+#include "lang/program.h"
+
+namespace ontogen {
+
+class RateIntegrator {
+ public:
+  RateIntegrator(const Program& program, uint64_t seed, unsigned threads);
+  ~RateIntegrator();
+
+  /// Integrates the pool's active rate variables from t0 to t1 in place.
+  void integrate(Pool& pool, const PoolView& view, double t0, double t1);
+  /// Equations switched on in the last integration.
+  size_t activeEquations() const { return equations_.size(); }
+
+ private:
+  struct Equation {
+    uint32_t cell;
+    const CompiledRule* rule;
+    const StateCalculation* calculation;
+  };
+  void activate(const Pool& pool, double t0);
+  void derivative(const Pool& pool, const StateArray& x, StateArray& dxdt, double t);
+
+  const Program& program_;
+  uint64_t seed_;
+  unsigned threads_;
+  FunctionTable functions_;
+  const PoolView* view_ = nullptr;
+  std::vector<Equation> equations_;
+  std::vector<std::vector<Equation>> chunkEquations_;
+  std::vector<std::unique_ptr<RuleEvaluator>> evaluators_;  // one per worker
+};
+
+}  // namespace ontogen

@@ -1,0 +1,96 @@
+#include "core/rule_evaluator.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace ontogen {
+
+size_t ruleFrameSize(const Program& program) {
+  size_t size = FrameSlot::kCount;
+  for (const MasterCell& master : program.masters) {
+    size = std::max<size_t>(size, master.stateCount() + FrameSlot::kCount);
+    for (const auto& rule : master.rules) size = std::max<size_t>(size, rule.frameSize);
+    for (const auto& rule : master.terminalRules) size = std::max<size_t>(size, rule.frameSize);
+  }
+  return size;
+}
+
+RuleEvaluator::RuleEvaluator(const Program& program, const PoolView& view)
+    : program_(program), view_(view), frame_(ruleFrameSize(program)) {}
+
+double* RuleEvaluator::load(size_t i, const double* arena, double time) {
+  cell_ = i;
+  arena_ = arena;
+  neighbourCount_ = -1;
+  rule_ = nullptr;
+  const CellRecord& cell = view_.pool().cells()[i];
+  const MasterCell& master = program_.masters[cell.master];
+  const uint32_t n = master.stateCount();
+  double* frame = frame_.data();
+  std::copy(arena + cell.state, arena + cell.state + n, frame);
+  constexpr uint64_t kIdBits = (uint64_t{1} << 53) - 1;  // exact in a double
+  const auto position = view_.position(i);
+  frame[n + FrameSlot::kAge] = time - cell.birth;
+  frame[n + FrameSlot::kTerminalAge] = master.lifetime;
+  frame[n + FrameSlot::kTime] = time;
+  frame[n + FrameSlot::kId] = static_cast<double>(cell.id & kIdBits);
+  frame[n + FrameSlot::kX] = position[0];
+  frame[n + FrameSlot::kY] = position[1];
+  frame[n + FrameSlot::kZ] = position[2];
+  return frame;
+}
+
+bool RuleEvaluator::bind(const CompiledRule& rule) {
+  rule_ = &rule;
+  if (!rule.hasContext()) return true;
+  if (!view_.matchContext(rule, cell_, left_, right_)) return false;
+  const auto cells = view_.pool().cells();
+  auto copy = [&](const std::vector<ContextBinding>& bindings, const uint32_t* matched) {
+    for (size_t k = 0; k < bindings.size(); ++k) {
+      const ContextBinding& binding = bindings[k];
+      if (binding.count == 0) continue;
+      const double* values = arena_ + cells[matched[k]].state;
+      std::copy(values, values + binding.count, frame_.data() + binding.firstSlot);
+    }
+  };
+  copy(rule.left, left_);
+  copy(rule.right, right_);
+  return true;
+}
+
+double RuleEvaluator::aggregate(int query) const {
+  if (neighbourCount_ < 0) neighbourCount_ = view_.neighbours(cell_, neighbours_);
+  const AggregateQuery& q = rule_->aggregates[query];
+  const auto cells = view_.pool().cells();
+  double count = 0, sum = 0;
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (int k = 0; k < neighbourCount_; ++k) {
+    const CellRecord& neighbour = cells[neighbours_[k]];
+    if (q.label >= 0 && neighbour.master != static_cast<uint32_t>(q.label)) continue;
+    if (q.kind == AggregateKind::Count) {
+      ++count;
+      continue;
+    }
+    if (neighbour.master >= q.slotOf.size() || q.slotOf[neighbour.master] < 0) continue;
+    const double value = arena_[neighbour.state + q.slotOf[neighbour.master]];
+    ++count;
+    sum += value;
+    low = std::min(low, value);
+    high = std::max(high, value);
+  }
+  switch (q.kind) {
+    case AggregateKind::Count:
+      return count;
+    case AggregateKind::Sum:
+      return sum;
+    case AggregateKind::Mean:
+      return count > 0 ? sum / count : 0.0;
+    case AggregateKind::Min:
+      return count > 0 ? low : 0.0;
+    case AggregateKind::Max:
+      return count > 0 ? high : 0.0;
+  }
+  return 0.0;
+}
+
+}  // namespace ontogen

@@ -1,0 +1,50 @@
+#pragma once
+// Evaluates rules for one cell at a time against a pool view: loads the rule frame
+// (state, internal state, context values) from a state arena, which is the pool's own
+// or an integrator's intermediate stage, and answers the rule's neighbour aggregates
+// from the same arena, so everything a rule reads comes from one instant.
+
+#include <vector>
+
+#include "core/pool_view.h"
+#include "lang/program.h"
+
+namespace ontogen {
+
+class RuleEvaluator final : public NeighbourAggregates {
+ public:
+  RuleEvaluator(const Program& program, const PoolView& view);
+
+  /// Starts on cell i at `time`, reading state values from `arena`. Returns the frame.
+  double* load(size_t i, const double* arena, double time);
+  /// Checks `rule`'s positional context around the loaded cell and copies the bound
+  /// neighbour values into the frame; makes `rule` the one aggregates answer for.
+  bool bind(const CompiledRule& rule);
+  /// For callers with their own frame: aggregates of cell i, from `arena`, for `rule`.
+  void focus(size_t i, const double* arena) {
+    cell_ = i;
+    arena_ = arena;
+    neighbourCount_ = -1;
+  }
+  void useRule(const CompiledRule& rule) { rule_ = &rule; }
+  double aggregate(int query) const override;
+  double* frame() { return frame_.data(); }
+  size_t cell() const { return cell_; }
+
+ private:
+  const Program& program_;
+  const PoolView& view_;
+  std::vector<double> frame_;
+  const double* arena_ = nullptr;
+  size_t cell_ = 0;
+  const CompiledRule* rule_ = nullptr;
+  mutable int neighbourCount_ = -1;  // found on the first aggregate of a cell
+  mutable uint32_t neighbours_[PoolView::kMaxNeighbours];
+  uint32_t left_[64];
+  uint32_t right_[64];
+};
+
+/// Frame slots any rule of the program needs.
+size_t ruleFrameSize(const Program& program);
+
+}  // namespace ontogen
