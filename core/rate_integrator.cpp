@@ -83,8 +83,32 @@ void RateIntegrator::integrate(Pool& pool, const PoolView& view, double t0, doub
     for (auto& evaluator : evaluators_) evaluator = std::make_unique<RuleEvaluator>(program_, view);
     view_ = &view;
   }
+  for (auto& evaluator : evaluators_) evaluator->useNeighbourTable(nullptr, nullptr);  // last step's is stale
   activate(pool, t0);
   if (equations_.empty()) return;
+  // The structure is fixed while integrating: find every cell's neighbours once, not
+  // once per stage and equation.
+  bool aggregates = false;
+  for (const Equation& equation : equations_)
+    if (!equation.rule->aggregates.empty()) {
+      aggregates = true;
+      break;
+    }
+  if (aggregates) {
+    const size_t cells = pool.size();
+    neighbourOffsets_.assign(cells + 1, 0);
+    neighbourCells_.clear();
+    neighbourCells_.reserve(cells * 4);
+    uint32_t around[PoolView::kMaxNeighbours];
+    for (size_t i = 0; i < cells; ++i) {
+      const int n = view.neighbours(i, around);
+      neighbourCells_.insert(neighbourCells_.end(), around, around + n);
+      neighbourOffsets_[i + 1] = static_cast<uint32_t>(neighbourCells_.size());
+    }
+  }
+  for (auto& evaluator : evaluators_)
+    evaluator->useNeighbourTable(aggregates ? neighbourOffsets_.data() : nullptr,
+                                 aggregates ? neighbourCells_.data() : nullptr);
   namespace odeint = boost::numeric::odeint;
   auto system = [&](const StateArray& x, StateArray& dxdt, double t) { derivative(pool, x, dxdt, t); };
   StateArray& x = pool.stateValues();

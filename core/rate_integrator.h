@@ -46,6 +46,8 @@ class RateIntegrator {
   std::vector<Equation> equations_;
   std::vector<std::vector<Equation>> chunkEquations_;
   std::vector<std::unique_ptr<RuleEvaluator>> evaluators_;  // one per worker
+  std::vector<uint32_t> neighbourOffsets_;                  // the neighbours of every cell, found once per step
+  std::vector<uint32_t> neighbourCells_;
 };
 
 }  // namespace ontogen

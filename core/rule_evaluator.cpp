@@ -29,14 +29,16 @@ double* RuleEvaluator::load(size_t i, const double* arena, double time) {
   double* frame = frame_.data();
   std::copy(arena + cell.state, arena + cell.state + n, frame);
   constexpr uint64_t kIdBits = (uint64_t{1} << 53) - 1;  // exact in a double
-  const auto position = view_.position(i);
   frame[n + FrameSlot::kAge] = time - cell.birth;
   frame[n + FrameSlot::kTerminalAge] = master.lifetime;
   frame[n + FrameSlot::kTime] = time;
   frame[n + FrameSlot::kId] = static_cast<double>(cell.id & kIdBits);
-  frame[n + FrameSlot::kX] = position[0];
-  frame[n + FrameSlot::kY] = position[1];
-  frame[n + FrameSlot::kZ] = position[2];
+  if (master.readsPosition) {
+    const auto position = view_.position(i);
+    frame[n + FrameSlot::kX] = position[0];
+    frame[n + FrameSlot::kY] = position[1];
+    frame[n + FrameSlot::kZ] = position[2];
+  }
   return frame;
 }
 
@@ -59,13 +61,32 @@ bool RuleEvaluator::bind(const CompiledRule& rule) {
 }
 
 double RuleEvaluator::aggregate(int query) const {
-  if (neighbourCount_ < 0) neighbourCount_ = view_.neighbours(cell_, neighbours_);
+  if (neighbourCount_ < 0) {
+    if (tableOffsets_) {
+      neighbourList_ = tableCells_ + tableOffsets_[cell_];
+      neighbourCount_ = static_cast<int>(tableOffsets_[cell_ + 1] - tableOffsets_[cell_]);
+    } else {
+      neighbourList_ = neighbours_;
+      neighbourCount_ = view_.neighbours(cell_, neighbours_);
+    }
+  }
   const AggregateQuery& q = rule_->aggregates[query];
   const auto cells = view_.pool().cells();
+  if (q.kind == AggregateKind::Sum && q.label < 0) {
+    // The common case (diffusion): a plain sum, without the bookkeeping of the others.
+    double sum = 0;
+    for (int k = 0; k < neighbourCount_; ++k) {
+      const CellRecord& neighbour = cells[neighbourList_[k]];
+      if (neighbour.master < q.slotOf.size() && q.slotOf[neighbour.master] >= 0)
+        sum += arena_[neighbour.state + q.slotOf[neighbour.master]];
+    }
+    return sum;
+  }
+  if (q.kind == AggregateKind::Count && q.label < 0) return neighbourCount_;
   double count = 0, sum = 0;
   double low = std::numeric_limits<double>::infinity(), high = -low;
   for (int k = 0; k < neighbourCount_; ++k) {
-    const CellRecord& neighbour = cells[neighbours_[k]];
+    const CellRecord& neighbour = cells[neighbourList_[k]];
     if (q.label >= 0 && neighbour.master != static_cast<uint32_t>(q.label)) continue;
     if (q.kind == AggregateKind::Count) {
       ++count;

@@ -27,6 +27,12 @@ class RuleEvaluator final : public NeighbourAggregates {
     neighbourCount_ = -1;
   }
   void useRule(const CompiledRule& rule) { rule_ = &rule; }
+  /// Neighbours found once for a whole pass in which the pool's structure is fixed
+  /// (compressed rows: cells offsets[i] .. offsets[i+1] of `cells`); null: ask the view.
+  void useNeighbourTable(const uint32_t* offsets, const uint32_t* cells) {
+    tableOffsets_ = offsets;
+    tableCells_ = cells;
+  }
   double aggregate(int query) const override;
   double* frame() { return frame_.data(); }
   size_t cell() const { return cell_; }
@@ -40,6 +46,9 @@ class RuleEvaluator final : public NeighbourAggregates {
   const CompiledRule* rule_ = nullptr;
   mutable int neighbourCount_ = -1;  // found on the first aggregate of a cell
   mutable uint32_t neighbours_[PoolView::kMaxNeighbours];
+  mutable const uint32_t* neighbourList_ = neighbours_;
+  const uint32_t* tableOffsets_ = nullptr;
+  const uint32_t* tableCells_ = nullptr;
   uint32_t left_[64];
   uint32_t right_[64];
 };

@@ -25,9 +25,15 @@ int Program::findMaster(std::string_view label, int scope) const {
 namespace {
 
 // Names that read a cell's internal, read-only state.
-bool isAgeName(std::string_view name) { return name == "age" || name == "tau" || name == "τ"; }
-bool isTerminalAgeName(std::string_view name) { return name == "beta" || name == "β" || name == "lifetime"; }
-bool isTimeName(std::string_view name) { return name == "time"; }
+bool isAgeName(std::string_view name) {
+  return name == "age" || name == "tau" || name == "τ";
+}
+bool isTerminalAgeName(std::string_view name) {
+  return name == "beta" || name == "β" || name == "lifetime";
+}
+bool isTimeName(std::string_view name) {
+  return name == "time";
+}
 bool isReadOnlyName(std::string_view name) {
   return isAgeName(name) || isTerminalAgeName(name) || isTimeName(name) || name == "status" || name == "id";
 }
@@ -155,14 +161,20 @@ class Compiler {
       } else if (setting.name == "length") {
         target.step = *value;
       } else if (setting.name == "until") {
-        if (!(*value > 0)) sink_.error(setting.span, "#until must be greater than 0");
-        else program_->until = *value;
+        if (!(*value > 0))
+          sink_.error(setting.span, "#until must be greater than 0");
+        else
+          program_->until = *value;
       } else if (setting.name == "dt") {
-        if (!(*value > 0)) sink_.error(setting.span, "#dt must be greater than 0");
-        else program_->dt = *value;
+        if (!(*value > 0))
+          sink_.error(setting.span, "#dt must be greater than 0");
+        else
+          program_->dt = *value;
       } else if (setting.name == "tolerance") {
-        if (!(*value > 0) || *value >= 1) sink_.error(setting.span, "#tolerance is between 0 and 1, as in 1e-6");
-        else program_->rateTolerance = *value;
+        if (!(*value > 0) || *value >= 1)
+          sink_.error(setting.span, "#tolerance is between 0 and 1, as in 1e-6");
+        else
+          program_->rateTolerance = *value;
       } else if (setting.name == "radius") {
         target.radius = *value;
       } else if (setting.name == "seed") {
@@ -196,9 +208,12 @@ class Compiler {
       definition.span = function.span;
       int moduleParam = 0;
       for (const auto& param : function.params) {
-        if (isAgeName(param.name)) definition.sources.push_back(DevelopmentFunction::kFromAge);
-        else if (isTerminalAgeName(param.name)) definition.sources.push_back(DevelopmentFunction::kFromTerminalAge);
-        else definition.sources.push_back(moduleParam++);
+        if (isAgeName(param.name))
+          definition.sources.push_back(DevelopmentFunction::kFromAge);
+        else if (isTerminalAgeName(param.name))
+          definition.sources.push_back(DevelopmentFunction::kFromTerminalAge);
+        else
+          definition.sources.push_back(moduleParam++);
       }
       int index = static_cast<int>(program_->functions.size());
       program_->functions.push_back(std::move(definition));
@@ -283,7 +298,8 @@ class Compiler {
       arityKnown_[index] = true;
       std::set<std::string> seen;
       for (const auto& param : cell.state) {
-        if (!seen.insert(param.name).second) sink_.error(param.span, "state variable '" + param.name + "' appears twice");
+        if (!seen.insert(param.name).second)
+          sink_.error(param.span, "state variable '" + param.name + "' appears twice");
         if (isReadOnlyName(param.name))
           sink_.error(param.span, "'" + param.name + "' is the cell's read-only internal state; choose another name");
         master.stateNames.push_back(param.name);
@@ -297,8 +313,10 @@ class Compiler {
       if (cell.lifetime) {
         auto value = evaluateConstant(*cell.lifetime, constantLookup(global_), sink_, "the lifetime");
         if (value) {
-          if (!(*value > 0)) sink_.error(cell.lifetimeSpan, "the lifetime must be greater than 0");
-          else program_->masters[index].lifetime = *value;
+          if (!(*value > 0))
+            sink_.error(cell.lifetimeSpan, "the lifetime must be greater than 0");
+          else
+            program_->masters[index].lifetime = *value;
           program_->masters[index].timedNotation = true;
         }
       }
@@ -310,7 +328,8 @@ class Compiler {
   // every use gives it the same number of parameters.
   int resolveModule(const ast::Module& module, int scope) {
     int index = program_->findMaster(module.label, scope);
-    if (index < 0 || (scope >= 0 && program_->masters[index].scope != scope)) index = addMaster(module.label, scope, module.span);
+    if (index < 0 || (scope >= 0 && program_->masters[index].scope != scope))
+      index = addMaster(module.label, scope, module.span);
     MasterCell& master = program_->masters[index];
     if (module.age) master.timedNotation = true;
     int count = static_cast<int>(module.args.size());
@@ -351,7 +370,8 @@ class Compiler {
     } else if (system.poolKind == "grid") {
       definition.poolKind = PoolKind::Grid;
     } else if (system.poolKind == "spatial") {
-      sink_.error(system.poolSpan, "the spatial pool is not available in this version; use 'pool linear' or 'pool grid'");
+      sink_.error(system.poolSpan,
+                  "the spatial pool is not available in this version; use 'pool linear' or 'pool grid'");
     } else {
       sink_.error(system.poolSpan, "unknown pool kind '" + system.poolKind + "' (expected linear, grid or spatial)");
     }
@@ -400,18 +420,20 @@ class Compiler {
       bool* set = nullptr;
       if (option == "wrap" || option == "clamp" || option == "closed") {
         set = &boundarySet;
-        shape.boundary = option == "wrap" ? GridBoundary::Wrap : option == "clamp" ? GridBoundary::Clamp
-                                                                                   : GridBoundary::Closed;
+        shape.boundary = option == "wrap"    ? GridBoundary::Wrap
+                         : option == "clamp" ? GridBoundary::Clamp
+                                             : GridBoundary::Closed;
       } else if (option == "moore" || option == "vonneumann") {
         set = &neighbourhoodSet;
         shape.neighbourhood = option == "moore" ? GridNeighbourhood::Moore : GridNeighbourhood::VonNeumann;
       } else {
-        sink_.error(system.poolSpan, "unknown grid option '" + option +
-                                         "' (expected wrap, clamp or closed, and vonneumann or moore)");
+        sink_.error(system.poolSpan,
+                    "unknown grid option '" + option + "' (expected wrap, clamp or closed, and vonneumann or moore)");
         continue;
       }
-      if (*set) sink_.error(system.poolSpan, "the grid's " + std::string(set == &boundarySet ? "boundary" : "neighbourhood") +
-                                                 " is given twice");
+      if (*set)
+        sink_.error(system.poolSpan, "the grid's " + std::string(set == &boundarySet ? "boundary" : "neighbourhood") +
+                                         " is given twice");
       *set = true;
     }
   }
@@ -437,8 +459,8 @@ class Compiler {
       }
       if (!placement.fill) {
         if (static_cast<int>(placement.at.size()) != definition.grid.dimensions) {
-          sink_.error(placement.span, "the grid has " + std::to_string(definition.grid.dimensions) +
-                                          " dimension" + (definition.grid.dimensions == 1 ? "" : "s") + ", so 'at' takes " +
+          sink_.error(placement.span, "the grid has " + std::to_string(definition.grid.dimensions) + " dimension" +
+                                          (definition.grid.dimensions == 1 ? "" : "s") + ", so 'at' takes " +
                                           std::to_string(definition.grid.dimensions) + " coordinate" +
                                           (definition.grid.dimensions == 1 ? "" : "s"));
           continue;
@@ -500,9 +522,10 @@ class Compiler {
         cell.age = evaluateConstant(*module.age, names, sink_, "an axiom age").value_or(0);
         const MasterCell& target = program_->masters[master];
         if (cell.age < 0 || cell.age >= target.lifetime)
-          sink_.error(module.age->span, "'" + module.label + "' cannot start with age " + formatNumber(cell.age) +
-                                            (cell.age < 0 ? "; ages are ≥ 0"
-                                                          : ", not below its terminal age " + formatNumber(target.lifetime)));
+          sink_.error(
+              module.age->span,
+              "'" + module.label + "' cannot start with age " + formatNumber(cell.age) +
+                  (cell.age < 0 ? "; ages are ≥ 0" : ", not below its terminal age " + formatNumber(target.lifetime)));
       }
       axiom.push_back(std::move(cell));
     }
@@ -534,10 +557,10 @@ class Compiler {
       }
       auto [it, inserted] = terminal.emplace(master, std::make_pair(age, production.predecessor.span));
       if (!inserted && it->second.first != age) {
-        sink_.error(production.predecessor.span,
-                    "'" + production.predecessor.label + "' has terminal age " + formatNumber(age) +
-                        " here but " + formatNumber(it->second.first) + " at line " +
-                        std::to_string(it->second.second.line()) + "; a symbol has one terminal age");
+        sink_.error(production.predecessor.span, "'" + production.predecessor.label + "' has terminal age " +
+                                                     formatNumber(age) + " here but " + formatNumber(it->second.first) +
+                                                     " at line " + std::to_string(it->second.second.line()) +
+                                                     "; a symbol has one terminal age");
         continue;
       }
       productions.push_back({master, &production});
@@ -547,7 +570,9 @@ class Compiler {
       program_->masters[master].declared = true;
     }
     for (auto& [master, production] : productions) {
+      readsPosition_ = false;
       CompiledRule rule = compileRule(*production, master, index, scope, /*lsystem=*/true);
+      if (readsPosition_) program_->masters[master].readsPosition = true;
       program_->masters[master].terminalRules.push_back(std::move(rule));
     }
   }
@@ -588,7 +613,9 @@ class Compiler {
       int master = it->second;
       bool anyTerminal = false;
       for (const auto& rule : cell.rules) {
+        readsPosition_ = false;
         CompiledRule compiled = compileRule(rule, master, -1, global_, /*lsystem=*/false);
+        if (readsPosition_) program_->masters[master].readsPosition = true;
         if (rule.terminal) {
           anyTerminal = true;
           program_->masters[master].terminalRules.push_back(std::move(compiled));
@@ -624,8 +651,8 @@ class Compiler {
       } else if (!where.count(name)) {
         sink_.error(span, "'" + name + "' is already a state variable of '" + self.label + "'");
       } else {
-        sink_.error(span, "'" + name + "' is already bound in this rule (at line " + std::to_string(where[name].line()) +
-                              ":" + std::to_string(where[name].column()) + ")");
+        sink_.error(span, "'" + name + "' is already bound in this rule (at line " +
+                              std::to_string(where[name].line()) + ":" + std::to_string(where[name].column()) + ")");
       }
     };
     if (lsystem) {
@@ -640,7 +667,8 @@ class Compiler {
     auto contextBinding = [&](const ast::Module& module, bool leftSide) {
       ContextBinding binding;
       if (module.label == "[" || module.label == "]") {
-        if (leftSide) sink_.error(module.span, "a left context cannot contain brackets; it follows the path to the root");
+        if (leftSide)
+          sink_.error(module.span, "a left context cannot contain brackets; it follows the path to the root");
         binding.item.kind = module.label == "[" ? ContextItem::Kind::BranchOpen : ContextItem::Kind::BranchClose;
         return binding;
       }
@@ -719,12 +747,14 @@ class Compiler {
       result.master = static_cast<uint32_t>(successorMaster);
       const MasterCell& target = program_->masters[successorMaster];
       for (uint32_t i = 0; i < target.stateCount(); ++i) {
-        if (i < successor.args.size()) result.args.push_back(compileExpression(*successor.args[i], names, sink_));
-        else result.args.push_back(CompiledExpression::constant(target.defaults[i]));
+        if (i < successor.args.size())
+          result.args.push_back(compileExpression(*successor.args[i], names, sink_));
+        else
+          result.args.push_back(CompiledExpression::constant(target.defaults[i]));
       }
       if (successor.age) result.birthAge = compileExpression(*successor.age, names, sink_);
-      bool bornAtZero = result.birthAge.empty() ||
-                        (result.birthAge.isConstant() && result.birthAge.constantValue() == 0.0);
+      bool bornAtZero =
+          result.birthAge.empty() || (result.birthAge.isConstant() && result.birthAge.constantValue() == 0.0);
       result.stateless = target.stateCount() == 0 && bornAtZero && target.lifetime > 0;
       compiled.successors.push_back(std::move(result));
     }
@@ -770,9 +800,10 @@ class Compiler {
   NameLookup ruleLookup(const std::map<std::string, int, std::less<>>& slots, int stateCount, const Scope& scope,
                         std::vector<AggregateQuery>* aggregates = nullptr, int moduleScope = -1) {
     NameLookup names = constantLookup(scope);
-    names.slot = [&slots, stateCount](std::string_view name) -> int {
+    names.slot = [this, &slots, stateCount](std::string_view name) -> int {
       if (auto it = slots.find(name); it != slots.end()) return it->second;
       int internal = internalSlot(name);
+      if (internal >= FrameSlot::kX && internal <= FrameSlot::kZ) readsPosition_ = true;
       return internal < 0 ? -1 : stateCount + internal;
     };
     if (aggregates)
@@ -790,20 +821,20 @@ class Compiler {
   int registerAggregate(const ast::Expr& call, DiagnosticSink& sink, std::vector<AggregateQuery>& queries,
                         int moduleScope) {
     const ast::Expr* arg = call.args.empty() ? nullptr : call.args[0].get();
-    std::string argText = !arg                                      ? ""
-                          : arg->kind == ast::Expr::Kind::Name      ? arg->name
-                          : arg->kind == ast::Expr::Kind::Member    ? memberPath(*arg)
-                                                                    : "?";
+    std::string argText = !arg                                   ? ""
+                          : arg->kind == ast::Expr::Kind::Name   ? arg->name
+                          : arg->kind == ast::Expr::Kind::Member ? memberPath(*arg)
+                                                                 : "?";
     std::string text = call.name + "(" + argText + ")";
     for (size_t i = 0; i < queries.size(); ++i)
       if (queries[i].text == text) return static_cast<int>(i);
     AggregateQuery query;
     query.text = text;
-    query.kind = call.name == "count" ? AggregateKind::Count
-                 : call.name == "sum" ? AggregateKind::Sum
+    query.kind = call.name == "count"  ? AggregateKind::Count
+                 : call.name == "sum"  ? AggregateKind::Sum
                  : call.name == "mean" ? AggregateKind::Mean
-                 : call.name == "min" ? AggregateKind::Min
-                                      : AggregateKind::Max;
+                 : call.name == "min"  ? AggregateKind::Min
+                                       : AggregateKind::Max;
     auto findLabel = [&](const std::string& label, SourceSpan span) {
       int master = program_->findMaster(label, moduleScope);
       if (master < 0) sink.error(span, "no cell is called '" + label + "'");
@@ -884,8 +915,8 @@ class Compiler {
         if (count < info->minArity || (info->maxArity >= 0 && count > info->maxArity)) {
           sink_.error(module.span, "'" + module.label + "' takes " + std::to_string(info->minArity) +
                                        (info->maxArity == info->minArity ? ""
-                                        : info->maxArity < 0 ? " or more"
-                                                             : " to " + std::to_string(info->maxArity)) +
+                                        : info->maxArity < 0             ? " or more"
+                                                                         : " to " + std::to_string(info->maxArity)) +
                                        " arguments, given " + std::to_string(count));
           continue;
         }
@@ -908,7 +939,8 @@ class Compiler {
     for (auto& [index, system] : ignoreLists_) {
       SystemDefinition& definition = program_->systems[index];
       definition.symbolClass.resize(program_->masters.size());
-      for (size_t m = 0; m < program_->masters.size(); ++m) definition.symbolClass[m] = program_->masters[m].symbolClass;
+      for (size_t m = 0; m < program_->masters.size(); ++m)
+        definition.symbolClass[m] = program_->masters[m].symbolClass;
       if (!system->ignore.empty() && !system->consider.empty())
         sink_.error(system->consider.front().span, "a system has either 'ignore' or 'consider', not both");
       std::set<std::string> listed;
@@ -933,11 +965,11 @@ class Compiler {
           if (rule.hasContext() || !rule.aggregates.empty()) definition.terminalContext = true;
           if (rule.probability.empty() == false) definition.stochastic = true;
         }
-        if (!master.rules.empty()) definition.sampledRules = true;
+        for (const auto& rule : master.rules)
+          if (rule.hasDiscrete || (!rule.hasRate && !rule.hasAction)) definition.sampledRules = true;
         for (const auto& rule : master.rules) {
           if (rule.hasRate) definition.rates = true;
-          if (definition.poolKind == PoolKind::Grid && grows[m] && rule.hasContext() &&
-              definition.grid.dimensions != 1)
+          if (definition.poolKind == PoolKind::Grid && grows[m] && rule.hasContext() && definition.grid.dimensions != 1)
             sink_.error(rule.span, "this context has 1 dimension ('A me B'), but the pool of system '" +
                                        definition.name + "' is a " + std::to_string(definition.grid.dimensions) +
                                        "-D grid; read its neighbours with count(), sum(x), mean(x), min(x) or "
@@ -975,9 +1007,7 @@ class Compiler {
     return seen;
   }
 
-  bool visibleIn(const MasterCell& master, int system) const {
-    return master.scope == -1 || master.scope == system;
-  }
+  bool visibleIn(const MasterCell& master, int system) const { return master.scope == -1 || master.scope == system; }
 
   void chooseRoot() {
     if (program_->systems.empty()) {
@@ -1009,12 +1039,13 @@ class Compiler {
   std::unordered_map<const ast::Cell*, int> cellMaster_;
   std::vector<std::pair<int, const ast::System*>> ignoreLists_;
   std::set<size_t> reportedRecursion_;
+  bool readsPosition_ = false;  // set by the rule lookup when a rule reads me.x, me.y, me.z
 };
 
 }  // namespace
 
-std::unique_ptr<Program> compile(const ast::Program& tree, std::shared_ptr<const SourceFile> source, DiagnosticSink& sink,
-                                 const CompileOptions& options) {
+std::unique_ptr<Program> compile(const ast::Program& tree, std::shared_ptr<const SourceFile> source,
+                                 DiagnosticSink& sink, const CompileOptions& options) {
   return Compiler(tree, sink, options).run(std::move(source));
 }
 

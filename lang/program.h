@@ -141,6 +141,7 @@ struct MasterCell {
   int developmentFunction = -1;  ///< index into Program::functions
   std::string command;           ///< the instruction this symbol stands for (label or equiv)
   uint8_t symbolClass = kSymbolModule;
+  bool readsPosition = false;  ///< a rule reads me.x, me.y or me.z (the engine fills them only then)
 
   const InterpretationBlock* interpretation(std::string_view set) const {
     for (const auto& block : interpretations)

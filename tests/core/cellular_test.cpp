@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <utility>
@@ -222,6 +223,56 @@ TEST(Cellular, ContextThatDoesNotFitTheGridIsAnError) {
                                sink);
   EXPECT_EQ(program, nullptr);
   EXPECT_NE(formatDiagnostics(sink).find("1 dimension"), std::string::npos) << formatDiagnostics(sink);
+}
+
+}  // namespace
+}  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+// Heterocysts inhibit differentiation around them through a diffusing, decaying
+// inhibitor, so they end up regularly spaced: about 11 vegetative cells apart.
+TEST(Models, HeterocystSpacingFallsInRange) {
+  auto program = testing_support::compileModel("heterocysts.cell");
+  for (uint64_t seed : {1, 2, 3}) {
+    WorldDef def;
+    def.seed = seed;
+    World world(program, def);
+    world.advanceTo(60, program->dt);
+    const Pool& pool = world.rootPool();
+    std::vector<size_t> heterocysts;
+    for (size_t i = 0; i < pool.size(); ++i)
+      if (world.program().masters[pool.cells()[i].master].label == "H") heterocysts.push_back(i);
+    ASSERT_GT(heterocysts.size(), 50u) << "seed " << seed << ": the filament grew to " << pool.size() << " cells";
+    std::vector<double> gaps;
+    size_t close = 0;
+    for (size_t k = 1; k < heterocysts.size(); ++k) {
+      gaps.push_back(static_cast<double>(heterocysts[k] - heterocysts[k - 1] - 1));
+      close += gaps.back() < 3;
+    }
+    double mean = 0;
+    for (double gap : gaps) mean += gap / gaps.size();
+    std::sort(gaps.begin(), gaps.end());
+    EXPECT_GE(mean, 8) << "seed " << seed;
+    EXPECT_LE(mean, 15) << "seed " << seed;
+    EXPECT_GE(gaps[gaps.size() / 2], 9) << "median, seed " << seed;
+    EXPECT_LE(gaps[gaps.size() / 2], 15) << "median, seed " << seed;
+    EXPECT_LT(close, gaps.size() * 15 / 100) << "gaps under 3 cells, seed " << seed;
+  }
+}
+
+// Paper 002, eq. (2): averaging neighbours settles into a straight ramp between the
+// fixed ends (1 at the left, the last cell above kmin at the right).
+TEST(Models, FilamentDiffusionSettlesToARamp) {
+  auto program = testing_support::compileModel("diffusion.cell");
+  World world(program);
+  world.advanceTo(400, 1);
+  const Pool& pool = world.rootPool();
+  ASSERT_EQ(pool.size(), 20u);
+  for (size_t i = 0; i <= 18; ++i)
+    EXPECT_NEAR(*pool.stateOf(pool.cells()[i]), 1.0 - i * 0.99 / 18, 2e-3) << "cell " << i;
+  EXPECT_EQ(*pool.stateOf(pool.cells()[19]), 0.0);
 }
 
 }  // namespace
