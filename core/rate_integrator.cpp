@@ -9,10 +9,21 @@ namespace ontogen {
 
 namespace {
 constexpr uint64_t kRateSalt = 0x52415445ull;  // draws in rate expressions
+
+bool draws(const CompiledRule& rule) {
+  for (const StateCalculation& calculation : rule.calculations)
+    if (calculation.isRate && calculation.value.isStochastic()) return true;
+  return false;
 }
+}  // namespace
 
 RateIntegrator::RateIntegrator(const Program& program, uint64_t seed, unsigned threads)
-    : program_(program), seed_(seed), threads_(std::max(1u, threads)), functions_(program.functionTable()) {}
+    : program_(program), seed_(seed), threads_(std::max(1u, threads)), functions_(program.functionTable()) {
+  for (const MasterCell& master : program.masters)
+    for (const CompiledRule& rule : master.rules)
+      if (rule.hasRate && (rule.hasContext() || !rule.predicate.empty() || !rule.probability.empty()))
+        conditional_ = true;
+}
 
 RateIntegrator::~RateIntegrator() = default;
 
@@ -40,7 +51,7 @@ void RateIntegrator::activate(const Pool& pool, double t0) {
           auto same = std::find_if(out.begin() + first, out.end(),
                                    [&](const Equation& e) { return e.calculation->slot == calculation.slot; });
           if (same != out.end()) out.erase(same);
-          out.push_back({static_cast<uint32_t>(i), &rule, &calculation});
+          out.push_back({static_cast<uint32_t>(i), &rule, &calculation, draws(rule)});
         }
       }
       // Group a cell's equations by rule, so one frame load serves each rule.
@@ -66,7 +77,7 @@ void RateIntegrator::derivative(const Pool& pool, const StateArray& x, StateArra
       if (equation.cell != loadedCell || equation.rule != loadedRule) {
         context.frame = evaluator.load(equation.cell, x.data(), t);
         evaluator.bind(*equation.rule);  // the structure does not change while integrating
-        random = RandomStream(mixKey(mixKey(seed_ ^ kRateSalt, cells[equation.cell].id), keyOf(t)));
+        if (equation.draws) random = RandomStream(mixKey(mixKey(seed_ ^ kRateSalt, cells[equation.cell].id), keyOf(t)));
         loadedCell = equation.cell;
         loadedRule = equation.rule;
       }
@@ -83,18 +94,24 @@ void RateIntegrator::integrate(Pool& pool, const PoolView& view, double t0, doub
     for (auto& evaluator : evaluators_) evaluator = std::make_unique<RuleEvaluator>(program_, view);
     view_ = &view;
   }
-  for (auto& evaluator : evaluators_) evaluator->useNeighbourTable(nullptr, nullptr);  // last step's is stale
-  activate(pool, t0);
+  for (auto& evaluator : evaluators_) evaluator->useNeighbourTable(nullptr, nullptr);  // may be stale
+  if (conditional_ || equationsPool_ != &pool || equationsVersion_ != pool.structureVersion()) {
+    activate(pool, t0);
+    equationsPool_ = &pool;
+    equationsVersion_ = pool.structureVersion();
+  }
   if (equations_.empty()) return;
   // The structure is fixed while integrating: find every cell's neighbours once, not
-  // once per stage and equation.
+  // once per stage and equation, and keep them until it changes.
   bool aggregates = false;
   for (const Equation& equation : equations_)
     if (!equation.rule->aggregates.empty()) {
       aggregates = true;
       break;
     }
-  if (aggregates) {
+  if (aggregates && (tablePool_ != &pool || tableVersion_ != pool.structureVersion())) {
+    tablePool_ = &pool;
+    tableVersion_ = pool.structureVersion();
     const size_t cells = pool.size();
     neighbourOffsets_.assign(cells + 1, 0);
     neighbourCells_.clear();

@@ -34,6 +34,7 @@ class RateIntegrator {
     uint32_t cell;
     const CompiledRule* rule;
     const StateCalculation* calculation;
+    bool draws;  ///< the rule's rate expressions draw random numbers
   };
   void activate(const Pool& pool, double t0);
   void derivative(const Pool& pool, const StateArray& x, StateArray& dxdt, double t);
@@ -46,8 +47,15 @@ class RateIntegrator {
   std::vector<Equation> equations_;
   std::vector<std::vector<Equation>> chunkEquations_;
   std::vector<std::unique_ptr<RuleEvaluator>> evaluators_;  // one per worker
-  std::vector<uint32_t> neighbourOffsets_;                  // the neighbours of every cell, found once per step
+  // The neighbours of every cell, and the switched-on equations when no rate rule has a
+  // condition, are kept while the pool's structure does not change.
+  std::vector<uint32_t> neighbourOffsets_;
   std::vector<uint32_t> neighbourCells_;
+  const Pool* tablePool_ = nullptr;
+  uint64_t tableVersion_ = UINT64_MAX;
+  const Pool* equationsPool_ = nullptr;
+  uint64_t equationsVersion_ = UINT64_MAX;
+  bool conditional_ = false;  // some rate rule has a context, predicate or probability
 };
 
 }  // namespace ontogen

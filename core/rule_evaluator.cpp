@@ -16,14 +16,14 @@ size_t ruleFrameSize(const Program& program) {
 }
 
 RuleEvaluator::RuleEvaluator(const Program& program, const PoolView& view)
-    : program_(program), view_(view), frame_(ruleFrameSize(program)) {}
+    : program_(program), view_(view), pool_(view.pool()), frame_(ruleFrameSize(program)) {}
 
 double* RuleEvaluator::load(size_t i, const double* arena, double time) {
   cell_ = i;
   arena_ = arena;
   neighbourCount_ = -1;
   rule_ = nullptr;
-  const CellRecord& cell = view_.pool().cells()[i];
+  const CellRecord& cell = pool_.cells()[i];
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
   double* frame = frame_.data();
@@ -46,7 +46,7 @@ bool RuleEvaluator::bind(const CompiledRule& rule) {
   rule_ = &rule;
   if (!rule.hasContext()) return true;
   if (!view_.matchContext(rule, cell_, left_, right_)) return false;
-  const auto cells = view_.pool().cells();
+  const auto cells = pool_.cells();
   auto copy = [&](const std::vector<ContextBinding>& bindings, const uint32_t* matched) {
     for (size_t k = 0; k < bindings.size(); ++k) {
       const ContextBinding& binding = bindings[k];
@@ -71,7 +71,7 @@ double RuleEvaluator::aggregate(int query) const {
     }
   }
   const AggregateQuery& q = rule_->aggregates[query];
-  const auto cells = view_.pool().cells();
+  const auto cells = pool_.cells();
   if (q.kind == AggregateKind::Sum && q.label < 0) {
     // The common case (diffusion): a plain sum, without the bookkeeping of the others.
     double sum = 0;

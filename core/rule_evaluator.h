@@ -40,6 +40,7 @@ class RuleEvaluator final : public NeighbourAggregates {
  private:
   const Program& program_;
   const PoolView& view_;
+  const Pool& pool_;  // the view's, asked once
   std::vector<double> frame_;
   const double* arena_ = nullptr;
   size_t cell_ = 0;

@@ -97,6 +97,7 @@ void GridPool::place(uint32_t site, CellRecord cell, const double* values, uint3
     }
     cells_.swap(sortedCells);
     siteOf_.swap(sortedSites);
+    ++version_;
   }
   reindex();
 }

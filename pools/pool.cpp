@@ -20,11 +20,13 @@ void Pool::append(CellRecord cell, const double* values, uint32_t count) {
   cell.state = static_cast<uint32_t>(state_.size());
   state_.insert(state_.end(), values, values + count);
   cells_.push_back(cell);
+  ++version_;
 }
 
 void Pool::swapContents(CellArray& cells, StateArray& state) {
   cells_.swap(cells);
   state_.swap(state);
+  ++version_;
 }
 
 void Pool::reserve(size_t cells, size_t values) {
@@ -35,6 +37,7 @@ void Pool::reserve(size_t cells, size_t values) {
 void Pool::clear() {
   cells_.clear();
   state_.clear();
+  ++version_;
 }
 
 }  // namespace ontogen

@@ -49,6 +49,10 @@ class Pool {
   /// counted: pages never written are never mapped.
   size_t bytes() const { return cells_.size() * sizeof(CellRecord) + state_.size() * sizeof(double); }
 
+  /// Changes whenever cells are added, removed or reordered (not when state values
+  /// change), so a caller can keep what it derived from the structure until then.
+  uint64_t structureVersion() const { return version_; }
+
   /// Appends a cell with `count` state values copied from `values`.
   void append(CellRecord cell, const double* values, uint32_t count);
   /// Replaces the contents with another pool's (same kind), reusing storage.
@@ -59,6 +63,7 @@ class Pool {
  protected:
   CellArray cells_;
   StateArray state_;
+  uint64_t version_ = 0;
 };
 
 }  // namespace ontogen
