@@ -2,13 +2,12 @@
 
 namespace ontogen {
 
-int LinearPoolView::neighbours(size_t i, uint32_t* out) const {
+void LinearPoolView::neighbours(size_t i, std::vector<uint32_t>& out) const {
   static constexpr ContextItem kAny[1] = {ContextItem{ContextItem::Kind::Any, 0}};
-  int n = 0;
+  out.clear();
   uint32_t matched[1];
-  if (pool_.matchLeft(i, kAny, classOf_, matched)) out[n++] = matched[0];
-  if (pool_.matchRight(i, kAny, classOf_, matched)) out[n++] = matched[0];
-  return n;
+  if (pool_.matchLeft(i, kAny, classOf_, matched)) out.push_back(matched[0]);
+  if (pool_.matchRight(i, kAny, classOf_, matched)) out.push_back(matched[0]);
 }
 
 bool LinearPoolView::matchContext(const CompiledRule& rule, size_t i, uint32_t* left, uint32_t* right) const {
@@ -16,16 +15,15 @@ bool LinearPoolView::matchContext(const CompiledRule& rule, size_t i, uint32_t* 
   return rule.rightItems.empty() || pool_.matchRight(i, rule.rightItems, classOf_, right);
 }
 
-int GridPoolView::neighbours(size_t i, uint32_t* out) const {
+void GridPoolView::neighbours(size_t i, std::vector<uint32_t>& out) const {
   uint32_t sites[GridPool::kMaxNeighbours];
   const int count = pool_.neighbourSites(pool_.siteOf(i), sites);
-  int n = 0;
+  out.clear();
   for (int k = 0; k < count; ++k) {
     if (sites[k] == GridPool::kEmpty) continue;
     const uint32_t cell = pool_.cellAt(sites[k]);
-    if (cell != GridPool::kEmpty) out[n++] = cell;
+    if (cell != GridPool::kEmpty) out.push_back(cell);
   }
-  return n;
 }
 
 bool GridPoolView::matchContext(const CompiledRule& rule, size_t i, uint32_t* left, uint32_t* right) const {

@@ -5,22 +5,22 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "lang/program.h"
 #include "pools/grid_pool.h"
 #include "pools/linear_pool.h"
+#include "pools/spatial_pool.h"
 
 namespace ontogen {
 
 class PoolView {
  public:
-  static constexpr int kMaxNeighbours = GridPool::kMaxNeighbours;
-
   virtual ~PoolView() = default;
   virtual const Pool& pool() const = 0;
-  /// Writes the indices of the cells next to cell i (at most kMaxNeighbours); returns
-  /// how many. Empty sites and missing neighbours are left out.
-  virtual int neighbours(size_t i, uint32_t* out) const = 0;
+  /// Replaces `out` with the indices of the cells next to cell i. Empty sites and
+  /// missing neighbours are left out.
+  virtual void neighbours(size_t i, std::vector<uint32_t>& out) const = 0;
   /// Matches a rule's positional context around cell i; on success the matched cells'
   /// indices are in left[k] and right[k] for the rule's items.
   virtual bool matchContext(const CompiledRule& rule, size_t i, uint32_t* left, uint32_t* right) const = 0;
@@ -34,7 +34,7 @@ class LinearPoolView final : public PoolView {
  public:
   LinearPoolView(const LinearPool& pool, std::span<const uint8_t> classOf) : pool_(pool), classOf_(classOf) {}
   const Pool& pool() const override { return pool_; }
-  int neighbours(size_t i, uint32_t* out) const override;
+  void neighbours(size_t i, std::vector<uint32_t>& out) const override;
   bool matchContext(const CompiledRule& rule, size_t i, uint32_t* left, uint32_t* right) const override;
   std::array<double, 3> position(size_t i) const override { return {static_cast<double>(i), 0, 0}; }
 
@@ -49,12 +49,28 @@ class GridPoolView final : public PoolView {
  public:
   explicit GridPoolView(const GridPool& pool) : pool_(pool) {}
   const Pool& pool() const override { return pool_; }
-  int neighbours(size_t i, uint32_t* out) const override;
+  void neighbours(size_t i, std::vector<uint32_t>& out) const override;
   bool matchContext(const CompiledRule& rule, size_t i, uint32_t* left, uint32_t* right) const override;
   std::array<double, 3> position(size_t i) const override;
 
  private:
   const GridPool& pool_;
+};
+
+/// The spatial pool: neighbours are the cells within its radius (SpatialPool::index
+/// must be current); positional context does not apply (the compiler rejects it).
+class SpatialPoolView final : public PoolView {
+ public:
+  explicit SpatialPoolView(const SpatialPool& pool) : pool_(pool) {}
+  const Pool& pool() const override { return pool_; }
+  void neighbours(size_t i, std::vector<uint32_t>& out) const override { pool_.neighbours(i, out); }
+  bool matchContext(const CompiledRule& rule, size_t, uint32_t*, uint32_t*) const override {
+    return !rule.hasContext();
+  }
+  std::array<double, 3> position(size_t i) const override { return pool_.positionOf(i); }
+
+ private:
+  const SpatialPool& pool_;
 };
 
 }  // namespace ontogen

@@ -116,10 +116,10 @@ void RateIntegrator::integrate(Pool& pool, const PoolView& view, double t0, doub
     neighbourOffsets_.assign(cells + 1, 0);
     neighbourCells_.clear();
     neighbourCells_.reserve(cells * 4);
-    uint32_t around[PoolView::kMaxNeighbours];
+    std::vector<uint32_t> around;
     for (size_t i = 0; i < cells; ++i) {
-      const int n = view.neighbours(i, around);
-      neighbourCells_.insert(neighbourCells_.end(), around, around + n);
+      view.neighbours(i, around);
+      neighbourCells_.insert(neighbourCells_.end(), around.begin(), around.end());
       neighbourOffsets_[i + 1] = static_cast<uint32_t>(neighbourCells_.size());
     }
   }

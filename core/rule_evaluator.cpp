@@ -66,8 +66,9 @@ double RuleEvaluator::aggregate(int query) const {
       neighbourList_ = tableCells_ + tableOffsets_[cell_];
       neighbourCount_ = static_cast<int>(tableOffsets_[cell_ + 1] - tableOffsets_[cell_]);
     } else {
-      neighbourList_ = neighbours_;
-      neighbourCount_ = view_.neighbours(cell_, neighbours_);
+      view_.neighbours(cell_, neighbours_);
+      neighbourList_ = neighbours_.data();
+      neighbourCount_ = static_cast<int>(neighbours_.size());
     }
   }
   const AggregateQuery& q = rule_->aggregates[query];

@@ -46,8 +46,8 @@ class RuleEvaluator final : public NeighbourAggregates {
   size_t cell_ = 0;
   const CompiledRule* rule_ = nullptr;
   mutable int neighbourCount_ = -1;  // found on the first aggregate of a cell
-  mutable uint32_t neighbours_[PoolView::kMaxNeighbours];
-  mutable const uint32_t* neighbourList_ = neighbours_;
+  mutable std::vector<uint32_t> neighbours_;
+  mutable const uint32_t* neighbourList_ = nullptr;
   const uint32_t* tableOffsets_ = nullptr;
   const uint32_t* tableCells_ = nullptr;
   uint32_t left_[64];

@@ -4,13 +4,35 @@
 #include "core/linear_development.h"
 #include "core/parallel_for.h"
 #include "core/rate_integrator.h"
+#include "core/spatial_development.h"
 
 #include <cmath>
 
 namespace ontogen {
 
+namespace {
+// For each master, the state indices of x, y and z (-1 where it has none).
+std::vector<std::array<int, 3>> positionSlots(const Program& program) {
+  std::vector<std::array<int, 3>> slots;
+  for (const MasterCell& master : program.masters) {
+    std::array<int, 3> slot{-1, -1, -1};
+    for (size_t i = 0; i < master.stateNames.size(); ++i) {
+      const std::string& name = master.stateNames[i];
+      if (name == "x") slot[0] = static_cast<int>(i);
+      if (name == "y") slot[1] = static_cast<int>(i);
+      if (name == "z") slot[2] = static_cast<int>(i);
+    }
+    slots.push_back(slot);
+  }
+  return slots;
+}
+}  // namespace
+
 World::World(std::shared_ptr<const Program> program, WorldDef def)
-    : program_(std::move(program)), def_(def), grid_(program_->rootSystem().grid) {
+    : program_(std::move(program)),
+      def_(def),
+      grid_(program_->rootSystem().grid),
+      spatial_(program_->rootSystem().spatialRadius, positionSlots(*program_)) {
   def_.threads = resolveThreadCount(def_.threads);
   if (rootSystem().poolKind == PoolKind::Grid)
     seedGrid();
@@ -23,17 +45,23 @@ World::World(const World& other)
       def_(other.def_),
       pool_(other.pool_),
       grid_(other.grid_),
+      spatial_(other.spatial_),
       time_(other.time_),
       stats_(other.stats_) {}
 
 World::~World() = default;
 
 const Pool& World::rootPool() const {
-  if (rootSystem().poolKind == PoolKind::Grid) return grid_;
+  switch (rootSystem().poolKind) {
+    case PoolKind::Grid: return grid_;
+    case PoolKind::Spatial: return spatial_;
+    case PoolKind::Linear: break;
+  }
   return pool_;
 }
 
 std::array<double, 3> World::positionOf(size_t i) const {
+  if (rootSystem().poolKind == PoolKind::Spatial) return spatial_.positionOf(i);
   if (rootSystem().poolKind != PoolKind::Grid) return {static_cast<double>(i), 0, 0};
   const GridCoordinates c = grid_.coordinates(grid_.siteOf(i));
   return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
@@ -113,9 +141,11 @@ void World::seedAxiom() {
     cell.master = axiom.master;
     cell.birth = -axiom.age;
     cell.id = mixKey(mixKey(0x6f6e746f67656eull, static_cast<uint64_t>(program_->root)), index++);
-    pool_.append(cell, axiom.values.data(), static_cast<uint32_t>(axiom.values.size()));
+    Pool& pool = system.poolKind == PoolKind::Spatial ? static_cast<Pool&>(spatial_) : pool_;
+    pool.append(cell, axiom.values.data(), static_cast<uint32_t>(axiom.values.size()));
   }
-  stats_.cellsBorn = pool_.size();
+  stats_.cellsBorn = rootPool().size();
+  if (system.poolKind == PoolKind::Spatial) spatial_.index();
 }
 
 void World::advanceTo(double target, double dt) {
@@ -139,6 +169,9 @@ void World::step(double dt) {
 void World::developStep(double t1, bool stepRules) {
   if (rootSystem().poolKind == PoolKind::Grid) {
     GridDevelopment development(*this);
+    development.step(t1, stepRules);
+  } else if (rootSystem().poolKind == PoolKind::Spatial) {
+    SpatialDevelopment development(*this);
     development.step(t1, stepRules);
   } else {
     LinearDevelopment development(*this);

@@ -23,6 +23,7 @@
 #include "lang/program.h"
 #include "pools/grid_pool.h"
 #include "pools/linear_pool.h"
+#include "pools/spatial_pool.h"
 
 namespace ontogen {
 
@@ -80,6 +81,7 @@ class World {
   const Pool& rootPool() const;
   const LinearPool& linearPool() const { return pool_; }
   const GridPool& gridPool() const { return grid_; }
+  const SpatialPool& spatialPool() const { return spatial_; }
   double time() const { return time_; }
   uint64_t seed() const { return def_.seed; }
   const WorldStats& stats() const { return stats_; }
@@ -102,6 +104,7 @@ class World {
  private:
   friend class LinearDevelopment;
   friend class GridDevelopment;
+  friend class SpatialDevelopment;
   void seedAxiom();
   void seedGrid();
   void developStep(double t1, bool stepRules);
@@ -111,6 +114,7 @@ class World {
   WorldDef def_;
   LinearPool pool_;
   GridPool grid_;
+  SpatialPool spatial_;
   std::unique_ptr<RateIntegrator> rates_;  // made on first use; not copied
   double time_ = 0;
   WorldStats stats_;

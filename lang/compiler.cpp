@@ -370,8 +370,7 @@ class Compiler {
     } else if (system.poolKind == "grid") {
       definition.poolKind = PoolKind::Grid;
     } else if (system.poolKind == "spatial") {
-      sink_.error(system.poolSpan,
-                  "the spatial pool is not available in this version; use 'pool linear' or 'pool grid'");
+      definition.poolKind = PoolKind::Spatial;
     } else {
       sink_.error(system.poolSpan, "unknown pool kind '" + system.poolKind + "' (expected linear, grid or spatial)");
     }
@@ -389,6 +388,8 @@ class Compiler {
     settings(system.settings, program_->systems.back().settings, scope.get());
     if (system.isLSystem) functions(system.functions, *scope);
     if (program_->systems.back().poolKind == PoolKind::Grid) gridShape(system, *scope, program_->systems.back());
+    if (program_->systems.back().poolKind == PoolKind::Spatial)
+      spatialRadius(system, *scope, program_->systems.back());
     scopes_.push_back(std::move(scope));
   }
 
@@ -436,6 +437,21 @@ class Compiler {
                                          " is given twice");
       *set = true;
     }
+  }
+
+  // `pool spatial(radius)`: cells within the radius are neighbours.
+  void spatialRadius(const ast::System& system, const Scope& scope, SystemDefinition& definition) {
+    if (system.poolArgs.size() != 1 || !system.poolOptions.empty()) {
+      sink_.error(system.poolSpan, "a spatial pool takes its neighbourhood radius, as in 'pool spatial(1.5)'");
+      return;
+    }
+    auto value = evaluateConstant(*system.poolArgs[0], constantLookup(scope), sink_, "the radius");
+    if (!value) return;
+    if (!(*value > 0) || !std::isfinite(*value)) {
+      sink_.error(system.poolArgs[0]->span, "the radius must be greater than 0");
+      return;
+    }
+    definition.spatialRadius = *value;
   }
 
   // `fill A(e)` and `at(x, y) A(1)`. Values are compiled against a frame of internal
@@ -969,16 +985,20 @@ class Compiler {
           if (rule.hasDiscrete || (!rule.hasRate && !rule.hasAction)) definition.sampledRules = true;
         for (const auto& rule : master.rules) {
           if (rule.hasRate) definition.rates = true;
+          if (definition.poolKind == PoolKind::Spatial && grows[m] && rule.hasContext())
+            sink_.error(rule.span, "a positional context ('A me B') does not fit the spatial pool of system '" +
+                                       definition.name + "', where neighbours are the cells within a distance; read "
+                                       "them with count(), sum(x), mean(x), min(x) or max(x)");
           if (definition.poolKind == PoolKind::Grid && grows[m] && rule.hasContext() && definition.grid.dimensions != 1)
             sink_.error(rule.span, "this context has 1 dimension ('A me B'), but the pool of system '" +
                                        definition.name + "' is a " + std::to_string(definition.grid.dimensions) +
                                        "-D grid; read its neighbours with count(), sum(x), mean(x), min(x) or "
                                        "max(x)");
         }
-        if (definition.poolKind == PoolKind::Grid && grows[m] && !master.terminalRules.empty())
+        if (definition.poolKind != PoolKind::Linear && grows[m] && !master.terminalRules.empty())
           sink_.error(master.terminalRules.front().span,
-                      "terminal rules (lifetimes) in a grid pool are not available in this version; use a "
-                      "per-step rule with 'age > ...'");
+                      "terminal rules (lifetimes) in a " + std::string(poolKindName(definition.poolKind)) +
+                          " pool are not available in this version; use a per-step rule with 'age > ...'");
       }
     }
   }

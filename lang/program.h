@@ -183,6 +183,7 @@ struct SystemDefinition {
   bool isLSystem = false;
   PoolKind poolKind = PoolKind::Linear;
   GridShape grid;  ///< for a grid pool
+  double spatialRadius = 1;  ///< for a spatial pool: the neighbourhood's radius
   std::vector<AxiomCell> axiom;
   std::vector<GridPlacement> placements;  ///< grid pools: after the axiom, in text order
   std::vector<uint8_t> symbolClass;  ///< per master: branch brackets and ignored symbols

@@ -277,3 +277,57 @@ TEST(Models, FilamentDiffusionSettlesToARamp) {
 
 }  // namespace
 }  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+// Cells divide and push apart in a spatial pool; a crowded cell stops dividing.
+TEST(Models, ColonySpreadsAsADiscAndKeepsItsDensity) {
+  auto program = testing_support::compileModel("colony.cell");
+  auto grow = [&](unsigned threads) {
+    WorldDef def;
+    def.threads = threads;
+    World world(program, def);
+    world.advanceTo(40, program->dt);
+    return world;
+  };
+  World world = grow(1);
+  const SpatialPool& pool = world.spatialPool();
+  ASSERT_GT(pool.size(), 1000u);
+  ASSERT_LT(pool.size(), 20000u);
+  // Spread: the colony's extent grows like the square root of its cell count.
+  double extent = 0, sumX = 0, sumY = 0;
+  for (size_t i = 0; i < pool.size(); ++i) {
+    auto p = pool.positionOf(i);
+    extent = std::max(extent, std::hypot(p[0], p[1]));
+    sumX += p[0];
+    sumY += p[1];
+  }
+  const double n = static_cast<double>(pool.size());
+  EXPECT_GT(extent, 0.3 * std::sqrt(n)) << "cells spread out";
+  EXPECT_LT(std::hypot(sumX / n, sumY / n), 0.2 * extent) << "a disc around the first cell";
+  // Density: the mean number of neighbours within R stays near the crowd limit of 5.
+  std::vector<uint32_t> around;
+  double neighbours = 0;
+  for (size_t i = 0; i < pool.size(); ++i) {
+    pool.neighbours(i, around);
+    neighbours += static_cast<double>(around.size()) / n;
+  }
+  EXPECT_LT(neighbours, 12);
+  // Same result on two threads, bit for bit.
+  World other = grow(2);
+  auto a = world.rootPool().stateArena(), b = other.rootPool().stateArena();
+  EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end()));
+}
+
+TEST(Cellular, PositionalContextDoesNotFitASpatialPool) {
+  DiagnosticSink sink;
+  auto program = compileSource("t.cell", "cell A(x = 0) { rules { A(y) me A(z) : x = y + z; } }\n"
+                                         "system g { pool spatial(2); axiom A A; }", sink);
+  EXPECT_EQ(program, nullptr);
+  EXPECT_NE(formatDiagnostics(sink).find("does not fit the spatial pool"), std::string::npos)
+      << formatDiagnostics(sink);
+}
+
+}  // namespace
+}  // namespace ontogen
