@@ -80,6 +80,7 @@ void GridDevelopment::applyStepRules(double t) {
       double* frame = evaluator.load(i, arena, t);
       RandomStream random(mixKey(mixKey(seed ^ kStepRuleSalt, cell.id), keyOf(t)));
       EvalContext context{frame, EvalEnvironment{&random, seed}, &functions, &evaluator};
+      context.ancestors = world_.ancestorValues();
       const CompiledRule* action = nullptr;
       for (const CompiledRule& rule : master.rules) {
         if (!rule.hasDiscrete) continue;  // rate-only rules act while integrating

@@ -174,6 +174,7 @@ void LinearDevelopment::fireStepRules(const CellRecord& cell, const double* stat
   RandomStream random(mixKey(mixKey(world_.def_.seed ^ kStepRuleSalt, cell.id), keyOf(t)));
   aggregates_.focus(index, pool_.stateArena().data());
   EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_, &aggregates_};
+  context.ancestors = world_.ancestorValues();
   for (const CompiledRule& rule : master.rules) {
     if (!rule.hasDiscrete) continue;  // rate-only rules act while integrating
     aggregates_.useRule(rule);
@@ -270,6 +271,7 @@ void LinearDevelopment::expire(const CellRecord& cell, const double* state, doub
   RandomStream random(mixKey(mixKey(world_.def_.seed, cell.id), keyOf(when)));
   if (index >= 0) aggregates_.focus(static_cast<size_t>(index), pool_.stateArena().data());
   EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_, &aggregates_};
+  context.ancestors = world_.ancestorValues();
   const CompiledRule* rule = chooseRule(master.terminalRules, index, frame, random, context);
   if (rule) {
     for (const StateCalculation& calculation : rule->calculations)

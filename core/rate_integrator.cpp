@@ -44,6 +44,7 @@ void RateIntegrator::activate(const Pool& pool, double t0) {
         if (!evaluator.bind(rule)) continue;
         RandomStream random(mixKey(mixKey(seed_ ^ kRateSalt, cells[i].id), keyOf(t0)));
         EvalContext context{frame, EvalEnvironment{&random, seed_}, &functions_, &evaluator};
+        context.ancestors = ancestors_;
         if (!rule.predicate.empty() && rule.predicate.evaluate(context) == 0.0) continue;
         for (const StateCalculation& calculation : rule.calculations) {
           if (!calculation.isRate) continue;
@@ -70,6 +71,7 @@ void RateIntegrator::derivative(const Pool& pool, const StateArray& x, StateArra
     RuleEvaluator& evaluator = *evaluators_[worker];
     RandomStream random;
     EvalContext context{nullptr, EvalEnvironment{&random, seed_}, &functions_, &evaluator};
+    context.ancestors = ancestors_;
     uint32_t loadedCell = UINT32_MAX;
     const CompiledRule* loadedRule = nullptr;
     for (size_t e = begin; e < end; ++e) {

@@ -26,6 +26,8 @@ class RateIntegrator {
 
   /// Integrates the pool's active rate variables from t0 to t1 in place.
   void integrate(Pool& pool, const PoolView& view, double t0, double t1);
+  /// The enclosing systems' values the equations read (World::ancestorValues).
+  void setAncestors(const double* values) { ancestors_ = values; }
   /// Equations switched on in the last integration.
   size_t activeEquations() const { return equations_.size(); }
 
@@ -41,6 +43,7 @@ class RateIntegrator {
 
   const Program& program_;
   uint64_t seed_;
+  const double* ancestors_ = nullptr;
   unsigned threads_;
   FunctionTable functions_;
   const PoolView* view_ = nullptr;

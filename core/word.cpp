@@ -12,13 +12,14 @@ std::vector<WordCell> captureWord(const World& world) {
   const Pool& pool = world.rootPool();
   word.reserve(pool.size());
   const bool grid = world.rootSystem().poolKind == PoolKind::Grid;
-  const int dimensions = world.rootSystem().grid.dimensions;
+  const bool spatial = world.rootSystem().poolKind == PoolKind::Spatial;
+  const int dimensions = spatial ? 3 : world.rootSystem().grid.dimensions;
   const auto cells = pool.cells();
   for (size_t i = 0; i < cells.size(); ++i) {
     const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
     WordCell entry;
-    if (grid) {
+    if (grid || spatial) {
       const auto position = world.positionOf(i);
       entry.position.assign(position.begin(), position.begin() + dimensions);
     }
@@ -29,6 +30,8 @@ std::vector<WordCell> captureWord(const World& world) {
     entry.age = world.ageOf(cell);
     entry.timed = master.timedNotation;
     entry.id = cell.id;
+    entry.system = master.system >= 0;
+    if (const World* child = world.childOf(cell)) entry.pool = captureWord(*child);
     word.push_back(std::move(entry));
   }
   return word;
@@ -58,6 +61,7 @@ std::string formatWord(const std::vector<WordCell>& word, int precision) {
       text += "(" + module + ", " + formatShort(cell.age, precision) + ")";
     else
       text += module;
+    if (cell.system) text += cell.pool.empty() ? " { }" : " { " + formatWord(cell.pool, precision) + " }";
   }
   return text;
 }
@@ -105,26 +109,36 @@ static void writeArray(std::ostream& out, const std::vector<double>& values) {
   out << ']';
 }
 
+static void writeCells(std::ostream& out, const std::vector<WordCell>& cells, const std::string& indent) {
+  out << '[';
+  for (size_t c = 0; c < cells.size(); ++c) {
+    out << (c ? ",\n" : "\n") << indent << "{\"label\": ";
+    writeString(out, cells[c].label);
+    out << ", \"params\": ";
+    writeArray(out, cells[c].params);
+    out << ", \"developed\": ";
+    writeArray(out, cells[c].developed);
+    out << ", \"age\": " << formatExact(cells[c].age);
+    if (!cells[c].position.empty()) {
+      out << ", \"position\": ";
+      writeArray(out, cells[c].position);
+    }
+    if (cells[c].system) {
+      out << ", \"pool\": ";
+      writeCells(out, cells[c].pool, indent + "  ");
+    }
+    out << "}";
+  }
+  if (!cells.empty()) out << "\n" << indent.substr(2);
+  out << ']';
+}
+
 void writeWordJson(std::ostream& out, const std::vector<WordAtTime>& words) {
   out << "{\"times\": [";
   for (size_t w = 0; w < words.size(); ++w) {
-    out << (w ? ",\n  " : "\n  ") << "{\"t\": " << formatExact(words[w].time) << ", \"cells\": [";
-    const auto& cells = words[w].cells;
-    for (size_t c = 0; c < cells.size(); ++c) {
-      out << (c ? ",\n    " : "\n    ") << "{\"label\": ";
-      writeString(out, cells[c].label);
-      out << ", \"params\": ";
-      writeArray(out, cells[c].params);
-      out << ", \"developed\": ";
-      writeArray(out, cells[c].developed);
-      out << ", \"age\": " << formatExact(cells[c].age);
-      if (!cells[c].position.empty()) {
-        out << ", \"position\": ";
-        writeArray(out, cells[c].position);
-      }
-      out << "}";
-    }
-    out << (cells.empty() ? "]}" : "\n  ]}");
+    out << (w ? ",\n  " : "\n  ") << "{\"t\": " << formatExact(words[w].time) << ", \"cells\": ";
+    writeCells(out, words[w].cells, "    ");
+    out << "}";
   }
   out << "\n]}\n";
 }

@@ -19,7 +19,9 @@ struct WordCell {
   double age = 0;                 ///< seconds
   bool timed = false;             ///< written in timed notation: printed as (X, age)
   uint64_t id = 0;
-  std::vector<double> position;  ///< grid coordinates (empty in a linear pool, where the order says it)
+  std::vector<double> position;  ///< grid coordinates or spatial x, y, z (empty in a linear pool)
+  bool system = false;           ///< a system cell: `pool` holds its system's cells
+  std::vector<WordCell> pool;
 };
 
 struct WordAtTime {
@@ -27,14 +29,14 @@ struct WordAtTime {
   std::vector<WordCell> cells;
 };
 
-/// The root pool's cells in pool order.
+/// The world's cells in pool order; a system cell carries its own pool's cells.
 std::vector<WordCell> captureWord(const World& world);
 
 /// Table 1 style text, numbers with `precision` significant digits.
 std::string formatWord(const std::vector<WordCell>& word, int precision = 6);
 
 /// {"times": [{"t": T, "cells": [{"label": ..., "params": [...], "developed": [...],
-/// "age": A}, ...]}, ...]}, numbers in the shortest form that reads back exactly;
+/// "age": A}, ...]}, ...]}, a system cell with "pool": [its cells], numbers in the shortest form that reads back exactly;
 /// infinities and NaN as null.
 void writeWordJson(std::ostream& out, const std::vector<WordAtTime>& words);
 

@@ -6,7 +6,9 @@
 #include "core/rate_integrator.h"
 #include "core/spatial_development.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ontogen {
 
@@ -31,23 +33,58 @@ std::vector<std::array<int, 3>> positionSlots(const Program& program) {
 World::World(std::shared_ptr<const Program> program, WorldDef def)
     : program_(std::move(program)),
       def_(def),
+      system_(program_->root),
       grid_(program_->rootSystem().grid),
       spatial_(program_->rootSystem().spatialRadius, positionSlots(*program_)) {
   def_.threads = resolveThreadCount(def_.threads);
+  if (const int master = rootSystem().master; master >= 0) cellState_ = program_->masters[master].defaults;
+  updateAncestorValues();
   if (rootSystem().poolKind == PoolKind::Grid)
     seedGrid();
   else
     seedAxiom();
+  developChildren(time_, false, /*step=*/false);
+}
+
+World::World(const World& parent, const CellRecord& cell, const double* cellState)
+    : program_(parent.program_),
+      def_(parent.def_),
+      system_(program_->masters[cell.master].system),
+      parent_(&parent),
+      cellId_(cell.id),
+      cellBirth_(cell.birth),
+      cellState_(cellState, cellState + program_->masters[cell.master].stateCount()),
+      grid_(program_->systems[system_].grid),
+      spatial_(program_->systems[system_].spatialRadius, positionSlots(*program_)),
+      time_(parent.time_) {
+  updateAncestorValues();
+  if (rootSystem().poolKind == PoolKind::Grid)
+    seedGrid();
+  else
+    seedAxiom();
+  developChildren(time_, false, /*step=*/false);
 }
 
 World::World(const World& other)
     : program_(other.program_),
       def_(other.def_),
+      system_(other.system_),
+      parent_(other.parent_),
+      cellId_(other.cellId_),
+      cellBirth_(other.cellBirth_),
+      cellState_(other.cellState_),
+      ancestorValues_(other.ancestorValues_),
       pool_(other.pool_),
       grid_(other.grid_),
       spatial_(other.spatial_),
       time_(other.time_),
-      stats_(other.stats_) {}
+      stats_(other.stats_) {
+  for (const auto& [id, child] : other.children_) {
+    auto copy = std::make_unique<World>(*child);
+    copy->parent_ = this;
+    children_.emplace(id, std::move(copy));
+  }
+}
 
 World::~World() = default;
 
@@ -69,7 +106,45 @@ std::array<double, 3> World::positionOf(size_t i) const {
 
 RateIntegrator& World::rates() {
   if (!rates_) rates_ = std::make_unique<RateIntegrator>(*program_, def_.seed, def_.threads);
+  rates_->setAncestors(ancestorValues_.data());
   return *rates_;
+}
+
+const World* World::childOf(const CellRecord& cell) const {
+  if (children_.empty()) return nullptr;
+  auto it = children_.find(cell.id);
+  return it == children_.end() ? nullptr : it->second.get();
+}
+
+uint64_t World::totalCells() const {
+  uint64_t total = rootPool().size();
+  for (const auto& [id, child] : children_) total += child->totalCells();
+  return total;
+}
+
+uint64_t World::idSalt() const {
+  const uint64_t base = mixKey(0x6f6e746f67656eull, static_cast<uint64_t>(system_));
+  return parent_ ? mixKey(base, cellId_) : base;
+}
+
+double World::systemValue(int level, const std::string& name) const {
+  const World* world = this;
+  if (level == 0)
+    while (world->parent_) world = world->parent_;
+  for (int k = 1; k < level && world; ++k) world = world->parent_;
+  if (!world) return std::numeric_limits<double>::quiet_NaN();  // the compiler rules this out
+  if (name == "age") return time_ - world->cellBirth_;
+  const int master = world->rootSystem().master;
+  if (master < 0) return std::numeric_limits<double>::quiet_NaN();
+  const auto& names = program_->masters[master].stateNames;
+  const auto it = std::find(names.begin(), names.end(), name);
+  return it == names.end() ? std::numeric_limits<double>::quiet_NaN() : world->cellState_[it - names.begin()];
+}
+
+void World::updateAncestorValues() {
+  const auto& refs = program_->ancestorRefs;
+  ancestorValues_.resize(refs.size());
+  for (size_t i = 0; i < refs.size(); ++i) ancestorValues_[i] = systemValue(refs[i].level, refs[i].name);
 }
 
 // The axiom fills sites 0, 1, 2 ... in site order; then `fill` and `at` placements in
@@ -104,16 +179,17 @@ void World::seedGrid() {
     const int64_t from = std::max(source[site], lastFill);
     if (from < 0) continue;
     CellRecord cell;
-    cell.id = mixKey(mixKey(0x6f6e746f67656eull, static_cast<uint64_t>(program_->root)), site);
+    cell.id = mixKey(idSalt(), site);
     cell.state = static_cast<uint32_t>(state.size());
     if (from < axiomCount) {
       const AxiomCell& axiom = system.axiom[from];
       cell.master = axiom.master;
-      cell.birth = -axiom.age;
+      cell.birth = time_ - axiom.age;
       state.insert(state.end(), axiom.values.begin(), axiom.values.end());
     } else {
       const GridPlacement& placement = system.placements[from - axiomCount];
       cell.master = placement.master;
+      cell.birth = time_;
       const GridCoordinates c = grid_.coordinates(site);
       frame[FrameSlot::kId] = static_cast<double>(cell.id & ((uint64_t{1} << 53) - 1));
       frame[FrameSlot::kX] = static_cast<double>(c[0]);
@@ -121,6 +197,7 @@ void World::seedGrid() {
       frame[FrameSlot::kZ] = static_cast<double>(c[2]);
       RandomStream random(mixKey(mixKey(def_.seed ^ kPlacementSalt, cell.id), 0));
       EvalContext context{frame, EvalEnvironment{&random, def_.seed}, &functions};
+      context.ancestors = ancestorValues_.data();
       for (const CompiledExpression& value : placement.values) state.push_back(value.evaluate(context));
     }
     cells.push_back(cell);
@@ -139,8 +216,8 @@ void World::seedAxiom() {
   for (const AxiomCell& axiom : system.axiom) {
     CellRecord cell;
     cell.master = axiom.master;
-    cell.birth = -axiom.age;
-    cell.id = mixKey(mixKey(0x6f6e746f67656eull, static_cast<uint64_t>(program_->root)), index++);
+    cell.birth = time_ - axiom.age;
+    cell.id = mixKey(idSalt(), index++);
     Pool& pool = system.poolKind == PoolKind::Spatial ? static_cast<Pool&>(spatial_) : pool_;
     pool.append(cell, axiom.values.data(), static_cast<uint32_t>(axiom.values.size()));
   }
@@ -167,6 +244,7 @@ void World::step(double dt) {
 }
 
 void World::developStep(double t1, bool stepRules) {
+  updateAncestorValues();
   if (rootSystem().poolKind == PoolKind::Grid) {
     GridDevelopment development(*this);
     development.step(t1, stepRules);
@@ -177,6 +255,40 @@ void World::developStep(double t1, bool stepRules) {
     LinearDevelopment development(*this);
     development.step(t1, stepRules);
   }
+  developChildren(t1, stepRules, /*step=*/true);
+}
+
+// Existing children step over the same interval as this pool (when `step`); a system
+// cell that appeared in this step, or is in the axiom, gets a new child, seeded at t1;
+// a child whose cell is gone goes.
+void World::developChildren(double t1, bool stepRules, bool step) {
+  if (!program_->hasSystemCells) return;
+  const Pool& pool = rootPool();
+  const auto cells = pool.cells();
+  std::unordered_map<uint64_t, std::unique_ptr<World>> next;
+  for (const CellRecord& cell : cells) {
+    if (program_->masters[cell.master].system < 0) continue;
+    std::unique_ptr<World> child;
+    if (auto it = children_.find(cell.id); it != children_.end()) {
+      child = std::move(it->second);
+      if (step) {
+        const WorldStats before = child->stats_;
+        child->developStep(t1, stepRules);
+        stats_.events += child->stats_.events - before.events;
+        stats_.ruleFirings += child->stats_.ruleFirings - before.ruleFirings;
+        stats_.cellsBorn += child->stats_.cellsBorn - before.cellsBorn;
+        stats_.crowded += child->stats_.crowded - before.crowded;
+      }
+    } else {
+      child = std::make_unique<World>(*this, cell, pool.stateOf(cell));
+      stats_.cellsBorn += child->stats_.cellsBorn;
+    }
+    next.emplace(cell.id, std::move(child));
+  }
+  children_ = std::move(next);
+  if (!parent_ && totalCells() > def_.limits.maxCells)
+    throw LimitError("the model grew past " + std::to_string(def_.limits.maxCells) +
+                     " cells in all its systems, the cell limit; raise it with --max-cells N");
 }
 
 void World::developedValues(const CellRecord& cell, std::vector<double>& out) const {

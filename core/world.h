@@ -12,12 +12,18 @@
 //     happen together, each cell seeing its neighbours as they were just before.
 // Ages are never stored: a cell keeps its birth time, so the word at time t does not
 // depend on the step size for timed L-systems.
+//
+// Systems nest (paper 002, section 2.2): a system cell in this world's pool owns a child
+// world that grows its system's pool from its axiom. The child is made at the end of
+// the step in which its cell appears and develops from the next step on; it goes with
+// its cell. Children step after their parent, over the same interval, in pool order.
 
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "lang/program.h"
@@ -71,14 +77,27 @@ class RateIntegrator;
 class World {
  public:
   World(std::shared_ptr<const Program> program, WorldDef def = {});
+  /// The world of a system cell `cell` (whose state is `cellState`) in `parent`'s pool,
+  /// seeded from its system's axiom at the parent's current time.
+  World(const World& parent, const CellRecord& cell, const double* cellState);
   World(const World& other);
   World& operator=(const World&) = delete;
   ~World();
 
   const Program& program() const { return *program_; }
-  const SystemDefinition& rootSystem() const { return program_->rootSystem(); }
-  /// The root system's pool, whatever its kind.
+  /// The system this world grows: the program's root system, or a nested one.
+  const SystemDefinition& rootSystem() const { return program_->systems[system_]; }
+  /// This world's pool (the root system's for the world made from a program), whatever its kind.
   const Pool& rootPool() const;
+  /// The world of the system cell `cell` of this world's pool, or null (an ordinary cell).
+  const World* childOf(const CellRecord& cell) const;
+  /// The enclosing system's world, null for the root.
+  const World* parent() const { return parent_; }
+  /// Cells in this world's pool and in all nested pools.
+  uint64_t totalCells() const;
+  /// Values of Program::ancestorRefs as cells of this pool read them (`parent.x` is this
+  /// system's own state), at the current time.
+  const double* ancestorValues() const { return ancestorValues_.data(); }
   const LinearPool& linearPool() const { return pool_; }
   const GridPool& gridPool() const { return grid_; }
   const SpatialPool& spatialPool() const { return spatial_; }
@@ -108,10 +127,23 @@ class World {
   void seedAxiom();
   void seedGrid();
   void developStep(double t1, bool stepRules);
+  void developChildren(double t1, bool stepRules, bool step);
+  void updateAncestorValues();
+  /// Value of a system's variable (`age` or a state name) for the world `level` systems up.
+  double systemValue(int level, const std::string& name) const;
+  uint64_t idSalt() const;
   RateIntegrator& rates();
 
   std::shared_ptr<const Program> program_;
   WorldDef def_;
+  int system_ = 0;                    ///< index of this world's SystemDefinition
+  const World* parent_ = nullptr;     ///< the enclosing system's world
+  uint64_t cellId_ = 0;               ///< id of this system's cell in the parent's pool
+  double cellBirth_ = 0;              ///< birth time of that cell (the root: 0)
+  std::vector<double> cellState_;     ///< its state (systems have no rules: it stays as born)
+  std::vector<double> ancestorValues_;
+  /// Child worlds by the id of their system cell.
+  std::unordered_map<uint64_t, std::unique_ptr<World>> children_;
   LinearPool pool_;
   GridPool grid_;
   SpatialPool spatial_;

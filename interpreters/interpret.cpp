@@ -34,18 +34,27 @@ void interpretWord(const World& world, InterpretationSet& set) {
       internal[FrameSlot::kZ] = position[2];
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
+      context.ancestors = world.ancestorValues();
       for (const Instruction& instruction : block->instructions) {
         args.clear();
         for (const CompiledExpression& arg : instruction.args) args.push_back(arg.evaluate(context));
         set.execute(instruction.command, args);
       }
-      continue;
+    } else {
+      int8_t& knows = known[cell.master];
+      if (knows < 0) knows = set.knows(master.command) ? 1 : 0;
+      if (knows) {
+        world.developedValues(cell, developed);
+        set.execute(master.command, developed);
+      }
     }
-    int8_t& knows = known[cell.master];
-    if (knows < 0) knows = set.knows(master.command) ? 1 : 0;
-    if (!knows) continue;
-    world.developedValues(cell, developed);
-    set.execute(master.command, developed);
+    // A system cell's pool is realised where the cell stands, as a branch: what it
+    // draws or plays starts from the state here and leaves it unchanged.
+    if (const World* child = world.childOf(cell)) {
+      set.execute("[", {});
+      interpretWord(*child, set);
+      set.execute("]", {});
+    }
   }
 }
 

@@ -132,6 +132,7 @@ struct System {
   SourceSpan span;
   SourceSpan nameSpan;
   std::string name;
+  std::vector<Parameter> state;  ///< `system branch(length = 1)`: a system cell's state
   bool isLSystem = false;
   std::string poolKind = "linear";
   std::vector<ExprPtr> poolArgs;          ///< `grid(64, 64)`: sizes; `spatial(2.5)`: radius

@@ -9,6 +9,7 @@
 
 #include "lang/expression_compiler.h"
 #include "lang/parser.h"
+#include "lang/system_tree.h"
 
 namespace ontogen {
 
@@ -98,12 +99,23 @@ class Compiler {
     settings(tree_.settings, globalSettings_, &global_);
     functions(tree_.functions, global_);
     declareCells();
+    declareSystemCells();
     for (size_t i = 0; i < tree_.systems.size(); ++i) declareSystem(tree_.systems[i], static_cast<int>(i));
     compileCells();
     for (size_t i = 0; i < tree_.systems.size(); ++i) compileSystem(tree_.systems[i], static_cast<int>(i));
     attachDevelopmentFunctions();
     finishMasters();
-    chooseRoot();
+    if (!sink_.hasErrors()) {
+      SystemTree tree(*program_);
+      if (checkCycles(tree)) {
+        for (size_t s = 0; s < program_->systems.size(); ++s)
+          if (!tree.containers(static_cast<int>(s)).empty()) program_->hasSystemCells = true;
+        chooseRoot(tree);
+        checkAncestorReads(tree);
+      }
+    } else {
+      chooseRoot(SystemTree(*program_));
+    }
     if (sink_.hasErrors()) return nullptr;
     return std::move(program_);
   }
@@ -324,6 +336,45 @@ class Compiler {
     }
   }
 
+  // A system (not an L-system) is also a cell: its label and state stand for it in the
+  // pools of the systems that contain it (paper 002, section 2.2). It has no rules.
+  void declareSystemCells() {
+    for (size_t i = 0; i < tree_.systems.size(); ++i) {
+      const ast::System& system = tree_.systems[i];
+      if (system.isLSystem) {
+        if (!system.state.empty())
+          sink_.error(system.state.front().span, "an lsystem has no state; write 'system' to give it some");
+        continue;
+      }
+      if (int other = program_->findMaster(system.name, -1); other >= 0) {
+        sink_.error(system.nameSpan, "'" + system.name + "' is already a cell (line " +
+                                         std::to_string(program_->masters[other].span.line()) +
+                                         "); a system's name labels its cell, so the two need different names");
+        continue;
+      }
+      int index = addMaster(system.name, -1, system.nameSpan);
+      MasterCell& master = program_->masters[index];
+      master.declared = true;
+      master.system = static_cast<int>(i);
+      arityKnown_[index] = true;
+      std::set<std::string> seen;
+      for (const auto& param : system.state) {
+        if (!seen.insert(param.name).second)
+          sink_.error(param.span, "state variable '" + param.name + "' appears twice");
+        if (isReadOnlyName(param.name))
+          sink_.error(param.span, "'" + param.name + "' is the cell's read-only internal state; choose another name");
+        double value = 0;
+        if (param.defaultValue) {
+          auto constant = evaluateConstant(*param.defaultValue, constantLookup(global_), sink_, "a default value");
+          if (constant) value = *constant;
+        }
+        program_->masters[index].stateNames.push_back(param.name);
+        program_->masters[index].defaults.push_back(value);
+      }
+      systemMaster_[i] = index;
+    }
+  }
+
   // Finds or creates the master a module label refers to in a scope, and checks that
   // every use gives it the same number of parameters.
   int resolveModule(const ast::Module& module, int scope) {
@@ -361,6 +412,8 @@ class Compiler {
     definition.name = system.name;
     definition.span = system.nameSpan;
     definition.isLSystem = system.isLSystem;
+    if (auto it = systemMaster_.find(static_cast<size_t>(index)); it != systemMaster_.end())
+      definition.master = it->second;
     for (const auto& other : program_->systems)
       if (other.name == system.name) sink_.error(system.nameSpan, "system '" + system.name + "' is defined twice");
     if (system.poolKind == "linear") {
@@ -464,6 +517,7 @@ class Compiler {
       return;
     }
     std::map<std::string, int, std::less<>> none;
+    reader_ = Reader{-1, static_cast<int>(&definition - program_->systems.data())};
     NameLookup names = ruleLookup(none, 0, scope);
     for (const auto& placement : system.placements) {
       GridPlacement compiled;
@@ -646,6 +700,7 @@ class Compiler {
   }
 
   CompiledRule compileRule(const ast::Rule& rule, int master, int scopeIndex, const Scope& scope, bool lsystem) {
+    reader_ = Reader{master, -1};
     CompiledRule compiled;
     compiled.name = rule.name;
     compiled.span = rule.span;
@@ -827,10 +882,43 @@ class Compiler {
         return registerAggregate(call, sink, *aggregates, moduleScope);
       };
     addFunctions(names, scope);
+    names.ancestor = [this](const std::string& path, SourceSpan span) { return registerAncestor(path, span); };
     names.unknownHint = [](std::string_view) { return std::string(); };
     // Copy the lookup state that the lambdas above refer to by reference only while the
     // caller's maps live: compileRule uses names before returning.
     return names;
+  }
+
+  // `parent.x`, `parent.parent.age`, `root.x`: one AncestorRef per distinct read. Whether
+  // the systems at that level have the variable is checked once the tree is known.
+  int registerAncestor(const std::string& path, SourceSpan span) {
+    std::vector<std::string> parts;
+    for (size_t begin = 0;;) {
+      size_t dot = path.find('.', begin);
+      parts.push_back(path.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin));
+      if (dot == std::string::npos) break;
+      begin = dot + 1;
+    }
+    AncestorRef ref;
+    ref.name = parts.back();
+    bool valid = parts.size() >= 2;
+    if (parts[0] == "root") {
+      ref.level = 0;
+      valid = valid && parts.size() == 2;
+    } else {
+      ref.level = static_cast<int>(parts.size()) - 1;
+      for (size_t i = 0; i + 1 < parts.size(); ++i) valid = valid && parts[i] == "parent";
+    }
+    if (!valid || ref.name == "parent" || ref.name == "root" || ref.name == "me") {
+      if (reportedAncestors_.insert(span.begin).second)
+        sink_.error(span, "'" + path + "': read an enclosing system as 'parent.x', 'parent.parent.x' or 'root.x'");
+      return 0;
+    }
+    auto found = std::find(program_->ancestorRefs.begin(), program_->ancestorRefs.end(), ref);
+    const int index = static_cast<int>(found - program_->ancestorRefs.begin());
+    if (found == program_->ancestorRefs.end()) program_->ancestorRefs.push_back(ref);
+    if (reportedAncestors_.insert(span.begin).second) ancestorReads_.push_back({reader_, ref, path, span});
+    return index;
   }
 
   // `count()`, `count(A)`, `sum(x)`, `mean(A.x)`, `min(x)`, `max(x)`: one query per text.
@@ -915,6 +1003,7 @@ class Compiler {
     const MasterCell& self = program_->masters[master];
     std::map<std::string, int, std::less<>> slots;
     for (uint32_t i = 0; i < self.stateCount(); ++i) slots[self.stateNames[i]] = static_cast<int>(i);
+    reader_ = Reader{master, -1};
     NameLookup names = ruleLookup(slots, static_cast<int>(self.stateCount()), global_);
     for (const auto& module : block.instructions) {
       Instruction instruction;
@@ -1006,36 +1095,38 @@ class Compiler {
   // The masters a system's pool can hold: its axiom and placements, and every successor
   // of their rules, transitively.
   std::vector<bool> reachable(const SystemDefinition& system) const {
-    std::vector<bool> seen(program_->masters.size(), false);
-    std::vector<MasterId> pending;
-    auto visit = [&](MasterId m) {
-      if (m < seen.size() && !seen[m]) {
-        seen[m] = true;
-        pending.push_back(m);
-      }
-    };
-    for (const auto& cell : system.axiom) visit(cell.master);
-    for (const auto& placement : system.placements) visit(placement.master);
-    while (!pending.empty()) {
-      const MasterCell& master = program_->masters[pending.back()];
-      pending.pop_back();
-      for (const auto* rules : {&master.rules, &master.terminalRules})
-        for (const auto& rule : *rules)
-          for (const auto& successor : rule.successors)
-            if (!successor.isMe) visit(successor.master);
-    }
-    return seen;
+    return SystemTree::reachableMasters(*program_, system);
   }
+
 
   bool visibleIn(const MasterCell& master, int system) const { return master.scope == -1 || master.scope == system; }
 
-  void chooseRoot() {
+  // A system that contains itself, directly or through others, is rejected: the
+  // hierarchy is a tree (paper 002, section 2.2).
+  bool checkCycles(const SystemTree& tree) {
+    std::vector<int> cycle = tree.findCycle();
+    if (cycle.empty()) return true;
+    std::string path;
+    for (int s : cycle) path += (path.empty() ? "" : " contains ") + ("'" + program_->systems[s].name + "'");
+    sink_.error(program_->systems[cycle.front()].span,
+                "system '" + program_->systems[cycle.front()].name + "' contains itself: " + path +
+                    "; the systems must form a tree");
+    return false;
+  }
+
+  // The root is the system named by --system, else the first one no other system contains.
+  void chooseRoot(const SystemTree& tree) {
     if (program_->systems.empty()) {
       sink_.error(SourceSpan{program_->sources.front().get(), 0, 0},
                   "the program defines no system or lsystem to grow");
       return;
     }
     program_->root = 0;
+    for (size_t i = 0; i < program_->systems.size(); ++i)
+      if (tree.containers(static_cast<int>(i)).empty()) {
+        program_->root = static_cast<int>(i);
+        break;
+      }
     if (!options_.rootSystem.empty()) {
       for (size_t i = 0; i < program_->systems.size(); ++i)
         if (program_->systems[i].name == options_.rootSystem) {
@@ -1045,6 +1136,47 @@ class Compiler {
       std::string known;
       for (const auto& system : program_->systems) known += (known.empty() ? "" : ", ") + system.name;
       sink_.error(SourceSpan{}, "no system named '" + options_.rootSystem + "' (the program has: " + known + ")");
+    }
+  }
+
+  // Every system a `parent...x` read can reach must have x (or it is `age`); a read past
+  // the root is an error.
+  void checkAncestorReads(const SystemTree& tree) {
+    for (const AncestorRead& read : ancestorReads_) {
+      std::set<int> level;
+      if (read.reader.system >= 0)
+        level.insert(read.reader.system);
+      else
+        for (int s : tree.systemsHolding(read.reader.master)) level.insert(s);
+      if (read.ref.level == 0) level = {program_->root};
+      for (int k = 1; k < read.ref.level && !level.empty(); ++k) {
+        std::set<int> up;
+        for (int s : level) {
+          std::vector<int> containers = tree.containers(s);
+          if (containers.empty() && s == program_->root) {
+            sink_.error(read.span, "'" + read.path + "' goes above the root system '" + program_->systems[s].name +
+                                       "', which has no parent");
+            up.clear();
+            break;
+          }
+          up.insert(containers.begin(), containers.end());
+        }
+        level = std::move(up);
+      }
+      for (int s : level) {
+        if (read.ref.name == "age") continue;
+        const SystemDefinition& system = program_->systems[s];
+        const MasterCell* master = system.master >= 0 ? &program_->masters[system.master] : nullptr;
+        bool has = master && std::find(master->stateNames.begin(), master->stateNames.end(), read.ref.name) !=
+                                 master->stateNames.end();
+        if (has) continue;
+        std::string known = "age";
+        if (master)
+          for (const auto& name : master->stateNames) known += ", " + name;
+        sink_.error(read.span, "'" + read.path + "' reads system '" + system.name + "', which has no state '" +
+                                   read.ref.name + "' (it has: " + known + ")");
+        break;
+      }
     }
   }
 
@@ -1060,6 +1192,22 @@ class Compiler {
   std::vector<std::pair<int, const ast::System*>> ignoreLists_;
   std::set<size_t> reportedRecursion_;
   bool readsPosition_ = false;  // set by the rule lookup when a rule reads me.x, me.y, me.z
+  // Who the expressions being compiled belong to: a master's rules or interpretation, or
+  // a system's placements.
+  struct Reader {
+    int master = -1;
+    int system = -1;
+  };
+  struct AncestorRead {
+    Reader reader;
+    AncestorRef ref;
+    std::string path;
+    SourceSpan span;
+  };
+  Reader reader_;
+  std::vector<AncestorRead> ancestorReads_;
+  std::set<size_t> reportedAncestors_;
+  std::map<size_t, int> systemMaster_;  // tree index of a system -> its master
 };
 
 }  // namespace

@@ -34,6 +34,7 @@ void ExpressionBuilder::emit(OpCode op, int32_t operand, uint8_t count) {
     case OpCode::Const:
     case OpCode::Load:
     case OpCode::Aggregate:
+    case OpCode::Ancestor:
       ++depth_;
       break;
     case OpCode::Add:
@@ -146,6 +147,9 @@ double CompiledExpression::run(const EvalContext& context) const {
       }
       case OpCode::Aggregate:
         stack[++top] = context.neighbours->aggregate(in.operand);
+        break;
+      case OpCode::Ancestor:
+        stack[++top] = context.ancestors[in.operand];
         break;
       case OpCode::CallFunction: {
         top -= in.count - 1;

@@ -34,6 +34,7 @@ enum class OpCode : uint8_t {
   CallBuiltin,   ///< call builtinFunctions()[operand] with `count` arguments
   CallFunction,  ///< call the program's function[operand] with `count` arguments
   Aggregate,     ///< push the neighbour aggregate number `operand` of the rule being evaluated
+  Ancestor,      ///< push the enclosing systems' value number `operand` (`parent.x`, `root.age`)
 };
 
 struct Bytecode {
@@ -65,6 +66,8 @@ struct EvalContext {
   EvalEnvironment environment;
   const FunctionTable* functions = nullptr;
   const NeighbourAggregates* neighbours = nullptr;  ///< set where the expression may aggregate
+  /// Values of Program::ancestorRefs for the system the cell lives in (World::ancestorValues).
+  const double* ancestors = nullptr;
 };
 
 class CompiledExpression {

@@ -44,15 +44,21 @@ class ExpressionCompiler {
       case Expr::Kind::Member: {
         std::string path = memberPath(expr);
         if (names_.slot && !path.empty() && names_.slot(path) >= 0) return;
-        std::string base = expr.args[0]->kind == Expr::Kind::Name ? expr.args[0]->name : "";
+        std::string base = path.substr(0, path.find('.'));
+        if ((base == "parent" || base == "root") && names_.ancestor) {
+          names_.ancestor(path, expr.span);
+          return;
+        }
         if (base == "me")
           sink_.error(expr.span, "'" + path +
                                      "' is not internal state of a cell (known: me.age, me.id, me.x, "
                                      "me.y, me.z)");
-        else
+        else if (base == "parent" || base == "root")
           sink_.error(expr.span, "'" + path +
-                                     "': reading a parent's or the root's state needs system hierarchies, "
-                                     "which this version does not have yet");
+                                     "' reads an enclosing system's state, which rules and interpretation "
+                                     "blocks can do, not constants or axioms");
+        else
+          sink_.error(expr.span, "unknown name '" + path + "' (a member is read from 'me', 'parent' or 'root')");
         return;
       }
       case Expr::Kind::Unary:
@@ -229,9 +235,15 @@ class ExpressionCompiler {
       case Expr::Kind::Name:
         builder_.emit(OpCode::Load, names_.slot(expr.name));
         return;
-      case Expr::Kind::Member:
-        builder_.emit(OpCode::Load, names_.slot(memberPath(expr)));
+      case Expr::Kind::Member: {
+        const std::string path = memberPath(expr);
+        const int slot = names_.slot ? names_.slot(path) : -1;
+        if (slot >= 0)
+          builder_.emit(OpCode::Load, slot);
+        else
+          builder_.emit(OpCode::Ancestor, names_.ancestor(path, expr.span));
         return;
+      }
       case Expr::Kind::Unary:
         emit(*expr.args[0]);
         builder_.emit(expr.op == TokenKind::Minus ? OpCode::Neg : OpCode::Not);
@@ -323,8 +335,11 @@ bool isAggregateCall(const ast::Expr& call) {
 }
 
 std::string memberPath(const ast::Expr& member) {
-  if (member.kind != Expr::Kind::Member || member.args.empty() || member.args[0]->kind != Expr::Kind::Name) return "";
-  return member.args[0]->name + "." + member.name;
+  if (member.kind != Expr::Kind::Member || member.args.empty()) return "";
+  const Expr& base = *member.args[0];
+  if (base.kind == Expr::Kind::Name) return base.name + "." + member.name;
+  std::string inner = memberPath(base);
+  return inner.empty() ? "" : inner + "." + member.name;
 }
 
 CompiledExpression compileExpression(const ast::Expr& expr, const NameLookup& names, DiagnosticSink& sink) {

@@ -7,6 +7,7 @@
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
 #include "lang/expression.h"
+#include "lang/source.h"
 
 namespace ontogen {
 
@@ -24,6 +25,10 @@ struct NameLookup {
   /// returns its index, or -1 after reporting why it is wrong. Absent where aggregates
   /// cannot be read (outside rules). Called again for the same call: same index, no report.
   std::function<int(const ast::Expr& call, DiagnosticSink& sink)> aggregate;
+  /// Registers a read of the enclosing systems' state (`parent.x`, `parent.parent.age`,
+  /// `root.x`) and returns its index in Program::ancestorRefs. Absent where no system
+  /// encloses the expression (constants, axioms).
+  std::function<int(const std::string& path, SourceSpan span)> ancestor;
   /// Extra advice for an unknown name (e.g. "declare it as a state variable"), may be empty.
   std::function<std::string(std::string_view)> unknownHint;
 };
@@ -32,7 +37,8 @@ struct NameLookup {
 /// and min(x) / max(x) with one argument (with two they are the ordinary functions).
 bool isAggregateCall(const ast::Expr& call);
 
-/// The text of `a.b` (`me.x`, `parent.length`), or "" for other shapes.
+/// The text of `a.b` or `a.b.c` (`me.x`, `parent.length`, `parent.parent.age`), or ""
+/// for other shapes.
 std::string memberPath(const ast::Expr& member);
 
 /// Compiles one expression: resolves names, checks calls and folds constants. Reports

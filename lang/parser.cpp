@@ -425,6 +425,16 @@ class Parser {
       const Token& target = advance();
       result.target = target.text;
       result.targetSpan = target.span;
+      if (check(TokenKind::Dot) && (target.text == "parent" || target.text == "root" || target.text == "me")) {
+        std::string path = target.text;
+        SourceSpan span = target.span;
+        while (match(TokenKind::Dot) && check(TokenKind::Identifier)) {
+          path += "." + peek().text;
+          span = span.to(advance().span);
+        }
+        fail(span, target.text == "me" ? "'" + path + "' is the cell's read-only internal state; it cannot be assigned"
+                                       : "'" + path + "' is an enclosing system's state: cells read it, never write it");
+      }
     }
     switch (peek().kind) {
       case TokenKind::Equal: case TokenKind::PlusEqual: case TokenKind::MinusEqual:
@@ -525,6 +535,7 @@ class Parser {
     const Token& name = expect(TokenKind::Identifier, " (the system's name)");
     result.name = name.text;
     result.nameSpan = name.span;
+    if (check(TokenKind::LParen)) result.state = parameters();
     expect(TokenKind::LBrace, " to open the system");
     while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
       size_t before = pos_;

@@ -124,6 +124,15 @@ struct DevelopmentFunction {
   SourceSpan span;
 };
 
+/// A read of an enclosing system's value: `parent.x` (level 1: the system whose pool
+/// holds the cell), `parent.parent.x` (level 2) ..., or `root.x` (level 0). `age` reads
+/// the system's age; other names its state.
+struct AncestorRef {
+  int level = 1;
+  std::string name;
+  bool operator==(const AncestorRef&) const = default;
+};
+
 struct MasterCell {
   std::string label;
   SourceSpan span;
@@ -142,6 +151,9 @@ struct MasterCell {
   std::string command;           ///< the instruction this symbol stands for (label or equiv)
   uint8_t symbolClass = kSymbolModule;
   bool readsPosition = false;  ///< a rule reads me.x, me.y or me.z (the engine fills them only then)
+  /// For a system cell: the index of its SystemDefinition (its cells grow in a pool of
+  /// their own); -1 for an ordinary cell.
+  int system = -1;
 
   const InterpretationBlock* interpretation(std::string_view set) const {
     for (const auto& block : interpretations)
@@ -180,6 +192,7 @@ struct GridPlacement {
 struct SystemDefinition {
   std::string name;
   SourceSpan span;
+  int master = -1;  ///< the master cell that stands for the system in a parent's pool
   bool isLSystem = false;
   PoolKind poolKind = PoolKind::Linear;
   GridShape grid;  ///< for a grid pool
@@ -200,6 +213,8 @@ struct Program {
   std::vector<CompiledExpression> functionBodies;
   std::vector<DevelopmentFunction> functions;
   std::vector<SystemDefinition> systems;
+  std::vector<AncestorRef> ancestorRefs;  ///< every `parent.x` / `root.x` read, once each
+  bool hasSystemCells = false;            ///< some system's cell can appear in another's pool
   int root = 0;          ///< index of the root system
   uint64_t seed = 1;     ///< default seed (#seed), overridden by --seed
   bool hasSeed = false;
