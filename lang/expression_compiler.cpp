@@ -33,6 +33,8 @@ class ExpressionCompiler {
       case Expr::Kind::Name: {
         if (names_.slot && names_.slot(expr.name) >= 0) return;
         if (names_.constant && names_.constant(expr.name)) return;
+        if (statusValue(expr.name)) return;
+        if (readsStatus(expr)) return;
         std::string message = "unknown name '" + expr.name + "'";
         if (names_.unknownHint) {
           std::string hint = names_.unknownHint(expr.name);
@@ -109,14 +111,32 @@ class ExpressionCompiler {
     }
   }
 
+  // `status` (paper 002's internal status) where the frame has an age and no user
+  // variable takes the name.
+  bool readsStatus(const Expr& expr) const {
+    return expr.name == "status" && names_.slot && names_.slot("status") < 0 && names_.slot("age") >= 0;
+  }
+
+  // The status names, below every user name and #define: dormant 0, birth 1, alive 2, dead 3.
+  static std::optional<double> statusValue(std::string_view name) {
+    if (name == "dormant") return 0.0;
+    if (name == "birth") return 1.0;
+    if (name == "alive") return kStatusAlive;
+    if (name == "dead") return 3.0;
+    return std::nullopt;
+  }
+  static constexpr double kStatusAlive = 2;
+
   // The value of a subtree that depends on no frame slot and draws no random number.
   std::optional<double> fold(const Expr& expr) {
     switch (expr.kind) {
       case Expr::Kind::Number:
         return expr.number;
-      case Expr::Kind::Name:
+      case Expr::Kind::Name: {
         if (names_.slot && names_.slot(expr.name) >= 0) return std::nullopt;
-        return names_.constant(expr.name);
+        if (auto value = names_.constant(expr.name)) return value;
+        return statusValue(expr.name);
+      }
       case Expr::Kind::Member:
         return std::nullopt;
       case Expr::Kind::Unary: {
@@ -233,6 +253,15 @@ class ExpressionCompiler {
         builder_.emitConst(expr.number);
         return;
       case Expr::Kind::Name:
+        if (readsStatus(expr)) {
+          // status = alive - (age <= 0): a cell is in its birth instant until it ages.
+          builder_.emitConst(kStatusAlive);
+          builder_.emit(OpCode::Load, names_.slot("age"));
+          builder_.emitConst(0);
+          builder_.emit(OpCode::LessEqual);
+          builder_.emit(OpCode::Sub);
+          return;
+        }
         builder_.emit(OpCode::Load, names_.slot(expr.name));
         return;
       case Expr::Kind::Member: {
