@@ -61,7 +61,7 @@ int runRun(const RunOptions& options) {
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (options.stats) {
       const WorldStats& stats = world.stats();
-      std::cout << "time " << world.time() << ", cells " << world.rootPool().size() << ", steps " << stats.steps
+      std::cout << "time " << world.time() << ", cells " << world.totalCells() << ", steps " << stats.steps
                 << ", events " << stats.events << ", cells born " << stats.cellsBorn << ", rule firings "
                 << stats.ruleFirings << ", files " << written << ", wall " << seconds << " s\n";
     }

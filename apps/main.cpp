@@ -28,8 +28,8 @@ void addDevelopment(CLI::App& command, CommonOptions& options) {
       ->check(CLI::PositiveNumber);
   command.add_option("--max-events", options.limits.maxEventsPerStep, "Stop after N terminal events in one step")
       ->capture_default_str();
-  command.add_option("--threads", options.threads, "Threads for rules and rates (default: all cores; same result)")
-      ->check(CLI::PositiveNumber);
+  command.add_option("--threads", options.threads, "Threads for rules and rates (0, the default: all cores; same result)")
+      ->check(CLI::NonNegativeNumber);
 }
 
 }  // namespace

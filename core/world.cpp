@@ -255,6 +255,7 @@ void World::developStep(double t1, bool stepRules) {
     LinearDevelopment development(*this);
     development.step(t1, stepRules);
   }
+  updateAncestorValues();  // as of t1, for interpretation and the next step
   developChildren(t1, stepRules, /*step=*/true);
 }
 

@@ -160,4 +160,16 @@ TEST(Cli, HelpListsTheTables) {
   EXPECT_NE(result.out.find("cC(l, capped)"), std::string::npos);
 }
 
+// Paper 002's models on one thread and on all cores: the same JSON, byte for byte.
+TEST(Cli, WordJsonIsTheSameOnOneThreadAndOnAll) {
+  for (const char* name : {"heterocysts.cell", "colony.cell", "orchard.cell", "life.cell"}) {
+    const std::string command = "word " + model(name) + " --at 3,12 --json --threads ";
+    Result one = ontogen(command + "1");
+    Result all = ontogen(command + "0");
+    ASSERT_EQ(one.exitCode, 0) << name << ": " << one.err;
+    ASSERT_EQ(all.exitCode, 0) << name << ": " << all.err;
+    EXPECT_GT(one.out.size(), 200u) << name;
+    EXPECT_EQ(one.out, all.out) << name;
+  }
+}
 }  // namespace
