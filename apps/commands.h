@@ -36,7 +36,15 @@ struct WordOptions {
   int precision = 6;
 };
 
+struct TimelineOptions {
+  CommonOptions common;
+  std::optional<double> until;      ///< empty: the program's #until
+  std::string out;                  ///< the .svg to write
+  size_t maxRows = 4000;
+};
+
 int runCheck(const CommonOptions& options);
+int runTimeline(const TimelineOptions& options);
 int runRun(const RunOptions& options);
 int runWord(const WordOptions& options);
 int runHelp();

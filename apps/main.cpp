@@ -67,6 +67,18 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 17))
       ->capture_default_str();
 
+  TimelineOptions timeline;
+  auto* timelineCommand =
+      app.add_subcommand("timeline", "Draw the time-state diagram of a development (paper 002, Fig. 5)");
+  addCommon(*timelineCommand, timeline.common);
+  addDevelopment(*timelineCommand, timeline.common);
+  timelineCommand->add_option("--until", timeline.until, "End of the diagram, seconds (default: #until)")
+      ->check(CLI::NonNegativeNumber);
+  timelineCommand->add_option("--out", timeline.out, "The diagram to write (.svg)")->required();
+  timelineCommand->add_option("--max-rows", timeline.maxRows, "Most cells drawn; later ones are counted")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+
   app.add_subcommand("help", "List commands, turtle commands and functions");
 
   try {
@@ -78,5 +90,6 @@ int main(int argc, char** argv) {
   if (checkCommand->parsed()) return runCheck(check);
   if (runCommand->parsed()) return runRun(run);
   if (wordCommand->parsed()) return runWord(word);
+  if (timelineCommand->parsed()) return runTimeline(timeline);
   return runHelp();
 }

@@ -160,6 +160,20 @@ TEST(Cli, HelpListsTheTables) {
   EXPECT_NE(result.out.find("cC(l, capped)"), std::string::npos);
 }
 
+TEST(Cli, TimelineWritesTheTimeStateDiagram) {
+  fs::path out = scratch("timeline") / "anabaena.svg";
+  Result result = ontogen("timeline " + model("anabaena.cell") + " --until 4 --out " + out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.out.find("19 cells over [0, 4]"), std::string::npos) << result.out;  // 1 + 2 + 3 + 5 + 8
+  std::ifstream in(out);
+  std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  EXPECT_EQ(ontogen("timeline " + model("anabaena.cell") + " --out " + (scratch("timeline") / "a.txt").string())
+                .exitCode,
+            2);
+}
+
 // Paper 002's models on one thread and on all cores: the same JSON, byte for byte.
 TEST(Cli, WordJsonIsTheSameOnOneThreadAndOnAll) {
   for (const char* name : {"heterocysts.cell", "colony.cell", "orchard.cell", "life.cell"}) {

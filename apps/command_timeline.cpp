@@ -1,0 +1,50 @@
+#include <filesystem>
+#include <iostream>
+
+#include "apps/commands.h"
+#include "apps/program_loader.h"
+#include "core/timeline.h"
+#include "interpreters/timeline_svg.h"
+
+namespace ontogen::app {
+
+int runTimeline(const TimelineOptions& options) {
+  const std::filesystem::path out = options.out;
+  if (out.extension() != ".svg") {
+    std::cerr << "ontogen: error: --out must name an .svg file, not '" << options.out << "'\n";
+    return kExitUsage;
+  }
+  auto loaded = loadProgram(options.common.file, options.common.system);
+  if (!loaded) return kExitProgramError;
+  const Program& program = *loaded->program;
+  WorldDef def;
+  def.seed = options.common.seed.value_or(program.seed);
+  def.limits = options.common.limits;
+  def.threads = options.common.threads;
+  const double dt = options.common.step.value_or(program.dt);
+  const double until = options.until.value_or(program.until);
+  Timeline timeline;
+  try {
+    timeline = recordTimeline(loaded->program, def, until, dt, options.maxRows);
+  } catch (const LimitError& error) {
+    std::cerr << "ontogen: error: " << error.what() << "\n";
+    return kExitModelError;
+  } catch (const ModelError& error) {
+    std::cerr << error.what();
+    return kExitModelError;
+  }
+  try {
+    if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+    writeTimelineSvg(out, timeline, loaded->stem);
+  } catch (const std::exception& error) {
+    std::cerr << "ontogen: error: " << error.what() << "\n";
+    return kExitOutputError;
+  }
+  std::cout << "wrote " << out.string() << ": " << timeline.rows.size() << " cells over [" << timeline.start << ", "
+            << timeline.end << "]";
+  if (timeline.omitted) std::cout << " (" << timeline.omitted << " more past --max-rows)";
+  std::cout << "\n";
+  return kExitOk;
+}
+
+}  // namespace ontogen::app
