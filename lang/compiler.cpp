@@ -328,7 +328,9 @@ class Compiler {
   // every use gives it the same number of parameters.
   int resolveModule(const ast::Module& module, int scope) {
     int index = program_->findMaster(module.label, scope);
-    if (index < 0 || (scope >= 0 && program_->masters[index].scope != scope))
+    // A symbol an lsystem has not seen becomes its own master, except a declared `cell`:
+    // naming it in a production means that cell, with its interpret blocks.
+    if (index < 0 || (scope >= 0 && program_->masters[index].scope != scope && !program_->masters[index].declared))
       index = addMaster(module.label, scope, module.span);
     MasterCell& master = program_->masters[index];
     if (module.age) master.timedNotation = true;
@@ -342,7 +344,7 @@ class Compiler {
         master.stateNames.push_back(name);
         master.defaults.push_back(0);
       }
-    } else if (master.declared && scope == -1) {
+    } else if (master.declared && master.scope == -1) {
       if (count > static_cast<int>(master.stateCount()))
         sink_.error(module.span, "cell '" + master.label + "' has " + std::to_string(master.stateCount()) +
                                      " state variable" + (master.stateCount() == 1 ? "" : "s") + ", given " +
