@@ -1,4 +1,5 @@
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <system_error>
@@ -16,9 +17,28 @@ int runRun(const RunOptions& options) {
   if (!loaded) return kExitProgramError;
   const Program& program = *loaded->program;
 
+  SetOptions setOptions;
+  setOptions.formats = options.format;
+  if (options.view.size() == 2) {
+    setOptions.render.azimuth = options.view[0];
+    setOptions.render.elevation = options.view[1];
+  }
+  if (int width = 0, height = 0; std::sscanf(options.size.c_str(), "%dx%d", &width, &height) == 2) {
+    setOptions.render.width = width;
+    setOptions.render.height = height;
+  } else {
+    std::cerr << "ontogen: error: --size takes WIDTHxHEIGHT in pixels, as in 800x600, not '" << options.size << "'\n";
+    return kExitUsage;
+  }
   std::vector<std::unique_ptr<InterpretationSet>> sets;
   for (const auto& name : options.sets) {
-    auto set = makeInterpretationSet(name, program.rootSystem().settings);
+    std::unique_ptr<InterpretationSet> set;
+    try {
+      set = makeInterpretationSet(name, program.rootSystem().settings, setOptions);
+    } catch (const std::invalid_argument& bad) {
+      std::cerr << "ontogen: error: " << bad.what() << "\n";
+      return kExitUsage;
+    }
     if (!set) {
       std::cerr << "ontogen: error: unknown interpretation set '" << name << "' (known:";
       for (const auto& known : interpretationSetNames()) std::cerr << " " << known;

@@ -27,6 +27,9 @@ struct RunOptions {
   std::vector<std::string> sets{"geometry"};
   std::string out = "out";
   bool stats = false;
+  std::string format = "glb,png";   ///< geometry outputs, comma-separated
+  std::vector<double> view;         ///< azimuth, elevation in degrees; empty: automatic
+  std::string size = "800x800";     ///< picture size, WIDTHxHEIGHT pixels
 };
 
 struct WordOptions {

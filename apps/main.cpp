@@ -55,6 +55,13 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->capture_default_str();
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
+  runCommand->add_option("--format", run.format,
+                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, svg")
+      ->capture_default_str();
+  runCommand->add_option("--view", run.view, "Camera azimuth,elevation in degrees (default: automatic)")
+      ->delimiter(',')
+      ->expected(2);
+  runCommand->add_option("--size", run.size, "Picture size WIDTHxHEIGHT in pixels")->capture_default_str();
   runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
 
   WordOptions word;

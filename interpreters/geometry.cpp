@@ -74,6 +74,7 @@ void Geometry::clear() {
   spheres_.clear();
   mesh_ = Mesh{};
   bounds_ = Box{};
+  material_ = 0;
 }
 
 void Geometry::checkIndexSpace(std::size_t positions, std::size_t normals) const {
@@ -95,12 +96,35 @@ uint32_t Geometry::addNormal(const glm::dvec3& normal) {
 }
 
 void Geometry::addTriangle(std::array<uint32_t, 3> positions, std::array<uint32_t, 3> normals) {
-  mesh_.triangles.push_back({positions, normals});
+  if (mesh_.texcoords.empty()) mesh_.texcoords.emplace_back(0.0, 0.0);
+  mesh_.triangles.push_back({positions, normals, {0, 0, 0}, material_});
+}
+
+void Geometry::addMesh(const Mesh& part) {
+  if (part.triangles.empty()) return;
+  checkIndexSpace(part.positions.size(), part.normals.size());
+  const auto positionBase = static_cast<uint32_t>(mesh_.positions.size());
+  const auto normalBase = static_cast<uint32_t>(mesh_.normals.size());
+  if (mesh_.texcoords.empty()) mesh_.texcoords.emplace_back(0.0, 0.0);
+  const auto texcoordBase = static_cast<uint32_t>(mesh_.texcoords.size());
+  for (const glm::dvec3& p : part.positions) addPosition(p);
+  mesh_.normals.insert(mesh_.normals.end(), part.normals.begin(), part.normals.end());
+  mesh_.texcoords.insert(mesh_.texcoords.end(), part.texcoords.begin(), part.texcoords.end());
+  for (const Triangle& t : part.triangles) {
+    Triangle shifted{};
+    for (int k = 0; k < 3; ++k) {
+      shifted.position[k] = t.position[k] + positionBase;
+      shifted.normal[k] = t.normal[k] + normalBase;
+      shifted.texcoord[k] = part.texcoords.empty() ? 0 : t.texcoord[k] + texcoordBase;
+    }
+    shifted.material = material_;
+    mesh_.triangles.push_back(shifted);
+  }
 }
 
 void Geometry::addSegment(const glm::dvec3& start, const glm::dvec3& end) {
   if (start == end) return;
-  segments_.push_back({start, end});
+  segments_.push_back({start, end, material_});
   bounds_.add(start);
   bounds_.add(end);
 }

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace ontogen {
@@ -36,6 +37,7 @@ struct MeshDef {
 struct Segment {
   glm::dvec3 start{0.0};
   glm::dvec3 end{0.0};
+  uint32_t material = 0;  ///< palette index (palette.h)
 };
 
 /// A cylinder around the axis start -> end (model units).
@@ -62,16 +64,20 @@ struct SpherePrimitive {
   double radius = 0;
 };
 
-/// One triangle: 0-based indices into Mesh::positions and Mesh::normals per corner.
+/// One triangle: 0-based indices into Mesh::positions, Mesh::normals and
+/// Mesh::texcoords per corner, and its palette colour.
 struct Triangle {
   std::array<uint32_t, 3> position{};
   std::array<uint32_t, 3> normal{};
+  std::array<uint32_t, 3> texcoord{};  ///< primitives use texcoord 0, (0, 0)
+  uint32_t material = 0;               ///< palette index (palette.h)
 };
 
 /// Every surface of a frame in one indexed triangle mesh.
 struct Mesh {
   std::vector<glm::dvec3> positions;  ///< model units
   std::vector<glm::dvec3> normals;    ///< unit length
+  std::vector<glm::dvec2> texcoords;  ///< (u, v) in [0, 1]; index 0 is (0, 0) once any exists
   std::vector<Triangle> triangles;    ///< anticlockwise seen from outside
 };
 
@@ -118,6 +124,14 @@ class Geometry {
                double inner, double outer);
   /// Adds a sphere; its poles lie along world z.
   void addSphere(const glm::dvec3& centre, double radius);
+  /// Appends a mesh made elsewhere (generalized cylinders, surfaces): its indices are
+  /// its own, 0-based; its triangles take the current material.
+  void addMesh(const Mesh& part);
+
+  /// The palette colour of everything added from now on.
+  void setMaterial(uint32_t material) { material_ = material; }
+  /// The palette colour used now.
+  uint32_t material() const { return material_; }
 
   /// The zero-radius lines, in the order they were drawn.
   const std::vector<Segment>& segments() const { return segments_; }
@@ -155,6 +169,7 @@ class Geometry {
   std::vector<SpherePrimitive> spheres_;
   Mesh mesh_;
   Box bounds_;
+  uint32_t material_ = 0;
 };
 
 }  // namespace ontogen

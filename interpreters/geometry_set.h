@@ -1,7 +1,10 @@
 #pragma once
 // The "geometry" interpretation set: a 3-D turtle (turtle.h) that draws each frame into a
-// Geometry and writes it as DIR/<stem>.svg and DIR/<stem>.obj, or as
-// DIR/<stem>_0003.svg ... when the run has several frames.
+// Geometry and writes it in the formats chosen (applyGeometryFormats):
+//  - per frame, DIR/<stem>.<ext>, or DIR/<stem>_0003.<ext> when the run has several
+//    frames: svg, obj (with its mtl), ply, png-frames (png);
+//  - once for the whole run, after its last frame: glb (every frame, animated;
+//    glb_writer.h), png (the last frame), mp4 (every frame through ffmpeg).
 
 #include <filesystem>
 #include <span>
@@ -9,7 +12,9 @@
 #include <vector>
 
 #include "interpreters/geometry.h"
+#include "interpreters/glb_writer.h"
 #include "interpreters/interpretation_set.h"
+#include "interpreters/renderer.h"
 #include "interpreters/svg_writer.h"
 #include "interpreters/turtle.h"
 
@@ -20,9 +25,27 @@ struct GeometrySetDef {
   TurtleDef turtle{};    ///< step, angles and initial radius
   bool writeSvg = true;  ///< write <stem>.svg each frame
   bool writeObj = true;  ///< write <stem>.obj each frame
+  bool writeMtl = false;       ///< with the OBJ, its materials as <stem>.mtl
+  bool writePly = false;       ///< write <stem>.ply each frame
+  bool writePngFrames = false; ///< render <stem>.png each frame
+  bool writePng = false;       ///< render <stem>.png of the last frame
+  bool writeGlb = false;       ///< write <stem>.glb of every frame after the last
+  bool writeMp4 = false;       ///< write <stem>.mp4 of every frame after the last (ffmpeg)
+  double framesPerSecond = 25; ///< of the MP4
   SvgOptions svg{};      ///< picture size and number format of the SVG
   MeshDef mesh{};        ///< tessellation of cylinders, discs and spheres
+  RenderDef render{};    ///< size and view of PNG pictures and MP4 frames
 };
+
+/// The formats `--format` accepts, in the order `ontogen help` lists them.
+inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj, ply, svg";
+
+/// Sets def's write flags from a comma-separated list of formats (kGeometryFormats),
+/// clearing the others. Returns an error message naming the bad entry, or "" on success.
+std::string applyGeometryFormats(std::string_view list, GeometrySetDef& def);
+
+/// True when an executable named ffmpeg is on PATH.
+bool ffmpegAvailable();
 
 /// Turtle geometry written as SVG and OBJ.
 class GeometrySet : public InterpretationSet {
@@ -35,7 +58,8 @@ class GeometrySet : public InterpretationSet {
   void beginFrame(const FrameTarget& target) override;
   void execute(std::string_view command, std::span<const double> args) override;
   /// Writes the enabled files atomically (throws OutputError on failure) and returns
-  /// their paths, SVG first.
+  /// their paths, SVG first. Throws std::invalid_argument from the constructor when mp4
+  /// is asked for and ffmpeg is not installed.
   std::vector<std::filesystem::path> endFrame() override;
 
   /// The geometry of the frame being drawn, or of the last one after endFrame.
@@ -51,10 +75,15 @@ class GeometrySet : public InterpretationSet {
                                           std::string_view extension);
 
  private:
+  std::filesystem::path mp4FramesDirectory() const;
+  void writeMp4(std::vector<std::filesystem::path>& written);
+
   GeometrySetDef def_;
   Turtle turtle_;
   Geometry geometry_;
   FrameTarget target_;
+  GlbAnimationWriter glb_;
+  int mp4Frames_ = 0;
 };
 
 }  // namespace ontogen

@@ -7,6 +7,7 @@
 // 1e-10 of the geometry, relative to the model's size.
 
 #include <ostream>
+#include <string_view>
 
 #include "interpreters/geometry.h"
 
@@ -15,5 +16,14 @@ namespace ontogen {
 /// Writes geometry to out as an OBJ file with a comment header of counts. Stream errors
 /// are left in out's state for the caller to check.
 void writeObj(const Geometry& geometry, std::ostream& out);
+
+/// The same with materials: `mtllib <mtlName>`, texture coordinates (`vt`), and the
+/// triangles and segments grouped by palette colour under `usemtl ontogen_<i>`, faces as
+/// `f p/t/n`.
+void writeObj(const Geometry& geometry, std::ostream& out, std::string_view mtlName);
+
+/// The MTL file for writeObj: one `newmtl ontogen_<i>` with its diffuse colour (Kd) per
+/// palette colour the geometry uses.
+void writeMtl(const Geometry& geometry, std::ostream& out);
 
 }  // namespace ontogen

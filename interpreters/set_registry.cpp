@@ -1,5 +1,7 @@
 #include "interpreters/set_registry.h"
 
+#include <stdexcept>
+
 #include "interpreters/geometry_set.h"
 #include "interpreters/trace_set.h"
 #include "interpreters/turtle_commands.h"
@@ -9,8 +11,16 @@ namespace ontogen {
 std::vector<std::string> interpretationSetNames() { return {"geometry", "trace"}; }
 
 std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings) {
+  return makeInterpretationSet(name, settings, SetOptions{.formats = "svg,obj"});
+}
+
+std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings,
+                                                         const SetOptions& options) {
   if (name == "geometry") {
     GeometrySetDef def;
+    std::string error = applyGeometryFormats(options.formats, def);
+    if (!error.empty()) throw std::invalid_argument(error);
+    def.render = options.render;
     def.turtle.step = settings.step;
     def.turtle.angle = settings.angle;
     def.turtle.yawAngle = settings.yawAngle;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "interpreters/interpretation_set.h"
+#include "interpreters/renderer.h"
 #include "lang/compiler.h"
 #include "lang/program.h"
 
@@ -18,6 +19,17 @@ std::vector<std::string> interpretationSetNames();
 
 /// A new set configured from a system's settings, or null if there is no such set.
 std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings);
+
+/// Output settings a run gives the sets (`ontogen run --format --view --size`).
+struct SetOptions {
+  std::string formats = "glb,png";  ///< geometry: comma-separated formats (geometry_set.h)
+  RenderDef render{};               ///< geometry: picture size and view
+};
+
+/// The same, with output settings; throws std::invalid_argument with a message for the
+/// user when they are wrong (an unknown format, mp4 without ffmpeg, a bad size).
+std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings,
+                                                         const SetOptions& options);
 
 /// For the compiler: the commands of every set (the trace set accepts any).
 std::vector<CommandSetInfo> commandSets();

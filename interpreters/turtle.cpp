@@ -7,6 +7,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "interpreters/palette.h"
+
 namespace ontogen {
 
 namespace {
@@ -32,6 +34,11 @@ constexpr glm::dvec3 kWorldUp{0.0, 1.0, 0.0};
 // Below this |V x H|, H is vertical and no roll makes L horizontal.
 constexpr double kVerticalTolerance = 1e-9;
 
+// Sections are numbered 0..1023: ids index a table in a word, not a database.
+constexpr int kMaxSectionId = 1023;
+constexpr int kMaxCirclePoints = 1024;  // as MeshDef's sides
+constexpr int kDefaultCirclePoints = 12;
+
 }  // namespace
 
 Turtle::Turtle(const TurtleDef& def) : def_(def) {
@@ -47,6 +54,87 @@ void Turtle::reset() {
   state_.radius = def_.radius;
   stack_.clear();
   warnings_ = TurtleWarnings{};
+  tropism_ = glm::dvec3(0.0);
+  tropismStrength_ = 0;
+  environment_ = Environment{};
+  environmentActive_ = false;
+  drawnLength_ = 0;
+  sections_.clear();
+  circles_.clear();
+  definingSection_.reset();
+  pendingSection_ = GcSection{};
+  gcs_.clear();
+}
+
+void Turtle::finish(Geometry& geometry) {
+  for (std::size_t i = 0; i < gcs_.size(); ++i) {
+    if (gcs_[i].open) finishGc(static_cast<int>(i), /*caps=*/true, geometry);
+  }
+  state_.gc = -1;
+}
+
+const GcSection* Turtle::section(int key) {
+  if (key >= 0) {
+    auto found = sections_.find(key);
+    return found == sections_.end() ? nullptr : &found->second;
+  }
+  auto [it, inserted] = circles_.try_emplace(-key);
+  if (inserted) it->second = circleSection(-key);
+  return &it->second;
+}
+
+void Turtle::finishGc(int index, bool caps, Geometry& geometry) {
+  OpenGc& gc = gcs_[static_cast<std::size_t>(index)];
+  if (!gc.open) return;
+  gc.open = false;
+  GcDef def;
+  def.caps = caps;
+  def.samplesPerSpan = 8;
+  uint32_t material = geometry.material();
+  geometry.setMaterial(gc.material);
+  geometry.addMesh(meshGeneralizedCylinder(gc.points, def));
+  geometry.setMaterial(material);
+  gc.points.clear();
+  gc.points.shrink_to_fit();
+}
+
+void Turtle::turnHeadingTo(const glm::dvec3& heading) {
+  glm::dvec3& h = state_.heading;
+  glm::dvec3 axis = glm::cross(h, heading);
+  double sine = glm::length(axis);
+  double cosine = glm::dot(h, heading);
+  if (sine < 1e-15) {
+    if (cosine > 0) return;
+    // Opposite: turn around about U.
+    h = -h;
+    state_.left = -state_.left;
+    return;
+  }
+  axis /= sine;
+  auto rotate = [&](const glm::dvec3& v) {
+    return v * cosine + glm::cross(axis, v) * sine + axis * glm::dot(axis, v) * (1 - cosine);
+  };
+  state_.left = rotate(state_.left);
+  h = heading;
+  orthonormalise();
+}
+
+std::optional<double> Turtle::prepareForward(double distance) {
+  if (tropismStrength_ != 0) {
+    glm::dvec3 h = rotateTowards(state_.heading, tropism_,
+                                 tropismStrength_ * glm::length(glm::cross(state_.heading, tropism_)));
+    turnHeadingTo(h);
+  }
+  if (!environmentActive_) return distance;
+  if (state_.depth + 1 > environment_.maxDepth) return std::nullopt;
+  double left = environment_.maxLength - drawnLength_;
+  if (!(left > 0)) return std::nullopt;
+  distance = std::min(distance, left);
+  turnHeadingTo(environment_.bend(state_.position, state_.heading));
+  auto heading = environment_.redirect(state_.position, state_.heading, distance, state_.left, state_.up);
+  if (!heading) return std::nullopt;
+  turnHeadingTo(*heading);
+  return distance;
 }
 
 bool Turtle::execute(std::string_view command, std::span<const double> args,
@@ -57,9 +145,22 @@ bool Turtle::execute(std::string_view command, std::span<const double> args,
   return true;
 }
 
-void Turtle::drawForward(double distance, bool capped, Geometry& geometry) {
+void Turtle::drawForward(double requested, bool capped, Geometry& geometry) {
+  auto prepared = prepareForward(requested);
+  if (!prepared) {
+    ++warnings_.blocked;
+    return;
+  }
+  const double distance = *prepared;
   TurtleState& s = state_;
   glm::dvec3 end = s.position + s.heading * distance;
+  drawnLength_ += std::abs(distance);
+  s.depth += 1;
+  if (s.gc >= 0) {
+    s.position = end;
+    gcs_[static_cast<std::size_t>(s.gc)].points.push_back({end, s.left, s.radius, section(s.section)});
+    return;
+  }
   if (s.radius > 0) {
     geometry.addCylinder(s.position, end, s.radius, capped, s.left);
   } else {
@@ -110,6 +211,7 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
     return;
   }
   TurtleState& s = state_;
+  geometry.setMaterial(s.material);
   switch (command.op) {
     case TurtleOp::Forward:
       drawForward(length(args), /*capped=*/false, geometry);
@@ -132,11 +234,13 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
       break;
     case TurtleOp::Push:
       stack_.push_back(s);
+      s.gc = -1;  // a branch does not extend its parent's generalized cylinder
       break;
     case TurtleOp::Pop:
       if (stack_.empty()) {
         ++warnings_.unmatchedPops;
       } else {
+        if (s.gc >= 0) finishGc(s.gc, /*caps=*/true, geometry);  // the branch's own tube ends
         s = stack_.back();
         stack_.pop_back();
       }
@@ -175,7 +279,154 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
     case TurtleOp::RollHorizontal:
       rollHorizontal();
       break;
+    case TurtleOp::Color:
+      if (count > 0 && args[0] < 0) {
+        ++warnings_.badArguments;
+      } else {
+        s.material = count > 0 ? static_cast<uint32_t>(std::fmod(std::floor(args[0]), kPaletteSize))
+                               : (s.material + 1) % kPaletteSize;
+      }
+      break;
+    case TurtleOp::Tropism: {
+      glm::dvec3 t(args[0], args[1], args[2]);
+      if (glm::length(t) == 0 && args[3] != 0) {
+        ++warnings_.badArguments;
+      } else {
+        tropism_ = args[3] == 0 ? glm::dvec3(0.0) : glm::normalize(t);
+        tropismStrength_ = args[3];
+      }
+      break;
+    }
+    case TurtleOp::Circle:
+    case TurtleOp::Section:
+    case TurtleOp::Point:
+    case TurtleOp::EndSection:
+    case TurtleOp::UseSection:
+    case TurtleOp::GcBegin:
+    case TurtleOp::GcEnd:
+      executeCylinderCommand(command.op, args, geometry);
+      break;
+    case TurtleOp::Ceiling:
+    case TurtleOp::Ground:
+    case TurtleOp::ObstacleSphere:
+    case TurtleOp::ObstacleBox:
+    case TurtleOp::Attractor:
+    case TurtleOp::Repeller:
+    case TurtleOp::MaxLength:
+    case TurtleOp::MaxDepth:
+      executeEnvironment(command.op, args);
+      break;
   }
+}
+
+void Turtle::executeCylinderCommand(TurtleOp op, std::span<const double> args, Geometry& geometry) {
+  TurtleState& s = state_;
+  switch (op) {
+    case TurtleOp::Circle: {
+      double points = args.empty() ? kDefaultCirclePoints : std::round(args[0]);
+      if (points < 3 || points > kMaxCirclePoints) {
+        ++warnings_.badArguments;
+      } else {
+        s.section = -static_cast<int>(points);
+      }
+      break;
+    }
+    case TurtleOp::Section: {
+      double id = std::round(args[0]);
+      if (id < 0 || id > kMaxSectionId) {
+        ++warnings_.badArguments;
+      } else {
+        definingSection_ = static_cast<int>(id);
+        pendingSection_ = GcSection{};
+      }
+      break;
+    }
+    case TurtleOp::Point:
+      if (!definingSection_) {
+        ++warnings_.badArguments;
+      } else {
+        pendingSection_.points.emplace_back(args[0], args[1]);
+      }
+      break;
+    case TurtleOp::EndSection:
+      if (!definingSection_ || pendingSection_.points.size() < 3) {
+        ++warnings_.badArguments;
+      } else {
+        sections_[*definingSection_] = std::move(pendingSection_);
+      }
+      definingSection_.reset();
+      pendingSection_ = GcSection{};
+      break;
+    case TurtleOp::UseSection: {
+      double id = std::round(args[0]);
+      if (id < 0 || id > kMaxSectionId || !sections_.contains(static_cast<int>(id))) {
+        ++warnings_.badArguments;
+      } else {
+        s.section = static_cast<int>(id);
+      }
+      break;
+    }
+    case TurtleOp::GcBegin:
+      if (s.gc >= 0) finishGc(s.gc, /*caps=*/true, geometry);
+      s.gc = static_cast<int>(gcs_.size());
+      gcs_.push_back(OpenGc{{{s.position, s.left, s.radius, section(s.section)}}, s.material, true});
+      break;
+    case TurtleOp::GcEnd:
+      if (s.gc < 0) {
+        ++warnings_.badArguments;
+      } else {
+        finishGc(s.gc, args.empty() || args[0] != 0, geometry);
+        s.gc = -1;
+      }
+      break;
+    default:
+      break;
+  }
+}
+
+void Turtle::executeEnvironment(TurtleOp op, std::span<const double> args) {
+  Environment& e = environment_;
+  switch (op) {
+    case TurtleOp::Ceiling: e.ceiling = args[0]; break;
+    case TurtleOp::Ground: e.ground = args[0]; break;
+    case TurtleOp::ObstacleSphere:
+      if (args[3] <= 0) {
+        ++warnings_.badArguments;
+        return;
+      }
+      e.spheres.push_back({{args[0], args[1], args[2]}, args[3]});
+      break;
+    case TurtleOp::ObstacleBox: {
+      glm::dvec3 a(args[0], args[1], args[2]), b(args[3], args[4], args[5]);
+      e.boxes.push_back({glm::min(a, b), glm::max(a, b)});
+      break;
+    }
+    case TurtleOp::Attractor:
+    case TurtleOp::Repeller:
+      if (args[3] < 0 || args[4] <= 0) {
+        ++warnings_.badArguments;
+        return;
+      }
+      e.influences.push_back({{args[0], args[1], args[2]}, op == TurtleOp::Attractor ? args[3] : -args[3], args[4]});
+      break;
+    case TurtleOp::MaxLength:
+      if (args[0] < 0) {
+        ++warnings_.badArguments;
+        return;
+      }
+      e.maxLength = args[0];
+      break;
+    case TurtleOp::MaxDepth:
+      if (args[0] < 0) {
+        ++warnings_.badArguments;
+        return;
+      }
+      e.maxDepth = std::floor(args[0]);
+      break;
+    default:
+      return;
+  }
+  environmentActive_ = !e.empty();
 }
 
 }  // namespace ontogen

@@ -8,12 +8,16 @@
 // their cross product), so it stays orthonormal to rounding over millions of commands.
 
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "interpreters/environment.h"
+#include "interpreters/gc_mesher.h"
 #include "interpreters/geometry.h"
 #include "interpreters/turtle_commands.h"
 
@@ -35,12 +39,17 @@ struct TurtleState {
   glm::dvec3 left{-1.0, 0.0, 0.0};    ///< L, unit
   glm::dvec3 up{0.0, 0.0, 1.0};       ///< U = H x L, unit
   double radius = 0;                  ///< model units; 0 draws lines
+  uint32_t material = 0;              ///< palette index (color)
+  double depth = 0;                   ///< segments drawn by F on the path from the origin
+  int section = -12;                  ///< GC section: id >= 0, or -n for a circle of n points
+  int gc = -1;                        ///< the generalized cylinder F extends, or -1
 };
 
 /// Problems the turtle skipped over; the interpreter turns them into warnings.
 struct TurtleWarnings {
   int64_t unmatchedPops = 0;  ///< ] with an empty stack, ignored
   int64_t badArguments = 0;   ///< wrong arity, non-finite or negative radii: command ignored
+  int64_t blocked = 0;        ///< F that the environment stopped (obstacle, resource, depth)
 };
 
 /// Executes turtle commands into a Geometry.
@@ -49,8 +58,12 @@ class Turtle {
   /// Throws std::invalid_argument when def has a non-finite or negative field.
   explicit Turtle(const TurtleDef& def = {});
 
-  /// Back to the initial state: origin, ABOP frame, def radius, empty stack, no warnings.
+  /// Back to the initial state: origin, ABOP frame, def radius, empty stack, no warnings,
+  /// no tropism, empty environment, no sections, no open generalized cylinder.
   void reset();
+
+  /// Meshes every generalized cylinder still open into geometry (end of a frame).
+  void finish(Geometry& geometry);
 
   /// Executes the command named `command` with its evaluated arguments (lengths in model
   /// units, angles in degrees or radians per TurtleDef), drawing into geometry. Returns
@@ -67,21 +80,51 @@ class Turtle {
   const TurtleWarnings& warnings() const { return warnings_; }
   /// The settings the turtle was created with.
   const TurtleDef& def() const { return def_; }
+  /// The environment declared so far in this frame.
+  const Environment& environment() const { return environment_; }
+  /// Total length drawn by F and cC since the last reset, model units.
+  double drawnLength() const { return drawnLength_; }
 
  private:
   double length(std::span<const double> args) const;
   /// Draws a cylinder of the current radius (a line when 0) along H and moves to its end.
-  void drawForward(double distance, bool capped, Geometry& geometry);
+  void drawForward(double requested, bool capped, Geometry& geometry);
   double angle(std::span<const double> args, double fallback) const;
   /// a' = a cos t + b sin t, b' = b cos t - a sin t: a turns towards b by t radians.
   void rotate(glm::dvec3& a, glm::dvec3& b, double radians);
   void orthonormalise();
   void rollHorizontal();
+  /// Turns the frame by the smallest rotation that takes H to the unit vector heading.
+  void turnHeadingTo(const glm::dvec3& heading);
+  /// Applies tropism, the environment and the limits before a forward move; returns the
+  /// distance to move, or nullopt when the move is blocked.
+  std::optional<double> prepareForward(double distance);
+  const GcSection* section(int key);
+  void finishGc(int index, bool caps, Geometry& geometry);
+  void executeEnvironment(TurtleOp op, std::span<const double> args);
+  void executeCylinderCommand(TurtleOp op, std::span<const double> args, Geometry& geometry);
+
+  /// A generalized cylinder being built.
+  struct OpenGc {
+    std::vector<GcControlPoint> points;
+    uint32_t material = 0;
+    bool open = true;
+  };
 
   TurtleDef def_;
   TurtleState state_;
   std::vector<TurtleState> stack_;
   TurtleWarnings warnings_;
+  glm::dvec3 tropism_{0.0};
+  double tropismStrength_ = 0;
+  Environment environment_;
+  bool environmentActive_ = false;
+  double drawnLength_ = 0;
+  std::map<int, GcSection> sections_;   // by id
+  std::map<int, GcSection> circles_;    // by point count
+  std::optional<int> definingSection_;
+  GcSection pendingSection_;
+  std::vector<OpenGc> gcs_;
 };
 
 }  // namespace ontogen

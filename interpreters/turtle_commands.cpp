@@ -48,6 +48,54 @@ constexpr std::array kCommands = {
     TurtleCommand{"$", TurtleOp::RollHorizontal, 0, 0, "$",
                   "roll about H so that L is horizontal (world up is +y); ignored when H "
                   "is vertical"},
+    TurtleCommand{"color", TurtleOp::Color, 0, 1, "color(i)",
+                  "draw with palette colour i (0..15, taken modulo 16; default: the next "
+                  "colour); `;` separates instructions, so colour has a name"},
+    TurtleCommand{"tropism", TurtleOp::Tropism, 4, 4, "tropism(x, y, z, e)",
+                  "before each F, bend H towards the vector (x, y, z) by e |H x T| radians "
+                  "(ABOP 2.4); e = 0 turns tropism off"},
+    TurtleCommand{"circle", TurtleOp::Circle, 0, 1, "circle(n)",
+                  "generalized cylinders from here use a circular cross-section of n points "
+                  "(default 12, 3..1024)"},
+    TurtleCommand{"section", TurtleOp::Section, 1, 1, "section(id)",
+                  "start defining the closed polyline cross-section number id (0..1023) from "
+                  "the point commands that follow"},
+    TurtleCommand{"point", TurtleOp::Point, 2, 2, "point(x, y)",
+                  "add the point (x, y) to the section being defined; x along L, y along U, "
+                  "anticlockwise, scaled by the radius"},
+    TurtleCommand{"endsection", TurtleOp::EndSection, 0, 0, "endsection",
+                  "finish the section being defined (it needs at least 3 points)"},
+    TurtleCommand{"usesection", TurtleOp::UseSection, 1, 1, "usesection(id)",
+                  "generalized cylinders from here use the defined section id"},
+    TurtleCommand{"gcbegin", TurtleOp::GcBegin, 0, 0, "gcbegin",
+                  "start a generalized cylinder here: each F adds a control point instead "
+                  "of a cylinder"},
+    TurtleCommand{"gcend", TurtleOp::GcEnd, 0, 1, "gcend(caps)",
+                  "finish the generalized cylinder: a smooth tube through its control "
+                  "points; caps != 0 (default 1) closes both ends"},
+    TurtleCommand{"ceiling", TurtleOp::Ceiling, 1, 1, "ceiling(h)",
+                  "environment: the plane y = h, which no segment crosses upwards"},
+    TurtleCommand{"ground", TurtleOp::Ground, 1, 1, "ground(h)",
+                  "environment: the plane y = h, which no segment crosses downwards"},
+    TurtleCommand{"obstaclesphere", TurtleOp::ObstacleSphere, 4, 4,
+                  "obstaclesphere(x, y, z, r)",
+                  "environment: a sphere of radius r at (x, y, z) that growth goes around"},
+    TurtleCommand{"obstaclebox", TurtleOp::ObstacleBox, 6, 6,
+                  "obstaclebox(x0, y0, z0, x1, y1, z1)",
+                  "environment: an axis-aligned box between two corners that growth goes "
+                  "around"},
+    TurtleCommand{"attractor", TurtleOp::Attractor, 5, 5,
+                  "attractor(x, y, z, strength, falloff)",
+                  "environment: before each F, bend H towards (x, y, z) by strength |H x D| / "
+                  "(1 + (d / falloff)^2) radians"},
+    TurtleCommand{"repeller", TurtleOp::Repeller, 5, 5, "repeller(x, y, z, strength, falloff)",
+                  "environment: like attractor, bending H away from the point"},
+    TurtleCommand{"maxlength", TurtleOp::MaxLength, 1, 1, "maxlength(L)",
+                  "environment: resource limit, at most L units drawn by F in the frame; the "
+                  "segment that reaches it is shortened"},
+    TurtleCommand{"maxdepth", TurtleOp::MaxDepth, 1, 1, "maxdepth(n)",
+                  "environment: generation limit, F draws only the first n segments of "
+                  "each path from the origin"},
 };
 
 }  // namespace

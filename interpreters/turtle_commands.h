@@ -37,6 +37,23 @@ enum class TurtleOp {
   Disc,            ///< disc
   Sphere,          ///< sphere
   RollHorizontal,  ///< $
+  Color,           ///< color
+  Tropism,         ///< tropism
+  Circle,          ///< circle: select a circular cross-section
+  Section,         ///< section: start defining a polyline cross-section
+  Point,           ///< point: add a point to the section being defined
+  EndSection,      ///< endsection
+  UseSection,      ///< usesection
+  GcBegin,         ///< gcbegin: start a generalized cylinder
+  GcEnd,           ///< gcend: finish it
+  Ceiling,         ///< ceiling: environment plane growth cannot pass upwards
+  Ground,          ///< ground: environment plane growth cannot pass downwards
+  ObstacleSphere,  ///< obstaclesphere
+  ObstacleBox,     ///< obstaclebox
+  Attractor,       ///< attractor
+  Repeller,        ///< repeller
+  MaxLength,       ///< maxlength: resource limit
+  MaxDepth,        ///< maxdepth: generation limit
 };
 
 /// One row of the table.

@@ -377,9 +377,15 @@ class Compiler {
 
   // Finds or creates the master a module label refers to in a scope, and checks that
   // every use gives it the same number of parameters.
-  int resolveModule(const ast::Module& module, int scope) {
+  // In an lsystem (scope >= 0) a symbol it has not seen becomes its own master, except
+  // a declared top-level `cell` named in a successor or the axiom: that means the cell,
+  // with its interpret blocks. A predecessor is always the lsystem's own (its
+  // productions must not change a cell other systems share); predecessors are resolved
+  // first, so a label with a production stays local throughout the block.
+  int resolveModule(const ast::Module& module, int scope, bool predecessor = false) {
     int index = program_->findMaster(module.label, scope);
-    if (index < 0 || (scope >= 0 && program_->masters[index].scope != scope))
+    const bool sharedCell = index >= 0 && !predecessor && program_->masters[index].declared;
+    if (index < 0 || (scope >= 0 && program_->masters[index].scope != scope && !sharedCell))
       index = addMaster(module.label, scope, module.span);
     MasterCell& master = program_->masters[index];
     if (module.age) master.timedNotation = true;
@@ -393,7 +399,7 @@ class Compiler {
         master.stateNames.push_back(name);
         master.defaults.push_back(0);
       }
-    } else if (master.declared && scope == -1) {
+    } else if (master.declared && master.scope == -1) {
       if (count > static_cast<int>(master.stateCount()))
         sink_.error(module.span, "cell '" + master.label + "' has " + std::to_string(master.stateCount()) +
                                      " state variable" + (master.stateCount() == 1 ? "" : "s") + ", given " +
@@ -614,7 +620,7 @@ class Compiler {
     std::map<int, std::pair<double, SourceSpan>> terminal;
     std::vector<std::pair<int, const ast::Rule*>> productions;
     for (const auto& production : system.productions) {
-      int master = resolveModule(production.predecessor, index);
+      int master = resolveModule(production.predecessor, index, /*predecessor=*/true);
       double age = 1.0;
       if (production.predecessor.age) {
         auto value = evaluateConstant(*production.predecessor.age, constantLookup(scope), sink_, "a terminal age");

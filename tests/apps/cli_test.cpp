@@ -1,5 +1,6 @@
 // The ontogen executable as a user meets it: exit codes, messages, files written.
 
+#include <cstdlib>
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -115,7 +116,7 @@ TEST(Cli, WordTextInTheStyleOfTable1) {
 
 TEST(Cli, RunWritesOneNumberedOutputPerFrame) {
   fs::path out = scratch("frames");
-  Result result = ontogen("run " + model("piston.cell") + " --until 4 --frames 3 --interpret geometry,trace --out " +
+  Result result = ontogen("run " + model("piston.cell") + " --until 4 --frames 3 --interpret geometry,trace --format svg,obj --out " +
                           out.string() + " --stats");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   for (const char* name : {"piston_0000.svg", "piston_0001.obj", "piston_0002.txt"})
@@ -187,3 +188,54 @@ TEST(Cli, WordJsonIsTheSameOnOneThreadAndOnAll) {
   }
 }
 }  // namespace
+
+namespace {
+
+std::string program(const std::string& name) { return std::string(ONTOGEN_SOURCE_DIR) + "/tests/programs/" + name; }
+
+}  // namespace
+
+TEST(Cli, DeclaredCellNamedInAnLsystemIsDrawnThroughItsInterpretBlock) {
+  fs::path out = scratch("cell_in_lsystem");
+  Result result = ontogen("run " + program("cell_in_lsystem.cell") + " --format obj --out " + out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  std::string obj = readFile(out / "cell_in_lsystem.obj");
+  // X(3) draws F(3) through its block, then F(1): one chain of two lines up to y = 4.
+  EXPECT_NE(obj.find("v 0 3 0\nv 0 4 0\n"), std::string::npos) << obj;
+  EXPECT_NE(obj.find("l 1 2\nl 2 3\n"), std::string::npos) << obj;
+}
+
+TEST(Cli, RunWritesGlbAndPngByDefaultAndRejectsUnknownFormats) {
+  fs::path out = scratch("default_formats");
+  Result result = ontogen("run " + model("horn_gc.cell") + " --size 64x48 --out " + out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_TRUE(fs::exists(out / "horn_gc.glb"));
+  EXPECT_TRUE(fs::exists(out / "horn_gc.png"));
+  Result bad = ontogen("run " + model("horn_gc.cell") + " --format glb,gltf --out " + out.string());
+  EXPECT_EQ(bad.exitCode, 2) << bad.err;
+  EXPECT_NE(bad.err.find("unknown format 'gltf'"), std::string::npos) << bad.err;
+  Result size = ontogen("run " + model("horn_gc.cell") + " --size big --out " + out.string());
+  EXPECT_NE(size.exitCode, 0);
+  EXPECT_NE(size.err.find("WIDTHxHEIGHT"), std::string::npos) << size.err;
+}
+
+TEST(Cli, GeometryModelsRunAndWriteValidOutputs) {
+  const fs::path modules = fs::path(ONTOGEN_SOURCE_DIR) / ".tools" / "node_modules";
+  const bool validator = fs::exists(modules / "gltf-validator" / "package.json");
+  for (const char* name : {"horn_cylinders", "horn_gc", "cube", "replicator", "plant_ceiling", "flower", "piston"}) {
+    fs::path out = scratch(std::string("model_") + name);
+    Result result = ontogen("run " + model(std::string(name) + ".cell") + " --frames 3 --size 96x96 --format glb,png,obj --out " +
+                            out.string());
+    ASSERT_EQ(result.exitCode, 0) << name << ": " << result.err;
+    EXPECT_TRUE(fs::exists(out / (std::string(name) + ".png"))) << name;
+    EXPECT_TRUE(fs::exists(out / (std::string(name) + "_0002.obj"))) << name;
+    const fs::path glb = out / (std::string(name) + ".glb");
+    ASSERT_TRUE(fs::exists(glb)) << name;
+    if (!validator) continue;
+    const std::string script = std::string(ONTOGEN_SOURCE_DIR) + "/tests/interpreters/validate_gltf.js";
+    const std::string command = "node '" + script + "' '" + modules.string() + "' '" + glb.string() + "' > '" +
+                                (out / "report.txt").string() + "' 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << name << ": " << readFile(out / "report.txt");
+  }
+  if (!validator) GTEST_SKIP() << "gltf-validator not installed (bash .ci/setup installs it)";
+}

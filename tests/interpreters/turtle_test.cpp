@@ -438,10 +438,13 @@ TEST(TurtleCommandsTest, TableIsCompleteAndConsistent) {
     EXPECT_EQ(findTurtleCommand(c.name), &c);
   }
   for (std::string_view name : {"F", "f", "+", "-", "&", "^", "\\", "/", "<", ">", "|", "[", "]",
-                                "!", "cC", "disc", "sphere", "$"}) {
+                                "!", "cC", "disc", "sphere", "$", "color", "tropism", "circle", "section",
+                                "point", "endsection", "usesection", "gcbegin", "gcend", "ceiling", "ground",
+                                "obstaclesphere", "obstaclebox", "attractor", "repeller", "maxlength",
+                                "maxdepth"}) {
     EXPECT_NE(findTurtleCommand(name), nullptr) << name;
   }
-  EXPECT_EQ(names.size(), 18u);
+  EXPECT_EQ(names.size(), 35u);
   EXPECT_EQ(findTurtleCommand("c"), nullptr);
 }
 
