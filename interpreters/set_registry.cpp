@@ -3,12 +3,13 @@
 #include <stdexcept>
 
 #include "interpreters/geometry_set.h"
+#include "interpreters/image_set.h"
 #include "interpreters/trace_set.h"
 #include "interpreters/turtle_commands.h"
 
 namespace ontogen {
 
-std::vector<std::string> interpretationSetNames() { return {"geometry", "trace"}; }
+std::vector<std::string> interpretationSetNames() { return {"geometry", "image", "trace"}; }
 
 std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings) {
   return makeInterpretationSet(name, settings, SetOptions{.formats = "svg,obj"});
@@ -29,6 +30,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     return std::make_unique<GeometrySet>(def);
   }
   if (name == "trace") return std::make_unique<TraceSet>();
+  if (name == "image") return std::make_unique<ImageSet>();
   return nullptr;
 }
 
@@ -43,6 +45,12 @@ std::vector<CommandSetInfo> commandSets() {
                     }();
                     for (const CommandInfo& info : infos)
                       if (info.name == command) return &info;
+                    return nullptr;
+                  }});
+  sets.push_back({"image", [](std::string_view command) -> const CommandInfo* {
+                    static const CommandInfo pixel{"pixel", 3, 3}, range{"range", 2, 2};
+                    if (command == "pixel") return &pixel;
+                    if (command == "range") return &range;
                     return nullptr;
                   }});
   sets.push_back({"trace", [](std::string_view command) -> const CommandInfo* {

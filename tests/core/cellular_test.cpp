@@ -331,3 +331,51 @@ TEST(Cellular, PositionalContextDoesNotFitASpatialPool) {
 
 }  // namespace
 }  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+// Gray-Scott "mitosis": the square of v splits into separate spots, which keep their
+// height (v near 0.3 to 0.45 at their centres) instead of dying out or flooding the dish.
+TEST(Models, GrayScottSplitsIntoSpots) {
+  auto program = testing_support::compileModel("gray_scott.cell");
+  World world(program);
+  world.advanceTo(1200, program->dt);
+  const GridPool& grid = world.gridPool();
+  const int side = 64;
+  std::vector<double> v(side * side);
+  for (size_t i = 0; i < grid.size(); ++i) {
+    const auto c = grid.coordinates(grid.siteOf(i));
+    v[c[1] * side + c[0]] = grid.stateOf(grid.cells()[i])[1];
+  }
+  // Spots: 4-connected components of v > 0.2 on the torus.
+  std::vector<int> component(v.size(), -1);
+  int spots = 0;
+  size_t covered = 0;
+  for (size_t start = 0; start < v.size(); ++start) {
+    if (v[start] <= 0.2 || component[start] >= 0) continue;
+    std::vector<size_t> stack{start};
+    component[start] = spots;
+    while (!stack.empty()) {
+      const size_t at = stack.back();
+      stack.pop_back();
+      ++covered;
+      const int x = static_cast<int>(at % side), y = static_cast<int>(at / side);
+      const int nx[4] = {(x + 1) % side, (x + side - 1) % side, x, x}, ny[4] = {y, y, (y + 1) % side, (y + side - 1) % side};
+      for (int k = 0; k < 4; ++k) {
+        const size_t next = static_cast<size_t>(ny[k] * side + nx[k]);
+        if (v[next] > 0.2 && component[next] < 0) {
+          component[next] = spots;
+          stack.push_back(next);
+        }
+      }
+    }
+    ++spots;
+  }
+  EXPECT_GE(spots, 4) << "the square has split";
+  EXPECT_LT(covered, v.size() / 3) << "spots, not a flood";
+  EXPECT_GT(*std::max_element(v.begin(), v.end()), 0.3);
+}
+
+}  // namespace
+}  // namespace ontogen

@@ -9,7 +9,6 @@
 #include <utility>
 #include <vector>
 
-#include <png.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,6 +17,7 @@
 #include "interpreters/geometry_set.h"
 #include "interpreters/glb_writer.h"
 #include "interpreters/renderer.h"
+#include "tests/interpreters/png_decode.h"
 
 namespace ontogen {
 namespace {
@@ -58,25 +58,8 @@ std::pair<int, std::string> validateGlb(const fs::path& file) {
   return runCommand("node '" + script.string() + "' '" + validatorModules() + "' '" + file.string() + "' 2>&1");
 }
 
-struct Decoded {
-  bool ok = false;
-  int width = 0, height = 0;
-  std::vector<uint8_t> rgb;
-};
-
-Decoded decodePng(const fs::path& file) {
-  Decoded d;
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, file.c_str())) return d;
-  image.format = PNG_FORMAT_RGB;
-  d.rgb.resize(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, d.rgb.data(), 0, nullptr)) return d;
-  d.ok = true;
-  d.width = static_cast<int>(image.width);
-  d.height = static_cast<int>(image.height);
-  return d;
-}
+using Decoded = testing_support::DecodedPng;
+using testing_support::decodePng;
 
 class OutputsTest : public ::testing::Test {
  protected:

@@ -1,0 +1,47 @@
+#pragma once
+// The "image" interpretation set: a picture of a grid (or any pool whose cells know
+// where they are), one pixel block per site, coloured through a colour map. A cell
+// paints its site with `pixel(x, y, value)`; `range(lo, hi)` sets the values that map to
+// the ends of the colour map (default 0 and 1; outside, the end colours). Sites no cell
+// paints stay black. The frame is written as DIR/<stem>[_NNNN].png, each site scaled up
+// to a square of whole pixels so that the picture is at least 512 pixels wide.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "interpreters/interpretation_set.h"
+
+namespace ontogen {
+
+struct PaintedSite {
+  int x = 0;
+  int y = 0;
+  double value = 0;
+};
+
+/// The colour map (after matplotlib's viridis: dark blue, teal, green, yellow) at
+/// t in [0, 1]; t outside is clamped, NaN is black.
+std::array<uint8_t, 3> colourMap(double t);
+
+class ImageSet final : public InterpretationSet {
+ public:
+  std::string_view name() const override { return "image"; }
+  bool knows(std::string_view command) const override { return command == "pixel" || command == "range"; }
+  void beginFrame(const FrameTarget& target) override;
+  void execute(std::string_view command, std::span<const double> args) override;
+  std::vector<std::filesystem::path> endFrame() override;
+
+  /// The sites painted in the current frame (for tests).
+  const std::vector<PaintedSite>& sites() const { return sites_; }
+
+ private:
+  FrameTarget target_;
+  std::vector<PaintedSite> sites_;
+  double low_ = 0, high_ = 1;
+};
+
+/// Most sites along a side: a picture of a larger grid is an error, not a huge file.
+inline constexpr int kMaxImageSide = 8192;
+
+}  // namespace ontogen
