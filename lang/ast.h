@@ -150,7 +150,14 @@ struct System {
   std::vector<SymbolList> consider;
 };
 
+/// `import "lib.cell";`: a file whose declarations join the program's.
+struct Import {
+  SourceSpan span;
+  std::string path;  ///< as written, relative to the importing file
+};
+
 struct Program {
+  std::vector<Import> imports;
   std::vector<Define> defines;
   std::vector<Equiv> equivs;
   std::vector<Setting> settings;

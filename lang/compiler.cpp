@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "lang/expression_compiler.h"
+#include "lang/imports.h"
 #include "lang/parser.h"
 #include "lang/system_tree.h"
 
@@ -89,10 +90,12 @@ class Compiler {
   Compiler(const ast::Program& tree, DiagnosticSink& sink, const CompileOptions& options)
       : tree_(tree), sink_(sink), options_(options) {}
 
-  std::unique_ptr<Program> run(std::shared_ptr<const SourceFile> source) {
-    sink_.retain(source);
+  std::unique_ptr<Program> run(std::vector<std::shared_ptr<const SourceFile>> sources) {
     program_ = std::make_unique<Program>();
-    program_->sources.push_back(std::move(source));
+    for (auto& source : sources) {
+      sink_.retain(source);
+      program_->sources.push_back(std::move(source));
+    }
     global_.system = -1;
     defines(tree_.defines, global_);
     equivs(tree_.equivs, global_);
@@ -121,6 +124,14 @@ class Compiler {
   }
 
  private:
+  // "file:line" of a declaration (the file's name without its folders), for messages
+  // that name two places.
+  static std::string where(const SourceSpan& span) {
+    if (!span.file) return "?";
+    const std::string& name = span.file->name();
+    return name.substr(name.find_last_of('/') + 1) + ":" + std::to_string(span.line());
+  }
+
   // ---- constants, equivs, settings, functions ----
   NameLookup constantLookup(const Scope& scope) {
     NameLookup names;
@@ -301,7 +312,8 @@ class Compiler {
   void declareCells() {
     for (const auto& cell : tree_.cells) {
       if (program_->findMaster(cell.name, -1) >= 0) {
-        sink_.error(cell.nameSpan, "cell '" + cell.name + "' is defined twice");
+        sink_.error(cell.nameSpan, "cell '" + cell.name + "' is defined twice (also at " +
+                                       where(program_->masters[program_->findMaster(cell.name, -1)].span) + ")");
         continue;
       }
       int index = addMaster(cell.name, -1, cell.nameSpan);
@@ -347,8 +359,8 @@ class Compiler {
         continue;
       }
       if (int other = program_->findMaster(system.name, -1); other >= 0) {
-        sink_.error(system.nameSpan, "'" + system.name + "' is already a cell (line " +
-                                         std::to_string(program_->masters[other].span.line()) +
+        sink_.error(system.nameSpan, "'" + system.name + "' is already a cell (at " +
+                                         where(program_->masters[other].span) +
                                          "); a system's name labels its cell, so the two need different names");
         continue;
       }
@@ -421,7 +433,8 @@ class Compiler {
     if (auto it = systemMaster_.find(static_cast<size_t>(index)); it != systemMaster_.end())
       definition.master = it->second;
     for (const auto& other : program_->systems)
-      if (other.name == system.name) sink_.error(system.nameSpan, "system '" + system.name + "' is defined twice");
+      if (other.name == system.name)
+        sink_.error(system.nameSpan, "system '" + system.name + "' is defined twice (also at " + where(other.span) + ")");
     if (system.poolKind == "linear") {
       definition.poolKind = PoolKind::Linear;
       if (!system.poolArgs.empty() || !system.poolOptions.empty())
@@ -1220,16 +1233,20 @@ class Compiler {
 
 std::unique_ptr<Program> compile(const ast::Program& tree, std::shared_ptr<const SourceFile> source,
                                  DiagnosticSink& sink, const CompileOptions& options) {
-  return Compiler(tree, sink, options).run(std::move(source));
+  return Compiler(tree, sink, options).run({std::move(source)});
+}
+
+std::unique_ptr<Program> compile(const ast::Program& tree, std::vector<std::shared_ptr<const SourceFile>> sources,
+                                 DiagnosticSink& sink, const CompileOptions& options) {
+  return Compiler(tree, sink, options).run(std::move(sources));
 }
 
 std::unique_ptr<Program> compileSource(std::string name, std::string text, DiagnosticSink& sink,
                                        const CompileOptions& options) {
   auto source = std::make_shared<const SourceFile>(std::move(name), std::move(text));
-  sink.retain(source);
-  ast::Program tree = parse(*source, sink);
+  ParsedProgram parsed = parseWithImports(std::move(source), sink);
   if (sink.hasErrors()) return nullptr;
-  return compile(tree, std::move(source), sink, options);
+  return compile(parsed.tree, std::move(parsed.sources), sink, options);
 }
 
 }  // namespace ontogen

@@ -37,8 +37,12 @@ struct CompileOptions {
 /// Compiles a parsed program whose text is `source`. Returns null when there were errors.
 std::unique_ptr<Program> compile(const ast::Program& tree, std::shared_ptr<const SourceFile> source,
                                  DiagnosticSink& sink, const CompileOptions& options = {});
+/// The same for a program merged from several files (lang/imports.h), the main one first.
+std::unique_ptr<Program> compile(const ast::Program& tree, std::vector<std::shared_ptr<const SourceFile>> sources,
+                                 DiagnosticSink& sink, const CompileOptions& options = {});
 
-/// Parses and compiles a program text in one call.
+/// Parses and compiles a program text in one call, with the files it imports (paths
+/// relative to the directory of `name`).
 std::unique_ptr<Program> compileSource(std::string name, std::string text, DiagnosticSink& sink,
                                        const CompileOptions& options = {});
 

@@ -162,12 +162,21 @@ class Parser {
     statement_ = top;
     if (check(TokenKind::Directive)) return directive(program.defines, program.settings);
     if (checkWord("equiv")) return program.equivs.push_back(equiv(Statement{true, peek().column}));
+    if (checkWord("import")) return program.imports.push_back(importStatement());
     if (checkWord("cell")) return program.cells.push_back(cell());
     if (checkWord("system")) return program.systems.push_back(system());
     if (checkWord("lsystem")) return program.systems.push_back(lsystem());
     if ((checkWord("g") || checkWord("develop")) && peek(1).kind == TokenKind::Identifier)
       return program.functions.push_back(inStatement(Statement{true, peek().column}, [&] { return function(); }));
-    failHere("'cell', 'system', 'lsystem', 'equiv', 'g' or a directive such as '#define'");
+    failHere("'cell', 'system', 'lsystem', 'equiv', 'import', 'g' or a directive such as '#define'");
+  }
+
+  Import importStatement() {
+    const Token& keyword = advance();
+    const Token& path = expect(TokenKind::String, " (the file to import, in double quotes: import \"lib.cell\";)");
+    Import result{keyword.span.to(path.span), path.text};
+    match(TokenKind::Semicolon);
+    return result;
   }
 
   void directive(std::vector<Define>& defines, std::vector<Setting>& settings) {

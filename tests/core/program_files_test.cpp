@@ -91,7 +91,7 @@ TEST_P(ProgramFile, BehavesAsWritten) {
   DiagnosticSink sink;
   CompileOptions options;
   options.commandSets = commandSets();
-  std::shared_ptr<const Program> program = compileSource(path.filename().string(), text, sink, options);
+  std::shared_ptr<const Program> program = compileSource(path.string(), text, sink, options);
 
   std::vector<std::tuple<int, int, std::string>> reported;
   for (const auto& d : sink.diagnostics())
