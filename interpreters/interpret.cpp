@@ -16,6 +16,7 @@ void interpretWord(const World& world, InterpretationSet& set) {
   // Whether the set knows each master's command, asked once per master, not per cell.
   std::vector<int8_t> known(program.masters.size(), -1);
   const auto cells = pool.cells();
+  set.beginWord(world.time());
   for (size_t i = 0; i < cells.size(); ++i) {
     const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
@@ -32,6 +33,7 @@ void interpretWord(const World& world, InterpretationSet& set) {
       internal[FrameSlot::kX] = position[0];
       internal[FrameSlot::kY] = position[1];
       internal[FrameSlot::kZ] = position[2];
+      set.beginCell({cell.id, cell.birth, master.lifetime, world.time()});
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
       for (const Instruction& instruction : block->instructions) {
@@ -45,8 +47,10 @@ void interpretWord(const World& world, InterpretationSet& set) {
     if (knows < 0) knows = set.knows(master.command) ? 1 : 0;
     if (!knows) continue;
     world.developedValues(cell, developed);
+    set.beginCell({cell.id, cell.birth, master.lifetime, world.time()});
     set.execute(master.command, developed);
   }
+  set.endWord();
 }
 
 std::vector<std::filesystem::path> interpretFrame(const World& world, InterpretationSet& set,

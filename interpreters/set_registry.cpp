@@ -1,12 +1,14 @@
 #include "interpreters/set_registry.h"
 
 #include "interpreters/geometry_set.h"
+#include "interpreters/music_commands.h"
+#include "interpreters/music_set.h"
 #include "interpreters/trace_set.h"
 #include "interpreters/turtle_commands.h"
 
 namespace ontogen {
 
-std::vector<std::string> interpretationSetNames() { return {"geometry", "trace"}; }
+std::vector<std::string> interpretationSetNames() { return {"geometry", "music", "trace"}; }
 
 std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings) {
   if (name == "geometry") {
@@ -18,6 +20,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     def.turtle.radians = settings.radians;
     return std::make_unique<GeometrySet>(def);
   }
+  if (name == "music") return std::make_unique<MusicSet>(MusicSet::defFrom(settings.music));
   if (name == "trace") return std::make_unique<TraceSet>();
   return nullptr;
 }
@@ -35,6 +38,18 @@ std::vector<CommandSetInfo> commandSets() {
                       if (info.name == command) return &info;
                     return nullptr;
                   }});
+  sets.push_back({"music",
+                  [](std::string_view command) -> const CommandInfo* {
+                    static const std::vector<CommandInfo> infos = [] {
+                      std::vector<CommandInfo> list;
+                      for (const MusicCommand& c : musicCommands()) list.push_back({c.name, c.minArity, c.maxArity});
+                      return list;
+                    }();
+                    for (const CommandInfo& info : infos)
+                      if (info.name == command) return &info;
+                    return nullptr;
+                  },
+                  musicConstant});
   sets.push_back({"trace", [](std::string_view command) -> const CommandInfo* {
                     static thread_local CommandInfo any;
                     any = {command, 0, -1};
