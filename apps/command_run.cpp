@@ -1,4 +1,5 @@
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -67,16 +68,38 @@ int runRun(const RunOptions& options) {
   try {
     World world(loaded->program, def);
     ProgressBar progress("growing " + loaded->stem);
+    // Sets that follow the development (music in developmental time) see the word at the
+    // start and after every step, between frames too; the others see one word a frame.
+    std::vector<InterpretationSet*> following;
+    for (auto& set : sets)
+      if (set->followsDevelopment()) {
+        following.push_back(set.get());
+        set->beginFrame(FrameTarget{options.out, loaded->stem, 0, 1, 0});
+        interpretWord(world, *set);
+      }
     for (int frame = 0; frame < frames; ++frame) {
       // Frames are spread over [0, until] (one frame: the state at `until`).
       double t = frames == 1 ? until : until * frame / (frames - 1);
+      if (!following.empty()) {
+        // The next instant of the step grid k * dt, where per-step rules fire.
+        auto nextStep = [&] { return (std::floor(world.time() / dt + 1e-9) + 1) * dt; };
+        for (double next = nextStep(); next < t - timeTolerance(t); next = nextStep()) {
+          world.advanceTo(next, dt);
+          for (InterpretationSet* set : following) interpretWord(world, *set);
+        }
+      }
+      bool moved = t > world.time();
       world.advanceTo(t, dt);
+      if (moved)
+        for (InterpretationSet* set : following) interpretWord(world, *set);
       for (auto& set : sets) {
+        if (set->followsDevelopment()) continue;
         FrameTarget target{options.out, loaded->stem, frame, frames, world.time()};
         written += interpretFrame(world, *set, target).size();
       }
       progress.update(frame + 1, frames);
     }
+    for (InterpretationSet* set : following) written += set->endFrame().size();
     progress.finish();
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (options.stats) {

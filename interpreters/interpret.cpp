@@ -4,9 +4,9 @@ namespace ontogen {
 
 namespace {
 constexpr uint64_t kInterpretSalt = 0x494e54455250ull;  // draws of interpretation blocks
-}
 
-void interpretWord(const World& world, InterpretationSet& set) {
+// One pool, then (recursively) the pools of its system cells.
+void interpretPool(const World& world, InterpretationSet& set) {
   const Program& program = world.program();
   const Pool& pool = world.rootPool();
   FunctionTable functions = program.functionTable();
@@ -32,6 +32,7 @@ void interpretWord(const World& world, InterpretationSet& set) {
       internal[FrameSlot::kX] = position[0];
       internal[FrameSlot::kY] = position[1];
       internal[FrameSlot::kZ] = position[2];
+      set.beginCell({cell.id, cell.birth, master.lifetime, world.time()});
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
       context.ancestors = world.ancestorValues();
@@ -45,6 +46,7 @@ void interpretWord(const World& world, InterpretationSet& set) {
       if (knows < 0) knows = set.knows(master.command) ? 1 : 0;
       if (knows) {
         world.developedValues(cell, developed);
+        set.beginCell({cell.id, cell.birth, master.lifetime, world.time()});
         set.execute(master.command, developed);
       }
     }
@@ -52,10 +54,17 @@ void interpretWord(const World& world, InterpretationSet& set) {
     // draws or plays starts from the state here and leaves it unchanged.
     if (const World* child = world.childOf(cell)) {
       set.execute("[", {});
-      interpretWord(*child, set);
+      interpretPool(*child, set);
       set.execute("]", {});
     }
   }
+}
+}  // namespace
+
+void interpretWord(const World& world, InterpretationSet& set) {
+  set.beginWord(world.time());
+  interpretPool(world, set);
+  set.endWord();
 }
 
 std::vector<std::filesystem::path> interpretFrame(const World& world, InterpretationSet& set,

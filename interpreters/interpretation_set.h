@@ -4,6 +4,7 @@
 // to the set chosen by name at run time. Sets never print; they report problems by
 // throwing OutputError and write files only in endFrame.
 
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <stdexcept>
@@ -27,6 +28,14 @@ struct FrameTarget {
   double time = 0;        ///< global time of the frame, seconds of developmental time
 };
 
+/// The cell whose instructions come next, for sets that follow cells over time.
+struct CellContext {
+  uint64_t id = 0;     ///< the cell's stable id
+  double birth = 0;    ///< global time at which the cell had age 0, seconds
+  double lifetime = 0; ///< terminal age, seconds (infinite: lives until an action removes it)
+  double time = 0;     ///< global time of the word being interpreted, seconds
+};
+
 class InterpretationSet {
  public:
   virtual ~InterpretationSet() = default;
@@ -42,6 +51,17 @@ class InterpretationSet {
   virtual void execute(std::string_view command, std::span<const double> args) = 0;
   /// Finishes the frame and writes its outputs; returns the paths written.
   virtual std::vector<std::filesystem::path> endFrame() = 0;
+
+  /// True for a set that follows the development over time (music in developmental
+  /// time): a run calls beginFrame once, interpretWord at the start and after every step
+  /// of the development, and endFrame at the end, instead of one frame per --frames.
+  virtual bool followsDevelopment() const { return false; }
+  /// Called by interpretWord before the first cell of a word, with the word's time.
+  virtual void beginWord(double /*time*/) {}
+  /// Called by interpretWord before the instructions of each cell the set realises.
+  virtual void beginCell(const CellContext& /*cell*/) {}
+  /// Called by interpretWord after the last cell of a word.
+  virtual void endWord() {}
 };
 
 }  // namespace ontogen

@@ -4,12 +4,14 @@
 
 #include "interpreters/geometry_set.h"
 #include "interpreters/image_set.h"
+#include "interpreters/music_commands.h"
+#include "interpreters/music_set.h"
 #include "interpreters/trace_set.h"
 #include "interpreters/turtle_commands.h"
 
 namespace ontogen {
 
-std::vector<std::string> interpretationSetNames() { return {"geometry", "image", "trace"}; }
+std::vector<std::string> interpretationSetNames() { return {"geometry", "image", "music", "trace"}; }
 
 std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings) {
   return makeInterpretationSet(name, settings, SetOptions{.formats = "svg,obj"});
@@ -29,6 +31,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     def.turtle.radians = settings.radians;
     return std::make_unique<GeometrySet>(def);
   }
+  if (name == "music") return std::make_unique<MusicSet>(MusicSet::defFrom(settings.music));
   if (name == "trace") return std::make_unique<TraceSet>();
   if (name == "image") return std::make_unique<ImageSet>();
   return nullptr;
@@ -53,6 +56,18 @@ std::vector<CommandSetInfo> commandSets() {
                     if (command == "range") return &range;
                     return nullptr;
                   }});
+  sets.push_back({"music",
+                  [](std::string_view command) -> const CommandInfo* {
+                    static const std::vector<CommandInfo> infos = [] {
+                      std::vector<CommandInfo> list;
+                      for (const MusicCommand& c : musicCommands()) list.push_back({c.name, c.minArity, c.maxArity});
+                      return list;
+                    }();
+                    for (const CommandInfo& info : infos)
+                      if (info.name == command) return &info;
+                    return nullptr;
+                  },
+                  musicConstant});
   sets.push_back({"trace", [](std::string_view command) -> const CommandInfo* {
                     static thread_local CommandInfo any;
                     any = {command, 0, -1};

@@ -81,6 +81,9 @@ struct Setting {
   SourceSpan span;
   std::string name;
   ExprPtr value;  ///< may be null (#radians)
+  std::string word = {};  ///< the word after #music
+  int numerator = 0;      ///< #timesig N/D
+  int denominator = 0;
 };
 
 struct Parameter {
@@ -93,6 +96,15 @@ struct Interpretation {
   SourceSpan span;
   std::string setName;
   std::vector<Module> instructions;
+};
+
+/// `interpret music mov(x) { ... }` in an L-system: how one of its symbols is realised,
+/// its parameters named as in the pattern.
+struct SymbolInterpretation {
+  SourceSpan symbolSpan;
+  std::string symbol;
+  std::vector<std::string> params;
+  Interpretation block;
 };
 
 /// `g mov(tau, beta) = 1 - cos(2 * pi * tau / beta)`.
@@ -145,6 +157,7 @@ struct System {
   std::vector<Equiv> equivs;            ///< scoped to the block
   std::vector<Setting> settings;        ///< scoped to the block
   std::vector<Rule> productions;        ///< L-systems
+  std::vector<SymbolInterpretation> interpretations;  ///< L-systems: `interpret SET X(a) { ... }`
   std::vector<DevelopmentFunction> functions;
   std::vector<SymbolList> ignore;
   std::vector<SymbolList> consider;

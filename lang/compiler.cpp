@@ -174,6 +174,15 @@ class Compiler {
         target.radians = false;
         continue;
       }
+      if (setting.name == "music") {
+        target.music.time = setting.word == "developmental" ? MusicTime::Developmental : MusicTime::Sequential;
+        continue;
+      }
+      if (setting.name == "timesig") {
+        target.music.timeSignatureNumerator = setting.numerator;
+        target.music.timeSignatureDenominator = setting.denominator;
+        continue;
+      }
       auto value = evaluateConstant(*setting.value, constantLookup(*scope), sink_, "#" + setting.name);
       if (!value) continue;
       if (setting.name == "angle") {
@@ -198,6 +207,21 @@ class Compiler {
           sink_.error(setting.span, "#tolerance is between 0 and 1, as in 1e-6");
         else
           program_->rateTolerance = *value;
+      } else if (setting.name == "tempo") {
+        if (!(*value > 0) || *value > 1000)
+          sink_.error(setting.span, "#tempo is in quarter notes per minute, above 0 and at most 1000");
+        else
+          target.music.tempo = *value;
+      } else if (setting.name == "ppq") {
+        if (*value < 1 || *value > 32767 || *value != std::floor(*value))
+          sink_.error(setting.span, "#ppq must be a whole number of ticks per quarter note, 1 to 32767");
+        else
+          target.music.ppq = static_cast<int>(*value);
+      } else if (setting.name == "midiformat") {
+        if (*value != 0 && *value != 1)
+          sink_.error(setting.span, "#midiformat must be 0 (one track) or 1 (a track per channel)");
+        else
+          target.music.format = static_cast<int>(*value);
       } else if (setting.name == "radius") {
         target.radius = *value;
       } else if (setting.name == "seed") {
@@ -619,6 +643,7 @@ class Compiler {
       axiom.push_back(std::move(cell));
     }
     program_->systems[index].axiom = std::move(axiom);
+    if (system.isLSystem) compileSymbolInterpretations(system, scope, index);
     compilePlacements(system, scope, program_->systems[index]);
     if (program_->systems[index].poolKind == PoolKind::Grid &&
         program_->systems[index].axiom.size() > program_->systems[index].grid.siteCount())
@@ -1004,7 +1029,29 @@ class Compiler {
     return static_cast<int>(queries.size() - 1);
   }
 
-  void compileInterpretation(const ast::Interpretation& block, int master) {
+  // `interpret SET X(a) { ... }` in an L-system: the block of the block's own symbol X,
+  // its parameters named as the pattern names them.
+  void compileSymbolInterpretations(const ast::System& system, const Scope& scope, int index) {
+    for (const auto& item : system.interpretations) {
+      int master = program_->findMaster(item.symbol, index);
+      if (master < 0 || program_->masters[master].scope != index) {
+        sink_.error(item.symbolSpan, "'" + item.symbol + "' is not a symbol of L-system '" + system.name + "'");
+        continue;
+      }
+      const MasterCell& target = program_->masters[master];
+      if (item.params.size() != target.stateCount()) {
+        sink_.error(item.symbolSpan, "'" + item.symbol + "' has " + std::to_string(target.stateCount()) + " parameter" +
+                                         (target.stateCount() == 1 ? "" : "s") + ", but " +
+                                         std::to_string(item.params.size()) + " are named here");
+        continue;
+      }
+      if (target.interpretation(item.block.setName)) continue;  // the first block counts
+      compileInterpretation(item.block, master, &item.params, &scope);
+    }
+  }
+
+  void compileInterpretation(const ast::Interpretation& block, int master,
+                             const std::vector<std::string>* names_ = nullptr, const Scope* scope = nullptr) {
     InterpretationBlock compiled;
     compiled.setName = block.setName;
     compiled.span = block.span;
@@ -1020,14 +1067,22 @@ class Compiler {
       }
     }
     const MasterCell& self = program_->masters[master];
+    const Scope& lookupScope = scope ? *scope : global_;
     std::map<std::string, int, std::less<>> slots;
-    for (uint32_t i = 0; i < self.stateCount(); ++i) slots[self.stateNames[i]] = static_cast<int>(i);
+    for (uint32_t i = 0; i < self.stateCount(); ++i)
+      slots[names_ ? (*names_)[i] : self.stateNames[i]] = static_cast<int>(i);
     reader_ = Reader{master, -1};
-    NameLookup names = ruleLookup(slots, static_cast<int>(self.stateCount()), global_);
+    NameLookup names = ruleLookup(slots, static_cast<int>(self.stateCount()), lookupScope);
+    if (set && set->constant) {
+      names.constant = [&lookupScope, set](std::string_view name) -> std::optional<double> {
+        if (auto value = lookupScope.constants.find(name)) return value;
+        return set->constant(name);
+      };
+    }
     for (const auto& module : block.instructions) {
       Instruction instruction;
       instruction.span = module.span;
-      const std::string* equiv = global_.findEquiv(module.label);
+      const std::string* equiv = lookupScope.findEquiv(module.label);
       instruction.command = equiv ? *equiv : module.label;
       if (set) {
         const CommandInfo* info = set->find(instruction.command);

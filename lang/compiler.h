@@ -5,6 +5,7 @@
 // their location; compilation goes on to report as many as it can.
 
 #include <functional>
+#include <optional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -27,6 +28,9 @@ struct CommandInfo {
 struct CommandSetInfo {
   std::string name;
   std::function<const CommandInfo*(std::string_view)> find;
+  /// Names the set gives meaning to in its blocks' arguments, as `minor` in
+  /// `scale(minor)`; program constants shadow them. Empty: none.
+  std::function<std::optional<double>(std::string_view)> constant = {};
 };
 
 struct CompileOptions {

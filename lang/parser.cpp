@@ -1,6 +1,7 @@
 #include "lang/parser.h"
 
 #include <climits>
+#include <cmath>
 #include <optional>
 
 #include "lang/lexer.h"
@@ -203,7 +204,7 @@ class Parser {
         defines.push_back(std::move(define));
       } else if (hash.text == "angle" || hash.text == "yawangle" || hash.text == "length" ||
                  hash.text == "radius" || hash.text == "seed" || hash.text == "until" || hash.text == "dt" ||
-                 hash.text == "tolerance") {
+                 hash.text == "tolerance" || hash.text == "tempo" || hash.text == "ppq" || hash.text == "midiformat") {
         Setting setting{hash.span, hash.text, nullptr};
         if (atStatementEnd()) fail(hash.span, "expected a value after '#" + hash.text + "'");
         setting.value = expression();
@@ -211,9 +212,27 @@ class Parser {
         settings.push_back(std::move(setting));
       } else if (hash.text == "radians" || hash.text == "degrees") {
         settings.push_back(Setting{hash.span, hash.text, nullptr});
+      } else if (hash.text == "music") {
+        const Token& word = peek();
+        if (word.kind != TokenKind::Identifier || (word.text != "sequential" && word.text != "developmental"))
+          failHere("'sequential' or 'developmental' after #music");
+        advance();
+        settings.push_back(Setting{hash.span.to(word.span), hash.text, nullptr, word.text});
+      } else if (hash.text == "timesig") {
+        // Written as musicians write it, 6/8: two whole numbers, not a division.
+        const Token& top = peek();
+        if (top.kind != TokenKind::Number || top.number != std::floor(top.number) || top.number < 1 || top.number > 255)
+          failHere("a time signature such as 3/4 after #timesig (beats per bar 1 to 255)");
+        advance();
+        if (!match(TokenKind::Slash)) failHere("'/' in the time signature, as in #timesig 3/4");
+        const Token& bottom = peek();
+        int d = bottom.kind == TokenKind::Number && bottom.number == std::floor(bottom.number) ? static_cast<int>(bottom.number) : 0;
+        if (d < 1 || d > 64 || (d & (d - 1)) != 0) failHere("a note value 1, 2, 4, 8, 16, 32 or 64 below the '/' of #timesig");
+        advance();
+        settings.push_back(Setting{hash.span.to(bottom.span), hash.text, nullptr, "", static_cast<int>(top.number), d});
       } else {
         fail(hash.span, "unknown directive '#" + hash.text +
-                            "' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, #seed, #until, #dt, #tolerance)");
+                            "' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, #seed, #until, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig)");
       }
       if (match(TokenKind::Semicolon)) return;
       if (!atStatementEnd()) failHere("the end of the line after the directive");
@@ -281,10 +300,26 @@ class Parser {
       return;
     }
     if (checkWord("interpret")) {
-      Interpretation interpretation;
       const Token& keyword = advance();
       const Token& name = expect(TokenKind::Identifier, " (the interpretation set, e.g. 'geometry')");
-      interpretation.setName = name.text;
+      cell.interpretations.push_back(interpretationBlock(keyword, name.text));
+      return;
+    }
+    if (checkWord("lifetime")) {
+      const Token& keyword = advance();
+      cell.lifetime = expression();
+      cell.lifetimeSpan = keyword.span.to(previous().span);
+      endStatement();
+      return;
+    }
+    failHere("'rules', 'interpret', 'lifetime' or '}' in the cell");
+  }
+
+  // `{ instruction ... }` after `interpret SET` (and the symbol, in an L-system).
+  Interpretation interpretationBlock(const Token& keyword, const std::string& setName) {
+    {
+      Interpretation interpretation;
+      interpretation.setName = setName;
       expect(TokenKind::LBrace, " to open the interpretation block");
       try {
         while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
@@ -304,17 +339,29 @@ class Parser {
       }
       const Token& close = expect(TokenKind::RBrace, " to close the interpretation block");
       interpretation.span = keyword.span.to(close.span);
-      cell.interpretations.push_back(std::move(interpretation));
-      return;
+      return interpretation;
     }
-    if (checkWord("lifetime")) {
-      const Token& keyword = advance();
-      cell.lifetime = expression();
-      cell.lifetimeSpan = keyword.span.to(previous().span);
-      endStatement();
-      return;
-    }
-    failHere("'rules', 'interpret', 'lifetime' or '}' in the cell");
+  }
+
+  // `interpret SET X(a, b) { ... }` in an L-system.
+  void symbolInterpretation(System& system) {
+    SymbolInterpretation result;
+    const Token& keyword = advance();
+    const Token& set = expect(TokenKind::Identifier, " (the interpretation set, e.g. 'music')");
+    const Token& symbol = peek();
+    if (symbol.kind != TokenKind::Identifier && !isSymbolToken(symbol.kind))
+      failHere("the symbol to interpret after 'interpret " + set.text + "', as in 'interpret music F { note }'");
+    advance();
+    result.symbol = symbolSpelling(symbol);
+    result.symbolSpan = symbol.span;
+    if (check(TokenKind::LParen))
+      for (const auto& param : parameters()) {
+        if (param.defaultValue) fail(param.span, "the parameters of an interpreted symbol take no default values");
+        result.params.push_back(param.name);
+      }
+    result.block = interpretationBlock(keyword, set.text);
+    system.interpretations.push_back(std::move(result));
+    endStatement();
   }
 
   std::vector<Parameter> parameters() {
@@ -672,6 +719,8 @@ class Parser {
     if (match(TokenKind::Semicolon)) return;
     if (check(TokenKind::Directive)) return directive(system.defines, system.settings);
     if (checkWord("equiv")) return system.equivs.push_back(equiv(statement_));
+    if (checkWord("interpret") && peek(1).kind == TokenKind::Identifier && peek(1).line == peek().line)
+      return symbolInterpretation(system);
     if (checkWord("axiom") && (peek(1).kind == TokenKind::Colon || peek(1).line == peek().line) &&
         peek(1).kind != TokenKind::Arrow && peek(1).kind != TokenKind::Less && peek(1).kind != TokenKind::Greater)
       return axiom(system);

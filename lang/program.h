@@ -163,6 +163,22 @@ struct MasterCell {
   uint32_t stateCount() const { return static_cast<uint32_t>(stateNames.size()); }
 };
 
+/// How the music set places notes in time (#music; docs/LANGUAGE.md, "Music").
+enum class MusicTime : uint8_t {
+  Sequential,     ///< reading the word left to right, as the turtle reads it
+  Developmental,  ///< a cell plays when it is born, following the development
+};
+
+/// Music settings of a system (#music, #tempo, #ppq, #midiformat, #timesig).
+struct MusicSettings {
+  MusicTime time = MusicTime::Sequential;
+  double tempo = 120;  ///< quarter notes per minute at the start
+  int ppq = 480;       ///< ticks per quarter note of the MIDI file
+  int format = 1;      ///< MIDI file format 0 or 1
+  int timeSignatureNumerator = 4;
+  int timeSignatureDenominator = 4;
+};
+
 /// Interpretation settings of a system (`#angle`, `#length`, ...). Angles in the unit the
 /// program chose (degrees unless #radians).
 struct InterpretSettings {
@@ -171,6 +187,7 @@ struct InterpretSettings {
   double step = 1;    ///< default move length (#length)
   double radius = 0;  ///< default cylinder radius (#radius); 0 draws lines
   bool radians = false;
+  MusicSettings music{};
 };
 
 struct AxiomCell {
