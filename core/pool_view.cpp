@@ -27,8 +27,22 @@ void GridPoolView::neighbours(size_t i, std::vector<uint32_t>& out) const {
 }
 
 bool GridPoolView::matchContext(const CompiledRule& rule, size_t i, uint32_t* left, uint32_t* right) const {
-  // Only 1-D grids take positional context (the compiler checks the dimension).
+  // The compiler checks that the context's dimensions are the grid's.
   const GridCoordinates here = pool_.coordinates(pool_.siteOf(i));
+  if (rule.contextDimensions > 1) {
+    // `(A) (B me C) (D)`: each module at its offset, after the boundary; an empty or
+    // missing site fails the match (`*` places had no module and are not here).
+    for (size_t k = 0; k < rule.right.size(); ++k) {
+      const auto& offset = rule.right[k].offset;
+      const uint32_t site = pool_.siteAt({here[0] + offset[0], here[1] + offset[1], here[2] + offset[2]});
+      if (site == GridPool::kEmpty) return false;
+      const uint32_t cell = pool_.cellAt(site);
+      if (cell == GridPool::kEmpty) return false;
+      if (pool_.cells()[cell].master != rule.rightItems[k].master) return false;
+      right[k] = cell;
+    }
+    return true;
+  }
   auto match = [&](const std::vector<ContextItem>& items, int direction, uint32_t* matched) {
     for (size_t k = 0; k < items.size(); ++k) {
       const uint32_t site = pool_.siteAt({here[0] + direction * static_cast<int64_t>(k + 1), 0, 0});

@@ -3,6 +3,7 @@
 // L-system blocks as written); lang/compiler.h checks it and lowers everything,
 // L-systems included, into the one cell model of lang/program.h.
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,6 +57,10 @@ struct Rule {
   std::vector<Module> left;    ///< nearest last
   Module predecessor;          ///< L-systems: the strict predecessor; cells: `me`
   std::vector<Module> right;   ///< nearest first
+  /// A 2-D or 3-D context (paper 002, Fig. 3: `(A) (B me C) (D)`): its modules are in
+  /// `right`, each at the offset from `me` given here (x, y, z).
+  int contextDimensions = 1;
+  std::vector<std::array<int, 3>> offsets;
   ExprPtr predicate;           ///< may be null
   std::vector<Assignment> calculations;
   bool hasAction = false;      ///< `->` present

@@ -803,6 +803,13 @@ class Compiler {
     // Left context nearest first.
     for (auto it = rule.left.rbegin(); it != rule.left.rend(); ++it) compiled.left.push_back(contextBinding(*it, true));
     for (const auto& module : rule.right) compiled.right.push_back(contextBinding(module, false));
+    compiled.contextDimensions = rule.contextDimensions;
+    for (size_t k = 0; k < rule.offsets.size() && k < compiled.right.size(); ++k) {
+      compiled.right[k].offset = rule.offsets[k];
+      if (compiled.right[k].item.kind != ContextItem::Kind::Module)
+        sink_.error(rule.right[k].span, "brackets have no place in a context of " +
+                                            std::to_string(rule.contextDimensions) + " dimensions");
+    }
     compiled.frameSize = nextSlot;
     for (const auto& binding : compiled.left) compiled.leftItems.push_back(binding.item);
     for (const auto& binding : compiled.right) compiled.rightItems.push_back(binding.item);
@@ -1152,11 +1159,19 @@ class Compiler {
             sink_.error(rule.span, "a positional context ('A me B') does not fit the spatial pool of system '" +
                                        definition.name + "', where neighbours are the cells within a distance; read "
                                        "them with count(), sum(x), mean(x), min(x) or max(x)");
-          if (definition.poolKind == PoolKind::Grid && grows[m] && rule.hasContext() && definition.grid.dimensions != 1)
-            sink_.error(rule.span, "this context has 1 dimension ('A me B'), but the pool of system '" +
-                                       definition.name + "' is a " + std::to_string(definition.grid.dimensions) +
-                                       "-D grid; read its neighbours with count(), sum(x), mean(x), min(x) or "
-                                       "max(x)");
+          const int poolDimensions =
+              definition.poolKind == PoolKind::Grid ? static_cast<int>(definition.grid.dimensions) : 1;
+          if (definition.poolKind != PoolKind::Spatial && grows[m] && rule.hasContext() &&
+              rule.contextDimensions != poolDimensions)
+            sink_.error(rule.span,
+                        "this context has " + std::to_string(rule.contextDimensions) + " dimension" +
+                            (rule.contextDimensions == 1 ? " ('A me B')" : "s") + ", but the pool of system '" +
+                            definition.name + "' is " +
+                            (definition.poolKind == PoolKind::Grid
+                                 ? "a " + std::to_string(poolDimensions) + "-D grid"
+                                 : std::string("linear")) +
+                            "; match its dimensions (parentheses mark them: '(A) (B me C) (D)' is 2-D) or read the "
+                            "neighbours with count(), sum(x), mean(x), min(x) or max(x)");
         }
         if (definition.poolKind != PoolKind::Linear && grows[m] && !master.terminalRules.empty())
           sink_.error(master.terminalRules.front().span,

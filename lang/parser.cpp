@@ -1,7 +1,10 @@
 #include "lang/parser.h"
 
+#include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
+#include <functional>
 #include <optional>
 
 #include "lang/lexer.h"
@@ -415,6 +418,15 @@ class Parser {
         }
         if (!seenColon && token.kind == TokenKind::Identifier && token.text == "me") contextFirst = true;
       }
+      // A context of several dimensions opens with '(' and holds 'me' inside parentheses.
+      if (check(TokenKind::LParen))
+        for (size_t i = pos_; i < tokens_.size(); ++i) {
+          const Token& token = tokens_[i];
+          if (token.kind == TokenKind::Colon || token.kind == TokenKind::Semicolon || token.kind == TokenKind::Arrow ||
+              token.kind == TokenKind::RBrace || token.kind == TokenKind::EndOfFile)
+            break;
+          if (token.kind == TokenKind::Identifier && token.text == "me") contextFirst = true;
+        }
     }
     if (colons > 2)
       fail(peek().span, "a rule has at most three parts ({context} : predicate : body), found " +
@@ -434,10 +446,110 @@ class Parser {
     return rule;
   }
 
+  // A context of 2 or 3 dimensions (paper 002, Fig. 3): parentheses mark dimensions.
+  // `(A) (B me C) (D)` is a 2-D context: rows from y - 1 to y + 1, each row's modules
+  // from left to right; `((..) (..)) ((..) (B me C)) ((..))` is 3-D, blocks from z - 1.
+  // `*` holds a place and matches anything, an empty site too. The row, block ... that
+  // holds `me` is aligned on it; the others are centred on it, so they need an odd
+  // number of items.
+  struct ContextGroup {
+    SourceSpan span;
+    bool isRow = true;
+    std::vector<std::optional<Module>> items;  ///< rows: modules, `me`, or empty for `*`
+    std::vector<ContextGroup> groups;          ///< otherwise
+    int dimensions() const { return isRow ? 1 : 1 + groups.front().dimensions(); }
+    bool holdsMe() const {
+      if (isRow)
+        return std::any_of(items.begin(), items.end(), [](const auto& item) { return item && item->isMe; });
+      return std::any_of(groups.begin(), groups.end(), [](const ContextGroup& g) { return g.holdsMe(); });
+    }
+  };
+
+  ContextGroup contextGroup() {
+    ContextGroup group;
+    const Token& open = expect(TokenKind::LParen, "");
+    ++depth_;
+    if (check(TokenKind::LParen)) {
+      group.isRow = false;
+      while (check(TokenKind::LParen)) group.groups.push_back(contextGroup());
+      for (const ContextGroup& inner : group.groups)
+        if (inner.dimensions() != group.groups.front().dimensions())
+          fail(inner.span, "the parts of a context have the same number of dimensions (parentheses)");
+    } else {
+      while (!check(TokenKind::RParen) && !atStatementEnd()) {
+        if (match(TokenKind::Star)) {
+          group.items.emplace_back();
+          continue;
+        }
+        if (!canStartModule()) failHere("a module, 'me' or '*' in the context row");
+        group.items.emplace_back(module(ModuleUse::Pattern));
+      }
+    }
+    --depth_;
+    const Token& close = expect(TokenKind::RParen, " to close the context's parenthesis");
+    group.span = open.span.to(close.span);
+    return group;
+  }
+
+  // Gives every module of a group its offset along `axis` and the axes below it.
+  void placeContext(ContextGroup& group, int axis, std::array<int, 3> base, Rule& rule) {
+    const size_t n = group.isRow ? group.items.size() : group.groups.size();
+    int first = 0;
+    if (group.holdsMe()) {
+      for (size_t k = 0; k < n; ++k)
+        if (group.isRow ? (group.items[k] && group.items[k]->isMe) : group.groups[k].holdsMe()) first = -static_cast<int>(k);
+    } else {
+      if (n % 2 == 0)
+        fail(group.span, "a part of the context without 'me' is centred on it, so it needs an odd number of " +
+                             std::string(group.isRow ? "items" : "parts") + " (use '*' to hold a place)");
+      first = -static_cast<int>(n / 2);
+    }
+    for (size_t k = 0; k < n; ++k) {
+      std::array<int, 3> at = base;
+      at[axis] += first + static_cast<int>(k);
+      if (!group.isRow) {
+        placeContext(group.groups[k], axis - 1, at, rule);
+        continue;
+      }
+      if (!group.items[k]) continue;  // `*`
+      if (group.items[k]->isMe) {
+        if (at != std::array<int, 3>{0, 0, 0}) fail(group.items[k]->span, "'me' appears twice in the context");
+        rule.predecessor = std::move(*group.items[k]);
+        continue;
+      }
+      rule.right.push_back(std::move(*group.items[k]));
+      rule.offsets.push_back(at);
+    }
+  }
+
+  void gridContext(Rule& rule) {
+    ContextGroup top;
+    top.isRow = false;
+    const Token& start = peek();
+    while (check(TokenKind::LParen)) top.groups.push_back(contextGroup());
+    top.span = start.span.to(previous().span);
+    for (const ContextGroup& inner : top.groups)
+      if (inner.dimensions() != top.groups.front().dimensions())
+        fail(inner.span, "the parts of a context have the same number of dimensions (parentheses)");
+    rule.contextDimensions = top.dimensions();
+    if (rule.contextDimensions > 3) fail(top.span, "a context has at most 3 dimensions");
+    int mes = 0;
+    std::function<void(const ContextGroup&)> countMe = [&](const ContextGroup& g) {
+      for (const auto& item : g.items) mes += item && item->isMe;
+      for (const auto& inner : g.groups) countMe(inner);
+    };
+    countMe(top);
+    if (mes != 1)
+      fail(top.span, mes == 0 ? "a context names the current cell with 'me', as in '(A) (B me C) (D)'"
+                              : "'me' appears twice in the context");
+    placeContext(top, rule.contextDimensions - 1, {0, 0, 0}, rule);
+  }
+
   // A cell's context: modules around exactly one `me`.
   void context(Rule& rule, bool lsystem) {
     (void)lsystem;
     rule.hasContext = true;
+    if (check(TokenKind::LParen)) return gridContext(rule);
     bool seenMe = false;
     while (canStartModule()) {
       Module item = module(ModuleUse::Pattern);

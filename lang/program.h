@@ -11,6 +11,7 @@
 //
 // so evaluation is a walk over bytecode reading doubles from one small array.
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -59,6 +60,7 @@ struct ContextBinding {
   ContextItem item;
   int firstSlot = -1;  ///< frame slot of its first state value, -1 when nothing is bound
   int count = 0;       ///< number of state values bound
+  std::array<int, 3> offset{0, 0, 0};  ///< a 2-D or 3-D context: the site relative to `me`
 };
 
 /// A cell to create: `B(x / 2)`, `(C(j + 1), 0.5)` or `me`.
@@ -95,6 +97,10 @@ struct CompiledRule {
   int frameSize = 0;
   bool hasRate = false;      ///< some calculation is `rate(x) = e`
   bool hasDiscrete = false;  ///< some calculation is not a rate, or the rule has an action
+
+  /// 1: `A me B` (left and right); 2 or 3: `(A) (B me C) (D)`, every module in `right`
+  /// with its offset (paper 002, Fig. 3).
+  int contextDimensions = 1;
 
   bool hasContext() const { return !left.empty() || !right.empty(); }
 };
