@@ -4,14 +4,15 @@
 #include "apps/commands.h"
 #include "apps/program_loader.h"
 #include "core/timeline.h"
+#include "interpreters/timeline_png.h"
 #include "interpreters/timeline_svg.h"
 
 namespace ontogen::app {
 
 int runTimeline(const TimelineOptions& options) {
   const std::filesystem::path out = options.out;
-  if (out.extension() != ".svg") {
-    std::cerr << "ontogen: error: --out must name an .svg file, not '" << options.out << "'\n";
+  if (out.extension() != ".svg" && out.extension() != ".png") {
+    std::cerr << "ontogen: error: --out must name an .svg or .png file, not '" << options.out << "'\n";
     return kExitUsage;
   }
   auto loaded = loadProgram(options.common.file, options.common.system);
@@ -35,7 +36,10 @@ int runTimeline(const TimelineOptions& options) {
   }
   try {
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-    writeTimelineSvg(out, timeline, loaded->stem);
+    if (out.extension() == ".png")
+      writeTimelinePng(out, timeline);
+    else
+      writeTimelineSvg(out, timeline, loaded->stem);
   } catch (const std::exception& error) {
     std::cerr << "ontogen: error: " << error.what() << "\n";
     return kExitOutputError;

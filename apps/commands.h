@@ -42,7 +42,7 @@ struct WordOptions {
 struct TimelineOptions {
   CommonOptions common;
   std::optional<double> until;      ///< empty: the program's #until
-  std::string out;                  ///< the .svg to write
+  std::string out;                  ///< the .svg or .png to write
   size_t maxRows = 4000;
 };
 

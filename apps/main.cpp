@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
   addDevelopment(*timelineCommand, timeline.common);
   timelineCommand->add_option("--until", timeline.until, "End of the diagram, seconds (default: #until)")
       ->check(CLI::NonNegativeNumber);
-  timelineCommand->add_option("--out", timeline.out, "The diagram to write (.svg)")->required();
+  timelineCommand->add_option("--out", timeline.out, "The diagram to write (.svg, or .png without text)")->required();
   timelineCommand->add_option("--max-rows", timeline.maxRows, "Most cells drawn; later ones are counted")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
