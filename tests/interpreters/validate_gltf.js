@@ -2,7 +2,7 @@
 // error, and exits 1 when there is an error. Usage: node validate_gltf.js MODULE_DIR FILE
 const path = require('path');
 const fs = require('fs');
-const validator = require(path.join(process.argv[2], 'gltf-validator'));
+const validator = require(path.resolve(process.argv[2], 'gltf-validator'));
 const bytes = new Uint8Array(fs.readFileSync(process.argv[3]));
 validator.validateBytes(bytes).then((report) => {
   const issues = report.issues;
