@@ -2,10 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <map>
 #include <string>
 
 #include "core/timeline.h"
+#include "interpreters/timeline_layout.h"
+#include "interpreters/timeline_png.h"
 #include "interpreters/timeline_svg.h"
 #include "test_support.h"
 
@@ -63,6 +67,31 @@ TEST(Timeline, NestedPoolsFollowTheirSystemCell) {
     EXPECT_EQ(timeline.rows[i + 2].label, "Leaf");
   }
   EXPECT_EQ(branches, 6);  // a pair per tree by t = 3
+}
+
+// The PNG has the SVG's layout: each bar's middle pixel has its label's colour, and the
+// plot is white where no cell lived.
+TEST(Timeline, PictureBarsHaveTheirLabelsColours) {
+  auto program = compileModel("anabaena.cell");
+  Timeline timeline = recordTimeline(program, WorldDef{}, 6, 1);
+  const TimelineLayout layout(timeline);
+  const Image image = timelineImage(timeline);
+  EXPECT_EQ(image.width, static_cast<int>(std::ceil(layout.width)));
+  EXPECT_EQ(image.height, static_cast<int>(std::ceil(layout.height)));
+  auto pixel = [&](double x, double y) {
+    const size_t at = (static_cast<size_t>(y) * image.width + static_cast<size_t>(x)) * 3;
+    return std::array<uint8_t, 3>{image.rgb[at], image.rgb[at + 1], image.rgb[at + 2]};
+  };
+  for (size_t i = 0; i < timeline.rows.size(); ++i) {
+    const TimelineRow& row = timeline.rows[i];
+    if (row.gone - row.born < 0.5) continue;
+    const double y = layout.rowY(i) + layout.rowHeight / 2;
+    EXPECT_EQ(pixel(layout.x((row.born + row.gone) / 2), y), TimelineLayout::colours()[layout.colourIndex.at(row.label)])
+        << i;
+    if (row.born >= 1) {
+      EXPECT_EQ(pixel(layout.x(row.born - 0.5), y), (std::array<uint8_t, 3>{255, 255, 255})) << i;
+    }
+  }
 }
 
 TEST(Timeline, RowsPastTheLimitAreCounted) {
