@@ -38,25 +38,58 @@ uint64_t SpatialPool::bucketKey(int64_t x, int64_t y, int64_t z) {
   return part(x) | (part(y) << 21) | (part(z) << 42);
 }
 
+int64_t SpatialPool::denseIndex(int64_t x, int64_t y, int64_t z) const {
+  x -= low_[0];
+  y -= low_[1];
+  z -= low_[2];
+  if (x < 0 || y < 0 || z < 0 || x >= extent_[0] || y >= extent_[1] || z >= extent_[2]) return -1;
+  return x + extent_[0] * (y + extent_[1] * z);
+}
+
 void SpatialPool::index() {
   const size_t n = cells_.size();
-  std::vector<uint64_t> keys(n);
+  std::vector<std::array<int64_t, 3>> bucket(n);
+  std::array<int64_t, 3> high{0, 0, 0};
+  low_ = {0, 0, 0};
   for (size_t i = 0; i < n; ++i) {
-    auto b = bucketOf(positionOf(i));
-    keys[i] = bucketKey(b[0], b[1], b[2]);
+    bucket[i] = bucketOf(positionOf(i));
+    for (int axis = 0; axis < 3; ++axis) {
+      low_[axis] = i == 0 ? bucket[i][axis] : std::min(low_[axis], bucket[i][axis]);
+      high[axis] = i == 0 ? bucket[i][axis] : std::max(high[axis], bucket[i][axis]);
+    }
   }
+  for (int axis = 0; axis < 3; ++axis) extent_[axis] = high[axis] - low_[axis] + 1;
+  const double boxes = static_cast<double>(extent_[0]) * static_cast<double>(extent_[1]) * static_cast<double>(extent_[2]);
+  dense_ = boxes <= 4.0 * static_cast<double>(n) + 64;
   order_.resize(n);
-  for (uint32_t i = 0; i < n; ++i) order_[i] = i;
-  std::sort(order_.begin(), order_.end(),
-            [&](uint32_t a, uint32_t b) { return keys[a] != keys[b] ? keys[a] < keys[b] : a < b; });
   buckets_.clear();
-  buckets_.reserve(n);
-  for (uint32_t k = 0; k < n;) {
-    uint32_t end = k;
-    while (end < n && keys[order_[end]] == keys[order_[k]]) ++end;
-    buckets_.emplace(keys[order_[k]], std::make_pair(k, end));
-    k = end;
+  start_.clear();
+  if (dense_) {
+    // Counting sort by bucket: stable, so pool order within a bucket.
+    start_.assign(static_cast<size_t>(boxes) + 1, 0);
+    std::vector<uint32_t> slot(n);
+    for (size_t i = 0; i < n; ++i) {
+      slot[i] = static_cast<uint32_t>(denseIndex(bucket[i][0], bucket[i][1], bucket[i][2]));
+      ++start_[slot[i] + 1];
+    }
+    for (size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
+    std::vector<uint32_t> next(start_.begin(), start_.end() - 1);
+    for (uint32_t i = 0; i < n; ++i) order_[next[slot[i]]++] = i;
+  } else {
+    std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
+    for (uint32_t i = 0; i < n; ++i) keyed[i] = {bucketKey(bucket[i][0], bucket[i][1], bucket[i][2]), i};
+    std::sort(keyed.begin(), keyed.end());
+    for (uint32_t k = 0; k < n; ++k) order_[k] = keyed[k].second;
+    buckets_.reserve(n);
+    for (uint32_t k = 0; k < n;) {
+      uint32_t end = k;
+      while (end < n && keyed[end].first == keyed[k].first) ++end;
+      buckets_.emplace(keyed[k].first, std::make_pair(k, end));
+      k = end;
+    }
   }
+  sorted_.resize(n);
+  for (size_t k = 0; k < n; ++k) sorted_[k] = positionOf(order_[k]);
   ++version_;
 }
 
@@ -65,18 +98,23 @@ void SpatialPool::neighbours(size_t i, std::vector<uint32_t>& out) const {
   const auto p = positionOf(i);
   const auto b = bucketOf(p);
   const double r2 = radius_ * radius_;
+  auto scan = [&](uint32_t begin, uint32_t end) {
+    for (uint32_t k = begin; k < end; ++k) {
+      const auto& q = sorted_[k];
+      const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
+      if (d2 <= r2 && order_[k] != i) out.push_back(order_[k]);
+    }
+  };
   for (int64_t dz = -1; dz <= 1; ++dz)
     for (int64_t dy = -1; dy <= 1; ++dy)
       for (int64_t dx = -1; dx <= 1; ++dx) {
-        auto it = buckets_.find(bucketKey(b[0] + dx, b[1] + dy, b[2] + dz));
-        if (it == buckets_.end()) continue;
-        for (uint32_t k = it->second.first; k < it->second.second; ++k) {
-          const uint32_t j = order_[k];
-          if (j == i) continue;
-          const auto q = positionOf(j);
-          const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
-          if (d2 <= r2) out.push_back(j);
+        if (dense_) {
+          const int64_t at = denseIndex(b[0] + dx, b[1] + dy, b[2] + dz);
+          if (at >= 0) scan(start_[at], start_[at + 1]);
+          continue;
         }
+        auto it = buckets_.find(bucketKey(b[0] + dx, b[1] + dy, b[2] + dz));
+        if (it != buckets_.end()) scan(it->second.first, it->second.second);
       }
 }
 

@@ -5,7 +5,9 @@
 // buckets one radius wide: a query looks at the 27 buckets around a cell, so it costs
 // the same at a thousand cells and at a million as long as the density holds. A k-d
 // tree (nanoflann) would cost O(n log n) to rebuild every step as cells move, and the
-// fixed radius is exactly what a bucket grid is made for.
+// fixed radius is exactly what a bucket grid is made for. Where the cells fill their box
+// the buckets are a dense array built by counting sort (O(n), no hashing); a sparse
+// scatter falls back to a hash of the occupied buckets.
 
 #include <array>
 #include <cstdint>
@@ -37,11 +39,21 @@ class SpatialPool final : public Pool {
  private:
   static uint64_t bucketKey(int64_t x, int64_t y, int64_t z);
   std::array<int64_t, 3> bucketOf(const std::array<double, 3>& p) const;
+  /// Index of a bucket in the dense grid, or -1 outside it.
+  int64_t denseIndex(int64_t x, int64_t y, int64_t z) const;
 
   double radius_;
   std::vector<std::array<int, 3>> slots_;
-  std::vector<uint32_t> order_;  ///< cell indices sorted by bucket, then index
-  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> buckets_;  ///< key -> range of order_
+  // The index: cells sorted by bucket (stable: pool order within a bucket), with their
+  // positions copied alongside so that a query reads contiguous memory.
+  std::vector<uint32_t> order_;
+  std::vector<std::array<double, 3>> sorted_;
+  // Buckets as a dense box over the occupied range when it is not much larger than the
+  // number of cells (start offsets into order_), else hashed.
+  bool dense_ = true;
+  std::array<int64_t, 3> low_{0, 0, 0}, extent_{0, 0, 0};
+  std::vector<uint32_t> start_;  ///< dense: per bucket, first position in order_; one more at the end
+  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> buckets_;  ///< hashed: key -> range of order_
 };
 
 }  // namespace ontogen
