@@ -18,10 +18,7 @@ int runTimeline(const TimelineOptions& options) {
   auto loaded = loadProgram(options.common.file, options.common.system);
   if (!loaded) return kExitProgramError;
   const Program& program = *loaded->program;
-  WorldDef def;
-  def.seed = options.common.seed.value_or(program.seed);
-  def.limits = options.common.limits;
-  def.threads = options.common.threads;
+  const WorldDef def = worldDefOf(options.common, program);
   const double dt = options.common.step.value_or(program.dt);
   const double until = options.until.value_or(program.until);
   Timeline timeline;

@@ -10,10 +10,7 @@ int runWord(const WordOptions& options) {
   auto loaded = loadProgram(options.common.file, options.common.system);
   if (!loaded) return kExitProgramError;
   const Program& program = *loaded->program;
-  WorldDef def;
-  def.seed = options.common.seed.value_or(program.seed);
-  def.limits = options.common.limits;
-  def.threads = options.common.threads;
+  const WorldDef def = worldDefOf(options.common, program);
   double dt = options.common.step.value_or(program.dt);
   std::vector<WordAtTime> words;
   try {

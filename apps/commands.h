@@ -46,6 +46,15 @@ struct TimelineOptions {
   size_t maxRows = 4000;
 };
 
+/// The world's settings from the command line, the program's directives filling in.
+inline WorldDef worldDefOf(const CommonOptions& options, const Program& program) {
+  WorldDef def;
+  def.seed = options.seed.value_or(program.seed);
+  def.limits = options.limits;
+  def.threads = options.threads;
+  return def;
+}
+
 int runCheck(const CommonOptions& options);
 int runTimeline(const TimelineOptions& options);
 int runRun(const RunOptions& options);

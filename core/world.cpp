@@ -38,12 +38,7 @@ World::World(std::shared_ptr<const Program> program, WorldDef def)
       spatial_(program_->rootSystem().spatialRadius, positionSlots(*program_)) {
   def_.threads = resolveThreadCount(def_.threads);
   if (const int master = rootSystem().master; master >= 0) cellState_ = program_->masters[master].defaults;
-  updateAncestorValues();
-  if (rootSystem().poolKind == PoolKind::Grid)
-    seedGrid();
-  else
-    seedAxiom();
-  developChildren(time_, false, /*step=*/false);
+  seedPool();
 }
 
 World::World(const World& parent, const CellRecord& cell, const double* cellState)
@@ -57,6 +52,11 @@ World::World(const World& parent, const CellRecord& cell, const double* cellStat
       grid_(program_->systems[system_].grid),
       spatial_(program_->systems[system_].spatialRadius, positionSlots(*program_)),
       time_(parent.time_) {
+  seedPool();
+}
+
+// The pool from its system's axiom (and placements), then the pools of its system cells.
+void World::seedPool() {
   updateAncestorValues();
   if (rootSystem().poolKind == PoolKind::Grid)
     seedGrid();

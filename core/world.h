@@ -124,6 +124,7 @@ class World {
   friend class LinearDevelopment;
   friend class GridDevelopment;
   friend class SpatialDevelopment;
+  void seedPool();
   void seedAxiom();
   void seedGrid();
   void developStep(double t1, bool stepRules);

@@ -333,6 +333,23 @@ class Compiler {
     return static_cast<int>(program_->masters.size() - 1);
   }
 
+  // A cell's or a system's state variables and their constant defaults.
+  void declareState(const std::vector<ast::Parameter>& state, int index) {
+    std::set<std::string> seen;
+    for (const auto& param : state) {
+      if (!seen.insert(param.name).second) sink_.error(param.span, "state variable '" + param.name + "' appears twice");
+      if (isReadOnlyName(param.name))
+        sink_.error(param.span, "'" + param.name + "' is the cell's read-only internal state; choose another name");
+      double value = 0;
+      if (param.defaultValue) {
+        auto constant = evaluateConstant(*param.defaultValue, constantLookup(global_), sink_, "a default value");
+        if (constant) value = *constant;
+      }
+      program_->masters[index].stateNames.push_back(param.name);
+      program_->masters[index].defaults.push_back(value);
+    }
+  }
+
   void declareCells() {
     for (const auto& cell : tree_.cells) {
       if (program_->findMaster(cell.name, -1) >= 0) {
@@ -341,23 +358,9 @@ class Compiler {
         continue;
       }
       int index = addMaster(cell.name, -1, cell.nameSpan);
-      MasterCell& master = program_->masters[index];
-      master.declared = true;
+      program_->masters[index].declared = true;
       arityKnown_[index] = true;
-      std::set<std::string> seen;
-      for (const auto& param : cell.state) {
-        if (!seen.insert(param.name).second)
-          sink_.error(param.span, "state variable '" + param.name + "' appears twice");
-        if (isReadOnlyName(param.name))
-          sink_.error(param.span, "'" + param.name + "' is the cell's read-only internal state; choose another name");
-        master.stateNames.push_back(param.name);
-        double value = 0;
-        if (param.defaultValue) {
-          auto constant = evaluateConstant(*param.defaultValue, constantLookup(global_), sink_, "a default value");
-          if (constant) value = *constant;
-        }
-        program_->masters[index].defaults.push_back(value);
-      }
+      declareState(cell.state, index);
       if (cell.lifetime) {
         auto value = evaluateConstant(*cell.lifetime, constantLookup(global_), sink_, "the lifetime");
         if (value) {
@@ -389,24 +392,10 @@ class Compiler {
         continue;
       }
       int index = addMaster(system.name, -1, system.nameSpan);
-      MasterCell& master = program_->masters[index];
-      master.declared = true;
-      master.system = static_cast<int>(i);
+      program_->masters[index].declared = true;
+      program_->masters[index].system = static_cast<int>(i);
       arityKnown_[index] = true;
-      std::set<std::string> seen;
-      for (const auto& param : system.state) {
-        if (!seen.insert(param.name).second)
-          sink_.error(param.span, "state variable '" + param.name + "' appears twice");
-        if (isReadOnlyName(param.name))
-          sink_.error(param.span, "'" + param.name + "' is the cell's read-only internal state; choose another name");
-        double value = 0;
-        if (param.defaultValue) {
-          auto constant = evaluateConstant(*param.defaultValue, constantLookup(global_), sink_, "a default value");
-          if (constant) value = *constant;
-        }
-        program_->masters[index].stateNames.push_back(param.name);
-        program_->masters[index].defaults.push_back(value);
-      }
+      declareState(system.state, index);
       systemMaster_[i] = index;
     }
   }
