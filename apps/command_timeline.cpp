@@ -22,15 +22,8 @@ int runTimeline(const TimelineOptions& options) {
   const double dt = options.common.step.value_or(program.dt);
   const double until = options.until.value_or(program.until);
   Timeline timeline;
-  try {
-    timeline = recordTimeline(loaded->program, def, until, dt, options.maxRows);
-  } catch (const LimitError& error) {
-    std::cerr << "ontogen: error: " << error.what() << "\n";
-    return kExitModelError;
-  } catch (const ModelError& error) {
-    std::cerr << error.what();
-    return kExitModelError;
-  }
+  if (int failed = developReporting([&] { timeline = recordTimeline(loaded->program, def, until, dt, options.maxRows); }))
+    return failed;
   try {
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     if (out.extension() == ".png")

@@ -13,20 +13,15 @@ int runWord(const WordOptions& options) {
   const WorldDef def = worldDefOf(options.common, program);
   double dt = options.common.step.value_or(program.dt);
   std::vector<WordAtTime> words;
-  try {
+  const int failed = developReporting([&] {
     auto world = std::make_unique<World>(loaded->program, def);
     for (double t : options.times) {
       if (t < world->time()) world = std::make_unique<World>(loaded->program, def);  // time runs forward only
       world->advanceTo(t, dt);
       words.push_back({t, captureWord(*world)});
     }
-  } catch (const LimitError& error) {
-    std::cerr << "ontogen: error: " << error.what() << "\n";
-    return kExitModelError;
-  } catch (const ModelError& error) {
-    std::cerr << error.what();
-    return kExitModelError;
-  }
+  });
+  if (failed) return failed;
   if (options.json) {
     writeWordJson(std::cout, words);
   } else {

@@ -3,6 +3,7 @@
 // an exit code (apps/program_loader.h).
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,6 +55,10 @@ inline WorldDef worldDefOf(const CommonOptions& options, const Program& program)
   def.threads = options.threads;
   return def;
 }
+
+/// Runs a development; a model that fails or passes a limit is reported on stderr and
+/// gives kExitModelError, success gives 0.
+int developReporting(const std::function<void()>& develop);
 
 int runCheck(const CommonOptions& options);
 int runTimeline(const TimelineOptions& options);

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "apps/commands.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 
@@ -32,6 +33,19 @@ std::optional<LoadedProgram> loadProgram(const std::string& path, const std::str
     return std::nullopt;
   }
   return LoadedProgram{std::move(program), std::filesystem::path(path).stem().string()};
+}
+
+int developReporting(const std::function<void()>& develop) {
+  try {
+    develop();
+  } catch (const LimitError& error) {
+    std::cerr << "ontogen: error: " << error.what() << "\n";
+    return kExitModelError;
+  } catch (const ModelError& error) {
+    std::cerr << error.what();
+    return kExitModelError;
+  }
+  return kExitOk;
 }
 
 }  // namespace ontogen::app
