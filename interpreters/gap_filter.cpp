@@ -37,7 +37,9 @@ struct CellKey {
 
 struct CellHash {
   std::size_t operator()(const CellKey& k) const {
-    return static_cast<std::size_t>(k.x * 73856093 ^ k.y * 19349663 ^ k.z * 83492791);
+    // Unsigned: the products may wrap, which signed arithmetic may not.
+    return static_cast<std::size_t>(static_cast<uint64_t>(k.x) * 73856093u ^ static_cast<uint64_t>(k.y) * 19349663u ^
+                                    static_cast<uint64_t>(k.z) * 83492791u);
   }
 };
 
