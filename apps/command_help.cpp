@@ -19,8 +19,9 @@ int runHelp() {
                "Interpretation sets:";
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
   std::cout << "\n\nTurtle commands (set 'geometry'):\n";
+  // The space after the column keeps long signatures (blend, obstaclebox) apart from their doc.
   for (const TurtleCommand& command : turtleCommands())
-    std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";
+    std::cout << "  " << std::left << std::setw(15) << command.signature << " " << command.doc << "\n";
   std::cout << "\nFunctions:\n";
   for (const BuiltinFunction& function : builtinFunctions())
     std::cout << "  " << std::left << std::setw(22) << function.signature << function.doc << "\n";

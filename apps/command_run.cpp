@@ -10,6 +10,7 @@
 #include "apps/progress_bar.h"
 #include "interpreters/interpret.h"
 #include "interpreters/set_registry.h"
+#include "interpreters/surface.h"
 
 namespace ontogen::app {
 
@@ -117,6 +118,9 @@ int runRun(const RunOptions& options) {
   } catch (const OutputError& output) {
     std::cerr << "\nontogen: error: " << output.what() << "\n";
     return kExitOutputError;
+  } catch (const SurfaceError& surface) {
+    std::cerr << "\nontogen: error: " << surface.what() << "\n";
+    return kExitModelError;
   }
   std::cerr << "wrote " << written << " file" << (written == 1 ? "" : "s") << " to " << options.out << "\n";
   return kExitOk;

@@ -100,7 +100,7 @@ void Geometry::addTriangle(std::array<uint32_t, 3> positions, std::array<uint32_
   mesh_.triangles.push_back({positions, normals, {0, 0, 0}, material_});
 }
 
-void Geometry::addMesh(const Mesh& part) {
+void Geometry::addMesh(const Mesh& part, bool keepMaterials) {
   if (part.triangles.empty()) return;
   checkIndexSpace(part.positions.size(), part.normals.size());
   const auto positionBase = static_cast<uint32_t>(mesh_.positions.size());
@@ -117,7 +117,7 @@ void Geometry::addMesh(const Mesh& part) {
       shifted.normal[k] = t.normal[k] + normalBase;
       shifted.texcoord[k] = part.texcoords.empty() ? 0 : t.texcoord[k] + texcoordBase;
     }
-    shifted.material = material_;
+    shifted.material = keepMaterials ? t.material : material_;
     mesh_.triangles.push_back(shifted);
   }
 }

@@ -125,8 +125,9 @@ class Geometry {
   /// Adds a sphere; its poles lie along world z.
   void addSphere(const glm::dvec3& centre, double radius);
   /// Appends a mesh made elsewhere (generalized cylinders, surfaces): its indices are
-  /// its own, 0-based; its triangles take the current material.
-  void addMesh(const Mesh& part);
+  /// its own, 0-based; its triangles take the current material, or keep their own when
+  /// keepMaterials (plates coloured by the gap filter).
+  void addMesh(const Mesh& part, bool keepMaterials = false);
 
   /// The palette colour of everything added from now on.
   void setMaterial(uint32_t material) { material_ = material; }

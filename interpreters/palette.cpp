@@ -1,5 +1,8 @@
 #include "interpreters/palette.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace ontogen {
 
 namespace {
@@ -23,11 +26,25 @@ constexpr std::array<Color, kPaletteSize> kPalette = {{
     {0.70, 0.70, 0.30},  // 13 olive
     {0.80, 0.35, 0.35},  // 14 rose
     {0.15, 0.20, 0.35},  // 15 navy
+    // The stress ramp, blue to red through violet (paper 004 section VIII).
+    {0.15, 0.25, 0.90},  // 16
+    {0.28, 0.24, 0.80},  // 17
+    {0.41, 0.23, 0.70},  // 18
+    {0.54, 0.22, 0.60},  // 19
+    {0.66, 0.20, 0.46},  // 20
+    {0.77, 0.18, 0.34},  // 21
+    {0.86, 0.16, 0.22},  // 22
+    {0.95, 0.12, 0.10},  // 23
 }};
 
 }  // namespace
 
 Color paletteColor(uint32_t index) { return kPalette[index % kPaletteSize]; }
+
+uint32_t stressMaterial(double stress) {
+  const double s = std::isnan(stress) ? 0.0 : std::clamp(stress, 0.0, 1.0);
+  return kUserColors + static_cast<uint32_t>(std::lround(s * (kStressColors - 1)));
+}
 
 std::string materialName(uint32_t index) {
   return "ontogen_" + std::to_string(index % kPaletteSize);

@@ -15,14 +15,25 @@ struct Color {
   double b = 0;
 };
 
-/// Colours in the palette: 16 tell branches, petals and facets apart while staying
-/// distinct from each other.
-inline constexpr uint32_t kPaletteSize = 16;
+/// Colours that `color(i)` chooses from: 16 tell branches, petals and facets apart while
+/// staying distinct from each other.
+inline constexpr uint32_t kUserColors = 16;
+
+/// Colours of the stress ramp of the gap filter (gap_filter.h), after the user colours:
+/// 8 steps from blue to red read as a ramp without banding into noise.
+inline constexpr uint32_t kStressColors = 8;
+
+/// Every colour writers know: the user colours, then the stress ramp.
+inline constexpr uint32_t kPaletteSize = kUserColors + kStressColors;
 
 /// The colour of palette index i (taken modulo kPaletteSize).
 Color paletteColor(uint32_t index);
 
-/// The material name writers give palette index i: "ontogen_<i mod 16>".
+/// The palette index of stress s in [0, 1] (clamped): kUserColors (blue, unperturbed)
+/// to kPaletteSize - 1 (red, most stretched), rising with s.
+uint32_t stressMaterial(double stress);
+
+/// The material name writers give palette index i: "ontogen_<i mod kPaletteSize>".
 std::string materialName(uint32_t index);
 
 }  // namespace ontogen

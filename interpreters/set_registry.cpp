@@ -6,6 +6,7 @@
 #include "interpreters/image_set.h"
 #include "interpreters/music_commands.h"
 #include "interpreters/music_set.h"
+#include "interpreters/obj_reader.h"
 #include "interpreters/trace_set.h"
 #include "interpreters/turtle_commands.h"
 
@@ -29,6 +30,13 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     def.turtle.yawAngle = settings.yawAngle;
     def.turtle.radius = settings.radius;
     def.turtle.radians = settings.radians;
+    for (const SurfaceFile& file : settings.surfaces) {
+      try {
+        def.turtle.surfaces[file.id] = loadObjSurface(file.path);
+      } catch (const SurfaceError& bad) {
+        throw std::invalid_argument((file.location.empty() ? "" : file.location + ": ") + bad.what());
+      }
+    }
     return std::make_unique<GeometrySet>(def);
   }
   if (name == "music") return std::make_unique<MusicSet>(MusicSet::defFrom(settings.music));

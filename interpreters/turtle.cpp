@@ -1,7 +1,9 @@
 #include "interpreters/turtle.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -64,6 +66,11 @@ void Turtle::reset() {
   definingSection_.reset();
   pendingSection_ = GcSection{};
   gcs_.clear();
+  patches_.clear();
+  definingPatch_.reset();
+  patchPoints_.clear();
+  plates_.clear();
+  gapTolerance_ = 0;
 }
 
 void Turtle::finish(Geometry& geometry) {
@@ -71,6 +78,43 @@ void Turtle::finish(Geometry& geometry) {
     if (gcs_[i].open) finishGc(static_cast<int>(i), /*caps=*/true, geometry);
   }
   state_.gc = -1;
+  closePlate();
+  if (plates_.empty()) return;
+  const uint32_t material = geometry.material();
+  if (gapTolerance_ > 0) {
+    geometry.addMesh(joinPlates(plates_, gapTolerance_).mesh, /*keepMaterials=*/true);
+  } else {
+    geometry.addMesh(platesAsMesh(plates_), /*keepMaterials=*/true);
+  }
+  geometry.setMaterial(material);
+}
+
+void Turtle::closePlate() {
+  if (state_.plate < 0) return;
+  if (plates_[static_cast<std::size_t>(state_.plate)].corners.size() < 3) {
+    ++warnings_.badArguments;
+    plates_.erase(plates_.begin() + state_.plate);
+  }
+  state_.plate = -1;
+}
+
+const Surface* Turtle::surface(int id) const {
+  if (auto found = patches_.find(id); found != patches_.end()) return &found->second;
+  if (auto found = def_.surfaces.find(id); found != def_.surfaces.end()) return &found->second;
+  return nullptr;
+}
+
+const Surface& Turtle::surfaceArgument(double id) const {
+  const Surface* found = std::isfinite(id) && id == std::round(id) && std::abs(id) <= kMaxSectionId
+                             ? surface(static_cast<int>(id))
+                             : nullptr;
+  if (found == nullptr) {
+    std::ostringstream name;
+    name << id;
+    throw SurfaceError("surface " + name.str() + " is not defined (declare it with #surface ID \"file.obj\", or with patch(ID) ... endpatch "
+                       "earlier in the frame)");
+  }
+  return *found;
 }
 
 const GcSection* Turtle::section(int key) {
@@ -156,6 +200,11 @@ void Turtle::drawForward(double requested, bool capped, Geometry& geometry) {
   glm::dvec3 end = s.position + s.heading * distance;
   drawnLength_ += std::abs(distance);
   s.depth += 1;
+  if (s.plate >= 0) {
+    s.position = end;
+    plates_[static_cast<std::size_t>(s.plate)].corners.push_back(end);
+    return;
+  }
   if (s.gc >= 0) {
     s.position = end;
     gcs_[static_cast<std::size_t>(s.gc)].points.push_back({end, s.left, s.radius, section(s.section)});
@@ -235,12 +284,14 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
     case TurtleOp::Push:
       stack_.push_back(s);
       s.gc = -1;  // a branch does not extend its parent's generalized cylinder
+      s.plate = -1;  // nor its plate
       break;
     case TurtleOp::Pop:
       if (stack_.empty()) {
         ++warnings_.unmatchedPops;
       } else {
         if (s.gc >= 0) finishGc(s.gc, /*caps=*/true, geometry);  // the branch's own tube ends
+        closePlate();  // and its own plate
         s = stack_.back();
         stack_.pop_back();
       }
@@ -283,8 +334,8 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
       if (count > 0 && args[0] < 0) {
         ++warnings_.badArguments;
       } else {
-        s.material = count > 0 ? static_cast<uint32_t>(std::fmod(std::floor(args[0]), kPaletteSize))
-                               : (s.material + 1) % kPaletteSize;
+        s.material = count > 0 ? static_cast<uint32_t>(std::fmod(std::floor(args[0]), kUserColors))
+                               : (s.material + 1) % kUserColors;
       }
       break;
     case TurtleOp::Tropism: {
@@ -315,6 +366,103 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
     case TurtleOp::MaxLength:
     case TurtleOp::MaxDepth:
       executeEnvironment(command.op, args);
+      break;
+    case TurtleOp::PlaceSurface:
+    case TurtleOp::BlendSurfaces:
+    case TurtleOp::Patch:
+    case TurtleOp::PatchPoint:
+    case TurtleOp::EndPatch:
+    case TurtleOp::Plate:
+    case TurtleOp::EndPlate:
+    case TurtleOp::GapFilter:
+      executeSurfaceCommand(command.op, args, geometry);
+      break;
+  }
+}
+
+void Turtle::placeSurface(const Surface& surface, double scale, Geometry& geometry) {
+  const TurtleState& s = state_;
+  SurfacePlacement placement{s.position, glm::cross(s.heading, s.up), s.heading, s.up, scale};
+  geometry.addMesh(ontogen::placeSurface(surface, placement));
+}
+
+void Turtle::executeSurfaceCommand(TurtleOp op, std::span<const double> args, Geometry& geometry) {
+  TurtleState& s = state_;
+  switch (op) {
+    case TurtleOp::PlaceSurface: {
+      const Surface& surface = surfaceArgument(args[0]);
+      const double scale = args.size() > 1 ? args[1] : 1.0;
+      if (!(scale > 0)) {
+        ++warnings_.badArguments;
+        return;
+      }
+      placeSurface(surface, scale, geometry);
+      break;
+    }
+    case TurtleOp::BlendSurfaces: {
+      if (args.size() % 2 == 0 || !(args[0] > 0)) {
+        ++warnings_.badArguments;
+        return;
+      }
+      std::vector<const Surface*> surfaces;
+      std::vector<double> weights;
+      for (std::size_t k = 1; k + 1 < args.size(); k += 2) {
+        surfaces.push_back(&surfaceArgument(args[k]));
+        weights.push_back(args[k + 1]);
+      }
+      placeSurface(blendSurfaces(surfaces, weights), args[0], geometry);
+      break;
+    }
+    case TurtleOp::Patch: {
+      const double id = std::round(args[0]);
+      const double resolution = args.size() > 1 ? std::round(args[1]) : 8.0;
+      if (id < 0 || id > kMaxSectionId || resolution < 1 || resolution > 256) {
+        ++warnings_.badArguments;
+        return;
+      }
+      definingPatch_ = static_cast<int>(id);
+      patchResolution_ = static_cast<int>(resolution);
+      patchPoints_.clear();
+      break;
+    }
+    case TurtleOp::PatchPoint:
+      if (!definingPatch_ || patchPoints_.size() >= 16) {
+        ++warnings_.badArguments;
+      } else {
+        patchPoints_.emplace_back(args[0], args[1], args[2]);
+      }
+      break;
+    case TurtleOp::EndPatch:
+      if (!definingPatch_ || patchPoints_.size() != 16) {
+        ++warnings_.badArguments;
+      } else {
+        PatchControls controls;
+        std::copy(patchPoints_.begin(), patchPoints_.end(), controls.begin());
+        patches_[*definingPatch_] = bezierPatch(controls, patchResolution_);
+      }
+      definingPatch_.reset();
+      patchPoints_.clear();
+      break;
+    case TurtleOp::Plate:
+      closePlate();
+      s.plate = static_cast<int>(plates_.size());
+      plates_.push_back(Plate{{s.position}, s.material});
+      break;
+    case TurtleOp::EndPlate:
+      if (s.plate < 0) {
+        ++warnings_.badArguments;
+      } else {
+        closePlate();
+      }
+      break;
+    case TurtleOp::GapFilter:
+      if (args[0] < 0) {
+        ++warnings_.badArguments;
+      } else {
+        gapTolerance_ = args[0];
+      }
+      break;
+    default:
       break;
   }
 }

@@ -17,8 +17,10 @@
 #include <glm/vec3.hpp>
 
 #include "interpreters/environment.h"
+#include "interpreters/gap_filter.h"
 #include "interpreters/gc_mesher.h"
 #include "interpreters/geometry.h"
+#include "interpreters/surface.h"
 #include "interpreters/turtle_commands.h"
 
 namespace ontogen {
@@ -30,6 +32,8 @@ struct TurtleDef {
   double yawAngle = 90;   ///< default angle of < and >, degrees (radians if radians)
   double radius = 0;      ///< initial radius of F and cC, model units; 0 draws lines
   bool radians = false;   ///< angles (defaults and arguments) are in radians
+  /// Predefined surfaces by id (0..1023), e.g. loaded from OBJ files (#surface).
+  std::map<int, Surface> surfaces{};
 };
 
 /// Everything [ saves and ] restores.
@@ -43,6 +47,7 @@ struct TurtleState {
   double depth = 0;                   ///< segments drawn by F on the path from the origin
   int section = -12;                  ///< GC section: id >= 0, or -n for a circle of n points
   int gc = -1;                        ///< the generalized cylinder F extends, or -1
+  int plate = -1;                     ///< the plate F adds corners to, or -1
 };
 
 /// Problems the turtle skipped over; the interpreter turns them into warnings.
@@ -62,7 +67,8 @@ class Turtle {
   /// no tropism, empty environment, no sections, no open generalized cylinder.
   void reset();
 
-  /// Meshes every generalized cylinder still open into geometry (end of a frame).
+  /// Meshes every generalized cylinder still open into geometry, closes open plates and
+  /// adds every plate, through the gap filter when it is on (end of a frame).
   void finish(Geometry& geometry);
 
   /// Executes the command named `command` with its evaluated arguments (lengths in model
@@ -84,6 +90,13 @@ class Turtle {
   const Environment& environment() const { return environment_; }
   /// Total length drawn by F and cC since the last reset, model units.
   double drawnLength() const { return drawnLength_; }
+  /// The plates drawn so far in this frame, as drawn (before the gap filter).
+  const std::vector<Plate>& plates() const { return plates_; }
+  /// The gap filter's tolerance, model units; 0 when it is off.
+  double gapTolerance() const { return gapTolerance_; }
+  /// The surface id stands for now: a patch of this frame, else a predefined one; null
+  /// when neither exists.
+  const Surface* surface(int id) const;
 
  private:
   double length(std::span<const double> args) const;
@@ -103,6 +116,11 @@ class Turtle {
   void finishGc(int index, bool caps, Geometry& geometry);
   void executeEnvironment(TurtleOp op, std::span<const double> args);
   void executeCylinderCommand(TurtleOp op, std::span<const double> args, Geometry& geometry);
+  void executeSurfaceCommand(TurtleOp op, std::span<const double> args, Geometry& geometry);
+  /// The surface an argument names; throws SurfaceError when there is none.
+  const Surface& surfaceArgument(double id) const;
+  void placeSurface(const Surface& surface, double scale, Geometry& geometry);
+  void closePlate();
 
   /// A generalized cylinder being built.
   struct OpenGc {
@@ -125,6 +143,12 @@ class Turtle {
   std::optional<int> definingSection_;
   GcSection pendingSection_;
   std::vector<OpenGc> gcs_;
+  std::map<int, Surface> patches_;  // defined in this frame, by id
+  std::optional<int> definingPatch_;
+  int patchResolution_ = 8;
+  std::vector<glm::dvec3> patchPoints_;
+  std::vector<Plate> plates_;
+  double gapTolerance_ = 0;
 };
 
 }  // namespace ontogen

@@ -96,6 +96,28 @@ constexpr std::array kCommands = {
     TurtleCommand{"maxdepth", TurtleOp::MaxDepth, 1, 1, "maxdepth(n)",
                   "environment: generation limit, F draws only the first n segments of "
                   "each path from the origin"},
+    TurtleCommand{"surface", TurtleOp::PlaceSurface, 1, 2, "surface(id, s)",
+                  "place surface id (#surface, or patch) at the turtle scaled by s (default 1): "
+                  "its x along H x U, y along H, z along U; the turtle does not move"},
+    TurtleCommand{"blend", TurtleOp::BlendSurfaces, 3, 17, "blend(s, id1, w1, id2, w2, ...)",
+                  "place the vertex-wise blend sum(w_i surface_i) / sum(w_i) of up to 8 surfaces "
+                  "of one topology, scaled by s, like surface"},
+    TurtleCommand{"patch", TurtleOp::Patch, 1, 2, "patch(id, n)",
+                  "start defining surface id (0..1023) as the bicubic Bezier patch of the 16 "
+                  "patchpoint commands that follow, cut into n x n cells (default 8, 1..256)"},
+    TurtleCommand{"patchpoint", TurtleOp::PatchPoint, 3, 3, "patchpoint(x, y, z)",
+                  "add a control point (surface units) to the patch being defined, row by row, "
+                  "4 to a row"},
+    TurtleCommand{"endpatch", TurtleOp::EndPatch, 0, 0, "endpatch",
+                  "finish the patch being defined (it needs exactly 16 points)"},
+    TurtleCommand{"plate", TurtleOp::Plate, 0, 0, "plate",
+                  "start a flat facet at the turtle: until endplate each F adds the point where "
+                  "it ends as a corner instead of drawing"},
+    TurtleCommand{"endplate", TurtleOp::EndPlate, 0, 0, "endplate",
+                  "close the facet back to its first corner (it needs at least 3 corners)"},
+    TurtleCommand{"gapfilter", TurtleOp::GapFilter, 1, 1, "gapfilter(t)",
+                  "at the end of the frame join plate corners closer than t units and colour "
+                  "each plate by how much its edges stretched, blue to red; 0 turns it off"},
 };
 
 }  // namespace

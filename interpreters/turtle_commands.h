@@ -54,6 +54,14 @@ enum class TurtleOp {
   Repeller,        ///< repeller
   MaxLength,       ///< maxlength: resource limit
   MaxDepth,        ///< maxdepth: generation limit
+  PlaceSurface,    ///< surface: place a predefined surface
+  BlendSurfaces,   ///< blend: place a weighted blend of surfaces
+  Patch,           ///< patch: start defining a Bezier patch surface
+  PatchPoint,      ///< patchpoint: add a control point to it
+  EndPatch,        ///< endpatch
+  Plate,           ///< plate: start a flat facet
+  EndPlate,        ///< endplate: close it
+  GapFilter,       ///< gapfilter: join plate corners at the end of the frame
 };
 
 /// One row of the table.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <set>
@@ -185,6 +186,21 @@ class Compiler {
       }
       auto value = evaluateConstant(*setting.value, constantLookup(*scope), sink_, "#" + setting.name);
       if (!value) continue;
+      if (setting.name == "surface") {
+        if (*value < 0 || *value > 1023 || *value != std::floor(*value)) {
+          sink_.error(setting.span, "#surface takes a whole number 0 to 1023 before the file, as in #surface 1 \"bud.obj\"");
+          continue;
+        }
+        SurfaceFile file{static_cast<int>(*value), setting.word, ""};
+        if (setting.span.valid()) {
+          const std::filesystem::path base = std::filesystem::path(setting.span.file->name()).parent_path();
+          if (std::filesystem::path(file.path).is_relative()) file.path = (base / file.path).lexically_normal().string();
+          file.location = setting.span.file->name() + ":" + std::to_string(setting.span.line()) + ":" +
+                          std::to_string(setting.span.column());
+        }
+        target.surfaces.push_back(std::move(file));
+        continue;
+      }
       if (setting.name == "angle") {
         target.angle = *value;
         target.yawAngle = *value;

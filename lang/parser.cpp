@@ -213,6 +213,16 @@ class Parser {
         setting.value = expression();
         setting.span = hash.span.to(previous().span);
         settings.push_back(std::move(setting));
+      } else if (hash.text == "surface") {
+        Setting setting{hash.span, hash.text, nullptr};
+        if (atStatementEnd()) fail(hash.span, "expected a surface number and an OBJ file after '#surface', as in #surface 1 \"bud.obj\"");
+        setting.value = expression();
+        if (!check(TokenKind::String) || peek().line != hash.line)
+          fail(hash.span.to(previous().span), "expected the OBJ file in double quotes after the surface number, as in #surface 1 \"bud.obj\"");
+        const Token& path = advance();
+        setting.word = path.text;
+        setting.span = hash.span.to(path.span);
+        settings.push_back(std::move(setting));
       } else if (hash.text == "radians" || hash.text == "degrees") {
         settings.push_back(Setting{hash.span, hash.text, nullptr});
       } else if (hash.text == "music") {
@@ -235,7 +245,7 @@ class Parser {
         settings.push_back(Setting{hash.span.to(bottom.span), hash.text, nullptr, "", static_cast<int>(top.number), d});
       } else {
         fail(hash.span, "unknown directive '#" + hash.text +
-                            "' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, #seed, #until, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig)");
+                            "' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, #seed, #until, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, #surface)");
       }
       if (match(TokenKind::Semicolon)) return;
       if (!atStatementEnd()) failHere("the end of the line after the directive");

@@ -185,6 +185,13 @@ struct MusicSettings {
   int timeSignatureDenominator = 4;
 };
 
+/// `#surface ID "file.obj"`: a predefined surface the geometry set loads before the run.
+struct SurfaceFile {
+  int id = 0;            ///< 0..1023, the number surface(id) and blend name it by
+  std::string path;      ///< resolved against the directory of the program file
+  std::string location;  ///< "file:line:col" of the directive, for load errors
+};
+
 /// Interpretation settings of a system (`#angle`, `#length`, ...). Angles in the unit the
 /// program chose (degrees unless #radians).
 struct InterpretSettings {
@@ -194,6 +201,7 @@ struct InterpretSettings {
   double radius = 0;  ///< default cylinder radius (#radius); 0 draws lines
   bool radians = false;
   MusicSettings music{};
+  std::vector<SurfaceFile> surfaces{};  ///< #surface directives, in order
 };
 
 struct AxiomCell {

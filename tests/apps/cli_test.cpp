@@ -222,7 +222,8 @@ TEST(Cli, RunWritesGlbAndPngByDefaultAndRejectsUnknownFormats) {
 TEST(Cli, GeometryModelsRunAndWriteValidOutputs) {
   const fs::path modules = fs::path(ONTOGEN_SOURCE_DIR) / ".tools" / "node_modules";
   const bool validator = fs::exists(modules / "gltf-validator" / "package.json");
-  for (const char* name : {"horn_cylinders", "horn_gc", "cube", "replicator", "plant_ceiling", "flower", "piston"}) {
+  for (const char* name : {"horn_cylinders", "horn_gc", "cube", "replicator", "plant_ceiling", "flower", "piston",
+                           "triangles", "triangles_attracted"}) {
     fs::path out = scratch(std::string("model_") + name);
     Result result = ontogen("run " + model(std::string(name) + ".cell") + " --frames 3 --size 96x96 --format glb,png,obj --out " +
                             out.string());
@@ -239,3 +240,47 @@ TEST(Cli, GeometryModelsRunAndWriteValidOutputs) {
   }
   if (!validator) GTEST_SKIP() << "gltf-validator not installed (bash .ci/setup installs it)";
 }
+
+namespace {
+
+TEST(Cli, SurfaceFilesLoadRelativeToTheProgramAndBadOnesStopTheRun) {
+  fs::path dir = scratch("surfaces");
+  fs::create_directories(dir / "shapes");
+  std::ofstream(dir / "shapes" / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  writeProgram(dir, "#surface 2 \"shapes/tri.obj\"\nlsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n"
+                    "  interpret geometry { surface(2, 4) blend(1, 2, 0.5, 2, 0.5) }\n}\n");
+  Result good = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "out").string());
+  ASSERT_EQ(good.exitCode, 0) << good.err;
+  const std::string obj = readFile(dir / "out" / "program.obj");
+  EXPECT_NE(obj.find("v 4 0 0"), std::string::npos) << obj;  // scaled by 4
+  EXPECT_NE(obj.find("v 0 4 0"), std::string::npos) << obj;
+
+  writeProgram(dir, "#surface 2 \"shapes/none.obj\"\nlsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n"
+                    "  interpret geometry { surface(2) }\n}\n");
+  Result missing = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());
+  EXPECT_EQ(missing.exitCode, 2);
+  EXPECT_NE(missing.err.find("program.cell:1:1: cannot read surface " + (dir / "shapes" / "none.obj").string()),
+            std::string::npos)
+      << missing.err;
+  EXPECT_FALSE(fs::exists(dir / "bad" / "program.obj"));
+
+  writeProgram(dir, "lsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n  interpret geometry { surface(5) }\n}\n");
+  Result undefined = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());
+  EXPECT_EQ(undefined.exitCode, 3);
+  EXPECT_NE(undefined.err.find("surface 5 is not defined"), std::string::npos) << undefined.err;
+  EXPECT_FALSE(fs::exists(dir / "bad" / "program.obj"));
+
+  writeProgram(dir, "#surface 1.5 \"shapes/tri.obj\"\nlsystem s { axiom A }\n");
+  Result number = ontogen("check " + (dir / "program.cell").string());
+  EXPECT_EQ(number.exitCode, 1);
+  EXPECT_NE(number.err.find("program.cell:1:1: error: #surface takes a whole number 0 to 1023"), std::string::npos)
+      << number.err;
+  writeProgram(dir, "#surface 1\nlsystem s { axiom A }\n");
+  Result file = ontogen("check " + (dir / "program.cell").string());
+  EXPECT_EQ(file.exitCode, 1);
+  EXPECT_NE(file.err.find("program.cell:1:1: error: expected the OBJ file in double quotes after the surface number"),
+            std::string::npos)
+      << file.err;
+}
+
+}  // namespace

@@ -17,6 +17,7 @@
 #include "interpreters/geometry_set.h"
 #include "interpreters/glb_writer.h"
 #include "interpreters/renderer.h"
+#include "interpreters/surface.h"
 #include "tests/interpreters/png_decode.h"
 
 namespace ontogen {
@@ -135,6 +136,42 @@ TEST_F(OutputsTest, AnimatedGlbPassesTheKhronosValidator) {
   // assimp reads it too, with the four frames' meshes.
   auto [assimpStatus, info] = runCommand("assimp info '" + written[0].string() + "' 2>&1");
   EXPECT_EQ(assimpStatus, 0) << info;
+}
+
+TEST_F(OutputsTest, BlendedSurfacesAndFilteredPlatesPassTheKhronosValidator) {
+  // Two 4 x 4 patches of one topology (a flat one and a dome) blended by weights that
+  // change from frame to frame, and a plate sheet joined by the gap filter.
+  auto patch = [](double height) {
+    PatchControls c;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) c[4 * j + i] = glm::dvec3(i, j, (i == 1 || i == 2) && (j == 1 || j == 2) ? height : 0);
+    return bezierPatch(c, 4);
+  };
+  GeometrySetDef def;
+  ASSERT_EQ(applyGeometryFormats("glb", def), "");
+  def.turtle.surfaces[0] = patch(0);
+  def.turtle.surfaces[1] = patch(3);
+  GeometrySet set(def);
+  std::vector<fs::path> written;
+  for (int f = 0; f < 3; ++f) {
+    set.beginFrame({.directory = directory_, .stem = "blend", .frame = f, .frameCount = 3, .time = 1.0 * f});
+    auto x = [&](const char* c, std::vector<double> args = {}) { set.execute(c, args); };
+    x("color", {5});
+    x("blend", {0.5, 0, 2.0 - f, 1, 1.0 * f});
+    x("attractor", {1, 1, 2, 0.05, 2});
+    x("gapfilter", {0.3});
+    for (int k = 0; k < 4; ++k) {
+      x("plate"); x("F"); x("+", {120}); x("F"); x("endplate"); x("-", {120});
+      x("plate"); x("F"); x("-", {120}); x("F"); x("endplate"); x("+", {120});
+    }
+    for (auto& path : set.endFrame()) written.push_back(path);
+  }
+  EXPECT_EQ(set.geometry().triangleCount(), 32u + 8u);
+  ASSERT_EQ(written.size(), 1u);
+  if (validatorModules().empty()) GTEST_SKIP() << "gltf-validator not installed (bash .ci/setup installs it)";
+  auto [status, report] = validateGlb(written[0]);
+  EXPECT_EQ(status, 0) << report;
+  EXPECT_NE(report.find("errors 0"), std::string::npos) << report;
 }
 
 TEST_F(OutputsTest, EmptyAndSingleFrameGlbsAreValid) {

@@ -441,10 +441,11 @@ TEST(TurtleCommandsTest, TableIsCompleteAndConsistent) {
                                 "!", "cC", "disc", "sphere", "$", "color", "tropism", "circle", "section",
                                 "point", "endsection", "usesection", "gcbegin", "gcend", "ceiling", "ground",
                                 "obstaclesphere", "obstaclebox", "attractor", "repeller", "maxlength",
-                                "maxdepth"}) {
+                                "maxdepth", "surface", "blend", "patch", "patchpoint", "endpatch", "plate",
+                                "endplate", "gapfilter"}) {
     EXPECT_NE(findTurtleCommand(name), nullptr) << name;
   }
-  EXPECT_EQ(names.size(), 35u);
+  EXPECT_EQ(names.size(), 43u);
   EXPECT_EQ(findTurtleCommand("c"), nullptr);
 }
 
