@@ -3,6 +3,7 @@
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "interpreters/music_commands.h"
 #include "interpreters/set_registry.h"
 #include "interpreters/turtle_commands.h"
 #include "lang/builtins.h"
@@ -20,6 +21,9 @@ int runHelp() {
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
   std::cout << "\n\nTurtle commands (set 'geometry'):\n";
   for (const TurtleCommand& command : turtleCommands())
+    std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";
+  std::cout << "\nPlayer commands (set 'music'; pitches in MIDI notes, times in beats):\n";
+  for (const MusicCommand& command : musicCommands())
     std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";
   std::cout << "\nFunctions:\n";
   for (const BuiltinFunction& function : builtinFunctions())
