@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "apps/commands.h"
+#include "apps/live_playback.h"
 #include "apps/program_loader.h"
 #include "apps/progress_bar.h"
 #include "interpreters/interpret.h"
@@ -28,6 +29,8 @@ int runRun(const RunOptions& options) {
     }
     sets.push_back(std::move(set));
   }
+  std::shared_ptr<LivePlayback> playback;
+  if (int code = attachLivePlayback(options, sets, playback); code != kExitOk) return code;
   std::error_code error;
   std::filesystem::create_directories(options.out, error);
   if (error) {
@@ -97,6 +100,9 @@ int runRun(const RunOptions& options) {
   } catch (const OutputError& output) {
     std::cerr << "\nontogen: error: " << output.what() << "\n";
     return kExitOutputError;
+  } catch (const PlaybackInterrupted& interrupted) {
+    std::cerr << "\nontogen: " << interrupted.what() << "\n";
+    return kExitInterrupted;
   }
   std::cerr << "wrote " << written << " file" << (written == 1 ? "" : "s") << " to " << options.out << "\n";
   return kExitOk;

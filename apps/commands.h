@@ -27,6 +27,8 @@ struct RunOptions {
   std::vector<std::string> sets{"geometry"};
   std::string out = "out";
   bool stats = false;
+  std::string midiPort;        ///< play the music set live on this port (name or index)
+  bool virtualPort = false;    ///< or on a virtual port named "ontogen"
 };
 
 struct WordOptions {
@@ -40,5 +42,6 @@ int runCheck(const CommonOptions& options);
 int runRun(const RunOptions& options);
 int runWord(const WordOptions& options);
 int runHelp();
+int runMidiPorts();
 
 }  // namespace ontogen::app

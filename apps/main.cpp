@@ -51,11 +51,13 @@ int main(int argc, char** argv) {
   runCommand->add_option("--frames", run.frames, "Frames spread over [0, until]; 1: the end only")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
-  runCommand->add_option("--interpret", run.sets, "Interpretation sets, comma-separated (geometry, trace)")
+  runCommand->add_option("--interpret", run.sets, "Interpretation sets, comma-separated (geometry, music, trace)")
       ->delimiter(',')
       ->capture_default_str();
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
   runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
+  runCommand->add_option("--midi-port", run.midiPort, "Play the music set live on this MIDI port (name or index)");
+  runCommand->add_flag("--virtual-port", run.virtualPort, "Play the music set live on a new MIDI port 'ontogen'");
 
   WordOptions word;
   auto* wordCommand = app.add_subcommand("word", "Print the derivation word at given times");
@@ -67,6 +69,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 17))
       ->capture_default_str();
 
+  auto* midiPortsCommand = app.add_subcommand("midi-ports", "List the MIDI output ports --midi-port can play on");
   app.add_subcommand("help", "List commands, turtle commands and functions");
 
   try {
@@ -78,5 +81,6 @@ int main(int argc, char** argv) {
   if (checkCommand->parsed()) return runCheck(check);
   if (runCommand->parsed()) return runRun(run);
   if (wordCommand->parsed()) return runWord(word);
+  if (midiPortsCommand->parsed()) return runMidiPorts();
   return runHelp();
 }
