@@ -9,6 +9,7 @@
 #include "apps/program_loader.h"
 #include "apps/progress_bar.h"
 #include "interpreters/interpret.h"
+#include "interpreters/music_set.h"
 #include "interpreters/set_registry.h"
 
 namespace ontogen::app {
@@ -84,6 +85,13 @@ int runRun(const RunOptions& options) {
     }
     for (InterpretationSet* set : following) written += set->endFrame().size();
     progress.finish();
+    for (auto& set : sets)
+      if (const auto* music = dynamic_cast<const MusicSet*>(set.get()); music && music->warnings().total() > 0) {
+        const MusicWarnings& w = music->warnings();
+        std::cerr << "ontogen: warning: the music player skipped " << w.droppedNotes
+                  << " notes outside MIDI's 0..127, " << w.badArguments << " commands with bad arguments and "
+                  << w.unmatchedPops << " unmatched ']' (docs/LANGUAGE.md, \"Music\")\n";
+      }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (options.stats) {
       const WorldStats& stats = world.stats();

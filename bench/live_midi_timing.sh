@@ -8,7 +8,7 @@ set -euo pipefail
 ontogen=$(realpath "$1"); model=$(realpath "$2"); shift 2
 work=$(mktemp -d)
 export JACK_DEFAULT_SERVER="ontogen_timing_$$"
-jackd -n "$JACK_DEFAULT_SERVER" -r -d dummy -r 48000 -p 256 >"$work/jackd.log" 2>&1 &
+jackd -R -n "$JACK_DEFAULT_SERVER" -d dummy -r 48000 -p 256 >"$work/jackd.log" 2>&1 &
 jackd_pid=$!
 dump_pid=""
 cleanup() {

@@ -84,17 +84,33 @@ class JackPeer : public ::testing::Test {
     server_ = "ontogen_test_" + std::to_string(getpid());
     setenv("JACK_DEFAULT_SERVER", server_.c_str(), 1);
     // The dummy backend keeps time like a sound card would, without one.
-    jackd_ = spawnShell("exec jackd -n " + server_ + " -r -d dummy -r 48000 -p 256 >'" + (dir_ / "jackd.log").string() +
+    // -R: the server and its clients' process threads run with real-time priority, so a
+    // machine busy with other work makes them miss fewer cycles.
+    jackd_ = spawnShell("exec jackd -R -n " + server_ + " -d dummy -r 48000 -p 256 >'" + (dir_ / "jackd.log").string() +
                         "' 2>&1");
     ASSERT_GT(jackd_, 0);
     std::string waited = runCommand("jack_wait -w -t 10 2>&1", &code);
     ASSERT_EQ(code, 0) << waited << readFile(dir_ / "jackd.log");
-    // -a: absolute timestamps in frames; line-buffered so nothing is lost when stopped.
+    ASSERT_NO_FATAL_FAILURE(startRecorder());
+  }
+  /// Starts jack_midi_dump on a fresh dump.txt: -a gives absolute timestamps in frames;
+  /// line-buffered so nothing is lost when it is stopped.
+  void startRecorder() {
+    stop(dump_);
+    fs::remove(dir_ / "dump.txt");
     dump_ = spawnShell("exec stdbuf -oL jack_midi_dump -a >'" + (dir_ / "dump.txt").string() + "' 2>/dev/null");
     ASSERT_GT(dump_, 0);
     for (int i = 0; i < 100 && runCommand("jack_lsp 2>/dev/null").find("midi-monitor:input") == std::string::npos; ++i)
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     ASSERT_NE(runCommand("jack_lsp 2>/dev/null").find("midi-monitor:input"), std::string::npos);
+  }
+  /// Cycles the dummy server missed so far: a recorder that missed its cycle may have
+  /// lost what arrived in it, which says nothing about the sender.
+  int xruns() {
+    std::string log = readFile(dir_ / "jackd.log");
+    int count = 0;
+    for (size_t at = log.find("XRun"); at != std::string::npos; at = log.find("XRun", at + 1)) ++count;
+    return count;
   }
   void TearDown() override {
     stop(dump_);
@@ -157,12 +173,30 @@ TEST_F(JackPeer, PortsAreListedAndEveryMessageArrivesByValueOnTime) {
   EXPECT_NE(ports.find("0  midi-monitor:input  (jack)"), std::string::npos) << ports;
 
   fs::path program = writeProgram(kPiece);
-  pid_t run = spawnShell(ontogenCommand("run '" + program.string() + "' --interpret music --midi-port midi-monitor:input --stats --out '" +
-                                            (dir_ / "out").string() + "'",
-                                        dir_ / "run.txt"));
-  ASSERT_EQ(waitExit(run), 0) << readFile(dir_ / "run.txt");
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  std::vector<Arrival> received = arrivals();
+  // On a machine busy with other work the dummy server can miss cycles (xruns), and the
+  // recorder may lose what arrived in them; such an attempt measures the recorder, not
+  // ontogen. Up to three attempts for one that recorded everything or had no xruns.
+  std::vector<Arrival> received;
+  int attempt = 0, missed = 0;
+  for (; attempt < 3; ++attempt) {
+    if (attempt > 0) {
+      ASSERT_NO_FATAL_FAILURE(startRecorder());
+    }
+    int before = xruns();
+    pid_t run = spawnShell(ontogenCommand("run '" + program.string() +
+                                              "' --interpret music --midi-port midi-monitor:input --stats --out '" +
+                                              (dir_ / "out").string() + "'",
+                                          dir_ / "run.txt"));
+    ASSERT_EQ(waitExit(run), 0) << readFile(dir_ / "run.txt");
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    received = arrivals();
+    missed = xruns() - before;
+    if (missed == 0 || received.size() == dumpMidi(dir_ / "out" / "live.mid")["timeline"].size()) break;
+  }
+  ASSERT_TRUE(attempt < 3) << "the JACK dummy server missed cycles and the recorder lost messages in all 3 "
+                              "attempts: the machine is too busy to measure live MIDI\n"
+                           << readFile(dir_ / "jackd.log");
+  if (missed > 0) std::cout << missed << " xruns of the dummy server in the measured attempt\n";
   json file = dumpMidi(dir_ / "out" / "live.mid");
   const json& timeline = file["timeline"];
   ASSERT_GT(timeline.size(), 20u);
@@ -185,22 +219,39 @@ TEST_F(JackPeer, PortsAreListedAndEveryMessageArrivesByValueOnTime) {
 
   // Timing: each arrival against its schedule, both measured from the first message.
   double sentStart = timeline[0][0].get<double>(), gotStart = received[0].seconds;
-  std::vector<double> errors;
+  std::vector<std::pair<double, double>> pairs;  // (scheduled, arrived)
   for (auto& [channel, times] : sentTimes)
     for (size_t i = 0; i < times.size() && i < gotTimes[channel].size(); ++i)
-      errors.push_back(std::abs((gotTimes[channel][i] - gotStart) - (times[i] - sentStart)));
-  std::sort(errors.begin(), errors.end());
-  double median = errors[errors.size() / 2];
-  double p99 = errors[static_cast<size_t>(std::ceil(0.99 * errors.size())) - 1];
+      pairs.emplace_back(times[i] - sentStart, gotTimes[channel][i] - gotStart);
+  // The dummy backend's frames are a sleeping thread's count, not wall-clock time: on a
+  // busy machine it runs slow by a fraction of a percent. A straight line through
+  // (scheduled, arrived) takes that rate out; what remains is jitter.
+  double n = static_cast<double>(pairs.size()), mx = 0, my = 0, sxx = 0, sxy = 0;
+  for (auto [x, y] : pairs) mx += x / n, my += y / n;
+  for (auto [x, y] : pairs) sxx += (x - mx) * (x - mx), sxy += (x - mx) * (y - my);
+  double rate = sxy / sxx;
+  std::vector<double> errors, jitter;
+  for (auto [x, y] : pairs) {
+    errors.push_back(std::abs(y - x));
+    jitter.push_back(std::abs(y - (my + rate * (x - mx))));
+  }
+  auto percentile = [](std::vector<double> values, double p) {
+    std::sort(values.begin(), values.end());
+    return values[static_cast<size_t>(std::ceil(p * static_cast<double>(values.size()))) - 1];
+  };
   std::cout << "arrival error against the schedule over " << errors.size() << " messages: median "
-            << median * 1e3 << " ms, p99 " << p99 * 1e3 << " ms\n"
+            << percentile(errors, 0.5) * 1e3 << " ms, p99 " << percentile(errors, 0.99) * 1e3
+            << " ms; frame clock rate " << rate << ", jitter around it: median " << percentile(jitter, 0.5) * 1e3
+            << " ms, p99 " << percentile(jitter, 0.99) * 1e3 << " ms\n"
             << readFile(dir_ / "run.txt");
-  RecordProperty("arrival_median_ms", std::to_string(median * 1e3));
-  RecordProperty("arrival_p99_ms", std::to_string(p99 * 1e3));
+  RecordProperty("arrival_median_ms", std::to_string(percentile(errors, 0.5) * 1e3));
+  RecordProperty("arrival_p99_ms", std::to_string(percentile(errors, 0.99) * 1e3));
+  // The schedule's pace arrives (a wrong tempo map would be off by far more than 2 %).
+  EXPECT_NEAR(rate, 1, 0.02);
   // JACK delivers in periods of 256 frames (5.3 ms at 48 kHz); a loaded machine adds
   // scheduling delay. 25 ms is far below what a listener hears as out of time at this
   // tempo (a sixteenth is 100 ms) and far above what a working scheduler needs.
-  EXPECT_LT(p99, 0.025);
+  EXPECT_LT(percentile(jitter, 0.99), 0.025);
 }
 
 TEST_F(JackPeer, CtrlCStopsEveryNoteThatStartedAndExits130) {

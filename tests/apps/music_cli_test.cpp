@@ -213,6 +213,26 @@ TEST_F(MusicCli, MarkovMelodyIsAWalkThatTheSeedChooses) {
   }
 }
 
+TEST_F(MusicCli, BadValuesAreSkippedWithAWarningAndTheFileStaysValid) {
+  fs::path dir = scratch("bad_values_program");
+  fs::path program = dir / "climb.cell";
+  // Twelve octaves up from 60: the notes above 127 are dropped, not wrapped or clamped.
+  std::ofstream(program) << "lsystem climb {\n  #until 12\n  axiom A\n"
+                            "  interpret music A { note(-1) ] }\n  A -> F up(12) A\n}\n";
+  fs::path out = scratch("bad_values");
+  Result result = ontogen("run " + program.string() + " --interpret music --out " + out.string());
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("ontogen: warning: the music player skipped 6 notes outside MIDI's 0..127, 1 commands "
+                            "with bad arguments and 1 unmatched ']'"),
+            std::string::npos)
+      << result.err;
+  json read = dumpMidi(out / "climb.mid");
+  EXPECT_EQ(read["unmatched"], 0);
+  json expected = json::array();
+  for (int i = 0; i < 6; ++i) expected.push_back({i * 480, (i + 1) * 480, 0, 60 + 12 * i, 100});
+  EXPECT_EQ(read["notes"], expected);
+}
+
 TEST(MusicCliErrors, ABadMusicDirectiveWritesNothing) {
   fs::path dir = scratch("bad");
   fs::path program = dir / "bad.cell";
