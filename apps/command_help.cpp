@@ -11,11 +11,12 @@
 namespace ontogen::app {
 
 int runHelp() {
-  std::cout << "ontogen: grows cell-language programs and realises them as geometry and text.\n\n"
+  std::cout << "ontogen: grows cell-language programs and realises them as geometry, music and text.\n\n"
                "Commands:\n"
                "  ontogen check FILE                    parse and check a program\n"
                "  ontogen run FILE [options]            develop and write one output per frame\n"
                "  ontogen word FILE --at T1,T2 [--json] print the derivation word at those times\n"
+               "  ontogen midi-ports                    list the MIDI output ports for --midi-port\n"
                "  ontogen help                          this text\n\n"
                "Interpretation sets:";
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;

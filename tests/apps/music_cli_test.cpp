@@ -233,6 +233,21 @@ TEST_F(MusicCli, BadValuesAreSkippedWithAWarningAndTheFileStaysValid) {
   EXPECT_EQ(read["notes"], expected);
 }
 
+TEST_F(MusicCli, DirectivesChooseFormatResolutionTempoAndTimeSignature) {
+  fs::path dir = scratch("directives_program");
+  fs::path program = dir / "settings.cell";
+  std::ofstream(program) << "#midiformat 0\n#ppq 96\n#tempo 90\n#timesig 7/8\n"
+                            "lsystem settings {\n  #until 1\n  axiom F\n  F -> F [ channel(3) up(4) F ] F\n}\n";
+  json read = play(program.string(), "directives");
+  EXPECT_EQ(read["type"], 0);
+  EXPECT_EQ(read["tracks"], 1);
+  EXPECT_EQ(read["ppq"], 96);
+  EXPECT_EQ(read["tempos"], (json{{0, 666667}}));
+  EXPECT_EQ(read["timesigs"], (json{{0, 7, 8}}));
+  // The branch is a voice on channel 3 that starts with the note after it.
+  EXPECT_EQ(read["notes"], (json{{0, 96, 0, 60, 100}, {96, 192, 0, 60, 100}, {96, 192, 3, 64, 100}}));
+}
+
 TEST(MusicCliErrors, ABadMusicDirectiveWritesNothing) {
   fs::path dir = scratch("bad");
   fs::path program = dir / "bad.cell";
