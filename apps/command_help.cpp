@@ -3,6 +3,7 @@
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "interpreters/music_commands.h"
 #include "interpreters/set_registry.h"
 #include "interpreters/turtle_commands.h"
 #include "lang/builtins.h"
@@ -10,18 +11,22 @@
 namespace ontogen::app {
 
 int runHelp() {
-  std::cout << "ontogen: grows cell-language programs and realises them as geometry and text.\n\n"
+  std::cout << "ontogen: grows cell-language programs and realises them as geometry, music and text.\n\n"
                "Commands:\n"
                "  ontogen check FILE                    parse and check a program\n"
                "  ontogen run FILE [options]            develop and write one output per frame\n"
                "  ontogen word FILE --at T1,T2 [--json] print the derivation word at those times\n"
+               "  ontogen midi-ports                    list the MIDI output ports for --midi-port\n"
                "  ontogen help                          this text\n\n"
                "Interpretation sets:";
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
   std::cout << "\n\nTurtle commands (set 'geometry'):\n";
   // The space after the column keeps long signatures (blend, obstaclebox) apart from their doc.
   for (const TurtleCommand& command : turtleCommands())
-    std::cout << "  " << std::left << std::setw(15) << command.signature << " " << command.doc << "\n";
+    std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";
+  std::cout << "\nPlayer commands (set 'music'; pitches in MIDI notes, times in beats):\n";
+  for (const MusicCommand& command : musicCommands())
+    std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";
   std::cout << "\nFunctions:\n";
   for (const BuiltinFunction& function : builtinFunctions())
     std::cout << "  " << std::left << std::setw(22) << function.signature << function.doc << "\n";

@@ -6,9 +6,11 @@
 #include <system_error>
 
 #include "apps/commands.h"
+#include "apps/live_playback.h"
 #include "apps/program_loader.h"
 #include "apps/progress_bar.h"
 #include "interpreters/interpret.h"
+#include "interpreters/music_set.h"
 #include "interpreters/set_registry.h"
 #include "interpreters/surface.h"
 
@@ -49,6 +51,8 @@ int runRun(const RunOptions& options) {
     }
     sets.push_back(std::move(set));
   }
+  std::shared_ptr<LivePlayback> playback;
+  if (int code = attachLivePlayback(options, sets, playback); code != kExitOk) return code;
   std::error_code error;
   std::filesystem::create_directories(options.out, error);
   if (error) {
@@ -102,6 +106,13 @@ int runRun(const RunOptions& options) {
     }
     for (InterpretationSet* set : following) written += set->endFrame().size();
     progress.finish();
+    for (auto& set : sets)
+      if (const auto* music = dynamic_cast<const MusicSet*>(set.get()); music && music->warnings().total() > 0) {
+        const MusicWarnings& w = music->warnings();
+        std::cerr << "ontogen: warning: the music player skipped " << w.droppedNotes
+                  << " notes outside MIDI's 0..127, " << w.badArguments << " commands with bad arguments and "
+                  << w.unmatchedPops << " unmatched ']' (docs/LANGUAGE.md, \"Music\")\n";
+      }
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (options.stats) {
       const WorldStats& stats = world.stats();
@@ -121,6 +132,9 @@ int runRun(const RunOptions& options) {
   } catch (const SurfaceError& surface) {
     std::cerr << "\nontogen: error: " << surface.what() << "\n";
     return kExitModelError;
+  } catch (const PlaybackInterrupted& interrupted) {
+    std::cerr << "\nontogen: " << interrupted.what() << "\n";
+    return kExitInterrupted;
   }
   std::cerr << "wrote " << written << " file" << (written == 1 ? "" : "s") << " to " << options.out << "\n";
   return kExitOk;

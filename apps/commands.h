@@ -31,6 +31,8 @@ struct RunOptions {
   std::string format = "glb,png";   ///< geometry outputs, comma-separated
   std::vector<double> view;         ///< azimuth, elevation in degrees; empty: automatic
   std::string size = "800x800";     ///< picture size, WIDTHxHEIGHT pixels
+  std::string midiPort;        ///< play the music set live on this port (name or index)
+  bool virtualPort = false;    ///< or on a virtual port named "ontogen"
 };
 
 struct WordOptions {
@@ -65,5 +67,6 @@ int runTimeline(const TimelineOptions& options);
 int runRun(const RunOptions& options);
 int runWord(const WordOptions& options);
 int runHelp();
+int runMidiPorts();
 
 }  // namespace ontogen::app

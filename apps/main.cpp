@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
   runCommand->add_option("--frames", run.frames, "Frames spread over [0, until]; 1: the end only")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
-  runCommand->add_option("--interpret", run.sets, "Interpretation sets, comma-separated (geometry, trace)")
+  runCommand->add_option("--interpret", run.sets, "Interpretation sets, comma-separated (geometry, music, trace)")
       ->delimiter(',')
       ->capture_default_str();
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
       ->expected(2);
   runCommand->add_option("--size", run.size, "Picture size WIDTHxHEIGHT in pixels")->capture_default_str();
   runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
+  runCommand->add_option("--midi-port", run.midiPort, "Play the music set live on this MIDI port (name or index)");
+  runCommand->add_flag("--virtual-port", run.virtualPort, "Play the music set live on a new MIDI port 'ontogen'");
 
   WordOptions word;
   auto* wordCommand = app.add_subcommand("word", "Print the derivation word at given times");
@@ -86,6 +88,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
 
+  auto* midiPortsCommand = app.add_subcommand("midi-ports", "List the MIDI output ports --midi-port can play on");
   app.add_subcommand("help", "List commands, turtle commands and functions");
 
   try {
@@ -98,5 +101,6 @@ int main(int argc, char** argv) {
   if (runCommand->parsed()) return runRun(run);
   if (wordCommand->parsed()) return runWord(word);
   if (timelineCommand->parsed()) return runTimeline(timeline);
+  if (midiPortsCommand->parsed()) return runMidiPorts();
   return runHelp();
 }

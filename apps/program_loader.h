@@ -17,6 +17,8 @@ enum ExitCode {
   kExitUsage = 2,         ///< bad command line
   kExitModelError = 3,    ///< the model failed or passed a limit while it ran
   kExitOutputError = 4,   ///< an output could not be written
+  kExitMidiError = 5,     ///< live MIDI: no MIDI system runs, or no such port
+  kExitInterrupted = 130, ///< stopped by Ctrl-C (SIGINT) during live playback, notes stopped
 };
 
 struct LoadedProgram {

@@ -1,5 +1,6 @@
 #include "interpreters/midi_file_writer.h"
 
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -125,16 +126,15 @@ std::vector<uint8_t> encodeMidiFile(const Score& score, const MidiFileDef& def) 
     TrackBuilder first;
     conductor(first, def, sequence);
     tracks.push_back(std::move(first));
-    for (int channel = 0; channel < 16; ++channel) {
-      TrackBuilder track;
-      bool used = false;
-      for (const MidiMessage& message : sequence.messages) {
-        if (message.channel() != channel) continue;
-        track.channel(message);
-        used = true;
-      }
-      if (used) tracks.push_back(std::move(track));
+    // One pass deals the messages out to their channels' tracks.
+    std::array<TrackBuilder, 16> channels;
+    std::array<bool, 16> used{};
+    for (const MidiMessage& message : sequence.messages) {
+      channels[message.channel()].channel(message);
+      used[message.channel()] = true;
     }
+    for (int channel = 0; channel < 16; ++channel)
+      if (used[channel]) tracks.push_back(std::move(channels[channel]));
   }
 
   std::vector<uint8_t> file = {'M', 'T', 'h', 'd', 0, 0, 0, 6};

@@ -9,7 +9,7 @@ namespace {
 constexpr std::array kCommands = {
     MusicCommand{"note", MusicOp::Note, 0, 2, "note(d, v)",
                  "play the current pitch for d beats (default: duration) at velocity v "
-                 "(default: velocity), then move the time on by d"},
+                 "(default: velocity; below 0.5: silent, a rest), then move the time on by d"},
     MusicCommand{"play", MusicOp::Play, 1, 3, "play(p, d, v)",
                  "set the pitch to MIDI note p, then play it like note(d, v)"},
     MusicCommand{"hold", MusicOp::Hold, 0, 1, "hold(v)",
@@ -17,6 +17,9 @@ constexpr std::array kCommands = {
                  "long as it lives, without moving the time; sequential time: like note"},
     MusicCommand{"rest", MusicOp::Rest, 0, 1, "rest(d)",
                  "move the time on by d beats (default: duration) in silence"},
+    MusicCommand{"at", MusicOp::At, 1, 1, "at(t)",
+                 "move the time to beat t from the start (negative: 0), e.g. a grid "
+                 "site's column: at(me.x / 2)"},
     MusicCommand{"pitch", MusicOp::Pitch, 1, 1, "pitch(p)",
                  "set the pitch to MIDI note p (60: middle C), rounded to a semitone"},
     MusicCommand{"up", MusicOp::Up, 0, 1, "up(n)", "raise the pitch by n semitones (default 1)"},
@@ -32,7 +35,8 @@ constexpr std::array kCommands = {
                  "set the tonic of the scale to pitch class k mod 12 (0: C, 2: D ... 11: B; "
                  "a note number works too; default 0)"},
     MusicCommand{"velocity", MusicOp::Velocity, 1, 1, "velocity(v)",
-                 "set the velocity of following notes, 1..127 (clamped; default 100)"},
+                 "set the velocity of following notes, 0..127 (clamped; 0: they are silent; "
+                 "default 100)"},
     MusicCommand{"duration", MusicOp::Duration, 1, 1, "duration(d)",
                  "set the default length of note and rest, beats > 0 (default 1)"},
     MusicCommand{"channel", MusicOp::Channel, 1, 1, "channel(c)",

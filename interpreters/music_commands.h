@@ -21,6 +21,7 @@ enum class MusicOp {
   Play,        ///< play(p, d, v)
   Hold,        ///< hold(v)
   Rest,        ///< rest(d)
+  At,          ///< at(t)
   Pitch,       ///< pitch(p)
   Up,          ///< up(n)
   Down,        ///< down(n)

@@ -123,6 +123,7 @@ void MusicPlayer::execute(const MusicCommand& command, std::span<const double> a
           ++warnings_.droppedNotes;
           break;
         }
+        if (clampToInt(arg(0, state_.velocity), 0, 127) == 0) break;
         held_.push_back(ScoreNote{state_.time, 0, static_cast<uint8_t>(state_.channel), static_cast<uint8_t>(pitch),
                                   static_cast<uint8_t>(clampToInt(arg(0, state_.velocity), 1, 127))});
       }
@@ -136,6 +137,9 @@ void MusicPlayer::execute(const MusicCommand& command, std::span<const double> a
       state_.time += d;
       break;
     }
+    case MusicOp::At:
+      setTime(args[0]);
+      break;
     case MusicOp::Pitch:
       state_.pitch = clampPitch(std::round(args[0]));
       break;
@@ -163,7 +167,7 @@ void MusicPlayer::execute(const MusicCommand& command, std::span<const double> a
       break;
     }
     case MusicOp::Velocity:
-      state_.velocity = clampToInt(args[0], 1, 127);
+      state_.velocity = clampToInt(args[0], 0, 127);
       break;
     case MusicOp::Duration:
       if (!(args[0] > 0)) {
@@ -219,7 +223,9 @@ void MusicPlayer::playNote(double duration, double velocity, Score& score) {
     ++warnings_.badArguments;
     return;
   }
-  if (notesEnabled_) {
+  // Velocity 0 is MIDI's note-off: such a note is a rest, so blocks can silence notes
+  // with an expression, e.g. note(1, if(on, 90, 0)).
+  if (notesEnabled_ && clampToInt(velocity, 0, 127) > 0) {
     if (state_.pitch < 0 || state_.pitch > 127) {
       ++warnings_.droppedNotes;
     } else {

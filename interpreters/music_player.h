@@ -26,7 +26,7 @@ namespace ontogen {
 struct MusicState {
   double time = 0;      ///< beats from the start
   double pitch = 60;    ///< MIDI note number, whole; may leave 0..127 (such notes are dropped)
-  int velocity = 100;   ///< 1..127
+  int velocity = 100;   ///< 0..127; 0 silences notes
   double duration = 1;  ///< beats > 0, the default length of note and rest
   int channel = 0;      ///< 0..15
   int scale = 0;        ///< index into musicScales()

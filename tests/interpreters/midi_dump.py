@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Reads a Standard MIDI File with mido (an independent parser) and prints what it holds
 as one JSON object, in absolute ticks: notes paired first-in first-out per channel and
-pitch, program changes, controllers, pitch bends, tempos and time signatures. Notes
-left without a note-off are counted in "unmatched"."""
+pitch, program changes, controllers, pitch bends, tempos and time signatures, and the
+channel messages in playing order with their times in seconds ("timeline"). Notes left
+without a note-off are counted in "unmatched"."""
 import json
 import sys
 
@@ -51,6 +52,14 @@ def main(path):
         out["unmatched"] += sum(len(v) for v in sounding.values())
         out["channels_per_track"].append(sorted(channels))
     out["notes"].sort()
+    # The messages as a player sends them, in seconds through the tempo map (mido merges
+    # the tracks), for comparison with what a live peer received.
+    seconds = 0.0
+    out["timeline"] = []
+    for message in midi:
+        seconds += message.time
+        if not message.is_meta:
+            out["timeline"].append([seconds, message.bytes()])
     print(json.dumps(out))
 
 

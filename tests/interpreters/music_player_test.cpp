@@ -123,11 +123,19 @@ TEST(MusicPlayer, BadValuesAreDroppedOrClampedAndCounted) {
   p.run("pitch", {60});
   p.run("velocity", {300});
   p.run("note");
-  p.run("velocity", {0});
-  p.run("note");
+  p.run("note", {1, 0.7});
+  double before = p.player.state().time;
+  p.run("velocity", {-4});
+  p.run("note");  // velocity 0: silent, a rest
+  p.run("note", {2, 0.2});
   ASSERT_EQ(p.score.notes.size(), 2u);
   EXPECT_EQ(p.score.notes[0].velocity, 127);
   EXPECT_EQ(p.score.notes[1].velocity, 1);
+  EXPECT_EQ(p.player.state().time, before + 3);
+  p.run("at", {-2});
+  EXPECT_EQ(p.player.state().time, 0);
+  p.run("at", {7.5});
+  EXPECT_EQ(p.player.state().time, 7.5);
 }
 
 TEST(MusicPlayer, ControllersProgramsBendsAndTempo) {
