@@ -185,7 +185,8 @@ void World::seedGrid() {
       const AxiomCell& axiom = system.axiom[from];
       cell.master = axiom.master;
       cell.birth = time_ - axiom.age;
-      state.insert(state.end(), axiom.values.begin(), axiom.values.end());
+      const std::vector<double> values = axiomValues(axiom);
+      state.insert(state.end(), values.begin(), values.end());
     } else {
       const GridPlacement& placement = system.placements[from - axiomCount];
       cell.master = placement.master;
@@ -210,6 +211,18 @@ void World::seedGrid() {
   grid_.assign(cells, state, siteOf);
 }
 
+// An axiom cell's values; those that read the enclosing systems are evaluated now.
+std::vector<double> World::axiomValues(const AxiomCell& axiom) const {
+  std::vector<double> values = axiom.values;
+  if (axiom.fromSystems.empty()) return values;
+  FunctionTable functions = program_->functionTable();
+  EvalContext context{nullptr, EvalEnvironment{nullptr, def_.seed}, &functions};
+  context.ancestors = ancestorValues_.data();
+  for (size_t i = 0; i < values.size() && i < axiom.fromSystems.size(); ++i)
+    if (!axiom.fromSystems[i].empty()) values[i] = axiom.fromSystems[i].evaluate(context);
+  return values;
+}
+
 void World::seedAxiom() {
   const SystemDefinition& system = rootSystem();
   uint64_t index = 0;
@@ -219,7 +232,8 @@ void World::seedAxiom() {
     cell.birth = time_ - axiom.age;
     cell.id = mixKey(idSalt(), index++);
     Pool& pool = system.poolKind == PoolKind::Spatial ? static_cast<Pool&>(spatial_) : pool_;
-    pool.append(cell, axiom.values.data(), static_cast<uint32_t>(axiom.values.size()));
+    const std::vector<double> values = axiomValues(axiom);
+    pool.append(cell, values.data(), static_cast<uint32_t>(values.size()));
   }
   stats_.cellsBorn = rootPool().size();
   if (system.poolKind == PoolKind::Spatial) spatial_.index();

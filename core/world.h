@@ -125,6 +125,7 @@ class World {
   friend class GridDevelopment;
   friend class SpatialDevelopment;
   void seedPool();
+  std::vector<double> axiomValues(const AxiomCell& axiom) const;
   void seedAxiom();
   void seedGrid();
   void developStep(double t1, bool stepRules);

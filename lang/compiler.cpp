@@ -628,8 +628,28 @@ class Compiler {
       const MasterCell& definition = program_->masters[master];
       NameLookup names = constantLookup(scope);
       addFunctions(names, scope);
+      // Values may read the system's own state and those above it (parent.x, root.x).
+      reader_ = Reader{-1, index};
+      NameLookup withSystems = names;
+      withSystems.ancestor = [this](const std::string& path, SourceSpan span) {
+        ++ancestorUses_;
+        return registerAncestor(path, span);
+      };
       for (uint32_t i = 0; i < definition.stateCount(); ++i) {
         if (i < module.args.size()) {
+          const int usesBefore = ancestorUses_;
+          const int errorsBefore = sink_.errorCount();
+          CompiledExpression compiled = compileExpression(*module.args[i], withSystems, sink_);
+          if (ancestorUses_ != usesBefore && sink_.errorCount() == errorsBefore && !compiled.isStochastic()) {
+            cell.fromSystems.resize(definition.stateCount());
+            cell.fromSystems[i] = std::move(compiled);
+            cell.values.push_back(0);
+            continue;
+          }
+          if (sink_.errorCount() != errorsBefore) {
+            cell.values.push_back(0);
+            continue;
+          }
           auto value = evaluateConstant(*module.args[i], names, sink_, "an axiom value");
           cell.values.push_back(value.value_or(0));
         } else {
@@ -1301,6 +1321,7 @@ class Compiler {
   Reader reader_;
   std::vector<AncestorRead> ancestorReads_;
   std::set<size_t> reportedAncestors_;
+  int ancestorUses_ = 0;  // reads of enclosing systems compiled so far
   std::map<size_t, int> systemMaster_;  // tree index of a system -> its master
 };
 

@@ -207,6 +207,9 @@ struct InterpretSettings {
 struct AxiomCell {
   MasterId master = 0;
   std::vector<double> values;
+  /// Values that read the enclosing systems (`axiom Trunk(parent.height)`), evaluated
+  /// when the pool is seeded; empty, or one per value with the constant ones empty.
+  std::vector<CompiledExpression> fromSystems;
   double age = 0;
 };
 
