@@ -81,20 +81,7 @@ void GridDevelopment::applyStepRules(double t) {
       RandomStream random(mixKey(mixKey(seed ^ kStepRuleSalt, cell.id), keyOf(t)));
       EvalContext context{frame, EvalEnvironment{&random, seed}, &functions, &evaluator};
       context.ancestors = world_.ancestorValues();
-      const CompiledRule* action = nullptr;
-      for (const CompiledRule& rule : master.rules) {
-        if (!rule.hasDiscrete) continue;  // rate-only rules act while integrating
-        if (!evaluator.bind(rule)) continue;
-        if (!rule.predicate.empty() && rule.predicate.evaluate(context) == 0.0) continue;
-        if (!rule.probability.empty() && !(random.uniform() < rule.probability.evaluate(context))) continue;
-        for (const StateCalculation& calculation : rule.calculations)
-          if (!calculation.isRate) frame[calculation.slot] = calculation.value.evaluate(context);
-        ++out.firings;
-        if (rule.hasAction) {
-          action = &rule;
-          break;
-        }
-      }
+      const CompiledRule* action = evaluator.fireStepRules(master, context, random, out.firings);
       if (!action) {
         out.cells.push_back(CellRecord{cell.master, static_cast<uint32_t>(out.state.size()), cell.birth, cell.id});
         out.state.insert(out.state.end(), frame, frame + n);

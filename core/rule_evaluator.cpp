@@ -60,6 +60,22 @@ bool RuleEvaluator::bind(const CompiledRule& rule) {
   return true;
 }
 
+const CompiledRule* RuleEvaluator::fireStepRules(const MasterCell& master, const EvalContext& context,
+                                                RandomStream& random, uint64_t& firings) {
+  double* frame = frame_.data();
+  for (const CompiledRule& rule : master.rules) {
+    if (!rule.hasDiscrete) continue;  // rate-only rules act while integrating
+    if (!bind(rule)) continue;
+    if (!rule.predicate.empty() && rule.predicate.evaluate(context) == 0.0) continue;
+    if (!rule.probability.empty() && !(random.uniform() < rule.probability.evaluate(context))) continue;
+    for (const StateCalculation& calculation : rule.calculations)
+      if (!calculation.isRate) frame[calculation.slot] = calculation.value.evaluate(context);
+    ++firings;
+    if (rule.hasAction) return &rule;
+  }
+  return nullptr;
+}
+
 double RuleEvaluator::aggregate(int query) const {
   if (neighbourCount_ < 0) {
     if (tableOffsets_) {

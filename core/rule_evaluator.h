@@ -33,6 +33,12 @@ class RuleEvaluator final : public NeighbourAggregates {
     tableOffsets_ = offsets;
     tableCells_ = cells;
   }
+  /// Fires the loaded cell's per-step rules in order against `context` (whose frame is
+  /// this evaluator's): rate-only rules are left to the integrator; a rule whose context,
+  /// predicate and probability hold writes its calculations into the frame, and the first
+  /// one with an action ends the pass. Returns that rule, or null; counts firings.
+  const CompiledRule* fireStepRules(const MasterCell& master, const EvalContext& context, RandomStream& random,
+                                    uint64_t& firings);
   double aggregate(int query) const override;
   double* frame() { return frame_.data(); }
   size_t cell() const { return cell_; }

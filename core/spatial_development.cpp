@@ -59,20 +59,7 @@ void SpatialDevelopment::applyStepRules(double t) {
       RandomStream random(mixKey(mixKey(seed ^ kStepRuleSalt, cell.id), keyOf(t)));
       EvalContext context{frame, EvalEnvironment{&random, seed}, &functions, &evaluator};
       context.ancestors = world_.ancestorValues();
-      const CompiledRule* action = nullptr;
-      for (const CompiledRule& rule : master.rules) {
-        if (!rule.hasDiscrete) continue;
-        if (!evaluator.bind(rule)) continue;
-        if (!rule.predicate.empty() && rule.predicate.evaluate(context) == 0.0) continue;
-        if (!rule.probability.empty() && !(random.uniform() < rule.probability.evaluate(context))) continue;
-        for (const StateCalculation& calculation : rule.calculations)
-          if (!calculation.isRate) frame[calculation.slot] = calculation.value.evaluate(context);
-        ++out.firings;
-        if (rule.hasAction) {
-          action = &rule;
-          break;
-        }
-      }
+      const CompiledRule* action = evaluator.fireStepRules(master, context, random, out.firings);
       auto emit = [&](CellRecord record, const double* values, uint32_t count) {
         record.state = static_cast<uint32_t>(out.state.size());
         out.state.insert(out.state.end(), values, values + count);

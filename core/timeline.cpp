@@ -32,7 +32,7 @@ void TimelineRecorder::walk(const World& world, int depth, std::list<Entry>::ite
     auto found = byId_.find(cell.id);
     if (found == byId_.end()) {
       if (rows_.size() >= maxRows_) {
-        if (omittedIds_.emplace(cell.id, true).second) ++omitted_;
+        if (omittedIds_.insert(cell.id).second) ++omitted_;
         continue;
       }
       Entry entry;

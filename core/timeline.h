@@ -8,6 +8,7 @@
 #include <list>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "core/world.h"
@@ -54,7 +55,7 @@ class TimelineRecorder {
   double start_ = 0;
   double time_ = 0;
   uint64_t omitted_ = 0;
-  std::unordered_map<uint64_t, bool> omittedIds_;
+  std::unordered_set<uint64_t> omittedIds_;
 };
 
 /// Develops a fresh world of the program to `until` in steps of dt and records it.

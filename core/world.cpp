@@ -257,8 +257,9 @@ void World::step(double dt) {
   developStep(time_ + dt, true);
 }
 
+// The ancestor values are those of the current time: made when the world is seeded and
+// after every step.
 void World::developStep(double t1, bool stepRules) {
-  updateAncestorValues();
   if (rootSystem().poolKind == PoolKind::Grid) {
     GridDevelopment development(*this);
     development.step(t1, stepRules);

@@ -20,6 +20,7 @@
 
 #include "interpreters/geometry.h"
 #include "interpreters/turtle.h"
+#include "tests/interpreters/external_tools.h"
 
 namespace ontogen {
 namespace {
@@ -205,27 +206,8 @@ TEST(ObjWriterTest, EmptyGeometryIsJustTheHeader) {
             "# ontogen geometry\n# 0 vertices, 0 normals, 0 triangles, 0 line segments\n");
 }
 
-/// Runs a shell command and returns its exit status and standard output.
-std::pair<int, std::string> runCommand(const std::string& command) {
-  std::string output;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return {-1, output};
-  char buffer[4096];
-  std::size_t read = 0;
-  while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, read);
-  int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-/// The number after "\nfield:" in assimp's report, or -1.
-long reported(const std::string& output, const std::string& field) {
-  std::size_t at = output.find("\n" + field + ":");
-  if (at == std::string::npos) return -1;
-  std::istringstream in(output.substr(at + field.size() + 2));
-  long value = -1;
-  in >> value;
-  return value;
-}
+using testing_support::reported;
+using testing_support::runCommand;
 
 TEST(ObjWriterTest, AssimpReadsTheFile) {
   if (runCommand("command -v assimp >/dev/null 2>&1").first != 0) {

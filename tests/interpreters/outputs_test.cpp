@@ -18,6 +18,7 @@
 #include "interpreters/glb_writer.h"
 #include "interpreters/renderer.h"
 #include "interpreters/surface.h"
+#include "tests/interpreters/external_tools.h"
 #include "tests/interpreters/png_decode.h"
 
 namespace ontogen {
@@ -25,25 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::pair<int, std::string> runCommand(const std::string& command) {
-  std::string output;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return {-1, output};
-  char buffer[4096];
-  std::size_t read = 0;
-  while ((read = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, read);
-  int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-long reported(const std::string& output, const std::string& field) {
-  std::size_t at = output.find("\n" + field + ":");
-  if (at == std::string::npos) return -1;
-  std::istringstream in(output.substr(at + field.size() + 2));
-  long value = -1;
-  in >> value;
-  return value;
-}
+using testing_support::reported;
+using testing_support::runCommand;
 
 /// The path of the validator's node module folder, or "" when it is not installed.
 std::string validatorModules() {
