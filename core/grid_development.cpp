@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/cell_frame.h"
 #include "core/parallel_for.h"
 #include "core/pool_view.h"
 #include "core/rate_integrator.h"
@@ -11,13 +12,12 @@ namespace ontogen {
 
 namespace {
 
-constexpr uint64_t kStepRuleSalt = 0x5354455052554c45ull;  // as in the linear pool
-
 // What one chunk of cells produced: the cells that stay at (or take) their own site, in
 // site order, and successors waiting for a free neighbouring site.
 struct ChunkResult {
   struct Extra {
     uint32_t parentSite;
+    uint64_t parentId;
     CellRecord cell;  ///< state offset into `extraState`
     uint32_t count;
   };
@@ -26,62 +26,112 @@ struct ChunkResult {
   std::vector<uint32_t> sites;
   std::vector<Extra> extras;
   StateArray extraState;
+  std::vector<LineageRecord> lineage;  ///< births that took their parent's site
   uint64_t firings = 0;
   uint64_t born = 0;
-
-  void clear() {
-    cells.clear();
-    state.clear();
-    sites.clear();
-    extras.clear();
-    extraState.clear();
-    firings = born = 0;
-  }
 };
 
 }  // namespace
 
-GridDevelopment::GridDevelopment(World& world) : world_(world), program_(*world.program_), grid_(world.grid_) {}
+GridDevelopment::GridDevelopment(const Program& program, const SystemDefinition& system)
+    : program_(&program), system_(&system), grid_(system.grid) {}
 
-void GridDevelopment::step(double t1, bool stepRules) {
-  const double t = world_.time_;
-  const SystemDefinition& system = world_.rootSystem();
-  if (system.sampledRules && stepRules) applyStepRules(t);
-  if (system.rates) {
-    GridPoolView view(grid_);
-    RateIntegrator& rates = world_.rates();
-    rates.integrate(grid_, view, t, t1);
-    world_.stats_.rateEquations = rates.activeEquations();
-  }
-  world_.time_ = t1;
-  ++world_.stats_.steps;
+std::array<double, 3> GridDevelopment::positionOf(size_t i) const {
+  const GridCoordinates c = grid_.coordinates(grid_.siteOf(i));
+  return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
 }
 
-void GridDevelopment::applyStepRules(double t) {
+// The axiom fills sites 0, 1, 2 ... in site order; then `fill` and `at` placements in
+// text order, a later one replacing an earlier one at the same site.
+void GridDevelopment::seed(StepContext& context) {
+  const SystemDefinition& system = *system_;
+  const uint32_t sites = grid_.siteCount();
+  checkGridMemory(sites, sizeof(CellRecord) + 2 * sizeof(uint32_t), context.limits);
+  // Which source decides each site: 0 .. axiom-1 are axiom cells, then placements.
+  const int64_t axiomCount = static_cast<int64_t>(system.axiom.size());
+  std::vector<int64_t> source(sites, -1);
+  for (int64_t a = 0; a < axiomCount && a < static_cast<int64_t>(sites); ++a) source[a] = a;
+  int64_t lastFill = -1;
+  for (size_t p = 0; p < system.placements.size(); ++p) {
+    const GridPlacement& placement = system.placements[p];
+    const int64_t ordinal = axiomCount + static_cast<int64_t>(p);
+    if (placement.fill)
+      lastFill = ordinal;
+    else
+      source[grid_.siteAt(placement.at)] = ordinal;
+  }
+  CellArray cells;
+  StateArray state;
+  std::vector<uint32_t> siteOf;
+  FunctionTable functions = program_->functionTable();
+  double frame[FrameSlot::kCount] = {};
+  for (uint32_t site = 0; site < sites; ++site) {
+    const int64_t from = std::max(source[site], lastFill);
+    if (from < 0) continue;
+    CellRecord cell;
+    cell.id = mixKey(context.idSalt, site);
+    cell.state = static_cast<uint32_t>(state.size());
+    if (from < axiomCount) {
+      const AxiomCell& axiom = system.axiom[from];
+      cell.master = axiom.master;
+      cell.birth = context.time - axiom.age;
+      const std::vector<double> values = axiomValues(*program_, axiom, context.seed, context.ancestors);
+      state.insert(state.end(), values.begin(), values.end());
+    } else {
+      const GridPlacement& placement = system.placements[from - axiomCount];
+      cell.master = placement.master;
+      cell.birth = context.time;
+      const GridCoordinates c = grid_.coordinates(site);
+      loadInternalState(frame, cell, program_->masters[cell.master].lifetime, context.time,
+                        {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])});
+      RandomStream random(mixKey(mixKey(context.seed ^ kPlacementSalt, cell.id), 0));
+      EvalContext evaluation{frame, EvalEnvironment{&random, context.seed}, &functions};
+      evaluation.ancestors = context.ancestors;
+      for (const CompiledExpression& value : placement.values) state.push_back(value.evaluate(evaluation));
+    }
+    cells.push_back(cell);
+    siteOf.push_back(site);
+  }
+  checkSeedCellLimit(cells.size(), context.limits);
+  context.stats.cellsBorn += cells.size();
+  grid_.assign(cells, state, siteOf);
+}
+
+void GridDevelopment::step(StepContext& context, double t1, bool stepRules) {
+  if (system_->sampledRules && stepRules) applyStepRules(context);
+  if (system_->rates) {
+    GridPoolView view(grid_);
+    context.rates->integrate(grid_, view, context.time, t1);
+    context.stats.rateEquations = context.rates->activeEquations();
+  }
+}
+
+void GridDevelopment::applyStepRules(StepContext& context) {
+  const Program& program = *program_;
+  const double t = context.time;
   const auto cells = grid_.cells();
   const double* arena = grid_.stateArena().data();
-  const uint64_t seed = world_.def_.seed;
-  const unsigned threads = world_.def_.threads;
+  const uint64_t seed = context.seed;
+  const unsigned threads = context.threads;
   GridPoolView view(grid_);
-  FunctionTable functions = program_.functionTable();
+  FunctionTable functions = program.functionTable();
   std::vector<ChunkResult> results(threads);
-  std::vector<double> values(ruleFrameSize(program_));
 
   parallelFor(cells.size(), threads, [&](size_t begin, size_t end, unsigned worker) {
     ChunkResult& out = results[worker];
-    out.clear();
-    RuleEvaluator evaluator(program_, view);
-    std::vector<double> successorValues(values.size());
+    RuleEvaluator evaluator(program, view);
+    SuccessorWriter successors(program);
+    if (context.lineage) successors.recordLineage(&out.lineage);
     for (size_t i = begin; i < end; ++i) {
       const CellRecord& cell = cells[i];
-      const MasterCell& master = program_.masters[cell.master];
+      const MasterCell& master = program.masters[cell.master];
       const uint32_t n = master.stateCount();
       const uint32_t site = grid_.siteOf(i);
       double* frame = evaluator.load(i, arena, t);
       RandomStream random(mixKey(mixKey(seed ^ kStepRuleSalt, cell.id), keyOf(t)));
-      EvalContext context{frame, EvalEnvironment{&random, seed}, &functions, &evaluator};
-      context.ancestors = world_.ancestorValues();
-      const CompiledRule* action = evaluator.fireStepRules(master, context, random, out.firings);
+      EvalContext evaluation{frame, EvalEnvironment{&random, seed}, &functions, &evaluator};
+      evaluation.ancestors = context.ancestors;
+      const CompiledRule* action = evaluator.fireStepRules(master, evaluation, random, out.firings);
       if (!action) {
         out.cells.push_back(CellRecord{cell.master, static_cast<uint32_t>(out.state.size()), cell.birth, cell.id});
         out.state.insert(out.state.end(), frame, frame + n);
@@ -89,34 +139,29 @@ void GridDevelopment::applyStepRules(double t) {
         continue;
       }
       // Successors: the first takes this site, the rest wait for free neighbouring sites.
-      const uint64_t lineage = mixKey(cell.id, keyOf(t)) ^ kStepRuleSalt;
-      uint64_t k = 0;
-      for (const SuccessorTemplate& successor : action->successors) {
-        ++k;
-        const bool first = k == 1;
-        CellRecord born;
-        const double* source = frame;
-        uint32_t count = n;
-        if (successor.isMe) {
-          born = cell;
-        } else {
-          const MasterCell& target = program_.masters[successor.master];
-          count = target.stateCount();
-          for (uint32_t j = 0; j < count; ++j) successorValues[j] = successor.args[j].evaluate(context);
-          source = successorValues.data();
-          born = CellRecord{successor.master, 0, t, mixKey(lineage, k)};
-          ++out.born;
-        }
-        if (first) {
-          born.state = static_cast<uint32_t>(out.state.size());
-          out.state.insert(out.state.end(), source, source + count);
-          out.cells.push_back(born);
-          out.sites.push_back(site);
-        } else {
-          born.state = static_cast<uint32_t>(out.extraState.size());
-          out.extraState.insert(out.extraState.end(), source, source + count);
-          out.extras.push_back({site, born, count});
-        }
+      bool first = true;
+      const size_t logged = out.lineage.size();
+      out.born += successors.write(
+          *action, cell, frame, t, BirthCause::StepRule, evaluation,
+          [&](CellRecord born, const double* values, uint32_t count) {
+            if (first) {
+              born.state = static_cast<uint32_t>(out.state.size());
+              out.state.insert(out.state.end(), values, values + count);
+              out.cells.push_back(born);
+              out.sites.push_back(site);
+            } else {
+              born.state = static_cast<uint32_t>(out.extraState.size());
+              out.extraState.insert(out.extraState.end(), values, values + count);
+              out.extras.push_back({site, cell.id, born, count});
+            }
+            first = false;
+          });
+      // Only the first successor is sure of a site: the others are logged when they find one.
+      if (context.lineage) {
+        const uint64_t firstId = out.cells.back().id;
+        auto tail = std::remove_if(out.lineage.begin() + static_cast<std::ptrdiff_t>(logged), out.lineage.end(),
+                                   [&](const LineageRecord& record) { return record.child != firstId; });
+        out.lineage.erase(tail, out.lineage.end());
       }
     }
   });
@@ -130,8 +175,9 @@ void GridDevelopment::applyStepRules(double t) {
   for (const ChunkResult& result : results) {
     total += result.cells.size();
     extras += result.extras.size();
-    world_.stats_.ruleFirings += result.firings;
-    world_.stats_.cellsBorn += result.born;
+    context.stats.ruleFirings += result.firings;
+    context.stats.cellsBorn += result.born;
+    if (context.lineage) context.lineage->insert(context.lineage->end(), result.lineage.begin(), result.lineage.end());
   }
   next.reserve(total + extras);
   nextSites.reserve(total + extras);
@@ -158,7 +204,7 @@ void GridDevelopment::applyStepRules(double t) {
         for (int s = 0; s < count && free == GridPool::kEmpty; ++s)
           if (around[s] != GridPool::kEmpty && !taken[around[s]]) free = around[s];
         if (free == GridPool::kEmpty) {
-          ++world_.stats_.crowded;
+          ++context.stats.crowded;
           continue;
         }
         taken[free] = 1;
@@ -168,6 +214,7 @@ void GridDevelopment::applyStepRules(double t) {
                          result.extraState.begin() + extra.cell.state + extra.count);
         next.push_back(cell);
         nextSites.push_back(free);
+        if (context.lineage) context.lineage->push_back(LineageRecord{cell.id, extra.parentId, t});
       }
     }
     // Back into site order.
@@ -185,6 +232,7 @@ void GridDevelopment::applyStepRules(double t) {
     next.swap(sorted);
     nextSites.swap(sortedSites);
   }
+  checkCellLimit(next.size(), context.limits);
   grid_.assign(next, nextState, nextSites);
 }
 

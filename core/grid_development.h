@@ -7,21 +7,28 @@
 
 #include <vector>
 
-#include "core/world.h"
+#include "core/development.h"
+#include "pools/grid_pool.h"
 
 namespace ontogen {
 
-class GridDevelopment {
+class GridDevelopment final : public Development {
  public:
-  explicit GridDevelopment(World& world);
-  void step(double t1, bool stepRules);
+  GridDevelopment(const Program& program, const SystemDefinition& system);
+
+  std::unique_ptr<Development> clone() const override { return std::make_unique<GridDevelopment>(*this); }
+  const Pool& pool() const override { return grid_; }
+  const GridPool& gridPool() const { return grid_; }
+  void seed(StepContext& context) override;
+  void step(StepContext& context, double t1, bool stepRules) override;
+  std::array<double, 3> positionOf(size_t i) const override;
 
  private:
-  void applyStepRules(double t);
+  void applyStepRules(StepContext& context);
 
-  World& world_;
-  const Program& program_;
-  GridPool& grid_;
+  const Program* program_;
+  const SystemDefinition* system_;
+  GridPool grid_;
 };
 
 }  // namespace ontogen

@@ -2,56 +2,51 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
+#include "core/cell_frame.h"
 #include "core/rate_integrator.h"
-#include "lang/diagnostics.h"
 
 namespace ontogen {
 
 namespace {
-std::string formatNumber(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
-}
-
-constexpr uint64_t kStepRuleSalt = 0x5354455052554c45ull;  // keeps per-step draws apart from terminal ones
-constexpr size_t kLimitCheckInterval = 1 << 16;            // cells between memory checks
+constexpr size_t kLimitCheckInterval = 1 << 16;  // cells between memory checks
 }  // namespace
 
-LinearDevelopment::LinearDevelopment(World& world)
-    : world_(world),
-      program_(*world.program_),
-      system_(world.rootSystem()),
-      pool_(world.pool_),
-      functions_(program_.functionTable()),
-      nextCells_(world.scratchCells_),
-      nextState_(world.scratchState_),
-      view_(world.pool_, world.rootSystem().symbolClass),
-      aggregates_(*world.program_, view_) {
-  size_t frame = 0;
-  size_t values = 1;
-  for (const MasterCell& master : program_.masters) {
-    frame = std::max<size_t>(frame, master.stateCount() + FrameSlot::kCount);
-    values = std::max<size_t>(values, master.stateCount());
-    for (const auto& rule : master.rules) frame = std::max<size_t>(frame, rule.frameSize);
-    for (const auto& rule : master.terminalRules) frame = std::max<size_t>(frame, rule.frameSize);
-  }
-  frame_.resize(frame);
-  values_.resize(values);
-}
+LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinition& system)
+    : program_(program),
+      system_(system),
+      functions_(program.functionTable()),
+      successors_(program),
+      frame_(ruleFrameSize(program)),
+      view_(pool_, system.symbolClass),
+      aggregates_(program, view_) {}
 
-void LinearDevelopment::step(double t1, bool stepRules) {
-  double t = world_.time_;
+// A copy develops on its own: its views look at its own pool.
+LinearDevelopment::LinearDevelopment(const LinearDevelopment& other)
+    : Development(other),
+      program_(other.program_),
+      system_(other.system_),
+      pool_(other.pool_),
+      functions_(other.functions_),
+      successors_(other.program_),
+      frame_(other.frame_.size()),
+      lastGrowth_(other.lastGrowth_),
+      view_(pool_, other.system_.symbolClass),
+      aggregates_(other.program_, view_) {}
+
+void LinearDevelopment::seed(StepContext& context) { seedFromAxiom(pool_, context); }
+
+void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
+  context_ = &context;
+  successors_.recordLineage(context.lineage);
+  double t = context.time;
   eventsThisStep_ = 0;
   if (system_.sampledRules && stepRules) applyStepRules(t);
   if (system_.rates)
     integrateAndExpire(t, t1);
   else
     expireUntil(t1);
-  world_.time_ = t1;
-  ++world_.stats_.steps;
+  context_ = nullptr;
 }
 
 void LinearDevelopment::expireUntil(double t1) {
@@ -67,14 +62,14 @@ void LinearDevelopment::expireUntil(double t1) {
 void LinearDevelopment::integrateAndExpire(double t, double t1) {
   const auto& masters = program_.masters;
   double now = t;
-  RateIntegrator& rates = world_.rates();
+  RateIntegrator& rates = *context_->rates;
   while (now < t1 - timeTolerance(t1)) {
     double next = kForever;
     for (const CellRecord& cell : pool_.cells()) next = std::min(next, cell.birth + masters[cell.master].lifetime);
     const double until = next < t1 ? std::max(next, now) : t1;
     pool_.indexBranches(system_.symbolClass);
     rates.integrate(pool_, view_, now, until);
-    world_.stats_.rateEquations = rates.activeEquations();
+    context_->stats.rateEquations = rates.activeEquations();
     expireUntil(until);
     now = until;
   }
@@ -88,10 +83,10 @@ void LinearDevelopment::beginWord() {
   // Expect the word to grow as it did last time (L-systems grow geometrically).
   // Capped by the cell limit: a word that would pass it stops the run anyway. Reserved
   // pages that are never written cost no memory, so the limit counts what is written.
-  double growth = std::max(1.25, world_.lastGrowth_ * 1.05);
-  double cap = static_cast<double>(world_.def_.limits.maxCells) + 16;
+  double growth = std::max(1.25, lastGrowth_ * 1.05);
+  double cap = static_cast<double>(context_->limits.maxCells) + 16;
   double cells = std::min(pool_.size() * growth + 16, cap);
-  double values = std::min(pool_.stateArena().size() * growth + 16, cap * std::max<size_t>(1, values_.size()));
+  double values = std::min(pool_.stateArena().size() * growth + 16, cap * std::max<size_t>(1, frame_.size()));
   nextCells_.reserve(static_cast<size_t>(cells));
   nextState_.reserve(static_cast<size_t>(values));
   outCells_ = &nextCells_;
@@ -99,7 +94,7 @@ void LinearDevelopment::beginWord() {
 }
 
 void LinearDevelopment::finishWord() {
-  if (pool_.size() > 0) world_.lastGrowth_ = static_cast<double>(nextCells_.size()) / pool_.size();
+  if (pool_.size() > 0) lastGrowth_ = static_cast<double>(nextCells_.size()) / pool_.size();
   pool_.swapContents(nextCells_, nextState_);
   checkLimits(pool_.size());
 }
@@ -108,46 +103,23 @@ void LinearDevelopment::emit(const CellRecord& cell, const double* values, uint3
   CellRecord copy = cell;
   copy.state = static_cast<uint32_t>(outState_->size());
   if (count > 0) outState_->insert(outState_->end(), values, values + count);
-  pushCell(copy);
-}
-
-void LinearDevelopment::pushCell(const CellRecord& cell) {
-  outCells_->push_back(cell);
+  outCells_->push_back(copy);
   if (outCells_->size() % kLimitCheckInterval == 0) [[unlikely]]
     checkLimits(outCells_->size());
 }
 
 void LinearDevelopment::checkLimits(size_t cells) {
-  const WorldLimits& limits = world_.def_.limits;
-  if (cells > limits.maxCells)
-    throw LimitError("the model grew past " + std::to_string(limits.maxCells) +
-                     " cells, the cell limit; raise it with --max-cells N");
-  size_t bytes = pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double);
-  if (bytes > limits.maxMemoryBytes)
-    throw LimitError("the model's pools passed " + std::to_string(limits.maxMemoryBytes >> 20) +
-                     " MiB, the memory limit; raise it with --max-memory MIB");
-}
-
-[[noreturn]] void LinearDevelopment::modelError(const SourceSpan& span, const std::string& message) const {
-  throw ModelError(formatDiagnostic(Diagnostic{Severity::Error, span, message}));
+  checkCellLimit(cells, context_->limits);
+  checkMemoryLimit(pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double),
+                   context_->limits);
 }
 
 // The rule frame of lang/program.h: [state...] [internal state] [context...]. The
 // position (me.x) is the index in the word at the start of the step; a cell born and
 // expiring within one step has its ancestor's.
 double* LinearDevelopment::loadFrame(const CellRecord& cell, const double* state, double when, int64_t position) {
-  const MasterCell& master = program_.masters[cell.master];
-  const uint32_t n = master.stateCount();
-  double* frame = frame_.data();
-  std::copy(state, state + n, frame);
-  frame[n + FrameSlot::kAge] = when - cell.birth;
-  frame[n + FrameSlot::kTerminalAge] = master.lifetime;
-  frame[n + FrameSlot::kTime] = when;
-  frame[n + FrameSlot::kId] = static_cast<double>(cell.id & ((uint64_t{1} << 53) - 1));
-  frame[n + FrameSlot::kX] = static_cast<double>(position);
-  frame[n + FrameSlot::kY] = 0;
-  frame[n + FrameSlot::kZ] = 0;
-  return frame;
+  return loadCellFrame(frame_.data(), program_.masters[cell.master], cell, state, when,
+                       {static_cast<double>(position), 0, 0});
 }
 
 // ---- per-step rules ----
@@ -171,10 +143,10 @@ void LinearDevelopment::fireStepRules(const CellRecord& cell, const double* stat
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
   double* frame = loadFrame(cell, state, t, static_cast<int64_t>(index));
-  RandomStream random(mixKey(mixKey(world_.def_.seed ^ kStepRuleSalt, cell.id), keyOf(t)));
+  RandomStream random(mixKey(mixKey(context_->seed ^ kStepRuleSalt, cell.id), keyOf(t)));
   aggregates_.focus(index, pool_.stateArena().data());
-  EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_, &aggregates_};
-  context.ancestors = world_.ancestorValues();
+  EvalContext context{frame, EvalEnvironment{&random, context_->seed}, &functions_, &aggregates_};
+  context.ancestors = context_->ancestors;
   for (const CompiledRule& rule : master.rules) {
     if (!rule.hasDiscrete) continue;  // rate-only rules act while integrating
     aggregates_.useRule(rule);
@@ -184,9 +156,9 @@ void LinearDevelopment::fireStepRules(const CellRecord& cell, const double* stat
     if (!rule.probability.empty() && !(random.uniform() < rule.probability.evaluate(context))) continue;
     for (const StateCalculation& calculation : rule.calculations)
       if (!calculation.isRate) frame[calculation.slot] = calculation.value.evaluate(context);
-    ++world_.stats_.ruleFirings;
+    ++context_->stats.ruleFirings;
     if (rule.hasAction) {
-      emitSuccessors(rule, cell, frame, t, /*renewMe=*/false, context);
+      emitSuccessors(rule, cell, frame, t, BirthCause::StepRule, context);
       return;
     }
   }
@@ -260,18 +232,15 @@ const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule
 
 void LinearDevelopment::expire(const CellRecord& cell, const double* state, double when, int64_t index,
                                int64_t position) {
-  if (++eventsThisStep_ > world_.def_.limits.maxEventsPerStep)
-    throw LimitError("more than " + std::to_string(world_.def_.limits.maxEventsPerStep) +
-                     " terminal-age events in one step (near t = " + std::to_string(when) +
-                     "); a lifetime much shorter than the step? Use a smaller --step, or raise --max-events N");
-  ++world_.stats_.events;
+  checkEventLimit(++eventsThisStep_, when, context_->limits);
+  ++context_->stats.events;
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
   double* frame = loadFrame(cell, state, when, position);
-  RandomStream random(mixKey(mixKey(world_.def_.seed, cell.id), keyOf(when)));
+  RandomStream random(mixKey(mixKey(context_->seed, cell.id), keyOf(when)));
   if (index >= 0) aggregates_.focus(static_cast<size_t>(index), pool_.stateArena().data());
-  EvalContext context{frame, EvalEnvironment{&random, world_.def_.seed}, &functions_, &aggregates_};
-  context.ancestors = world_.ancestorValues();
+  EvalContext context{frame, EvalEnvironment{&random, context_->seed}, &functions_, &aggregates_};
+  context.ancestors = context_->ancestors;
   const CompiledRule* rule = chooseRule(master.terminalRules, index, frame, random, context);
   if (rule) {
     for (const StateCalculation& calculation : rule->calculations)
@@ -284,44 +253,14 @@ void LinearDevelopment::expire(const CellRecord& cell, const double* state, doub
     emit(renewed, frame, n);
     return;
   }
-  emitSuccessors(*rule, cell, frame, when, /*renewMe=*/true, context);
+  emitSuccessors(*rule, cell, frame, when, BirthCause::Terminal, context);
 }
 
 void LinearDevelopment::emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame,
-                                       double when, bool renewMe, const EvalContext& context) {
-  // Per-step births get other ids than terminal births of the same cell at the same instant.
-  uint64_t lineage = mixKey(cell.id, keyOf(when)) ^ (renewMe ? 0 : kStepRuleSalt);
-  uint64_t k = 0;
-  uint64_t born = 0;
-  for (const SuccessorTemplate& successor : rule.successors) {
-    ++k;
-    if (successor.stateless) {
-      // The common case of a bare symbol born at age 0: nothing to evaluate or check.
-      pushCell(CellRecord{successor.master, static_cast<uint32_t>(outState_->size()), when, mixKey(lineage, k)});
-      ++born;
-      continue;
-    }
-    if (successor.isMe) {
-      CellRecord me = cell;
-      if (renewMe) me.birth = when;
-      emit(me, frame, program_.masters[cell.master].stateCount());
-      continue;
-    }
-    const MasterCell& target = program_.masters[successor.master];
-    const uint32_t count = target.stateCount();
-    for (uint32_t j = 0; j < count; ++j) values_[j] = successor.args[j].evaluate(context);
-    double age = successor.birthAge.empty() ? 0.0 : successor.birthAge.evaluate(context);
-    if (!(age >= 0) || age >= target.lifetime) {
-      modelError(successor.span,
-                 "'" + target.label + "' would be born with age " + formatNumber(age) +
-                     (age >= target.lifetime ? ", not below its terminal age " + formatNumber(target.lifetime)
-                                             : ", but ages are ≥ 0") +
-                     " (in a rule of '" + program_.masters[cell.master].label + "' at t = " + formatNumber(when) + ")");
-    }
-    emit(CellRecord{successor.master, 0, when - age, mixKey(lineage, k)}, values_.data(), count);
-    ++born;
-  }
-  world_.stats_.cellsBorn += born;
+                                       double when, BirthCause cause, const EvalContext& context) {
+  context_->stats.cellsBorn += successors_.write(
+      rule, cell, frame, when, cause, context,
+      [this](const CellRecord& born, const double* values, uint32_t count) { emit(born, values, count); });
 }
 
 // Without context in terminal rules, each cell develops on its own: expand it, and its

@@ -1,23 +1,31 @@
 #pragma once
 // Development of a linear pool over one step: per-step rules at the start, then the
 // terminal-age events of the interval in time order. The word is rebuilt into a second
-// buffer (parallel rewriting: every cell reads the word as it was), then swapped in.
+// buffer (parallel rewriting: every cell reads the word as it was), then swapped in; the
+// buffers are kept from step to step.
 
 #include <vector>
 
+#include "core/development.h"
 #include "core/pool_view.h"
 #include "core/rule_evaluator.h"
-#include "core/world.h"
+#include "core/successors.h"
+#include "pools/linear_pool.h"
 
 namespace ontogen {
 
-class LinearDevelopment {
+class LinearDevelopment final : public Development {
  public:
-  explicit LinearDevelopment(World& world);
+  LinearDevelopment(const Program& program, const SystemDefinition& system);
+  LinearDevelopment(const LinearDevelopment& other);
+  LinearDevelopment& operator=(const LinearDevelopment&) = delete;
 
-  /// Develops the world's root pool from world.time() to t1; per-step rules fire at
-  /// the start when `stepRules` (the world decides: only on its step grid).
-  void step(double t1, bool stepRules);
+  std::unique_ptr<Development> clone() const override { return std::make_unique<LinearDevelopment>(*this); }
+  const Pool& pool() const override { return pool_; }
+  const LinearPool& linearPool() const { return pool_; }
+  void seed(StepContext& context) override;
+  void step(StepContext& context, double t1, bool stepRules) override;
+  std::array<double, 3> positionOf(size_t i) const override { return {static_cast<double>(i), 0, 0}; }
 
  private:
   void applyStepRules(double t);
@@ -36,37 +44,36 @@ class LinearDevelopment {
   bool matchContext(const CompiledRule& rule, size_t index, double* frame);
   const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
                                  RandomStream& random, const EvalContext& context);
-  void emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when, bool renewMe,
-                      const EvalContext& context);
+  void emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
+                      BirthCause cause, const EvalContext& context);
   void emit(const CellRecord& cell, const double* values, uint32_t count);
-  void pushCell(const CellRecord& cell);
   void beginWord();
   void finishWord();
   void checkLimits(size_t cells);
-  [[noreturn]] void modelError(const SourceSpan& span, const std::string& message) const;
 
-  World& world_;
   const Program& program_;
   const SystemDefinition& system_;
-  LinearPool& pool_;
+  LinearPool pool_;
+  StepContext* context_ = nullptr;  // of the step under way
   FunctionTable functions_;
+  SuccessorWriter successors_;
   std::vector<double> frame_;
-  // The word being built and, for context-free expansion, a stack of cells still to expire.
-  CellArray& nextCells_;
-  StateArray& nextState_;
+  // The next word is built here and swapped with the pool's (kept to reuse the memory).
+  CellArray nextCells_;
+  StateArray nextState_;
+  double lastGrowth_ = 1;  ///< size ratio of the last rebuilt word, to reserve the next
   // Where emit() writes: the next word, or the scratch list of a context-free expansion.
   CellArray* outCells_ = nullptr;
   StateArray* outState_ = nullptr;
   CellArray expandedCells_;
   StateArray expandedState_;
-  std::vector<double> values_;
   std::vector<std::pair<const CompiledRule*, double>> candidates_;  // stochastic alternatives
   CellArray work_;                                                  // cells still to expire, last = next
   StateArray workState_;
   uint64_t eventsThisStep_ = 0;
   LinearPoolView view_;
-  RuleEvaluator aggregates_;  // answers count(), sum(x) ... for the cell being evaluated
-  uint32_t matched_[64];      // cells matched by the context being tested (patterns are short)
+  RuleEvaluator aggregates_;               // answers count(), sum(x) ... for the cell being evaluated
+  uint32_t matched_[kMaxContextItems];     // cells matched by the context being tested
 };
 
 }  // namespace ontogen

@@ -1,5 +1,7 @@
 #include "core/rule_evaluator.h"
 
+#include "core/cell_frame.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -25,20 +27,9 @@ double* RuleEvaluator::load(size_t i, const double* arena, double time) {
   rule_ = nullptr;
   const CellRecord& cell = pool_.cells()[i];
   const MasterCell& master = program_.masters[cell.master];
-  const uint32_t n = master.stateCount();
-  double* frame = frame_.data();
-  std::copy(arena + cell.state, arena + cell.state + n, frame);
-  constexpr uint64_t kIdBits = (uint64_t{1} << 53) - 1;  // exact in a double
-  frame[n + FrameSlot::kAge] = time - cell.birth;
-  frame[n + FrameSlot::kTerminalAge] = master.lifetime;
-  frame[n + FrameSlot::kTime] = time;
-  frame[n + FrameSlot::kId] = static_cast<double>(cell.id & kIdBits);
-  if (master.readsPosition) {
-    const auto position = view_.position(i);
-    frame[n + FrameSlot::kX] = position[0];
-    frame[n + FrameSlot::kY] = position[1];
-    frame[n + FrameSlot::kZ] = position[2];
-  }
+  // Positions cost a lookup in grids and spatial pools: only for masters that read them.
+  const std::array<double, 3> position = master.readsPosition ? view_.position(i) : std::array<double, 3>{};
+  double* frame = loadCellFrame(frame_.data(), master, cell, arena + cell.state, time, position);
   return frame;
 }
 

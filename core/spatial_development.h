@@ -5,21 +5,28 @@
 // Then rates over (t, t1], with the neighbours found from the positions at t+ and kept
 // for the step.
 
-#include "core/world.h"
+#include "core/development.h"
+#include "pools/spatial_pool.h"
 
 namespace ontogen {
 
-class SpatialDevelopment {
+class SpatialDevelopment final : public Development {
  public:
-  explicit SpatialDevelopment(World& world);
-  void step(double t1, bool stepRules);
+  SpatialDevelopment(const Program& program, const SystemDefinition& system);
+
+  std::unique_ptr<Development> clone() const override { return std::make_unique<SpatialDevelopment>(*this); }
+  const Pool& pool() const override { return pool_; }
+  const SpatialPool& spatialPool() const { return pool_; }
+  void seed(StepContext& context) override;
+  void step(StepContext& context, double t1, bool stepRules) override;
+  std::array<double, 3> positionOf(size_t i) const override { return pool_.positionOf(i); }
 
  private:
-  void applyStepRules(double t);
+  void applyStepRules(StepContext& context);
 
-  World& world_;
-  const Program& program_;
-  SpatialPool& pool_;
+  const Program* program_;
+  const SystemDefinition* system_;
+  SpatialPool pool_;
 };
 
 }  // namespace ontogen

@@ -4,6 +4,7 @@
 #include "core/linear_development.h"
 #include "core/parallel_for.h"
 #include "core/rate_integrator.h"
+#include "core/salts.h"
 #include "core/spatial_development.h"
 
 #include <algorithm>
@@ -12,30 +13,8 @@
 
 namespace ontogen {
 
-namespace {
-// For each master, the state indices of x, y and z (-1 where it has none).
-std::vector<std::array<int, 3>> positionSlots(const Program& program) {
-  std::vector<std::array<int, 3>> slots;
-  for (const MasterCell& master : program.masters) {
-    std::array<int, 3> slot{-1, -1, -1};
-    for (size_t i = 0; i < master.stateNames.size(); ++i) {
-      const std::string& name = master.stateNames[i];
-      if (name == "x") slot[0] = static_cast<int>(i);
-      if (name == "y") slot[1] = static_cast<int>(i);
-      if (name == "z") slot[2] = static_cast<int>(i);
-    }
-    slots.push_back(slot);
-  }
-  return slots;
-}
-}  // namespace
-
 World::World(std::shared_ptr<const Program> program, WorldDef def)
-    : program_(std::move(program)),
-      def_(def),
-      system_(program_->root),
-      grid_(program_->rootSystem().grid),
-      spatial_(program_->rootSystem().spatialRadius, positionSlots(*program_)) {
+    : program_(std::move(program)), def_(def), system_(program_->root) {
   def_.threads = resolveThreadCount(def_.threads);
   if (const int master = rootSystem().master; master >= 0) cellState_ = program_->masters[master].defaults;
   seedPool();
@@ -49,20 +28,30 @@ World::World(const World& parent, const CellRecord& cell, const double* cellStat
       cellId_(cell.id),
       cellBirth_(cell.birth),
       cellState_(cellState, cellState + program_->masters[cell.master].stateCount()),
-      grid_(program_->systems[system_].grid),
-      spatial_(program_->systems[system_].spatialRadius, positionSlots(*program_)),
       time_(parent.time_) {
   seedPool();
 }
 
 // The pool from its system's axiom (and placements), then the pools of its system cells.
 void World::seedPool() {
+  development_ = makeDevelopment(*program_, rootSystem());
+  if (rootSystem().rates) rates_ = std::make_unique<RateIntegrator>(*program_, def_.seed, def_.threads);
   updateAncestorValues();
-  if (rootSystem().poolKind == PoolKind::Grid)
-    seedGrid();
-  else
-    seedAxiom();
+  StepContext context = stepContext();
+  development_->seed(context);
+  if (def_.recordLineage && parent_)
+    for (const CellRecord& cell : development_->pool().cells()) lineage_.push_back({cell.id, cellId_, time_});
   developChildren(time_, false, /*step=*/false);
+}
+
+StepContext World::stepContext() {
+  StepContext context{*program_, rootSystem(), def_.seed, def_.threads, def_.limits, time_, ancestorValues_.data(),
+                      stats_};
+  context.rates = rates_.get();
+  if (rates_) rates_->setAncestors(ancestorValues_.data());
+  context.lineage = def_.recordLineage ? &lineage_ : nullptr;
+  context.idSalt = idSalt();
+  return context;
 }
 
 World::World(const World& other)
@@ -74,41 +63,45 @@ World::World(const World& other)
       cellBirth_(other.cellBirth_),
       cellState_(other.cellState_),
       ancestorValues_(other.ancestorValues_),
-      pool_(other.pool_),
-      grid_(other.grid_),
-      spatial_(other.spatial_),
+      development_(other.development_->clone()),
       time_(other.time_),
-      stats_(other.stats_) {
+      stats_(other.stats_),
+      lineage_(other.lineage_) {
+  if (rootSystem().rates) rates_ = std::make_unique<RateIntegrator>(*program_, def_.seed, def_.threads);
   for (const auto& [id, child] : other.children_) {
     auto copy = std::make_unique<World>(*child);
     copy->parent_ = this;
     children_.emplace(id, std::move(copy));
   }
+  if (other.onGrid_) onGrid_ = std::make_unique<World>(*other.onGrid_);
 }
 
 World::~World() = default;
 
-const Pool& World::rootPool() const {
-  switch (rootSystem().poolKind) {
-    case PoolKind::Grid: return grid_;
-    case PoolKind::Spatial: return spatial_;
-    case PoolKind::Linear: break;
-  }
-  return pool_;
+const Pool& World::rootPool() const { return development_->pool(); }
+
+namespace {
+[[noreturn]] void wrongPoolKind(const char* kind) {
+  throw std::logic_error(std::string("the world's pool is not a ") + kind + " pool");
+}
+}  // namespace
+
+const LinearPool& World::linearPool() const {
+  if (rootSystem().poolKind != PoolKind::Linear) wrongPoolKind("linear");
+  return static_cast<const LinearDevelopment&>(*development_).linearPool();
 }
 
-std::array<double, 3> World::positionOf(size_t i) const {
-  if (rootSystem().poolKind == PoolKind::Spatial) return spatial_.positionOf(i);
-  if (rootSystem().poolKind != PoolKind::Grid) return {static_cast<double>(i), 0, 0};
-  const GridCoordinates c = grid_.coordinates(grid_.siteOf(i));
-  return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
+const GridPool& World::gridPool() const {
+  if (rootSystem().poolKind != PoolKind::Grid) wrongPoolKind("grid");
+  return static_cast<const GridDevelopment&>(*development_).gridPool();
 }
 
-RateIntegrator& World::rates() {
-  if (!rates_) rates_ = std::make_unique<RateIntegrator>(*program_, def_.seed, def_.threads);
-  rates_->setAncestors(ancestorValues_.data());
-  return *rates_;
+const SpatialPool& World::spatialPool() const {
+  if (rootSystem().poolKind != PoolKind::Spatial) wrongPoolKind("spatial");
+  return static_cast<const SpatialDevelopment&>(*development_).spatialPool();
 }
+
+std::array<double, 3> World::positionOf(size_t i) const { return development_->positionOf(i); }
 
 const World* World::childOf(const CellRecord& cell) const {
   if (children_.empty()) return nullptr;
@@ -123,7 +116,7 @@ uint64_t World::totalCells() const {
 }
 
 uint64_t World::idSalt() const {
-  const uint64_t base = mixKey(0x6f6e746f67656eull, static_cast<uint64_t>(system_));
+  const uint64_t base = mixKey(kWorldIdSalt, static_cast<uint64_t>(system_));
   return parent_ ? mixKey(base, cellId_) : base;
 }
 
@@ -147,129 +140,67 @@ void World::updateAncestorValues() {
   for (size_t i = 0; i < refs.size(); ++i) ancestorValues_[i] = systemValue(refs[i].level, refs[i].name);
 }
 
-// The axiom fills sites 0, 1, 2 ... in site order; then `fill` and `at` placements in
-// text order, a later one replacing an earlier one at the same site.
-void World::seedGrid() {
-  const SystemDefinition& system = rootSystem();
-  const uint32_t sites = grid_.siteCount();
-  const uint64_t bytesPerSite = sizeof(CellRecord) + 2 * sizeof(uint32_t);
-  if (uint64_t{sites} * bytesPerSite * 2 > def_.limits.maxMemoryBytes)
-    throw LimitError("the grid's " + std::to_string(sites) + " sites need more than the memory limit of " +
-                     std::to_string(def_.limits.maxMemoryBytes >> 20) + " MiB; raise it with --max-memory MIB");
-  // Which source decides each site: 0 .. axiom-1 are axiom cells, then placements.
-  const int64_t axiomCount = static_cast<int64_t>(system.axiom.size());
-  std::vector<int64_t> source(sites, -1);
-  for (int64_t a = 0; a < axiomCount; ++a) source[a] = a;
-  int64_t lastFill = -1;
-  for (size_t p = 0; p < system.placements.size(); ++p) {
-    const GridPlacement& placement = system.placements[p];
-    const int64_t ordinal = axiomCount + static_cast<int64_t>(p);
-    if (placement.fill)
-      lastFill = ordinal;
-    else
-      source[grid_.siteAt(placement.at)] = ordinal;
-  }
-  CellArray cells;
-  StateArray state;
-  std::vector<uint32_t> siteOf;
-  FunctionTable functions = program_->functionTable();
-  double frame[FrameSlot::kCount] = {};
-  constexpr uint64_t kPlacementSalt = 0x504c414345ull;
-  for (uint32_t site = 0; site < sites; ++site) {
-    const int64_t from = std::max(source[site], lastFill);
-    if (from < 0) continue;
-    CellRecord cell;
-    cell.id = mixKey(idSalt(), site);
-    cell.state = static_cast<uint32_t>(state.size());
-    if (from < axiomCount) {
-      const AxiomCell& axiom = system.axiom[from];
-      cell.master = axiom.master;
-      cell.birth = time_ - axiom.age;
-      const std::vector<double> values = axiomValues(axiom);
-      state.insert(state.end(), values.begin(), values.end());
-    } else {
-      const GridPlacement& placement = system.placements[from - axiomCount];
-      cell.master = placement.master;
-      cell.birth = time_;
-      const GridCoordinates c = grid_.coordinates(site);
-      frame[FrameSlot::kId] = static_cast<double>(cell.id & ((uint64_t{1} << 53) - 1));
-      frame[FrameSlot::kX] = static_cast<double>(c[0]);
-      frame[FrameSlot::kY] = static_cast<double>(c[1]);
-      frame[FrameSlot::kZ] = static_cast<double>(c[2]);
-      RandomStream random(mixKey(mixKey(def_.seed ^ kPlacementSalt, cell.id), 0));
-      EvalContext context{frame, EvalEnvironment{&random, def_.seed}, &functions};
-      context.ancestors = ancestorValues_.data();
-      for (const CompiledExpression& value : placement.values) state.push_back(value.evaluate(context));
-    }
-    cells.push_back(cell);
-    siteOf.push_back(site);
-  }
-  if (cells.size() > def_.limits.maxCells)
-    throw LimitError("the grid starts with " + std::to_string(cells.size()) + " cells, past the cell limit of " +
-                     std::to_string(def_.limits.maxCells) + "; raise it with --max-cells N");
-  stats_.cellsBorn = cells.size();
-  grid_.assign(cells, state, siteOf);
-}
-
-// An axiom cell's values; those that read the enclosing systems are evaluated now.
-std::vector<double> World::axiomValues(const AxiomCell& axiom) const {
-  std::vector<double> values = axiom.values;
-  if (axiom.fromSystems.empty()) return values;
-  FunctionTable functions = program_->functionTable();
-  EvalContext context{nullptr, EvalEnvironment{nullptr, def_.seed}, &functions};
-  context.ancestors = ancestorValues_.data();
-  for (size_t i = 0; i < values.size() && i < axiom.fromSystems.size(); ++i)
-    if (!axiom.fromSystems[i].empty()) values[i] = axiom.fromSystems[i].evaluate(context);
-  return values;
-}
-
-void World::seedAxiom() {
-  const SystemDefinition& system = rootSystem();
-  uint64_t index = 0;
-  for (const AxiomCell& axiom : system.axiom) {
-    CellRecord cell;
-    cell.master = axiom.master;
-    cell.birth = time_ - axiom.age;
-    cell.id = mixKey(idSalt(), index++);
-    Pool& pool = system.poolKind == PoolKind::Spatial ? static_cast<Pool&>(spatial_) : pool_;
-    const std::vector<double> values = axiomValues(axiom);
-    pool.append(cell, values.data(), static_cast<uint32_t>(values.size()));
-  }
-  stats_.cellsBorn = rootPool().size();
-  if (system.poolKind == PoolKind::Spatial) spatial_.index();
+bool World::integratesRates() const {
+  for (const SystemDefinition& system : program_->systems)
+    if (system.rates) return true;
+  return false;
 }
 
 void World::advanceTo(double target, double dt) {
   if (!(dt > 0)) throw std::invalid_argument("the step must be greater than 0");
+  if (target <= time_ + timeTolerance(target)) return;
+  returnToGrid();
   // Steps follow the grid k * dt, so per-step rules fire at the same instants whichever
   // times the caller stops at (frames, --at); a stop between grid points develops the
   // terminal events up to it and fires no per-step rule there.
+  const bool keepGrid = integratesRates();
   while (time_ < target - timeTolerance(target)) {
     double k = std::floor(time_ / dt + 1e-9);
     bool onGrid = std::abs(time_ - k * dt) <= timeTolerance(time_);
     double next = (k + 1) * dt;
-    if (next > target - timeTolerance(target)) next = target;
+    if (next > target - timeTolerance(target)) {
+      if (keepGrid && next > target + timeTolerance(target)) {
+        // Integrating only up to the stop would split this step: keep the world as it is
+        // on the grid and show the stop by a step of its own.
+        onGrid_ = std::make_unique<World>(*this);
+        onGrid_->parent_ = parent_;
+      }
+      next = target;
+    }
     developStep(next, onGrid);
   }
 }
 
+void World::returnToGrid() {
+  if (!onGrid_) return;
+  std::unique_ptr<World> kept = std::move(onGrid_);
+  takeDevelopmentOf(*kept);
+}
+
+void World::takeDevelopmentOf(World& other) {
+  ancestorValues_ = std::move(other.ancestorValues_);
+  children_ = std::move(other.children_);
+  for (auto& [id, child] : children_) child->parent_ = this;
+  development_ = std::move(other.development_);
+  // The integrator keeps tables keyed by the pool it last saw: start afresh on this one.
+  if (rates_) rates_ = std::make_unique<RateIntegrator>(*program_, def_.seed, def_.threads);
+  time_ = other.time_;
+  stats_ = other.stats_;
+  lineage_ = std::move(other.lineage_);
+}
+
 void World::step(double dt) {
+  returnToGrid();
   developStep(time_ + dt, true);
 }
 
 // The ancestor values are those of the current time: made when the world is seeded and
 // after every step.
 void World::developStep(double t1, bool stepRules) {
-  if (rootSystem().poolKind == PoolKind::Grid) {
-    GridDevelopment development(*this);
-    development.step(t1, stepRules);
-  } else if (rootSystem().poolKind == PoolKind::Spatial) {
-    SpatialDevelopment development(*this);
-    development.step(t1, stepRules);
-  } else {
-    LinearDevelopment development(*this);
-    development.step(t1, stepRules);
-  }
+  StepContext context = stepContext();
+  development_->step(context, t1, stepRules);
+  time_ = t1;
+  ++stats_.steps;
   updateAncestorValues();  // as of t1, for interpretation and the next step
   developChildren(t1, stepRules, /*step=*/true);
 }
@@ -302,9 +233,7 @@ void World::developChildren(double t1, bool stepRules, bool step) {
     next.emplace(cell.id, std::move(child));
   }
   children_ = std::move(next);
-  if (!parent_ && totalCells() > def_.limits.maxCells)
-    throw LimitError("the model grew past " + std::to_string(def_.limits.maxCells) +
-                     " cells in all its systems, the cell limit; raise it with --max-cells N");
+  if (!parent_) checkTotalCellLimit(totalCells(), def_.limits);
 }
 
 void World::developedValues(const CellRecord& cell, std::vector<double>& out) const {
@@ -322,7 +251,6 @@ void World::developedValues(const CellRecord& cell, std::vector<double>& out) co
                                                                  : state[source];
   }
   FunctionTable table = program_->functionTable();
-  constexpr uint64_t kDevelopSalt = 0x444556454c4f50ull;  // apart from the cell's rule draws
   RandomStream random(mixKey(mixKey(def_.seed ^ kDevelopSalt, cell.id), keyOf(time_)));
   EvalContext context{frame, EvalEnvironment{&random, def_.seed}, &table};
   double g = program_->functionBodies[master.developmentFunction].evaluate(context);

@@ -26,6 +26,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/development.h"
+#include "core/limits.h"
+#include "core/successors.h"
 #include "lang/program.h"
 #include "pools/grid_pool.h"
 #include "pools/linear_pool.h"
@@ -33,43 +36,14 @@
 
 namespace ontogen {
 
-/// Growth limits: a model that passes one stops with a LimitError, not an out-of-memory kill.
-struct WorldLimits {
-  /// Most cells in the root pool. 100 M cells take about 5 GB with double buffering.
-  uint64_t maxCells = 100'000'000;
-  /// Most bytes the pools may hold. 8 GiB leaves room on a 16 GB machine.
-  uint64_t maxMemoryBytes = 8ull << 30;
-  /// Most terminal events in one step: a lifetime far shorter than the step would
-  /// otherwise spin for ever renewing one cell.
-  uint64_t maxEventsPerStep = 200'000'000;
-};
-
 struct WorldDef {
   uint64_t seed = 1;  ///< seed of every stochastic choice and function
   WorldLimits limits{};
   /// Threads for rules and rates over large pools (0: all cores). The result does not
   /// depend on it.
   unsigned threads = 1;
-};
-
-/// A limit was passed; the message names the limit and how to raise it.
-struct LimitError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-/// A model failed while it ran (e.g. a birth age not below the terminal age); the
-/// message names the cell, the rule and its location like a compiler diagnostic.
-struct ModelError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-struct WorldStats {
-  uint64_t steps = 0;
-  uint64_t events = 0;       ///< terminal-age events
-  uint64_t ruleFirings = 0;  ///< per-step rules that fired an action or a calculation
-  uint64_t cellsBorn = 0;
-  uint64_t crowded = 0;        ///< grid successors that found no free site and were not born
-  uint64_t rateEquations = 0;  ///< rate equations integrated in the last step
+  /// Keep a log of every birth (child, parent, time) for lineage(); off, it costs nothing.
+  bool recordLineage = false;
 };
 
 class RateIntegrator;
@@ -98,16 +72,26 @@ class World {
   /// Values of Program::ancestorRefs as cells of this pool read them (`parent.x` is this
   /// system's own state), at the current time.
   const double* ancestorValues() const { return ancestorValues_.data(); }
-  const LinearPool& linearPool() const { return pool_; }
-  const GridPool& gridPool() const { return grid_; }
-  const SpatialPool& spatialPool() const { return spatial_; }
+  /// The pool as its kind; a std::logic_error when the pool is of another kind.
+  const LinearPool& linearPool() const;
+  const GridPool& gridPool() const;
+  const SpatialPool& spatialPool() const;
+  /// The id of this world's system cell in its parent's pool (0 for the root world).
+  uint64_t systemCellId() const { return cellId_; }
+  /// Every birth in this world's pool since it was made, in the order of the
+  /// development, when WorldDef::recordLineage is on (the cells of a nested pool's axiom
+  /// have its system cell as parent); empty otherwise.
+  const std::vector<LineageRecord>& lineage() const { return lineage_; }
   double time() const { return time_; }
   uint64_t seed() const { return def_.seed; }
   const WorldStats& stats() const { return stats_; }
 
   /// Develops until `target` (no-op if target ≤ time()) in steps on the grid k · dt:
   /// per-step rules fire at grid instants only, so stopping at other times (frames)
-  /// does not change the development.
+  /// does not change the development. A world that integrates `rate` variables shows a
+  /// stop between grid instants by a step of its own from the last grid instant, which
+  /// the development does not keep: the next advance starts again from that instant, so
+  /// integration steps are never split by where a run stops.
   void advanceTo(double target, double dt);
   /// Develops one step of length dt from the current time, per-step rules included.
   void step(double dt);
@@ -121,20 +105,21 @@ class World {
   void developedValues(const CellRecord& cell, std::vector<double>& out) const;
 
  private:
-  friend class LinearDevelopment;
-  friend class GridDevelopment;
-  friend class SpatialDevelopment;
   void seedPool();
-  std::vector<double> axiomValues(const AxiomCell& axiom) const;
-  void seedAxiom();
-  void seedGrid();
   void developStep(double t1, bool stepRules);
   void developChildren(double t1, bool stepRules, bool step);
   void updateAncestorValues();
+  StepContext stepContext();
   /// Value of a system's variable (`age` or a state name) for the world `level` systems up.
   double systemValue(int level, const std::string& name) const;
   uint64_t idSalt() const;
-  RateIntegrator& rates();
+  /// Whether a stop between grid instants would split an integration step here or in a
+  /// nested system (some system of the program integrates rates).
+  bool integratesRates() const;
+  /// Back to the state kept at the last grid instant, when a stop between grid
+  /// instants left the world off the grid.
+  void returnToGrid();
+  void takeDevelopmentOf(World& other);
 
   std::shared_ptr<const Program> program_;
   WorldDef def_;
@@ -146,22 +131,14 @@ class World {
   std::vector<double> ancestorValues_;
   /// Child worlds by the id of their system cell.
   std::unordered_map<uint64_t, std::unique_ptr<World>> children_;
-  LinearPool pool_;
-  GridPool grid_;
-  SpatialPool spatial_;
-  std::unique_ptr<RateIntegrator> rates_;  // made on first use; not copied
+  std::unique_ptr<Development> development_;  ///< made once; owns the pool
+  std::unique_ptr<RateIntegrator> rates_;     ///< when the system integrates rates; not copied
   double time_ = 0;
   WorldStats stats_;
-  // The next word is built here and swapped with the pool's (kept to reuse the memory).
-  CellArray scratchCells_;
-  StateArray scratchState_;
-  double lastGrowth_ = 1;  ///< size ratio of the last rebuilt word, to reserve the next
+  std::vector<LineageRecord> lineage_;
+  /// The world as it was at the last grid instant, while a stop between grid instants
+  /// shows a step that the development does not keep (rate-integrating worlds only).
+  std::unique_ptr<World> onGrid_;
 };
-
-/// Tolerance for "at the same instant": events within it of each other or of a step's
-/// end count as simultaneous. Relative, so long runs keep the same meaning.
-inline double timeTolerance(double t) {
-  return 1e-9 * (t < 1 ? 1 : t);
-}
 
 }  // namespace ontogen

@@ -52,7 +52,6 @@ int internalSlot(std::string_view name) {
   if (name == "me.z") return FrameSlot::kZ;
   return -1;
 }
-constexpr size_t kMaxContext = 64;  // matches the engine's buffer of matched cells
 
 /// Constants visible in a scope: the block's #defines, then the program's, then built-ins.
 struct ConstantScope {
@@ -838,8 +837,8 @@ class Compiler {
     compiled.frameSize = nextSlot;
     for (const auto& binding : compiled.left) compiled.leftItems.push_back(binding.item);
     for (const auto& binding : compiled.right) compiled.rightItems.push_back(binding.item);
-    if (compiled.leftItems.size() > kMaxContext || compiled.rightItems.size() > kMaxContext)
-      sink_.error(rule.span, "a context has at most " + std::to_string(kMaxContext) + " modules on each side");
+    if (compiled.leftItems.size() > kMaxContextItems || compiled.rightItems.size() > kMaxContextItems)
+      sink_.error(rule.span, "a context has at most " + std::to_string(kMaxContextItems) + " modules on each side");
 
     NameLookup names = ruleLookup(slots, stateCount, scope, &compiled.aggregates, lsystem ? scopeIndex : -1);
     if (rule.predicate) compiled.predicate = compileExpression(*rule.predicate, names, sink_);

@@ -28,6 +28,9 @@
 namespace ontogen {
 
 using MasterId = uint32_t;
+/// Most modules one context pattern may have (`A B C < me > D E`): patterns are short,
+/// and the engine matches them into fixed arrays of this size.
+inline constexpr size_t kMaxContextItems = 64;
 inline constexpr double kForever = std::numeric_limits<double>::infinity();
 
 /// Read-only internal state, in the slots after a cell's state values.
@@ -70,6 +73,9 @@ struct SuccessorTemplate {
   std::vector<CompiledExpression> args;  ///< one per state value of the master (defaults filled in)
   CompiledExpression birthAge;           ///< empty: 0
   SourceSpan span;
+  /// `=X`: the successor keeps its predecessor's identity (its id), so a joint or a rod
+  /// stays the same one across rewrites. At most one successor of a rule, and not with `me`.
+  bool keepsIdentity = false;
   /// Not `me`, no state and born at age 0: the engine copies it without evaluating.
   bool stateless = false;
 };

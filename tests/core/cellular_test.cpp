@@ -320,6 +320,27 @@ TEST(Models, ColonySpreadsAsADiscAndKeepsItsDensity) {
   EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end()));
 }
 
+// A stop between grid instants (a frame, `word --at 2.105263,40`) must not split an
+// integration step: the colony at t = 40 is the same whether or not it was looked at on
+// the way, and the stop itself shows a step of its own from the grid instant 2.1.
+TEST(Models, ColonyIsTheSameWhereverTheRunStops) {
+  auto program = testing_support::compileModel("colony.cell");
+  World straight(program);
+  straight.advanceTo(40, program->dt);
+  World stopped(program);
+  stopped.advanceTo(2.105263, program->dt);
+  EXPECT_DOUBLE_EQ(stopped.time(), 2.105263);
+  World onGrid(program);
+  onGrid.advanceTo(2.1, program->dt);
+  EXPECT_EQ(stopped.rootPool().size(), onGrid.rootPool().size()) << "no per-step rule fires off the grid";
+  stopped.advanceTo(40, program->dt);
+  EXPECT_EQ(straight.rootPool().size(), 2551u);
+  ASSERT_EQ(stopped.rootPool().size(), straight.rootPool().size());
+  auto a = straight.rootPool().stateArena(), b = stopped.rootPool().stateArena();
+  EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end())) << "the same positions, bit for bit";
+  EXPECT_EQ(stopped.stats().steps, straight.stats().steps) << "the shown step is not kept";
+}
+
 TEST(Cellular, PositionalContextDoesNotFitASpatialPool) {
   DiagnosticSink sink;
   auto program = compileSource("t.cell", "cell A(x = 0) { rules { A(y) me A(z) : x = y + z; } }\n"

@@ -1,0 +1,41 @@
+#pragma once
+// The one loader of a cell's frame (lang/program.h): its state values, then the
+// read-only internal state of FrameSlot (age, terminal age, time, id, position). Rules,
+// grid placements and interpretation blocks all read a cell through it, so `age` or
+// `me.x` can never mean two things.
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+
+#include "core/salts.h"
+#include "lang/program.h"
+#include "pools/cell_record.h"
+
+namespace ontogen {
+
+/// Writes the internal-state slots at `internal` (the frame after the state values) for
+/// `cell` at global time `when` (seconds); `position` is its index (linear pool), grid
+/// coordinates or spatial x, y, z.
+inline void loadInternalState(double* internal, const CellRecord& cell, double lifetime, double when,
+                              const std::array<double, 3>& position) {
+  internal[FrameSlot::kAge] = when - cell.birth;
+  internal[FrameSlot::kTerminalAge] = lifetime;
+  internal[FrameSlot::kTime] = when;
+  internal[FrameSlot::kId] = idValue(cell.id);
+  internal[FrameSlot::kX] = position[0];
+  internal[FrameSlot::kY] = position[1];
+  internal[FrameSlot::kZ] = position[2];
+}
+
+/// Copies the cell's `master.stateCount()` values from `state` into `frame` and fills the
+/// internal state after them. Returns `frame`.
+inline double* loadCellFrame(double* frame, const MasterCell& master, const CellRecord& cell, const double* state,
+                             double when, const std::array<double, 3>& position) {
+  const uint32_t n = master.stateCount();
+  std::copy(state, state + n, frame);
+  loadInternalState(frame + n, cell, master.lifetime, when, position);
+  return frame;
+}
+
+}  // namespace ontogen

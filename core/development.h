@@ -1,0 +1,84 @@
+#pragma once
+// The development of one pool over a step, behind one interface: a world owns one
+// Development, made once for its system's pool kind, which owns the pool and the buffers
+// it reuses from step to step. What every kind shares lives beside it, once: the frame
+// loader (core/cell_frame.h), the successor writer (core/successors.h), the per-step
+// rule pass (RuleEvaluator::fireStepRules), salts (core/salts.h) and limits
+// (core/limits.h). Each kind adds only what is its own: where successors go, how
+// neighbours are found, when rates are integrated.
+//
+// The world hands a step what it may read and write of itself in a StepContext, so no
+// development reaches into the world.
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/limits.h"
+#include "core/successors.h"
+#include "lang/program.h"
+#include "pools/pool.h"
+
+namespace ontogen {
+
+class RateIntegrator;
+
+/// Tolerance for "at the same instant": events within it of each other or of a step's
+/// end count as simultaneous. Relative, so long runs keep the same meaning.
+inline double timeTolerance(double t) {
+  return 1e-9 * (t < 1 ? 1 : t);
+}
+
+/// Counts a world keeps about its development.
+struct WorldStats {
+  uint64_t steps = 0;
+  uint64_t events = 0;       ///< terminal-age events
+  uint64_t ruleFirings = 0;  ///< per-step rules that fired an action or a calculation
+  uint64_t cellsBorn = 0;
+  uint64_t crowded = 0;        ///< grid successors that found no free site and were not born
+  uint64_t rateEquations = 0;  ///< rate equations integrated in the last step
+};
+
+/// What a step (or the seeding of a pool) may read and write of its world.
+struct StepContext {
+  const Program& program;
+  const SystemDefinition& system;
+  uint64_t seed = 1;
+  unsigned threads = 1;
+  const WorldLimits& limits;
+  double time = 0;                      ///< the world's time at the start (seconds)
+  const double* ancestors = nullptr;    ///< Program::ancestorRefs as this pool's cells read them
+  WorldStats& stats;
+  RateIntegrator* rates = nullptr;      ///< the world's, when its system integrates rates
+  std::vector<LineageRecord>* lineage = nullptr;  ///< births are logged here when not null
+  uint64_t idSalt = 0;                  ///< ids of the axiom's cells derive from it
+};
+
+class Development {
+ public:
+  virtual ~Development() = default;
+  /// A deep copy: the pool and its state (a copied world develops on its own).
+  virtual std::unique_ptr<Development> clone() const = 0;
+  virtual const Pool& pool() const = 0;
+
+  /// Fills the empty pool from its system's axiom (and placements) at context.time.
+  virtual void seed(StepContext& context) = 0;
+  /// Develops the pool from context.time to t1; per-step rules fire at the start when
+  /// `stepRules` (the world decides: only on its step grid).
+  virtual void step(StepContext& context, double t1, bool stepRules) = 0;
+  /// Position of the i-th cell: its index (linear), grid coordinates or spatial x, y, z.
+  virtual std::array<double, 3> positionOf(size_t i) const = 0;
+};
+
+/// The development for `system`'s pool kind, with an empty pool.
+std::unique_ptr<Development> makeDevelopment(const Program& program, const SystemDefinition& system);
+
+/// Appends the system's axiom to an empty linear or spatial pool, in text order, with ids
+/// from context.idSalt.
+void seedFromAxiom(Pool& pool, StepContext& context);
+
+/// An axiom cell's values; those that read the enclosing systems are evaluated now.
+std::vector<double> axiomValues(const Program& program, const AxiomCell& axiom, uint64_t seed,
+                                const double* ancestors);
+
+}  // namespace ontogen

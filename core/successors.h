@@ -1,0 +1,104 @@
+#pragma once
+// The one successor writer every pool kind uses: when a rule with an action fires for a
+// cell, it evaluates each successor's arguments and birth age (checking the age against
+// the successor's terminal age), gives it its id (a new one from the cell's lineage, or
+// the cell's own for `me` and `=X`), records the birth in the lineage log when asked, and
+// hands the cell to the pool's own placement. What differs between pools (where a
+// successor goes) stays in the pool's development; everything else is here.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/limits.h"
+#include "core/salts.h"
+#include "lang/expression.h"
+#include "lang/program.h"
+#include "pools/cell_record.h"
+
+namespace ontogen {
+
+/// What made a cell develop: its terminal age (a production, `me` starts its age again)
+/// or a per-step rule (`me` keeps its age).
+enum class BirthCause : uint8_t { Terminal, StepRule };
+
+/// One birth: `child` was made by a rule of `parent` at `time` (seconds). Ids as the engine
+/// keeps them (64 bits).
+struct LineageRecord {
+  uint64_t child = 0;
+  uint64_t parent = 0;
+  double time = 0;
+  bool operator==(const LineageRecord&) const = default;
+};
+
+/// A model failed while it ran (e.g. a birth age not below the terminal age); the
+/// message names the cell, the rule and its location like a compiler diagnostic.
+struct ModelError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The id of the k-th successor (k from 1) of `cell` when it develops at `when`.
+inline uint64_t successorId(uint64_t cellId, double when, BirthCause cause, uint64_t k) {
+  const uint64_t lineage = mixKey(cellId, keyOf(when)) ^ (cause == BirthCause::StepRule ? kStepRuleSalt : 0);
+  return mixKey(lineage, k);
+}
+
+class SuccessorWriter {
+ public:
+  explicit SuccessorWriter(const Program& program);
+
+  /// Logs every birth into `log` from now on (null: none). Not thread-safe: one writer
+  /// and one log per thread.
+  void recordLineage(std::vector<LineageRecord>* log) { lineage_ = log; }
+
+  /// Writes the successors of `rule`, fired for `cell` at `when`. `frame` holds the cell's
+  /// state after the rule's calculations (what `me` keeps); `context` evaluates the
+  /// successors' arguments. For each successor, in order, calls
+  /// `emit(const CellRecord&, const double* values, uint32_t count)`; the record's `state`
+  /// field is left for the pool to set. Returns the number of new cells (not `me`).
+  template <typename Emit>
+  uint64_t write(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
+                 BirthCause cause, const EvalContext& context, Emit&& emit);
+
+ private:
+  [[noreturn]] void badBirthAge(const SuccessorTemplate& successor, const CellRecord& cell, double age,
+                                double when) const;
+
+  const Program& program_;
+  std::vector<double> values_;
+  std::vector<LineageRecord>* lineage_ = nullptr;
+};
+
+template <typename Emit>
+uint64_t SuccessorWriter::write(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
+                                BirthCause cause, const EvalContext& context, Emit&& emit) {
+  uint64_t k = 0;
+  uint64_t born = 0;
+  for (const SuccessorTemplate& successor : rule.successors) {
+    ++k;
+    if (successor.isMe) {
+      CellRecord me = cell;
+      if (cause == BirthCause::Terminal) me.birth = when;
+      emit(me, frame, program_.masters[cell.master].stateCount());
+      continue;
+    }
+    const uint64_t id = successor.keepsIdentity ? cell.id : successorId(cell.id, when, cause, k);
+    ++born;
+    if (lineage_) lineage_->push_back(LineageRecord{id, cell.id, when});
+    if (successor.stateless) {
+      // The common case of a bare symbol born at age 0: nothing to evaluate or check.
+      emit(CellRecord{successor.master, 0, when, id}, values_.data(), 0u);
+      continue;
+    }
+    const MasterCell& target = program_.masters[successor.master];
+    const uint32_t count = target.stateCount();
+    for (uint32_t j = 0; j < count; ++j) values_[j] = successor.args[j].evaluate(context);
+    const double age = successor.birthAge.empty() ? 0.0 : successor.birthAge.evaluate(context);
+    if (!(age >= 0) || age >= target.lifetime) [[unlikely]]
+      badBirthAge(successor, cell, age, when);
+    emit(CellRecord{successor.master, 0, when - age, id}, values_.data(), count);
+  }
+  return born;
+}
+
+}  // namespace ontogen
