@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/parents.h"
+#include "core/salts.h"
+
 namespace ontogen {
 
 std::vector<WordCell> captureWord(const World& world) {
@@ -15,6 +18,7 @@ std::vector<WordCell> captureWord(const World& world) {
   const bool spatial = world.rootSystem().poolKind == PoolKind::Spatial;
   const int dimensions = spatial ? 3 : world.rootSystem().grid.dimensions;
   const auto cells = pool.cells();
+  const std::vector<uint64_t> parents = parentIds(world);
   for (size_t i = 0; i < cells.size(); ++i) {
     const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
@@ -30,6 +34,7 @@ std::vector<WordCell> captureWord(const World& world) {
     entry.age = world.ageOf(cell);
     entry.timed = master.timedNotation;
     entry.id = cell.id;
+    entry.parent = parents[i];
     entry.system = master.system >= 0;
     if (const World* child = world.childOf(cell)) entry.pool = captureWord(*child);
     word.push_back(std::move(entry));
@@ -119,6 +124,8 @@ static void writeCells(std::ostream& out, const std::vector<WordCell>& cells, co
     out << ", \"developed\": ";
     writeArray(out, cells[c].developed);
     out << ", \"age\": " << formatExact(cells[c].age);
+    out << ", \"id\": " << formatExact(idValue(cells[c].id)) << ", \"parent\": "
+        << (cells[c].parent == kNoParent ? std::string("-1") : formatExact(idValue(cells[c].parent)));
     if (!cells[c].position.empty()) {
       out << ", \"position\": ";
       writeArray(out, cells[c].position);

@@ -18,7 +18,8 @@ struct WordCell {
   std::vector<double> developed;  ///< after the development function (= params without one)
   double age = 0;                 ///< seconds
   bool timed = false;             ///< written in timed notation: printed as (X, age)
-  uint64_t id = 0;
+  uint64_t id = 0;      ///< stable id (64 bits; words print the low 53, as rules read it)
+  uint64_t parent = ~uint64_t{0};  ///< the id of the cell it hangs from (core/parents.h); all ones: none
   std::vector<double> position;  ///< grid coordinates or spatial x, y, z (empty in a linear pool)
   bool system = false;           ///< a system cell: `pool` holds its system's cells
   std::vector<WordCell> pool;
@@ -36,7 +37,7 @@ std::vector<WordCell> captureWord(const World& world);
 std::string formatWord(const std::vector<WordCell>& word, int precision = 6);
 
 /// {"times": [{"t": T, "cells": [{"label": ..., "params": [...], "developed": [...],
-/// "age": A}, ...]}, ...]}, a system cell with "pool": [its cells], numbers in the shortest form that reads back exactly;
+/// "age": A, "id": I, "parent": P}, ...]}, ...]} (ids' low 53 bits; P is -1 for none), a system cell with "pool": [its cells], numbers in the shortest form that reads back exactly;
 /// infinities and NaN as null.
 void writeWordJson(std::ostream& out, const std::vector<WordAtTime>& words);
 

@@ -32,6 +32,7 @@ struct Module {
   SourceSpan span;
   std::string label;  ///< "me" for the current cell
   bool isMe = false;
+  bool keepsIdentity = false;  ///< a successor written `=X`: it keeps its predecessor's id
   bool hasArgs = false;       ///< `X()` and `X` differ only here
   std::vector<ExprPtr> args;  ///< patterns: Name expressions (formal parameters)
   ExprPtr age;                ///< birth age (successor) or terminal age (predecessor), may be null

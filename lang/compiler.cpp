@@ -879,9 +879,18 @@ class Compiler {
     }
     compiled.hasAction = rule.hasAction;
     if (rule.hasAction) compiled.hasDiscrete = true;
+    const ast::Module* identityKeeper = nullptr;  // `me` or `=X`: one cell goes on with the id
     for (const auto& successor : rule.successors) {
       SuccessorTemplate result;
       result.span = successor.span;
+      if (successor.isMe || successor.keepsIdentity) {
+        if (identityKeeper)
+          sink_.error(successor.span, "only one successor keeps the cell's identity, and '" +
+                                          (identityKeeper->isMe ? std::string("me") : "=" + identityKeeper->label) +
+                                          "' already does");
+        identityKeeper = &successor;
+      }
+      result.keepsIdentity = successor.keepsIdentity;
       if (successor.isMe) {
         if (lsystem) sink_.error(successor.span, "'me' is not part of the L-system notation; repeat the module");
         result.isMe = true;

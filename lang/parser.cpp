@@ -631,7 +631,8 @@ class Parser {
   void successors(Rule& rule) {
     if (match(TokenKind::EmptySet)) {
     } else {
-      while (!atStatementEnd() && canStartModule()) rule.successors.push_back(module(ModuleUse::Successor));
+      while (!atStatementEnd() && (canStartModule() || check(TokenKind::Equal)))
+        rule.successors.push_back(module(ModuleUse::Successor));
     }
     if (match(TokenKind::Colon)) rule.probability = expression();
   }
@@ -646,13 +647,25 @@ class Parser {
   }
 
   // `X`, `X(args)` (the '(' must touch the label), `(X(args), age)` or `me`.
+  // A successor may be written `=X` (or `=(X, age)`, `(=X, age)`): it keeps its
+  // predecessor's identity.
   Module module(ModuleUse use) {
-    Module result;
+    const Token& equal = peek();
+    if (use == ModuleUse::Successor && match(TokenKind::Equal)) {
+      Module kept = module(use);
+      if (kept.keepsIdentity) fail(equal.span, "one '=' keeps the identity");
+      if (kept.isMe) fail(equal.span, "'me' keeps its identity already; write 'me'");
+      kept.keepsIdentity = true;
+      kept.span = equal.span.to(kept.span);
+      return kept;
+    }
     const Token& first = peek();
     if (check(TokenKind::LParen)) {
       advance();
       ++depth_;
+      const bool keeps = use == ModuleUse::Successor && match(TokenKind::Equal);
       Module inner = bareModule(use);
+      inner.keepsIdentity = keeps;
       if (use == ModuleUse::Instruction || use == ModuleUse::Pattern)
         fail(first.span, "a timed module '(X, age)' cannot stand here");
       if (inner.isMe) fail(first.span, "'me' keeps its own age; it takes no birth age");
