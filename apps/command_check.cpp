@@ -6,9 +6,9 @@
 namespace ontogen::app {
 
 int runCheck(const CommonOptions& options) {
-  auto loaded = loadProgram(options.file, options.system);
-  if (!loaded) return kExitProgramError;
-  const Program& program = *loaded->program;
+  LoadedProgram loaded = loadProgram(options);
+  if (!loaded.program) return loaded.exitCode;
+  const Program& program = *loaded.program;
   size_t declared = 0;
   for (const auto& master : program.masters) declared += master.declared;
   std::cout << options.file << ": ok (" << program.systems.size() << " system"

@@ -16,8 +16,12 @@ int runHelp() {
                "  ontogen check FILE                    parse and check a program\n"
                "  ontogen run FILE [options]            develop and write one output per frame\n"
                "  ontogen word FILE --at T1,T2 [--json] print the derivation word at those times\n"
+               "  ontogen timeline FILE --out F.svg     draw the time-state diagram of the development\n"
                "  ontogen midi-ports                    list the MIDI output ports for --midi-port\n"
-               "  ontogen help                          this text\n\n"
+               "  ontogen help                          this text\n"
+               "\n"
+               "check, run, word and timeline take --define NAME=VALUE (repeatable): the program\n"
+               "runs as if its #define NAME said the number VALUE.\n\n"
                "Interpretation sets:";
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
   std::cout << "\n\nTurtle commands (set 'geometry'):\n";

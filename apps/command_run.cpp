@@ -17,9 +17,9 @@
 namespace ontogen::app {
 
 int runRun(const RunOptions& options) {
-  auto loaded = loadProgram(options.common.file, options.common.system);
-  if (!loaded) return kExitProgramError;
-  const Program& program = *loaded->program;
+  LoadedProgram loaded = loadProgram(options.common);
+  if (!loaded.program) return loaded.exitCode;
+  const Program& program = *loaded.program;
 
   SetOptions setOptions;
   setOptions.formats = options.format;
@@ -71,15 +71,15 @@ int runRun(const RunOptions& options) {
   auto started = std::chrono::steady_clock::now();
   size_t written = 0;
   try {
-    World world(loaded->program, def);
-    ProgressBar progress("growing " + loaded->stem);
+    World world(loaded.program, def);
+    ProgressBar progress("growing " + loaded.stem);
     // Sets that follow the development (music in developmental time) see the word at the
     // start and after every step, between frames too; the others see one word a frame.
     std::vector<InterpretationSet*> following;
     for (auto& set : sets)
       if (set->followsDevelopment()) {
         following.push_back(set.get());
-        set->beginFrame(FrameTarget{options.out, loaded->stem, 0, 1, 0});
+        set->beginFrame(FrameTarget{options.out, loaded.stem, 0, 1, 0});
         interpretWord(world, *set);
       }
     for (int frame = 0; frame < frames; ++frame) {
@@ -99,7 +99,7 @@ int runRun(const RunOptions& options) {
         for (InterpretationSet* set : following) interpretWord(world, *set);
       for (auto& set : sets) {
         if (set->followsDevelopment()) continue;
-        FrameTarget target{options.out, loaded->stem, frame, frames, world.time()};
+        FrameTarget target{options.out, loaded.stem, frame, frames, world.time()};
         written += interpretFrame(world, *set, target).size();
       }
       progress.update(frame + 1, frames);

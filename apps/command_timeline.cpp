@@ -15,21 +15,22 @@ int runTimeline(const TimelineOptions& options) {
     std::cerr << "ontogen: error: --out must name an .svg or .png file, not '" << options.out << "'\n";
     return kExitUsage;
   }
-  auto loaded = loadProgram(options.common.file, options.common.system);
-  if (!loaded) return kExitProgramError;
-  const Program& program = *loaded->program;
+  LoadedProgram loaded = loadProgram(options.common);
+  if (!loaded.program) return loaded.exitCode;
+  const Program& program = *loaded.program;
   const WorldDef def = worldDefOf(options.common, program);
   const double dt = options.common.step.value_or(program.dt);
   const double until = options.until.value_or(program.until);
   Timeline timeline;
-  if (int failed = developReporting([&] { timeline = recordTimeline(loaded->program, def, until, dt, options.maxRows); }))
+  if (int failed =
+          developReporting([&] { timeline = recordTimeline(loaded.program, def, until, dt, options.maxRows); }))
     return failed;
   try {
     if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     if (out.extension() == ".png")
       writeTimelinePng(out, timeline);
     else
-      writeTimelineSvg(out, timeline, loaded->stem);
+      writeTimelineSvg(out, timeline, loaded.stem);
   } catch (const std::exception& error) {
     std::cerr << "ontogen: error: " << error.what() << "\n";
     return kExitOutputError;

@@ -7,16 +7,16 @@
 namespace ontogen::app {
 
 int runWord(const WordOptions& options) {
-  auto loaded = loadProgram(options.common.file, options.common.system);
-  if (!loaded) return kExitProgramError;
-  const Program& program = *loaded->program;
+  LoadedProgram loaded = loadProgram(options.common);
+  if (!loaded.program) return loaded.exitCode;
+  const Program& program = *loaded.program;
   const WorldDef def = worldDefOf(options.common, program);
   double dt = options.common.step.value_or(program.dt);
   std::vector<WordAtTime> words;
   const int failed = developReporting([&] {
-    auto world = std::make_unique<World>(loaded->program, def);
+    auto world = std::make_unique<World>(loaded.program, def);
     for (double t : options.times) {
-      if (t < world->time()) world = std::make_unique<World>(loaded->program, def);  // time runs forward only
+      if (t < world->time()) world = std::make_unique<World>(loaded.program, def);  // time runs forward only
       world->advanceTo(t, dt);
       words.push_back({t, captureWord(*world)});
     }

@@ -15,6 +15,7 @@ namespace ontogen::app {
 struct CommonOptions {
   std::string file;
   std::string system;               ///< root system, empty: the first
+  std::vector<std::string> defines;  ///< `--define NAME=VALUE` as written, in order
   std::optional<uint64_t> seed;     ///< empty: the program's #seed, else 1
   std::optional<double> step;       ///< empty: the program's #dt
   WorldLimits limits;

@@ -14,6 +14,10 @@ using namespace ontogen::app;
 void addCommon(CLI::App& command, CommonOptions& options) {
   command.add_option("file", options.file, "The program (.cell)")->required()->check(CLI::ExistingFile);
   command.add_option("--system", options.system, "The root system (default: the first in the file)");
+  // One NAME=VALUE per flag, so a --define before the file does not swallow it.
+  command.add_option("--define", options.defines, "Set the program's #define NAME to a number (repeatable)")
+      ->type_name("NAME=VALUE")
+      ->allow_extra_args(false);
 }
 
 void addDevelopment(CLI::App& command, CommonOptions& options) {

@@ -3,7 +3,6 @@
 // place (with the commands) that writes to the terminal.
 
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "lang/program.h"
@@ -22,12 +21,17 @@ enum ExitCode {
 };
 
 struct LoadedProgram {
-  std::shared_ptr<const Program> program;
+  std::shared_ptr<const Program> program;  ///< null when the program could not be loaded
   std::string stem;  ///< file name without directory and extension: names outputs
+  /// Why loading failed: kExitProgramError for errors in the text, kExitUsage for a
+  /// --system or --define the program does not have or a malformed --define.
+  int exitCode = kExitOk;
 };
 
-/// Reads and compiles a program file. On failure prints the diagnostics (or the I/O
-/// error) to stderr and returns nothing.
-std::optional<LoadedProgram> loadProgram(const std::string& path, const std::string& rootSystem = {});
+struct CommonOptions;
+
+/// Reads and compiles the program file of `options` with its --system and --define. On
+/// failure prints the diagnostics (or the I/O error) to stderr and returns no program.
+LoadedProgram loadProgram(const CommonOptions& options);
 
 }  // namespace ontogen::app

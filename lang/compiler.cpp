@@ -97,13 +97,15 @@ class Compiler {
       program_->sources.push_back(std::move(source));
     }
     global_.system = -1;
-    defines(tree_.defines, global_);
+    takeOverrides();
+    defines(tree_.defines, global_, -1);
     equivs(tree_.equivs, global_);
     settings(tree_.settings, globalSettings_, &global_);
     functions(tree_.functions, global_);
     declareCells();
     declareSystemCells();
     for (size_t i = 0; i < tree_.systems.size(); ++i) declareSystem(tree_.systems[i], static_cast<int>(i));
+    checkOverrides();
     compileCells();
     for (size_t i = 0; i < tree_.systems.size(); ++i) compileSystem(tree_.systems[i], static_cast<int>(i));
     attachDevelopmentFunctions();
@@ -139,8 +141,11 @@ class Compiler {
     return names;
   }
 
-  void defines(const std::vector<ast::Define>& list, Scope& scope) {
+  // `system`: index of the block holding the list, -1 for the top level.
+  void defines(const std::vector<ast::Define>& list, Scope& scope, int system) {
     for (const auto& define : list) {
+      auto given = overrides_.find(define.name);
+      if (given != overrides_.end()) overridden_.insert(define.name);
       if (scope.constants.values.count(define.name)) {
         sink_.error(define.span, "'" + define.name + "' is defined twice");
         continue;
@@ -149,8 +154,46 @@ class Compiler {
         sink_.error(define.span, "'" + define.name + "' is a built-in name and cannot be redefined");
         continue;
       }
-      auto value = evaluateConstant(*define.value, constantLookup(scope), sink_, "the value of #define");
-      if (value) scope.constants.values[define.name] = *value;
+      // A value from outside replaces the text's, which is then not evaluated at all.
+      std::optional<double> value;
+      if (given != overrides_.end())
+        value = given->second;
+      else
+        value = evaluateConstant(*define.value, constantLookup(scope), sink_, "the value of #define");
+      if (!value) continue;
+      scope.constants.values[define.name] = *value;
+      program_->defines.push_back({define.name, *value, system, given != overrides_.end(), define.span});
+    }
+  }
+
+  // The values given from outside, the last of each name (as later flags win on a
+  // command line). A value that is not finite is reported and left out, so the text's
+  // value stands and no error follows from it.
+  void takeOverrides() {
+    for (const DefineOverride& define : options_.defines) overrides_[define.name] = define.value;
+    for (auto it = overrides_.begin(); it != overrides_.end();) {
+      if (std::isfinite(it->second)) {
+        ++it;
+        continue;
+      }
+      sink_.error(SourceSpan{}, "cannot set '" + it->first + "' to " + std::to_string(it->second) +
+                                    ": a value for a #define must be a finite number");
+      it = overrides_.erase(it);
+    }
+  }
+
+  // Every value given from outside must name a #define of the program.
+  void checkOverrides() {
+    std::string known;
+    std::set<std::string_view> listed;
+    for (const ProgramDefine& define : program_->defines)
+      if (listed.insert(define.name).second) known += (known.empty() ? "" : ", ") + define.name;
+    std::set<std::string_view> reported;
+    for (const DefineOverride& given : options_.defines) {
+      const std::string& name = given.name;
+      if (!overrides_.count(name) || overridden_.count(name) || !reported.insert(name).second) continue;
+      sink_.error(SourceSpan{}, "cannot set '" + name + "': the program has no #define " + name +
+                                    (known.empty() ? " (it has no #define)" : " (it defines " + known + ")"));
     }
   }
 
@@ -480,7 +523,7 @@ class Compiler {
     scope->constants.outer = &global_.constants;
     definition.settings = globalSettings_;
     program_->systems.push_back(std::move(definition));
-    defines(system.defines, *scope);
+    defines(system.defines, *scope, index);
     if (!system.isLSystem && !system.equivs.empty())
       sink_.error(system.equivs.front().span,
                   "cells are shared by every system, so their equivs are too: write 'equiv' at the top level");
@@ -1305,6 +1348,8 @@ class Compiler {
   const ast::Program& tree_;
   DiagnosticSink& sink_;
   const CompileOptions& options_;
+  std::map<std::string, double, std::less<>> overrides_;  // CompileOptions::defines, the last value of each name
+  std::set<std::string, std::less<>> overridden_;         // the names of overrides_ some #define has
   std::unique_ptr<Program> program_;
   Scope global_;
   InterpretSettings globalSettings_;

@@ -33,9 +33,23 @@ struct CommandSetInfo {
   std::function<std::optional<double>(std::string_view)> constant = {};
 };
 
+/// A value for a program's `#define`, given from outside the text (`--define NAME=VALUE`),
+/// so a sweep or a search can vary a model without editing it.
+struct DefineOverride {
+  std::string name;  ///< a name the program defines with #define
+  double value = 0;  ///< in the units the text uses for it; must be finite
+};
+
+/// Errors in the options themselves (an unknown rootSystem or define name) are reported
+/// like the program's, but with no source span: they belong to no text.
 struct CompileOptions {
   std::vector<CommandSetInfo> commandSets;  ///< empty: interpretation blocks are not checked
   std::string rootSystem;                   ///< empty: the first system of the program
+  /// Every `#define NAME` of the program (top level, blocks, imported files) takes the
+  /// value given for NAME as if its text had said that number: the constants after it,
+  /// expressions, axioms, lifetimes, grid sizes and directives all see it. A name given
+  /// twice takes the last value; a name the program does not define is an error.
+  std::vector<DefineOverride> defines;
 };
 
 /// Compiles a parsed program whose text is `source`. Returns null when there were errors.

@@ -247,6 +247,15 @@ struct SystemDefinition {
   bool stochastic = false;
 };
 
+/// A `#define` of the program and the value it has, for callers that list or vary them.
+struct ProgramDefine {
+  std::string name;
+  double value = 0;         ///< the value in effect: the text's, or the one given from outside
+  int system = -1;          ///< index into Program::systems of the block that holds it, -1: top level
+  bool overridden = false;  ///< the value came from CompileOptions::defines
+  SourceSpan span;          ///< the #define in the text
+};
+
 struct Program {
   std::vector<std::shared_ptr<const SourceFile>> sources;  ///< the texts spans point into
   std::vector<MasterCell> masters;
@@ -254,6 +263,10 @@ struct Program {
   std::vector<DevelopmentFunction> functions;
   std::vector<SystemDefinition> systems;
   std::vector<AncestorRef> ancestorRefs;  ///< every `parent.x` / `root.x` read, once each
+  /// Every #define with a value, in the order the compiler reads them: the top-level
+  /// ones (an imported file's before its importer's), then each block's, block by block
+  /// in the order of `systems`. A name may appear in several blocks.
+  std::vector<ProgramDefine> defines;
   bool hasSystemCells = false;            ///< some system's cell can appear in another's pool
   int root = 0;          ///< index of the root system
   uint64_t seed = 1;     ///< default seed (#seed), overridden by --seed

@@ -148,6 +148,63 @@ TEST(Cli, RunawayGrowthStopsWithTheLimitNamed) {
   EXPECT_NE(result.err.find("--max-cells"), std::string::npos) << result.err;
 }
 
+TEST(Cli, DefineSetsAProgramsDefine) {
+  Result result = ontogen("word " + model("piston.cell") + " --at 1.04 --precision 3 --define WR=100");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  // The wheel radius moves the piston, the crank's arm and the flywheel; bend reads it too.
+  EXPECT_EQ(result.out,
+            "t = 1.04: (mov(100), 1) !(10) cC(60, 1) (bend(0.524), 1) !(2) cC(200, 1) (turn(2.09), 1) f(100) "
+            "+(1.57) [ disc(0, 100) ]\n");
+}
+
+TEST(Cli, DefineRepeatsBeforeOrAfterTheFileAndTheLastValueWins) {
+  Result result = ontogen("word --define PR=20 --define WR=70 " + model("piston.cell") +
+                          " --at 1.04 --precision 3 --define WR=100 --define PL=-5.5");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.out.find("(mov(100), 1) !(20) cC(-5.5, 1)"), std::string::npos) << result.out;
+}
+
+TEST(Cli, DefineOfAnUnknownNameListsTheDefinedOnesAndExitsWith2) {
+  const std::string expected =
+      "ontogen: error: cannot set 'SEGMENTS': the program has no #define SEGMENTS (it defines WR, KL, KR, PR, PL, ρ, "
+      "E)\n";
+  fs::path dir = scratch("define_unknown");
+  const std::string file = model("piston.cell") + " --define SEGMENTS=3";
+  for (const std::string& command :
+       {"check " + file, "word " + file + " --at 1", "run " + file + " --out " + (dir / "out").string(),
+        "timeline " + file + " --out " + (dir / "out.svg").string()}) {
+    Result result = ontogen(command);
+    EXPECT_EQ(result.exitCode, 2) << command << "\n" << result.err;
+    EXPECT_EQ(result.err, expected) << command;
+    EXPECT_EQ(result.out, "") << command;
+    EXPECT_FALSE(fs::exists(dir / "out")) << command;
+    EXPECT_FALSE(fs::exists(dir / "out.svg")) << command;
+  }
+}
+
+TEST(Cli, MalformedDefineExitsWith2) {
+  Result noEquals = ontogen("check " + model("piston.cell") + " --define WR");
+  EXPECT_EQ(noEquals.exitCode, 2);
+  EXPECT_EQ(noEquals.err, "ontogen: error: --define takes NAME=VALUE, as in --define WR=100, not 'WR'\n");
+  Result noName = ontogen("check " + model("piston.cell") + " --define =5");
+  EXPECT_EQ(noName.exitCode, 2);
+  EXPECT_NE(noName.err.find("--define takes NAME=VALUE"), std::string::npos) << noName.err;
+  for (const char* value : {"abc", "", "1x", "pi", "nan", "inf", "1,5"}) {
+    Result bad = ontogen("check " + model("piston.cell") + " --define 'WR=" + value + "'");
+    EXPECT_EQ(bad.exitCode, 2) << value;
+    EXPECT_EQ(bad.err, std::string("ontogen: error: --define WR=") + value + ": '" + value +
+                           "' is not a number (VALUE is a number such as 100, -2.5 or 1e-3)\n");
+  }
+  Result forms = ontogen("check " + model("piston.cell") + " --define WR=+5 --define KL=1e3 --define E=.5");
+  EXPECT_EQ(forms.exitCode, 0) << forms.err;
+}
+
+TEST(Cli, UnknownSystemIsABadCommandLine) {
+  Result result = ontogen("check " + model("piston.cell") + " --system wheel");
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.err, "ontogen: error: no system named 'wheel' (the program has: piston)\n");
+}
+
 TEST(Cli, UsageErrorsExitWith2) {
   EXPECT_EQ(ontogen("run /no/such/file.cell").exitCode, 2);
   EXPECT_EQ(ontogen("frobnicate").exitCode, 2);
@@ -158,6 +215,7 @@ TEST(Cli, HelpListsTheTables) {
   Result result = ontogen("help");
   EXPECT_EQ(result.exitCode, 0);
   EXPECT_NE(result.out.find("besselj(n, x)"), std::string::npos);
+  EXPECT_NE(result.out.find("--define NAME=VALUE"), std::string::npos);
   EXPECT_NE(result.out.find("cC(l, capped)"), std::string::npos);
 }
 

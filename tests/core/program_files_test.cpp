@@ -5,6 +5,7 @@
 //   // expect-run-error: TEXT     developing on past the last expected word (1000 s) fails with TEXT
 //   // step: DT                   the step used to develop (default: the program's #dt)
 //   // seed: S                    the seed (default 1)
+//   // define: NAME=VALUE         compile with this value for #define NAME (CompileOptions::defines)
 // A file with expect-error lines must report exactly those errors and no others.
 
 #include <gtest/gtest.h>
@@ -29,6 +30,7 @@ struct Expectations {
   std::string runError;
   std::optional<double> step;
   uint64_t seed = 1;
+  std::vector<DefineOverride> defines;
 };
 
 std::string readFile(const std::filesystem::path& path) {
@@ -75,6 +77,9 @@ Expectations expectationsOf(const std::string& text) {
       result.step = std::stod(*stepLine);
     } else if (auto seedLine = after(line, "seed:")) {
       result.seed = std::stoull(*seedLine);
+    } else if (auto defineLine = after(line, "define: ")) {
+      size_t equals = defineLine->find('=');
+      result.defines.push_back({defineLine->substr(0, equals), std::stod(defineLine->substr(equals + 1))});
     }
   }
   return result;
@@ -91,6 +96,7 @@ TEST_P(ProgramFile, BehavesAsWritten) {
   DiagnosticSink sink;
   CompileOptions options;
   options.commandSets = commandSets();
+  options.defines = expected.defines;
   std::shared_ptr<const Program> program = compileSource(path.string(), text, sink, options);
 
   std::vector<std::tuple<int, int, std::string>> reported;
