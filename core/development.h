@@ -21,8 +21,6 @@
 
 namespace ontogen {
 
-class RateIntegrator;
-
 /// Tolerance for "at the same instant": events within it of each other or of a step's
 /// end count as simultaneous. Relative, so long runs keep the same meaning.
 inline double timeTolerance(double t) {
@@ -49,7 +47,6 @@ struct StepContext {
   double time = 0;                      ///< the world's time at the start (seconds)
   const double* ancestors = nullptr;    ///< Program::ancestorRefs as this pool's cells read them
   WorldStats& stats;
-  RateIntegrator* rates = nullptr;      ///< the world's, when its system integrates rates
   std::vector<LineageRecord>* lineage = nullptr;  ///< births are logged here when not null
   uint64_t idSalt = 0;                  ///< ids of the axiom's cells derive from it
 };

@@ -36,6 +36,10 @@ struct ChunkResult {
 GridDevelopment::GridDevelopment(const Program& program, const SystemDefinition& system)
     : program_(&program), system_(&system), grid_(system.grid) {}
 
+// A copy develops on its own: its view looks at its own pool.
+GridDevelopment::GridDevelopment(const GridDevelopment& other)
+    : Development(other), program_(other.program_), system_(other.system_), grid_(other.grid_) {}
+
 std::array<double, 3> GridDevelopment::positionOf(size_t i) const {
   const GridCoordinates c = grid_.coordinates(grid_.siteOf(i));
   return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
@@ -100,9 +104,10 @@ void GridDevelopment::seed(StepContext& context) {
 void GridDevelopment::step(StepContext& context, double t1, bool stepRules) {
   if (system_->sampledRules && stepRules) applyStepRules(context);
   if (system_->rates) {
-    GridPoolView view(grid_);
-    context.rates->integrate(grid_, view, context.time, t1);
-    context.stats.rateEquations = context.rates->activeEquations();
+    if (!rates_) rates_ = std::make_unique<RateIntegrator<GridPoolView>>(*program_, context.seed, context.threads);
+    rates_->setAncestors(context.ancestors);
+    rates_->integrate(grid_, view_, context.time, t1);
+    context.stats.rateEquations = rates_->activeEquations();
   }
 }
 
@@ -113,13 +118,13 @@ void GridDevelopment::applyStepRules(StepContext& context) {
   const double* arena = grid_.stateArena().data();
   const uint64_t seed = context.seed;
   const unsigned threads = context.threads;
-  GridPoolView view(grid_);
+  const GridPoolView& view = view_;
   FunctionTable functions = program.functionTable();
   std::vector<ChunkResult> results(threads);
 
   parallelFor(cells.size(), threads, [&](size_t begin, size_t end, unsigned worker) {
     ChunkResult& out = results[worker];
-    RuleEvaluator evaluator(program, view);
+    RuleEvaluator<GridPoolView> evaluator(program, view);
     SuccessorWriter successors(program);
     if (context.lineage) successors.recordLineage(&out.lineage);
     for (size_t i = begin; i < end; ++i) {

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "core/development.h"
+#include "core/pool_view.h"
+#include "core/rate_integrator.h"
 #include "pools/grid_pool.h"
 
 namespace ontogen {
@@ -15,6 +17,8 @@ namespace ontogen {
 class GridDevelopment final : public Development {
  public:
   GridDevelopment(const Program& program, const SystemDefinition& system);
+  GridDevelopment(const GridDevelopment& other);
+  GridDevelopment& operator=(const GridDevelopment&) = delete;
 
   std::unique_ptr<Development> clone() const override { return std::make_unique<GridDevelopment>(*this); }
   const Pool& pool() const override { return grid_; }
@@ -29,6 +33,8 @@ class GridDevelopment final : public Development {
   const Program* program_;
   const SystemDefinition* system_;
   GridPool grid_;
+  GridPoolView view_{grid_};
+  std::unique_ptr<RateIntegrator<GridPoolView>> rates_;  // made on the first step that needs it; not copied
 };
 
 }  // namespace ontogen

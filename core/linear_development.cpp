@@ -62,7 +62,9 @@ void LinearDevelopment::expireUntil(double t1) {
 void LinearDevelopment::integrateAndExpire(double t, double t1) {
   const auto& masters = program_.masters;
   double now = t;
-  RateIntegrator& rates = *context_->rates;
+  if (!rates_) rates_ = std::make_unique<RateIntegrator<LinearPoolView>>(program_, context_->seed, context_->threads);
+  RateIntegrator<LinearPoolView>& rates = *rates_;
+  rates.setAncestors(context_->ancestors);
   while (now < t1 - timeTolerance(t1)) {
     double next = kForever;
     for (const CellRecord& cell : pool_.cells()) next = std::min(next, cell.birth + masters[cell.master].lifetime);

@@ -8,6 +8,7 @@
 
 #include "core/development.h"
 #include "core/pool_view.h"
+#include "core/rate_integrator.h"
 #include "core/rule_evaluator.h"
 #include "core/successors.h"
 #include "pools/linear_pool.h"
@@ -72,7 +73,8 @@ class LinearDevelopment final : public Development {
   StateArray workState_;
   uint64_t eventsThisStep_ = 0;
   LinearPoolView view_;
-  RuleEvaluator aggregates_;               // answers count(), sum(x) ... for the cell being evaluated
+  RuleEvaluator<LinearPoolView> aggregates_;  // answers count(), sum(x) ... for the cell being evaluated
+  std::unique_ptr<RateIntegrator<LinearPoolView>> rates_;  // made on the first step that needs it; not copied
   uint32_t matched_[kMaxContextItems];     // cells matched by the context being tested
 };
 

@@ -1,8 +1,9 @@
 #pragma once
-// Splits a loop over cells into contiguous chunks, one per thread. The chunks depend
-// on the thread count, so a body must make each element's result independent of the
-// others (read a snapshot, write its own slot); then one thread and many give the same
-// bits.
+// Splits a loop over cells into contiguous chunks, one per thread, run by oneTBB's
+// persistent workers. The chunks depend on the thread count, so a body must make each
+// element's result independent of the others (read a snapshot, write its own slot);
+// then one thread and many give the same bits. A worker index is a chunk index: what a
+// body keeps per worker is kept per chunk.
 
 #include <cstddef>
 #include <functional>

@@ -17,7 +17,8 @@ bool draws(const CompiledRule& rule) {
 }
 }  // namespace
 
-RateIntegrator::RateIntegrator(const Program& program, uint64_t seed, unsigned threads)
+template <typename View>
+RateIntegrator<View>::RateIntegrator(const Program& program, uint64_t seed, unsigned threads)
     : program_(program), seed_(seed), threads_(std::max(1u, threads)), functions_(program.functionTable()) {
   for (const MasterCell& master : program.masters)
     for (const CompiledRule& rule : master.rules)
@@ -25,15 +26,17 @@ RateIntegrator::RateIntegrator(const Program& program, uint64_t seed, unsigned t
         conditional_ = true;
 }
 
-RateIntegrator::~RateIntegrator() = default;
+template <typename View>
+RateIntegrator<View>::~RateIntegrator() = default;
 
-void RateIntegrator::activate(const Pool& pool, double t0) {
+template <typename View>
+void RateIntegrator<View>::activate(const Pool& pool, double t0) {
   const auto cells = pool.cells();
   const double* arena = pool.stateArena().data();
   chunkEquations_.resize(threads_);
   for (auto& chunk : chunkEquations_) chunk.clear();
   parallelFor(cells.size(), threads_, [&](size_t begin, size_t end, unsigned worker) {
-    RuleEvaluator& evaluator = *evaluators_[worker];
+    RuleEvaluator<View>& evaluator = *evaluators_[worker];
     std::vector<Equation>& out = chunkEquations_[worker];
     for (size_t i = begin; i < end; ++i) {
       const MasterCell& master = program_.masters[cells[i].master];
@@ -64,11 +67,12 @@ void RateIntegrator::activate(const Pool& pool, double t0) {
   for (const auto& chunk : chunkEquations_) equations_.insert(equations_.end(), chunk.begin(), chunk.end());
 }
 
-void RateIntegrator::derivative(const Pool& pool, const StateArray& x, StateArray& dxdt, double t) {
+template <typename View>
+void RateIntegrator<View>::derivative(const Pool& pool, const StateArray& x, StateArray& dxdt, double t) {
   std::fill(dxdt.begin(), dxdt.end(), 0.0);
   const auto cells = pool.cells();
   parallelFor(equations_.size(), threads_, [&](size_t begin, size_t end, unsigned worker) {
-    RuleEvaluator& evaluator = *evaluators_[worker];
+    RuleEvaluator<View>& evaluator = *evaluators_[worker];
     RandomStream random;
     EvalContext context{nullptr, EvalEnvironment{&random, seed_}, &functions_, &evaluator};
     context.ancestors = ancestors_;
@@ -88,12 +92,13 @@ void RateIntegrator::derivative(const Pool& pool, const StateArray& x, StateArra
   });
 }
 
-void RateIntegrator::integrate(Pool& pool, const PoolView& view, double t0, double t1) {
+template <typename View>
+void RateIntegrator<View>::integrate(Pool& pool, const View& view, double t0, double t1) {
   if (!(t1 > t0)) return;
-  while (evaluators_.size() < threads_) evaluators_.push_back(std::make_unique<RuleEvaluator>(program_, view));
+  while (evaluators_.size() < threads_) evaluators_.push_back(std::make_unique<RuleEvaluator<View>>(program_, view));
   if (view_ != &view) {
     // Evaluators hold the view they were made with.
-    for (auto& evaluator : evaluators_) evaluator = std::make_unique<RuleEvaluator>(program_, view);
+    for (auto& evaluator : evaluators_) evaluator = std::make_unique<RuleEvaluator<View>>(program_, view);
     view_ = &view;
   }
   for (auto& evaluator : evaluators_) evaluator->useNeighbourTable(nullptr, nullptr);  // may be stale
@@ -140,5 +145,9 @@ void RateIntegrator::integrate(Pool& pool, const PoolView& view, double t0, doub
     stepper.do_step(system, x, t0, t1 - t0);
   }
 }
+
+template class RateIntegrator<LinearPoolView>;
+template class RateIntegrator<GridPoolView>;
+template class RateIntegrator<SpatialPoolView>;
 
 }  // namespace ontogen

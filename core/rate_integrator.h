@@ -19,13 +19,18 @@
 
 namespace ontogen {
 
+/// One per pool, owned by the pool's development, templated on its view (explicitly
+/// made for the three views in rate_integrator.cpp).
+template <typename View>
 class RateIntegrator {
  public:
   RateIntegrator(const Program& program, uint64_t seed, unsigned threads);
   ~RateIntegrator();
+  RateIntegrator(const RateIntegrator&) = delete;
+  RateIntegrator& operator=(const RateIntegrator&) = delete;
 
   /// Integrates the pool's active rate variables from t0 to t1 in place.
-  void integrate(Pool& pool, const PoolView& view, double t0, double t1);
+  void integrate(Pool& pool, const View& view, double t0, double t1);
   /// The enclosing systems' values the equations read (World::ancestorValues).
   void setAncestors(const double* values) { ancestors_ = values; }
   /// Equations switched on in the last integration.
@@ -46,10 +51,10 @@ class RateIntegrator {
   const double* ancestors_ = nullptr;
   unsigned threads_;
   FunctionTable functions_;
-  const PoolView* view_ = nullptr;
+  const View* view_ = nullptr;
   std::vector<Equation> equations_;
   std::vector<std::vector<Equation>> chunkEquations_;
-  std::vector<std::unique_ptr<RuleEvaluator>> evaluators_;  // one per worker
+  std::vector<std::unique_ptr<RuleEvaluator<View>>> evaluators_;  // one per worker
   // The neighbours of every cell, and the switched-on equations when no rate rule has a
   // condition, are kept while the pool's structure does not change.
   std::vector<uint32_t> neighbourOffsets_;

@@ -3,20 +3,43 @@
 // (state, internal state, context values) from a state arena, which is the pool's own
 // or an integrator's intermediate stage, and answers the rule's neighbour aggregates
 // from the same arena, so everything a rule reads comes from one instant.
+//
+// A template on the pool's view (core/pool_view.h): the per-cell calls (position,
+// context, neighbours) are direct calls, inlined where they are small. The expression
+// interpreter asks for aggregates through NeighbourAggregates, once per aggregate read.
 
+#include <algorithm>
+#include <array>
+#include <limits>
 #include <vector>
 
+#include "core/cell_frame.h"
 #include "core/pool_view.h"
 #include "lang/program.h"
 
 namespace ontogen {
 
+/// Frame slots any rule of the program needs.
+size_t ruleFrameSize(const Program& program);
+
+template <typename View>
 class RuleEvaluator final : public NeighbourAggregates {
  public:
-  RuleEvaluator(const Program& program, const PoolView& view);
+  RuleEvaluator(const Program& program, const View& view)
+      : program_(program), view_(view), pool_(view.pool()), frame_(ruleFrameSize(program)) {}
 
   /// Starts on cell i at `time`, reading state values from `arena`. Returns the frame.
-  double* load(size_t i, const double* arena, double time);
+  double* load(size_t i, const double* arena, double time) {
+    cell_ = i;
+    arena_ = arena;
+    neighbourCount_ = -1;
+    rule_ = nullptr;
+    const CellRecord& cell = pool_.cells()[i];
+    const MasterCell& master = program_.masters[cell.master];
+    // Positions cost a lookup in grids and spatial pools: only for masters that read them.
+    const std::array<double, 3> position = master.readsPosition ? view_.position(i) : std::array<double, 3>{};
+    return loadCellFrame(frame_.data(), master, cell, arena + cell.state, time, position);
+  }
   /// Checks `rule`'s positional context around the loaded cell and copies the bound
   /// neighbour values into the frame; makes `rule` the one aggregates answer for.
   bool bind(const CompiledRule& rule);
@@ -45,7 +68,7 @@ class RuleEvaluator final : public NeighbourAggregates {
 
  private:
   const Program& program_;
-  const PoolView& view_;
+  const View& view_;
   const Pool& pool_;  // the view's, asked once
   std::vector<double> frame_;
   const double* arena_ = nullptr;
@@ -56,11 +79,100 @@ class RuleEvaluator final : public NeighbourAggregates {
   mutable const uint32_t* neighbourList_ = nullptr;
   const uint32_t* tableOffsets_ = nullptr;
   const uint32_t* tableCells_ = nullptr;
-  uint32_t left_[64];
-  uint32_t right_[64];
+  uint32_t left_[kMaxContextItems];
+  uint32_t right_[kMaxContextItems];
 };
 
-/// Frame slots any rule of the program needs.
-size_t ruleFrameSize(const Program& program);
+template <typename View>
+bool RuleEvaluator<View>::bind(const CompiledRule& rule) {
+  rule_ = &rule;
+  if (!rule.hasContext()) return true;
+  if (!view_.matchContext(rule, cell_, left_, right_)) return false;
+  const auto cells = pool_.cells();
+  auto copy = [&](const std::vector<ContextBinding>& bindings, const uint32_t* matched) {
+    for (size_t k = 0; k < bindings.size(); ++k) {
+      const ContextBinding& binding = bindings[k];
+      if (binding.count == 0) continue;
+      const double* values = arena_ + cells[matched[k]].state;
+      std::copy(values, values + binding.count, frame_.data() + binding.firstSlot);
+    }
+  };
+  copy(rule.left, left_);
+  copy(rule.right, right_);
+  return true;
+}
+
+template <typename View>
+const CompiledRule* RuleEvaluator<View>::fireStepRules(const MasterCell& master, const EvalContext& context,
+                                                       RandomStream& random, uint64_t& firings) {
+  double* frame = frame_.data();
+  for (const CompiledRule& rule : master.rules) {
+    if (!rule.hasDiscrete) continue;  // rate-only rules act while integrating
+    if (!bind(rule)) continue;
+    if (!rule.predicate.empty() && rule.predicate.evaluate(context) == 0.0) continue;
+    if (!rule.probability.empty() && !(random.uniform() < rule.probability.evaluate(context))) continue;
+    for (const StateCalculation& calculation : rule.calculations)
+      if (!calculation.isRate) frame[calculation.slot] = calculation.value.evaluate(context);
+    ++firings;
+    if (rule.hasAction) return &rule;
+  }
+  return nullptr;
+}
+
+template <typename View>
+double RuleEvaluator<View>::aggregate(int query) const {
+  if (neighbourCount_ < 0) {
+    if (tableOffsets_) {
+      neighbourList_ = tableCells_ + tableOffsets_[cell_];
+      neighbourCount_ = static_cast<int>(tableOffsets_[cell_ + 1] - tableOffsets_[cell_]);
+    } else {
+      view_.neighbours(cell_, neighbours_);
+      neighbourList_ = neighbours_.data();
+      neighbourCount_ = static_cast<int>(neighbours_.size());
+    }
+  }
+  const AggregateQuery& q = rule_->aggregates[query];
+  const auto cells = pool_.cells();
+  if (q.kind == AggregateKind::Sum && q.label < 0) {
+    // The common case (diffusion): a plain sum, without the bookkeeping of the others.
+    double sum = 0;
+    for (int k = 0; k < neighbourCount_; ++k) {
+      const CellRecord& neighbour = cells[neighbourList_[k]];
+      if (neighbour.master < q.slotOf.size() && q.slotOf[neighbour.master] >= 0)
+        sum += arena_[neighbour.state + q.slotOf[neighbour.master]];
+    }
+    return sum;
+  }
+  if (q.kind == AggregateKind::Count && q.label < 0) return neighbourCount_;
+  double count = 0, sum = 0;
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (int k = 0; k < neighbourCount_; ++k) {
+    const CellRecord& neighbour = cells[neighbourList_[k]];
+    if (q.label >= 0 && neighbour.master != static_cast<uint32_t>(q.label)) continue;
+    if (q.kind == AggregateKind::Count) {
+      ++count;
+      continue;
+    }
+    if (neighbour.master >= q.slotOf.size() || q.slotOf[neighbour.master] < 0) continue;
+    const double value = arena_[neighbour.state + q.slotOf[neighbour.master]];
+    ++count;
+    sum += value;
+    low = std::min(low, value);
+    high = std::max(high, value);
+  }
+  switch (q.kind) {
+    case AggregateKind::Count:
+      return count;
+    case AggregateKind::Sum:
+      return sum;
+    case AggregateKind::Mean:
+      return count > 0 ? sum / count : 0.0;
+    case AggregateKind::Min:
+      return count > 0 ? low : 0.0;
+    case AggregateKind::Max:
+      return count > 0 ? high : 0.0;
+  }
+  return 0.0;
+}
 
 }  // namespace ontogen

@@ -36,6 +36,10 @@ std::vector<std::array<int, 3>> positionSlots(const Program& program) {
 SpatialDevelopment::SpatialDevelopment(const Program& program, const SystemDefinition& system)
     : program_(&program), system_(&system), pool_(system.spatialRadius, positionSlots(program)) {}
 
+// A copy develops on its own: its view looks at its own pool.
+SpatialDevelopment::SpatialDevelopment(const SpatialDevelopment& other)
+    : Development(other), program_(other.program_), system_(other.system_), pool_(other.pool_) {}
+
 void SpatialDevelopment::seed(StepContext& context) {
   seedFromAxiom(pool_, context);
   pool_.index();
@@ -45,9 +49,10 @@ void SpatialDevelopment::step(StepContext& context, double t1, bool stepRules) {
   if (system_->sampledRules && stepRules) applyStepRules(context);
   if (system_->rates) {
     pool_.index();
-    SpatialPoolView view(pool_);
-    context.rates->integrate(pool_, view, context.time, t1);
-    context.stats.rateEquations = context.rates->activeEquations();
+    if (!rates_) rates_ = std::make_unique<RateIntegrator<SpatialPoolView>>(*program_, context.seed, context.threads);
+    rates_->setAncestors(context.ancestors);
+    rates_->integrate(pool_, view_, context.time, t1);
+    context.stats.rateEquations = rates_->activeEquations();
   }
 }
 
@@ -59,13 +64,13 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
   const double* arena = pool_.stateArena().data();
   const uint64_t seed = context.seed;
   const unsigned threads = context.threads;
-  SpatialPoolView view(pool_);
+  const SpatialPoolView& view = view_;
   FunctionTable functions = program.functionTable();
   std::vector<ChunkResult> results(threads);
 
   parallelFor(cells.size(), threads, [&](size_t begin, size_t end, unsigned worker) {
     ChunkResult& out = results[worker];
-    RuleEvaluator evaluator(program, view);
+    RuleEvaluator<SpatialPoolView> evaluator(program, view);
     SuccessorWriter successors(program);
     if (context.lineage) successors.recordLineage(&out.lineage);
     auto emit = [&](CellRecord record, const double* values, uint32_t count) {

@@ -6,6 +6,8 @@
 // for the step.
 
 #include "core/development.h"
+#include "core/pool_view.h"
+#include "core/rate_integrator.h"
 #include "pools/spatial_pool.h"
 
 namespace ontogen {
@@ -13,6 +15,8 @@ namespace ontogen {
 class SpatialDevelopment final : public Development {
  public:
   SpatialDevelopment(const Program& program, const SystemDefinition& system);
+  SpatialDevelopment(const SpatialDevelopment& other);
+  SpatialDevelopment& operator=(const SpatialDevelopment&) = delete;
 
   std::unique_ptr<Development> clone() const override { return std::make_unique<SpatialDevelopment>(*this); }
   const Pool& pool() const override { return pool_; }
@@ -27,6 +31,8 @@ class SpatialDevelopment final : public Development {
   const Program* program_;
   const SystemDefinition* system_;
   SpatialPool pool_;
+  SpatialPoolView view_{pool_};
+  std::unique_ptr<RateIntegrator<SpatialPoolView>> rates_;  // made on the first step that needs it; not copied
 };
 
 }  // namespace ontogen

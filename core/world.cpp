@@ -3,7 +3,6 @@
 #include "core/grid_development.h"
 #include "core/linear_development.h"
 #include "core/parallel_for.h"
-#include "core/rate_integrator.h"
 #include "core/salts.h"
 #include "core/spatial_development.h"
 
@@ -35,7 +34,6 @@ World::World(const World& parent, const CellRecord& cell, const double* cellStat
 // The pool from its system's axiom (and placements), then the pools of its system cells.
 void World::seedPool() {
   development_ = makeDevelopment(*program_, rootSystem());
-  if (rootSystem().rates) rates_ = std::make_unique<RateIntegrator>(*program_, def_.seed, def_.threads);
   updateAncestorValues();
   StepContext context = stepContext();
   development_->seed(context);
@@ -47,8 +45,6 @@ void World::seedPool() {
 StepContext World::stepContext() {
   StepContext context{*program_, rootSystem(), def_.seed, def_.threads, def_.limits, time_, ancestorValues_.data(),
                       stats_};
-  context.rates = rates_.get();
-  if (rates_) rates_->setAncestors(ancestorValues_.data());
   context.lineage = def_.recordLineage ? &lineage_ : nullptr;
   context.idSalt = idSalt();
   return context;
@@ -67,7 +63,6 @@ World::World(const World& other)
       time_(other.time_),
       stats_(other.stats_),
       lineage_(other.lineage_) {
-  if (rootSystem().rates) rates_ = std::make_unique<RateIntegrator>(*program_, def_.seed, def_.threads);
   for (const auto& [id, child] : other.children_) {
     auto copy = std::make_unique<World>(*child);
     copy->parent_ = this;
@@ -182,8 +177,6 @@ void World::takeDevelopmentOf(World& other) {
   children_ = std::move(other.children_);
   for (auto& [id, child] : children_) child->parent_ = this;
   development_ = std::move(other.development_);
-  // The integrator keeps tables keyed by the pool it last saw: start afresh on this one.
-  if (rates_) rates_ = std::make_unique<RateIntegrator>(*program_, def_.seed, def_.threads);
   time_ = other.time_;
   stats_ = other.stats_;
   lineage_ = std::move(other.lineage_);

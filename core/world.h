@@ -46,8 +46,6 @@ struct WorldDef {
   bool recordLineage = false;
 };
 
-class RateIntegrator;
-
 class World {
  public:
   World(std::shared_ptr<const Program> program, WorldDef def = {});
@@ -132,7 +130,6 @@ class World {
   /// Child worlds by the id of their system cell.
   std::unordered_map<uint64_t, std::unique_ptr<World>> children_;
   std::unique_ptr<Development> development_;  ///< made once; owns the pool
-  std::unique_ptr<RateIntegrator> rates_;     ///< when the system integrates rates; not copied
   double time_ = 0;
   WorldStats stats_;
   std::vector<LineageRecord> lineage_;
