@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "lang/diagnostics.h"
 
 namespace ontogen {
 
@@ -21,15 +20,22 @@ SuccessorWriter::SuccessorWriter(const Program& program) : program_(program) {
   values_.resize(values);
 }
 
+ModelError::ModelError(Diagnostic diagnostic_, std::string cell_, double time_)
+    : std::runtime_error(formatDiagnostic(diagnostic_)),
+      diagnostic(std::move(diagnostic_)),
+      cell(std::move(cell_)),
+      time(time_) {}
+
 void SuccessorWriter::badBirthAge(const SuccessorTemplate& successor, const CellRecord& cell, double age,
                                   double when) const {
   const MasterCell& target = program_.masters[successor.master];
-  throw ModelError(formatDiagnostic(Diagnostic{
-      Severity::Error, successor.span,
-      "'" + target.label + "' would be born with age " + formatNumber(age) +
-          (age >= target.lifetime ? ", not below its terminal age " + formatNumber(target.lifetime)
-                                  : ", but ages are ≥ 0") +
-          " (in a rule of '" + program_.masters[cell.master].label + "' at t = " + formatNumber(when) + ")"}));
+  const std::string& label = program_.masters[cell.master].label;
+  throw ModelError(Diagnostic{Severity::Error, successor.span,
+                              "'" + target.label + "' would be born with age " + formatNumber(age) +
+                                  (age >= target.lifetime ? ", not below its terminal age " + formatNumber(target.lifetime)
+                                                          : ", but ages are ≥ 0") +
+                                  " (in a rule of '" + label + "' at t = " + formatNumber(when) + ")"},
+                   label, when);
 }
 
 }  // namespace ontogen

@@ -12,6 +12,7 @@
 
 #include "core/limits.h"
 #include "core/salts.h"
+#include "lang/diagnostics.h"
 #include "lang/expression.h"
 #include "lang/program.h"
 #include "pools/cell_record.h"
@@ -31,10 +32,14 @@ struct LineageRecord {
   bool operator==(const LineageRecord&) const = default;
 };
 
-/// A model failed while it ran (e.g. a birth age not below the terminal age); the
-/// message names the cell, the rule and its location like a compiler diagnostic.
+/// A model failed while it ran (e.g. a birth age not below the terminal age). Carries the
+/// diagnostic (the rule's source span and the message), the cell and the time; what() is
+/// the diagnostic formatted like a compiler's.
 struct ModelError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  ModelError(Diagnostic diagnostic, std::string cell, double time);
+  Diagnostic diagnostic;
+  std::string cell;  ///< label of the cell whose rule failed
+  double time = 0;   ///< global time of the failure, seconds
 };
 
 /// The id of the k-th successor (k from 1) of `cell` when it develops at `when`.
