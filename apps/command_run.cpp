@@ -10,7 +10,7 @@
 #include "apps/program_loader.h"
 #include "apps/progress_bar.h"
 #include "interpreters/interpret.h"
-#include "interpreters/music_set.h"
+#include "interpreters/music/music_set.h"
 #include "interpreters/set_registry.h"
 #include "interpreters/surface.h"
 

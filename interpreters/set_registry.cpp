@@ -4,8 +4,8 @@
 
 #include "interpreters/geometry_set.h"
 #include "interpreters/image_set.h"
-#include "interpreters/music_commands.h"
-#include "interpreters/music_set.h"
+#include "interpreters/music/music_commands.h"
+#include "interpreters/music/music_set.h"
 #include "interpreters/obj_reader.h"
 #include "interpreters/trace_set.h"
 #include "interpreters/turtle_commands.h"

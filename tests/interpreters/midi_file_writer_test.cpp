@@ -1,4 +1,4 @@
-#include "interpreters/midi_file_writer.h"
+#include "interpreters/music/midi_file_writer.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "interpreters/midi_sequence.h"
+#include "interpreters/music/midi_sequence.h"
 #include "tests/interpreters/midi_checkers.h"
 
 namespace ontogen {

@@ -1,4 +1,4 @@
-#include "interpreters/music_player.h"
+#include "interpreters/music/music_player.h"
 
 #include <gtest/gtest.h>
 

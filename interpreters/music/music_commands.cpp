@@ -1,4 +1,4 @@
-#include "interpreters/music_commands.h"
+#include "interpreters/music/music_commands.h"
 
 #include <array>
 

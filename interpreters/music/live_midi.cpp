@@ -1,4 +1,4 @@
-#include "interpreters/live_midi.h"
+#include "interpreters/music/live_midi.h"
 
 #include <RtMidi.h>
 #include <jack/jack.h>

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "interpreters/midi_sequence.h"
+#include "interpreters/music/midi_sequence.h"
 
 class RtMidiOut;
 

@@ -1,4 +1,4 @@
-#include "interpreters/music_set.h"
+#include "interpreters/music/music_set.h"
 
 #include <cmath>
 #include <string>

@@ -18,9 +18,9 @@
 #include <utility>
 
 #include "interpreters/interpretation_set.h"
-#include "interpreters/midi_file_writer.h"
-#include "interpreters/music_player.h"
-#include "interpreters/score.h"
+#include "interpreters/music/midi_file_writer.h"
+#include "interpreters/music/music_player.h"
+#include "interpreters/music/score.h"
 #include "lang/program.h"
 
 namespace ontogen {

@@ -1,4 +1,4 @@
-#include "interpreters/midi_sequence.h"
+#include "interpreters/music/midi_sequence.h"
 
 #include <algorithm>
 #include <array>

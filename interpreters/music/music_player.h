@@ -17,8 +17,8 @@
 #include <tuple>
 #include <vector>
 
-#include "interpreters/music_commands.h"
-#include "interpreters/score.h"
+#include "interpreters/music/music_commands.h"
+#include "interpreters/music/score.h"
 
 namespace ontogen {
 

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "interpreters/score.h"
+#include "interpreters/music/score.h"
 
 namespace ontogen {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "interpreters/score.h"
+#include "interpreters/music/score.h"
 
 namespace ontogen {
 

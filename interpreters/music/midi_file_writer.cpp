@@ -1,10 +1,10 @@
-#include "interpreters/midi_file_writer.h"
+#include "interpreters/music/midi_file_writer.h"
 
 #include <array>
 #include <stdexcept>
 #include <string>
 
-#include "interpreters/midi_sequence.h"
+#include "interpreters/music/midi_sequence.h"
 
 namespace ontogen {
 
