@@ -10,10 +10,10 @@
 #include <string>
 #include <system_error>
 
-#include "interpreters/obj_writer.h"
+#include "interpreters/formats/obj_writer.h"
+#include "interpreters/formats/ply_writer.h"
+#include "interpreters/formats/png_writer.h"
 #include "interpreters/output_file.h"
-#include "interpreters/ply_writer.h"
-#include "interpreters/png_writer.h"
 #include "interpreters/turtle_commands.h"
 
 extern char** environ;

@@ -11,11 +11,11 @@
 #include <string_view>
 #include <vector>
 
+#include "interpreters/formats/glb_writer.h"
+#include "interpreters/formats/renderer.h"
+#include "interpreters/formats/svg_writer.h"
 #include "interpreters/geometry.h"
-#include "interpreters/glb_writer.h"
 #include "interpreters/interpretation_set.h"
-#include "interpreters/renderer.h"
-#include "interpreters/svg_writer.h"
 #include "interpreters/turtle.h"
 
 namespace ontogen {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <string>
 
+#include "interpreters/formats/png_writer.h"
+#include "interpreters/formats/renderer.h"
 #include "interpreters/output_file.h"
-#include "interpreters/png_writer.h"
-#include "interpreters/renderer.h"
 
 namespace ontogen {
 

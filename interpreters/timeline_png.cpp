@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "interpreters/formats/png_writer.h"
 #include "interpreters/output_file.h"
-#include "interpreters/png_writer.h"
 #include "interpreters/timeline_layout.h"
 
 namespace ontogen {

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "core/timeline.h"
-#include "interpreters/renderer.h"
+#include "interpreters/formats/renderer.h"
 
 namespace ontogen {
 

@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "interpreters/obj_writer.h"
-#include "interpreters/svg_writer.h"
+#include "interpreters/formats/obj_writer.h"
+#include "interpreters/formats/svg_writer.h"
 
 namespace ontogen {
 namespace {

@@ -1,4 +1,4 @@
-#include "interpreters/obj_writer.h"
+#include "interpreters/formats/obj_writer.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -14,9 +14,9 @@
 
 #include <gtest/gtest.h>
 
+#include "interpreters/formats/glb_writer.h"
+#include "interpreters/formats/renderer.h"
 #include "interpreters/geometry_set.h"
-#include "interpreters/glb_writer.h"
-#include "interpreters/renderer.h"
 #include "interpreters/surface.h"
 #include "tests/interpreters/external_tools.h"
 #include "tests/interpreters/png_decode.h"

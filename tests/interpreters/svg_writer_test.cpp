@@ -1,4 +1,4 @@
-#include "interpreters/svg_writer.h"
+#include "interpreters/formats/svg_writer.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "interpreters/mesh_batches.h"
+#include "interpreters/formats/mesh_batches.h"
 
 #include <array>
 #include <unordered_map>

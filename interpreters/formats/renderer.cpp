@@ -1,4 +1,4 @@
-#include "interpreters/renderer.h"
+#include "interpreters/formats/renderer.h"
 
 #include <algorithm>
 #include <cmath>

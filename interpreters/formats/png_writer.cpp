@@ -1,4 +1,4 @@
-#include "interpreters/png_writer.h"
+#include "interpreters/formats/png_writer.h"
 
 #include <csetjmp>
 

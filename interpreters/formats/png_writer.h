@@ -3,7 +3,7 @@
 
 #include <ostream>
 
-#include "interpreters/renderer.h"
+#include "interpreters/formats/renderer.h"
 
 namespace ontogen {
 

@@ -1,9 +1,9 @@
-#include "interpreters/ply_writer.h"
+#include "interpreters/formats/ply_writer.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "interpreters/mesh_batches.h"
+#include "interpreters/formats/mesh_batches.h"
 #include "interpreters/palette.h"
 
 namespace ontogen {

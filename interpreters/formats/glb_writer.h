@@ -13,8 +13,8 @@
 #include <ostream>
 #include <vector>
 
+#include "interpreters/formats/mesh_batches.h"
 #include "interpreters/geometry.h"
-#include "interpreters/mesh_batches.h"
 
 namespace ontogen {
 

@@ -1,4 +1,4 @@
-#include "interpreters/glb_writer.h"
+#include "interpreters/formats/glb_writer.h"
 
 #include <algorithm>
 #include <cstdint>
