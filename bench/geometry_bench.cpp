@@ -13,8 +13,8 @@
 #include "core/world.h"
 #include "interpreters/formats/glb_writer.h"
 #include "interpreters/formats/renderer.h"
-#include "interpreters/gc_mesher.h"
-#include "interpreters/geometry_set.h"
+#include "interpreters/geometry/gc_mesher.h"
+#include "interpreters/geometry/geometry_set.h"
 #include "interpreters/interpret.h"
 
 namespace ontogen::bench {

@@ -9,9 +9,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "interpreters/gap_filter.h"
+#include "interpreters/geometry/gap_filter.h"
+#include "interpreters/geometry/turtle.h"
 #include "interpreters/palette.h"
-#include "interpreters/turtle.h"
 
 namespace ontogen {
 namespace {

@@ -1,4 +1,4 @@
-#include "interpreters/geometry_set.h"
+#include "interpreters/geometry/geometry_set.h"
 
 #include <cmath>
 #include <filesystem>

@@ -19,7 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "interpreters/geometry.h"
-#include "interpreters/turtle.h"
+#include "interpreters/geometry/turtle.h"
 #include "tests/interpreters/external_tools.h"
 
 namespace ontogen {

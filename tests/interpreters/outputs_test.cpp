@@ -16,8 +16,8 @@
 
 #include "interpreters/formats/glb_writer.h"
 #include "interpreters/formats/renderer.h"
-#include "interpreters/geometry_set.h"
-#include "interpreters/surface.h"
+#include "interpreters/geometry/geometry_set.h"
+#include "interpreters/geometry/surface.h"
 #include "tests/interpreters/external_tools.h"
 #include "tests/interpreters/png_decode.h"
 

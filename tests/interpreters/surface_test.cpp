@@ -9,9 +9,9 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "interpreters/obj_reader.h"
-#include "interpreters/surface.h"
-#include "interpreters/turtle.h"
+#include "interpreters/geometry/obj_reader.h"
+#include "interpreters/geometry/surface.h"
+#include "interpreters/geometry/turtle.h"
 
 namespace ontogen {
 namespace {

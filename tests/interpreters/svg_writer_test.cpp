@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "interpreters/geometry.h"
-#include "interpreters/turtle.h"
+#include "interpreters/geometry/turtle.h"
 
 namespace ontogen {
 namespace {

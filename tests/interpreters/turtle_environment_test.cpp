@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "interpreters/geometry.h"
-#include "interpreters/turtle.h"
-#include "interpreters/turtle_commands.h"
+#include "interpreters/geometry/turtle.h"
+#include "interpreters/geometry/turtle_commands.h"
 
 namespace ontogen {
 namespace {

@@ -1,4 +1,4 @@
-#include "interpreters/turtle.h"
+#include "interpreters/geometry/turtle.h"
 
 #include <cmath>
 #include <numbers>
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "interpreters/geometry.h"
-#include "interpreters/turtle_commands.h"
+#include "interpreters/geometry/turtle_commands.h"
 
 namespace ontogen {
 namespace {

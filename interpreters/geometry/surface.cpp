@@ -1,4 +1,4 @@
-#include "interpreters/surface.h"
+#include "interpreters/geometry/surface.h"
 
 #include <glm/geometric.hpp>
 

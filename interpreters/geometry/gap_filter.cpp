@@ -1,4 +1,4 @@
-#include "interpreters/gap_filter.h"
+#include "interpreters/geometry/gap_filter.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "interpreters/turtle.h"
+#include "interpreters/geometry/turtle.h"
 
 #include <algorithm>
 #include <cmath>

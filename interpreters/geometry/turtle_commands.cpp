@@ -1,4 +1,4 @@
-#include "interpreters/turtle_commands.h"
+#include "interpreters/geometry/turtle_commands.h"
 
 #include <array>
 

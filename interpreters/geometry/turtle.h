@@ -16,12 +16,12 @@
 
 #include <glm/vec3.hpp>
 
-#include "interpreters/environment.h"
-#include "interpreters/gap_filter.h"
-#include "interpreters/gc_mesher.h"
 #include "interpreters/geometry.h"
-#include "interpreters/surface.h"
-#include "interpreters/turtle_commands.h"
+#include "interpreters/geometry/environment.h"
+#include "interpreters/geometry/gap_filter.h"
+#include "interpreters/geometry/gc_mesher.h"
+#include "interpreters/geometry/surface.h"
+#include "interpreters/geometry/turtle_commands.h"
 
 namespace ontogen {
 

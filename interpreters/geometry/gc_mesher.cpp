@@ -1,4 +1,4 @@
-#include "interpreters/gc_mesher.h"
+#include "interpreters/geometry/gc_mesher.h"
 
 #include <algorithm>
 #include <cmath>

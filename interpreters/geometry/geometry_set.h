@@ -15,8 +15,8 @@
 #include "interpreters/formats/renderer.h"
 #include "interpreters/formats/svg_writer.h"
 #include "interpreters/geometry.h"
+#include "interpreters/geometry/turtle.h"
 #include "interpreters/interpretation_set.h"
-#include "interpreters/turtle.h"
 
 namespace ontogen {
 

@@ -1,4 +1,4 @@
-#include "interpreters/environment.h"
+#include "interpreters/geometry/environment.h"
 
 #include <algorithm>
 #include <cmath>

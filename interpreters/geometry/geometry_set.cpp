@@ -1,4 +1,4 @@
-#include "interpreters/geometry_set.h"
+#include "interpreters/geometry/geometry_set.h"
 
 #include <spawn.h>
 #include <sys/wait.h>
@@ -13,8 +13,8 @@
 #include "interpreters/formats/obj_writer.h"
 #include "interpreters/formats/ply_writer.h"
 #include "interpreters/formats/png_writer.h"
+#include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/output_file.h"
-#include "interpreters/turtle_commands.h"
 
 extern char** environ;
 

@@ -1,4 +1,4 @@
-#include "interpreters/obj_reader.h"
+#include "interpreters/geometry/obj_reader.h"
 
 #include <charconv>
 #include <fstream>

@@ -10,7 +10,7 @@
 #include <istream>
 #include <string>
 
-#include "interpreters/surface.h"
+#include "interpreters/geometry/surface.h"
 
 namespace ontogen {
 
