@@ -5,7 +5,7 @@
 #include "interpreters/geometry/geometry_set.h"
 #include "interpreters/geometry/obj_reader.h"
 #include "interpreters/geometry/turtle_commands.h"
-#include "interpreters/image_set.h"
+#include "interpreters/image/image_set.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/music/music_set.h"
 #include "interpreters/trace_set.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/world.h"
-#include "interpreters/image_set.h"
+#include "interpreters/image/image_set.h"
 #include "interpreters/interpret.h"
 #include "lang/compiler.h"
 #include "tests/interpreters/png_decode.h"

@@ -1,4 +1,4 @@
-#include "interpreters/image_set.h"
+#include "interpreters/image/image_set.h"
 
 #include <algorithm>
 #include <cmath>
