@@ -8,7 +8,7 @@
 #include "interpreters/image/image_set.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/music/music_set.h"
-#include "interpreters/trace_set.h"
+#include "interpreters/text/trace_set.h"
 
 namespace ontogen {
 

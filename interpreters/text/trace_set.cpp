@@ -1,4 +1,4 @@
-#include "interpreters/trace_set.h"
+#include "interpreters/text/trace_set.h"
 
 #include <cstdio>
 
