@@ -1,11 +1,11 @@
-#include "interpreters/timeline_png.h"
+#include "interpreters/timeline/timeline_png.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "interpreters/formats/png_writer.h"
 #include "interpreters/output_file.h"
-#include "interpreters/timeline_layout.h"
+#include "interpreters/timeline/timeline_layout.h"
 
 namespace ontogen {
 

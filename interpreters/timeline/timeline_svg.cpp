@@ -1,4 +1,4 @@
-#include "interpreters/timeline_svg.h"
+#include "interpreters/timeline/timeline_svg.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "interpreters/output_file.h"
-#include "interpreters/timeline_layout.h"
+#include "interpreters/timeline/timeline_layout.h"
 
 namespace ontogen {
 

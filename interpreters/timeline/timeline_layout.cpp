@@ -1,4 +1,4 @@
-#include "interpreters/timeline_layout.h"
+#include "interpreters/timeline/timeline_layout.h"
 
 #include <algorithm>
 #include <cmath>
