@@ -3,9 +3,9 @@
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
-#include "interpreters/music_commands.h"
+#include "interpreters/geometry/turtle_commands.h"
+#include "interpreters/music/music_commands.h"
 #include "interpreters/set_registry.h"
-#include "interpreters/turtle_commands.h"
 #include "lang/builtins.h"
 
 namespace ontogen::app {

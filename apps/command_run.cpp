@@ -9,10 +9,10 @@
 #include "apps/live_playback.h"
 #include "apps/program_loader.h"
 #include "apps/progress_bar.h"
+#include "interpreters/geometry/surface.h"
 #include "interpreters/interpret.h"
-#include "interpreters/music_set.h"
+#include "interpreters/music/music_set.h"
 #include "interpreters/set_registry.h"
-#include "interpreters/surface.h"
 
 namespace ontogen::app {
 

@@ -4,8 +4,8 @@
 #include "apps/commands.h"
 #include "apps/program_loader.h"
 #include "core/timeline.h"
-#include "interpreters/timeline_png.h"
-#include "interpreters/timeline_svg.h"
+#include "interpreters/timeline/timeline_png.h"
+#include "interpreters/timeline/timeline_svg.h"
 
 namespace ontogen::app {
 

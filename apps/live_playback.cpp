@@ -5,9 +5,9 @@
 #include <iostream>
 
 #include "apps/program_loader.h"
-#include "interpreters/music_set.h"
+#include "interpreters/music/music_set.h"
 #ifdef ONTOGEN_HAVE_LIVE_MIDI
-#include "interpreters/live_midi.h"
+#include "interpreters/music/live_midi.h"
 #endif
 
 namespace ontogen::app {

@@ -11,11 +11,11 @@
 
 #include "bench/bench_support.h"
 #include "core/world.h"
-#include "interpreters/gc_mesher.h"
-#include "interpreters/geometry_set.h"
-#include "interpreters/glb_writer.h"
+#include "interpreters/formats/glb_writer.h"
+#include "interpreters/formats/renderer.h"
+#include "interpreters/geometry/gc_mesher.h"
+#include "interpreters/geometry/geometry_set.h"
 #include "interpreters/interpret.h"
-#include "interpreters/renderer.h"
 
 namespace ontogen::bench {
 namespace {

@@ -10,10 +10,10 @@
 
 #include "bench/bench_support.h"
 #include "interpreters/interpret.h"
-#include "interpreters/midi_file_writer.h"
-#include "interpreters/midi_sequence.h"
-#include "interpreters/music_player.h"
-#include "interpreters/music_set.h"
+#include "interpreters/music/midi_file_writer.h"
+#include "interpreters/music/midi_sequence.h"
+#include "interpreters/music/music_player.h"
+#include "interpreters/music/music_set.h"
 
 namespace ontogen::bench {
 namespace {

@@ -2,13 +2,13 @@
 
 #include <stdexcept>
 
-#include "interpreters/geometry_set.h"
-#include "interpreters/image_set.h"
-#include "interpreters/music_commands.h"
-#include "interpreters/music_set.h"
-#include "interpreters/obj_reader.h"
-#include "interpreters/trace_set.h"
-#include "interpreters/turtle_commands.h"
+#include "interpreters/geometry/geometry_set.h"
+#include "interpreters/geometry/obj_reader.h"
+#include "interpreters/geometry/turtle_commands.h"
+#include "interpreters/image/image_set.h"
+#include "interpreters/music/music_commands.h"
+#include "interpreters/music/music_set.h"
+#include "interpreters/text/trace_set.h"
 
 namespace ontogen {
 

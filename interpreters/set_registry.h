@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "interpreters/formats/renderer.h"
 #include "interpreters/interpretation_set.h"
-#include "interpreters/renderer.h"
 #include "lang/compiler.h"
 #include "lang/program.h"
 

@@ -7,7 +7,7 @@
 
 #include "core/word.h"
 #include "core/world.h"
-#include "interpreters/geometry_set.h"
+#include "interpreters/geometry/geometry_set.h"
 #include "interpreters/interpret.h"
 #include "test_support.h"
 

@@ -8,9 +8,9 @@
 #include <string>
 
 #include "core/timeline.h"
-#include "interpreters/timeline_layout.h"
-#include "interpreters/timeline_png.h"
-#include "interpreters/timeline_svg.h"
+#include "interpreters/timeline/timeline_layout.h"
+#include "interpreters/timeline/timeline_png.h"
+#include "interpreters/timeline/timeline_svg.h"
 #include "test_support.h"
 
 namespace ontogen {

@@ -1,0 +1,83 @@
+#include "interpreters/image/image_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "interpreters/formats/png_writer.h"
+#include "interpreters/formats/renderer.h"
+#include "interpreters/output_file.h"
+
+namespace ontogen {
+
+std::array<uint8_t, 3> colourMap(double t) {
+  if (std::isnan(t)) return {0, 0, 0};
+  // Five stops of viridis, linearly interpolated.
+  static constexpr double kStops[5][3] = {
+      {68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
+  t = std::clamp(t, 0.0, 1.0) * 4;
+  const int i = std::min(static_cast<int>(t), 3);
+  const double f = t - i;
+  std::array<uint8_t, 3> rgb{};
+  for (int c = 0; c < 3; ++c)
+    rgb[c] = static_cast<uint8_t>(std::lround(kStops[i][c] + f * (kStops[i + 1][c] - kStops[i][c])));
+  return rgb;
+}
+
+void ImageSet::beginFrame(const FrameTarget& target) {
+  target_ = target;
+  sites_.clear();
+  low_ = 0;
+  high_ = 1;
+}
+
+void ImageSet::execute(std::string_view command, std::span<const double> args) {
+  if (command == "range" && args.size() >= 2) {
+    low_ = args[0];
+    high_ = args[1];
+    return;
+  }
+  if (command != "pixel" || args.size() < 3) return;
+  if (!std::isfinite(args[0]) || !std::isfinite(args[1])) return;
+  const double x = std::round(args[0]), y = std::round(args[1]);
+  if (x < 0 || y < 0 || x >= kMaxImageSide || y >= kMaxImageSide)
+    throw OutputError("pixel(" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the image's 0 to " +
+                      std::to_string(kMaxImageSide - 1) + " sites");
+  const double span = high_ - low_;
+  const double t = span != 0 ? (args[2] - low_) / span : 0.5;
+  sites_.push_back({static_cast<int>(x), static_cast<int>(y), t});
+}
+
+std::vector<std::filesystem::path> ImageSet::endFrame() {
+  int columns = 1, rows = 1;
+  for (const PaintedSite& site : sites_) {
+    columns = std::max(columns, site.x + 1);
+    rows = std::max(rows, site.y + 1);
+  }
+  const int scale = std::max(1, 512 / columns);
+  Image image;
+  image.width = columns * scale;
+  image.height = rows * scale;
+  image.rgb.assign(static_cast<size_t>(image.width) * image.height * 3, 0);
+  for (const PaintedSite& site : sites_) {
+    const auto rgb = colourMap(site.value);
+    // Row 0 at the bottom, as the grid's y axis points up.
+    const int top = (rows - 1 - site.y) * scale;
+    for (int dy = 0; dy < scale; ++dy)
+      for (int dx = 0; dx < scale; ++dx) {
+        const size_t at = (static_cast<size_t>(top + dy) * image.width + site.x * scale + dx) * 3;
+        std::copy(rgb.begin(), rgb.end(), image.rgb.begin() + static_cast<std::ptrdiff_t>(at));
+      }
+  }
+  std::string name = target_.stem;
+  if (target_.frameCount > 1) {
+    char number[16];
+    std::snprintf(number, sizeof number, "_%04d", target_.frame);
+    name += number;
+  }
+  const std::filesystem::path path = target_.directory / (name + ".png");
+  writeFileAtomically(path, [&](std::ostream& out) { writePng(image, out); });
+  return {path};
+}
+
+}  // namespace ontogen

@@ -1,0 +1,124 @@
+#include "interpreters/music/music_set.h"
+
+#include <cmath>
+#include <string>
+
+#include "interpreters/output_file.h"
+
+namespace ontogen {
+
+MusicSet::MusicSet(const MusicSetDef& def) : def_(def), player_(def.player) {
+  checkMidiFileDef(def.file);
+  player_.setDevelopmental(def.time == MusicTime::Developmental);
+}
+
+MusicSetDef MusicSet::defFrom(const MusicSettings& settings) {
+  MusicSetDef def;
+  def.time = settings.time;
+  def.player.tempo = settings.tempo;
+  def.file.tempo = settings.tempo;
+  def.file.ppq = settings.ppq;
+  def.file.format = settings.format;
+  def.file.timeSignatureNumerator = settings.timeSignatureNumerator;
+  def.file.timeSignatureDenominator = settings.timeSignatureDenominator;
+  return def;
+}
+
+bool MusicSet::knows(std::string_view command) const { return findMusicCommand(command) != nullptr; }
+
+void MusicSet::beginFrame(const FrameTarget& target) {
+  target_ = target;
+  player_.reset();
+  score_.clear();
+  played_.clear();
+  seen_.clear();
+  held_.clear();
+  wordTime_ = lastWordTime_ = 0;
+}
+
+void MusicSet::execute(std::string_view command, std::span<const double> args) {
+  player_.execute(command, args, score_);
+}
+
+void MusicSet::beginWord(double time) {
+  player_.restart();
+  seen_.clear();
+  lastWordTime_ = wordTime_;
+  wordTime_ = time;
+}
+
+void MusicSet::beginCell(const CellContext& cell) {
+  if (!followsDevelopment()) return;
+  collectHeld();
+  current_ = {cell.id, cell.birth};
+  currentLifetime_ = cell.lifetime;
+  seen_.insert(current_);
+  bool first = played_.insert(current_).second;
+  // A new cell plays from its birth; a cell that already played only updates controllers,
+  // at the time of the word.
+  player_.setNotesEnabled(first);
+  player_.setTime(first ? cell.birth : cell.time);
+}
+
+void MusicSet::collectHeld() {
+  for (ScoreNote& note : player_.takeHeldNotes()) {
+    double end = current_.second + currentLifetime_;
+    held_.emplace(current_, Held{note, std::isfinite(end) ? end : INFINITY});
+  }
+}
+
+void MusicSet::closeHeld(double beats, bool all) {
+  for (auto it = held_.begin(); it != held_.end();) {
+    if (!all && seen_.count(it->first)) {
+      ++it;
+      continue;
+    }
+    // A cell that died of age ended exactly then; one removed otherwise is noticed at
+    // the first word without it.
+    double end = std::min(it->second.end, beats);
+    ScoreNote note = it->second.note;
+    note.duration = end - note.start;
+    if (note.duration > 0) score_.notes.push_back(note);
+    it = held_.erase(it);
+  }
+}
+
+void MusicSet::endWord() {
+  if (!followsDevelopment()) return;
+  collectHeld();
+  closeHeld(wordTime_, false);
+}
+
+std::vector<std::filesystem::path> MusicSet::endFrame() {
+  if (followsDevelopment()) closeHeld(wordTime_, true);
+  std::vector<std::filesystem::path> written;
+  if (def_.writeFile) {
+    std::string name = target_.stem.empty() ? std::string("music") : target_.stem;
+    if (target_.frameCount > 1) {
+      std::string number = std::to_string(target_.frame);
+      if (number.size() < 4) number.insert(0, 4 - number.size(), '0');
+      name += "_" + number;
+    }
+    std::filesystem::path path = target_.directory / (name + ".mid");
+    MidiFileDef file = def_.file;
+    file.name = target_.stem;
+    // Encode first: a score that cannot be encoded leaves no file behind.
+    std::vector<uint8_t> bytes;
+    try {
+      bytes = encodeMidiFile(score_, file);
+    } catch (const std::invalid_argument& error) {
+      throw OutputError(path.string() + ": " + error.what());
+    }
+    writeFileAtomically(path, [&](std::ostream& out) {
+      out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    });
+    written.push_back(std::move(path));
+  }
+  if (performer_) {
+    MidiFileDef file = def_.file;
+    performer_(score_, file);
+  }
+  return written;
+}
+
+}  // namespace ontogen

@@ -1,0 +1,91 @@
+#pragma once
+// The "music" interpretation set (paper 002, section 4.2): the music player
+// (music_player.h) turns the word into a Score, written as a Standard MIDI File
+// DIR/<stem>.mid and optionally performed live. Two ways to place notes in time
+// (docs/LANGUAGE.md, "Music"):
+//
+//  - sequential: each frame's word is read left to right like the turtle reads it, from
+//    beat 0; a branch is a voice that starts where it opens. One file per frame.
+//  - developmental: the set follows the development (followsDevelopment()); one second of
+//    developmental time is one beat. A cell's notes start at its birth, once per cell
+//    (cells are told apart by id and birth), `hold` sounds while the cell lives, and
+//    controllers, tempo and programs are re-read at every step and sent when their value
+//    changes, so a `rate` variable can drive a swell. One file for the run.
+
+#include <functional>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "interpreters/interpretation_set.h"
+#include "interpreters/music/midi_file_writer.h"
+#include "interpreters/music/music_player.h"
+#include "interpreters/music/score.h"
+#include "lang/program.h"
+
+namespace ontogen {
+
+struct MusicSetDef {
+  MusicPlayerDef player{};
+  MidiFileDef file{};
+  MusicTime time = MusicTime::Sequential;
+  bool writeFile = true;  ///< write DIR/<stem>.mid at the end of each frame
+};
+
+/// Called with each finished score (live playback); may throw OutputError.
+using ScorePerformer = std::function<void(const Score& score, const MidiFileDef& file)>;
+
+class MusicSet final : public InterpretationSet {
+ public:
+  /// Throws std::invalid_argument when def is out of range.
+  explicit MusicSet(const MusicSetDef& def = {});
+
+  /// The set's settings from a system's #music, #tempo, #ppq, #midiformat and #timesig.
+  static MusicSetDef defFrom(const MusicSettings& settings);
+
+  std::string_view name() const override { return "music"; }
+  bool knows(std::string_view command) const override;
+  void beginFrame(const FrameTarget& target) override;
+  void execute(std::string_view command, std::span<const double> args) override;
+  /// Writes DIR/<stem>.mid atomically (throws OutputError on failure), then performs the
+  /// score if a performer is set.
+  std::vector<std::filesystem::path> endFrame() override;
+
+  bool followsDevelopment() const override { return def_.time == MusicTime::Developmental; }
+  void beginWord(double time) override;
+  void beginCell(const CellContext& cell) override;
+  void endWord() override;
+
+  /// Plays each finished score, e.g. on a MIDI port.
+  void setPerformer(ScorePerformer performer) { performer_ = std::move(performer); }
+
+  /// The score of the frame being played, or of the last one after endFrame.
+  const Score& score() const { return score_; }
+  const MusicWarnings& warnings() const { return player_.warnings(); }
+  const MusicSetDef& def() const { return def_; }
+
+ private:
+  using CellKey = std::pair<uint64_t, double>;  // id and birth: one life of one cell
+  struct Held {
+    ScoreNote note;
+    double end;  // beats; infinite until the cell is gone
+  };
+  void collectHeld();
+  void closeHeld(double beats, bool all);
+
+  MusicSetDef def_;
+  MusicPlayer player_;
+  Score score_;
+  FrameTarget target_;
+  ScorePerformer performer_;
+  // Developmental time:
+  std::set<CellKey> played_;           // cells whose notes have sounded
+  std::set<CellKey> seen_;             // cells of the current word
+  std::multimap<CellKey, Held> held_;  // notes of `hold`, sounding while their cell lives
+  CellKey current_{0, 0};
+  double currentLifetime_ = 0;
+  double wordTime_ = 0;
+  double lastWordTime_ = 0;
+};
+
+}  // namespace ontogen

@@ -1,0 +1,72 @@
+// The image set: a grid painted site by site through the colour map, read back by libpng.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <unistd.h>
+#include <vector>
+
+#include "core/world.h"
+#include "interpreters/image/image_set.h"
+#include "interpreters/interpret.h"
+#include "lang/compiler.h"
+#include "tests/interpreters/png_decode.h"
+
+namespace ontogen {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_support::decodePng;
+
+TEST(ImageSet, ColourMapRunsFromDarkBlueToYellow) {
+  EXPECT_EQ(colourMap(0), (std::array<uint8_t, 3>{68, 1, 84}));
+  EXPECT_EQ(colourMap(1), (std::array<uint8_t, 3>{253, 231, 37}));
+  EXPECT_EQ(colourMap(0.5), (std::array<uint8_t, 3>{33, 145, 140}));
+  EXPECT_EQ(colourMap(-3), colourMap(0));
+  EXPECT_EQ(colourMap(7), colourMap(1));
+  EXPECT_EQ(colourMap(std::nan("")), (std::array<uint8_t, 3>{0, 0, 0}));
+}
+
+// A 4 x 2 grid whose cells paint their x / 3: each site becomes a square block, row 0 at
+// the bottom of the picture, with exactly the colour map's colour.
+TEST(ImageSet, EachSiteIsASquareOfItsColour) {
+  DiagnosticSink sink;
+  auto program = compileSource("img.cell",
+                               "cell C { interpret image { range(0, 3) pixel(me.x, me.y, me.x + 10 * me.y) } }\n"
+                               "system g { pool grid(4, 2); fill C; }\n",
+                               sink);
+  ASSERT_NE(program, nullptr) << formatDiagnostics(sink);
+  World world(std::shared_ptr<const Program>(std::move(program)));
+  const fs::path dir = fs::temp_directory_path() / ("ontogen_image_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  ImageSet set;
+  auto written = interpretFrame(world, set, FrameTarget{dir, "img", 0, 1, 0});
+  ASSERT_EQ(written.size(), 1u);
+  EXPECT_EQ(set.sites().size(), 8u);
+  auto png = decodePng(written[0]);
+  ASSERT_TRUE(png.ok);
+  EXPECT_EQ(png.width, 512);  // 4 sites, 128 pixels each
+  EXPECT_EQ(png.height, 256);
+  auto pixel = [&](int x, int y) {
+    const size_t at = (static_cast<size_t>(y) * png.width + x) * 3;
+    return std::array<uint8_t, 3>{png.rgb[at], png.rgb[at + 1], png.rgb[at + 2]};
+  };
+  for (int sx = 0; sx < 4; ++sx) {
+    // Bottom row: y = 0, value sx / 3; top row: y = 1, value above the range.
+    EXPECT_EQ(pixel(sx * 128 + 64, 192), colourMap(sx / 3.0)) << sx;
+    EXPECT_EQ(pixel(sx * 128 + 5, 130), colourMap(sx / 3.0)) << sx;
+    EXPECT_EQ(pixel(sx * 128 + 64, 64), colourMap(1)) << sx;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(ImageSet, ASiteFarOutsideIsAnOutputError) {
+  ImageSet set;
+  set.beginFrame(FrameTarget{fs::temp_directory_path(), "x", 0, 1, 0});
+  const double far[3] = {1e6, 0, 0};
+  EXPECT_THROW(set.execute("pixel", far), OutputError);
+}
+
+}  // namespace
+}  // namespace ontogen
