@@ -1,5 +1,7 @@
 #include "interpreters/interpret.h"
 
+#include "core/cell_frame.h"
+
 namespace ontogen {
 
 namespace {
@@ -20,18 +22,8 @@ void interpretPool(const World& world, InterpretationSet& set) {
     const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
     if (const InterpretationBlock* block = master.interpretation(set.name())) {
-      const double* state = pool.stateOf(cell);
-      frame.assign(state, state + master.stateCount());
       frame.resize(master.stateCount() + FrameSlot::kCount);
-      double* internal = frame.data() + master.stateCount();
-      internal[FrameSlot::kAge] = world.ageOf(cell);
-      internal[FrameSlot::kTerminalAge] = master.lifetime;
-      internal[FrameSlot::kTime] = world.time();
-      internal[FrameSlot::kId] = static_cast<double>(cell.id & ((uint64_t{1} << 53) - 1));
-      const auto position = world.positionOf(i);
-      internal[FrameSlot::kX] = position[0];
-      internal[FrameSlot::kY] = position[1];
-      internal[FrameSlot::kZ] = position[2];
+      loadCellFrame(frame.data(), master, cell, pool.stateOf(cell), world.time(), world.positionOf(i));
       set.beginCell({cell.id, cell.birth, master.lifetime, world.time()});
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
