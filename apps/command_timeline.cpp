@@ -3,7 +3,7 @@
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
-#include "core/timeline.h"
+#include "interpreters/timeline/timeline_recorder.h"
 #include "interpreters/timeline/timeline_png.h"
 #include "interpreters/timeline/timeline_svg.h"
 

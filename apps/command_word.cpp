@@ -3,6 +3,7 @@
 #include "apps/commands.h"
 #include "apps/program_loader.h"
 #include "core/word.h"
+#include "interpreters/text/word_text.h"
 
 namespace ontogen::app {
 

@@ -1,10 +1,9 @@
 #pragma once
-// The derivation word of a world at its current time, as data and as text in the style
-// of paper 000's Table 1: timed modules as `(mov(50), 1)`, untimed ones as `f(50)`,
-// parameters after the development function.
+// The derivation word of a world at its current time, as data: labels, parameters before
+// and after the development function, ages, ids and parents, nested pools. Its text (in
+// the style of paper 000's Table 1) and JSON are in interpreters/text/word_text.h.
 
 #include <cstdint>
-#include <ostream>
 #include <string>
 #include <vector>
 
@@ -32,16 +31,5 @@ struct WordAtTime {
 
 /// The world's cells in pool order; a system cell carries its own pool's cells.
 std::vector<WordCell> captureWord(const World& world);
-
-/// Table 1 style text, numbers with `precision` significant digits.
-std::string formatWord(const std::vector<WordCell>& word, int precision = 6);
-
-/// {"times": [{"t": T, "cells": [{"label": ..., "params": [...], "developed": [...],
-/// "age": A, "id": I, "parent": P}, ...]}, ...]} (ids' low 53 bits; P is -1 for none), a system cell with "pool": [its cells], numbers in the shortest form that reads back exactly;
-/// infinities and NaN as null.
-void writeWordJson(std::ostream& out, const std::vector<WordAtTime>& words);
-
-/// A number in the shortest decimal form that reads back to the same double.
-std::string formatExact(double value);
 
 }  // namespace ontogen

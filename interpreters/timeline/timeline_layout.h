@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/timeline.h"
+#include "interpreters/timeline/timeline_recorder.h"
 
 namespace ontogen {
 

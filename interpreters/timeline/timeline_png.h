@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "core/timeline.h"
+#include "interpreters/timeline/timeline_recorder.h"
 #include "interpreters/formats/renderer.h"
 
 namespace ontogen {

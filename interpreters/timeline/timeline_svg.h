@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "core/timeline.h"
+#include "interpreters/timeline/timeline_recorder.h"
 
 namespace ontogen {
 

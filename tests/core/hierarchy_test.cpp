@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/word.h"
+#include "interpreters/text/word_text.h"
 #include "core/world.h"
 #include "interpreters/interpret.h"
 #include "test_support.h"

@@ -6,6 +6,7 @@
 #include <complex>
 
 #include "core/word.h"
+#include "interpreters/text/word_text.h"
 #include "core/world.h"
 #include "interpreters/geometry/geometry_set.h"
 #include "interpreters/interpret.h"

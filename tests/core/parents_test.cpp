@@ -8,6 +8,7 @@
 
 #include "core/parents.h"
 #include "core/word.h"
+#include "interpreters/text/word_text.h"
 #include "core/world.h"
 #include "test_support.h"
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/word.h"
+#include "interpreters/text/word_text.h"
 #include "core/world.h"
 #include "test_support.h"
 

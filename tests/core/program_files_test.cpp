@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "core/word.h"
+#include "interpreters/text/word_text.h"
 #include "core/world.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"

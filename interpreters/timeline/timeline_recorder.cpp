@@ -1,4 +1,4 @@
-#include "core/timeline.h"
+#include "interpreters/timeline/timeline_recorder.h"
 
 namespace ontogen {
 

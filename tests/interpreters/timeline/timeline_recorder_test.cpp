@@ -7,11 +7,11 @@
 #include <map>
 #include <string>
 
-#include "core/timeline.h"
+#include "interpreters/timeline/timeline_recorder.h"
 #include "interpreters/timeline/timeline_layout.h"
 #include "interpreters/timeline/timeline_png.h"
 #include "interpreters/timeline/timeline_svg.h"
-#include "test_support.h"
+#include "tests/core/test_support.h"
 
 namespace ontogen {
 namespace {
