@@ -1,142 +1,81 @@
-#include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
-#include <system_error>
 
 #include "apps/commands.h"
 #include "apps/live_playback.h"
 #include "apps/program_loader.h"
 #include "apps/progress_bar.h"
-#include "interpreters/geometry/surface.h"
-#include "interpreters/interpret.h"
-#include "interpreters/music/music_set.h"
-#include "interpreters/set_registry.h"
+#include "interpreters/run.h"
 
 namespace ontogen::app {
 
+namespace {
+int exitCodeOf(RunStatus status) {
+  switch (status) {
+    case RunStatus::Ok: return kExitOk;
+    case RunStatus::BadDefinition: return kExitUsage;
+    case RunStatus::ModelFailed: return kExitModelError;
+    case RunStatus::OutputFailed: return kExitOutputError;
+    case RunStatus::Interrupted: return kExitInterrupted;
+  }
+  return kExitModelError;
+}
+}  // namespace
+
+// Parses nothing and grows nothing itself: the run (interpreters/run.h) does the work and
+// reports; this prints the report.
 int runRun(const RunOptions& options) {
   LoadedProgram loaded = loadProgram(options.common);
   if (!loaded.program) return loaded.exitCode;
-  const Program& program = *loaded.program;
 
-  SetOptions setOptions;
-  setOptions.formats = options.format;
+  RunDef def;
+  def.program = loaded.program;
+  def.stem = loaded.stem;
+  def.world = worldDefOf(options.common, *loaded.program);
+  def.until = options.until;
+  def.step = options.common.step;
+  def.frames = options.frames;
+  def.sets = options.sets;
+  def.out = options.out;
+  def.setOptions.formats = options.format;
   if (options.view.size() == 2) {
-    setOptions.render.azimuth = options.view[0];
-    setOptions.render.elevation = options.view[1];
+    def.setOptions.render.azimuth = options.view[0];
+    def.setOptions.render.elevation = options.view[1];
   }
   if (int width = 0, height = 0; std::sscanf(options.size.c_str(), "%dx%d", &width, &height) == 2) {
-    setOptions.render.width = width;
-    setOptions.render.height = height;
+    def.setOptions.render.width = width;
+    def.setOptions.render.height = height;
   } else {
     std::cerr << "ontogen: error: --size takes WIDTHxHEIGHT in pixels, as in 800x600, not '" << options.size << "'\n";
     return kExitUsage;
   }
-  std::vector<std::unique_ptr<InterpretationSet>> sets;
-  for (const auto& name : options.sets) {
-    std::unique_ptr<InterpretationSet> set;
-    try {
-      set = makeInterpretationSet(name, program.rootSystem().settings, setOptions);
-    } catch (const std::invalid_argument& bad) {
-      std::cerr << "ontogen: error: " << bad.what() << "\n";
-      return kExitUsage;
-    }
-    if (!set) {
-      std::cerr << "ontogen: error: unknown interpretation set '" << name << "' (known:";
-      for (const auto& known : interpretationSetNames()) std::cerr << " " << known;
-      std::cerr << ")\n";
-      return kExitUsage;
-    }
-    sets.push_back(std::move(set));
-  }
-  std::shared_ptr<LivePlayback> playback;
-  if (int code = attachLivePlayback(options, sets, playback); code != kExitOk) return code;
-  std::error_code error;
-  std::filesystem::create_directories(options.out, error);
-  if (error) {
-    std::cerr << "ontogen: error: cannot create the output directory '" << options.out << "': " << error.message()
-              << "\n";
-    return kExitOutputError;
-  }
+  ProgressBar progress("growing " + loaded.stem);
+  def.progress = [&progress](int done, int total) { progress.update(done, total); };
 
-  WorldDef def;
-  def.seed = options.common.seed.value_or(program.seed);
-  def.limits = options.common.limits;
-  def.threads = options.common.threads;
-  double dt = options.common.step.value_or(program.dt);
-  double until = options.until.value_or(program.until);
-  int frames = options.frames;
-  auto started = std::chrono::steady_clock::now();
-  size_t written = 0;
-  try {
-    World world(loaded.program, def);
-    ProgressBar progress("growing " + loaded.stem);
-    // Sets that follow the development (music in developmental time) see the word at the
-    // start and after every step, between frames too; the others see one word a frame.
-    std::vector<InterpretationSet*> following;
-    for (auto& set : sets)
-      if (set->followsDevelopment()) {
-        following.push_back(set.get());
-        set->beginFrame(FrameTarget{options.out, loaded.stem, 0, 1, 0});
-        interpretWord(world, *set);
-      }
-    for (int frame = 0; frame < frames; ++frame) {
-      // Frames are spread over [0, until] (one frame: the state at `until`).
-      double t = frames == 1 ? until : until * frame / (frames - 1);
-      if (!following.empty()) {
-        // The next instant of the step grid k * dt, where per-step rules fire.
-        auto nextStep = [&] { return (std::floor(world.time() / dt + 1e-9) + 1) * dt; };
-        for (double next = nextStep(); next < t - timeTolerance(t); next = nextStep()) {
-          world.advanceTo(next, dt);
-          for (InterpretationSet* set : following) interpretWord(world, *set);
-        }
-      }
-      bool moved = t > world.time();
-      world.advanceTo(t, dt);
-      if (moved)
-        for (InterpretationSet* set : following) interpretWord(world, *set);
-      for (auto& set : sets) {
-        if (set->followsDevelopment()) continue;
-        FrameTarget target{options.out, loaded.stem, frame, frames, world.time()};
-        written += interpretFrame(world, *set, target).size();
-      }
-      progress.update(frame + 1, frames);
-    }
-    for (InterpretationSet* set : following) written += set->endFrame().size();
-    progress.finish();
-    for (auto& set : sets)
-      if (const auto* music = dynamic_cast<const MusicSet*>(set.get()); music && music->warnings().total() > 0) {
-        const MusicWarnings& w = music->warnings();
-        std::cerr << "ontogen: warning: the music player skipped " << w.droppedNotes
-                  << " notes outside MIDI's 0..127, " << w.badArguments << " commands with bad arguments and "
-                  << w.unmatchedPops << " unmatched ']' (docs/LANGUAGE.md, \"Music\")\n";
-      }
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    if (options.stats) {
-      const WorldStats& stats = world.stats();
-      std::cout << "time " << world.time() << ", cells " << world.totalCells() << ", steps " << stats.steps
-                << ", events " << stats.events << ", cells born " << stats.cellsBorn << ", rule firings "
-                << stats.ruleFirings << ", files " << written << ", wall " << seconds << " s\n";
-    }
-  } catch (const LimitError& limit) {
-    std::cerr << "\nontogen: error: " << limit.what() << "\n";
-    return kExitModelError;
-  } catch (const ModelError& model) {
-    std::cerr << "\n" << model.what();
-    return kExitModelError;
-  } catch (const OutputError& output) {
-    std::cerr << "\nontogen: error: " << output.what() << "\n";
-    return kExitOutputError;
-  } catch (const SurfaceError& surface) {
-    std::cerr << "\nontogen: error: " << surface.what() << "\n";
-    return kExitModelError;
-  } catch (const PlaybackInterrupted& interrupted) {
-    std::cerr << "\nontogen: " << interrupted.what() << "\n";
-    return kExitInterrupted;
+  Run run(std::move(def));
+  std::shared_ptr<LivePlayback> playback;
+  if (int code = attachLivePlayback(options, run.sets(), playback); code != kExitOk) return code;
+  const RunReport report = run.execute();
+  if (report.ok()) progress.finish();
+  bool first = true;
+  for (const RunDiagnostic& diagnostic : report.diagnostics) {
+    // A failure ends the progress bar's line first.
+    if (first && diagnostic.severity == Severity::Error && report.status != RunStatus::BadDefinition) std::cerr << "\n";
+    first = false;
+    if (report.status == RunStatus::Interrupted && diagnostic.severity == Severity::Note)
+      std::cerr << "\nontogen: " << diagnostic.message << "\n";
+    else
+      std::cerr << formatRunDiagnostic(diagnostic);
   }
-  std::cerr << "wrote " << written << " file" << (written == 1 ? "" : "s") << " to " << options.out << "\n";
+  if (!report.ok()) return exitCodeOf(report.status);
+  if (options.stats) {
+    const WorldStats& stats = report.stats;
+    std::cout << "time " << report.time << ", cells " << report.cells << ", steps " << stats.steps << ", events "
+              << stats.events << ", cells born " << stats.cellsBorn << ", rule firings " << stats.ruleFirings
+              << ", files " << report.files.size() << ", wall " << report.wallSeconds << " s\n";
+  }
+  std::cerr << "wrote " << report.files.size() << " file" << (report.files.size() == 1 ? "" : "s") << " to "
+            << options.out << "\n";
   return kExitOk;
 }
 

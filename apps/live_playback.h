@@ -9,12 +9,13 @@
 
 #include "apps/commands.h"
 #include "interpreters/interpretation_set.h"
+#include "interpreters/run.h"
 
 namespace ontogen::app {
 
 /// Thrown out of a run when Ctrl-C stopped a performance (its notes already stopped).
-struct PlaybackInterrupted : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct PlaybackInterrupted : RunInterrupted {
+  using RunInterrupted::RunInterrupted;
 };
 
 class LivePlayback;

@@ -29,6 +29,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
       context.ancestors = world.ancestorValues();
       for (const Instruction& instruction : block->instructions) {
+        set.locate({instruction.span, master.label, world.time()});
         args.clear();
         for (const CompiledExpression& arg : instruction.args) args.push_back(arg.evaluate(context));
         set.execute(instruction.command, args);
@@ -39,6 +40,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
       if (knows) {
         world.developedValues(cell, developed);
         set.beginCell({cell.id, cell.birth, master.lifetime, world.time()});
+        set.locate({master.span, master.label, world.time()});
         set.execute(master.command, developed);
       }
     }

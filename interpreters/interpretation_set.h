@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "lang/source.h"
+
 namespace ontogen {
 
 /// A failure to write an output (disk, permissions); carries a message for the user.
@@ -34,6 +36,39 @@ struct CellContext {
   double birth = 0;    ///< global time at which the cell had age 0, seconds
   double lifetime = 0; ///< terminal age, seconds (infinite: lives until an action removes it)
   double time = 0;     ///< global time of the word being interpreted, seconds
+};
+
+/// Where the instructions a set executes next come from: the instruction's source (or
+/// the symbol's), the cell's label and the time of the word. Set by the interpreter.
+struct InstructionSite {
+  SourceSpan span;
+  std::string_view cell;  ///< the master's label (the program outlives every run)
+  double time = 0;        ///< seconds
+};
+
+/// A kind of problem a set skipped over: how often, and where it happened first.
+struct SetWarning {
+  std::string message;  ///< "the turtle ignored 2 unmatched ']'"
+  SourceSpan span;      ///< the first instruction it happened at (may be invalid)
+  std::string cell;     ///< that instruction's cell
+  double time = 0;      ///< and the time of its word, seconds
+  uint64_t count = 0;
+};
+
+/// Counts one kind of problem and keeps where it first happened.
+struct WarningCounter {
+  uint64_t count = 0;
+  InstructionSite first;
+  void add(uint64_t n, const InstructionSite& site) {
+    if (n == 0) return;
+    if (count == 0) first = site;
+    count += n;
+  }
+  /// Appends a SetWarning with `message` when anything was counted, and starts again.
+  void takeInto(std::vector<SetWarning>& out, std::string message) {
+    if (count > 0) out.push_back({std::move(message), first.span, std::string(first.cell), first.time, count});
+    *this = {};
+  }
 };
 
 class InterpretationSet {
@@ -62,6 +97,14 @@ class InterpretationSet {
   virtual void beginCell(const CellContext& /*cell*/) {}
   /// Called by interpretWord after the last cell of a word.
   virtual void endWord() {}
+
+  /// Tells the set where the next instructions come from (for its warnings).
+  void locate(const InstructionSite& site) { site_ = site; }
+  /// The problems skipped over since the last call, one entry per kind; starts again.
+  virtual std::vector<SetWarning> takeWarnings() { return {}; }
+
+ protected:
+  InstructionSite site_;  ///< of the instruction being executed
 };
 
 }  // namespace ontogen

@@ -85,7 +85,21 @@ void GeometrySet::beginFrame(const FrameTarget& target) {
 }
 
 void GeometrySet::execute(std::string_view command, std::span<const double> args) {
+  const TurtleWarnings before = turtle_.warnings();
   turtle_.execute(command, args, geometry_);
+  const TurtleWarnings& after = turtle_.warnings();
+  unmatchedPops_.add(static_cast<uint64_t>(after.unmatchedPops - before.unmatchedPops), site_);
+  badArguments_.add(static_cast<uint64_t>(after.badArguments - before.badArguments), site_);
+}
+
+std::vector<SetWarning> GeometrySet::takeWarnings() {
+  std::vector<SetWarning> out;
+  unmatchedPops_.takeInto(out, "the turtle ignored " + std::to_string(unmatchedPops_.count) +
+                                   " unmatched ']' (the first here)");
+  badArguments_.takeInto(out, "the turtle ignored " + std::to_string(badArguments_.count) +
+                                  " commands with bad arguments: a wrong count, or values not finite or out of range "
+                                  "(the first here)");
+  return out;
 }
 
 std::filesystem::path GeometrySet::outputPath(const FrameTarget& target,

@@ -66,6 +66,8 @@ class GeometrySet : public InterpretationSet {
   const Geometry& geometry() const { return geometry_; }
   /// The turtle's warnings (unmatched ], bad arguments) for the same frame.
   const TurtleWarnings& warnings() const { return turtle_.warnings(); }
+  /// Unmatched ] and commands with bad arguments since the last call, located.
+  std::vector<SetWarning> takeWarnings() override;
   /// The turtle, in its state at the end of the word executed so far.
   const Turtle& turtle() const { return turtle_; }
 
@@ -79,6 +81,8 @@ class GeometrySet : public InterpretationSet {
   void writeMp4(std::vector<std::filesystem::path>& written);
 
   GeometrySetDef def_;
+  WarningCounter unmatchedPops_;
+  WarningCounter badArguments_;
   Turtle turtle_;
   Geometry geometry_;
   FrameTarget target_;

@@ -37,7 +37,23 @@ void MusicSet::beginFrame(const FrameTarget& target) {
 }
 
 void MusicSet::execute(std::string_view command, std::span<const double> args) {
+  const MusicWarnings before = player_.warnings();
   player_.execute(command, args, score_);
+  const MusicWarnings& after = player_.warnings();
+  droppedNotes_.add(static_cast<uint64_t>(after.droppedNotes - before.droppedNotes), site_);
+  badArguments_.add(static_cast<uint64_t>(after.badArguments - before.badArguments), site_);
+  unmatchedPops_.add(static_cast<uint64_t>(after.unmatchedPops - before.unmatchedPops), site_);
+}
+
+std::vector<SetWarning> MusicSet::takeWarnings() {
+  std::vector<SetWarning> out;
+  droppedNotes_.takeInto(out, "the music player skipped " + std::to_string(droppedNotes_.count) +
+                                  " notes outside MIDI's 0..127 (the first here; docs/LANGUAGE.md, \"Music\")");
+  badArguments_.takeInto(out, "the music player skipped " + std::to_string(badArguments_.count) +
+                                  " commands with bad arguments (the first here)");
+  unmatchedPops_.takeInto(out, "the music player ignored " + std::to_string(unmatchedPops_.count) +
+                                   " unmatched ']' (the first here)");
+  return out;
 }
 
 void MusicSet::beginWord(double time) {

@@ -62,6 +62,8 @@ class MusicSet final : public InterpretationSet {
   /// The score of the frame being played, or of the last one after endFrame.
   const Score& score() const { return score_; }
   const MusicWarnings& warnings() const { return player_.warnings(); }
+  /// Dropped notes, bad arguments and unmatched ] since the last call, located.
+  std::vector<SetWarning> takeWarnings() override;
   const MusicSetDef& def() const { return def_; }
 
  private:
@@ -74,6 +76,9 @@ class MusicSet final : public InterpretationSet {
   void closeHeld(double beats, bool all);
 
   MusicSetDef def_;
+  WarningCounter droppedNotes_;
+  WarningCounter badArguments_;
+  WarningCounter unmatchedPops_;
   MusicPlayer player_;
   Score score_;
   FrameTarget target_;

@@ -1,0 +1,151 @@
+#include "interpreters/run.h"
+
+#include <chrono>
+#include <cmath>
+#include <system_error>
+
+#include "interpreters/geometry/surface.h"
+#include "interpreters/interpret.h"
+
+namespace ontogen {
+
+std::string formatRunDiagnostic(const RunDiagnostic& diagnostic) {
+  if (diagnostic.span.valid()) return formatDiagnostic(Diagnostic{diagnostic.severity, diagnostic.span, diagnostic.message});
+  const char* severity = diagnostic.severity == Severity::Error     ? "error"
+                         : diagnostic.severity == Severity::Warning ? "warning"
+                                                                    : "note";
+  return std::string("ontogen: ") + severity + ": " + diagnostic.message + "\n";
+}
+
+namespace {
+// A diagnostic that belongs to no source text or time.
+RunDiagnostic unlocated(Severity severity, std::string message) {
+  RunDiagnostic diagnostic;
+  diagnostic.severity = severity;
+  diagnostic.message = std::move(message);
+  return diagnostic;
+}
+}  // namespace
+
+Run::Run(RunDef def) : def_(std::move(def)) {
+  if (!def_.program) {
+    setupErrors_.push_back(unlocated(Severity::Error, "the run has no program"));
+    return;
+  }
+  if (def_.frames < 1) setupErrors_.push_back(unlocated(Severity::Error, "a run needs at least one frame"));
+  for (const std::string& name : def_.sets) {
+    std::unique_ptr<InterpretationSet> set;
+    try {
+      set = makeInterpretationSet(name, def_.program->rootSystem().settings, def_.setOptions);
+    } catch (const std::invalid_argument& bad) {
+      setupErrors_.push_back(unlocated(Severity::Error, bad.what()));
+      continue;
+    }
+    if (!set) {
+      std::string known;
+      for (const auto& candidate : interpretationSetNames()) known += " " + candidate;
+      setupErrors_.push_back(unlocated(Severity::Error, "unknown interpretation set '" + name + "' (known:" + known + ")"));
+      continue;
+    }
+    sets_.push_back(std::move(set));
+  }
+}
+
+Run::~Run() = default;
+
+RunReport Run::execute() {
+  RunReport report;
+  if (!setupErrors_.empty()) {
+    report.status = RunStatus::BadDefinition;
+    report.diagnostics = setupErrors_;
+    return report;
+  }
+  const auto started = std::chrono::steady_clock::now();
+  std::error_code error;
+  std::filesystem::create_directories(def_.out, error);
+  if (error) {
+    report.status = RunStatus::OutputFailed;
+    report.diagnostics.push_back(unlocated(
+        Severity::Error, "cannot create the output directory '" + def_.out.string() + "': " + error.message()));
+    return report;
+  }
+  try {
+    develop(report);
+  } catch (const LimitError& limit) {
+    report.status = RunStatus::ModelFailed;
+    report.diagnostics.push_back(unlocated(Severity::Error, limit.what()));
+    if (world_) report.diagnostics.back().time = world_->time();
+  } catch (const ModelError& model) {
+    report.status = RunStatus::ModelFailed;
+    report.diagnostics.push_back(
+        {Severity::Error, model.diagnostic.message, model.diagnostic.span, model.cell, model.time, 1});
+  } catch (const SurfaceError& surface) {
+    report.status = RunStatus::ModelFailed;
+    report.diagnostics.push_back(unlocated(Severity::Error, surface.what()));
+  } catch (const OutputError& output) {
+    report.status = RunStatus::OutputFailed;
+    report.diagnostics.push_back(unlocated(Severity::Error, output.what()));
+  } catch (const RunInterrupted& interrupted) {
+    report.status = RunStatus::Interrupted;
+    report.diagnostics.push_back(unlocated(Severity::Note, interrupted.what()));
+  }
+  collectWarnings(report);
+  if (world_) {
+    report.stats = world_->stats();
+    report.time = world_->time();
+    report.cells = world_->totalCells();
+  }
+  report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return report;
+}
+
+// Frames are spread over [0, until] (one frame: the state at `until`). Sets that follow
+// the development (music in developmental time) see the word at the start and after
+// every step, between frames too; the others see one word a frame.
+void Run::develop(RunReport& report) {
+  const Program& program = *def_.program;
+  const double dt = def_.step.value_or(program.dt);
+  const double until = def_.until.value_or(program.until);
+  const int frames = def_.frames;
+  world_ = std::make_unique<World>(def_.program, def_.world);
+  World& world = *world_;
+  std::vector<InterpretationSet*> following;
+  for (auto& set : sets_)
+    if (set->followsDevelopment()) {
+      following.push_back(set.get());
+      set->beginFrame(FrameTarget{def_.out, def_.stem, 0, 1, 0});
+      interpretWord(world, *set);
+    }
+  for (int frame = 0; frame < frames; ++frame) {
+    const double t = frames == 1 ? until : until * frame / (frames - 1);
+    if (!following.empty()) {
+      // The next instant of the step grid k * dt, where per-step rules fire.
+      auto nextStep = [&] { return (std::floor(world.time() / dt + 1e-9) + 1) * dt; };
+      for (double next = nextStep(); next < t - timeTolerance(t); next = nextStep()) {
+        world.advanceTo(next, dt);
+        for (InterpretationSet* set : following) interpretWord(world, *set);
+      }
+    }
+    const bool moved = t > world.time();
+    world.advanceTo(t, dt);
+    if (moved)
+      for (InterpretationSet* set : following) interpretWord(world, *set);
+    for (auto& set : sets_) {
+      if (set->followsDevelopment()) continue;
+      const FrameTarget target{def_.out, def_.stem, frame, frames, world.time()};
+      for (auto& path : interpretFrame(world, *set, target)) report.files.push_back(std::move(path));
+    }
+    if (def_.progress) def_.progress(frame + 1, frames);
+  }
+  for (InterpretationSet* set : following)
+    for (auto& path : set->endFrame()) report.files.push_back(std::move(path));
+}
+
+void Run::collectWarnings(RunReport& report) {
+  for (auto& set : sets_)
+    for (SetWarning& warning : set->takeWarnings())
+      report.diagnostics.push_back(
+          {Severity::Warning, std::move(warning.message), warning.span, std::move(warning.cell), warning.time, warning.count});
+}
+
+}  // namespace ontogen

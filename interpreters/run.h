@@ -1,0 +1,110 @@
+#pragma once
+// A run as a library object: grows a program over frames spread evenly over [0, until],
+// feeds the interpretation sets (one word a frame, or every step for the sets that follow
+// the development), and returns a report of what happened: diagnostics (run-time errors
+// and the sets' warnings, each with the cell, its source span and the time), the files
+// written and the world's statistics. It never prints; `ontogen run`, a sweep or a viewer
+// drive the same schedule through it.
+//
+//   RunDef def{.program = program, .stem = "piston", .frames = 26};
+//   Run run(std::move(def));
+//   RunReport report = run.execute();
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/world.h"
+#include "interpreters/interpretation_set.h"
+#include "interpreters/set_registry.h"
+#include "lang/diagnostics.h"
+
+namespace ontogen {
+
+/// What to run; validated when the run starts.
+struct RunDef {
+  std::shared_ptr<const Program> program;
+  std::string stem = "model";  ///< names the outputs: DIR/<stem>.glb, DIR/<stem>_0003.obj
+  WorldDef world{};            ///< seed, limits, threads
+  std::optional<double> until;  ///< seconds of developmental time; empty: the program's #until
+  std::optional<double> step;   ///< seconds; empty: the program's #dt
+  int frames = 1;               ///< spread over [0, until]; one frame: the state at until
+  std::vector<std::string> sets{"geometry"};  ///< interpretation sets by name
+  SetOptions setOptions{};                    ///< formats, picture size and view
+  std::filesystem::path out = "out";          ///< the directory outputs go to (made if missing)
+  /// Called after each frame with the frames done and the frames in all (a progress bar).
+  std::function<void(int, int)> progress = {};
+};
+
+enum class RunStatus {
+  Ok,
+  BadDefinition,  ///< an unknown set, a bad format or size: nothing was grown
+  ModelFailed,    ///< the model failed or passed a growth limit while it ran
+  OutputFailed,   ///< an output could not be written
+  Interrupted,    ///< a set was stopped from outside (live playback and Ctrl-C)
+};
+
+/// A problem found while running: an error that ended the run, or a set's warning.
+struct RunDiagnostic {
+  Severity severity = Severity::Error;
+  std::string message;
+  SourceSpan span;   ///< the rule or instruction it comes from; invalid when none
+  std::string cell;  ///< the cell's label, empty when none
+  std::optional<double> time;  ///< seconds, when it happened at a time of the development
+  uint64_t count = 1;          ///< how often (a warning counts each time it happened)
+};
+
+/// What a run did.
+struct RunReport {
+  RunStatus status = RunStatus::Ok;
+  std::vector<RunDiagnostic> diagnostics;
+  std::vector<std::filesystem::path> files;  ///< in the order written
+  WorldStats stats{};
+  double time = 0;     ///< the world's time at the end, seconds
+  uint64_t cells = 0;  ///< cells in all pools at the end
+  double wallSeconds = 0;
+
+  bool ok() const { return status == RunStatus::Ok; }
+};
+
+/// Thrown by a set (or a wrapper around one, such as live playback) to stop a run from
+/// outside; the run reports RunStatus::Interrupted with the message.
+struct RunInterrupted : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Renders a diagnostic the way the command line shows it: located ones like a compiler
+/// (file:line:col, the line, a caret), the others as "ontogen: error: ...".
+std::string formatRunDiagnostic(const RunDiagnostic& diagnostic);
+
+class Run {
+ public:
+  /// Makes the sets; a definition that cannot run is reported by execute().
+  explicit Run(RunDef def);
+  ~Run();
+  Run(const Run&) = delete;
+  Run& operator=(const Run&) = delete;
+
+  /// The sets, made from the definition, before execute(): a caller may attach to them
+  /// (live playback attaches to the music set).
+  std::vector<std::unique_ptr<InterpretationSet>>& sets() { return sets_; }
+  /// Grows the program and feeds the sets; returns the report. Call once.
+  RunReport execute();
+  /// The world, after execute() (null before, or when the definition was bad).
+  const World* world() const { return world_.get(); }
+
+ private:
+  void collectWarnings(RunReport& report);
+  void develop(RunReport& report);
+
+  RunDef def_;
+  std::vector<std::unique_ptr<InterpretationSet>> sets_;
+  std::vector<RunDiagnostic> setupErrors_;
+  std::unique_ptr<World> world_;
+};
+
+}  // namespace ontogen

@@ -1,0 +1,105 @@
+// The run as a library object (interpreters/run.h): the schedule of frames, the files
+// written, the report's diagnostics with their cells, spans and times.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "interpreters/run.h"
+#include "tests/core/test_support.h"
+
+namespace ontogen {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "run_test" / name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+TEST(Run, GrowsTheFramesAndReportsTheFilesAndStats) {
+  RunDef def;
+  def.program = testing_support::compileModel("piston.cell");
+  def.stem = "piston";
+  def.until = 4;
+  def.frames = 5;
+  def.setOptions.formats = "obj,glb";
+  def.out = scratch("piston");
+  int calls = 0;
+  def.progress = [&](int done, int total) {
+    ++calls;
+    EXPECT_EQ(total, 5);
+    EXPECT_EQ(done, calls);
+  };
+  ontogen::Run run(std::move(def));
+  const RunReport report = run.execute();
+  ASSERT_TRUE(report.ok()) << (report.diagnostics.empty() ? "" : report.diagnostics[0].message);
+  EXPECT_EQ(calls, 5);
+  EXPECT_DOUBLE_EQ(report.time, 4);
+  EXPECT_EQ(report.stats.steps, 4u * 25) << "steps of the program's #dt 0.04";
+  ASSERT_EQ(report.files.size(), 5u * 2 + 1) << "an OBJ and its MTL per frame, one glb";
+  for (const fs::path& file : report.files) EXPECT_TRUE(fs::exists(file)) << file;
+  ASSERT_NE(run.world(), nullptr);
+  EXPECT_EQ(report.cells, run.world()->totalCells());
+}
+
+TEST(Run, AModelErrorIsADiagnosticWithItsCellSpanAndTime) {
+  RunDef def;
+  def.program = testing_support::compileOrFail(
+      "cell A { rules { age > 1.5 : -> (B, 2); } }\ncell B { lifetime 1; }\nsystem s { pool linear; axiom A; }",
+      "born_too_old.cell");
+  def.until = 5;
+  def.sets = {"trace"};
+  def.out = scratch("model_error");
+  ontogen::Run run(std::move(def));
+  const RunReport report = run.execute();
+  EXPECT_EQ(report.status, RunStatus::ModelFailed);
+  ASSERT_EQ(report.diagnostics.size(), 1u);
+  const RunDiagnostic& error = report.diagnostics[0];
+  EXPECT_EQ(error.severity, Severity::Error);
+  EXPECT_EQ(error.cell, "A");
+  ASSERT_TRUE(error.time.has_value());
+  EXPECT_DOUBLE_EQ(*error.time, 2);
+  ASSERT_TRUE(error.span.valid());
+  EXPECT_EQ(formatRunDiagnostic(error).rfind("born_too_old.cell:1:33: error: 'B' would be born with age 2", 0), 0u)
+      << formatRunDiagnostic(error);
+}
+
+TEST(Run, TurtleWarningsReachTheReportWithTheirPlaceCountedOverTheRun) {
+  RunDef def;
+  def.program = testing_support::compileOrFail(
+      "lsystem l {\n  axiom A\n  interpret geometry A { F(1) ] ] }\n  A -> A\n}", "pops.cell");
+  def.until = 3;
+  def.frames = 3;
+  def.setOptions.formats = "obj";
+  def.out = scratch("warnings");
+  ontogen::Run run(std::move(def));
+  const RunReport report = run.execute();
+  ASSERT_TRUE(report.ok());
+  ASSERT_EQ(report.diagnostics.size(), 1u);
+  const RunDiagnostic& warning = report.diagnostics[0];
+  EXPECT_EQ(warning.severity, Severity::Warning);
+  EXPECT_EQ(warning.count, 6u) << "two in each of three frames";
+  EXPECT_EQ(warning.cell, "A");
+  EXPECT_EQ(formatRunDiagnostic(warning).rfind("pops.cell:3:31: warning: the turtle ignored 6 unmatched ']'", 0), 0u)
+      << formatRunDiagnostic(warning);
+}
+
+TEST(Run, ABadDefinitionGrowsNothing) {
+  RunDef def;
+  def.program = testing_support::compileModel("koch.cell");
+  def.sets = {"geometry", "sculpture"};
+  def.out = scratch("bad");
+  ontogen::Run run(std::move(def));
+  const RunReport report = run.execute();
+  EXPECT_EQ(report.status, RunStatus::BadDefinition);
+  ASSERT_EQ(report.diagnostics.size(), 1u);
+  EXPECT_NE(report.diagnostics[0].message.find("unknown interpretation set 'sculpture'"), std::string::npos);
+  EXPECT_EQ(run.world(), nullptr);
+  EXPECT_FALSE(fs::exists(scratch("bad")));
+}
+
+}  // namespace
+}  // namespace ontogen
