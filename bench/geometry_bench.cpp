@@ -56,7 +56,7 @@ void BM_PistonAnimationFrame(benchmark::State& state) {
   }
   const bool picture = state.range(0) != 0;
   GeometrySetDef def;
-  def.writeSvg = def.writeObj = false;
+  def.output.writeSvg = def.output.writeObj = false;
   def.turtle.radians = true;
   GeometrySet set(def);
   GlbAnimationWriter glb;

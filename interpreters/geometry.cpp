@@ -122,6 +122,18 @@ void Geometry::addMesh(const Mesh& part, bool keepMaterials) {
   }
 }
 
+void Geometry::append(const Geometry& other) {
+  addMesh(other.mesh_, /*keepMaterials=*/true);
+  segments_.insert(segments_.end(), other.segments_.begin(), other.segments_.end());
+  cylinders_.insert(cylinders_.end(), other.cylinders_.begin(), other.cylinders_.end());
+  discs_.insert(discs_.end(), other.discs_.begin(), other.discs_.end());
+  spheres_.insert(spheres_.end(), other.spheres_.begin(), other.spheres_.end());
+  if (!other.bounds_.empty) {
+    bounds_.add(other.bounds_.min);
+    bounds_.add(other.bounds_.max);
+  }
+}
+
 void Geometry::addSegment(const glm::dvec3& start, const glm::dvec3& end) {
   if (start == end) return;
   segments_.push_back({start, end, material_});

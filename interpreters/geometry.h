@@ -128,6 +128,9 @@ class Geometry {
   /// its own, 0-based; its triangles take the current material, or keep their own when
   /// keepMaterials (plates coloured by the gap filter).
   void addMesh(const Mesh& part, bool keepMaterials = false);
+  /// Appends everything of another frame's geometry (lines, primitives, mesh), each part
+  /// keeping its colour.
+  void append(const Geometry& other);
 
   /// The palette colour of everything added from now on.
   void setMaterial(uint32_t material) { material_ = material; }

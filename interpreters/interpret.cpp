@@ -1,6 +1,7 @@
 #include "interpreters/interpret.h"
 
 #include "core/cell_frame.h"
+#include "core/parents.h"
 
 namespace ontogen {
 
@@ -18,13 +19,14 @@ void interpretPool(const World& world, InterpretationSet& set) {
   // Whether the set knows each master's command, asked once per master, not per cell.
   std::vector<int8_t> known(program.masters.size(), -1);
   const auto cells = pool.cells();
+  const std::vector<uint64_t> parents = parentIds(world);
   for (size_t i = 0; i < cells.size(); ++i) {
     const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
     if (const InterpretationBlock* block = master.interpretation(set.name())) {
       frame.resize(master.stateCount() + FrameSlot::kCount);
       loadCellFrame(frame.data(), master, cell, pool.stateOf(cell), world.time(), world.positionOf(i));
-      set.beginCell({cell.id, cell.birth, master.lifetime, world.time()});
+      set.beginCell({cell.id, parents[i], cell.birth, master.lifetime, world.time()});
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
       context.ancestors = world.ancestorValues();
@@ -39,7 +41,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
       if (knows < 0) knows = set.knows(master.command) ? 1 : 0;
       if (knows) {
         world.developedValues(cell, developed);
-        set.beginCell({cell.id, cell.birth, master.lifetime, world.time()});
+        set.beginCell({cell.id, parents[i], cell.birth, master.lifetime, world.time()});
         set.locate({master.span, master.label, world.time()});
         set.execute(master.command, developed);
       }

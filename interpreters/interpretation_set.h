@@ -16,6 +16,8 @@
 
 namespace ontogen {
 
+struct Scene;
+
 /// A failure to write an output (disk, permissions); carries a message for the user.
 struct OutputError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -33,6 +35,7 @@ struct FrameTarget {
 /// The cell whose instructions come next, for sets that follow cells over time.
 struct CellContext {
   uint64_t id = 0;     ///< the cell's stable id
+  uint64_t parent = ~uint64_t{0};  ///< the id of the cell it hangs from (core/parents.h); all ones: none
   double birth = 0;    ///< global time at which the cell had age 0, seconds
   double lifetime = 0; ///< terminal age, seconds (infinite: lives until an action removes it)
   double time = 0;     ///< global time of the word being interpreted, seconds
@@ -97,6 +100,13 @@ class InterpretationSet {
   virtual void beginCell(const CellContext& /*cell*/) {}
   /// Called by interpretWord after the last cell of a word.
   virtual void endWord() {}
+
+  /// True for a set that draws a scene (interpreters/scene.h) instead of writing files:
+  /// at the end of a frame a run calls contribute() instead of endFrame(), and the output
+  /// stage writes the scene every such set drew into.
+  virtual bool drawsScene() const { return false; }
+  /// Finishes the frame and adds what the set drew to `scene`.
+  virtual void contribute(Scene& /*scene*/) {}
 
   /// Tells the set where the next instructions come from (for its warnings).
   void locate(const InstructionSite& site) { site_ = site; }

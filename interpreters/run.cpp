@@ -130,10 +130,25 @@ void Run::develop(RunReport& report) {
     world.advanceTo(t, dt);
     if (moved)
       for (InterpretationSet* set : following) interpretWord(world, *set);
+    // Every set that draws adds to one scene, which the output stage writes; the other
+    // sets write their own files.
+    const FrameTarget target{def_.out, def_.stem, frame, frames, world.time()};
+    scene_.clear();
+    bool drawn = false;
     for (auto& set : sets_) {
       if (set->followsDevelopment()) continue;
-      const FrameTarget target{def_.out, def_.stem, frame, frames, world.time()};
+      if (set->drawsScene()) {
+        set->beginFrame(target);
+        interpretWord(world, *set);
+        set->contribute(scene_);
+        drawn = true;
+        continue;
+      }
       for (auto& path : interpretFrame(world, *set, target)) report.files.push_back(std::move(path));
+    }
+    if (drawn) {
+      if (!output_) output_ = std::make_unique<SceneOutput>(sceneOutputDefOf(def_.setOptions));
+      for (auto& path : output_->write(scene_, target)) report.files.push_back(std::move(path));
     }
     if (def_.progress) def_.progress(frame + 1, frames);
   }

@@ -19,7 +19,9 @@
 #include <vector>
 
 #include "core/world.h"
+#include "interpreters/formats/scene_output.h"
 #include "interpreters/interpretation_set.h"
+#include "interpreters/scene.h"
 #include "interpreters/set_registry.h"
 #include "lang/diagnostics.h"
 
@@ -103,6 +105,8 @@ class Run {
 
   RunDef def_;
   std::vector<std::unique_ptr<InterpretationSet>> sets_;
+  Scene scene_;                         // the frame being drawn
+  std::unique_ptr<SceneOutput> output_;  // writes the scenes (made at the first one)
   std::vector<RunDiagnostic> setupErrors_;
   std::unique_ptr<World> world_;
 };

@@ -14,6 +14,14 @@ namespace ontogen {
 
 std::vector<std::string> interpretationSetNames() { return {"geometry", "image", "music", "trace"}; }
 
+SceneOutputDef sceneOutputDefOf(const SetOptions& options) {
+  SceneOutputDef def;
+  std::string error = applyGeometryFormats(options.formats, def);
+  if (!error.empty()) throw std::invalid_argument(error);
+  def.render = options.render;
+  return def;
+}
+
 std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings) {
   return makeInterpretationSet(name, settings, SetOptions{.formats = "svg,obj"});
 }
@@ -22,9 +30,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
                                                          const SetOptions& options) {
   if (name == "geometry") {
     GeometrySetDef def;
-    std::string error = applyGeometryFormats(options.formats, def);
-    if (!error.empty()) throw std::invalid_argument(error);
-    def.render = options.render;
+    def.output = sceneOutputDefOf(options);
     def.turtle.step = settings.step;
     def.turtle.angle = settings.angle;
     def.turtle.yawAngle = settings.yawAngle;

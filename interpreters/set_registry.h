@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "interpreters/formats/renderer.h"
+#include "interpreters/formats/scene_output.h"
 #include "interpreters/interpretation_set.h"
 #include "lang/compiler.h"
 #include "lang/program.h"
@@ -30,6 +31,10 @@ struct SetOptions {
 /// user when they are wrong (an unknown format, mp4 without ffmpeg, a bad size).
 std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, const InterpretSettings& settings,
                                                          const SetOptions& options);
+
+/// The output stage's settings from a run's output settings; throws std::invalid_argument
+/// with a message for the user when they are wrong.
+SceneOutputDef sceneOutputDefOf(const SetOptions& options);
 
 /// For the compiler: the commands of every set (the trace set accepts any).
 std::vector<CommandSetInfo> commandSets();

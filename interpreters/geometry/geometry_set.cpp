@@ -1,78 +1,11 @@
 #include "interpreters/geometry/geometry_set.h"
 
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
-#include <string>
-#include <system_error>
-
-#include "interpreters/formats/obj_writer.h"
-#include "interpreters/formats/ply_writer.h"
-#include "interpreters/formats/png_writer.h"
 #include "interpreters/geometry/turtle_commands.h"
-#include "interpreters/output_file.h"
-
-extern char** environ;
 
 namespace ontogen {
 
-std::string applyGeometryFormats(std::string_view list, GeometrySetDef& def) {
-  def.writeSvg = def.writeObj = def.writeMtl = def.writePly = false;
-  def.writePng = def.writePngFrames = def.writeGlb = def.writeMp4 = false;
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    std::size_t end = list.find(',', start);
-    if (end == std::string_view::npos) end = list.size();
-    std::string_view name = list.substr(start, end - start);
-    if (name == "svg") {
-      def.writeSvg = true;
-    } else if (name == "obj") {
-      def.writeObj = def.writeMtl = true;
-    } else if (name == "ply") {
-      def.writePly = true;
-    } else if (name == "png") {
-      def.writePng = true;
-    } else if (name == "png-frames") {
-      def.writePngFrames = true;
-    } else if (name == "glb") {
-      def.writeGlb = true;
-    } else if (name == "mp4") {
-      def.writeMp4 = true;
-    } else {
-      return "unknown format '" + std::string(name) + "' (known: " + kGeometryFormats + ")";
-    }
-    start = end + 1;
-  }
-  return "";
-}
-
-bool ffmpegAvailable() {
-  const char* path = std::getenv("PATH");
-  if (path == nullptr) return false;
-  std::string_view rest(path);
-  while (!rest.empty()) {
-    std::size_t colon = rest.find(':');
-    std::filesystem::path candidate = std::filesystem::path(rest.substr(0, colon)) / "ffmpeg";
-    if (::access(candidate.c_str(), X_OK) == 0) return true;
-    if (colon == std::string_view::npos) break;
-    rest.remove_prefix(colon + 1);
-  }
-  return false;
-}
-
 GeometrySet::GeometrySet(const GeometrySetDef& def)
-    : def_(def), turtle_(def.turtle), geometry_(def.mesh) {
-  checkSvgOptions(def.svg);
-  if (def.writePng || def.writePngFrames || def.writeMp4) renderGeometry(Geometry(), def.render);  // validates
-  if (def.writeMp4 && !ffmpegAvailable()) {
-    throw std::invalid_argument("the mp4 format needs ffmpeg, which is not installed (Debian: apt-get install ffmpeg)");
-  }
-  if (!(def.framesPerSecond > 0)) throw std::invalid_argument("framesPerSecond must be > 0");
-}
+    : def_(def), output_(def.output), turtle_(def.turtle), scene_{0, Geometry(def.mesh), {}} {}
 
 bool GeometrySet::knows(std::string_view command) const {
   return findTurtleCommand(command) != nullptr;
@@ -81,12 +14,37 @@ bool GeometrySet::knows(std::string_view command) const {
 void GeometrySet::beginFrame(const FrameTarget& target) {
   target_ = target;
   turtle_.reset();
-  geometry_.clear();
+  scene_.geometry.clear();
+  scene_.nodes.clear();
+  scene_.time = target.time;
+}
+
+// Each cell that draws becomes a node: where the turtle stands as it begins, and the
+// stretch of the geometry it draws until the next cell begins.
+void GeometrySet::beginCell(const CellContext& cell) {
+  closeNode();
+  if (!scene_.nodes.empty() && scene_.nodes.back().range.empty()) scene_.nodes.pop_back();
+  const TurtleState& state = turtle_.state();
+  SceneNode node;
+  node.id = cell.id;
+  node.parent = cell.parent;
+  node.position = state.position;
+  node.orientation = glm::dmat3(state.heading, state.left, state.up);
+  node.range.firstTriangle = static_cast<uint32_t>(scene_.geometry.triangleCount());
+  node.range.firstSegment = static_cast<uint32_t>(scene_.geometry.segmentCount());
+  scene_.nodes.push_back(node);
+}
+
+void GeometrySet::closeNode() {
+  if (scene_.nodes.empty()) return;
+  GeometryRange& range = scene_.nodes.back().range;
+  range.triangleCount = static_cast<uint32_t>(scene_.geometry.triangleCount()) - range.firstTriangle;
+  range.segmentCount = static_cast<uint32_t>(scene_.geometry.segmentCount()) - range.firstSegment;
 }
 
 void GeometrySet::execute(std::string_view command, std::span<const double> args) {
   const TurtleWarnings before = turtle_.warnings();
-  turtle_.execute(command, args, geometry_);
+  turtle_.execute(command, args, scene_.geometry);
   const TurtleWarnings& after = turtle_.warnings();
   unmatchedPops_.add(static_cast<uint64_t>(after.unmatchedPops - before.unmatchedPops), site_);
   badArguments_.add(static_cast<uint64_t>(after.badArguments - before.badArguments), site_);
@@ -102,116 +60,23 @@ std::vector<SetWarning> GeometrySet::takeWarnings() {
   return out;
 }
 
-std::filesystem::path GeometrySet::outputPath(const FrameTarget& target,
-                                              std::string_view extension) {
-  std::string name = target.stem.empty() ? std::string("geometry") : target.stem;
-  if (target.frameCount > 1) {
-    std::string number = std::to_string(target.frame);
-    if (number.size() < 4) number.insert(0, 4 - number.size(), '0');
-    name += "_" + number;
-  }
-  name += ".";
-  name += extension;
-  return target.directory / name;
+void GeometrySet::finishScene() {
+  closeNode();
+  // What the turtle meshes at the end (open generalized cylinders, plates) belongs to
+  // the frame, not to the last cell.
+  turtle_.finish(scene_.geometry);
+  if (!scene_.nodes.empty() && scene_.nodes.back().range.empty()) scene_.nodes.pop_back();
 }
 
-std::filesystem::path GeometrySet::mp4FramesDirectory() const {
-  std::string stem = target_.stem.empty() ? std::string("geometry") : target_.stem;
-  return target_.directory / ("." + stem + ".mp4-frames");
-}
-
-void GeometrySet::writeMp4(std::vector<std::filesystem::path>& written) {
-  FrameTarget whole = target_;
-  whole.frameCount = 1;
-  const std::filesystem::path path = outputPath(whole, "mp4");
-  const std::filesystem::path frames = mp4FramesDirectory();
-  const std::filesystem::path temporary = path.string() + ".partial.mp4";
-  const std::string rate = std::to_string(def_.framesPerSecond);
-  const std::string input = (frames / "frame_%06d.png").string();
-  const std::string output = temporary.string();
-  // Even sizes: H.264 in yuv420p needs them.
-  std::vector<std::string> args = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i", input,
-                                   "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p",
-                                   "-f", "mp4", output};
-  std::vector<char*> argv;
-  for (std::string& arg : args) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  int status = 0;
-  bool ok = ::posix_spawnp(&pid, "ffmpeg", nullptr, nullptr, argv.data(), environ) == 0 &&
-            ::waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  std::error_code ignored;
-  std::filesystem::remove_all(frames, ignored);
-  mp4Frames_ = 0;
-  if (!ok) {
-    std::filesystem::remove(temporary, ignored);
-    throw OutputError("ffmpeg could not make " + path.string());
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) throw OutputError("cannot rename " + temporary.string() + " to " + path.string() + ": " + error.message());
-  written.push_back(path);
+void GeometrySet::contribute(Scene& scene) {
+  finishScene();
+  scene.time = scene_.time;
+  scene.append(scene_);
 }
 
 std::vector<std::filesystem::path> GeometrySet::endFrame() {
-  turtle_.finish(geometry_);
-  std::vector<std::filesystem::path> written;
-  const bool last = target_.frame + 1 >= target_.frameCount;
-  FrameTarget whole = target_;
-  whole.frameCount = 1;
-  if (def_.writeSvg) {
-    std::filesystem::path path = outputPath(target_, "svg");
-    writeFileAtomically(path, [&](std::ostream& out) { writeSvg(geometry_, out, def_.svg); });
-    written.push_back(std::move(path));
-  }
-  if (def_.writeObj) {
-    std::filesystem::path path = outputPath(target_, "obj");
-    std::filesystem::path mtl = outputPath(target_, "mtl");
-    if (def_.writeMtl) {
-      writeFileAtomically(path, [&](std::ostream& out) { writeObj(geometry_, out, mtl.filename().string()); });
-    } else {
-      writeFileAtomically(path, [&](std::ostream& out) { writeObj(geometry_, out); });
-    }
-    written.push_back(std::move(path));
-    if (def_.writeMtl) {
-      writeFileAtomically(mtl, [&](std::ostream& out) { writeMtl(geometry_, out); });
-      written.push_back(std::move(mtl));
-    }
-  }
-  if (def_.writePly) {
-    std::filesystem::path path = outputPath(target_, "ply");
-    writeFileAtomically(path, [&](std::ostream& out) { writePly(geometry_, out); });
-    written.push_back(std::move(path));
-  }
-  const bool picture = def_.writePngFrames || (def_.writePng && last) || def_.writeMp4;
-  if (picture) {
-    const Image image = renderGeometry(geometry_, def_.render);
-    if (def_.writePngFrames || (def_.writePng && last)) {
-      std::filesystem::path path = outputPath(def_.writePngFrames ? target_ : whole, "png");
-      writeFileAtomically(path, [&](std::ostream& out) { writePng(image, out); });
-      written.push_back(std::move(path));
-    }
-    if (def_.writeMp4) {
-      std::error_code error;
-      std::filesystem::create_directories(mp4FramesDirectory(), error);
-      if (error) throw OutputError("cannot create " + mp4FramesDirectory().string() + ": " + error.message());
-      std::string number = std::to_string(mp4Frames_++);
-      number.insert(0, number.size() < 6 ? 6 - number.size() : 0, '0');
-      writeFileAtomically(mp4FramesDirectory() / ("frame_" + number + ".png"),
-                          [&](std::ostream& out) { writePng(image, out); });
-    }
-  }
-  if (def_.writeGlb) glb_.addFrame(geometry_, target_.time);
-  if (last) {
-    if (def_.writeGlb) {
-      std::filesystem::path path = outputPath(whole, "glb");
-      writeFileAtomically(path, [&](std::ostream& out) { glb_.write(out); });
-      glb_.clear();
-      written.push_back(std::move(path));
-    }
-    if (def_.writeMp4) writeMp4(written);
-  }
-  return written;
+  finishScene();
+  return output_.write(scene_, target_);
 }
 
 }  // namespace ontogen

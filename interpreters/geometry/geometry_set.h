@@ -11,43 +11,24 @@
 #include <string_view>
 #include <vector>
 
-#include "interpreters/formats/glb_writer.h"
-#include "interpreters/formats/renderer.h"
-#include "interpreters/formats/svg_writer.h"
+#include "interpreters/formats/scene_output.h"
 #include "interpreters/geometry.h"
 #include "interpreters/geometry/turtle.h"
 #include "interpreters/interpretation_set.h"
+#include "interpreters/scene.h"
 
 namespace ontogen {
 
 /// Settings of the set; validated when it is created.
 struct GeometrySetDef {
-  TurtleDef turtle{};    ///< step, angles and initial radius
-  bool writeSvg = true;  ///< write <stem>.svg each frame
-  bool writeObj = true;  ///< write <stem>.obj each frame
-  bool writeMtl = false;       ///< with the OBJ, its materials as <stem>.mtl
-  bool writePly = false;       ///< write <stem>.ply each frame
-  bool writePngFrames = false; ///< render <stem>.png each frame
-  bool writePng = false;       ///< render <stem>.png of the last frame
-  bool writeGlb = false;       ///< write <stem>.glb of every frame after the last
-  bool writeMp4 = false;       ///< write <stem>.mp4 of every frame after the last (ffmpeg)
-  double framesPerSecond = 25; ///< of the MP4
-  SvgOptions svg{};      ///< picture size and number format of the SVG
-  MeshDef mesh{};        ///< tessellation of cylinders, discs and spheres
-  RenderDef render{};    ///< size and view of PNG pictures and MP4 frames
+  TurtleDef turtle{};       ///< step, angles and initial radius
+  SceneOutputDef output{};  ///< what endFrame() writes when the set is used on its own
+  MeshDef mesh{};           ///< tessellation of cylinders, discs and spheres
 };
 
-/// The formats `--format` accepts, in the order `ontogen help` lists them.
-inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj, ply, svg";
-
-/// Sets def's write flags from a comma-separated list of formats (kGeometryFormats),
-/// clearing the others. Returns an error message naming the bad entry, or "" on success.
-std::string applyGeometryFormats(std::string_view list, GeometrySetDef& def);
-
-/// True when an executable named ffmpeg is on PATH.
-bool ffmpegAvailable();
-
-/// Turtle geometry written as SVG and OBJ.
+/// The 3-D turtle's drawing as a scene (interpreters/scene.h): a node per cell that
+/// draws. In a run the output stage writes it; used on its own, endFrame() writes it
+/// through a SceneOutput of its own.
 class GeometrySet : public InterpretationSet {
  public:
   /// Throws std::invalid_argument when def is out of range.
@@ -56,14 +37,19 @@ class GeometrySet : public InterpretationSet {
   std::string_view name() const override { return "geometry"; }
   bool knows(std::string_view command) const override;
   void beginFrame(const FrameTarget& target) override;
+  void beginCell(const CellContext& cell) override;
   void execute(std::string_view command, std::span<const double> args) override;
   /// Writes the enabled files atomically (throws OutputError on failure) and returns
   /// their paths, SVG first. Throws std::invalid_argument from the constructor when mp4
   /// is asked for and ffmpeg is not installed.
   std::vector<std::filesystem::path> endFrame() override;
+  bool drawsScene() const override { return true; }
+  void contribute(Scene& scene) override;
+  /// The scene of the frame being drawn, or of the last one after endFrame.
+  const Scene& scene() const { return scene_; }
 
   /// The geometry of the frame being drawn, or of the last one after endFrame.
-  const Geometry& geometry() const { return geometry_; }
+  const Geometry& geometry() const { return scene_.geometry; }
   /// The turtle's warnings (unmatched ], bad arguments) for the same frame.
   const TurtleWarnings& warnings() const { return turtle_.warnings(); }
   /// Unmatched ] and commands with bad arguments since the last call, located.
@@ -71,23 +57,22 @@ class GeometrySet : public InterpretationSet {
   /// The turtle, in its state at the end of the word executed so far.
   const Turtle& turtle() const { return turtle_; }
 
-  /// DIR/<stem>.<extension>, or DIR/<stem>_<frame, 4 digits at least>.<extension> when
-  /// target.frameCount > 1.
-  static std::filesystem::path outputPath(const FrameTarget& target,
-                                          std::string_view extension);
+  /// DIR/<stem>.<extension>, or DIR/<stem>_<frame, 4 digits>.<extension> (formats/scene_output.h).
+  static std::filesystem::path outputPath(const FrameTarget& target, std::string_view extension) {
+    return ontogen::outputPath(target, extension);
+  }
 
  private:
-  std::filesystem::path mp4FramesDirectory() const;
-  void writeMp4(std::vector<std::filesystem::path>& written);
+  void closeNode();
+  void finishScene();
 
   GeometrySetDef def_;
+  SceneOutput output_;
   WarningCounter unmatchedPops_;
   WarningCounter badArguments_;
   Turtle turtle_;
-  Geometry geometry_;
+  Scene scene_;
   FrameTarget target_;
-  GlbAnimationWriter glb_;
-  int mp4Frames_ = 0;
 };
 
 }  // namespace ontogen

@@ -107,7 +107,7 @@ TEST_F(GeometrySetTest, SeveralFramesGetNumberedNames) {
 }
 
 TEST_F(GeometrySetTest, BeginFrameStartsAfresh) {
-  GeometrySet set(GeometrySetDef{.writeSvg = false});
+  GeometrySet set(GeometrySetDef{.output = {.writeSvg = false}});
   set.beginFrame({.directory = directory_, .stem = "a", .frame = 0, .frameCount = 2});
   drawWord(set);
   set.endFrame();
@@ -126,7 +126,7 @@ TEST_F(GeometrySetTest, BeginFrameStartsAfresh) {
 
 TEST_F(GeometrySetTest, TurtleDefIsUsed) {
   GeometrySet set(GeometrySetDef{.turtle = {.step = 2, .angle = 45, .radius = 0.1},
-                                 .writeSvg = false, .writeObj = false});
+                                 .output = {.writeSvg = false, .writeObj = false}});
   set.beginFrame({.directory = directory_, .stem = "a"});
   set.execute("+", {});
   set.execute("F", {});
@@ -147,7 +147,7 @@ TEST_F(GeometrySetTest, MissingDirectoryThrowsOutputError) {
 }
 
 TEST_F(GeometrySetTest, InvalidDefIsRejected) {
-  EXPECT_THROW(GeometrySet(GeometrySetDef{.svg = {.hairline = -1}}), std::invalid_argument);
+  EXPECT_THROW(GeometrySet(GeometrySetDef{.output = {.svg = {.hairline = -1}}}), std::invalid_argument);
   EXPECT_THROW(GeometrySet(GeometrySetDef{.mesh = {.discSides = 0}}), std::invalid_argument);
   EXPECT_THROW(GeometrySet(GeometrySetDef{.turtle = {.radius = -1}}), std::invalid_argument);
 }

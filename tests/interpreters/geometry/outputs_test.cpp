@@ -84,9 +84,9 @@ class OutputsTest : public ::testing::Test {
 
   std::vector<fs::path> runFrames(const std::string& formats, int frames) {
     GeometrySetDef def;
-    EXPECT_EQ(applyGeometryFormats(formats, def), "");
-    def.render.width = 160;
-    def.render.height = 120;
+    EXPECT_EQ(applyGeometryFormats(formats, def.output), "");
+    def.output.render.width = 160;
+    def.output.render.height = 120;
     GeometrySet set(def);
     std::vector<fs::path> all;
     for (int f = 0; f < frames; ++f) {
@@ -101,7 +101,7 @@ class OutputsTest : public ::testing::Test {
 };
 
 TEST_F(OutputsTest, FormatsAreParsedAndUnknownOnesNamed) {
-  GeometrySetDef def;
+  SceneOutputDef def;
   EXPECT_EQ(applyGeometryFormats("glb,png", def), "");
   EXPECT_TRUE(def.writeGlb && def.writePng);
   EXPECT_FALSE(def.writeSvg || def.writeObj || def.writePly || def.writeMp4 || def.writePngFrames);
@@ -132,7 +132,7 @@ TEST_F(OutputsTest, BlendedSurfacesAndFilteredPlatesPassTheKhronosValidator) {
     return bezierPatch(c, 4);
   };
   GeometrySetDef def;
-  ASSERT_EQ(applyGeometryFormats("glb", def), "");
+  ASSERT_EQ(applyGeometryFormats("glb", def.output), "");
   def.turtle.surfaces[0] = patch(0);
   def.turtle.surfaces[1] = patch(3);
   GeometrySet set(def);
@@ -160,7 +160,7 @@ TEST_F(OutputsTest, BlendedSurfacesAndFilteredPlatesPassTheKhronosValidator) {
 
 TEST_F(OutputsTest, EmptyAndSingleFrameGlbsAreValid) {
   GeometrySetDef def;
-  applyGeometryFormats("glb", def);
+  applyGeometryFormats("glb", def.output);
   GeometrySet set(def);
   set.beginFrame({.directory = directory_, .stem = "empty"});
   std::vector<fs::path> written = set.endFrame();

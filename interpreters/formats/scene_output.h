@@ -1,0 +1,69 @@
+#pragma once
+// The output stage of the geometry: writes the scenes of a run's frames in the formats
+// asked for. Per frame: SVG, OBJ (+ MTL), PLY, PNG pictures; once for the run: the
+// animated glTF binary of every frame, the picture of the last, the MP4 of all (through
+// ffmpeg). Sets only draw scenes (interpreters/scene.h); this writes them, so several
+// sets can draw into one frame. Every file is written atomically: complete or absent.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "interpreters/formats/glb_writer.h"
+#include "interpreters/formats/renderer.h"
+#include "interpreters/formats/svg_writer.h"
+#include "interpreters/interpretation_set.h"
+#include "interpreters/scene.h"
+
+namespace ontogen {
+
+/// Which formats to write, and how; validated when a SceneOutput is created.
+struct SceneOutputDef {
+  bool writeSvg = true;        ///< write <stem>.svg each frame
+  bool writeObj = true;        ///< write <stem>.obj each frame
+  bool writeMtl = false;       ///< with the OBJ, its materials as <stem>.mtl
+  bool writePly = false;       ///< write <stem>.ply each frame
+  bool writePngFrames = false; ///< render <stem>.png each frame
+  bool writePng = false;       ///< render <stem>.png of the last frame
+  bool writeGlb = false;       ///< write <stem>.glb of every frame after the last
+  bool writeMp4 = false;       ///< write <stem>.mp4 of every frame after the last (ffmpeg)
+  double framesPerSecond = 25; ///< of the MP4
+  SvgOptions svg{};            ///< picture size and number format of the SVG
+  RenderDef render{};          ///< size and view of PNG pictures and MP4 frames
+};
+
+/// The formats `--format` accepts, in the order `ontogen help` lists them.
+inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj, ply, svg";
+
+/// Sets def's write flags from a comma-separated list of formats (kGeometryFormats),
+/// clearing the others. Returns an error message naming the bad entry, or "" on success.
+std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def);
+
+/// True when an executable named ffmpeg is on PATH.
+bool ffmpegAvailable();
+
+/// DIR/<stem>.<extension>, or DIR/<stem>_<frame, 4 digits at least>.<extension> when
+/// target.frameCount > 1.
+std::filesystem::path outputPath(const FrameTarget& target, std::string_view extension);
+
+class SceneOutput {
+ public:
+  /// Throws std::invalid_argument when def is out of range, or asks for mp4 without ffmpeg.
+  explicit SceneOutput(const SceneOutputDef& def);
+
+  /// Writes one frame's scene (and, at the run's last frame, the outputs of the whole
+  /// run); returns the paths written, SVG first. Throws OutputError on failure.
+  std::vector<std::filesystem::path> write(const Scene& scene, const FrameTarget& target);
+  const SceneOutputDef& def() const { return def_; }
+
+ private:
+  std::filesystem::path mp4FramesDirectory(const FrameTarget& target) const;
+  void writeMp4(const FrameTarget& target, std::vector<std::filesystem::path>& written);
+
+  SceneOutputDef def_;
+  GlbAnimationWriter glb_;
+  int mp4Frames_ = 0;
+};
+
+}  // namespace ontogen

@@ -1,0 +1,56 @@
+#pragma once
+// What a frame of the geometry is, as sets produce it and the output stage writes it: the
+// frame's Geometry (every line and surface, in world coordinates) and a graph of nodes
+// over it, one per cell that drew something, keyed by the cell's stable id, each with its
+// parent's id (core/parents.h), where the turtle stood when the cell began (position and
+// frame), and the ranges of the Geometry it drew. Ids persist across frames, so a node
+// can be followed over time: the joints of a creature, the rods of a physics model.
+// Several sets draw into one scene (arrows beside the geometry, a skeleton beside its
+// skin); writers read the Geometry and, where a format has nodes, the graph.
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "interpreters/geometry.h"
+
+namespace ontogen {
+
+/// The id a node has when it hangs from nothing (as core/parents.h's kNoParent).
+inline constexpr uint64_t kNoParentNode = ~uint64_t{0};
+
+/// The stretch of one node in the scene's Geometry: triangles, segments (contiguous).
+struct GeometryRange {
+  uint32_t firstTriangle = 0;
+  uint32_t triangleCount = 0;
+  uint32_t firstSegment = 0;
+  uint32_t segmentCount = 0;
+  bool empty() const { return triangleCount == 0 && segmentCount == 0; }
+};
+
+/// A cell's part of the scene.
+struct SceneNode {
+  uint64_t id = 0;                   ///< the cell's stable id (64 bits)
+  uint64_t parent = kNoParentNode;   ///< its parent's id (it may have drawn nothing)
+  glm::dvec3 position{0.0};          ///< where the turtle stood as the cell began, model units
+  /// The turtle's frame then, columns H, L, U (unit, right-handed): the node's orientation.
+  glm::dmat3 orientation{1.0};
+  GeometryRange range;               ///< what it drew
+};
+
+struct Scene {
+  double time = 0;  ///< seconds of developmental time
+  Geometry geometry;
+  std::vector<SceneNode> nodes;  ///< in the order the cells were drawn
+
+  /// The node of a cell, or null.
+  const SceneNode* find(uint64_t id) const;
+  /// Empties the scene for the next frame, keeping the tessellation settings.
+  void clear();
+  /// Appends another scene's geometry and nodes (their ranges shifted to match).
+  void append(const Scene& other);
+};
+
+}  // namespace ontogen

@@ -1,0 +1,90 @@
+// Scenes (interpreters/scene.h): the geometry set draws a node per cell keyed by its
+// stable id, with its parent, where the turtle stood and what it drew; several sets draw
+// into one frame's scene, which the run's output stage writes.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/parents.h"
+#include "interpreters/geometry/geometry_set.h"
+#include "interpreters/interpret.h"
+#include "interpreters/run.h"
+#include "tests/core/test_support.h"
+
+namespace ontogen {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Scene, ANodePerDrawingCellWithItsIdParentAndPlace) {
+  auto program = testing_support::compileOrFail("lsystem t {\n  axiom F(1) [ + F(2) ] F(3)\n}");
+  World world(program);
+  GeometrySet set;
+  set.beginFrame({});
+  interpretWord(world, set);
+  Scene scene;
+  set.contribute(scene);
+  const auto cells = world.rootPool().cells();
+  ASSERT_EQ(scene.nodes.size(), 3u) << "the F's draw; brackets and + do not";
+  const SceneNode& first = scene.nodes[0];
+  const SceneNode& branch = scene.nodes[1];
+  const SceneNode& trunk = scene.nodes[2];
+  EXPECT_EQ(first.id, cells[0].id);
+  EXPECT_EQ(first.parent, kNoParentNode);
+  EXPECT_EQ(branch.id, cells[3].id);
+  EXPECT_EQ(branch.parent, cells[0].id) << "F(2) hangs from F(1)";
+  EXPECT_EQ(trunk.id, cells[5].id);
+  EXPECT_EQ(trunk.parent, cells[0].id) << "so does F(3)";
+  // F(2) starts where F(1) ended, turned by +90 degrees; F(3) too, not turned.
+  EXPECT_NEAR(branch.position.y, 1, 1e-12);
+  EXPECT_NEAR(trunk.position.y, 1, 1e-12);
+  EXPECT_NEAR(glm::length(branch.orientation[0] - glm::dvec3(-1, 0, 0)), 0, 1e-12) << "heading after +";
+  EXPECT_NEAR(glm::length(trunk.orientation[0] - glm::dvec3(0, 1, 0)), 0, 1e-12);
+  for (const SceneNode& node : scene.nodes) EXPECT_EQ(node.range.segmentCount, 1u);
+  EXPECT_EQ(scene.geometry.segments()[branch.range.firstSegment].end.x, -2.0);
+  EXPECT_EQ(scene.find(cells[5].id), &trunk);
+}
+
+// A set of the test's own that draws a marker line under every cell beside the turtle.
+class MarkerSet final : public InterpretationSet {
+ public:
+  std::string_view name() const override { return "geometry"; }
+  bool knows(std::string_view command) const override { return command == "F"; }
+  void beginFrame(const FrameTarget&) override { drawn_.clear(); }
+  void execute(std::string_view, std::span<const double>) override {
+    const double x = static_cast<double>(drawn_.geometry.segmentCount());
+    drawn_.geometry.addSegment({x, -1, 0}, {x + 0.5, -1, 0});
+  }
+  std::vector<fs::path> endFrame() override { return {}; }
+  bool drawsScene() const override { return true; }
+  void contribute(Scene& scene) override { scene.append(drawn_); }
+
+ private:
+  Scene drawn_;
+};
+
+TEST(Scene, TwoSetsDrawIntoOneFrameAndTheOutputStageWritesIt) {
+  RunDef def;
+  def.program = testing_support::compileOrFail("lsystem t {\n  axiom F F F\n}");
+  def.stem = "both";
+  def.until = 0;
+  def.setOptions.formats = "obj";
+  def.out = fs::path(ONTOGEN_BINARY_DIR) / "scene_test";
+  fs::remove_all(def.out);
+  ontogen::Run run(std::move(def));
+  run.sets().push_back(std::make_unique<MarkerSet>());
+  const RunReport report = run.execute();
+  ASSERT_TRUE(report.ok());
+  ASSERT_EQ(report.files.size(), 2u) << "one OBJ (and its MTL) for the frame both sets drew";
+  ASSERT_EQ(report.files[0].extension(), ".obj");
+  std::ifstream in(report.files[0]);
+  int lines = 0;
+  for (std::string line; std::getline(in, line);) lines += line.rfind("l ", 0) == 0;
+  EXPECT_EQ(lines, 6) << "three F's of the turtle and three markers";
+}
+
+}  // namespace
+}  // namespace ontogen
