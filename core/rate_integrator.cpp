@@ -4,11 +4,11 @@
 #include <boost/numeric/odeint.hpp>
 
 #include "core/parallel_for.h"
+#include "core/salts.h"
 
 namespace ontogen {
 
 namespace {
-constexpr uint64_t kRateSalt = 0x52415445ull;  // draws in rate expressions
 
 bool draws(const CompiledRule& rule) {
   for (const StateCalculation& calculation : rule.calculations)

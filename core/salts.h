@@ -1,5 +1,6 @@
 #pragma once
-// The constants that keep ontogen's random streams and ids apart, in one place: every
+// The constants that keep ontogen's random streams and ids apart, in one place (the
+// noise functions' own salt stays with them in lang/noise.cpp, below core): every
 // stochastic choice draws from a stream keyed by (seed ^ salt, cell id, instant), and
 // changing one of these changes every stochastic model's output, so they never move.
 
@@ -14,6 +15,10 @@ inline constexpr uint64_t kStepRuleSalt = 0x5354455052554c45ull;  // "STEPRULE"
 inline constexpr uint64_t kDevelopSalt = 0x444556454c4f50ull;  // "DEVELOP"
 /// Values of grid placements (`fill A(gaussian(0, 1))`).
 inline constexpr uint64_t kPlacementSalt = 0x504c414345ull;  // "PLACE"
+/// Draws in `rate` expressions.
+inline constexpr uint64_t kRateSalt = 0x52415445ull;  // "RATE"
+/// Draws of interpretation blocks (interpreters/interpret.cpp).
+inline constexpr uint64_t kInterpretSalt = 0x494e54455250ull;  // "INTERP"
 /// Ids of a world's axiom cells start from this, mixed with the system's index.
 inline constexpr uint64_t kWorldIdSalt = 0x6f6e746f67656eull;  // "ontogen"
 

@@ -2,11 +2,11 @@
 
 #include "core/cell_frame.h"
 #include "core/parents.h"
+#include "core/salts.h"
 
 namespace ontogen {
 
 namespace {
-constexpr uint64_t kInterpretSalt = 0x494e54455250ull;  // draws of interpretation blocks
 
 // One pool, then (recursively) the pools of its system cells.
 void interpretPool(const World& world, InterpretationSet& set) {

@@ -341,4 +341,32 @@ TEST(Cli, SurfaceFilesLoadRelativeToTheProgramAndBadOnesStopTheRun) {
       << file.err;
 }
 
+// Every cell of `word --json` has its stable id and the id of the cell it hangs from:
+// ABOP's axial tree in a bracketed word, the system cell above a nested pool, -1 for none;
+// a joint rewritten with `=X` keeps its id from one time to the next.
+TEST(Cli, WordJsonGivesIdsAndParents) {
+  fs::path dir = scratch("ids");
+  fs::path program = writeProgram(dir, "system leaf { pool linear; axiom L; }\ncell L { }\n"
+                                       "lsystem t {\n  axiom F(1) [ + F(2) ] F(3) (sw, 0) leaf\n"
+                                       "  (sw, 1) -> =(su, 0)\n}\n");
+  Result result = ontogen("word " + program.string() + " --at 0,1.5 --json --system t");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  nlohmann::json word = nlohmann::json::parse(result.out);
+  const auto& cells = word["times"][0]["cells"];
+  ASSERT_EQ(cells.size(), 8u);
+  EXPECT_EQ(cells[0]["parent"], -1);
+  const auto f1 = cells[0]["id"];
+  EXPECT_EQ(cells[3]["label"], "F");
+  EXPECT_EQ(cells[3]["parent"], f1) << "F(2) hangs from F(1)";
+  EXPECT_EQ(cells[5]["parent"], f1) << "F(3) hangs from F(1)";
+  EXPECT_EQ(cells[6]["parent"], cells[5]["id"]) << "sw hangs from F(3)";
+  const auto& system = cells[7];
+  ASSERT_EQ(system["pool"].size(), 1u);
+  EXPECT_EQ(system["pool"][0]["parent"], system["id"]) << "a nested pool hangs from its system cell";
+  const auto& later = word["times"][1]["cells"];
+  EXPECT_EQ(later[6]["label"], "su");
+  EXPECT_EQ(later[6]["id"], cells[6]["id"]) << "=su keeps sw's identity";
+  EXPECT_EQ(later[0]["id"], f1) << "ids are stable while a cell lives";
+}
+
 }  // namespace
