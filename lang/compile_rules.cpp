@@ -111,44 +111,44 @@ int registerAggregate(CompileContext& ctx, const ast::Expr& call, DiagnosticSink
   return static_cast<int>(queries.size() - 1);
 }
 
-CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master, int scopeIndex, const Scope& scope,
-                         bool lsystem) {
-  ctx.reader = Reader{master, -1};
-  CompiledRule compiled;
-  compiled.name = rule.name;
-  compiled.span = rule.span;
+// The names of a rule's frame as they bind: the cell's state (in an L-system, the
+// predecessor's parameters) first, then the parameters of its context modules.
+struct RuleFrame {
+  RuleFrame(CompileContext& ctx, int master, int moduleScope)
+      : ctx(ctx),
+        moduleScope(moduleScope),
+        label(ctx.program->masters[master].label),
+        stateNames(ctx.program->masters[master].stateNames),
+        nextSlot(stateCount() + FrameSlot::kCount) {}
+
+  CompileContext& ctx;
+  int moduleScope;  // where context labels resolve: the L-system's index, -1 for cells
   // Copies, not a reference: resolving context and successor labels may add masters.
-  struct {
-    std::string label;
-    std::vector<std::string> stateNames;
-  } self{ctx.program->masters[master].label, ctx.program->masters[master].stateNames};
-  const int stateCount = static_cast<int>(self.stateNames.size());
-  std::map<std::string, int, std::less<>> slots;
-  std::map<std::string, SourceSpan, std::less<>> where;
-  auto bind = [&](const std::string& name, int slot, SourceSpan span) {
+  std::string label;
+  std::vector<std::string> stateNames;
+  SlotMap slots;
+  std::map<std::string, SourceSpan, std::less<>> boundAt;  // the names this rule binds, where
+  int nextSlot;
+
+  int stateCount() const { return static_cast<int>(stateNames.size()); }
+
+  void bind(const std::string& name, int slot, SourceSpan span) {
     if (isReadOnlyName(name)) {
       ctx.sink.error(span, "'" + name + "' is read-only internal state and cannot be a parameter name");
       return;
     }
     if (slots.emplace(name, slot).second) {
-      where[name] = span;
-    } else if (!where.count(name)) {
-      ctx.sink.error(span, "'" + name + "' is already a state variable of '" + self.label + "'");
+      boundAt[name] = span;
+    } else if (!boundAt.count(name)) {
+      ctx.sink.error(span, "'" + name + "' is already a state variable of '" + label + "'");
     } else {
       ctx.sink.error(span, "'" + name + "' is already bound in this rule (at line " +
-                               std::to_string(where[name].line()) + ":" + std::to_string(where[name].column()) + ")");
+                               std::to_string(boundAt[name].line()) + ":" + std::to_string(boundAt[name].column()) +
+                               ")");
     }
-  };
-  if (lsystem) {
-    for (size_t i = 0; i < rule.predecessor.args.size(); ++i)
-      bind(rule.predecessor.args[i]->name, static_cast<int>(i), rule.predecessor.args[i]->span);
-  } else {
-    for (int i = 0; i < stateCount; ++i) slots[self.stateNames[i]] = i;
-    if (rule.predecessor.isMe && rule.predecessor.hasArgs)
-      ctx.sink.error(rule.predecessor.span, "'me' takes no parameters; the cell's state is read by name");
   }
-  int nextSlot = stateCount + FrameSlot::kCount;
-  auto contextBinding = [&](const ast::Module& module, bool leftSide) {
+
+  ContextBinding contextBinding(const ast::Module& module, bool leftSide) {
     ContextBinding binding;
     if (module.label == "[" || module.label == "]") {
       if (leftSide)
@@ -156,7 +156,7 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
       binding.item.kind = module.label == "[" ? ContextItem::Kind::BranchOpen : ContextItem::Kind::BranchClose;
       return binding;
     }
-    int contextMaster = ctx.resolveModule(module, lsystem ? scopeIndex : -1);
+    int contextMaster = ctx.resolveModule(module, moduleScope);
     binding.item.master = static_cast<uint32_t>(contextMaster);
     if (!module.args.empty()) {
       binding.firstSlot = nextSlot;
@@ -168,66 +168,75 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
       for (const auto& arg : module.args) bind(arg->name, nextSlot++, arg->span);
     }
     return binding;
-  };
+  }
+};
+
+// `A < me > B`, `(A) (B me C) (D)`: the modules around the cell and the frame slots
+// their parameters take.
+void compileContext(RuleFrame& frame, const ast::Rule& rule, CompiledRule& compiled) {
+  DiagnosticSink& sink = frame.ctx.sink;
   // Left context nearest first.
-  for (auto it = rule.left.rbegin(); it != rule.left.rend(); ++it) compiled.left.push_back(contextBinding(*it, true));
-  for (const auto& module : rule.right) compiled.right.push_back(contextBinding(module, false));
+  for (auto it = rule.left.rbegin(); it != rule.left.rend(); ++it)
+    compiled.left.push_back(frame.contextBinding(*it, true));
+  for (const auto& module : rule.right) compiled.right.push_back(frame.contextBinding(module, false));
   compiled.contextDimensions = rule.contextDimensions;
   for (size_t k = 0; k < rule.offsets.size() && k < compiled.right.size(); ++k) {
     compiled.right[k].offset = rule.offsets[k];
     if (compiled.right[k].item.kind != ContextItem::Kind::Module)
-      ctx.sink.error(rule.right[k].span, "brackets have no place in a context of " +
-                                             std::to_string(rule.contextDimensions) + " dimensions");
+      sink.error(rule.right[k].span,
+                 "brackets have no place in a context of " + std::to_string(rule.contextDimensions) + " dimensions");
   }
-  compiled.frameSize = nextSlot;
+  compiled.frameSize = frame.nextSlot;
   for (const auto& binding : compiled.left) compiled.leftItems.push_back(binding.item);
   for (const auto& binding : compiled.right) compiled.rightItems.push_back(binding.item);
   if (compiled.leftItems.size() > kMaxContextItems || compiled.rightItems.size() > kMaxContextItems)
-    ctx.sink.error(rule.span, "a context has at most " + std::to_string(kMaxContextItems) + " modules on each side");
+    sink.error(rule.span, "a context has at most " + std::to_string(kMaxContextItems) + " modules on each side");
+}
 
-  NameLookup names = ctx.frameLookup(slots, stateCount, scope);
-  names.aggregate = [&ctx, &compiled, moduleScope = lsystem ? scopeIndex : -1](const ast::Expr& call,
-                                                                               DiagnosticSink& sink) {
-    return registerAggregate(ctx, call, sink, compiled.aggregates, moduleScope);
-  };
-  if (rule.predicate) compiled.predicate = compileExpression(*rule.predicate, names, ctx.sink);
+// `x = e`, `x += e`, `rate(x) = e`: a cell writes its own state only.
+void compileCalculations(const RuleFrame& frame, const ast::Rule& rule, bool lsystem, const NameLookup& names,
+                         CompiledRule& compiled) {
+  DiagnosticSink& sink = frame.ctx.sink;
   for (const auto& assignment : rule.calculations) {
     StateCalculation calculation;
     calculation.span = assignment.span;
     if (assignment.isRate) {
       if (lsystem) {
-        ctx.sink.error(assignment.span, "'rate' belongs to the cell language; write the module as a cell");
+        sink.error(assignment.span, "'rate' belongs to the cell language; write the module as a cell");
         continue;
       }
       if (rule.terminal) {
-        ctx.sink.error(assignment.span, "'rate' integrates while a cell lives; a terminal rule fires once");
+        sink.error(assignment.span, "'rate' integrates while a cell lives; a terminal rule fires once");
         continue;
       }
       if (assignment.op != TokenKind::Equal) {
-        ctx.sink.error(assignment.span, "write 'rate(x) = e': the rate is the derivative itself");
+        sink.error(assignment.span, "write 'rate(x) = e': the rate is the derivative itself");
         continue;
       }
       calculation.isRate = true;
     }
     if (isReadOnlyName(assignment.target) || internalSlot(assignment.target) >= 0) {
-      ctx.sink.error(assignment.targetSpan, "'" + assignment.target + "' is read-only internal state");
+      sink.error(assignment.targetSpan, "'" + assignment.target + "' is read-only internal state");
       continue;
     }
-    auto it = std::find(self.stateNames.begin(), self.stateNames.end(), assignment.target);
-    if (lsystem || it == self.stateNames.end()) {
-      ctx.sink.error(assignment.targetSpan,
-                     slots.count(assignment.target)
-                         ? "'" + assignment.target + "' belongs to a neighbour; a cell writes only its own state"
-                         : "'" + assignment.target + "' is not a state variable of '" + self.label + "'");
+    auto it = std::find(frame.stateNames.begin(), frame.stateNames.end(), assignment.target);
+    if (lsystem || it == frame.stateNames.end()) {
+      sink.error(assignment.targetSpan,
+                 frame.slots.count(assignment.target)
+                     ? "'" + assignment.target + "' belongs to a neighbour; a cell writes only its own state"
+                     : "'" + assignment.target + "' is not a state variable of '" + frame.label + "'");
       continue;
     }
-    calculation.slot = static_cast<int>(it - self.stateNames.begin());
-    calculation.value = compileExpression(*combine(assignment), names, ctx.sink);
+    calculation.slot = static_cast<int>(it - frame.stateNames.begin());
+    calculation.value = compileExpression(*combine(assignment), names, sink);
     (calculation.isRate ? compiled.hasRate : compiled.hasDiscrete) = true;
     compiled.calculations.push_back(std::move(calculation));
   }
-  compiled.hasAction = rule.hasAction;
-  if (rule.hasAction) compiled.hasDiscrete = true;
+}
+
+// `-> me B(x / 2) (C, 0.5)`: the cells a rule makes, at most one keeping the identity.
+void compileSuccessors(CompileContext& ctx, const ast::Rule& rule, int moduleScope, bool lsystem,
+                       const NameLookup& names, CompiledRule& compiled) {
   const ast::Module* identityKeeper = nullptr;  // `me` or `=X`: one cell goes on with the id
   for (const auto& successor : rule.successors) {
     SuccessorTemplate result;
@@ -247,7 +256,7 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
       compiled.successors.push_back(std::move(result));
       continue;
     }
-    int successorMaster = ctx.resolveModule(successor, lsystem ? scopeIndex : -1);
+    int successorMaster = ctx.resolveModule(successor, moduleScope);
     result.master = static_cast<uint32_t>(successorMaster);
     const MasterCell& target = ctx.program->masters[successorMaster];
     for (uint32_t i = 0; i < target.stateCount(); ++i) {
@@ -262,6 +271,35 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
     result.stateless = target.stateCount() == 0 && bornAtZero && target.lifetime > 0;
     compiled.successors.push_back(std::move(result));
   }
+}
+
+CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master, int scopeIndex, const Scope& scope,
+                         bool lsystem) {
+  ctx.reader = Reader{master, -1};
+  CompiledRule compiled;
+  compiled.name = rule.name;
+  compiled.span = rule.span;
+  const int moduleScope = lsystem ? scopeIndex : -1;
+  RuleFrame frame(ctx, master, moduleScope);
+  if (lsystem) {
+    for (size_t i = 0; i < rule.predecessor.args.size(); ++i)
+      frame.bind(rule.predecessor.args[i]->name, static_cast<int>(i), rule.predecessor.args[i]->span);
+  } else {
+    for (int i = 0; i < frame.stateCount(); ++i) frame.slots[frame.stateNames[i]] = i;
+    if (rule.predecessor.isMe && rule.predecessor.hasArgs)
+      ctx.sink.error(rule.predecessor.span, "'me' takes no parameters; the cell's state is read by name");
+  }
+  compileContext(frame, rule, compiled);
+
+  NameLookup names = ctx.frameLookup(frame.slots, frame.stateCount(), scope);
+  names.aggregate = [&ctx, &compiled, moduleScope](const ast::Expr& call, DiagnosticSink& sink) {
+    return registerAggregate(ctx, call, sink, compiled.aggregates, moduleScope);
+  };
+  if (rule.predicate) compiled.predicate = compileExpression(*rule.predicate, names, ctx.sink);
+  compileCalculations(frame, rule, lsystem, names, compiled);
+  compiled.hasAction = rule.hasAction;
+  if (rule.hasAction) compiled.hasDiscrete = true;
+  compileSuccessors(ctx, rule, moduleScope, lsystem, names, compiled);
   if (rule.probability) {
     compiled.probability = compileExpression(*rule.probability, names, ctx.sink);
     if (compiled.probability.isConstant() && !(compiled.probability.constantValue() >= 0))
