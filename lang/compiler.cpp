@@ -19,7 +19,9 @@ namespace ontogen {
 namespace detail {
 
 // Helpers of the stages, until each stage has a file of its own.
-void finishMasters(CompileContext& ctx);
+void resolveCommands(CompileContext& ctx);
+void classifySymbols(CompileContext& ctx);
+void summariseSystems(CompileContext& ctx);
 std::vector<bool> reachable(const CompileContext& ctx, const SystemDefinition& system);
 bool visibleIn(const MasterCell& master, int system);
 bool checkCycles(CompileContext& ctx, const SystemTree& tree);
@@ -103,15 +105,20 @@ void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block
   ctx.program->masters[master].interpretations.push_back(std::move(compiled));
 }
 
-// ---- finishing ----
-void finishMasters(CompileContext& ctx) {
+// The instruction each master stands for (its label, or the command an equiv names),
+// and the brackets among them.
+void resolveCommands(CompileContext& ctx) {
   for (auto& master : ctx.program->masters) {
-    const Scope* scope = master.scope >= 0 ? ctx.scopes[master.scope].get() : &ctx.global;
-    const std::string* equiv = scope->findEquiv(master.label);
+    const std::string* equiv = ctx.scopeOf(master).findEquiv(master.label);
     master.command = equiv ? *equiv : master.label;
     if (master.command == "[") master.symbolClass = kSymbolBranchOpen;
     if (master.command == "]") master.symbolClass = kSymbolBranchClose;
   }
+}
+
+// Per system, the class of every master: branch brackets, and the symbols its
+// `ignore:` or `consider:` list leaves out of context matching.
+void classifySymbols(CompileContext& ctx) {
   for (auto& [index, system] : ctx.ignoreLists) {
     SystemDefinition& definition = ctx.program->systems[index];
     definition.symbolClass.resize(ctx.program->masters.size());
@@ -131,6 +138,12 @@ void finishMasters(CompileContext& ctx) {
       if (inList != consider) definition.symbolClass[m] |= kSymbolIgnored;
     }
   }
+}
+
+// What each system's engine needs to know of the cells its pool can hold (terminal
+// rules reading context, randomness, per-step rules, rates), and whether their rules
+// fit the pool.
+void summariseSystems(CompileContext& ctx) {
   for (size_t s = 0; s < ctx.program->systems.size(); ++s) {
     SystemDefinition& definition = ctx.program->systems[s];
     std::vector<bool> grows = reachable(ctx, definition);
@@ -280,7 +293,9 @@ std::unique_ptr<Program> run(CompileContext& ctx, std::vector<std::shared_ptr<co
   compileCells(ctx);
   for (size_t i = 0; i < ctx.tree.systems.size(); ++i) compileSystem(ctx, ctx.tree.systems[i], static_cast<int>(i));
   attachDevelopmentFunctions(ctx);
-  finishMasters(ctx);
+  resolveCommands(ctx);
+  classifySymbols(ctx);
+  summariseSystems(ctx);
   if (!ctx.sink.hasErrors()) {
     SystemTree tree(*ctx.program);
     if (checkCycles(ctx, tree)) {
