@@ -60,5 +60,7 @@ void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block
                            const std::vector<std::string>* params = nullptr, const Scope* scope = nullptr);
 /// An L-system's `interpret SET X(a) { ... }` blocks.
 void compileSymbolInterpretations(CompileContext& ctx, const ast::System& system, const Scope& scope, int index);
+/// The instruction each master stands for (its label, or the command an equiv names).
+void resolveCommands(CompileContext& ctx);
 
 }  // namespace ontogen::detail
