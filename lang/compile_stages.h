@@ -34,7 +34,7 @@ void attachDevelopmentFunctions(CompileContext& ctx);
 void compileDirectives(CompileContext& ctx, const std::vector<ast::Setting>& list, InterpretSettings& target,
                        const Scope& scope);
 
-// ---- lang/compile_systems.cpp: systems, pools, axioms, placements ----
+// ---- lang/compile_systems.cpp: systems, pools, axioms, placements, symbol classes ----
 
 /// A system's label and state, as a cell that stands for it in its parents' pools.
 void declareSystemCells(CompileContext& ctx);
@@ -42,6 +42,8 @@ void declareSystemCells(CompileContext& ctx);
 void declareSystem(CompileContext& ctx, const ast::System& system, int index);
 /// Its productions, axiom, interpretation blocks and placements.
 void compileSystem(CompileContext& ctx, const ast::System& system, int index);
+/// Per system, the class of every master (brackets, ignored symbols), once every master exists.
+void classifySymbols(CompileContext& ctx);
 
 // ---- lang/compile_rules.cpp: cells, rules, productions ----
 
@@ -62,5 +64,14 @@ void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block
 void compileSymbolInterpretations(CompileContext& ctx, const ast::System& system, const Scope& scope, int index);
 /// The instruction each master stands for (its label, or the command an equiv names).
 void resolveCommands(CompileContext& ctx);
+
+// ---- lang/program_checks.cpp: the whole program, once every master exists ----
+
+/// Each system's engine flags (terminal context, randomness, per-step rules, rates) and
+/// the checks that its cells' rules fit its pool.
+void summariseSystems(CompileContext& ctx);
+/// The system tree: no system contains itself; the root (CompileOptions::rootSystem or
+/// the first system no other contains); every `parent.x` read reaches systems with x.
+void checkSystemTree(CompileContext& ctx);
 
 }  // namespace ontogen::detail

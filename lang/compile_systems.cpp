@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 
 #include "lang/compile_stages.h"
@@ -272,6 +273,30 @@ void compileSystem(CompileContext& ctx, const ast::System& system, int index) {
                                          " cells, more than the grid's " +
                                          std::to_string(ctx.program->systems[index].grid.siteCount()) + " sites");
   ctx.ignoreLists.push_back({index, &system});
+}
+
+// Per system, the class of every master: branch brackets, and the symbols its
+// `ignore:` or `consider:` list leaves out of context matching.
+void classifySymbols(CompileContext& ctx) {
+  for (auto& [index, system] : ctx.ignoreLists) {
+    SystemDefinition& definition = ctx.program->systems[index];
+    definition.symbolClass.resize(ctx.program->masters.size());
+    for (size_t m = 0; m < ctx.program->masters.size(); ++m)
+      definition.symbolClass[m] = ctx.program->masters[m].symbolClass;
+    if (!system->ignore.empty() && !system->consider.empty())
+      ctx.sink.error(system->consider.front().span, "a system has either 'ignore' or 'consider', not both");
+    std::set<std::string> listed;
+    for (const auto& list : system->ignore) listed.insert(list.symbols.begin(), list.symbols.end());
+    for (const auto& list : system->consider) listed.insert(list.symbols.begin(), list.symbols.end());
+    bool consider = !system->consider.empty();
+    if (listed.empty()) continue;
+    for (size_t m = 0; m < ctx.program->masters.size(); ++m) {
+      const MasterCell& master = ctx.program->masters[m];
+      if (master.symbolClass != kSymbolModule) continue;
+      bool inList = listed.count(master.label) > 0;
+      if (inList != consider) definition.symbolClass[m] |= kSymbolIgnored;
+    }
+  }
 }
 
 }  // namespace ontogen::detail
