@@ -335,7 +335,6 @@ void declareCells(CompileContext& ctx) {
   }
 }
 
-// ---- cells ----
 void compileCells(CompileContext& ctx) {
   for (const auto& cell : ctx.tree.cells) {
     auto it = ctx.cellMaster.find(&cell);
