@@ -1,6 +1,6 @@
-// The directive table (lang/directives.h) against the parser and the compiler: every
-// row parses and applies where its owner says, an unknown name is rejected with the
-// table's list, every range is enforced with the row's message.
+// The directive table (lang/directives.h) against the parser, the compiler and
+// docs/LANGUAGE.md: every row parses and applies where its owner says, an unknown name
+// is rejected with the table's list, every range is enforced with the row's message.
 
 #include "lang/directives.h"
 
@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -251,6 +253,43 @@ TEST(Directives, RangesAreDescribedAsHelpPrintsThem) {
   EXPECT_EQ(describeValues(*findDirective("angle")), "any");
   EXPECT_EQ(describeValues(*findDirective("music")), "sequential or developmental");
   EXPECT_EQ(describeValues(*findDirective("timesig")), "N 1 to 255, D 1, 2, 4 ... 64");
+}
+
+// docs/LANGUAGE.md section 3.2 names every directive of the table in its grammar and in
+// its table of meanings, and no other.
+TEST(Directives, LanguageSection32ListsTheSameDirectives) {
+  std::ifstream in(std::string(ONTOGEN_SOURCE_DIR) + "/docs/LANGUAGE.md");
+  ASSERT_TRUE(in) << "docs/LANGUAGE.md";
+  std::string line, section;
+  bool inSection = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("### 3.2 ", 0) == 0)
+      inSection = true;
+    else if (inSection && line.rfind("### ", 0) == 0)
+      break;
+    if (inSection) section += line + "\n";
+  }
+  ASSERT_FALSE(section.empty());
+  std::set<std::string> table;
+  for (const Directive& directive : directives()) table.insert(std::string(directive.name));
+
+  std::set<std::string> grammar, rows;
+  const size_t open = section.find("```"), close = section.find("```", open + 3);
+  ASSERT_NE(close, std::string::npos);
+  const std::string ebnf = section.substr(open, close - open);
+  const std::regex quoted("\"#([a-z]+)\"");
+  for (auto it = std::sregex_iterator(ebnf.begin(), ebnf.end(), quoted); it != std::sregex_iterator(); ++it)
+    grammar.insert((*it)[1]);
+  std::istringstream lines(section);
+  const std::regex name("`#([a-z]+)");
+  while (std::getline(lines, line)) {
+    if (line.rfind("| `#", 0) != 0) continue;
+    const std::string first = line.substr(0, line.find('|', 1));
+    for (auto it = std::sregex_iterator(first.begin(), first.end(), name); it != std::sregex_iterator(); ++it)
+      rows.insert((*it)[1]);
+  }
+  EXPECT_EQ(grammar, table);
+  EXPECT_EQ(rows, table);
 }
 
 }  // namespace
