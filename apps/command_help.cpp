@@ -1,5 +1,7 @@
 #include <iomanip>
 #include <iostream>
+#include <string>
+#include <string_view>
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
@@ -7,8 +9,34 @@
 #include "interpreters/music/music_commands.h"
 #include "interpreters/set_registry.h"
 #include "lang/builtins.h"
+#include "lang/directives.h"
 
 namespace ontogen::app {
+
+namespace {
+
+// `text` and the spaces that fill it to `width` columns (a column per code point, so
+// "≥" takes one), at least two.
+std::string padded(std::string_view text, size_t width) {
+  size_t columns = 0;
+  for (unsigned char c : text) columns += (c & 0xC0) != 0x80;
+  return std::string(text) + std::string(columns + 2 > width ? 2 : width - columns, ' ');
+}
+
+void printDirectives() {
+  std::cout << "\nDirectives (docs/LANGUAGE.md section 3.2), by the settings they belong to:\n";
+  for (DirectiveOwner owner :
+       {DirectiveOwner::Constants, DirectiveOwner::World, DirectiveOwner::Geometry, DirectiveOwner::Music}) {
+    std::cout << "  " << directiveOwnerName(owner) << "\n";
+    for (const Directive& directive : directives()) {
+      if (directive.owner != owner) continue;
+      std::cout << "    " << padded(directive.syntax, 24) << padded(directiveKindName(directive.kind), 16)
+                << padded(describeValues(directive), 30) << directive.doc << "\n";
+    }
+  }
+}
+
+}  // namespace
 
 int runHelp() {
   std::cout << "ontogen: grows cell-language programs and realises them as geometry, music and text.\n\n"
@@ -38,6 +66,7 @@ int runHelp() {
   std::cout << "\nConstants:\n";
   for (const BuiltinConstant& constant : builtinConstants())
     std::cout << "  " << std::left << std::setw(22) << constant.name << constant.doc << "\n";
+  printDirectives();
   return kExitOk;
 }
 

@@ -11,6 +11,10 @@
 #include "lang/source.h"
 #include "lang/token.h"
 
+namespace ontogen {
+struct Directive;  // lang/directives.h
+}  // namespace ontogen
+
 namespace ontogen::ast {
 
 struct Expr;
@@ -82,13 +86,14 @@ struct Equiv {
   std::string symbol;
 };
 
-/// `#angle 90`, `#radians` ...: interpretation settings.
+/// `#angle 90`, `#radians`, `#timesig 3/4` ...: a directive other than #define, with its
+/// value as written; its row of the directive table says what the value is.
 struct Setting {
   SourceSpan span;
-  std::string name;
-  ExprPtr value;  ///< may be null (#radians)
-  std::string word = {};  ///< the word after #music
-  int numerator = 0;      ///< #timesig N/D
+  const Directive* directive = nullptr;  ///< never null in a parsed program
+  ExprPtr value = nullptr;               ///< Number, Integer, NumberedFile: the value's expression
+  std::string word = {};                 ///< Word: the word; NumberedFile: the file path as written
+  int numerator = 0;                     ///< TimeSignature N/D
   int denominator = 0;
 };
 

@@ -7,12 +7,14 @@
 #include <functional>
 #include <optional>
 
+#include "lang/directives.h"
 #include "lang/lexer.h"
 
 namespace ontogen {
 namespace {
 
 using namespace ast;
+using ast::Program;  // not ontogen::Program, which lang/directives.h declares
 
 // Thrown to unwind to the enclosing statement after an error was reported (or, while
 // speculating, instead of reporting it).
@@ -193,63 +195,85 @@ class Parser {
     }
   }
 
+  // What follows a directive's name depends on its kind (lang/directives.h).
   void directiveBody(const Token& hash, std::vector<Define>& defines, std::vector<Setting>& settings) {
     inStatement(Statement{true, INT_MAX}, [&] {
-      if (hash.text == "define") {
-        Define define;
-        const Token& name = peek();
-        if (name.kind != TokenKind::Identifier) failHere("a name after #define");
-        advance();
-        define.name = name.text;
-        if (atStatementEnd()) fail(name.span, "expected a value after '#define " + name.text + "'");
-        define.value = expression();
-        define.span = hash.span.to(previous().span);
-        defines.push_back(std::move(define));
-      } else if (hash.text == "angle" || hash.text == "yawangle" || hash.text == "length" ||
-                 hash.text == "radius" || hash.text == "seed" || hash.text == "until" || hash.text == "dt" ||
-                 hash.text == "tolerance" || hash.text == "tempo" || hash.text == "ppq" || hash.text == "midiformat") {
-        Setting setting{hash.span, hash.text, nullptr};
-        if (atStatementEnd()) fail(hash.span, "expected a value after '#" + hash.text + "'");
-        setting.value = expression();
-        setting.span = hash.span.to(previous().span);
-        settings.push_back(std::move(setting));
-      } else if (hash.text == "surface") {
-        Setting setting{hash.span, hash.text, nullptr};
-        if (atStatementEnd()) fail(hash.span, "expected a surface number and an OBJ file after '#surface', as in #surface 1 \"bud.obj\"");
-        setting.value = expression();
-        if (!check(TokenKind::String) || peek().line != hash.line)
-          fail(hash.span.to(previous().span), "expected the OBJ file in double quotes after the surface number, as in #surface 1 \"bud.obj\"");
-        const Token& path = advance();
-        setting.word = path.text;
-        setting.span = hash.span.to(path.span);
-        settings.push_back(std::move(setting));
-      } else if (hash.text == "radians" || hash.text == "degrees") {
-        settings.push_back(Setting{hash.span, hash.text, nullptr});
-      } else if (hash.text == "music") {
-        const Token& word = peek();
-        if (word.kind != TokenKind::Identifier || (word.text != "sequential" && word.text != "developmental"))
-          failHere("'sequential' or 'developmental' after #music");
-        advance();
-        settings.push_back(Setting{hash.span.to(word.span), hash.text, nullptr, word.text});
-      } else if (hash.text == "timesig") {
-        // Written as musicians write it, 6/8: two whole numbers, not a division.
-        const Token& top = peek();
-        if (top.kind != TokenKind::Number || top.number != std::floor(top.number) || top.number < 1 || top.number > 255)
-          failHere("a time signature such as 3/4 after #timesig (beats per bar 1 to 255)");
-        advance();
-        if (!match(TokenKind::Slash)) failHere("'/' in the time signature, as in #timesig 3/4");
-        const Token& bottom = peek();
-        int d = bottom.kind == TokenKind::Number && bottom.number == std::floor(bottom.number) ? static_cast<int>(bottom.number) : 0;
-        if (d < 1 || d > 64 || (d & (d - 1)) != 0) failHere("a note value 1, 2, 4, 8, 16, 32 or 64 below the '/' of #timesig");
-        advance();
-        settings.push_back(Setting{hash.span.to(bottom.span), hash.text, nullptr, "", static_cast<int>(top.number), d});
-      } else {
-        fail(hash.span, "unknown directive '#" + hash.text +
-                            "' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, #seed, #until, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, #surface)");
+      const Directive* directive = findDirective(hash.text);
+      if (!directive) fail(hash.span, unknownDirectiveMessage(hash.text));
+      switch (directive->kind) {
+        case DirectiveKind::Define: defines.push_back(defineStatement(hash)); break;
+        case DirectiveKind::Number:
+        case DirectiveKind::Integer: settings.push_back(numberSetting(hash, *directive)); break;
+        case DirectiveKind::Flag: settings.push_back(Setting{hash.span, directive}); break;
+        case DirectiveKind::Word: settings.push_back(wordSetting(hash, *directive)); break;
+        case DirectiveKind::TimeSignature: settings.push_back(timeSignature(hash, *directive)); break;
+        case DirectiveKind::NumberedFile: settings.push_back(numberedFile(hash, *directive)); break;
       }
       if (match(TokenKind::Semicolon)) return;
       if (!atStatementEnd()) failHere("the end of the line after the directive");
     });
+  }
+
+  Define defineStatement(const Token& hash) {
+    Define define;
+    const Token& name = peek();
+    if (name.kind != TokenKind::Identifier) failHere("a name after #define");
+    advance();
+    define.name = name.text;
+    if (atStatementEnd()) fail(name.span, "expected a value after '#define " + name.text + "'");
+    define.value = expression();
+    define.span = hash.span.to(previous().span);
+    return define;
+  }
+
+  Setting numberSetting(const Token& hash, const Directive& directive) {
+    Setting setting{hash.span, &directive};
+    if (atStatementEnd()) fail(hash.span, "expected a value after '#" + hash.text + "'");
+    setting.value = expression();
+    setting.span = hash.span.to(previous().span);
+    return setting;
+  }
+
+  Setting wordSetting(const Token& hash, const Directive& directive) {
+    const Token& word = peek();
+    if (word.kind != TokenKind::Identifier ||
+        std::find(directive.words.begin(), directive.words.end(), word.text) == directive.words.end())
+      failHere(wordChoices(directive) + " after #" + hash.text);
+    advance();
+    return Setting{hash.span.to(word.span), &directive, nullptr, word.text};
+  }
+
+  // Written as musicians write it, 6/8: two whole numbers, not a division.
+  Setting timeSignature(const Token& hash, const Directive& directive) {
+    const Token& top = peek();
+    if (top.kind != TokenKind::Number || !directive.accepts(top.number))
+      failHere("a time signature such as 3/4 after #" + hash.text + " (beats per bar " +
+               describeRange(directive.range) + ")");
+    advance();
+    if (!match(TokenKind::Slash)) failHere("'/' in the time signature, as in #" + hash.text + " 3/4");
+    const Token& bottom = peek();
+    int d = bottom.kind == TokenKind::Number && bottom.number == std::floor(bottom.number)
+                ? static_cast<int>(bottom.number)
+                : 0;
+    if (!isNoteValue(d)) failHere("a note value " + noteValueChoices() + " below the '/' of #" + hash.text);
+    advance();
+    return Setting{hash.span.to(bottom.span), &directive, nullptr, "", static_cast<int>(top.number), d};
+  }
+
+  // #surface, the one directive of this kind, names its number and file in its messages.
+  Setting numberedFile(const Token& hash, const Directive& directive) {
+    Setting setting{hash.span, &directive};
+    if (atStatementEnd())
+      fail(hash.span, "expected a surface number and an OBJ file after '#" + hash.text +
+                          "', as in #surface 1 \"bud.obj\"");
+    setting.value = expression();
+    if (!check(TokenKind::String) || peek().line != hash.line)
+      fail(hash.span.to(previous().span),
+           "expected the OBJ file in double quotes after the surface number, as in #surface 1 \"bud.obj\"");
+    const Token& path = advance();
+    setting.word = path.text;
+    setting.span = hash.span.to(path.span);
+    return setting;
   }
 
   Equiv equiv(Statement statement) {

@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
 #include <sstream>
 
 namespace {
@@ -367,6 +369,40 @@ TEST(Cli, WordJsonGivesIdsAndParents) {
   EXPECT_EQ(later[6]["label"], "su");
   EXPECT_EQ(later[6]["id"], cells[6]["id"]) << "=su keeps sw's identity";
   EXPECT_EQ(later[0]["id"], f1) << "ids are stable while a cell lives";
+}
+
+// `ontogen help` prints the directive table: a line per directive under the settings it
+// belongs to. The directives are those docs/LANGUAGE.md section 3.2 lists, which
+// tests/lang/directives_test.cpp holds to the table itself.
+TEST(Cli, HelpListsEveryDirective) {
+  std::ifstream doc(std::string(ONTOGEN_SOURCE_DIR) + "/docs/LANGUAGE.md");
+  std::string line, section;
+  for (bool in = false; std::getline(doc, line);) {
+    if (line.rfind("### ", 0) == 0) in = line.rfind("### 3.2 ", 0) == 0;
+    if (in && line.rfind("| `#", 0) == 0) section += line.substr(0, line.find('|', 1)) + "\n";
+  }
+  std::set<std::string> documented;
+  const std::regex name("`#([a-z]+)");
+  for (auto it = std::sregex_iterator(section.begin(), section.end(), name); it != std::sregex_iterator(); ++it)
+    documented.insert((*it)[1]);
+  ASSERT_GE(documented.size(), 17u) << section;
+
+  Result result = ontogen("help");
+  ASSERT_EQ(result.exitCode, 0);
+  const size_t start = result.out.find("\nDirectives");
+  ASSERT_NE(start, std::string::npos) << result.out;
+  std::istringstream lines(result.out.substr(start + 1));
+  std::set<std::string> listed, owners;
+  while (std::getline(lines, line) && !line.empty()) {  // the section ends at a blank line
+    if (line.rfind("    #", 0) == 0) {
+      EXPECT_TRUE(listed.insert(line.substr(5, line.find_first_of(" /", 5) - 5)).second) << line;
+      EXPECT_GT(line.size(), 60u) << "kind, values and doc: " << line;
+    } else if (line.rfind("  ", 0) == 0) {
+      owners.insert(line.substr(2));
+    }
+  }
+  EXPECT_EQ(listed, documented);
+  EXPECT_EQ(owners, (std::set<std::string>{"constants", "world", "geometry", "music"}));
 }
 
 }  // namespace

@@ -1,0 +1,58 @@
+// A block's directives, read through the directive table (lang/directives.h): each
+// value is evaluated as a constant in the block's scope, checked against its row's
+// range, and applied by its row to the block's interpretation settings or to the
+// program. #define is a constant (lang/compile_functions.cpp).
+
+#include <filesystem>
+#include <string>
+
+#include "lang/compile_stages.h"
+#include "lang/directives.h"
+#include "lang/expression_compiler.h"
+
+namespace ontogen::detail {
+
+namespace {
+
+bool takesExpression(DirectiveKind kind) {
+  return kind == DirectiveKind::Number || kind == DirectiveKind::Integer || kind == DirectiveKind::NumberedFile;
+}
+
+// A file is read relative to the directory of the program that names it; its location
+// goes with it, for the errors of loading it before the run.
+void placeFile(const ast::Setting& setting, DirectiveValue& value) {
+  value.path = setting.word;
+  if (!setting.span.valid()) return;
+  const std::filesystem::path base = std::filesystem::path(setting.span.file->name()).parent_path();
+  if (std::filesystem::path(value.path).is_relative()) value.path = (base / value.path).lexically_normal().string();
+  value.location = setting.span.file->name() + ":" + std::to_string(setting.span.line()) + ":" +
+                   std::to_string(setting.span.column());
+}
+
+}  // namespace
+
+void compileDirectives(CompileContext& ctx, const std::vector<ast::Setting>& list, InterpretSettings& target,
+                       const Scope& scope) {
+  DirectiveTarget into{target, *ctx.program};
+  for (const auto& setting : list) {
+    const Directive& directive = *setting.directive;
+    DirectiveValue value;
+    value.word = setting.word;
+    value.numerator = setting.numerator;
+    value.denominator = setting.denominator;
+    if (takesExpression(directive.kind)) {
+      auto number =
+          evaluateConstant(*setting.value, ctx.constantLookup(scope), ctx.sink, "#" + std::string(directive.name));
+      if (!number) continue;
+      if (!directive.accepts(*number)) {
+        ctx.sink.error(setting.span, std::string(directive.rangeError));
+        continue;
+      }
+      value.number = *number;
+    }
+    if (directive.kind == DirectiveKind::NumberedFile) placeFile(setting, value);
+    directive.apply(value, into);
+  }
+}
+
+}  // namespace ontogen::detail

@@ -1,0 +1,103 @@
+// Interpretation blocks: `interpret SET { ... }` in a cell, `interpret SET X(a) { ... }`
+// in an L-system. Each instruction is checked against the set's commands (when the
+// caller gives the sets, CompileOptions::commandSets) and its arguments compiled
+// against the master's frame; and each master gets the command it stands for.
+
+#include <map>
+#include <optional>
+#include <string>
+
+#include "lang/compile_stages.h"
+#include "lang/expression_compiler.h"
+
+namespace ontogen::detail {
+
+void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block, int master,
+                           const std::vector<std::string>* params, const Scope* scope) {
+  InterpretationBlock compiled;
+  compiled.setName = block.setName;
+  compiled.span = block.span;
+  const CommandSetInfo* set = nullptr;
+  if (!ctx.options.commandSets.empty()) {
+    for (const auto& candidate : ctx.options.commandSets)
+      if (candidate.name == block.setName) set = &candidate;
+    if (!set) {
+      std::string known;
+      for (const auto& candidate : ctx.options.commandSets) known += (known.empty() ? "" : ", ") + candidate.name;
+      ctx.sink.error(block.span, "unknown interpretation set '" + block.setName + "' (known: " + known + ")");
+      return;
+    }
+  }
+  const MasterCell& self = ctx.program->masters[master];
+  const Scope& lookupScope = scope ? *scope : ctx.global;
+  std::map<std::string, int, std::less<>> slots;
+  for (uint32_t i = 0; i < self.stateCount(); ++i)
+    slots[params ? (*params)[i] : self.stateNames[i]] = static_cast<int>(i);
+  ctx.reader = Reader{master, -1};
+  NameLookup names = ctx.frameLookup(slots, static_cast<int>(self.stateCount()), lookupScope);
+  if (set && set->constant) {
+    names.constant = [&lookupScope, set](std::string_view name) -> std::optional<double> {
+      if (auto value = lookupScope.constants.find(name)) return value;
+      return set->constant(name);
+    };
+  }
+  for (const auto& module : block.instructions) {
+    Instruction instruction;
+    instruction.span = module.span;
+    const std::string* equiv = lookupScope.findEquiv(module.label);
+    instruction.command = equiv ? *equiv : module.label;
+    if (set) {
+      const CommandInfo* info = set->find(instruction.command);
+      if (!info) {
+        ctx.sink.error(module.span, "'" + module.label + "' is not a command of the '" + block.setName + "' set");
+        continue;
+      }
+      int count = static_cast<int>(module.args.size());
+      if (count < info->minArity || (info->maxArity >= 0 && count > info->maxArity)) {
+        ctx.sink.error(module.span, "'" + module.label + "' takes " + std::to_string(info->minArity) +
+                                        (info->maxArity == info->minArity ? ""
+                                         : info->maxArity < 0             ? " or more"
+                                                                          : " to " + std::to_string(info->maxArity)) +
+                                        " arguments, given " + std::to_string(count));
+        continue;
+      }
+    }
+    for (const auto& arg : module.args) instruction.args.push_back(compileExpression(*arg, names, ctx.sink));
+    compiled.instructions.push_back(std::move(instruction));
+  }
+  ctx.program->masters[master].interpretations.push_back(std::move(compiled));
+}
+
+// `interpret SET X(a) { ... }` in an L-system: the block of the block's own symbol X,
+// its parameters named as the pattern names them.
+void compileSymbolInterpretations(CompileContext& ctx, const ast::System& system, const Scope& scope, int index) {
+  for (const auto& item : system.interpretations) {
+    int master = ctx.program->findMaster(item.symbol, index);
+    if (master < 0 || ctx.program->masters[master].scope != index) {
+      ctx.sink.error(item.symbolSpan, "'" + item.symbol + "' is not a symbol of L-system '" + system.name + "'");
+      continue;
+    }
+    const MasterCell& target = ctx.program->masters[master];
+    if (item.params.size() != target.stateCount()) {
+      ctx.sink.error(item.symbolSpan, "'" + item.symbol + "' has " + std::to_string(target.stateCount()) +
+                                          " parameter" + (target.stateCount() == 1 ? "" : "s") + ", but " +
+                                          std::to_string(item.params.size()) + " are named here");
+      continue;
+    }
+    if (target.interpretation(item.block.setName)) continue;  // the first block counts
+    compileInterpretation(ctx, item.block, master, &item.params, &scope);
+  }
+}
+
+// The instruction each master stands for (its label, or the command an equiv names),
+// and the brackets among them.
+void resolveCommands(CompileContext& ctx) {
+  for (auto& master : ctx.program->masters) {
+    const std::string* equiv = ctx.scopeOf(master).findEquiv(master.label);
+    master.command = equiv ? *equiv : master.label;
+    if (master.command == "[") master.symbolClass = kSymbolBranchOpen;
+    if (master.command == "]") master.symbolClass = kSymbolBranchClose;
+  }
+}
+
+}  // namespace ontogen::detail

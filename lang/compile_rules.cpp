@@ -1,0 +1,400 @@
+// Cells, rules and productions: a declared cell's master (state, defaults, lifetime) and
+// its rules, an L-system's productions as terminal rules of its symbols. A rule's
+// context pattern binds its neighbours' state into the frame; its calculations,
+// successors and probability compile against that frame, and its neighbour aggregates
+// (`count(A)`, `sum(x)` ...) become queries the engine answers.
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "lang/compile_stages.h"
+#include "lang/expression_compiler.h"
+
+namespace ontogen::detail {
+
+namespace {
+
+std::unique_ptr<ast::Expr> cloneExpr(const ast::Expr& expr) {
+  auto copy = std::make_unique<ast::Expr>();
+  copy->kind = expr.kind;
+  copy->span = expr.span;
+  copy->number = expr.number;
+  copy->name = expr.name;
+  copy->op = expr.op;
+  for (const auto& arg : expr.args) copy->args.push_back(cloneExpr(*arg));
+  return copy;
+}
+
+// `x += e` is compiled as `x = x + e`.
+std::unique_ptr<ast::Expr> combine(const ast::Assignment& assignment) {
+  auto copy = cloneExpr(*assignment.value);
+  if (assignment.op == TokenKind::Equal) return copy;
+  auto target = std::make_unique<ast::Expr>();
+  target->kind = ast::Expr::Kind::Name;
+  target->name = assignment.target;
+  target->span = assignment.targetSpan;
+  auto node = std::make_unique<ast::Expr>();
+  node->kind = ast::Expr::Kind::Binary;
+  node->span = assignment.span;
+  node->op = assignment.op == TokenKind::PlusEqual    ? TokenKind::Plus
+             : assignment.op == TokenKind::MinusEqual ? TokenKind::Minus
+             : assignment.op == TokenKind::StarEqual  ? TokenKind::Star
+                                                      : TokenKind::Slash;
+  node->args.push_back(std::move(target));
+  node->args.push_back(std::move(copy));
+  return node;
+}
+
+// `count()`, `count(A)`, `sum(x)`, `mean(A.x)`, `min(x)`, `max(x)`: one query per text.
+int registerAggregate(CompileContext& ctx, const ast::Expr& call, DiagnosticSink& sink,
+                      std::vector<AggregateQuery>& queries, int moduleScope) {
+  const ast::Expr* arg = call.args.empty() ? nullptr : call.args[0].get();
+  std::string argText = !arg                                   ? ""
+                        : arg->kind == ast::Expr::Kind::Name   ? arg->name
+                        : arg->kind == ast::Expr::Kind::Member ? memberPath(*arg)
+                                                               : "?";
+  std::string text = call.name + "(" + argText + ")";
+  for (size_t i = 0; i < queries.size(); ++i)
+    if (queries[i].text == text) return static_cast<int>(i);
+  AggregateQuery query;
+  query.text = text;
+  query.kind = call.name == "count"  ? AggregateKind::Count
+               : call.name == "sum"  ? AggregateKind::Sum
+               : call.name == "mean" ? AggregateKind::Mean
+               : call.name == "min"  ? AggregateKind::Min
+                                     : AggregateKind::Max;
+  auto findLabel = [&](const std::string& label, SourceSpan span) {
+    int master = ctx.program->findMaster(label, moduleScope);
+    if (master < 0) sink.error(span, "no cell is called '" + label + "'");
+    return master;
+  };
+  if (query.kind == AggregateKind::Count) {
+    if (arg) {
+      if (arg->kind != ast::Expr::Kind::Name) {
+        sink.error(arg->span, "count() takes a cell label, as in count(A), or nothing");
+        return -1;
+      }
+      query.label = findLabel(arg->name, arg->span);
+      if (query.label < 0) return -1;
+    }
+  } else {
+    std::string variable;
+    if (arg->kind == ast::Expr::Kind::Name) {
+      variable = arg->name;
+    } else if (!memberPath(*arg).empty()) {
+      query.label = findLabel(arg->args[0]->name, arg->args[0]->span);
+      if (query.label < 0) return -1;
+      variable = arg->name;
+    } else {
+      sink.error(arg->span, "'" + call.name + "' over neighbours takes a state variable, as in " + call.name +
+                                "(x) or " + call.name + "(A.x)");
+      return -1;
+    }
+    bool any = false;
+    for (size_t m = 0; m < ctx.program->masters.size(); ++m) {
+      const auto& names = ctx.program->masters[m].stateNames;
+      auto it = std::find(names.begin(), names.end(), variable);
+      bool has = it != names.end() && (query.label < 0 || query.label == static_cast<int>(m));
+      query.slotOf.push_back(has ? static_cast<int>(it - names.begin()) : -1);
+      any = any || has;
+    }
+    if (!any) {
+      sink.error(arg->span, query.label >= 0 ? "'" + ctx.program->masters[query.label].label +
+                                                   "' has no state variable '" + variable + "'"
+                                             : "no cell has a state variable '" + variable + "'");
+      return -1;
+    }
+  }
+  queries.push_back(std::move(query));
+  return static_cast<int>(queries.size() - 1);
+}
+
+// The names of a rule's frame as they bind: the cell's state (in an L-system, the
+// predecessor's parameters) first, then the parameters of its context modules.
+struct RuleFrame {
+  RuleFrame(CompileContext& ctx, int master, int moduleScope)
+      : ctx(ctx),
+        moduleScope(moduleScope),
+        label(ctx.program->masters[master].label),
+        stateNames(ctx.program->masters[master].stateNames),
+        nextSlot(stateCount() + FrameSlot::kCount) {}
+
+  CompileContext& ctx;
+  int moduleScope;  // where context labels resolve: the L-system's index, -1 for cells
+  // Copies, not a reference: resolving context and successor labels may add masters.
+  std::string label;
+  std::vector<std::string> stateNames;
+  SlotMap slots;
+  std::map<std::string, SourceSpan, std::less<>> boundAt;  // the names this rule binds, where
+  int nextSlot;
+
+  int stateCount() const { return static_cast<int>(stateNames.size()); }
+
+  void bind(const std::string& name, int slot, SourceSpan span) {
+    if (isReadOnlyName(name)) {
+      ctx.sink.error(span, "'" + name + "' is read-only internal state and cannot be a parameter name");
+      return;
+    }
+    if (slots.emplace(name, slot).second) {
+      boundAt[name] = span;
+    } else if (!boundAt.count(name)) {
+      ctx.sink.error(span, "'" + name + "' is already a state variable of '" + label + "'");
+    } else {
+      ctx.sink.error(span, "'" + name + "' is already bound in this rule (at line " +
+                               std::to_string(boundAt[name].line()) + ":" + std::to_string(boundAt[name].column()) +
+                               ")");
+    }
+  }
+
+  ContextBinding contextBinding(const ast::Module& module, bool leftSide) {
+    ContextBinding binding;
+    if (module.label == "[" || module.label == "]") {
+      if (leftSide)
+        ctx.sink.error(module.span, "a left context cannot contain brackets; it follows the path to the root");
+      binding.item.kind = module.label == "[" ? ContextItem::Kind::BranchOpen : ContextItem::Kind::BranchClose;
+      return binding;
+    }
+    int contextMaster = ctx.resolveModule(module, moduleScope);
+    binding.item.master = static_cast<uint32_t>(contextMaster);
+    if (!module.args.empty()) {
+      binding.firstSlot = nextSlot;
+      binding.count = static_cast<int>(module.args.size());
+      if (binding.count != static_cast<int>(ctx.program->masters[contextMaster].stateCount()))
+        ctx.sink.error(module.span, "'" + module.label + "' has " +
+                                        std::to_string(ctx.program->masters[contextMaster].stateCount()) +
+                                        " state values; a context binds all of them or none");
+      for (const auto& arg : module.args) bind(arg->name, nextSlot++, arg->span);
+    }
+    return binding;
+  }
+};
+
+// `A < me > B`, `(A) (B me C) (D)`: the modules around the cell and the frame slots
+// their parameters take.
+void compileContext(RuleFrame& frame, const ast::Rule& rule, CompiledRule& compiled) {
+  DiagnosticSink& sink = frame.ctx.sink;
+  // Left context nearest first.
+  for (auto it = rule.left.rbegin(); it != rule.left.rend(); ++it)
+    compiled.left.push_back(frame.contextBinding(*it, true));
+  for (const auto& module : rule.right) compiled.right.push_back(frame.contextBinding(module, false));
+  compiled.contextDimensions = rule.contextDimensions;
+  for (size_t k = 0; k < rule.offsets.size() && k < compiled.right.size(); ++k) {
+    compiled.right[k].offset = rule.offsets[k];
+    if (compiled.right[k].item.kind != ContextItem::Kind::Module)
+      sink.error(rule.right[k].span,
+                 "brackets have no place in a context of " + std::to_string(rule.contextDimensions) + " dimensions");
+  }
+  compiled.frameSize = frame.nextSlot;
+  for (const auto& binding : compiled.left) compiled.leftItems.push_back(binding.item);
+  for (const auto& binding : compiled.right) compiled.rightItems.push_back(binding.item);
+  if (compiled.leftItems.size() > kMaxContextItems || compiled.rightItems.size() > kMaxContextItems)
+    sink.error(rule.span, "a context has at most " + std::to_string(kMaxContextItems) + " modules on each side");
+}
+
+// `x = e`, `x += e`, `rate(x) = e`: a cell writes its own state only.
+void compileCalculations(const RuleFrame& frame, const ast::Rule& rule, bool lsystem, const NameLookup& names,
+                         CompiledRule& compiled) {
+  DiagnosticSink& sink = frame.ctx.sink;
+  for (const auto& assignment : rule.calculations) {
+    StateCalculation calculation;
+    calculation.span = assignment.span;
+    if (assignment.isRate) {
+      if (lsystem) {
+        sink.error(assignment.span, "'rate' belongs to the cell language; write the module as a cell");
+        continue;
+      }
+      if (rule.terminal) {
+        sink.error(assignment.span, "'rate' integrates while a cell lives; a terminal rule fires once");
+        continue;
+      }
+      if (assignment.op != TokenKind::Equal) {
+        sink.error(assignment.span, "write 'rate(x) = e': the rate is the derivative itself");
+        continue;
+      }
+      calculation.isRate = true;
+    }
+    if (isReadOnlyName(assignment.target) || internalSlot(assignment.target) >= 0) {
+      sink.error(assignment.targetSpan, "'" + assignment.target + "' is read-only internal state");
+      continue;
+    }
+    auto it = std::find(frame.stateNames.begin(), frame.stateNames.end(), assignment.target);
+    if (lsystem || it == frame.stateNames.end()) {
+      sink.error(assignment.targetSpan,
+                 frame.slots.count(assignment.target)
+                     ? "'" + assignment.target + "' belongs to a neighbour; a cell writes only its own state"
+                     : "'" + assignment.target + "' is not a state variable of '" + frame.label + "'");
+      continue;
+    }
+    calculation.slot = static_cast<int>(it - frame.stateNames.begin());
+    calculation.value = compileExpression(*combine(assignment), names, sink);
+    (calculation.isRate ? compiled.hasRate : compiled.hasDiscrete) = true;
+    compiled.calculations.push_back(std::move(calculation));
+  }
+}
+
+// `-> me B(x / 2) (C, 0.5)`: the cells a rule makes, at most one keeping the identity.
+void compileSuccessors(CompileContext& ctx, const ast::Rule& rule, int moduleScope, bool lsystem,
+                       const NameLookup& names, CompiledRule& compiled) {
+  const ast::Module* identityKeeper = nullptr;  // `me` or `=X`: one cell goes on with the id
+  for (const auto& successor : rule.successors) {
+    SuccessorTemplate result;
+    result.span = successor.span;
+    if (successor.isMe || successor.keepsIdentity) {
+      if (identityKeeper)
+        ctx.sink.error(successor.span, "only one successor keeps the cell's identity, and '" +
+                                           (identityKeeper->isMe ? std::string("me") : "=" + identityKeeper->label) +
+                                           "' already does");
+      identityKeeper = &successor;
+    }
+    result.keepsIdentity = successor.keepsIdentity;
+    if (successor.isMe) {
+      if (lsystem) ctx.sink.error(successor.span, "'me' is not part of the L-system notation; repeat the module");
+      result.isMe = true;
+      if (successor.hasArgs) ctx.sink.error(successor.span, "'me' takes no parameters; set state before '->'");
+      compiled.successors.push_back(std::move(result));
+      continue;
+    }
+    int successorMaster = ctx.resolveModule(successor, moduleScope);
+    result.master = static_cast<uint32_t>(successorMaster);
+    const MasterCell& target = ctx.program->masters[successorMaster];
+    for (uint32_t i = 0; i < target.stateCount(); ++i) {
+      if (i < successor.args.size())
+        result.args.push_back(compileExpression(*successor.args[i], names, ctx.sink));
+      else
+        result.args.push_back(CompiledExpression::constant(target.defaults[i]));
+    }
+    if (successor.age) result.birthAge = compileExpression(*successor.age, names, ctx.sink);
+    bool bornAtZero =
+        result.birthAge.empty() || (result.birthAge.isConstant() && result.birthAge.constantValue() == 0.0);
+    result.stateless = target.stateCount() == 0 && bornAtZero && target.lifetime > 0;
+    compiled.successors.push_back(std::move(result));
+  }
+}
+
+CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master, int scopeIndex, const Scope& scope,
+                         bool lsystem) {
+  ctx.reader = Reader{master, -1};
+  CompiledRule compiled;
+  compiled.name = rule.name;
+  compiled.span = rule.span;
+  const int moduleScope = lsystem ? scopeIndex : -1;
+  RuleFrame frame(ctx, master, moduleScope);
+  if (lsystem) {
+    for (size_t i = 0; i < rule.predecessor.args.size(); ++i)
+      frame.bind(rule.predecessor.args[i]->name, static_cast<int>(i), rule.predecessor.args[i]->span);
+  } else {
+    for (int i = 0; i < frame.stateCount(); ++i) frame.slots[frame.stateNames[i]] = i;
+    if (rule.predecessor.isMe && rule.predecessor.hasArgs)
+      ctx.sink.error(rule.predecessor.span, "'me' takes no parameters; the cell's state is read by name");
+  }
+  compileContext(frame, rule, compiled);
+
+  NameLookup names = ctx.frameLookup(frame.slots, frame.stateCount(), scope);
+  names.aggregate = [&ctx, &compiled, moduleScope](const ast::Expr& call, DiagnosticSink& sink) {
+    return registerAggregate(ctx, call, sink, compiled.aggregates, moduleScope);
+  };
+  if (rule.predicate) compiled.predicate = compileExpression(*rule.predicate, names, ctx.sink);
+  compileCalculations(frame, rule, lsystem, names, compiled);
+  compiled.hasAction = rule.hasAction;
+  if (rule.hasAction) compiled.hasDiscrete = true;
+  compileSuccessors(ctx, rule, moduleScope, lsystem, names, compiled);
+  if (rule.probability) {
+    compiled.probability = compileExpression(*rule.probability, names, ctx.sink);
+    if (compiled.probability.isConstant() && !(compiled.probability.constantValue() >= 0))
+      ctx.sink.error(rule.probability->span, "a probability must be ≥ 0");
+  }
+  return compiled;
+}
+
+}  // namespace
+
+void declareCells(CompileContext& ctx) {
+  for (const auto& cell : ctx.tree.cells) {
+    if (ctx.program->findMaster(cell.name, -1) >= 0) {
+      ctx.sink.error(cell.nameSpan, "cell '" + cell.name + "' is defined twice (also at " +
+                                        where(ctx.program->masters[ctx.program->findMaster(cell.name, -1)].span) + ")");
+      continue;
+    }
+    int index = ctx.addMaster(cell.name, -1, cell.nameSpan);
+    ctx.program->masters[index].declared = true;
+    ctx.arityKnown[index] = true;
+    ctx.declareState(cell.state, index);
+    if (cell.lifetime) {
+      auto value = evaluateConstant(*cell.lifetime, ctx.constantLookup(ctx.global), ctx.sink, "the lifetime");
+      if (value) {
+        if (!(*value > 0))
+          ctx.sink.error(cell.lifetimeSpan, "the lifetime must be greater than 0");
+        else
+          ctx.program->masters[index].lifetime = *value;
+        ctx.program->masters[index].timedNotation = true;
+      }
+    }
+    ctx.cellMaster[&cell] = index;
+  }
+}
+
+void compileCells(CompileContext& ctx) {
+  for (const auto& cell : ctx.tree.cells) {
+    auto it = ctx.cellMaster.find(&cell);
+    if (it == ctx.cellMaster.end()) continue;
+    int master = it->second;
+    bool anyTerminal = false;
+    for (const auto& rule : cell.rules) {
+      ctx.readsPosition = false;
+      CompiledRule compiled = compileRule(ctx, rule, master, -1, ctx.global, /*lsystem=*/false);
+      if (ctx.readsPosition) ctx.program->masters[master].readsPosition = true;
+      if (rule.terminal) {
+        anyTerminal = true;
+        ctx.program->masters[master].terminalRules.push_back(std::move(compiled));
+      } else {
+        ctx.program->masters[master].rules.push_back(std::move(compiled));
+      }
+    }
+    if (anyTerminal && ctx.program->masters[master].lifetime == kForever)
+      ctx.sink.error(cell.nameSpan,
+                     "cell '" + cell.name + "' has 'terminal:' rules but no lifetime; add 'lifetime 1;'");
+    for (const auto& block : cell.interpretations) compileInterpretation(ctx, block, master);
+  }
+}
+
+void compileProductions(CompileContext& ctx, const ast::System& system, Scope& scope, int index) {
+  // Terminal ages: one per symbol; untimed productions live one time unit.
+  std::map<int, std::pair<double, SourceSpan>> terminal;
+  std::vector<std::pair<int, const ast::Rule*>> productions;
+  for (const auto& production : system.productions) {
+    int master = ctx.resolveModule(production.predecessor, index, /*predecessor=*/true);
+    double age = 1.0;
+    if (production.predecessor.age) {
+      auto value = evaluateConstant(*production.predecessor.age, ctx.constantLookup(scope), ctx.sink, "a terminal age");
+      if (!value) continue;
+      age = *value;
+      if (!(age > 0)) {
+        ctx.sink.error(production.predecessor.age->span, "the terminal age must be greater than 0");
+        continue;
+      }
+    }
+    auto [it, inserted] = terminal.emplace(master, std::make_pair(age, production.predecessor.span));
+    if (!inserted && it->second.first != age) {
+      ctx.sink.error(production.predecessor.span,
+                     "'" + production.predecessor.label + "' has terminal age " + formatNumber(age) + " here but " +
+                         formatNumber(it->second.first) + " at line " + std::to_string(it->second.second.line()) +
+                         "; a symbol has one terminal age");
+      continue;
+    }
+    productions.push_back({master, &production});
+  }
+  for (auto& [master, age] : terminal) {
+    ctx.program->masters[master].lifetime = age.first;
+    ctx.program->masters[master].declared = true;
+  }
+  for (auto& [master, production] : productions) {
+    ctx.readsPosition = false;
+    CompiledRule rule = compileRule(ctx, *production, master, index, scope, /*lsystem=*/true);
+    if (ctx.readsPosition) ctx.program->masters[master].readsPosition = true;
+    ctx.program->masters[master].terminalRules.push_back(std::move(rule));
+  }
+}
+
+}  // namespace ontogen::detail
