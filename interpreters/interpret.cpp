@@ -16,8 +16,10 @@ void interpretPool(const World& world, InterpretationSet& set) {
   std::vector<double> frame;
   std::vector<double> args;
   std::vector<double> developed;
-  // Whether the set knows each master's command, asked once per master, not per cell.
-  std::vector<int8_t> known(program.masters.size(), -1);
+  // Commands were resolved by the compiler for the sets it knew (Program::commandSets);
+  // for another set, whether it knows each master's command is asked once per master.
+  const int setIndex = program.commandSetIndex(set.name());
+  std::vector<int8_t> known(setIndex < 0 ? program.masters.size() : 0, -1);
   const auto cells = pool.cells();
   const std::vector<uint64_t> parents = parentIds(world);
   for (size_t i = 0; i < cells.size(); ++i) {
@@ -34,16 +36,28 @@ void interpretPool(const World& world, InterpretationSet& set) {
         set.locate({instruction.span, master.label, world.time()});
         args.clear();
         for (const CompiledExpression& arg : instruction.args) args.push_back(arg.evaluate(context));
-        set.execute(instruction.command, args);
+        if (instruction.commandId >= 0)
+          set.executeCommand(instruction.commandId, instruction.command, args);
+        else
+          set.execute(instruction.command, args);
       }
     } else {
-      int8_t& knows = known[cell.master];
-      if (knows < 0) knows = set.knows(master.command) ? 1 : 0;
-      if (knows) {
+      int id = -1;  // the command's number in the set, -2: by name, -1: not the set's
+      if (setIndex >= 0) {
+        id = master.commandIds[setIndex];
+      } else {
+        int8_t& knows = known[cell.master];
+        if (knows < 0) knows = set.knows(master.command) ? 1 : 0;
+        id = knows ? -2 : -1;
+      }
+      if (id != -1) {
         world.developedValues(cell, developed);
         set.beginCell({cell.id, parents[i], cell.birth, master.lifetime, world.time()});
         set.locate({master.span, master.label, world.time()});
-        set.execute(master.command, developed);
+        if (id >= 0)
+          set.executeCommand(id, master.command, developed);
+        else
+          set.execute(master.command, developed);
       }
     }
     // A system cell's pool is realised where the cell stands, as a branch: what it

@@ -87,6 +87,13 @@ class InterpretationSet {
   virtual void beginFrame(const FrameTarget& target) = 0;
   /// Executes one instruction. Unknown commands are ignored (knows() says which).
   virtual void execute(std::string_view command, std::span<const double> args) = 0;
+  /// Executes an instruction the compiler resolved: `id` is the command's number in the
+  /// table this set gave the compiler (set_registry.h, commandSets(); CommandInfo::id),
+  /// `command` its name. The default runs it by name; a set with a table runs it by id,
+  /// so nothing looks a command up per cell and frame.
+  virtual void executeCommand(int /*id*/, std::string_view command, std::span<const double> args) {
+    execute(command, args);
+  }
   /// Finishes the frame and writes its outputs; returns the paths written.
   virtual std::vector<std::filesystem::path> endFrame() = 0;
 

@@ -57,7 +57,9 @@ std::vector<CommandSetInfo> commandSets() {
                     // The table is static, so the infos made from it can be too.
                     static const std::vector<CommandInfo> infos = [] {
                       std::vector<CommandInfo> list;
-                      for (const TurtleCommand& c : turtleCommands()) list.push_back({c.name, c.minArity, c.maxArity});
+                      const auto table = turtleCommands();
+                      for (size_t i = 0; i < table.size(); ++i)
+                        list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
                       return list;
                     }();
                     for (const CommandInfo& info : infos)
@@ -74,7 +76,9 @@ std::vector<CommandSetInfo> commandSets() {
                   [](std::string_view command) -> const CommandInfo* {
                     static const std::vector<CommandInfo> infos = [] {
                       std::vector<CommandInfo> list;
-                      for (const MusicCommand& c : musicCommands()) list.push_back({c.name, c.minArity, c.maxArity});
+                      const auto table = musicCommands();
+                      for (size_t i = 0; i < table.size(); ++i)
+                        list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
                       return list;
                     }();
                     for (const CommandInfo& info : infos)

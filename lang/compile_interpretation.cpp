@@ -61,6 +61,7 @@ void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block
                                         " arguments, given " + std::to_string(count));
         continue;
       }
+      instruction.commandId = info->id;
     }
     for (const auto& arg : module.args) instruction.args.push_back(compileExpression(*arg, names, ctx.sink));
     compiled.instructions.push_back(std::move(instruction));
@@ -91,12 +92,19 @@ void compileSymbolInterpretations(CompileContext& ctx, const ast::System& system
 
 // The instruction each master stands for (its label, or the command an equiv names),
 // and the brackets among them.
+// With the sets known, each master's command is resolved in every set once, here.
 void resolveCommands(CompileContext& ctx) {
+  for (const auto& set : ctx.options.commandSets) ctx.program->commandSets.push_back(set.name);
   for (auto& master : ctx.program->masters) {
     const std::string* equiv = ctx.scopeOf(master).findEquiv(master.label);
     master.command = equiv ? *equiv : master.label;
     if (master.command == "[") master.symbolClass = kSymbolBranchOpen;
     if (master.command == "]") master.symbolClass = kSymbolBranchClose;
+    master.commandIds.clear();
+    for (const auto& set : ctx.options.commandSets) {
+      const CommandInfo* info = set.find(master.command);
+      master.commandIds.push_back(!info ? -1 : info->id >= 0 ? info->id : -2);
+    }
   }
 }
 

@@ -22,6 +22,10 @@ struct CommandInfo {
   std::string_view name;
   int minArity = 0;
   int maxArity = 0;  ///< -1: any
+  /// The set's own number for the command (its index in the set's table): compiled
+  /// instructions carry it, so the set runs them without looking a name up. -1: none
+  /// (the set runs the command by its name).
+  int id = -1;
 };
 
 /// A set the program may name in `interpret SET { ... }`.

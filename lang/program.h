@@ -114,6 +114,7 @@ struct CompiledRule {
 /// An instruction of an interpretation block, e.g. `F(1 + age)`.
 struct Instruction {
   std::string command;
+  int commandId = -1;  ///< the command's number in its block's set (CommandInfo::id), -1: by name
   std::vector<CompiledExpression> args;
   SourceSpan span;
 };
@@ -161,6 +162,9 @@ struct MasterCell {
   std::vector<InterpretationBlock> interpretations;
   int developmentFunction = -1;  ///< index into Program::functions
   std::string command;           ///< the instruction this symbol stands for (label or equiv)
+  /// Per set of Program::commandSets, the number of `command` in it (CommandInfo::id):
+  /// -1 where the set does not know it, -2 where it knows it by name only.
+  std::vector<int> commandIds;
   uint8_t symbolClass = kSymbolModule;
   bool readsPosition = false;  ///< a rule reads me.x, me.y or me.z (the engine fills them only then)
   /// For a system cell: the index of its SystemDefinition (its cells grow in a pool of
@@ -263,6 +267,9 @@ struct Program {
   std::vector<DevelopmentFunction> functions;
   std::vector<SystemDefinition> systems;
   std::vector<AncestorRef> ancestorRefs;  ///< every `parent.x` / `root.x` read, once each
+  /// The interpretation sets the program was checked against (CompileOptions::commandSets),
+  /// in order: MasterCell::commandIds are indexed by them. Empty: commands go by name.
+  std::vector<std::string> commandSets;
   /// Every #define with a value, in the order the compiler reads them: the top-level
   /// ones (an imported file's before its importer's), then each block's, block by block
   /// in the order of `systems`. A name may appear in several blocks.
@@ -279,6 +286,12 @@ struct Program {
 
   FunctionTable functionTable() const { return FunctionTable{functionBodies}; }
   const SystemDefinition& rootSystem() const { return systems[root]; }
+  /// The index of a set in commandSets, or -1.
+  int commandSetIndex(std::string_view set) const {
+    for (size_t i = 0; i < commandSets.size(); ++i)
+      if (commandSets[i] == set) return static_cast<int>(i);
+    return -1;
+  }
   /// The master with this label visible in a scope (an L-system's own symbols first).
   int findMaster(std::string_view label, int scope = -1) const;
 };

@@ -43,6 +43,18 @@ void GeometrySet::closeNode() {
 }
 
 void GeometrySet::execute(std::string_view command, std::span<const double> args) {
+  if (const TurtleCommand* found = findTurtleCommand(command)) run(*found, args);
+}
+
+void GeometrySet::executeCommand(int id, std::string_view command, std::span<const double> args) {
+  const auto table = turtleCommands();
+  if (id >= 0 && static_cast<size_t>(id) < table.size())
+    run(table[id], args);
+  else
+    execute(command, args);
+}
+
+void GeometrySet::run(const TurtleCommand& command, std::span<const double> args) {
   const TurtleWarnings before = turtle_.warnings();
   turtle_.execute(command, args, scene_.geometry);
   const TurtleWarnings& after = turtle_.warnings();

@@ -39,6 +39,8 @@ class GeometrySet : public InterpretationSet {
   void beginFrame(const FrameTarget& target) override;
   void beginCell(const CellContext& cell) override;
   void execute(std::string_view command, std::span<const double> args) override;
+  /// `id` indexes turtleCommands().
+  void executeCommand(int id, std::string_view command, std::span<const double> args) override;
   /// Writes the enabled files atomically (throws OutputError on failure) and returns
   /// their paths, SVG first. Throws std::invalid_argument from the constructor when mp4
   /// is asked for and ffmpeg is not installed.
@@ -63,6 +65,7 @@ class GeometrySet : public InterpretationSet {
   }
 
  private:
+  void run(const TurtleCommand& command, std::span<const double> args);
   void closeNode();
   void finishScene();
 

@@ -37,6 +37,18 @@ void MusicSet::beginFrame(const FrameTarget& target) {
 }
 
 void MusicSet::execute(std::string_view command, std::span<const double> args) {
+  if (const MusicCommand* found = findMusicCommand(command)) run(*found, args);
+}
+
+void MusicSet::executeCommand(int id, std::string_view command, std::span<const double> args) {
+  const auto table = musicCommands();
+  if (id >= 0 && static_cast<size_t>(id) < table.size())
+    run(table[id], args);
+  else
+    execute(command, args);
+}
+
+void MusicSet::run(const MusicCommand& command, std::span<const double> args) {
   const MusicWarnings before = player_.warnings();
   player_.execute(command, args, score_);
   const MusicWarnings& after = player_.warnings();

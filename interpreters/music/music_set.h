@@ -47,6 +47,8 @@ class MusicSet final : public InterpretationSet {
   bool knows(std::string_view command) const override;
   void beginFrame(const FrameTarget& target) override;
   void execute(std::string_view command, std::span<const double> args) override;
+  /// `id` indexes musicCommands().
+  void executeCommand(int id, std::string_view command, std::span<const double> args) override;
   /// Writes DIR/<stem>.mid atomically (throws OutputError on failure), then performs the
   /// score if a performer is set.
   std::vector<std::filesystem::path> endFrame() override;
@@ -72,6 +74,7 @@ class MusicSet final : public InterpretationSet {
     ScoreNote note;
     double end;  // beats; infinite until the cell is gone
   };
+  void run(const MusicCommand& command, std::span<const double> args);
   void collectHeld();
   void closeHeld(double beats, bool all);
 

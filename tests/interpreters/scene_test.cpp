@@ -10,6 +10,7 @@
 
 #include "core/parents.h"
 #include "interpreters/geometry/geometry_set.h"
+#include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/interpret.h"
 #include "interpreters/run.h"
 #include "tests/core/test_support.h"
@@ -84,6 +85,46 @@ TEST(Scene, TwoSetsDrawIntoOneFrameAndTheOutputStageWritesIt) {
   int lines = 0;
   for (std::string line; std::getline(in, line);) lines += line.rfind("l ", 0) == 0;
   EXPECT_EQ(lines, 6) << "three F's of the turtle and three markers";
+}
+
+// The compiler resolves every instruction to its set's command once: the interpreter hands
+// the set numbers, never a name to look up, for blocks and for symbols alike.
+class CountingSet final : public InterpretationSet {
+ public:
+  std::string_view name() const override { return "geometry"; }
+  bool knows(std::string_view) const override { return true; }
+  void beginFrame(const FrameTarget&) override {}
+  void execute(std::string_view, std::span<const double>) override { ++byName; }
+  void executeCommand(int id, std::string_view command, std::span<const double>) override {
+    ids.push_back(id);
+    names.push_back(std::string(command));
+  }
+  std::vector<fs::path> endFrame() override { return {}; }
+  int byName = 0;
+  std::vector<int> ids;
+  std::vector<std::string> names;
+};
+
+TEST(Scene, CommandsAreResolvedOnceByTheCompiler) {
+  auto program = testing_support::compileOrFail(
+      "lsystem t {\n  axiom F(1) + A\n  interpret geometry A { f(2) sphere(1) }\n}");
+  const int geometry = program->commandSetIndex("geometry");
+  ASSERT_GE(geometry, 0);
+  const auto table = turtleCommands();
+  auto idOf = [&](std::string_view name) {
+    for (size_t i = 0; i < table.size(); ++i)
+      if (table[i].name == name) return static_cast<int>(i);
+    return -1;
+  };
+  const int f = program->findMaster("F", 0);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(program->masters[f].commandIds[geometry], idOf("F"));
+  World world(program);
+  CountingSet set;
+  interpretWord(world, set);
+  EXPECT_EQ(set.byName, 0) << "nothing goes by name";
+  EXPECT_EQ(set.ids, (std::vector<int>{idOf("F"), idOf("+"), idOf("f"), idOf("sphere")}));
+  EXPECT_EQ(set.names, (std::vector<std::string>{"F", "+", "f", "sphere"}));
 }
 
 }  // namespace
