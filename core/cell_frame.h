@@ -16,9 +16,10 @@ namespace ontogen {
 
 /// Writes the internal-state slots at `internal` (the frame after the state values) for
 /// `cell` at global time `when` (seconds); `position` is its index (linear pool), grid
-/// coordinates or spatial x, y, z.
+/// coordinates or spatial x, y, z; `parent` the id value of the cell it hangs from
+/// (idValue, core/parents.h), -1 for none.
 inline void loadInternalState(double* internal, const CellRecord& cell, double lifetime, double when,
-                              const std::array<double, 3>& position) {
+                              const std::array<double, 3>& position, double parent = -1) {
   internal[FrameSlot::kAge] = when - cell.birth;
   internal[FrameSlot::kTerminalAge] = lifetime;
   internal[FrameSlot::kTime] = when;
@@ -26,15 +27,16 @@ inline void loadInternalState(double* internal, const CellRecord& cell, double l
   internal[FrameSlot::kX] = position[0];
   internal[FrameSlot::kY] = position[1];
   internal[FrameSlot::kZ] = position[2];
+  internal[FrameSlot::kParent] = parent;
 }
 
 /// Copies the cell's `master.stateCount()` values from `state` into `frame` and fills the
 /// internal state after them. Returns `frame`.
 inline double* loadCellFrame(double* frame, const MasterCell& master, const CellRecord& cell, const double* state,
-                             double when, const std::array<double, 3>& position) {
+                             double when, const std::array<double, 3>& position, double parent = -1) {
   const uint32_t n = master.stateCount();
   std::copy(state, state + n, frame);
-  loadInternalState(frame + n, cell, master.lifetime, when, position);
+  loadInternalState(frame + n, cell, master.lifetime, when, position, parent);
   return frame;
 }
 

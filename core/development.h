@@ -49,6 +49,7 @@ struct StepContext {
   WorldStats& stats;
   std::vector<LineageRecord>* lineage = nullptr;  ///< births are logged here when not null
   uint64_t idSalt = 0;                  ///< ids of the axiom's cells derive from it
+  double systemCellId = -1;             ///< idValue of this pool's system cell, -1 for the root pool
 };
 
 class Development {

@@ -3,10 +3,10 @@
 #include <algorithm>
 
 #include "core/cell_frame.h"
-#include "core/parallel_for.h"
 #include "core/pool_view.h"
 #include "core/rate_integrator.h"
 #include "core/rule_evaluator.h"
+#include "core/step_rule_pass.h"
 
 namespace ontogen {
 
@@ -115,61 +115,46 @@ void GridDevelopment::applyStepRules(StepContext& context) {
   const Program& program = *program_;
   const double t = context.time;
   const auto cells = grid_.cells();
-  const double* arena = grid_.stateArena().data();
-  const uint64_t seed = context.seed;
-  const unsigned threads = context.threads;
-  const GridPoolView& view = view_;
-  FunctionTable functions = program.functionTable();
-  std::vector<ChunkResult> results(threads);
-
-  parallelFor(cells.size(), threads, [&](size_t begin, size_t end, unsigned worker) {
-    ChunkResult& out = results[worker];
-    RuleEvaluator<GridPoolView> evaluator(program, view);
-    SuccessorWriter successors(program);
-    if (context.lineage) successors.recordLineage(&out.lineage);
-    for (size_t i = begin; i < end; ++i) {
-      const CellRecord& cell = cells[i];
-      const MasterCell& master = program.masters[cell.master];
-      const uint32_t n = master.stateCount();
-      const uint32_t site = grid_.siteOf(i);
-      double* frame = evaluator.load(i, arena, t);
-      RandomStream random(mixKey(mixKey(seed ^ kStepRuleSalt, cell.id), keyOf(t)));
-      EvalContext evaluation{frame, EvalEnvironment{&random, seed}, &functions, &evaluator};
-      evaluation.ancestors = context.ancestors;
-      const CompiledRule* action = evaluator.fireStepRules(master, evaluation, random, out.firings);
-      if (!action) {
-        out.cells.push_back(CellRecord{cell.master, static_cast<uint32_t>(out.state.size()), cell.birth, cell.id});
-        out.state.insert(out.state.end(), frame, frame + n);
-        out.sites.push_back(site);
-        continue;
-      }
-      // Successors: the first takes this site, the rest wait for free neighbouring sites.
-      bool first = true;
-      const size_t logged = out.lineage.size();
-      out.born += successors.write(
-          *action, cell, frame, t, BirthCause::StepRule, evaluation,
-          [&](CellRecord born, const double* values, uint32_t count) {
-            if (first) {
-              born.state = static_cast<uint32_t>(out.state.size());
-              out.state.insert(out.state.end(), values, values + count);
-              out.cells.push_back(born);
-              out.sites.push_back(site);
-            } else {
-              born.state = static_cast<uint32_t>(out.extraState.size());
-              out.extraState.insert(out.extraState.end(), values, values + count);
-              out.extras.push_back({site, cell.id, born, count});
-            }
-            first = false;
-          });
-      // Only the first successor is sure of a site: the others are logged when they find one.
-      if (context.lineage) {
-        const uint64_t firstId = out.cells.back().id;
-        auto tail = std::remove_if(out.lineage.begin() + static_cast<std::ptrdiff_t>(logged), out.lineage.end(),
-                                   [&](const LineageRecord& record) { return record.child != firstId; });
-        out.lineage.erase(tail, out.lineage.end());
-      }
-    }
-  });
+  std::vector<ChunkResult> results;
+  runStepRules(program, context, view_, results,
+               [&](ChunkResult& out, size_t i, const CellRecord& cell, double* frame, const CompiledRule* action,
+                   const EvalContext& evaluation, SuccessorWriter& successors) {
+                 const uint32_t n = program.masters[cell.master].stateCount();
+                 const uint32_t site = grid_.siteOf(i);
+                 if (!action) {
+                   out.cells.push_back(
+                       CellRecord{cell.master, static_cast<uint32_t>(out.state.size()), cell.birth, cell.id});
+                   out.state.insert(out.state.end(), frame, frame + n);
+                   out.sites.push_back(site);
+                   return;
+                 }
+                 // Successors: the first takes this site, the rest wait for free neighbouring sites.
+                 bool first = true;
+                 const size_t logged = out.lineage.size();
+                 out.born += successors.write(
+                     *action, cell, frame, t, BirthCause::StepRule, evaluation,
+                     [&](CellRecord born, const double* values, uint32_t count) {
+                       if (first) {
+                         born.state = static_cast<uint32_t>(out.state.size());
+                         out.state.insert(out.state.end(), values, values + count);
+                         out.cells.push_back(born);
+                         out.sites.push_back(site);
+                       } else {
+                         born.state = static_cast<uint32_t>(out.extraState.size());
+                         out.extraState.insert(out.extraState.end(), values, values + count);
+                         out.extras.push_back({site, cell.id, born, count});
+                       }
+                       first = false;
+                     });
+                 // Only the first successor is sure of a site: the others are logged when they find one.
+                 if (context.lineage) {
+                   const uint64_t firstId = out.cells.back().id;
+                   auto tail = std::remove_if(
+                       out.lineage.begin() + static_cast<std::ptrdiff_t>(logged), out.lineage.end(),
+                       [&](const LineageRecord& record) { return record.child != firstId; });
+                   out.lineage.erase(tail, out.lineage.end());
+                 }
+               });
 
   // Merge in cell order; successors beyond the first claim free sites in that order, so
   // the outcome does not depend on the number of threads.

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/cell_frame.h"
+#include "core/parents.h"
 #include "core/rate_integrator.h"
 
 namespace ontogen {
@@ -19,7 +20,9 @@ LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinit
       successors_(program),
       frame_(ruleFrameSize(program)),
       view_(pool_, system.symbolClass),
-      aggregates_(program, view_) {}
+      aggregates_(program, view_) {
+  for (const MasterCell& master : program.masters) readsParents_ = readsParents_ || master.readsParent;
+}
 
 // A copy develops on its own: its views look at its own pool.
 LinearDevelopment::LinearDevelopment(const LinearDevelopment& other)
@@ -31,8 +34,19 @@ LinearDevelopment::LinearDevelopment(const LinearDevelopment& other)
       successors_(other.program_),
       frame_(other.frame_.size()),
       lastGrowth_(other.lastGrowth_),
+      readsParents_(other.readsParents_),
       view_(pool_, other.system_.symbolClass),
       aggregates_(other.program_, view_) {}
+
+// me.parent of every cell of the word as it is now (core/parents.h).
+void LinearDevelopment::findParents() {
+  if (!readsParents_) return;
+  const auto cells = pool_.cells();
+  axialParents(cells, program_.masters, parentIndex_);
+  parentValues_.resize(cells.size());
+  for (size_t i = 0; i < cells.size(); ++i)
+    parentValues_[i] = parentIndex_[i] < 0 ? context_->systemCellId : idValue(cells[parentIndex_[i]].id);
+}
 
 void LinearDevelopment::seed(StepContext& context) { seedFromAxiom(pool_, context); }
 
@@ -120,14 +134,18 @@ void LinearDevelopment::checkLimits(size_t cells) {
 // position (me.x) is the index in the word at the start of the step; a cell born and
 // expiring within one step has its ancestor's.
 double* LinearDevelopment::loadFrame(const CellRecord& cell, const double* state, double when, int64_t position) {
+  const double parent = readsParents_ && position >= 0 && static_cast<size_t>(position) < parentValues_.size()
+                            ? parentValues_[position]
+                            : -1;
   return loadCellFrame(frame_.data(), program_.masters[cell.master], cell, state, when,
-                       {static_cast<double>(position), 0, 0});
+                       {static_cast<double>(position), 0, 0}, parent);
 }
 
 // ---- per-step rules ----
 
 void LinearDevelopment::applyStepRules(double t) {
   pool_.indexBranches(system_.symbolClass);
+  findParents();
   beginWord();
   auto cells = pool_.cells();
   for (size_t i = 0; i < cells.size(); ++i) {
@@ -279,6 +297,7 @@ void LinearDevelopment::expireContextFree(double t1) {
       break;
     }
   if (!any) return;
+  findParents();
   beginWord();
   for (size_t position = 0; position < cells.size(); ++position) {
     const CellRecord& cell = cells[position];
@@ -351,6 +370,7 @@ void LinearDevelopment::expireInTimeOrder(double t1) {
     if (earliest > horizon) return;
     const double instant = earliest + timeTolerance(earliest);
     pool_.indexBranches(system_.symbolClass);
+    findParents();
     beginWord();
     auto cells = pool_.cells();
     for (size_t i = 0; i < cells.size(); ++i) {

@@ -72,6 +72,10 @@ class LinearDevelopment final : public Development {
   CellArray work_;                                                  // cells still to expire, last = next
   StateArray workState_;
   uint64_t eventsThisStep_ = 0;
+  void findParents();
+  bool readsParents_ = false;          // some rule reads me.parent
+  std::vector<int64_t> parentIndex_;   // of the word at the start of the pass
+  std::vector<double> parentValues_;   // me.parent of each cell of that word
   LinearPoolView view_;
   RuleEvaluator<LinearPoolView> aggregates_;  // answers count(), sum(x) ... for the cell being evaluated
   std::unique_ptr<RateIntegrator<LinearPoolView>> rates_;  // made on the first step that needs it; not copied

@@ -11,12 +11,9 @@ bool isTreeNode(const MasterCell& master) {
   return std::isalpha(first) || first == '_' || first >= 0x80;  // names may be UTF-8 (τ)
 }
 
-std::vector<int64_t> parentIndices(const World& world) {
-  const Pool& pool = world.rootPool();
-  const auto cells = pool.cells();
-  std::vector<int64_t> parents(cells.size(), -1);
-  if (world.rootSystem().poolKind != PoolKind::Linear) return parents;
-  const auto& masters = world.program().masters;
+void axialParents(std::span<const CellRecord> cells, const std::vector<MasterCell>& masters,
+                  std::vector<int64_t>& parents) {
+  parents.assign(cells.size(), -1);
   int64_t current = -1;          // the node the next module hangs from
   std::vector<int64_t> branches;  // `current` where each open branch began
   for (size_t i = 0; i < cells.size(); ++i) {
@@ -34,15 +31,23 @@ std::vector<int64_t> parentIndices(const World& world) {
       current = static_cast<int64_t>(i);
     }
   }
+}
+
+std::vector<int64_t> parentIndices(const World& world) {
+  std::vector<int64_t> parents(world.rootPool().size(), -1);
+  if (world.rootSystem().poolKind == PoolKind::Linear)
+    axialParents(world.rootPool().cells(), world.program().masters, parents);
   return parents;
 }
 
 std::vector<uint64_t> parentIds(const World& world) {
-  const std::vector<int64_t> indices = parentIndices(world);
   const auto cells = world.rootPool().cells();
   const uint64_t above = world.parent() ? world.systemCellId() : kNoParent;
-  std::vector<uint64_t> ids(indices.size());
-  for (size_t i = 0; i < indices.size(); ++i) ids[i] = indices[i] < 0 ? above : cells[indices[i]].id;
+  std::vector<uint64_t> ids(cells.size(), above);
+  if (world.rootSystem().poolKind != PoolKind::Linear) return ids;
+  const auto& masters = world.program().masters;
+  AxialWalk walk(above);
+  for (size_t i = 0; i < cells.size(); ++i) ids[i] = walk.next(cells[i], masters[cells[i].master]);
   return ids;
 }
 

@@ -38,8 +38,10 @@ class RuleEvaluator final : public NeighbourAggregates {
     const MasterCell& master = program_.masters[cell.master];
     // Positions cost a lookup in grids and spatial pools: only for masters that read them.
     const std::array<double, 3> position = master.readsPosition ? view_.position(i) : std::array<double, 3>{};
-    return loadCellFrame(frame_.data(), master, cell, arena + cell.state, time, position);
+    return loadCellFrame(frame_.data(), master, cell, arena + cell.state, time, position, parent_);
   }
+  /// What `me.parent` reads for every cell (grid and spatial pools: the system cell).
+  void useParent(double parent) { parent_ = parent; }
   /// Checks `rule`'s positional context around the loaded cell and copies the bound
   /// neighbour values into the frame; makes `rule` the one aggregates answer for.
   bool bind(const CompiledRule& rule);
@@ -72,6 +74,7 @@ class RuleEvaluator final : public NeighbourAggregates {
   const Pool& pool_;  // the view's, asked once
   std::vector<double> frame_;
   const double* arena_ = nullptr;
+  double parent_ = -1;
   size_t cell_ = 0;
   const CompiledRule* rule_ = nullptr;
   mutable int neighbourCount_ = -1;  // found on the first aggregate of a cell

@@ -1,9 +1,9 @@
 #include "core/spatial_development.h"
 
-#include "core/parallel_for.h"
 #include "core/pool_view.h"
 #include "core/rate_integrator.h"
 #include "core/rule_evaluator.h"
+#include "core/step_rule_pass.h"
 
 namespace ontogen {
 
@@ -60,38 +60,21 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
   const Program& program = *program_;
   const double t = context.time;
   pool_.index();
-  const auto cells = pool_.cells();
-  const double* arena = pool_.stateArena().data();
-  const uint64_t seed = context.seed;
-  const unsigned threads = context.threads;
-  const SpatialPoolView& view = view_;
-  FunctionTable functions = program.functionTable();
-  std::vector<ChunkResult> results(threads);
-
-  parallelFor(cells.size(), threads, [&](size_t begin, size_t end, unsigned worker) {
-    ChunkResult& out = results[worker];
-    RuleEvaluator<SpatialPoolView> evaluator(program, view);
-    SuccessorWriter successors(program);
-    if (context.lineage) successors.recordLineage(&out.lineage);
-    auto emit = [&](CellRecord record, const double* values, uint32_t count) {
-      record.state = static_cast<uint32_t>(out.state.size());
-      out.state.insert(out.state.end(), values, values + count);
-      out.cells.push_back(record);
-    };
-    for (size_t i = begin; i < end; ++i) {
-      const CellRecord& cell = cells[i];
-      const MasterCell& master = program.masters[cell.master];
-      double* frame = evaluator.load(i, arena, t);
-      RandomStream random(mixKey(mixKey(seed ^ kStepRuleSalt, cell.id), keyOf(t)));
-      EvalContext evaluation{frame, EvalEnvironment{&random, seed}, &functions, &evaluator};
-      evaluation.ancestors = context.ancestors;
-      const CompiledRule* action = evaluator.fireStepRules(master, evaluation, random, out.firings);
-      if (!action)
-        emit(cell, frame, master.stateCount());
-      else
-        out.born += successors.write(*action, cell, frame, t, BirthCause::StepRule, evaluation, emit);
-    }
-  });
+  std::vector<ChunkResult> results;
+  runStepRules(program, context, view_, results,
+               [&](ChunkResult& out, size_t, const CellRecord& cell, double* frame, const CompiledRule* action,
+                   const EvalContext& evaluation, SuccessorWriter& successors) {
+                 // Successors take the cell's place in pool order, as in a linear pool.
+                 auto emit = [&](CellRecord record, const double* values, uint32_t count) {
+                   record.state = static_cast<uint32_t>(out.state.size());
+                   out.state.insert(out.state.end(), values, values + count);
+                   out.cells.push_back(record);
+                 };
+                 if (!action)
+                   emit(cell, frame, program.masters[cell.master].stateCount());
+                 else
+                   out.born += successors.write(*action, cell, frame, t, BirthCause::StepRule, evaluation, emit);
+               });
 
   CellArray next;
   StateArray nextState;

@@ -14,7 +14,9 @@ std::vector<WordCell> captureWord(const World& world) {
   const bool spatial = world.rootSystem().poolKind == PoolKind::Spatial;
   const int dimensions = spatial ? 3 : world.rootSystem().grid.dimensions;
   const auto cells = pool.cells();
-  const std::vector<uint64_t> parents = parentIds(world);
+  const uint64_t above = world.parent() ? world.systemCellId() : kNoParent;
+  const bool linear = world.rootSystem().poolKind == PoolKind::Linear;
+  AxialWalk walk(above);
   for (size_t i = 0; i < cells.size(); ++i) {
     const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
@@ -30,7 +32,7 @@ std::vector<WordCell> captureWord(const World& world) {
     entry.age = world.ageOf(cell);
     entry.timed = master.timedNotation;
     entry.id = cell.id;
-    entry.parent = parents[i];
+    entry.parent = linear ? walk.next(cell, master) : above;
     entry.system = master.system >= 0;
     if (const World* child = world.childOf(cell)) entry.pool = captureWord(*child);
     word.push_back(std::move(entry));

@@ -34,6 +34,7 @@ World::World(const World& parent, const CellRecord& cell, const double* cellStat
 // The pool from its system's axiom (and placements), then the pools of its system cells.
 void World::seedPool() {
   development_ = makeDevelopment(*program_, rootSystem());
+  pool_ = &development_->pool();
   updateAncestorValues();
   StepContext context = stepContext();
   development_->seed(context);
@@ -47,6 +48,7 @@ StepContext World::stepContext() {
                       stats_};
   context.lineage = def_.recordLineage ? &lineage_ : nullptr;
   context.idSalt = idSalt();
+  context.systemCellId = parent_ ? idValue(cellId_) : -1;
   return context;
 }
 
@@ -60,6 +62,7 @@ World::World(const World& other)
       cellState_(other.cellState_),
       ancestorValues_(other.ancestorValues_),
       development_(other.development_->clone()),
+      pool_(&development_->pool()),
       time_(other.time_),
       stats_(other.stats_),
       lineage_(other.lineage_) {
@@ -71,9 +74,47 @@ World::World(const World& other)
   if (other.onGrid_) onGrid_ = std::make_unique<World>(*other.onGrid_);
 }
 
-World::~World() = default;
+World::World(World&& other) noexcept
+    : program_(std::move(other.program_)),
+      def_(other.def_),
+      system_(other.system_),
+      parent_(other.parent_),
+      cellId_(other.cellId_),
+      cellBirth_(other.cellBirth_),
+      cellState_(std::move(other.cellState_)),
+      ancestorValues_(std::move(other.ancestorValues_)),
+      children_(std::move(other.children_)),
+      development_(std::move(other.development_)),
+      pool_(other.pool_),
+      time_(other.time_),
+      stats_(other.stats_),
+      lineage_(std::move(other.lineage_)),
+      onGrid_(std::move(other.onGrid_)) {
+  for (auto& [id, child] : children_) child->parent_ = this;
+}
 
-const Pool& World::rootPool() const { return development_->pool(); }
+World& World::operator=(World&& other) noexcept {
+  if (this == &other) return *this;
+  program_ = std::move(other.program_);
+  def_ = other.def_;
+  system_ = other.system_;
+  parent_ = other.parent_;
+  cellId_ = other.cellId_;
+  cellBirth_ = other.cellBirth_;
+  cellState_ = std::move(other.cellState_);
+  ancestorValues_ = std::move(other.ancestorValues_);
+  children_ = std::move(other.children_);
+  for (auto& [id, child] : children_) child->parent_ = this;
+  development_ = std::move(other.development_);
+  pool_ = other.pool_;
+  time_ = other.time_;
+  stats_ = other.stats_;
+  lineage_ = std::move(other.lineage_);
+  onGrid_ = std::move(other.onGrid_);
+  return *this;
+}
+
+World::~World() = default;
 
 namespace {
 [[noreturn]] void wrongPoolKind(const char* kind) {
@@ -168,18 +209,9 @@ void World::advanceTo(double target, double dt) {
 
 void World::returnToGrid() {
   if (!onGrid_) return;
-  std::unique_ptr<World> kept = std::move(onGrid_);
-  takeDevelopmentOf(*kept);
-}
-
-void World::takeDevelopmentOf(World& other) {
-  ancestorValues_ = std::move(other.ancestorValues_);
-  children_ = std::move(other.children_);
-  for (auto& [id, child] : children_) child->parent_ = this;
-  development_ = std::move(other.development_);
-  time_ = other.time_;
-  stats_ = other.stats_;
-  lineage_ = std::move(other.lineage_);
+  World kept = std::move(*onGrid_);
+  onGrid_.reset();
+  *this = std::move(kept);
 }
 
 void World::step(double dt) {

@@ -52,15 +52,20 @@ class World {
   /// The world of a system cell `cell` (whose state is `cellState`) in `parent`'s pool,
   /// seeded from its system's axiom at the parent's current time.
   World(const World& parent, const CellRecord& cell, const double* cellState);
+  /// A deep copy that develops on its own.
   World(const World& other);
   World& operator=(const World&) = delete;
+  /// Moves are cheap (no cell is copied); a moved-from world may only be destroyed or
+  /// assigned to.
+  World(World&& other) noexcept;
+  World& operator=(World&& other) noexcept;
   ~World();
 
   const Program& program() const { return *program_; }
   /// The system this world grows: the program's root system, or a nested one.
   const SystemDefinition& rootSystem() const { return program_->systems[system_]; }
   /// This world's pool (the root system's for the world made from a program), whatever its kind.
-  const Pool& rootPool() const;
+  const Pool& rootPool() const { return *pool_; }
   /// The world of the system cell `cell` of this world's pool, or null (an ordinary cell).
   const World* childOf(const CellRecord& cell) const;
   /// The enclosing system's world, null for the root.
@@ -117,7 +122,6 @@ class World {
   /// Back to the state kept at the last grid instant, when a stop between grid
   /// instants left the world off the grid.
   void returnToGrid();
-  void takeDevelopmentOf(World& other);
 
   std::shared_ptr<const Program> program_;
   WorldDef def_;
@@ -130,6 +134,7 @@ class World {
   /// Child worlds by the id of their system cell.
   std::unordered_map<uint64_t, std::unique_ptr<World>> children_;
   std::unique_ptr<Development> development_;  ///< made once; owns the pool
+  const Pool* pool_ = nullptr;                ///< development_->pool(), asked once (read per cell)
   double time_ = 0;
   WorldStats stats_;
   std::vector<LineageRecord> lineage_;

@@ -21,14 +21,19 @@ void interpretPool(const World& world, InterpretationSet& set) {
   const int setIndex = program.commandSetIndex(set.name());
   std::vector<int8_t> known(setIndex < 0 ? program.masters.size() : 0, -1);
   const auto cells = pool.cells();
-  const std::vector<uint64_t> parents = parentIds(world);
+  // Parents cost a pass over the word: found when the set or an interpretation block reads them.
+  bool readsParent = set.wantsParents();
+  for (const MasterCell& master : program.masters) readsParent = readsParent || master.readsParent;
+  const std::vector<uint64_t> parents = readsParent ? parentIds(world) : std::vector<uint64_t>{};
+  auto parentOf = [&parents](size_t i) { return parents.empty() ? kNoParent : parents[i]; };
   for (size_t i = 0; i < cells.size(); ++i) {
     const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
     if (const InterpretationBlock* block = master.interpretation(set.name())) {
       frame.resize(master.stateCount() + FrameSlot::kCount);
-      loadCellFrame(frame.data(), master, cell, pool.stateOf(cell), world.time(), world.positionOf(i));
-      set.beginCell({cell.id, parents[i], cell.birth, master.lifetime, world.time()});
+      loadCellFrame(frame.data(), master, cell, pool.stateOf(cell), world.time(), world.positionOf(i),
+                    parentOf(i) == kNoParent ? -1 : idValue(parentOf(i)));
+      set.beginCell({cell.id, parentOf(i), cell.birth, master.lifetime, world.time()});
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
       context.ancestors = world.ancestorValues();
@@ -52,7 +57,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
       }
       if (id != -1) {
         world.developedValues(cell, developed);
-        set.beginCell({cell.id, parents[i], cell.birth, master.lifetime, world.time()});
+        set.beginCell({cell.id, parentOf(i), cell.birth, master.lifetime, world.time()});
         set.locate({master.span, master.label, world.time()});
         if (id >= 0)
           set.executeCommand(id, master.command, developed);

@@ -105,6 +105,8 @@ class InterpretationSet {
   virtual void beginWord(double /*time*/) {}
   /// Called by interpretWord before the instructions of each cell the set realises.
   virtual void beginCell(const CellContext& /*cell*/) {}
+  /// True when the set reads CellContext::parent (finding parents costs a pass over the word).
+  virtual bool wantsParents() const { return false; }
   /// Called by interpretWord after the last cell of a word.
   virtual void endWord() {}
 

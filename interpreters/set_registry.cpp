@@ -31,6 +31,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
   if (name == "geometry") {
     GeometrySetDef def;
     def.output = sceneOutputDefOf(options);
+    def.sceneNodes = options.sceneNodes;
     def.turtle.step = settings.step;
     def.turtle.angle = settings.angle;
     def.turtle.yawAngle = settings.yawAngle;

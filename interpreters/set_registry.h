@@ -25,6 +25,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
 struct SetOptions {
   std::string formats = "glb,png";  ///< geometry: comma-separated formats (geometry_set.h)
   RenderDef render{};               ///< geometry: picture size and view
+  bool sceneNodes = false;          ///< geometry: record the scene's nodes (GeometrySetDef::sceneNodes)
 };
 
 /// The same, with output settings; throws std::invalid_argument with a message for the

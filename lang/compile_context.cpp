@@ -36,6 +36,7 @@ int internalSlot(std::string_view name) {
   if (name == "me.x") return FrameSlot::kX;
   if (name == "me.y") return FrameSlot::kY;
   if (name == "me.z") return FrameSlot::kZ;
+  if (name == "me.parent") return FrameSlot::kParent;
   return -1;
 }
 
@@ -92,6 +93,7 @@ NameLookup CompileContext::frameLookup(const SlotMap& slots, int stateCount, con
     if (auto it = slots.find(name); it != slots.end()) return it->second;
     int internal = internalSlot(name);
     if (internal >= FrameSlot::kX && internal <= FrameSlot::kZ) readsPosition = true;
+    if (internal == FrameSlot::kParent) readsParent = true;
     return internal < 0 ? -1 : stateCount + internal;
   };
   addFunctions(names, scope);

@@ -107,6 +107,7 @@ struct CompileContext {
 
   // ---- reads, set while expressions compile ----
   bool readsPosition = false;  ///< set by the frame lookup when an expression reads me.x, me.y, me.z
+  bool readsParent = false;    ///< set by the frame lookup when an expression reads me.parent
   Reader reader;               ///< who the expressions being compiled belong to
   std::vector<AncestorRead> ancestorReads;
   std::set<size_t> reportedAncestors;  ///< spans (their begin) of ancestor reads already registered

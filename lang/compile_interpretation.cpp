@@ -34,6 +34,7 @@ void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block
   for (uint32_t i = 0; i < self.stateCount(); ++i)
     slots[params ? (*params)[i] : self.stateNames[i]] = static_cast<int>(i);
   ctx.reader = Reader{master, -1};
+  ctx.readsParent = false;
   NameLookup names = ctx.frameLookup(slots, static_cast<int>(self.stateCount()), lookupScope);
   if (set && set->constant) {
     names.constant = [&lookupScope, set](std::string_view name) -> std::optional<double> {
@@ -66,6 +67,7 @@ void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block
     for (const auto& arg : module.args) instruction.args.push_back(compileExpression(*arg, names, ctx.sink));
     compiled.instructions.push_back(std::move(instruction));
   }
+  if (ctx.readsParent) ctx.program->masters[master].readsParent = true;
   ctx.program->masters[master].interpretations.push_back(std::move(compiled));
 }
 

@@ -342,9 +342,10 @@ void compileCells(CompileContext& ctx) {
     int master = it->second;
     bool anyTerminal = false;
     for (const auto& rule : cell.rules) {
-      ctx.readsPosition = false;
+      ctx.readsPosition = ctx.readsParent = false;
       CompiledRule compiled = compileRule(ctx, rule, master, -1, ctx.global, /*lsystem=*/false);
       if (ctx.readsPosition) ctx.program->masters[master].readsPosition = true;
+      if (ctx.readsParent) ctx.program->masters[master].readsParent = true;
       if (rule.terminal) {
         anyTerminal = true;
         ctx.program->masters[master].terminalRules.push_back(std::move(compiled));
@@ -390,9 +391,10 @@ void compileProductions(CompileContext& ctx, const ast::System& system, Scope& s
     ctx.program->masters[master].declared = true;
   }
   for (auto& [master, production] : productions) {
-    ctx.readsPosition = false;
+    ctx.readsPosition = ctx.readsParent = false;
     CompiledRule rule = compileRule(ctx, *production, master, index, scope, /*lsystem=*/true);
     if (ctx.readsPosition) ctx.program->masters[master].readsPosition = true;
+    if (ctx.readsParent) ctx.program->masters[master].readsParent = true;
     ctx.program->masters[master].terminalRules.push_back(std::move(rule));
   }
 }

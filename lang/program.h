@@ -42,7 +42,8 @@ struct FrameSlot {
   static constexpr int kX = 4;            ///< `me.x`: index in a linear pool, first grid coordinate
   static constexpr int kY = 5;            ///< `me.y`: second grid coordinate (0 elsewhere)
   static constexpr int kZ = 6;            ///< `me.z`: third grid coordinate (0 elsewhere)
-  static constexpr int kCount = 7;
+  static constexpr int kParent = 7;       ///< `me.parent`: the low 53 bits of the parent's id, -1 for none
+  static constexpr int kCount = 8;
 };
 
 /// A reduction over the neighbours of a cell: `count()`, `count(A)`, `sum(x)`,
@@ -167,6 +168,7 @@ struct MasterCell {
   std::vector<int> commandIds;
   uint8_t symbolClass = kSymbolModule;
   bool readsPosition = false;  ///< a rule reads me.x, me.y or me.z (the engine fills them only then)
+  bool readsParent = false;    ///< a rule reads me.parent (the engine finds parents only then)
   /// For a system cell: the index of its SystemDefinition (its cells grow in a pool of
   /// their own); -1 for an ordinary cell.
   int system = -1;

@@ -17,29 +17,33 @@ void GeometrySet::beginFrame(const FrameTarget& target) {
   scene_.geometry.clear();
   scene_.nodes.clear();
   scene_.time = target.time;
+  hasPending_ = false;
 }
 
-// Each cell that draws becomes a node: where the turtle stands as it begins, and the
-// stretch of the geometry it draws until the next cell begins.
+// Each cell that draws becomes a node: where the turtle stood as it began, and the
+// stretch of the geometry it drew until the next cell began. Most cells of a word draw
+// nothing (turns, brackets), so a cell is only noted as it begins, and becomes a node
+// when the next one begins if it drew.
 void GeometrySet::beginCell(const CellContext& cell) {
+  if (!def_.sceneNodes) return;
   closeNode();
-  if (!scene_.nodes.empty() && scene_.nodes.back().range.empty()) scene_.nodes.pop_back();
   const TurtleState& state = turtle_.state();
-  SceneNode node;
-  node.id = cell.id;
-  node.parent = cell.parent;
-  node.position = state.position;
-  node.orientation = glm::dmat3(state.heading, state.left, state.up);
-  node.range.firstTriangle = static_cast<uint32_t>(scene_.geometry.triangleCount());
-  node.range.firstSegment = static_cast<uint32_t>(scene_.geometry.segmentCount());
-  scene_.nodes.push_back(node);
+  pending_.id = cell.id;
+  pending_.parent = cell.parent;
+  pending_.position = state.position;
+  pending_.orientation = glm::dmat3(state.heading, state.left, state.up);
+  pending_.range.firstTriangle = static_cast<uint32_t>(scene_.geometry.triangleCount());
+  pending_.range.firstSegment = static_cast<uint32_t>(scene_.geometry.segmentCount());
+  hasPending_ = true;
 }
 
 void GeometrySet::closeNode() {
-  if (scene_.nodes.empty()) return;
-  GeometryRange& range = scene_.nodes.back().range;
+  if (!hasPending_) return;
+  hasPending_ = false;
+  GeometryRange& range = pending_.range;
   range.triangleCount = static_cast<uint32_t>(scene_.geometry.triangleCount()) - range.firstTriangle;
   range.segmentCount = static_cast<uint32_t>(scene_.geometry.segmentCount()) - range.firstSegment;
+  if (!range.empty()) scene_.nodes.push_back(pending_);
 }
 
 void GeometrySet::execute(std::string_view command, std::span<const double> args) {
@@ -77,7 +81,6 @@ void GeometrySet::finishScene() {
   // What the turtle meshes at the end (open generalized cylinders, plates) belongs to
   // the frame, not to the last cell.
   turtle_.finish(scene_.geometry);
-  if (!scene_.nodes.empty() && scene_.nodes.back().range.empty()) scene_.nodes.pop_back();
 }
 
 void GeometrySet::contribute(Scene& scene) {

@@ -24,6 +24,10 @@ struct GeometrySetDef {
   TurtleDef turtle{};       ///< step, angles and initial radius
   SceneOutputDef output{};  ///< what endFrame() writes when the set is used on its own
   MeshDef mesh{};           ///< tessellation of cylinders, discs and spheres
+  /// Record the scene's nodes (a node per drawing cell, with its parent and frame). They
+  /// cost about a third of the interpretation of a large word, and no file format reads
+  /// them yet, so a host that needs them (skeletons, physics, a viewer) asks.
+  bool sceneNodes = false;
 };
 
 /// The 3-D turtle's drawing as a scene (interpreters/scene.h): a node per cell that
@@ -38,6 +42,7 @@ class GeometrySet : public InterpretationSet {
   bool knows(std::string_view command) const override;
   void beginFrame(const FrameTarget& target) override;
   void beginCell(const CellContext& cell) override;
+  bool wantsParents() const override { return def_.sceneNodes; }
   void execute(std::string_view command, std::span<const double> args) override;
   /// `id` indexes turtleCommands().
   void executeCommand(int id, std::string_view command, std::span<const double> args) override;
@@ -75,6 +80,8 @@ class GeometrySet : public InterpretationSet {
   WarningCounter badArguments_;
   Turtle turtle_;
   Scene scene_;
+  SceneNode pending_;        // the cell being drawn, a node if it draws
+  bool hasPending_ = false;
   FrameTarget target_;
 };
 

@@ -107,5 +107,34 @@ TEST(Parents, TheLineageOfPerStepBirthsInEveryPoolKind) {
   }
 }
 
+// Rules read their parent's id as me.parent (paper 003's isChildOf): an A compares it with
+// the id its left context F noted; the first cell has none (-1); a nested pool's first
+// cell hangs from its system cell, whose id it is given.
+TEST(Parents, RulesReadTheirParentAsMeParent) {
+  auto program = compileOrFail(
+      "cell F(f = -1) { rules { f < 0 : f = id; } }\n"
+      "cell A(ok = 0) { rules { F(f) me : f >= 0 && ok == 0 : ok = if(me.parent == f, 1, 2); } }\n"
+      "cell R(p = 0) { rules { p == 0 : p = if(me.parent == -1, 1, 2); } }\n"
+      "system s { pool linear; axiom R F [ A ] A; }");
+  World world(program);
+  world.advanceTo(3, 1);
+  ASSERT_EQ(labels(world), (std::vector<std::string>{"R", "F", "[", "A", "]", "A"}));
+  const Pool& pool = world.rootPool();
+  EXPECT_EQ(*pool.stateOf(pool.cells()[0]), 1) << "R has no parent";
+  EXPECT_EQ(*pool.stateOf(pool.cells()[3]), 1) << "the A in the branch hangs from F";
+  EXPECT_EQ(*pool.stateOf(pool.cells()[5]), 1) << "the A after it too";
+
+  auto grid = compileOrFail("cell C(p = 0) { rules { p == 0 : p = me.parent; } }\n"
+                            "system g { pool grid(2); fill C; }\n"
+                            "system top { pool linear; axiom g; }", "nested.cell");
+  World outer(grid);
+  outer.advanceTo(2, 1);
+  const CellRecord& system = outer.rootPool().cells()[0];
+  const World* inner = outer.childOf(system);
+  ASSERT_NE(inner, nullptr);
+  for (const CellRecord& cell : inner->rootPool().cells())
+    EXPECT_EQ(*inner->rootPool().stateOf(cell), idValue(system.id)) << "grid cells hang from their system cell";
+}
+
 }  // namespace
 }  // namespace ontogen

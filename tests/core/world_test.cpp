@@ -82,6 +82,30 @@ TEST(World, CopiesDevelopIndependently) {
   expectSameWord(captureWord(original), captureWord(copy), 0);
 }
 
+// Many worlds side by side from one compiled program, moved about in a vector as it
+// grows: each develops as a world made alone would, nested systems included (their
+// reads of parent.x go through the moved world).
+TEST(World, ManyWorldsFromOneProgramAreMovableAndIndependent) {
+  for (const char* model : {"orchard.cell", "markov_melody.cell"}) {
+    auto program = testing_support::compileModel(model);
+    std::vector<World> worlds;
+    for (uint64_t seed = 1; seed <= 40; ++seed) worlds.emplace_back(program, WorldDef{.seed = seed});
+    for (World& world : worlds) world.advanceTo(6, 0.5);
+    std::vector<World> moved;
+    for (World& world : worlds) moved.push_back(std::move(world));
+    for (uint64_t seed : {1u, 17u, 40u}) {
+      World alone(program, WorldDef{.seed = seed});
+      alone.advanceTo(6, 0.5);
+      const World& many = moved[seed - 1];
+      EXPECT_EQ(formatWord(captureWord(many)), formatWord(captureWord(alone))) << model << " seed " << seed;
+    }
+    moved[3].advanceTo(8, 0.5);  // a moved world develops on
+    World alone(program, WorldDef{.seed = 4});
+    alone.advanceTo(8, 0.5);
+    EXPECT_EQ(formatWord(captureWord(moved[3])), formatWord(captureWord(alone))) << model;
+  }
+}
+
 TEST(World, CellLimitStopsGrowthWithAMessage) {
   auto program = compileOrFail("lsystem a { axiom A\n A -> A A\n }");
   WorldDef def;

@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 TEST(Scene, ANodePerDrawingCellWithItsIdParentAndPlace) {
   auto program = testing_support::compileOrFail("lsystem t {\n  axiom F(1) [ + F(2) ] F(3)\n}");
   World world(program);
-  GeometrySet set;
+  GeometrySet set(GeometrySetDef{.sceneNodes = true});
   set.beginFrame({});
   interpretWord(world, set);
   Scene scene;
