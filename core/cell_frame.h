@@ -14,20 +14,32 @@
 
 namespace ontogen {
 
+/// The slots every frame has: age, terminal age, time, id. The hot loops (rules and rates
+/// over large pools) write only these, and the place (loadPlace) for the masters whose
+/// expressions read it (MasterCell::readsPosition, readsParent).
+inline void loadAgeAndId(double* internal, const CellRecord& cell, double lifetime, double when) {
+  internal[FrameSlot::kAge] = when - cell.birth;
+  internal[FrameSlot::kTerminalAge] = lifetime;
+  internal[FrameSlot::kTime] = when;
+  internal[FrameSlot::kId] = idValue(cell.id);
+}
+
+/// The place slots: position (me.x, me.y, me.z) and parent (me.parent).
+inline void loadPlace(double* internal, const std::array<double, 3>& position, double parent) {
+  internal[FrameSlot::kX] = position[0];
+  internal[FrameSlot::kY] = position[1];
+  internal[FrameSlot::kZ] = position[2];
+  internal[FrameSlot::kParent] = parent;
+}
+
 /// Writes the internal-state slots at `internal` (the frame after the state values) for
 /// `cell` at global time `when` (seconds); `position` is its index (linear pool), grid
 /// coordinates or spatial x, y, z; `parent` the id value of the cell it hangs from
 /// (idValue, core/parents.h), -1 for none.
 inline void loadInternalState(double* internal, const CellRecord& cell, double lifetime, double when,
                               const std::array<double, 3>& position, double parent = -1) {
-  internal[FrameSlot::kAge] = when - cell.birth;
-  internal[FrameSlot::kTerminalAge] = lifetime;
-  internal[FrameSlot::kTime] = when;
-  internal[FrameSlot::kId] = idValue(cell.id);
-  internal[FrameSlot::kX] = position[0];
-  internal[FrameSlot::kY] = position[1];
-  internal[FrameSlot::kZ] = position[2];
-  internal[FrameSlot::kParent] = parent;
+  loadAgeAndId(internal, cell, lifetime, when);
+  loadPlace(internal, position, parent);
 }
 
 /// Copies the cell's `master.stateCount()` values from `state` into `frame` and fills the

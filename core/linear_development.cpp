@@ -20,7 +20,7 @@ LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinit
       successors_(program),
       frame_(ruleFrameSize(program)),
       view_(pool_, system.symbolClass),
-      aggregates_(program, view_) {
+      evaluator_(program, view_) {
   for (const MasterCell& master : program.masters) readsParents_ = readsParents_ || master.readsParent;
 }
 
@@ -36,7 +36,7 @@ LinearDevelopment::LinearDevelopment(const LinearDevelopment& other)
       lastGrowth_(other.lastGrowth_),
       readsParents_(other.readsParents_),
       view_(pool_, other.system_.symbolClass),
-      aggregates_(other.program_, view_) {}
+      evaluator_(other.program_, view_) {}
 
 // me.parent of every cell of the word as it is now (core/parents.h).
 void LinearDevelopment::findParents() {
@@ -154,35 +154,24 @@ void LinearDevelopment::applyStepRules(double t) {
     if (master.rules.empty())
       emit(cell, pool_.stateOf(cell), master.stateCount());
     else
-      fireStepRules(cell, pool_.stateOf(cell), t, i);
+      fireStepRules(cell, t, i);
   }
   finishWord();
 }
 
-void LinearDevelopment::fireStepRules(const CellRecord& cell, const double* state, double t, size_t index) {
+// The per-step rule pass every pool kind shares (RuleEvaluator::fireStepRules), one cell
+// at a time, in word order.
+void LinearDevelopment::fireStepRules(const CellRecord& cell, double t, size_t index) {
   const MasterCell& master = program_.masters[cell.master];
-  const uint32_t n = master.stateCount();
-  double* frame = loadFrame(cell, state, t, static_cast<int64_t>(index));
+  evaluator_.useParents(readsParents_ ? parentValues_.data() : nullptr);
+  double* frame = evaluator_.load(index, pool_.stateArena().data(), t);
   RandomStream random(mixKey(mixKey(context_->seed ^ kStepRuleSalt, cell.id), keyOf(t)));
-  aggregates_.focus(index, pool_.stateArena().data());
-  EvalContext context{frame, EvalEnvironment{&random, context_->seed}, &functions_, &aggregates_};
+  EvalContext context{frame, EvalEnvironment{&random, context_->seed}, &functions_, &evaluator_};
   context.ancestors = context_->ancestors;
-  for (const CompiledRule& rule : master.rules) {
-    if (!rule.hasDiscrete) continue;  // rate-only rules act while integrating
-    aggregates_.useRule(rule);
-    if (rule.hasContext() && !matchContext(rule, index, frame)) continue;
-    if (!rule.predicate.empty() && rule.predicate.evaluate(context) == 0.0) continue;
-    // Per-step rules with a probability fire with that probability when they match.
-    if (!rule.probability.empty() && !(random.uniform() < rule.probability.evaluate(context))) continue;
-    for (const StateCalculation& calculation : rule.calculations)
-      if (!calculation.isRate) frame[calculation.slot] = calculation.value.evaluate(context);
-    ++context_->stats.ruleFirings;
-    if (rule.hasAction) {
-      emitSuccessors(rule, cell, frame, t, BirthCause::StepRule, context);
-      return;
-    }
-  }
-  emit(cell, frame, n);
+  if (const CompiledRule* action = evaluator_.fireStepRules(master, context, random, context_->stats.ruleFirings))
+    emitSuccessors(*action, cell, frame, t, BirthCause::StepRule, context);
+  else
+    emit(cell, frame, master.stateCount());
 }
 
 // ---- context ----
@@ -215,7 +204,7 @@ bool LinearDevelopment::matchContext(const CompiledRule& rule, size_t index, dou
 const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
                                                   RandomStream& random, const EvalContext& context) {
   auto matches = [&](const CompiledRule& rule) {
-    aggregates_.useRule(rule);
+    evaluator_.useRule(rule);
     if (rule.hasContext() && (index < 0 || !matchContext(rule, static_cast<size_t>(index), frame))) return false;
     return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0;
   };
@@ -243,7 +232,7 @@ const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule
       }
       x -= weight;
     }
-    aggregates_.useRule(*chosen);
+    evaluator_.useRule(*chosen);
     if (chosen->hasContext()) matchContext(*chosen, static_cast<size_t>(index), frame);  // rebind its values
     return chosen;
   }
@@ -258,8 +247,8 @@ void LinearDevelopment::expire(const CellRecord& cell, const double* state, doub
   const uint32_t n = master.stateCount();
   double* frame = loadFrame(cell, state, when, position);
   RandomStream random(mixKey(mixKey(context_->seed, cell.id), keyOf(when)));
-  if (index >= 0) aggregates_.focus(static_cast<size_t>(index), pool_.stateArena().data());
-  EvalContext context{frame, EvalEnvironment{&random, context_->seed}, &functions_, &aggregates_};
+  if (index >= 0) evaluator_.focus(static_cast<size_t>(index), pool_.stateArena().data());
+  EvalContext context{frame, EvalEnvironment{&random, context_->seed}, &functions_, &evaluator_};
   context.ancestors = context_->ancestors;
   const CompiledRule* rule = chooseRule(master.terminalRules, index, frame, random, context);
   if (rule) {

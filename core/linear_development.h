@@ -39,7 +39,7 @@ class LinearDevelopment final : public Development {
   /// `index` is its position in the current word (for context), or -1 for a newborn.
   /// `position` is the index of the cell (or its ancestor) in the word at the step's start.
   void expire(const CellRecord& cell, const double* state, double when, int64_t index, int64_t position);
-  void fireStepRules(const CellRecord& cell, const double* state, double t, size_t index);
+  void fireStepRules(const CellRecord& cell, double t, size_t index);
 
   double* loadFrame(const CellRecord& cell, const double* state, double when, int64_t position);
   bool matchContext(const CompiledRule& rule, size_t index, double* frame);
@@ -77,7 +77,7 @@ class LinearDevelopment final : public Development {
   std::vector<int64_t> parentIndex_;   // of the word at the start of the pass
   std::vector<double> parentValues_;   // me.parent of each cell of that word
   LinearPoolView view_;
-  RuleEvaluator<LinearPoolView> aggregates_;  // answers count(), sum(x) ... for the cell being evaluated
+  RuleEvaluator<LinearPoolView> evaluator_;  // per-step rules; count(), sum(x) ... for terminal rules too
   std::unique_ptr<RateIntegrator<LinearPoolView>> rates_;  // made on the first step that needs it; not copied
   uint32_t matched_[kMaxContextItems];     // cells matched by the context being tested
 };

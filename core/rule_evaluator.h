@@ -36,12 +36,20 @@ class RuleEvaluator final : public NeighbourAggregates {
     rule_ = nullptr;
     const CellRecord& cell = pool_.cells()[i];
     const MasterCell& master = program_.masters[cell.master];
+    const uint32_t n = master.stateCount();
+    double* frame = frame_.data();
+    std::copy(arena + cell.state, arena + cell.state + n, frame);
+    loadAgeAndId(frame + n, cell, master.lifetime, time);
     // Positions cost a lookup in grids and spatial pools: only for masters that read them.
-    const std::array<double, 3> position = master.readsPosition ? view_.position(i) : std::array<double, 3>{};
-    return loadCellFrame(frame_.data(), master, cell, arena + cell.state, time, position, parent_);
+    if (master.readsPosition || master.readsParent)
+      loadPlace(frame + n, master.readsPosition ? view_.position(i) : std::array<double, 3>{},
+                parents_ ? parents_[i] : parent_);
+    return frame;
   }
   /// What `me.parent` reads for every cell (grid and spatial pools: the system cell).
   void useParent(double parent) { parent_ = parent; }
+  /// Or per cell, indexed like the pool (linear pools: the axial tree); null: useParent's.
+  void useParents(const double* perCell) { parents_ = perCell; }
   /// Checks `rule`'s positional context around the loaded cell and copies the bound
   /// neighbour values into the frame; makes `rule` the one aggregates answer for.
   bool bind(const CompiledRule& rule);
@@ -75,6 +83,7 @@ class RuleEvaluator final : public NeighbourAggregates {
   std::vector<double> frame_;
   const double* arena_ = nullptr;
   double parent_ = -1;
+  const double* parents_ = nullptr;
   size_t cell_ = 0;
   const CompiledRule* rule_ = nullptr;
   mutable int neighbourCount_ = -1;  // found on the first aggregate of a cell
