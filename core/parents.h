@@ -73,7 +73,7 @@ class AxialWalk {
   }
   uint64_t current_;
   size_t depth_ = 0;
-  std::array<uint64_t, kInline> inline_{};
+  std::array<uint64_t, kInline> inline_;  // left unset: only what push() wrote is read
   std::vector<uint64_t> deeper_;
 };
 
