@@ -103,12 +103,7 @@ void GridDevelopment::seed(StepContext& context) {
 
 void GridDevelopment::step(StepContext& context, double t1, bool stepRules) {
   if (system_->sampledRules && stepRules) applyStepRules(context);
-  if (system_->rates) {
-    if (!rates_) rates_ = std::make_unique<RateIntegrator<GridPoolView>>(*program_, context.seed, context.threads);
-    rates_->setAncestors(context.ancestors);
-    rates_->integrate(grid_, view_, context.time, t1);
-    context.stats.rateEquations = rates_->activeEquations();
-  }
+  if (system_->rates) integrateRates(rates_, *program_, context, grid_, view_, context.time, t1);
 }
 
 void GridDevelopment::applyStepRules(StepContext& context) {

@@ -76,16 +76,12 @@ void LinearDevelopment::expireUntil(double t1) {
 void LinearDevelopment::integrateAndExpire(double t, double t1) {
   const auto& masters = program_.masters;
   double now = t;
-  if (!rates_) rates_ = std::make_unique<RateIntegrator<LinearPoolView>>(program_, context_->seed, context_->threads);
-  RateIntegrator<LinearPoolView>& rates = *rates_;
-  rates.setAncestors(context_->ancestors);
   while (now < t1 - timeTolerance(t1)) {
     double next = kForever;
     for (const CellRecord& cell : pool_.cells()) next = std::min(next, cell.birth + masters[cell.master].lifetime);
     const double until = next < t1 ? std::max(next, now) : t1;
     pool_.indexBranches(system_.symbolClass);
-    rates.integrate(pool_, view_, now, until);
-    context_->stats.rateEquations = rates.activeEquations();
+    integrateRates(rates_, program_, *context_, pool_, view_, now, until);
     expireUntil(until);
     now = until;
   }

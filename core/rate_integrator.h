@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/development.h"
 #include "core/pool_view.h"
 #include "core/rule_evaluator.h"
 #include "lang/program.h"
@@ -65,5 +66,16 @@ class RateIntegrator {
   uint64_t equationsVersion_ = UINT64_MAX;
   bool conditional_ = false;  // some rate rule has a context, predicate or probability
 };
+
+/// One step of a pool's rates from t0 to t1: the development's integrator, made on the
+/// first step that needs it, told the ancestors' values; counts the equations.
+template <typename View>
+void integrateRates(std::unique_ptr<RateIntegrator<View>>& rates, const Program& program, StepContext& context,
+                    Pool& pool, const View& view, double t0, double t1) {
+  if (!rates) rates = std::make_unique<RateIntegrator<View>>(program, context.seed, context.threads);
+  rates->setAncestors(context.ancestors);
+  rates->integrate(pool, view, t0, t1);
+  context.stats.rateEquations = rates->activeEquations();
+}
 
 }  // namespace ontogen

@@ -49,10 +49,7 @@ void SpatialDevelopment::step(StepContext& context, double t1, bool stepRules) {
   if (system_->sampledRules && stepRules) applyStepRules(context);
   if (system_->rates) {
     pool_.index();
-    if (!rates_) rates_ = std::make_unique<RateIntegrator<SpatialPoolView>>(*program_, context.seed, context.threads);
-    rates_->setAncestors(context.ancestors);
-    rates_->integrate(pool_, view_, context.time, t1);
-    context.stats.rateEquations = rates_->activeEquations();
+    integrateRates(rates_, *program_, context, pool_, view_, context.time, t1);
   }
 }
 
