@@ -1,8 +1,13 @@
 #pragma once
 // An interpretation set realises a developed world: the interpreter walks the cells in
-// pool order and hands each instruction (a command name and its evaluated arguments)
-// to the set chosen by name at run time. Sets never print; they report problems by
-// throwing OutputError and write files only in endFrame.
+// pool order and hands each instruction (a command the compiler resolved, and its
+// evaluated arguments) to the set. A set produces a frame and an output stage writes it:
+// the geometry set draws a scene (interpreters/scene.h) that a run merges with the
+// scenes of other drawing sets and writes through formats/scene_output.h; the music set
+// plays a score that music/score_output.h writes and performs; the image set paints a
+// picture that formats/picture_output.h writes. endFrame() finishes a frame and writes
+// it through the set's stage when the set is used on its own. Sets never print; they
+// report problems by throwing OutputError and by takeWarnings().
 
 #include <cstdint>
 #include <filesystem>

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "interpreters/formats/png_writer.h"
+#include "interpreters/formats/picture_output.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/output_file.h"
 
@@ -48,7 +48,9 @@ void ImageSet::execute(std::string_view command, std::span<const double> args) {
   sites_.push_back({static_cast<int>(x), static_cast<int>(y), t});
 }
 
-std::vector<std::filesystem::path> ImageSet::endFrame() {
+std::vector<std::filesystem::path> ImageSet::endFrame() { return {writePicture(picture(), target_)}; }
+
+Image ImageSet::picture() const {
   int columns = 1, rows = 1;
   for (const PaintedSite& site : sites_) {
     columns = std::max(columns, site.x + 1);
@@ -69,15 +71,7 @@ std::vector<std::filesystem::path> ImageSet::endFrame() {
         std::copy(rgb.begin(), rgb.end(), image.rgb.begin() + static_cast<std::ptrdiff_t>(at));
       }
   }
-  std::string name = target_.stem;
-  if (target_.frameCount > 1) {
-    char number[16];
-    std::snprintf(number, sizeof number, "_%04d", target_.frame);
-    name += number;
-  }
-  const std::filesystem::path path = target_.directory / (name + ".png");
-  writeFileAtomically(path, [&](std::ostream& out) { writePng(image, out); });
-  return {path};
+  return image;
 }
 
 }  // namespace ontogen

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "interpreters/formats/renderer.h"
 #include "interpreters/interpretation_set.h"
 
 namespace ontogen {
@@ -30,7 +31,10 @@ class ImageSet final : public InterpretationSet {
   bool knows(std::string_view command) const override { return command == "pixel" || command == "range"; }
   void beginFrame(const FrameTarget& target) override;
   void execute(std::string_view command, std::span<const double> args) override;
+  /// Writes the frame's picture through the output stage (formats/picture_output.h).
   std::vector<std::filesystem::path> endFrame() override;
+  /// The picture of the sites painted so far: the frame this set produces.
+  Image picture() const;
 
   /// The sites painted in the current frame (for tests).
   const std::vector<PaintedSite>& sites() const { return sites_; }

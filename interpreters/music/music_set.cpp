@@ -7,7 +7,8 @@
 
 namespace ontogen {
 
-MusicSet::MusicSet(const MusicSetDef& def) : def_(def), player_(def.player) {
+MusicSet::MusicSet(const MusicSetDef& def)
+    : def_(def), player_(def.player), output_(ScoreOutputDef{def.file, def.writeFile}) {
   checkMidiFileDef(def.file);
   player_.setDevelopmental(def.time == MusicTime::Developmental);
 }
@@ -119,34 +120,7 @@ void MusicSet::endWord() {
 
 std::vector<std::filesystem::path> MusicSet::endFrame() {
   if (followsDevelopment()) closeHeld(wordTime_, true);
-  std::vector<std::filesystem::path> written;
-  if (def_.writeFile) {
-    std::string name = target_.stem.empty() ? std::string("music") : target_.stem;
-    if (target_.frameCount > 1) {
-      std::string number = std::to_string(target_.frame);
-      if (number.size() < 4) number.insert(0, 4 - number.size(), '0');
-      name += "_" + number;
-    }
-    std::filesystem::path path = target_.directory / (name + ".mid");
-    MidiFileDef file = def_.file;
-    file.name = target_.stem;
-    // Encode first: a score that cannot be encoded leaves no file behind.
-    std::vector<uint8_t> bytes;
-    try {
-      bytes = encodeMidiFile(score_, file);
-    } catch (const std::invalid_argument& error) {
-      throw OutputError(path.string() + ": " + error.what());
-    }
-    writeFileAtomically(path, [&](std::ostream& out) {
-      out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    });
-    written.push_back(std::move(path));
-  }
-  if (performer_) {
-    MidiFileDef file = def_.file;
-    performer_(score_, file);
-  }
-  return written;
+  return output_.write(score_, target_);
 }
 
 }  // namespace ontogen

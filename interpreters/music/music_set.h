@@ -21,6 +21,7 @@
 #include "interpreters/music/midi_file_writer.h"
 #include "interpreters/music/music_player.h"
 #include "interpreters/music/score.h"
+#include "interpreters/music/score_output.h"
 #include "lang/program.h"
 
 namespace ontogen {
@@ -32,8 +33,6 @@ struct MusicSetDef {
   bool writeFile = true;  ///< write DIR/<stem>.mid at the end of each frame
 };
 
-/// Called with each finished score (live playback); may throw OutputError.
-using ScorePerformer = std::function<void(const Score& score, const MidiFileDef& file)>;
 
 class MusicSet final : public InterpretationSet {
  public:
@@ -59,7 +58,7 @@ class MusicSet final : public InterpretationSet {
   void endWord() override;
 
   /// Plays each finished score, e.g. on a MIDI port.
-  void setPerformer(ScorePerformer performer) { performer_ = std::move(performer); }
+  void setPerformer(ScorePerformer performer) { output_.setPerformer(std::move(performer)); }
 
   /// The score of the frame being played, or of the last one after endFrame.
   const Score& score() const { return score_; }
@@ -85,7 +84,7 @@ class MusicSet final : public InterpretationSet {
   MusicPlayer player_;
   Score score_;
   FrameTarget target_;
-  ScorePerformer performer_;
+  ScoreOutput output_;  // writes and performs each finished score
   // Developmental time:
   std::set<CellKey> played_;           // cells whose notes have sounded
   std::set<CellKey> seen_;             // cells of the current word
