@@ -1,15 +1,8 @@
 #include "core/parents.h"
 
-#include <cctype>
 
 namespace ontogen {
 
-bool isTreeNode(const MasterCell& master) {
-  if (master.symbolClass & (kSymbolBranchOpen | kSymbolBranchClose)) return false;
-  if (master.label.empty()) return false;
-  const unsigned char first = static_cast<unsigned char>(master.label[0]);
-  return std::isalpha(first) || first == '_' || first >= 0x80;  // names may be UTF-8 (τ)
-}
 
 void axialParents(std::span<const CellRecord> cells, const std::vector<MasterCell>& masters,
                   std::vector<int64_t>& parents) {

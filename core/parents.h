@@ -32,8 +32,9 @@ void axialParents(std::span<const CellRecord> cells, const std::vector<MasterCel
 /// For each cell of the world's pool, its parent's stable id, or kNoParent.
 std::vector<uint64_t> parentIds(const World& world);
 
-/// Whether a master is a node of the axial tree (a module named by a name).
-bool isTreeNode(const MasterCell& master);
+/// Whether a master is a node of the axial tree (a module named by a name; the compiler
+/// decides, MasterCell::treeNode).
+inline bool isTreeNode(const MasterCell& master) { return master.treeNode; }
 
 /// Walks a linear pool's cells in order and gives each its parent's id, without
 /// allocating for words whose branches nest less than 32 deep.

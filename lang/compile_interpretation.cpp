@@ -102,6 +102,9 @@ void resolveCommands(CompileContext& ctx) {
     master.command = equiv ? *equiv : master.label;
     if (master.command == "[") master.symbolClass = kSymbolBranchOpen;
     if (master.command == "]") master.symbolClass = kSymbolBranchClose;
+    const unsigned char first = master.label.empty() ? 0 : static_cast<unsigned char>(master.label[0]);
+    master.treeNode = master.symbolClass == kSymbolModule &&
+                      ((first >= 'a' && first <= 'z') || (first >= 'A' && first <= 'Z') || first == '_' || first >= 0x80);
     master.commandIds.clear();
     for (const auto& set : ctx.options.commandSets) {
       const CommandInfo* info = set.find(master.command);

@@ -167,6 +167,9 @@ struct MasterCell {
   /// -1 where the set does not know it, -2 where it knows it by name only.
   std::vector<int> commandIds;
   uint8_t symbolClass = kSymbolModule;
+  /// A node of the axial tree (core/parents.h): a module named by a name, not a bracket
+  /// or a punctuation symbol that only turns or sets the turtle.
+  bool treeNode = true;
   bool readsPosition = false;  ///< a rule reads me.x, me.y or me.z (the engine fills them only then)
   bool readsParent = false;    ///< a rule reads me.parent (the engine finds parents only then)
   /// For a system cell: the index of its SystemDefinition (its cells grow in a pool of
