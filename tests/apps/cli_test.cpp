@@ -12,7 +12,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -382,9 +381,12 @@ TEST(Cli, HelpListsEveryDirective) {
     if (in && line.rfind("| `#", 0) == 0) section += line.substr(0, line.find('|', 1)) + "\n";
   }
   std::set<std::string> documented;
-  const std::regex name("`#([a-z]+)");
-  for (auto it = std::sregex_iterator(section.begin(), section.end(), name); it != std::sregex_iterator(); ++it)
-    documented.insert((*it)[1]);
+  // The names after each "`#" (no <regex>: GCC 12 warns falsely inside it under the sanitizers).
+  for (size_t at = section.find("`#"); at != std::string::npos; at = section.find("`#", at + 1)) {
+    size_t stop = at + 2;
+    while (stop < section.size() && section[stop] >= 'a' && section[stop] <= 'z') ++stop;
+    if (stop > at + 2) documented.insert(section.substr(at + 2, stop - at - 2));
+  }
   ASSERT_GE(documented.size(), 17u) << section;
 
   Result result = ontogen("help");
