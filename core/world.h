@@ -1,7 +1,9 @@
 #pragma once
 // A world grows one compiled program (paper 002: the world creates, removes and
-// interprets cells). It owns the root system's pool and the global time, and nothing
-// global: several worlds can run side by side, and a world is cheap to copy.
+// interprets cells). It owns one Development (core/development.h), made once for its
+// system's pool kind, which owns the pool; and the global time. Nothing is global:
+// many worlds share one compiled program side by side, and a world is cheap to make,
+// copy and move.
 //
 // One step from t to t1 (docs/LANGUAGE.md, "Order of events in a step"):
 //  1. at t, every alive cell evaluates its per-step rules against the word as it was at
