@@ -52,6 +52,9 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     CreatureSetDef def;
     def.output = sceneOutputDefOf(options);
     def.radians = settings.radians;
+    const SceneOutputDef& out = def.output;
+    if (!out.writeSvg && !out.writeObj && !out.writePly && !out.writePngFrames && !out.writeMp4)
+      def.meshing = out.writePng ? LimbMeshing::GrownAndLastFrame : LimbMeshing::GrownFrames;
     return std::make_unique<CreatureSet>(def);
   }
   if (name == "music") return std::make_unique<MusicSet>(MusicSet::defFrom(settings.music));

@@ -67,7 +67,31 @@ void CreatureSet::beginFrame(const FrameTarget& target) {
   stack_.clear();
   creatures_.clear();
   legs_.clear();
+  limbs_.clear();
   stats_ = {};
+  lastFrame_ = target.frame + 1 >= target.frameCount;
+}
+
+void CreatureSet::endWord() {
+  const std::size_t joints = scene_.skeleton.joints.size();
+  const bool grown = joints > mostJoints_ || mostJoints_ == 0;
+  const bool wanted = def_.meshing == LimbMeshing::EveryFrame || grown ||
+                      (def_.meshing == LimbMeshing::GrownAndLastFrame && lastFrame_);
+  if (wanted) {
+    mostJoints_ = std::max(mostJoints_, joints);
+    Geometry& geometry = scene_.geometry;
+    for (const PendingLimb& limb : limbs_) {
+      geometry.setMaterial(limb.material);
+      const auto first = static_cast<uint32_t>(geometry.triangleCount());
+      placed_ = limbMesh(limb.length, limb.r0, limb.r1);
+      for (glm::dvec3& v : placed_.positions) v = limb.start + limb.frame * v;
+      for (glm::dvec3& n : placed_.normals) n = limb.frame * n;
+      geometry.addMesh(placed_);
+      const auto count = static_cast<uint32_t>(geometry.triangleCount()) - first;
+      if (limb.joint >= 0 && count > 0) scene_.skeleton.skin.push_back({first, count, limb.joint});
+    }
+  }
+  limbs_.clear();
 }
 
 void CreatureSet::beginCell(const CellContext& cell) {
@@ -310,23 +334,30 @@ void CreatureSet::limb(std::span<const double> args) {
   }
   Pose& p = pose_;
   const glm::dvec3 start = p.position, end = p.position + length * p.frame[0];
-  Geometry& geometry = scene_.geometry;
-  geometry.setMaterial(p.material);
-  const auto first = static_cast<uint32_t>(geometry.triangleCount());
   if (r0 == 0 && r1 == 0) {
-    geometry.addSegment(start, end);
+    scene_.geometry.setMaterial(p.material);
+    scene_.geometry.addSegment(start, end);
   } else {
-    // A generalized cylinder through base, middle and tip, swelling a little between.
-    const double middle = 1.15 * std::max(r0, r1);
-    const std::array<GcControlPoint, 3> points{GcControlPoint{start, p.frame[1], r0, nullptr},
-                                                GcControlPoint{(start + end) / 2.0, p.frame[1], middle, nullptr},
-                                                GcControlPoint{end, p.frame[1], r1, nullptr}};
-    geometry.addMesh(meshGeneralizedCylinder(points, GcDef{def_.limbSamples, def_.limbSides, true}));
+    limbs_.push_back({start, p.frame, length, r0, r1, p.material, p.joint});
   }
-  const auto count = static_cast<uint32_t>(geometry.triangleCount()) - first;
-  if (p.joint >= 0 && count > 0) scene_.skeleton.skin.push_back({first, count, p.joint});
   p.position = end;
   p.restPosition += length * p.restFrame[0];
+}
+
+// A generalized cylinder through base, middle and tip, swelling a little between, along
+// +x with its side along +y: the frame's H and L.
+const Mesh& CreatureSet::limbMesh(double length, double r0, double r1) {
+  const std::array<double, 3> key{length, r0, r1};
+  auto found = limbMeshes_.find(key);
+  if (found != limbMeshes_.end()) return found->second;
+  if (limbMeshes_.size() >= kLimbShapes) limbMeshes_.clear();
+  const glm::dvec3 side(0, 1, 0);
+  const double middle = 1.15 * std::max(r0, r1);
+  const std::array<GcControlPoint, 3> points{GcControlPoint{glm::dvec3(0.0), side, r0, nullptr},
+                                              GcControlPoint{glm::dvec3(length / 2, 0, 0), side, middle, nullptr},
+                                              GcControlPoint{glm::dvec3(length, 0, 0), side, r1, nullptr}};
+  return limbMeshes_.emplace(key, meshGeneralizedCylinder(points, GcDef{def_.limbSamples, def_.limbSides, true}))
+      .first->second;
 }
 
 void CreatureSet::contribute(Scene& scene) {

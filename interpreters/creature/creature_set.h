@@ -17,6 +17,7 @@
 
 #include <array>
 #include <filesystem>
+#include <map>
 #include <span>
 #include <string>
 #include <string_view>
@@ -33,8 +34,18 @@
 
 namespace ontogen {
 
+/// Which frames the set meshes its limbs in. The skeleton is posed in every frame; the
+/// skinned glTF needs the limbs of one frame only (the one with the most joints), a
+/// picture of the last frame those of the last.
+enum class LimbMeshing {
+  EveryFrame,         ///< for per-frame outputs (obj, svg, ply, png-frames, mp4)
+  GrownAndLastFrame,  ///< glb and png: frames with more joints than any before, and the last
+  GrownFrames,        ///< glb and joints only
+};
+
 struct CreatureSetDef {
   bool radians = false;     ///< angles in radians (#radians), else degrees
+  LimbMeshing meshing = LimbMeshing::EveryFrame;
   double ground = 0;        ///< the ground's height (world y), model units
   int limbSides = 12;       ///< points around a limb's cross-section (3..1024)
   int limbSamples = 4;      ///< rings of a limb between two of its control points (1..256)
@@ -64,6 +75,8 @@ class CreatureSet : public InterpretationSet {
   /// `id` indexes creatureCommands().
   void executeCommand(int id, std::string_view command, std::span<const double> args) override;
   std::vector<std::filesystem::path> endFrame() override;
+  /// Meshes the word's limbs (when this frame needs them).
+  void endWord() override;
   bool drawsScene() const override { return true; }
   void contribute(Scene& scene) override;
   std::vector<SetWarning> takeWarnings() override;
@@ -96,6 +109,13 @@ class CreatureSet : public InterpretationSet {
     glm::dvec3 forward{1, 0, 0}, up{0, 1, 0}, left{0, 0, -1};
     glm::dvec3 root{0.0};
   };
+  struct PendingLimb {
+    glm::dvec3 start{0.0};
+    glm::dmat3 frame{1.0};
+    double length = 0, r0 = 0, r1 = 0;
+    uint32_t material = 0;
+    int joint = -1;
+  };
   struct Leg {
     double upper = 1, lower = 1;
     glm::dvec3 target{0.0};
@@ -112,6 +132,16 @@ class CreatureSet : public InterpretationSet {
   void knee();
   void foot();
   void limb(std::span<const double> args);
+
+  // A limb's mesh, made once per shape along +x and placed by each frame's pose (paper 000:
+  // the limbs are rigid, "the geometric data can be cached"). At most kLimbShapes shapes.
+  const Mesh& limbMesh(double length, double r0, double r1);
+  static constexpr std::size_t kLimbShapes = 4096;
+  std::map<std::array<double, 3>, Mesh> limbMeshes_;
+  Mesh placed_;
+  std::vector<PendingLimb> limbs_;  // of the word being drawn, meshed at its end
+  std::size_t mostJoints_ = 0;      // the most joints a meshed frame had
+  bool lastFrame_ = false;
 
   CreatureSetDef def_;
   SceneOutput output_;

@@ -10,22 +10,14 @@ namespace ontogen {
 
 void JointTrackWriter::clear() {
   joints_.clear();
-  index_.clear();
   frames_.clear();
 }
 
 void JointTrackWriter::addFrame(const Scene& scene) {
-  if (frames_.empty()) {
-    joints_ = scene.skeleton.joints;
-    for (std::size_t j = 0; j < joints_.size(); ++j) index_.emplace(joints_[j].id, static_cast<int>(j));
-  }
+  if (frames_.empty() || scene.skeleton.joints.size() > joints_.size()) joints_ = scene.skeleton.joints;
   Frame frame;
   frame.time = scene.time;
-  frame.positions = frames_.empty() ? std::vector<glm::dvec3>(joints_.size()) : frames_.back().positions;
-  for (const SceneJoint& joint : scene.skeleton.joints) {
-    auto found = index_.find(joint.id);
-    if (found != index_.end()) frame.positions[found->second] = joint.position;
-  }
+  for (const SceneJoint& joint : scene.skeleton.joints) frame.positions[joint.id] = joint.position;
   frames_.push_back(std::move(frame));
 }
 
@@ -50,7 +42,15 @@ void JointTrackWriter::write(std::ostream& out) const {
   doc["frames"] = nlohmann::json::array();
   for (const Frame& frame : frames_) {
     nlohmann::json positions = nlohmann::json::array();
-    for (const glm::dvec3& p : frame.positions) positions.push_back({number(p.x), number(p.y), number(p.z)});
+    for (const SceneJoint& joint : joints_) {
+      auto found = frame.positions.find(joint.id);
+      if (found == frame.positions.end()) {
+        positions.push_back(nullptr);
+        continue;
+      }
+      const glm::dvec3& p = found->second;
+      positions.push_back({number(p.x), number(p.y), number(p.z)});
+    }
     doc["frames"].push_back({{"t", number(frame.time)}, {"positions", positions}});
   }
   out << doc.dump() << "\n";

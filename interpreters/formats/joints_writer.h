@@ -6,8 +6,9 @@
 //                "side": "left"|"right"|null, "segment": M or null}, ...],
 //    "frames": [{"t": T, "positions": [[x, y, z], ...]}, ...]}
 //
-// The joints are the first frame's, parents first; each frame gives every joint's world
-// position in that order (a joint missing from a frame keeps its last position). Ids are
+// The joints are those of the frame with the most joints (the first such: a body that
+// grows is listed grown), parents first; each frame gives every joint's world position in
+// that order, null for a joint the frame lacks (it had not grown yet). Ids are
 // the joint cells' stable ids, written as numbers below 2^53 as JSON readers keep them
 // exactly (their low 53 bits, as `word --json` writes ids).
 
@@ -32,11 +33,10 @@ class JointTrackWriter {
  private:
   struct Frame {
     double time = 0;
-    std::vector<glm::dvec3> positions;
+    std::unordered_map<uint64_t, glm::dvec3> positions;  // by joint id
   };
   double ground_ = 0;
-  std::vector<SceneJoint> joints_;
-  std::unordered_map<uint64_t, int> index_;
+  std::vector<SceneJoint> joints_;  // of the frame with the most
   std::vector<Frame> frames_;
 };
 

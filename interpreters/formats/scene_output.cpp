@@ -170,9 +170,10 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
                           [&](std::ostream& out) { writePng(image, out); });
     }
   }
-  // A run whose first frame holds a skeleton is written as one skin (the skeleton is
-  // fixed by the first frame); any other as a node per frame.
-  const bool skinned = skinnedGlb_.frameCount() > 0 || (glb_.frameCount() == 0 && !scene.skeleton.empty());
+  // A run whose frames hold a skeleton is written as one skin, from the first frame that
+  // holds one (it fixes the skeleton; the frames before it, where the body had not grown
+  // yet, are left out); any other run as a node per frame.
+  const bool skinned = skinnedGlb_.frameCount() > 0 || !scene.skeleton.empty();
   if (def_.writeGlb) {
     if (skinned)
       skinnedGlb_.addFrame(scene);

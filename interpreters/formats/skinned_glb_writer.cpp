@@ -7,6 +7,7 @@
 #include <string>
 #include <tuple>
 
+#include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
@@ -16,14 +17,6 @@
 namespace ontogen {
 
 namespace {
-
-// A joint's local transform: its world pose seen from its parent's.
-struct World {
-  glm::dvec3 position;
-  glm::dmat3 rotation;
-};
-
-World worldOf(const SceneJoint& joint) { return {joint.position, joint.orientation}; }
 
 // A unit quaternion whose components stay inside [-1, 1] after rounding, as glTF requires.
 glm::dquat unit(const glm::dquat& q) {
@@ -36,52 +29,35 @@ glm::dquat unit(const glm::dquat& q) {
 // of its own: rounding in the posing, not a limb that stretches.
 constexpr double kRigidTolerance = 1e-6;
 
+// A joint's transform relative to its parent (or the world, for a root).
+struct Local {
+  glm::dvec3 translation{0.0};
+  glm::dquat rotation{1, 0, 0, 0};
+  bool present = true;
+};
+
 }  // namespace
 
 void SkinnedGlbWriter::clear() {
   bind_.clear();
-  index_.clear();
-  times_.clear();
-  poses_.clear();
-  ignored_ = 0;
+  frames_.clear();
 }
 
 void SkinnedGlbWriter::addFrame(const Scene& scene) {
-  if (times_.empty()) {
-    bind_ = scene;
-    for (std::size_t j = 0; j < scene.skeleton.joints.size(); ++j)
-      index_.emplace(scene.skeleton.joints[j].id, static_cast<int>(j));
-  }
-  const auto& bindJoints = bind_.skeleton.joints;
-  std::vector<Local> pose = poses_.empty() ? std::vector<Local>(bindJoints.size()) : poses_.back();
-  std::vector<World> world(bindJoints.size());
-  std::vector<bool> seen(bindJoints.size(), false);
-  for (std::size_t j = 0; j < bindJoints.size(); ++j) world[j] = worldOf(bindJoints[j]);
-  // World poses of this frame's joints, by id; then each joint's local transform.
-  for (const SceneJoint& joint : scene.skeleton.joints) {
-    auto found = index_.find(joint.id);
-    if (found == index_.end()) {
-      if (times_.empty()) continue;
-      ++ignored_;
-      continue;
-    }
-    world[found->second] = worldOf(joint);
-    seen[found->second] = true;
-  }
-  for (std::size_t j = 0; j < bindJoints.size(); ++j) {
-    if (!seen[j]) continue;
-    const int parent = bindJoints[j].parent;
-    if (parent < 0) {
-      pose[j] = {world[j].position, unit(glm::quat_cast(world[j].rotation))};
-    } else {
-      const glm::dmat3 inverse = glm::transpose(world[parent].rotation);
-      pose[j] = {inverse * (world[j].position - world[parent].position), unit(glm::quat_cast(inverse * world[j].rotation))};
-    }
-    // Keep each track in one hemisphere so linear interpolation takes the short way.
-    if (!poses_.empty() && glm::dot(pose[j].rotation, poses_.back()[j].rotation) < 0) pose[j].rotation = -pose[j].rotation;
-  }
-  times_.push_back(scene.time);
-  poses_.push_back(std::move(pose));
+  Frame frame;
+  frame.time = scene.time;
+  for (const SceneJoint& joint : scene.skeleton.joints) frame.joints[joint.id] = {joint.position, joint.orientation};
+  if (frames_.empty() || scene.skeleton.joints.size() > bind_.skeleton.joints.size()) bind_ = scene;
+  frames_.push_back(std::move(frame));
+}
+
+uint64_t SkinnedGlbWriter::ignoredJoints() const {
+  std::unordered_map<uint64_t, bool> known;
+  for (const SceneJoint& joint : bind_.skeleton.joints) known[joint.id] = true;
+  uint64_t ignored = 0;
+  for (const Frame& frame : frames_)
+    for (const auto& [id, pose] : frame.joints) ignored += known.count(id) == 0;
+  return ignored;
 }
 
 void SkinnedGlbWriter::write(std::ostream& out) const {
@@ -89,15 +65,46 @@ void SkinnedGlbWriter::write(std::ostream& out) const {
   b.gltf["asset"] = {{"version", "2.0"}, {"generator", "ontogen"}};
   const auto& joints = bind_.skeleton.joints;
   const std::size_t count = joints.size();
-  const Local rest{};
   nlohmann::json sceneNodes = nlohmann::json::array();
+
+  // Every frame's local pose of every joint of the skeleton; a joint a frame lacks keeps
+  // its pose in the skeleton's own frame, hidden.
+  auto worldIn = [&](const Frame& frame, std::size_t j) {
+    auto found = frame.joints.find(joints[j].id);
+    return found != frame.joints.end() ? found->second : Pose{joints[j].position, joints[j].orientation};
+  };
+  std::vector<std::vector<Local>> poses(frames_.size(), std::vector<Local>(count));
+  std::vector<bool> everHidden(count, false);
+  for (std::size_t f = 0; f < frames_.size(); ++f) {
+    for (std::size_t j = 0; j < count; ++j) {
+      const Pose world = worldIn(frames_[f], j);
+      Local& local = poses[f][j];
+      local.present = frames_[f].joints.count(joints[j].id) > 0;
+      everHidden[j] = everHidden[j] || !local.present;
+      const int parent = joints[j].parent;
+      if (parent < 0) {
+        local.translation = world.position;
+        local.rotation = unit(glm::quat_cast(world.rotation));
+      } else {
+        const Pose up = worldIn(frames_[f], static_cast<std::size_t>(parent));
+        const glm::dmat3 inverse = glm::transpose(up.rotation);
+        local.translation = inverse * (world.position - up.position);
+        local.rotation = unit(glm::quat_cast(inverse * world.rotation));
+      }
+      // Each track in one hemisphere, so that linear interpolation takes the short way.
+      if (f > 0 && glm::dot(local.rotation, poses[f - 1][j].rotation) < 0) local.rotation = -local.rotation;
+    }
+  }
+  std::size_t bindFrame = 0;
+  for (std::size_t f = 0; f < frames_.size(); ++f)
+    if (frames_[f].time == bind_.time) bindFrame = f;
 
   // Joint nodes, posed as in the first frame.
   std::vector<nlohmann::json> children(count, nlohmann::json::array());
   for (std::size_t j = 0; j < count; ++j)
     if (joints[j].parent >= 0) children[joints[j].parent].push_back(j);
   for (std::size_t j = 0; j < count; ++j) {
-    const Local& local = poses_.empty() ? rest : poses_.front()[j];
+    const Local local = poses.empty() ? Local{} : poses[bindFrame][j];
     nlohmann::json node = {{"name", joints[j].name},
                            {"translation", {local.translation.x, local.translation.y, local.translation.z}},
                            {"rotation", {local.rotation.x, local.rotation.y, local.rotation.z, local.rotation.w}},
@@ -220,35 +227,40 @@ void SkinnedGlbWriter::write(std::ostream& out) const {
   }
 
   // The animation: every frame's local pose of every joint.
-  const std::size_t frames = times_.size();
+  const std::size_t frames = frames_.size();
   bool increasing = frames > 1;
   for (std::size_t f = 1; f < frames; ++f)
-    if (!(times_[f] > times_[f - 1])) increasing = false;
+    if (!(frames_[f].time > frames_[f - 1].time)) increasing = false;
   if (increasing && count > 0) {
     std::vector<float> times(frames);
-    for (std::size_t f = 0; f < frames; ++f) times[f] = static_cast<float>(times_[f] - times_.front());
+    for (std::size_t f = 0; f < frames; ++f) times[f] = static_cast<float>(frames_[f].time - frames_.front().time);
     const int input = b.addScalars(times);
     nlohmann::json samplers = nlohmann::json::array();
     nlohmann::json channels = nlohmann::json::array();
-    auto channel = [&](int output, std::size_t node, const char* path) {
-      samplers.push_back({{"input", input}, {"output", output}, {"interpolation", "LINEAR"}});
+    auto channel = [&](int output, std::size_t node, const char* path, const char* interpolation = "LINEAR") {
+      samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolation}});
       channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", path}}}});
     };
     for (std::size_t j = 0; j < count; ++j) {
       std::vector<float> rotations;
       bool moves = joints[j].parent < 0;
       for (std::size_t f = 0; f < frames; ++f) {
-        const Local& local = poses_[f][j];
+        const Local& local = poses[f][j];
         rotations.insert(rotations.end(), {static_cast<float>(local.rotation.x), static_cast<float>(local.rotation.y),
                                            static_cast<float>(local.rotation.z), static_cast<float>(local.rotation.w)});
-        const glm::dvec3 offset = local.translation - poses_.front()[j].translation;
+        const glm::dvec3 offset = local.translation - poses[bindFrame][j].translation;
         if (std::abs(offset.x) + std::abs(offset.y) + std::abs(offset.z) > kRigidTolerance) moves = true;
       }
       channel(b.addFloats(rotations, "VEC4", frames, 0), j, "rotation");
       if (moves) {
         std::vector<glm::vec3> translations;
-        for (std::size_t f = 0; f < frames; ++f) translations.emplace_back(poses_[f][j].translation);
+        for (std::size_t f = 0; f < frames; ++f) translations.emplace_back(poses[f][j].translation);
         channel(b.addVec3(translations, 0, false), j, "translation");
+      }
+      if (everHidden[j]) {
+        std::vector<glm::vec3> scales;
+        for (std::size_t f = 0; f < frames; ++f) scales.emplace_back(poses[f][j].present ? 1.0f : 0.0f);
+        channel(b.addVec3(scales, 0, false), j, "scale", "STEP");
       }
     }
     b.gltf["animations"].push_back({{"name", "walk"}, {"samplers", samplers}, {"channels", channels}});

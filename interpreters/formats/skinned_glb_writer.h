@@ -13,15 +13,17 @@
 //   root (and per joint whose offset from its parent is not rigid), sampled at every
 //   frame's time, linear. A run whose drivers are periodic over [from, until] loops
 //   without a jump in its joints.
-// A joint that is missing from a later frame holds its last pose there; joints that
-// appear after the first frame are not in the skin (ignoredJoints() counts them).
+// The skeleton is the one of the frame with the most joints (the first such: a body that
+// grows is written grown). A joint that a frame lacks has scale 0 there (and so has
+// everything it carries), with a STEP scale channel: parts of the body appear as they
+// grow. Joints that frame lacks are counted (ignoredJoints()).
 
 #include <cstdint>
 #include <ostream>
 #include <unordered_map>
 #include <vector>
 
-#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 #include "interpreters/scene.h"
@@ -30,25 +32,26 @@ namespace ontogen {
 
 class SkinnedGlbWriter {
  public:
-  /// Adds a frame; the first one fixes the skeleton and the skin.
+  /// Adds a frame with its time.
   void addFrame(const Scene& scene);
-  std::size_t frameCount() const { return times_.size(); }
-  /// Joints of later frames the first one did not have.
-  uint64_t ignoredJoints() const { return ignored_; }
+  std::size_t frameCount() const { return frames_.size(); }
+  /// Joints of frames that the skeleton written does not have.
+  uint64_t ignoredJoints() const;
   void clear();
   /// Writes the file. Stream errors are left in out's state.
   void write(std::ostream& out) const;
 
  private:
-  struct Local {
-    glm::dvec3 translation{0.0};
-    glm::dquat rotation{1, 0, 0, 0};
+  struct Pose {
+    glm::dvec3 position{0.0};
+    glm::dmat3 rotation{1.0};
   };
-  Scene bind_;                        // the first frame
-  std::unordered_map<uint64_t, int> index_;  // joint id -> index in bind_'s skeleton
-  std::vector<double> times_;
-  std::vector<std::vector<Local>> poses_;  // per frame, per joint
-  uint64_t ignored_ = 0;
+  struct Frame {
+    double time = 0;
+    std::unordered_map<uint64_t, Pose> joints;  // by id
+  };
+  Scene bind_;  // the frame with the most joints: its skeleton, its limbs
+  std::vector<Frame> frames_;
 };
 
 }  // namespace ontogen
