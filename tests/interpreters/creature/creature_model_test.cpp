@@ -76,7 +76,7 @@ std::shared_ptr<const Program> compileWith(const std::string& model, const std::
 }
 
 Walk walk(const std::string& model, const std::map<std::string, double>& defines, const std::string& formats = "joints",
-          std::optional<int> frames = {}, uint64_t seed = 1) {
+          std::optional<int> frames = {}, uint64_t seed = 1, std::optional<double> from = {}) {
   // Each test its own folder: ctest runs tests in parallel processes.
   std::string name = std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" + model;
   for (const auto& [key, value] : defines) name += "_" + key + std::to_string(value);
@@ -90,6 +90,7 @@ Walk walk(const std::string& model, const std::map<std::string, double>& defines
   def.stem = fs::path(model).stem().string();
   def.world.seed = seed;
   def.frames = frames;
+  def.from = from;
   def.sets = {"creature"};
   def.setOptions.formats = formats;
   def.out = result.dir;
@@ -259,6 +260,37 @@ TEST(CreatureModel, TheSameSeedGivesTheSameBytesAndAnotherSeedAnotherWalk) {
   EXPECT_NE(bytes(c.dir / "creature.glb"), first) << "the noise of the creature's age is seeded";
 }
 
+TEST(CreatureModel, TheWalkIsTheSameWhateverTheFrames) {
+  const Walk coarse = walk("creature.cell", {}, "joints", 2 * 36 + 1);
+  const Walk fine = walk("creature.cell", {}, "joints", 4 * 36 + 1);
+  ASSERT_EQ(coarse.joints(), fine.joints());
+  for (std::size_t f = 0; f < coarse.frames().size(); ++f) {
+    ASSERT_DOUBLE_EQ(coarse.time(f), fine.time(2 * f));
+    EXPECT_EQ(coarse.frames()[f]["positions"], fine.frames()[2 * f]["positions"]) << "at " << coarse.time(f);
+  }
+}
+
+// From t = 0 the body has not grown yet (its segments come in the first step): the skin
+// holds the grown body, and the joints a frame lacks are listed as null and hidden.
+TEST(CreatureModel, ABodyThatGrowsIsWrittenGrown) {
+  const Walk w = walk("creature.cell", {}, "glb,joints", 13, 1, 0.0);
+  ASSERT_EQ(w.joints().size(), 1u + 7u * 3);
+  std::size_t missing = 0;
+  for (const auto& position : w.frames()[0]["positions"]) missing += position.is_null();
+  EXPECT_EQ(missing, 7u * 3) << "at t = 0 only the root";
+  for (const auto& position : w.frames()[1]["positions"]) EXPECT_FALSE(position.is_null());
+  std::ifstream in(w.dir / "creature.glb", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 20u);
+  const uint32_t length = static_cast<uint8_t>(bytes[12]) | static_cast<uint8_t>(bytes[13]) << 8 |
+                          static_cast<uint8_t>(bytes[14]) << 16 | static_cast<uint32_t>(static_cast<uint8_t>(bytes[15])) << 24;
+  const nlohmann::json gltf = nlohmann::json::parse(bytes.substr(20, length));
+  ASSERT_EQ(gltf["skins"][0]["joints"].size(), 1u + 7u * 3);
+  int scales = 0;
+  for (const auto& channel : gltf["animations"][0]["channels"]) scales += channel["target"]["path"] == "scale";
+  EXPECT_EQ(scales, 7 * 3) << "every joint but the root appears after the first frame";
+}
+
 TEST(CreatureModel, TheSkinPassesTheKhronosValidatorAtThreeAndSixSegments) {
   const fs::path modules = fs::path(ONTOGEN_SOURCE_DIR) / ".tools" / "node_modules";
   REQUIRE_CHECKER(fs::exists(modules / "gltf-validator" / "package.json"), "the Khronos glTF validator");
@@ -269,6 +301,12 @@ TEST(CreatureModel, TheSkinPassesTheKhronosValidatorAtThreeAndSixSegments) {
     auto [status, report] = runCommand("node '" + script.string() + "' '" + modules.string() + "' '" + file.string() + "' 2>&1");
     EXPECT_EQ(status, 0) << report;
     EXPECT_NE(report.find("errors 0"), std::string::npos) << report;
+  }
+  {
+    const Walk grown = walk("creature.cell", {}, "glb", 13, 1, 0.0);
+    auto [status, report] = runCommand("node '" + script.string() + "' '" + modules.string() + "' '" +
+                                       (grown.dir / "creature.glb").string() + "' 2>&1");
+    EXPECT_EQ(status, 0) << "a body that grows: " << report;
   }
   for (double gait : {0, 1, 2}) {
     const Walk w = walk("quadruped.cell", {{"GAIT", gait}}, "glb");
