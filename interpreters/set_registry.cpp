@@ -10,11 +10,13 @@
 #include "interpreters/image/image_set.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/music/music_set.h"
+#include "interpreters/physics/physics_commands.h"
+#include "interpreters/physics/physics_set.h"
 #include "interpreters/text/trace_set.h"
 
 namespace ontogen {
 
-std::vector<std::string> interpretationSetNames() { return {"geometry", "creature", "image", "music", "trace"}; }
+std::vector<std::string> interpretationSetNames() { return {"geometry", "creature", "physics", "image", "music", "trace"}; }
 
 SceneOutputDef sceneOutputDefOf(const SetOptions& options) {
   SceneOutputDef def;
@@ -57,6 +59,16 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
       def.meshing = out.writePng ? LimbMeshing::GrownAndLastFrame : LimbMeshing::GrownFrames;
     return std::make_unique<CreatureSet>(def);
   }
+  if (name == "physics") {
+    PhysicsSetDef def;
+    def.output = sceneOutputDefOf(options);
+    def.turtle.step = settings.step;
+    def.turtle.angle = settings.angle;
+    def.turtle.yawAngle = settings.yawAngle;
+    def.turtle.radius = settings.radius;
+    def.turtle.radians = settings.radians;
+    return std::make_unique<PhysicsSet>(def);
+  }
   if (name == "music") return std::make_unique<MusicSet>(MusicSet::defFrom(settings.music));
   if (name == "trace") return std::make_unique<TraceSet>();
   if (name == "image") return std::make_unique<ImageSet>();
@@ -84,6 +96,20 @@ std::vector<CommandSetInfo> commandSets() {
                       const auto table = creatureCommands();
                       for (size_t i = 0; i < table.size(); ++i)
                         list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
+                      return list;
+                    }();
+                    for (const CommandInfo& info : infos)
+                      if (info.name == command) return &info;
+                    return nullptr;
+                  }});
+  sets.push_back({"physics", [](std::string_view command) -> const CommandInfo* {
+                    // Its own commands, then the turtle's, numbered after them.
+                    static const std::vector<CommandInfo> infos = [] {
+                      std::vector<CommandInfo> list;
+                      for (const PhysicsCommand& c : physicsCommands())
+                        list.push_back({c.name, c.minArity, c.maxArity, static_cast<int>(list.size())});
+                      for (const TurtleCommand& c : turtleCommands())
+                        list.push_back({c.name, c.minArity, c.maxArity, static_cast<int>(list.size())});
                       return list;
                     }();
                     for (const CommandInfo& info : infos)
