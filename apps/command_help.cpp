@@ -8,6 +8,7 @@
 #include "interpreters/creature/creature_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/music/music_commands.h"
+#include "interpreters/physics/physics_commands.h"
 #include "interpreters/set_registry.h"
 #include "lang/builtins.h"
 #include "lang/directives.h"
@@ -45,11 +46,13 @@ int runHelp() {
                "  ontogen check FILE                    parse and check a program\n"
                "  ontogen run FILE [options]            develop and write one output per frame\n"
                "  ontogen word FILE --at T1,T2 [--json] print the derivation word at those times\n"
+               "  ontogen statics FILE [--at T] [--json] [--equations F.txt]\n"
+               "                                        solve the rods' statics (physics set) at a time\n"
                "  ontogen timeline FILE --out F.svg     draw the time-state diagram of the development\n"
                "  ontogen midi-ports                    list the MIDI output ports for --midi-port\n"
                "  ontogen help                          this text\n"
                "\n"
-               "check, run, word and timeline take --define NAME=VALUE (repeatable): the program\n"
+               "check, run, word, statics and timeline take --define NAME=VALUE (repeatable): the program\n"
                "runs as if its #define NAME said the number VALUE.\n\n"
                "Interpretation sets:";
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
@@ -60,6 +63,9 @@ int runHelp() {
   std::cout << "\nCreature commands (set 'creature'; angles in deg, lengths in units):\n";
   for (const CreatureCommand& command : creatureCommands())
     std::cout << "  " << std::left << std::setw(16) << command.signature << "  " << command.doc << "\n";
+  std::cout << "\nPhysics commands (set 'physics', with every turtle command; SI units: m, kg, N):\n";
+  for (const PhysicsCommand& command : physicsCommands())
+    std::cout << "  " << std::left << std::setw(18) << command.signature << "  " << command.doc << "\n";
   std::cout << "\nPlayer commands (set 'music'; pitches in MIDI notes, times in beats):\n";
   for (const MusicCommand& command : musicCommands())
     std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";

@@ -51,6 +51,13 @@ struct TimelineOptions {
   size_t maxRows = 4000;
 };
 
+struct StaticsOptions {
+  CommonOptions common;
+  std::optional<double> at;  ///< empty: the program's #until
+  bool json = false;
+  std::string equations;     ///< the text file of the equations to write; empty: none
+};
+
 /// The world's settings from the command line, the program's directives filling in.
 inline WorldDef worldDefOf(const CommonOptions& options, const Program& program) {
   WorldDef def;
@@ -68,6 +75,7 @@ int runCheck(const CommonOptions& options);
 int runTimeline(const TimelineOptions& options);
 int runRun(const RunOptions& options);
 int runWord(const WordOptions& options);
+int runStatics(const StaticsOptions& options);
 int runHelp();
 int runMidiPorts();
 

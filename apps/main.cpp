@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
                          "Frames spread over [from, until]; 1: the end only (default: #fps frames a second, else 1)")
       ->check(CLI::Range(1, 1000000));
   runCommand->add_option("--interpret", run.sets,
-                         "Interpretation sets, comma-separated: geometry, creature, image, music, trace (default: the "
+                         "Interpretation sets, comma-separated: geometry, creature, physics, image, music, trace (default: the "
                          "program's #interpret, else geometry)")
       ->delimiter(',');
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
@@ -82,6 +82,16 @@ int main(int argc, char** argv) {
   wordCommand->add_option("--precision", word.precision, "Significant digits of the text form")
       ->check(CLI::Range(1, 17))
       ->capture_default_str();
+
+  StaticsOptions statics;
+  auto* staticsCommand =
+      app.add_subcommand("statics", "Solve the physics design model of the word at a time (paper 003)");
+  addCommon(*staticsCommand, statics.common);
+  addDevelopment(*staticsCommand, statics.common);
+  staticsCommand->add_option("--at", statics.at, "Global time, seconds (default: #until)")
+      ->check(CLI::NonNegativeNumber);
+  staticsCommand->add_flag("--json", statics.json, "Print one JSON object");
+  staticsCommand->add_option("--equations", statics.equations, "Write the system of equations to this text file");
 
   TimelineOptions timeline;
   auto* timelineCommand =
@@ -107,6 +117,7 @@ int main(int argc, char** argv) {
   if (checkCommand->parsed()) return runCheck(check);
   if (runCommand->parsed()) return runRun(run);
   if (wordCommand->parsed()) return runWord(word);
+  if (staticsCommand->parsed()) return runStatics(statics);
   if (timelineCommand->parsed()) return runTimeline(timeline);
   if (midiPortsCommand->parsed()) return runMidiPorts();
   return runHelp();
