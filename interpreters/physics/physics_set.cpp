@@ -289,14 +289,15 @@ void PhysicsSet::draw() {
   }
   // Arrows as thick as a small fraction of the longest rod read at any size of tree.
   ArrowStyle style;
-  style.shaftRadius = 0.015 * longest;
-  style.headLength = 0.08 * longest;
+  style.shaftRadius = 0.02 * longest;
+  style.headLength = 0.1 * longest;
   auto scaleOf = [longest](double fixed, double largest) { return fixed > 0 ? fixed : longest / largest; };
   if (forceScale_ >= 0 && largestForce > 0) {
     const double scale = scaleOf(forceScale_, largestForce);
     for (size_t i = 0; i < rods.size(); ++i) {
       const RodResult& rod = frame_.rods[i];
       const double magnitude = rod.force.norm();
+      // Vectors start from the joints, as paper 003 draws them.
       arrows_.push_back({toGlm(rod.base), scale * toGlm(rod.force), magnitude, 1,
                          stressMaterial(magnitude / largestForce), false});
       if (rod.load.norm() > 0) {

@@ -7,8 +7,9 @@
 // to rods, keyed by the cells' stable ids (rod_table.h). After the word the set solves
 // the rigid statics (rigid_statics.h) and, when the program asks with elastic(n), the
 // elastic model (elastic_rods.h); it draws the rods (deflected when elastic) and, at each
-// rod's base joint, an arrow for the force and a double arrow for the moment, coloured by
-// magnitude, and the external loads as thick arrows where they act. The result of the
+// rod's base joint, an arrow for the force and a double arrow for the moment, starting
+// from the joint as the paper draws them, coloured by magnitude, and the external loads
+// as thick arrows from where they act. The result of the
 // frame (frame()) is what `ontogen statics` prints.
 //
 // Units: metres, kilograms, seconds, newtons; g = 9.81 m/s^2 down the world's up axis, +y.

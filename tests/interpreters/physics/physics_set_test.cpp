@@ -117,6 +117,10 @@ TEST(PhysicsSet, ArrowsAreScaledAndColouredByMagnitude) {
   }
   EXPECT_EQ(arrows[0].material, kPaletteSize - 1) << "the root's force is the largest: red";
   EXPECT_NEAR(arrows[0].vector.y, -longest, 1e-9) << "and points down";
+  EXPECT_EQ(arrows[0].start, glm::dvec3(0.0)) << "from the root's base";
+  ASSERT_EQ(arrows[16].heads, 2) << "the moments follow the forces";
+  const Eigen::Vector3d& base = solved.frame().rods[1].base;
+  EXPECT_EQ(arrows[16].start, glm::dvec3(base.x(), base.y(), base.z())) << "a moment starts at its joint";
   EXPECT_FALSE(solved.set->scene().geometry.empty());
   EXPECT_EQ(solved.set->scene().nodes.size(), 15u) << "a scene node per rod";
   EXPECT_EQ(solved.set->scene().nodes[1].parent, solved.frame().rods[0].id);
@@ -126,7 +130,7 @@ TEST(PhysicsSet, ArrowsAreScaledAndColouredByMagnitude) {
   ASSERT_EQ(fixed.set->arrows().size(), 2u) << "the force and the external load; no moments";
   EXPECT_NEAR(fixed.set->arrows()[0].vector.x, 1.5, 1e-12) << "0.5 m per N";
   EXPECT_TRUE(fixed.set->arrows()[1].load);
-  EXPECT_NEAR(fixed.set->arrows()[1].start.y, 1, 1e-12) << "a load is drawn where it acts";
+  EXPECT_NEAR(fixed.set->arrows()[1].start.y, 1, 1e-12) << "a load is drawn from where it acts";
 }
 
 TEST(PhysicsSet, TheDeflectedShapeIsDrawnWhenTheModelIsElastic) {
