@@ -179,7 +179,7 @@ TEST(PhysicsSet, TheLanguageReferenceListsTheCommandTable) {
   std::string line;
   std::vector<std::string> documented;
   for (bool in = false; std::getline(doc, line);) {
-    if (line.rfind("### ", 0) == 0) in = line.find("The physics set") != std::string::npos;
+    if (line.rfind("## ", 0) == 0 || line.rfind("### ", 0) == 0) in = line.find("The physics set") != std::string::npos;
     if (in && line.rfind("| `", 0) == 0) documented.push_back(line.substr(3, line.find('`', 3) - 3));
   }
   std::vector<std::string> table;
