@@ -61,7 +61,7 @@ std::unique_ptr<Program> compile(const ast::Program& tree, std::vector<std::shar
 std::unique_ptr<Program> compileSource(std::string name, std::string text, DiagnosticSink& sink,
                                        const CompileOptions& options) {
   auto source = std::make_shared<const SourceFile>(std::move(name), std::move(text));
-  ParsedProgram parsed = parseWithImports(std::move(source), sink);
+  ParsedProgram parsed = parseWithImports(std::move(source), sink, options.maxSourceBytes);
   if (sink.hasErrors()) return nullptr;
   return compile(parsed.tree, std::move(parsed.sources), sink, options);
 }

@@ -14,6 +14,7 @@
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
 #include "lang/program.h"
+#include "lang/source_reader.h"
 
 namespace ontogen {
 
@@ -54,6 +55,8 @@ struct CompileOptions {
   /// expressions, axioms, lifetimes, grid sizes and directives all see it. A name given
   /// twice takes the last value; a name the program does not define is an error.
   std::vector<DefineOverride> defines;
+  /// compileSource: the most source text the program and its imports may have, bytes.
+  uint64_t maxSourceBytes = kDefaultMaxSourceBytes;
 };
 
 /// Compiles a parsed program whose text is `source`. Returns null when there were errors.
