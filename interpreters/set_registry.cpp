@@ -66,6 +66,16 @@ std::vector<CommandSetInfo> commandSets() {
                     for (const CommandInfo& info : infos)
                       if (info.name == command) return &info;
                     return nullptr;
+                  },
+                  {},
+                  // #surface files are read as the run reads them, so check fails where run would.
+                  [](const std::string& path) -> std::string {
+                    try {
+                      loadObjSurface(path);
+                    } catch (const SurfaceError& bad) {
+                      return bad.what();
+                    }
+                    return {};
                   }});
   sets.push_back({"image", [](std::string_view command) -> const CommandInfo* {
                     static const CommandInfo pixel{"pixel", 3, 3}, range{"range", 2, 2};

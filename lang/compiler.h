@@ -36,6 +36,10 @@ struct CommandSetInfo {
   /// Names the set gives meaning to in its blocks' arguments, as `minor` in
   /// `scale(minor)`; program constants shadow them. Empty: none.
   std::function<std::optional<double>(std::string_view)> constant = {};
+  /// Checks a file a directive of this set names (#surface's OBJ file), resolved against
+  /// the program's folder: empty when the set can use it, else why not, so that `check`
+  /// finds what `run` would fail on. Null: files are not checked.
+  std::function<std::string(const std::string& path)> checkFile = {};
 };
 
 /// A value for a program's `#define`, given from outside the text (`--define NAME=VALUE`),
