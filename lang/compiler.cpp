@@ -6,6 +6,7 @@
 #include "lang/compile_stages.h"
 #include "lang/imports.h"
 #include "lang/parser.h"
+#include "lang/system_tree.h"
 
 namespace ontogen {
 
@@ -24,6 +25,13 @@ std::unique_ptr<Program> run(CompileContext& ctx, std::vector<std::shared_ptr<co
   compileEquivs(ctx, ctx.tree.equivs, ctx.global);
   compileDirectives(ctx, ctx.tree.settings, ctx.globalSettings, ctx.global);
   compileFunctions(ctx, ctx.tree.functions, ctx.global);
+  // Before the passes whose cost grows with the square of the systems.
+  if (ctx.tree.systems.size() > kMaxSystems) {
+    const ast::System& first = ctx.tree.systems[kMaxSystems];
+    ctx.sink.error(first.nameSpan, "system '" + first.name + "' is one too many: a program has at most " +
+                                       std::to_string(kMaxSystems) + " systems");
+    return nullptr;
+  }
   // Every master a declaration makes, before any rule names one.
   declareCells(ctx);
   declareSystemCells(ctx);
