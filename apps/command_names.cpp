@@ -29,19 +29,24 @@ size_t editDistance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+std::string nearMiss(std::string_view word, std::span<const std::string_view> candidates) {
+  if (candidates.empty()) return {};
+  const auto nearest = std::min_element(candidates.begin(), candidates.end(), [&](std::string_view x, std::string_view y) {
+    return editDistance(word, x) < editDistance(word, y);
+  });
+  // Only a near miss is a suggestion: a wild guess would mislead more than help.
+  if (editDistance(word, *nearest) > std::max<size_t>(1, word.size() / 3)) return {};
+  return std::string(*nearest);
+}
+
 std::string unknownCommandMessage(int argc, const char* const* argv) {
   if (argc < 2) return {};
   const std::string_view word = argv[1];
   if (word.starts_with('-') || std::find(kCommands.begin(), kCommands.end(), word) != kCommands.end()) return {};
   std::string list;
   for (std::string_view name : kCommands) list += (list.empty() ? "" : ", ") + std::string(name);
-  const auto nearest = std::min_element(kCommands.begin(), kCommands.end(), [&](std::string_view x, std::string_view y) {
-    return editDistance(word, x) < editDistance(word, y);
-  });
-  // Only a near miss is a suggestion: at most a third of the word wrong.
-  const size_t distance = editDistance(word, *nearest);
   std::string message = "unknown command '" + std::string(word) + "'";
-  if (distance <= std::max<size_t>(1, word.size() / 3)) message += "; did you mean '" + std::string(*nearest) + "'?";
+  if (std::string nearest = nearMiss(word, kCommands); !nearest.empty()) message += "; did you mean '" + nearest + "'?";
   return message + " (commands: " + list + ")";
 }
 

@@ -2,7 +2,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <iostream>
+#include <string_view>
+#include <vector>
 
 #include "apps/cli_values.h"
 #include "apps/command_names.h"
@@ -51,6 +54,25 @@ void addDevelopment(CLI::App& command, CommonOptions& options) {
                  "Stop after N terminal events in one step (default 200000000)");
   addWholeOption(command, "--threads", options.threads, WholeRange::between(0, kMaxThreads),
                  "Threads for rules and rates (0, the default: all cores; same result)");
+}
+
+// A flag the command does not have, with the nearest one it does; empty when every
+// flag is known (the error is something else).
+std::string unknownFlagMessage(const CLI::App& command, int argc, const char* const* argv) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command.get_options())
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+  std::vector<std::string_view> views(names.begin(), names.end());
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (!arg.starts_with("--")) continue;
+    const std::string_view flag = arg.substr(0, arg.find('='));
+    if (std::find(views.begin(), views.end(), flag) != views.end()) continue;
+    std::string message = "unknown flag '" + std::string(flag) + "' for '" + command.get_name() + "'";
+    if (std::string nearest = nearMiss(flag, views); !nearest.empty()) message += "; did you mean '" + nearest + "'?";
+    return message + " (ontogen " + command.get_name() + " --help lists them)";
+  }
+  return {};
 }
 
 }  // namespace
@@ -134,6 +156,12 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
+    if (dynamic_cast<const CLI::ExtrasError*>(&error) && argc > 1)
+      for (const CLI::App* command : app.get_subcommands([&](CLI::App* c) { return c->get_name() == argv[1]; }))
+        if (std::string message = unknownFlagMessage(*command, argc, argv); !message.empty()) {
+          std::cerr << "ontogen: error: " << message << "\n";
+          return kExitUsage;
+        }
     int code = app.exit(error);
     return code == 0 ? kExitOk : kExitUsage;
   }

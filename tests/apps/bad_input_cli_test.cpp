@@ -157,6 +157,17 @@ TEST(BadInput, AnUnknownCommandSuggestsTheNearestOne) {
                                           "(commands: check, run, word, timeline, midi-ports, help)\n");
 }
 
+TEST(BadInput, AnUnknownFlagSuggestsTheNearestFlagOfItsCommand) {
+  CliResult result = runOntogen("run " + modelPath("piston.cell") + " --stpe 1");
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.err, "ontogen: error: unknown flag '--stpe' for 'run'; did you mean '--step'? "
+                        "(ontogen run --help lists them)\n");
+  EXPECT_EQ(runOntogen("word " + modelPath("piston.cell") + " --at 1 --jsn").err,
+            "ontogen: error: unknown flag '--jsn' for 'word'; did you mean '--json'? (ontogen word --help lists them)\n");
+  EXPECT_EQ(runOntogen("check " + modelPath("piston.cell") + " --frobnicate").err,
+            "ontogen: error: unknown flag '--frobnicate' for 'check' (ontogen check --help lists them)\n");
+}
+
 TEST(BadInput, VersionComesFromTheProject) {
   CliResult result = runOntogen("--version");
   EXPECT_EQ(result.exitCode, 0);
