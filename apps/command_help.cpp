@@ -5,6 +5,7 @@
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "interpreters/creature/creature_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/set_registry.h"
@@ -74,6 +75,8 @@ int runHelp() {
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
   std::cout << "\n\nTurtle commands (set 'geometry'):\n";
   for (const TurtleCommand& command : turtleCommands()) printRow(command.signature, command.doc, kSignatureColumn);
+  std::cout << "\nCreature commands (set 'creature'; angles in deg, lengths in units):\n";
+  for (const CreatureCommand& command : creatureCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nPlayer commands (set 'music'; pitches in MIDI notes, times in beats):\n";
   for (const MusicCommand& command : musicCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nFunctions:\n";

@@ -103,14 +103,17 @@ int main(int argc, char** argv) {
   addDevelopment(*runCommand, run.common);
   addRealOption(*runCommand, "--until", run.until, RealRange::atLeast(0),
                 "End of the run, seconds of developmental time (default: #until)");
+  addRealOption(*runCommand, "--from", run.from, RealRange::atLeast(0),
+                "Time of the first frame, seconds (default: #from, else 0)");
   addWholeOption(*runCommand, "--frames", run.frames, WholeRange::between(1, kMaxFrames),
-                 "Frames spread over [0, until]; 1 (the default): the end only");
-  runCommand->add_option("--interpret", run.sets, "Interpretation sets, comma-separated (geometry, music, trace)")
-      ->delimiter(',')
-      ->capture_default_str();
+                 "Frames spread over [from, until]; 1: the end only (default: #fps frames a second, else 1)");
+  runCommand->add_option("--interpret", run.sets,
+                         "Interpretation sets, comma-separated: geometry, creature, image, music, trace (default: the "
+                         "program's #interpret, else geometry)")
+      ->delimiter(',');
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
   runCommand->add_option("--format", run.format,
-                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, svg")
+                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, svg, joints")
       ->capture_default_str();
   addRealListOption(*runCommand, "--view", run.view, {RealRange::between(-360, 360), RealRange::between(-90, 90)},
                     "Camera azimuth,elevation in degrees (default: automatic)")
