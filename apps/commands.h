@@ -9,8 +9,24 @@
 #include <vector>
 
 #include "core/world.h"
+#include "lang/diagnostics.h"
+#include "lang/source_reader.h"
 
 namespace ontogen::app {
+
+// The ranges of the flags, each with why it is that number.
+/// --max-errors: past a million errors no one reads them.
+inline constexpr uint64_t kMaxErrorsLimit = 1'000'000;
+/// --max-source, MiB: 4 GiB is what a byte offset in the source (uint32_t) can reach.
+inline constexpr uint64_t kMaxSourceMiB = 4095;
+/// --max-memory, MiB: the most whose bytes a uint64_t still holds.
+inline constexpr uint64_t kMaxMemoryMiB = (uint64_t{1} << 44) - 1;
+/// --threads: more threads than cores only slow a run down, and no machine has more.
+inline constexpr uint64_t kMaxThreads = 4096;
+/// --frames: a million frames is eleven hours of film at 25 per second.
+inline constexpr uint64_t kMaxFrames = 1'000'000;
+/// --max-rows: a diagram taller than ten million rows is no picture.
+inline constexpr uint64_t kMaxTimelineRows = 10'000'000;
 
 struct CommonOptions {
   std::string file;
@@ -20,6 +36,8 @@ struct CommonOptions {
   std::optional<double> step;       ///< empty: the program's #dt
   WorldLimits limits;
   unsigned threads = 0;             ///< 0: all cores
+  int maxErrors = kDefaultMaxErrors;  ///< errors reported before the check stops; 0: all
+  uint64_t maxSourceBytes = kDefaultMaxSourceBytes;  ///< of the program and its imports
 };
 
 struct RunOptions {

@@ -24,7 +24,8 @@ struct LoadedProgram {
   std::shared_ptr<const Program> program;  ///< null when the program could not be loaded
   std::string stem;  ///< file name without directory and extension: names outputs
   /// Why loading failed: kExitProgramError for errors in the text, kExitUsage for a
-  /// --system or --define the program does not have or a malformed --define.
+  /// --system or --define the program does not have, a malformed --define, or a FILE
+  /// that is no regular file or passes the source size limit.
   int exitCode = kExitOk;
 };
 

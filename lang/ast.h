@@ -28,6 +28,9 @@ struct Expr {
   std::string name;           ///< Name, Call (function), Member (field: `parent.x`)
   TokenKind op = TokenKind::EndOfFile;  ///< Unary, Binary
   std::vector<ExprPtr> args;  ///< operands or call arguments; Member: the object
+  /// Levels of the tree from this node down (1: a leaf). The parser bounds it, so that
+  /// the compiler's recursive walks (and the destructor's) cannot exhaust the stack.
+  int height = 1;
 };
 
 /// `X`, `X(a, b)`, `(X(a, b), age)` or `me`: a module in an axiom, a successor, a context

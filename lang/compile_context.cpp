@@ -47,6 +47,8 @@ std::string where(const SourceSpan& span) {
 }
 
 std::string formatNumber(double value) {
+  // printf writes "-nan" for some NaNs; a message says what it is.
+  if (std::isnan(value)) return "NaN";
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%g", value);
   return buffer;

@@ -62,6 +62,9 @@ void compileDefines(CompileContext& ctx, const std::vector<ast::Define>& list, S
     else
       value = evaluateConstant(*define.value, ctx.constantLookup(scope), ctx.sink, "the value of #define");
     if (!value) continue;
+    // `inf` is a constant a define may name (a lifetime that never ends), but NaN is
+    // no value anything can use. Kept even so: its uses would each be an unknown name.
+    if (std::isnan(*value)) ctx.sink.error(define.span, "the value of #define " + define.name + " is not a number (NaN)");
     scope.constants.values[define.name] = *value;
     ctx.program->defines.push_back({define.name, *value, system, given != ctx.overrides.end(), define.span});
   }

@@ -23,6 +23,7 @@ std::unique_ptr<ast::Expr> cloneExpr(const ast::Expr& expr) {
   copy->number = expr.number;
   copy->name = expr.name;
   copy->op = expr.op;
+  copy->height = expr.height;
   for (const auto& arg : expr.args) copy->args.push_back(cloneExpr(*arg));
   return copy;
 }

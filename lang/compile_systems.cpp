@@ -180,11 +180,12 @@ std::vector<AxiomCell> compileAxiom(CompileContext& ctx, const ast::System& syst
     if (module.age) {
       cell.age = evaluateConstant(*module.age, names, ctx.sink, "an axiom age").value_or(0);
       const MasterCell& target = ctx.program->masters[master];
-      if (cell.age < 0 || cell.age >= target.lifetime)
+      // Written so that NaN, which passes every comparison, fails this one.
+      if (!(cell.age >= 0) || cell.age >= target.lifetime)
         ctx.sink.error(
             module.age->span,
             "'" + module.label + "' cannot start with age " + formatNumber(cell.age) +
-                (cell.age < 0 ? "; ages are ≥ 0" : ", not below its terminal age " + formatNumber(target.lifetime)));
+                (!(cell.age >= 0) ? "; ages are ≥ 0" : ", not below its terminal age " + formatNumber(target.lifetime)));
     }
     axiom.push_back(std::move(cell));
   }

@@ -46,7 +46,7 @@ struct DirectiveRange {
   bool minOpen = false;  ///< min itself is outside the range
   bool maxOpen = false;  ///< max itself is outside the range
 
-  /// No bounds: any value is taken as it is (not even NaN is refused).
+  /// No bounds: any finite value is taken (every directive refuses NaN and infinities).
   bool any() const;
   /// Within the bounds; NaN is within none.
   bool contains(double value) const;
@@ -85,7 +85,8 @@ struct Directive {
   std::string_view doc = {};                     ///< one line
   DirectiveApply apply = nullptr;                ///< null for #define, which the compiler keeps as a constant
 
-  /// Whether `value` may follow the name: in the range, and whole unless the kind is Number.
+  /// Whether `value` may follow the name: finite, in the range, and whole unless the kind
+  /// is Number.
   bool accepts(double value) const;
 };
 
@@ -110,10 +111,11 @@ std::string noteValueChoices();
 std::string_view directiveKindName(DirectiveKind kind);
 /// "constants", "world", "geometry", "music".
 std::string_view directiveOwnerName(DirectiveOwner owner);
-/// A range as messages print it: "any", "1 to 32767", "> 0", "> 0 and ≤ 1000", "≥ 0".
+/// A range as messages print it: "finite" (any finite number), "1 to 32767", "> 0",
+/// "> 0 and ≤ 1000", "≥ 0".
 std::string describeRange(const DirectiveRange& range);
 /// The values a directive takes, as `ontogen help` prints them: "> 0", "1 to 32767",
-/// "sequential or developmental", "N 1 to 255, D 1, 2, 4 ... 64", "any".
+/// "sequential or developmental", "N 1 to 255, D 1, 2, 4 ... 64", "finite".
 std::string describeValues(const Directive& directive);
 
 }  // namespace ontogen

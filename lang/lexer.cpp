@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "lang/utf8.h"
+
 namespace ontogen {
 
 std::string_view tokenKindName(TokenKind kind) {
@@ -79,9 +81,12 @@ class Lexer {
   Lexer(const SourceFile& file, DiagnosticSink& sink) : file_(file), text_(file.text()), sink_(sink) {}
 
   std::vector<Token> run() {
+    reportInvalidUtf8();
     std::vector<Token> tokens;
     for (;;) {
       skipSpaceAndComments();
+      // Past the sink's error limit the rest of the text is not read.
+      if (sink_.limitReached()) pos_ = text_.size();
       Token token = next();
       bool done = token.kind == TokenKind::EndOfFile;
       tokens.push_back(std::move(token));
@@ -91,6 +96,25 @@ class Lexer {
   }
 
  private:
+  // The source is UTF-8: the first byte of each line that breaks it is an error, so a
+  // file of binary noise gives one error a line, not one a byte.
+  void reportInvalidUtf8() {
+    int reportedLine = 0;
+    for (size_t at = findInvalidUtf8(text_); at < text_.size(); at = findInvalidUtf8(text_, at + 1)) {
+      const int line = file_.lineOf(static_cast<uint32_t>(at));
+      if (line == reportedLine) continue;
+      reportedLine = line;
+      sink_.error(span(at, at + 1), "invalid UTF-8: byte " + hexByte(text_[at]) + " starts no character (the source must be UTF-8 text)");
+      if (sink_.limitReached()) return;
+    }
+  }
+
+  static std::string hexByte(char c) {
+    static constexpr char kDigits[] = "0123456789ABCDEF";
+    const auto byte = static_cast<unsigned char>(c);
+    return std::string("0x") + kDigits[byte >> 4] + kDigits[byte & 15];
+  }
+
   bool atUtf8Operator() const {
     for (const auto& op : kUtf8Operators)
       if (text_.compare(pos_, std::strlen(op.bytes), op.bytes) == 0) return true;
@@ -239,8 +263,11 @@ class Lexer {
       case '@': return make(TokenKind::At, begin);
       default: break;
     }
+    // Control bytes are named, not echoed: the terminal would act on them.
+    const bool printable = c >= 0x20 && c < 0x7F;
     std::string shown(1, static_cast<char>(c));
-    sink_.error(span(begin, pos_), "unexpected character '" + shown + "'");
+    sink_.error(span(begin, pos_), printable ? "unexpected character '" + shown + "'"
+                                             : "unexpected control character " + hexByte(static_cast<char>(c)));
     return make(TokenKind::Error, begin, shown);
   }
 

@@ -19,6 +19,9 @@ using ast::Program;  // not ontogen::Program, which lang/directives.h declares
 // Thrown to unwind to the enclosing statement after an error was reported (or, while
 // speculating, instead of reporting it).
 struct SyntaxError {};
+// Thrown past every recovery point when the sink's error limit is reached: the rest of
+// the file is not read.
+struct ErrorLimitReached {};
 
 bool isSymbolToken(TokenKind kind) {
   switch (kind) {
@@ -44,14 +47,17 @@ class Parser {
 
   Program run() {
     Program program;
-    while (!check(TokenKind::EndOfFile)) {
-      size_t before = pos_;
-      try {
-        topLevel(program);
-      } catch (const SyntaxError&) {
-        synchronize();
+    try {
+      while (!check(TokenKind::EndOfFile)) {
+        size_t before = pos_;
+        try {
+          topLevel(program);
+        } catch (const SyntaxError&) {
+          synchronize();
+        }
+        if (pos_ == before) advance();  // never loop on a token nobody consumes
       }
-      if (pos_ == before) advance();  // never loop on a token nobody consumes
+    } catch (const ErrorLimitReached&) {
     }
     return program;
   }
@@ -80,11 +86,18 @@ class Parser {
     if (speculating_ == 0) {
       // An Error token was already reported by the lexer: stay silent on it.
       if (peek().kind != TokenKind::Error) sink_.error(span, std::move(message));
+      if (sink_.limitReached()) throw ErrorLimitReached{};
     }
     throw SyntaxError{};
   }
   [[noreturn]] void failHere(std::string expected) {
     const Token& token = peek();
+    // A line-based statement that stops short is reported where its line ends, not on
+    // the line after it, which is another statement.
+    if (atLineEnd()) {
+      const SourceSpan& last = previous().span;
+      fail(SourceSpan{last.file, last.end, last.end}, "expected " + expected + ", found the end of the line");
+    }
     std::string found = token.kind == TokenKind::Identifier ? "'" + token.text + "'"
                         : token.kind == TokenKind::Number   ? "number '" + token.text + "'"
                                                             : std::string(tokenKindName(token.kind));
@@ -102,13 +115,22 @@ class Parser {
   struct Statement {
     bool lineBased = false;
     int startColumn = INT_MAX;
+    size_t firstToken = 0;  // set by inStatement; the first token never ends its statement
   };
 
   bool atStatementEnd() const {
     const Token& token = peek();
     if (token.kind == TokenKind::Semicolon || token.kind == TokenKind::RBrace || token.kind == TokenKind::EndOfFile)
       return true;
-    if (!statement_.lineBased || depth_ > 0 || pos_ == 0) return false;
+    return atLineEnd();
+  }
+
+  // The next token starts a new line-based statement: its line begins at or left of the
+  // column the current statement began in.
+  bool atLineEnd() const {
+    if (!statement_.lineBased || depth_ > 0 || pos_ <= statement_.firstToken) return false;
+    const Token& token = peek();
+    if (token.kind == TokenKind::RBrace || token.kind == TokenKind::EndOfFile) return false;
     return token.line > previous().line && token.column <= statement_.startColumn;
   }
 
@@ -117,6 +139,7 @@ class Parser {
     Statement saved = statement_;
     int savedDepth = depth_;
     statement_ = statement;
+    statement_.firstToken = pos_;
     depth_ = 0;
     struct Restore {
       Parser* parser;
@@ -135,6 +158,22 @@ class Parser {
     if (check(TokenKind::RBrace) || check(TokenKind::EndOfFile)) return;
     if (statement_.lineBased && atStatementEnd()) return;
     failHere("';' or the end of the statement");
+  }
+
+  // Whether an arrow comes before the end of the current line-based statement.
+  bool arrowInStatement() const {
+    int parens = 0;
+    for (size_t i = pos_; i < tokens_.size(); ++i) {
+      const Token& token = tokens_[i];
+      if (token.kind == TokenKind::Semicolon || token.kind == TokenKind::RBrace || token.kind == TokenKind::EndOfFile)
+        return false;
+      if (i > pos_ && parens == 0 && token.line > tokens_[i - 1].line && token.column <= statement_.startColumn)
+        return false;
+      if (token.kind == TokenKind::LParen) ++parens;
+      if (token.kind == TokenKind::RParen && parens > 0) --parens;
+      if (token.kind == TokenKind::Arrow && parens == 0) return true;
+    }
+    return false;
   }
 
   // Skips to a point where a new statement can start.
@@ -166,6 +205,7 @@ class Parser {
   void topLevel(Program& program) {
     Statement top{};
     statement_ = top;
+    depth_ = 0;  // an error inside parentheses leaves them counted
     if (check(TokenKind::Directive)) return directive(program.defines, program.settings);
     if (checkWord("equiv")) return program.equivs.push_back(equiv(Statement{true, peek().column}));
     if (checkWord("import")) return program.imports.push_back(importStatement());
@@ -198,6 +238,7 @@ class Parser {
   // What follows a directive's name depends on its kind (lang/directives.h).
   void directiveBody(const Token& hash, std::vector<Define>& defines, std::vector<Setting>& settings) {
     inStatement(Statement{true, INT_MAX}, [&] {
+      statement_.firstToken = pos_ - 1;  // the statement began at the '#name' already read
       const Directive* directive = findDirective(hash.text);
       if (!directive) fail(hash.span, unknownDirectiveMessage(hash.text));
       switch (directive->kind) {
@@ -321,12 +362,14 @@ class Parser {
 
   void cellItem(Cell& cell) {
     statement_ = Statement{};
+    depth_ = 0;
     if (checkWord("rules")) {
       advance();
       expect(TokenKind::LBrace, " after 'rules'");
       while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
         size_t before = pos_;
         try {
+          depth_ = 0;
           cell.rules.push_back(cellRule());
         } catch (const SyntaxError&) {
           synchronize();
@@ -501,6 +544,7 @@ class Parser {
 
   ContextGroup contextGroup() {
     ContextGroup group;
+    Nested nested = nest(peek().span, "context");
     const Token& open = expect(TokenKind::LParen, "");
     ++depth_;
     if (check(TokenKind::LParen)) {
@@ -756,6 +800,7 @@ class Parser {
       size_t before = pos_;
       try {
         statement_ = Statement{};
+        depth_ = 0;
         systemItem(result);
       } catch (const SyntaxError&) {
         synchronize();
@@ -871,6 +916,8 @@ class Parser {
     }
     const Token& close = expect(TokenKind::RBrace, " to close the L-system");
     result.span = keyword.span.to(close.span);
+    if (!result.axiomSpan.valid() && !sink_.limitReached())
+      sink_.error(name.span, "L-system '" + name.text + "' has no axiom: give it one, as in 'axiom A'");
     return result;
   }
 
@@ -881,9 +928,15 @@ class Parser {
     if (checkWord("interpret") && peek(1).kind == TokenKind::Identifier && peek(1).line == peek().line)
       return symbolInterpretation(system);
     if (checkWord("axiom") && (peek(1).kind == TokenKind::Colon || peek(1).line == peek().line) &&
-        peek(1).kind != TokenKind::Arrow && peek(1).kind != TokenKind::Less && peek(1).kind != TokenKind::Greater)
+        peek(1).kind != TokenKind::Arrow && peek(1).kind != TokenKind::Less && peek(1).kind != TokenKind::Greater) {
+      system.axiomSpan = peek().span;  // an axiom was written, even if it fails to parse
       return axiom(system);
+    }
     if ((checkWord("ignore") || checkWord("consider")) && peek(1).kind == TokenKind::Colon) return symbolList(system);
+    if ((checkWord("ignore") || checkWord("consider")) && !arrowInStatement()) {
+      const std::string word = peek().text;
+      fail(peek().span, "'" + word + "' needs a colon in an L-system, as in '" + word + ": F'");
+    }
     if ((checkWord("g") || checkWord("develop")) &&
         (peek(1).kind == TokenKind::Identifier || isSymbolToken(peek(1).kind)) && peek(2).kind == TokenKind::LParen)
       return system.functions.push_back(function());
@@ -910,7 +963,10 @@ class Parser {
     const Token& first = peek();
     if (check(TokenKind::Identifier) && peek(1).kind == TokenKind::Colon) {
       // `p1: A -> B` or `A : cond -> B`: try the label first, then fall back.
-      size_t saved = pos_;
+      // Backtracking restores everything the attempt changed: the position and the
+      // parentheses it left open, which would otherwise hide the line breaks after it.
+      const size_t savedPos = pos_;
+      const int savedDepth = depth_, savedNesting = nesting_;
       ++speculating_;
       try {
         std::string name = advance().text;
@@ -921,7 +977,9 @@ class Parser {
         return rule;
       } catch (const SyntaxError&) {
         --speculating_;
-        pos_ = saved;
+        pos_ = savedPos;
+        depth_ = savedDepth;
+        nesting_ = savedNesting;
       }
     }
     return productionAfterLabel(first);
@@ -931,13 +989,13 @@ class Parser {
     Rule rule;
     rule.terminal = true;
     std::vector<Module> items;
-    while (canStartModule() && !check(TokenKind::Less) && !check(TokenKind::Greater))
+    while (!atStatementEnd() && canStartModule() && !check(TokenKind::Less) && !check(TokenKind::Greater))
       items.push_back(module(ModuleUse::Predecessor));
     if (match(TokenKind::Less)) {
       rule.hasContext = true;
       rule.left = std::move(items);
       items.clear();
-      if (!canStartModule()) failHere("the predecessor after '<'");
+      if (atStatementEnd() || !canStartModule()) failHere("the predecessor after '<'");
       items.push_back(module(ModuleUse::Predecessor));
     }
     if (items.size() != 1) {
@@ -947,7 +1005,7 @@ class Parser {
     rule.predecessor = std::move(items.front());
     if (match(TokenKind::Greater)) {
       rule.hasContext = true;
-      while (canStartModule()) rule.right.push_back(module(ModuleUse::Predecessor));
+      while (!atStatementEnd() && canStartModule()) rule.right.push_back(module(ModuleUse::Predecessor));
       if (rule.right.empty()) failHere("a right context after '>'");
     }
     for (const auto* side : {&rule.left, &rule.right})
@@ -966,13 +1024,35 @@ class Parser {
   // Deeper nesting than this is no program a person writes; it would only exhaust the stack.
   static constexpr int kMaxNesting = 200;
 
+  // One level deeper for as long as it lives; past kMaxNesting an error, so that no
+  // input, however deep, recurses further than that.
+  struct Nested {
+    int& nesting;
+    ~Nested() { --nesting; }
+  };
+  [[nodiscard]] Nested nest(const SourceSpan& at, std::string_view what) {
+    if (nesting_ >= kMaxNesting)
+      fail(at, std::string(what) + " nested too deeply (more than " + std::to_string(kMaxNesting) + " levels)");
+    ++nesting_;
+    return Nested{nesting_};
+  }
+
   ExprPtr expression() {
-    if (++nesting_ > kMaxNesting) fail(peek().span, "expression nested too deeply (more than 200 levels)");
-    struct Leave {
-      int& nesting;
-      ~Leave() { --nesting; }
-    } leave{nesting_};
+    Nested nested = nest(peek().span, "expression");
     return logicalOr();
+  }
+
+  // A chain `a + b + c ...` grows the tree without the parser recursing, so the tree's
+  // height has a bound of its own, looser than the nesting: long sums are plausible.
+  static constexpr int kMaxHeight = 1000;
+
+  // Sets a node's height from its operands' and checks it.
+  ExprPtr measured(ExprPtr node) {
+    for (const ExprPtr& arg : node->args) node->height = std::max(node->height, arg->height + 1);
+    if (node->height > kMaxHeight)
+      fail(node->span, "expression too deep: more than " + std::to_string(kMaxHeight) +
+                           " operators inside each other (split it with #define or a function)");
+    return node;
   }
 
   ExprPtr binary(TokenKind op, ExprPtr left, ExprPtr right) {
@@ -982,7 +1062,7 @@ class Parser {
     node->span = left->span.to(right->span);
     node->args.push_back(std::move(left));
     node->args.push_back(std::move(right));
-    return node;
+    return measured(std::move(node));
   }
 
   bool operatorAhead(std::initializer_list<TokenKind> kinds) const {
@@ -1048,23 +1128,22 @@ class Parser {
   ExprPtr unary() {
     if (check(TokenKind::Minus) || check(TokenKind::Plus) || check(TokenKind::Bang)) {
       const Token& op = advance();
-      if (++nesting_ > kMaxNesting) fail(op.span, "expression nested too deeply (more than 200 levels)");
+      Nested nested = nest(op.span, "expression");
       ExprPtr operand = unary();
-      --nesting_;
       if (op.kind == TokenKind::Plus) return operand;
       auto node = std::make_unique<Expr>();
       node->kind = Expr::Kind::Unary;
       node->op = op.kind;
       node->span = op.span.to(operand->span);
       node->args.push_back(std::move(operand));
-      return node;
+      return measured(std::move(node));
     }
     return power();
   }
   ExprPtr power() {
     ExprPtr base = postfix();
     if (operatorAhead({TokenKind::Caret})) {
-      advance();
+      Nested nested = nest(advance().span, "expression");
       ExprPtr exponent = unary();  // right-associative; allows 2^-1
       return binary(TokenKind::Caret, std::move(base), std::move(exponent));
     }
@@ -1080,7 +1159,7 @@ class Parser {
       member->name = field.text;
       member->span = node->span.to(field.span);
       member->args.push_back(std::move(node));
-      node = std::move(member);
+      node = measured(std::move(member));
     }
     return node;
   }
@@ -1110,7 +1189,7 @@ class Parser {
         --depth_;
         const Token& close = expect(TokenKind::RParen, " to close the call of '" + token.text + "'");
         node->span = token.span.to(close.span);
-        return node;
+        return measured(std::move(node));
       }
       node->kind = Expr::Kind::Name;
       return node;

@@ -316,12 +316,22 @@ TEST(Cli, SurfaceFilesLoadRelativeToTheProgramAndBadOnesStopTheRun) {
 
   writeProgram(dir, "#surface 2 \"shapes/none.obj\"\nlsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n"
                     "  interpret geometry { surface(2) }\n}\n");
+  // A file the run could not use is the program's error, found by check as by run.
   Result missing = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());
-  EXPECT_EQ(missing.exitCode, 2);
-  EXPECT_NE(missing.err.find("program.cell:1:1: cannot read surface " + (dir / "shapes" / "none.obj").string()),
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_NE(missing.err.find("program.cell:1:1: error: cannot read surface " + (dir / "shapes" / "none.obj").string()),
             std::string::npos)
       << missing.err;
   EXPECT_FALSE(fs::exists(dir / "bad" / "program.obj"));
+  EXPECT_EQ(ontogen("check " + (dir / "program.cell").string()).exitCode, 1);
+  std::ofstream(dir / "shapes" / "points.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  writeProgram(dir, "lsystem s {\n  #surface 3 \"shapes/points.obj\"\n  axiom Leaf\n}\n");
+  Result faceless = ontogen("check " + (dir / "program.cell").string());
+  EXPECT_EQ(faceless.exitCode, 1);
+  EXPECT_NE(faceless.err.find("program.cell:2:3: error: " + (dir / "shapes" / "points.obj").string() +
+                              ": no faces (an OBJ surface needs 'f' lines)"),
+            std::string::npos)
+      << faceless.err;
 
   writeProgram(dir, "lsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n  interpret geometry { surface(5) }\n}\n");
   Result undefined = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());

@@ -4,6 +4,9 @@
 
 #include "lang/directives.h"
 
+#include <cmath>
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,11 +118,14 @@ TEST(Directives, NamesAreUniqueAndFound) {
     EXPECT_EQ(directive.syntax.rfind("#" + std::string(directive.name), 0), 0u) << directive.syntax;
     EXPECT_EQ(directive.apply == nullptr, directive.kind == DirectiveKind::Define) << directive.name;
     EXPECT_EQ(directive.kind == DirectiveKind::Word, !directive.words.empty()) << directive.name;
-    // A value the compiler checks has a message for when it is out of range, and only then.
+    // Every value the compiler checks has a message for when it is out of range: none
+    // takes every number, as none takes NaN or an infinity.
     const bool compilerChecks = directive.kind == DirectiveKind::Number || directive.kind == DirectiveKind::Integer ||
                                 directive.kind == DirectiveKind::NumberedFile;
     if (compilerChecks) {
-      EXPECT_EQ(directive.rangeError.empty(), directive.range.any()) << directive.name;
+      EXPECT_FALSE(directive.rangeError.empty()) << directive.name;
+      EXPECT_FALSE(directive.accepts(std::numeric_limits<double>::infinity())) << directive.name;
+      EXPECT_FALSE(directive.accepts(std::nan(""))) << directive.name;
     }
   }
   EXPECT_EQ(findDirective("defne"), nullptr);
@@ -263,9 +269,10 @@ TEST(Directives, WordsAndTimeSignaturesAreCheckedAsTheyAreRead) {
 TEST(Directives, RangesAreDescribedAsHelpPrintsThem) {
   EXPECT_EQ(describeValues(*findDirective("tempo")), "> 0 and ≤ 1000");
   EXPECT_EQ(describeValues(*findDirective("tolerance")), "> 0 and < 1");
-  EXPECT_EQ(describeValues(*findDirective("seed")), "≥ 0");
+  EXPECT_EQ(describeValues(*findDirective("seed")), "0 to 9007199254740991");
+  EXPECT_EQ(describeValues(*findDirective("radius")), "≥ 0");
   EXPECT_EQ(describeValues(*findDirective("ppq")), "1 to 32767");
-  EXPECT_EQ(describeValues(*findDirective("angle")), "any");
+  EXPECT_EQ(describeValues(*findDirective("angle")), "finite");
   EXPECT_EQ(describeValues(*findDirective("music")), "sequential or developmental");
   EXPECT_EQ(describeValues(*findDirective("timesig")), "N 1 to 255, D 1, 2, 4 ... 64");
 }
