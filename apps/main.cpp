@@ -28,9 +28,12 @@ void addDevelopment(CLI::App& command, CommonOptions& options) {
       ->capture_default_str();
   command.add_option_function<uint64_t>(
              "--max-memory", [&options](uint64_t mib) { options.limits.maxMemoryBytes = mib << 20; },
-             "Stop if the pools pass this many MiB (default 8192)")
+             "Stop if the pools and outputs pass this many MiB (default: half the machine's memory, here " +
+                 std::to_string(ontogen::defaultMemoryLimitBytes() >> 20) + ")")
       ->check(CLI::PositiveNumber);
   command.add_option("--max-events", options.limits.maxEventsPerStep, "Stop after N terminal events in one step")
+      ->capture_default_str();
+  command.add_option("--max-steps", options.limits.maxSteps, "Stop if the development would take more than N steps")
       ->capture_default_str();
   command.add_option("--threads", options.threads, "Threads for rules and rates (0, the default: all cores; same result)")
       ->check(CLI::NonNegativeNumber);

@@ -148,12 +148,29 @@ void Run::develop(RunReport& report) {
     }
     if (drawn) {
       if (!output_) output_ = std::make_unique<SceneOutput>(sceneOutputDefOf(def_.setOptions));
-      for (auto& path : output_->write(scene_, target)) report.files.push_back(std::move(path));
+      writeScene(target, report);
     }
     if (def_.progress) def_.progress(frame + 1, frames);
   }
   for (InterpretationSet* set : following)
     for (auto& path : set->endFrame()) report.files.push_back(std::move(path));
+}
+
+// What the output stage holds (every frame of a .glb until the end) and renders (a
+// picture) counts against the memory limit with the pools.
+void Run::writeScene(const FrameTarget& target, RunReport& report) {
+  World& world = *world_;
+  const WorldLimits& limits = def_.world.limits;
+  const uint64_t pools = world.held().bytes;
+  if (const uint64_t picture = output_->pictureBytes(target); picture > 0) {
+    const RenderDef& render = output_->def().render;
+    checkOutsideMemory("a " + std::to_string(render.width) + "x" + std::to_string(render.height) + " picture", picture,
+                       pools + output_->heldBytes(), limits);
+  }
+  for (auto& path : output_->write(scene_, target)) report.files.push_back(std::move(path));
+  checkOutsideMemory("the .glb's " + std::to_string(output_->glbFrames()) + " frames held until the last",
+                     output_->heldBytes(), pools, limits);
+  world.holdOutside(output_->heldBytes());
 }
 
 void Run::collectWarnings(RunReport& report) {

@@ -120,6 +120,12 @@ void SceneOutput::writeMp4(const FrameTarget& target, std::vector<std::filesyste
   written.push_back(path);
 }
 
+uint64_t SceneOutput::pictureBytes(const FrameTarget& target) const {
+  const bool last = target.frame + 1 >= target.frameCount;
+  const bool picture = def_.writePngFrames || (def_.writePng && last) || def_.writeMp4;
+  return picture ? renderBytes(def_.render) : 0;
+}
+
 std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const FrameTarget& target_) {
   const Geometry& geometry_ = scene.geometry;
   std::vector<std::filesystem::path> written;

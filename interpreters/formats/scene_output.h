@@ -56,6 +56,12 @@ class SceneOutput {
   /// run); returns the paths written, SVG first. Throws OutputError on failure.
   std::vector<std::filesystem::path> write(const Scene& scene, const FrameTarget& target);
   const SceneOutputDef& def() const { return def_; }
+  /// Bytes this stage holds between frames (the .glb's frames, all written at the end).
+  uint64_t heldBytes() const { return glb_.heldBytes(); }
+  /// Bytes the write() of `target` needs for a while to render a picture (0: none).
+  uint64_t pictureBytes(const FrameTarget& target) const;
+  /// Frames the .glb holds so far.
+  std::size_t glbFrames() const { return glb_.frameCount(); }
 
  private:
   std::filesystem::path mp4FramesDirectory(const FrameTarget& target) const;
