@@ -2,10 +2,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <exception>
 #include <iostream>
+#include <new>
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "core/limits.h"
+#include "interpreters/temporary_files.h"
 
 namespace {
 
@@ -39,9 +43,7 @@ void addDevelopment(CLI::App& command, CommonOptions& options) {
       ->check(CLI::NonNegativeNumber);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int dispatch(int argc, char** argv) {
   CLI::App app{"ontogen: a simulator of hierarchical, cellular development for generative media"};
   app.require_subcommand(1);
 
@@ -110,4 +112,28 @@ int main(int argc, char** argv) {
   if (timelineCommand->parsed()) return runTimeline(timeline);
   if (midiPortsCommand->parsed()) return runMidiPorts();
   return runHelp();
+}
+
+}  // namespace
+
+// Nothing ontogen throws may end the process through std::terminate: what the commands
+// do not turn into a message of their own becomes one here, with its exit code.
+int main(int argc, char** argv) {
+  ontogen::removeTemporariesOnSignals();
+  try {
+    return dispatch(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "\nontogen: error: the machine ran out of memory; lower the limits with --max-memory MIB or "
+                 "--max-cells N\n";
+    return kExitModelError;
+  } catch (const ontogen::LimitError& limit) {
+    std::cerr << "\nontogen: error: " << limit.what() << "\n";
+    return kExitModelError;
+  } catch (const std::exception& error) {
+    std::cerr << "\nontogen: internal error: " << error.what() << " (please report it)\n";
+    return kExitInternalError;
+  } catch (...) {
+    std::cerr << "\nontogen: internal error: an unknown exception (please report it)\n";
+    return kExitInternalError;
+  }
 }

@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "apps/commands.h"
+#include "core/limits.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 
@@ -70,6 +71,18 @@ LoadedProgram loadProgram(const CommonOptions& common) {
   }
   std::ostringstream text;
   text << in.rdbuf();
+  // Checking a program takes about 100 bytes of memory a byte of text (a 5 MB axiom
+  // takes 520 MB): a text that could not be checked within the memory limit is stopped
+  // before it is.
+  constexpr uint64_t kCheckBytesPerSourceByte = 128;
+  try {
+    checkOutsideMemory("checking the " + std::to_string(text.view().size()) + " bytes of '" + path + "'",
+                       text.view().size() * kCheckBytesPerSourceByte, 0, common.limits);
+  } catch (const LimitError& limit) {
+    std::cerr << "ontogen: error: " << limit.what() << "\n";
+    loaded.exitCode = kExitModelError;
+    return loaded;
+  }
   DiagnosticSink sink;
   options.commandSets = commandSets();
   options.rootSystem = common.system;

@@ -72,7 +72,7 @@ void checkMemoryLimit(uint64_t bytes, const WorldLimits& limits) {
 void checkOutsideMemory(const std::string& what, uint64_t bytes, uint64_t held, const WorldLimits& limits) {
   if (bytes > limits.maxMemoryBytes || held > limits.maxMemoryBytes - bytes) [[unlikely]]
     throw LimitError(what + " needs about " + std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB" +
-                     (held > 0 ? " besides the " + std::to_string((held + (1 << 20) - 1) >> 20) + " MiB held" : "") +
+                     ((held >> 20) > 0 ? " besides the " + mebibytes(held) + " MiB held" : "") +
                      ", past the memory limit of " + mebibytes(limits.maxMemoryBytes) +
                      " MiB; raise it with --max-memory MIB");
 }

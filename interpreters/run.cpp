@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <new>
+#include <stdexcept>
 #include <system_error>
 
 #include "interpreters/geometry/surface.h"
@@ -88,6 +90,17 @@ RunReport Run::execute() {
   } catch (const RunInterrupted& interrupted) {
     report.status = RunStatus::Interrupted;
     report.diagnostics.push_back(unlocated(Severity::Note, interrupted.what()));
+  } catch (const std::bad_alloc&) {
+    // The machine's memory is a limit too, one the limits did not foresee.
+    report.status = RunStatus::ModelFailed;
+    report.diagnostics.push_back(unlocated(
+        Severity::Error, "the machine ran out of memory; lower the limits with --max-memory MIB or --max-cells N"));
+    if (world_) report.diagnostics.back().time = world_->time();
+  } catch (const std::length_error& length) {
+    // A frame's geometry past what 32-bit indices reach.
+    report.status = RunStatus::ModelFailed;
+    report.diagnostics.push_back(unlocated(Severity::Error, length.what()));
+    if (world_) report.diagnostics.back().time = world_->time();
   }
   collectWarnings(report);
   if (world_) {

@@ -1,5 +1,7 @@
 #include "interpreters/formats/scene_output.h"
 
+#include "interpreters/temporary_files.h"
+
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -63,7 +65,7 @@ bool ffmpegAvailable() {
 
 SceneOutput::SceneOutput(const SceneOutputDef& def) : def_(def) {
   checkSvgOptions(def.svg);
-  if (def.writePng || def.writePngFrames || def.writeMp4) renderGeometry(Geometry(), def.render);  // validates
+  if (def.writePng || def.writePngFrames || def.writeMp4) checkRenderDef(def.render);
   if (def.writeMp4 && !ffmpegAvailable()) {
     throw std::invalid_argument("the mp4 format needs ffmpeg, which is not installed (Debian: apt-get install ffmpeg)");
   }
@@ -103,6 +105,7 @@ void SceneOutput::writeMp4(const FrameTarget& target, std::vector<std::filesyste
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
+  const RegisteredTemporary registered(temporary);  // removed on SIGINT and SIGTERM too
   pid_t pid = 0;
   int status = 0;
   bool ok = ::posix_spawnp(&pid, "ffmpeg", nullptr, nullptr, argv.data(), environ) == 0 &&

@@ -103,3 +103,43 @@ TEST(Run, ABadDefinitionGrowsNothing) {
 
 }  // namespace
 }  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+RunReport runWithMemoryLimit(const std::string& name, uint64_t mebibytes, const std::string& formats, int frames,
+                             int size = 800) {
+  RunDef def;
+  def.program = testing_support::compileModel("piston.cell");
+  def.until = 1;
+  def.frames = frames;
+  def.setOptions.formats = formats;
+  def.setOptions.render.width = def.setOptions.render.height = size;
+  def.world.limits.maxMemoryBytes = mebibytes << 20;
+  def.out = scratch(name);
+  ontogen::Run run(std::move(def));
+  return run.execute();
+}
+
+// A picture's buffers are not in a pool, but they count against the memory limit.
+TEST(Run, APictureLargerThanTheMemoryLimitStopsTheRunWithTheLimitNamed) {
+  const RunReport report = runWithMemoryLimit("big_picture", 100, "png", 1, 8192);
+  EXPECT_EQ(report.status, RunStatus::ModelFailed);
+  ASSERT_FALSE(report.diagnostics.empty());
+  EXPECT_EQ(report.diagnostics[0].message,
+            "a 8192x8192 picture needs about 5504 MiB, past the memory limit of 100 MiB; raise it with --max-memory MIB");
+  EXPECT_TRUE(runWithMemoryLimit("small_picture", 100, "png", 1, 800).ok());
+}
+
+// Every frame of a .glb is held until the last is written: they count as they come.
+TEST(Run, TheFramesAGlbHoldsCountAgainstTheMemoryLimit) {
+  const RunReport report = runWithMemoryLimit("many_frames", 1, "glb", 400);
+  EXPECT_EQ(report.status, RunStatus::ModelFailed);
+  ASSERT_FALSE(report.diagnostics.empty());
+  EXPECT_NE(report.diagnostics[0].message.find("the .glb's "), std::string::npos) << report.diagnostics[0].message;
+  EXPECT_NE(report.diagnostics[0].message.find("--max-memory"), std::string::npos);
+  EXPECT_TRUE(runWithMemoryLimit("few_frames", 64, "glb", 400).ok());
+}
+
+}  // namespace
+}  // namespace ontogen
