@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <new>
 #include <stdexcept>
 #include <system_error>
@@ -20,6 +21,12 @@ std::string formatRunDiagnostic(const RunDiagnostic& diagnostic) {
 }
 
 namespace {
+std::string formatTime(double seconds) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", seconds);
+  return buffer;
+}
+
 // A diagnostic that belongs to no source text or time.
 RunDiagnostic unlocated(Severity severity, std::string message) {
   RunDiagnostic diagnostic;
@@ -81,6 +88,12 @@ RunReport Run::execute() {
     report.status = RunStatus::ModelFailed;
     report.diagnostics.push_back(
         {Severity::Error, model.diagnostic.message, model.diagnostic.span, model.cell, model.time, 1});
+  } catch (const InstructionError& instruction) {
+    report.status = RunStatus::ModelFailed;
+    report.diagnostics.push_back({Severity::Error,
+                                  std::string(instruction.what()) + " (in the interpretation of '" + instruction.cell +
+                                      "' at t = " + formatTime(instruction.time) + ")",
+                                  instruction.span, instruction.cell, instruction.time, 1});
   } catch (const SurfaceError& surface) {
     report.status = RunStatus::ModelFailed;
     report.diagnostics.push_back(unlocated(Severity::Error, surface.what()));

@@ -2,6 +2,8 @@
 
 #include "interpreters/geometry/turtle_commands.h"
 
+#include <stdexcept>
+
 namespace ontogen {
 
 GeometrySet::GeometrySet(const GeometrySetDef& def)
@@ -60,7 +62,13 @@ void GeometrySet::executeCommand(int id, std::string_view command, std::span<con
 
 void GeometrySet::run(const TurtleCommand& command, std::span<const double> args) {
   const TurtleWarnings before = turtle_.warnings();
-  turtle_.execute(command, args, scene_.geometry);
+  try {
+    turtle_.execute(command, args, scene_.geometry);
+  } catch (const SurfaceError& surface) {
+    refuse(surface.what());  // an undefined surface, a bad blend: at the instruction that names it
+  } catch (const std::length_error& full) {
+    refuse(full.what());  // the frame's mesh is full
+  }
   const TurtleWarnings& after = turtle_.warnings();
   unmatchedPops_.add(static_cast<uint64_t>(after.unmatchedPops - before.unmatchedPops), site_);
   badArguments_.add(static_cast<uint64_t>(after.badArguments - before.badArguments), site_);

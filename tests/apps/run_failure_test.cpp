@@ -198,3 +198,27 @@ TEST(RunFailure, ASignalWhileWritingLeavesNoTemporaryFile) {
 }
 
 }  // namespace
+
+namespace {
+
+// Values an instruction cannot take are the model's errors (exit 3) at the instruction,
+// not outputs that could not be written (exit 4).
+TEST(RunFailure, InstructionValuesOutOfRangeExitWith3AndTheirPlace) {
+  const fs::path dir = scratch("instructions");
+  const fs::path pixel =
+      writeProgram(dir, "cell C { interpret image { pixel(-5, -5, 1) } }\nsystem g { pool grid(4, 4) wrap moore; fill C; }\n",
+                   "pixel.cell");
+  const Result painted = ontogen(dir, "run " + pixel.string() + " --interpret image --out " + (dir / "out").string());
+  EXPECT_EQ(painted.exitCode, 3) << painted.err;
+  EXPECT_NE(painted.err.find("pixel.cell:1:28: error: pixel(-5, -5) is outside the picture"), std::string::npos)
+      << painted.err;
+  const fs::path note =
+      writeProgram(dir, "lsystem m {\n  axiom A\n  interpret music A { note(1e308, 60) }\n  A -> A\n}\n", "note.cell");
+  const Result played = ontogen(dir, "run " + note.string() + " --interpret music --out " + (dir / "out").string());
+  EXPECT_EQ(played.exitCode, 3) << played.err;
+  EXPECT_NE(played.err.find("note.cell:3:23: error: the note would end at beat 1e+308"), std::string::npos)
+      << played.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "note.mid"));
+}
+
+}  // namespace

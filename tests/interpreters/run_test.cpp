@@ -143,3 +143,64 @@ TEST(Run, TheFramesAGlbHoldsCountAgainstTheMemoryLimit) {
 
 }  // namespace
 }  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+// The programs stay alive while their diagnostics' spans are read.
+std::vector<std::shared_ptr<const Program>> keptPrograms;
+
+RunDiagnostic firstErrorOf(const std::string& text, const std::string& name, const std::string& set) {
+  RunDef def;
+  def.program = testing_support::compileOrFail(text, name);
+  keptPrograms.push_back(def.program);
+  def.until = 2;
+  def.sets = {set};
+  def.setOptions.formats = "obj";
+  def.out = scratch("instruction_" + set);
+  ontogen::Run run(std::move(def));
+  const RunReport report = run.execute();
+  EXPECT_EQ(report.status, RunStatus::ModelFailed) << name;
+  for (const RunDiagnostic& diagnostic : report.diagnostics)
+    if (diagnostic.severity == Severity::Error) return diagnostic;
+  ADD_FAILURE() << "no error for " << name;
+  return {};
+}
+
+// An instruction's argument outside what its set can carry out is the program's error at
+// the instruction, with its cell and time: exit code 3, not an output error.
+TEST(Run, InstructionArgumentsOutOfRangeAreLocatedModelErrors) {
+  const RunDiagnostic pixel = firstErrorOf(
+      "cell C { interpret image { pixel(-5, -5, 1) } }\nsystem g { pool grid(4, 4) wrap moore; fill C; }\n", "px.cell",
+      "image");
+  EXPECT_EQ(pixel.cell, "C");
+  EXPECT_EQ(pixel.time, 2);
+  EXPECT_EQ(formatRunDiagnostic(pixel),
+            "px.cell:1:28: error: pixel(-5, -5) is outside the picture: a site's coordinates are whole numbers 0 to "
+            "8191 (in the interpretation of 'C' at t = 2)\n"
+            "cell C { interpret image { pixel(-5, -5, 1) } }\n"
+            "                           ^~~~~~~~~~~~~~~~\n");
+
+  const RunDiagnostic note =
+      firstErrorOf("lsystem m {\n  axiom A\n  interpret music A { note(1e308, 60) }\n  A -> A\n}\n", "note.cell", "music");
+  EXPECT_EQ(note.cell, "A");
+  EXPECT_EQ(formatRunDiagnostic(note).rfind("note.cell:3:23: error: the note would end at beat 1e+308, past beat "
+                                            "559240, the end of any MIDI file at this resolution (#ppq) (in the "
+                                            "interpretation of 'A' at t = 2)\n",
+                                            0),
+            0u)
+      << formatRunDiagnostic(note);
+
+  const RunDiagnostic at =
+      firstErrorOf("lsystem m {\n  axiom A\n  interpret music A { at(1e9) note() }\n  A -> A\n}\n", "at.cell", "music");
+  EXPECT_NE(at.message.find("the time would move to beat 1e+09"), std::string::npos) << at.message;
+  EXPECT_TRUE(at.span.valid());
+
+  const RunDiagnostic surface = firstErrorOf(
+      "lsystem s {\n  axiom A\n  interpret geometry A { F(1) surface(4) }\n  A -> A\n}\n", "surface.cell", "geometry");
+  EXPECT_EQ(formatRunDiagnostic(surface).rfind("surface.cell:3:31: error: surface 4 is not defined", 0), 0u)
+      << formatRunDiagnostic(surface);
+}
+
+}  // namespace
+}  // namespace ontogen
