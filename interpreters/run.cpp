@@ -200,10 +200,13 @@ void Run::writeScene(const FrameTarget& target, RunReport& report) {
 }
 
 void Run::collectWarnings(RunReport& report) {
-  for (auto& set : sets_)
-    for (SetWarning& warning : set->takeWarnings())
+  auto add = [&](std::vector<SetWarning> warnings) {
+    for (SetWarning& warning : warnings)
       report.diagnostics.push_back(
           {Severity::Warning, std::move(warning.message), warning.span, std::move(warning.cell), warning.time, warning.count});
+  };
+  for (auto& set : sets_) add(set->takeWarnings());
+  if (output_) add(output_->takeWarnings());
 }
 
 }  // namespace ontogen

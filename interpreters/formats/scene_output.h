@@ -62,6 +62,9 @@ class SceneOutput {
   uint64_t pictureBytes(const FrameTarget& target) const;
   /// Frames the .glb holds so far.
   std::size_t glbFrames() const { return glb_.frameCount(); }
+  /// What the stage left out since the last call (frames with nothing an .obj or .ply
+  /// can hold, which get no such file), one entry per kind; starts again.
+  std::vector<SetWarning> takeWarnings();
 
  private:
   std::filesystem::path mp4FramesDirectory(const FrameTarget& target) const;
@@ -70,6 +73,8 @@ class SceneOutput {
   SceneOutputDef def_;
   GlbAnimationWriter glb_;
   int mp4Frames_ = 0;
+  WarningCounter emptyObj_;  // frames with nothing to draw: no .obj
+  WarningCounter emptyPly_;  // frames without a surface: no .ply
 };
 
 }  // namespace ontogen

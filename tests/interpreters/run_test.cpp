@@ -3,7 +3,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "interpreters/run.h"
 #include "tests/core/test_support.h"
@@ -13,8 +20,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+fs::path scratchDir(const std::string& name) { return fs::path(ONTOGEN_BINARY_DIR) / "run_test" / name; }
+
 fs::path scratch(const std::string& name) {
-  fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "run_test" / name;
+  fs::path dir = scratchDir(name);
   fs::remove_all(dir);
   return dir;
 }
@@ -200,6 +209,107 @@ TEST(Run, InstructionArgumentsOutOfRangeAreLocatedModelErrors) {
       "lsystem s {\n  axiom A\n  interpret geometry A { F(1) surface(4) }\n  A -> A\n}\n", "surface.cell", "geometry");
   EXPECT_EQ(formatRunDiagnostic(surface).rfind("surface.cell:3:31: error: surface 4 is not defined", 0), 0u)
       << formatRunDiagnostic(surface);
+}
+
+}  // namespace
+}  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+std::string fileText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The words of a text file that are no finite number but read as one (inf, nan, ...).
+std::vector<std::string> nonFiniteWords(const std::string& text) {
+  std::vector<std::string> found;
+  std::string word;
+  std::istringstream in(text);
+  while (in >> word) {
+    for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* bad : {"inf", "nan"})
+      if (word.find(bad) != std::string::npos && word.find("mtl") == std::string::npos) found.push_back(word);
+  }
+  return found;
+}
+
+// The glTF JSON chunk of a .glb.
+nlohmann::json glbJson(const fs::path& path) {
+  const std::string bytes = fileText(path);
+  if (bytes.size() < 20) return {};
+  uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return nlohmann::json::parse(bytes.substr(20, length));
+}
+
+// Coordinates past what any output holds are left out of every file, and the run says so
+// at the instruction that drew them.
+TEST(Run, NoOutputHoldsANonFiniteNumberAndTheRunSaysWhatItLeftOut) {
+  RunDef def;
+  def.program = testing_support::compileOrFail(
+      "lsystem a {\n  axiom F(1) F(1e308) F(1e308) + F(1)\n  F(x) -> F(x)\n  interpret geometry F(x) { !(0.1) F(x) }\n}\n",
+      "huge.cell");
+  keptPrograms.push_back(def.program);
+  def.stem = "huge";
+  def.until = 1;
+  def.setOptions.formats = "glb,obj,ply,svg,png";
+  def.out = scratch("non_finite");
+  ontogen::Run run(std::move(def));
+  const RunReport report = run.execute();
+  ASSERT_TRUE(report.ok()) << (report.diagnostics.empty() ? "" : report.diagnostics[0].message);
+  for (const char* name : {"huge.obj", "huge.ply", "huge.svg"}) {
+    const std::string text = fileText(scratchDir("non_finite") / name);
+    EXPECT_FALSE(text.empty()) << name;
+    EXPECT_EQ(nonFiniteWords(text), std::vector<std::string>{}) << name;
+  }
+  // The first F(1) is drawn: a cylinder of 12 sides from 0 to 1.
+  EXPECT_NE(fileText(scratchDir("non_finite") / "huge.obj").find("# 24 vertices"), std::string::npos);
+  const nlohmann::json gltf = glbJson(scratchDir("non_finite") / "huge.glb");
+  ASSERT_TRUE(gltf.contains("accessors"));
+  for (const auto& accessor : gltf["accessors"]) {
+    for (const char* bound : {"min", "max"}) {
+      if (!accessor.contains(bound)) continue;
+      for (const auto& value : accessor[bound]) EXPECT_TRUE(value.is_number()) << accessor.dump();
+    }
+  }
+  int warned = 0;
+  for (const RunDiagnostic& diagnostic : report.diagnostics) {
+    if (diagnostic.message.find("left out 3 shapes with coordinates not finite or beyond ±1e30") == std::string::npos)
+      continue;
+    ++warned;
+    EXPECT_EQ(diagnostic.severity, Severity::Warning);
+    EXPECT_EQ(diagnostic.cell, "F");
+    EXPECT_EQ(formatRunDiagnostic(diagnostic).rfind("huge.cell:4:36: warning:", 0), 0u) << formatRunDiagnostic(diagnostic);
+  }
+  EXPECT_EQ(warned, 1);
+}
+
+// A frame with nothing to draw: a readable .obj (one point), no .ply (it holds faces
+// only), and a warning for each.
+TEST(Run, AFrameWithNothingToDrawWarnsAndWritesNoUnreadableFile) {
+  RunDef def;
+  def.program = testing_support::compileOrFail("lsystem a {\n  axiom A\n  A -> A\n}\n", "nothing.cell");
+  def.stem = "nothing";
+  def.until = 1;
+  def.setOptions.formats = "obj,ply";
+  def.out = scratch("nothing");
+  ontogen::Run run(std::move(def));
+  const RunReport report = run.execute();
+  ASSERT_TRUE(report.ok());
+  EXPECT_TRUE(fs::exists(scratchDir("nothing") / "nothing.obj"));
+  EXPECT_FALSE(fs::exists(scratchDir("nothing") / "nothing.ply"));
+  std::vector<std::string> warnings;
+  for (const RunDiagnostic& diagnostic : report.diagnostics)
+    if (diagnostic.severity == Severity::Warning) warnings.push_back(diagnostic.message);
+  EXPECT_EQ(warnings, (std::vector<std::string>{
+                          "1 frame (the first at t = 1) had nothing to draw: its .obj holds one point at the origin, "
+                          "as readers refuse one without a mesh",
+                          "1 frame (the first at t = 1) had no surface: no .ply was written for it, as readers refuse "
+                          "one without a face"}));
 }
 
 }  // namespace
