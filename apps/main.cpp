@@ -3,7 +3,9 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <exception>
 #include <iostream>
+#include <new>
 #include <string_view>
 #include <vector>
 
@@ -11,6 +13,8 @@
 #include "apps/command_names.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "core/limits.h"
+#include "interpreters/temporary_files.h"
 
 namespace {
 
@@ -48,10 +52,13 @@ void addDevelopment(CLI::App& command, CommonOptions& options) {
             options.limits.maxMemoryBytes =
                 detail::wholeOrThrow("--max-memory", text, WholeRange::between(1, kMaxMemoryMiB)) << 20;
           },
-          "Stop if the pools pass this many MiB (default 8192)")
+          "Stop if the pools and outputs pass this many MiB (default: half the machine's memory, here " +
+              std::to_string(ontogen::defaultMemoryLimitBytes() >> 20) + ")")
       ->type_name("MIB");
   addWholeOption(command, "--max-events", options.limits.maxEventsPerStep, WholeRange::atLeast(1),
                  "Stop after N terminal events in one step (default 200000000)");
+  addWholeOption(command, "--max-steps", options.limits.maxSteps, WholeRange::atLeast(1),
+                 "Stop if the development would take more than N steps");
   addWholeOption(command, "--threads", options.threads, WholeRange::between(0, kMaxThreads),
                  "Threads for rules and rates (0, the default: all cores; same result)");
 }
@@ -75,9 +82,7 @@ std::string unknownFlagMessage(const CLI::App& command, int argc, const char* co
   return {};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int dispatch(int argc, char** argv) {
   CLI::App app{"ontogen: a simulator of hierarchical, cellular development for generative media"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("ontogen ") + ONTOGEN_VERSION);
@@ -174,4 +179,28 @@ int main(int argc, char** argv) {
   if (timelineCommand->parsed()) return runTimeline(timeline);
   if (midiPortsCommand->parsed()) return runMidiPorts();
   return runHelp();
+}
+
+}  // namespace
+
+// Nothing ontogen throws may end the process through std::terminate: what the commands
+// do not turn into a message of their own becomes one here, with its exit code.
+int main(int argc, char** argv) {
+  ontogen::removeTemporariesOnSignals();
+  try {
+    return dispatch(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "\nontogen: error: the machine ran out of memory; lower the limits with --max-memory MIB or "
+                 "--max-cells N\n";
+    return kExitModelError;
+  } catch (const ontogen::LimitError& limit) {
+    std::cerr << "\nontogen: error: " << limit.what() << "\n";
+    return kExitModelError;
+  } catch (const std::exception& error) {
+    std::cerr << "\nontogen: internal error: " << error.what() << " (please report it)\n";
+    return kExitInternalError;
+  } catch (...) {
+    std::cerr << "\nontogen: internal error: an unknown exception (please report it)\n";
+    return kExitInternalError;
+  }
 }

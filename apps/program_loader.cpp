@@ -8,6 +8,7 @@
 
 #include "apps/cli_values.h"
 #include "apps/commands.h"
+#include "core/limits.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 #include "lang/source_reader.h"
@@ -60,6 +61,18 @@ LoadedProgram loadProgram(const CommonOptions& common) {
   if (!text.text) {
     std::cerr << "ontogen: error: cannot read '" << path << "': " << text.error << "\n";
     loaded.exitCode = kExitUsage;
+    return loaded;
+  }
+  // Checking a program takes about 100 bytes of memory a byte of text (a 5 MB axiom
+  // takes 520 MB): a text that could not be checked within the memory limit is stopped
+  // before it is.
+  constexpr uint64_t kCheckBytesPerSourceByte = 128;
+  try {
+    checkOutsideMemory("checking the " + std::to_string(text.text->size()) + " bytes of '" + path + "'",
+                       text.text->size() * kCheckBytesPerSourceByte, 0, common.limits);
+  } catch (const LimitError& limit) {
+    std::cerr << "ontogen: error: " << limit.what() << "\n";
+    loaded.exitCode = kExitModelError;
     return loaded;
   }
   DiagnosticSink sink(common.maxErrors);

@@ -17,6 +17,7 @@ enum ExitCode {
   kExitModelError = 3,    ///< the model failed or passed a limit while it ran
   kExitOutputError = 4,   ///< an output could not be written
   kExitMidiError = 5,     ///< live MIDI: no MIDI system runs, or no such port
+  kExitInternalError = 70, ///< a fault of ontogen itself (an exception nothing else caught; sysexits' EX_SOFTWARE)
   kExitInterrupted = 130, ///< stopped by Ctrl-C (SIGINT) during live playback, notes stopped
 };
 

@@ -9,10 +9,6 @@
 
 namespace ontogen {
 
-namespace {
-constexpr size_t kLimitCheckInterval = 1 << 16;  // cells between memory checks
-}  // namespace
-
 LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinition& system)
     : program_(program),
       system_(system),
@@ -103,12 +99,16 @@ void LinearDevelopment::beginWord() {
   nextState_.reserve(static_cast<size_t>(values));
   outCells_ = &nextCells_;
   outState_ = &nextState_;
+  checkInterval_ = growthCheckInterval(context_->limits);
+  sinceCheck_ = 0;
 }
 
 void LinearDevelopment::finishWord() {
   if (pool_.size() > 0) lastGrowth_ = static_cast<double>(nextCells_.size()) / pool_.size();
   pool_.swapContents(nextCells_, nextState_);
-  checkLimits(pool_.size());
+  // The old word is still held beside the new one until the next step reuses it.
+  checkGrowth(*context_, pool_.size(),
+              pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double));
 }
 
 void LinearDevelopment::emit(const CellRecord& cell, const double* values, uint32_t count) {
@@ -116,14 +116,17 @@ void LinearDevelopment::emit(const CellRecord& cell, const double* values, uint3
   copy.state = static_cast<uint32_t>(outState_->size());
   if (count > 0) outState_->insert(outState_->end(), values, values + count);
   outCells_->push_back(copy);
-  if (outCells_->size() % kLimitCheckInterval == 0) [[unlikely]]
-    checkLimits(outCells_->size());
+  if (++sinceCheck_ >= checkInterval_) [[unlikely]]
+    checkLimits();
 }
 
-void LinearDevelopment::checkLimits(size_t cells) {
-  checkCellLimit(cells, context_->limits);
-  checkMemoryLimit(pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double),
-                   context_->limits);
+// Within a step the new word is being written beside the old one, and cells that expire
+// within the step wait on the work list: all of it counts, as it is made.
+void LinearDevelopment::checkLimits() {
+  sinceCheck_ = 0;
+  const uint64_t cells = nextCells_.size() + work_.size() + expandedCells_.size();
+  const uint64_t values = nextState_.size() + workState_.size() + expandedState_.size();
+  checkGrowth(*context_, cells, pool_.bytes() + cells * sizeof(CellRecord) + values * sizeof(double));
 }
 
 // The rule frame of lang/program.h: [state...] [internal state] [context...]. The

@@ -50,7 +50,7 @@ class LinearDevelopment final : public Development {
   void emit(const CellRecord& cell, const double* values, uint32_t count);
   void beginWord();
   void finishWord();
-  void checkLimits(size_t cells);
+  void checkLimits();
 
   const Program& program_;
   const SystemDefinition& system_;
@@ -72,6 +72,8 @@ class LinearDevelopment final : public Development {
   CellArray work_;                                                  // cells still to expire, last = next
   StateArray workState_;
   uint64_t eventsThisStep_ = 0;
+  uint64_t checkInterval_ = 1;  // cells made between growth checks (growthCheckInterval)
+  uint64_t sinceCheck_ = 0;     // cells made since the last check
   void findParents();
   bool readsParents_ = false;          // some rule reads me.parent
   std::vector<int64_t> parentIndex_;   // of the word at the start of the pass
