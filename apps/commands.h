@@ -41,6 +41,7 @@ struct WordOptions {
   std::vector<double> times;
   bool json = false;
   int precision = 6;
+  bool interpreted = false;  ///< print the homomorphism's image, as interpretation reads it
 };
 
 struct TimelineOptions {

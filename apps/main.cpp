@@ -76,6 +76,8 @@ int main(int argc, char** argv) {
   addDevelopment(*wordCommand, word.common);
   wordCommand->add_option("--at", word.times, "Global times, comma-separated")->required()->delimiter(',');
   wordCommand->add_flag("--json", word.json, "Print one JSON object");
+  wordCommand->add_flag("--interpreted", word.interpreted,
+                        "Print the word as interpretation reads it, after the homomorphism rules");
   wordCommand->add_option("--precision", word.precision, "Significant digits of the text form")
       ->check(CLI::Range(1, 17))
       ->capture_default_str();

@@ -31,9 +31,9 @@ class LinearDevelopment final : public Development {
  private:
   void applyStepRules(double t);
   void integrateAndExpire(double t, double t1);
-  void expireUntil(double t1);
+  void expireUntil(double t, double t1);
   void expireContextFree(double t1);
-  void expireInTimeOrder(double t1);
+  void expireInTimeOrder(double t, double t1);
 
   /// Fires the terminal rules of a cell that reached its terminal age at `when`.
   /// `index` is its position in the current word (for context), or -1 for a newborn.
@@ -45,6 +45,11 @@ class LinearDevelopment final : public Development {
   bool matchContext(const CompiledRule& rule, size_t index, double* frame);
   const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
                                  RandomStream& random, const EvalContext& context);
+  /// The decomposition pass over the word just produced at `when` (docs/LANGUAGE.md 4.8a).
+  void decomposeWord(double when);
+  /// Emits `cell` decomposed: rewritten by its first matching decomposition rule, its
+  /// successors decomposed in turn while `depth` ≤ the system's maximum depth.
+  void decompose(const CellRecord& cell, const double* state, double when, int64_t position, int depth);
   void emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
                       BirthCause cause, const EvalContext& context);
   void emit(const CellRecord& cell, const double* values, uint32_t count);
@@ -59,6 +64,7 @@ class LinearDevelopment final : public Development {
   FunctionTable functions_;
   SuccessorWriter successors_;
   std::vector<double> frame_;
+  std::vector<std::vector<double>> decompositionFrames_;  // one per level of the decomposition
   // The next word is built here and swapped with the pool's (kept to reuse the memory).
   CellArray nextCells_;
   StateArray nextState_;

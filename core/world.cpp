@@ -262,8 +262,11 @@ void World::developChildren(double t1, bool stepRules, bool step) {
 }
 
 void World::developedValues(const CellRecord& cell, std::vector<double>& out) const {
+  developedValues(cell, rootPool().stateOf(cell), out);
+}
+
+void World::developedValues(const CellRecord& cell, const double* state, std::vector<double>& out) const {
   const MasterCell& master = program_->masters[cell.master];
-  const double* state = rootPool().stateOf(cell);
   out.assign(state, state + master.stateCount());
   if (master.developmentFunction < 0) return;
   const DevelopmentFunction& function = program_->functions[master.developmentFunction];

@@ -108,6 +108,8 @@ class World {
   /// The parameters of a cell after its development function: λ' = g(λ, τ, β) · λ
   /// (paper 000, eq. 3). Equal to the state when the master has no function.
   void developedValues(const CellRecord& cell, std::vector<double>& out) const;
+  /// The same for a cell whose state is not in the pool (a homomorphism's image).
+  void developedValues(const CellRecord& cell, const double* state, std::vector<double>& out) const;
 
  private:
   void seedPool();

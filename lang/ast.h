@@ -52,12 +52,19 @@ struct Assignment {
   ExprPtr value;
 };
 
+/// What an L-system rule does (L-Py's sections): a production rewrites the developing
+/// word; a decomposition rule rewrites a module right after the production step that
+/// made it, recursively; a homomorphism (interpretation) rule rewrites only the image
+/// the interpretation sets read.
+enum class RuleKind { Production, Decomposition, Homomorphism };
+
 /// A rule of a cell or a production of an L-system, in one shape:
 /// {left} predecessor {right} : predicate : calculations -> successors : probability.
 struct Rule {
   SourceSpan span;
   std::string name;            ///< `p1` in `p1: ...`, may be empty
   bool terminal = false;       ///< fires when the cell reaches its terminal age
+  RuleKind kind = RuleKind::Production;  ///< L-systems: the section it stands in
   bool hasContext = false;
   std::vector<Module> left;    ///< nearest last
   Module predecessor;          ///< L-systems: the strict predecessor; cells: `me`
@@ -167,7 +174,10 @@ struct System {
   std::vector<Define> defines;          ///< scoped to the block
   std::vector<Equiv> equivs;            ///< scoped to the block
   std::vector<Setting> settings;        ///< scoped to the block
-  std::vector<Rule> productions;        ///< L-systems
+  std::vector<Rule> productions;        ///< L-systems: every rule, each of its kind
+  /// `maximum depth: N` after `decomposition:` and after `homomorphism:`; may be null.
+  ExprPtr decompositionDepth;
+  ExprPtr homomorphismDepth;
   std::vector<SymbolInterpretation> interpretations;  ///< L-systems: `interpret SET X(a) { ... }`
   std::vector<DevelopmentFunction> functions;
   std::vector<SymbolList> ignore;

@@ -93,7 +93,7 @@ void compileSymbolInterpretations(CompileContext& ctx, const ast::System& system
 }
 
 // The instruction each master stands for (its label, or the command an equiv names),
-// and the brackets among them.
+// and the brackets and cuts among them.
 // With the sets known, each master's command is resolved in every set once, here.
 void resolveCommands(CompileContext& ctx) {
   for (const auto& set : ctx.options.commandSets) ctx.program->commandSets.push_back(set.name);
@@ -102,6 +102,14 @@ void resolveCommands(CompileContext& ctx) {
     master.command = equiv ? *equiv : master.label;
     if (master.command == "[") master.symbolClass = kSymbolBranchOpen;
     if (master.command == "]") master.symbolClass = kSymbolBranchClose;
+    // The cut of cpfg and L-Py acts in the next step: it lives one time unit, like an
+    // untimed module, and then removes itself and the rest of its branch.
+    if (master.command == "%") {
+      master.symbolClass = kSymbolCut;
+      if (!master.terminalRules.empty())
+        ctx.sink.error(master.terminalRules.front().span, "'%' is the cut: it removes the rest of its branch and has no productions");
+      master.lifetime = 1;
+    }
     const unsigned char first = master.label.empty() ? 0 : static_cast<unsigned char>(master.label[0]);
     master.treeNode = master.symbolClass == kSymbolModule &&
                       ((first >= 'a' && first <= 'z') || (first >= 'A' && first <= 'Z') || first == '_' || first >= 0x80);

@@ -585,8 +585,8 @@ class Parser {
     rule.hasContext = true;
     if (check(TokenKind::LParen)) return gridContext(rule);
     bool seenMe = false;
-    while (canStartModule()) {
-      Module item = module(ModuleUse::Pattern);
+    while (canStartModule() || check(TokenKind::Star)) {
+      Module item = check(TokenKind::Star) ? contextModule() : module(ModuleUse::Pattern);
       if (item.isMe) {
         if (seenMe) fail(item.span, "'me' appears twice in the context");
         seenMe = true;
@@ -721,10 +721,21 @@ class Parser {
       result.hasArgs = true;
       if (!check(TokenKind::RParen)) {
         do {
-          if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
+          if ((use == ModuleUse::Pattern || use == ModuleUse::Predecessor) &&
+              (check(TokenKind::Number) || (check(TokenKind::Minus) && peek(1).kind == TokenKind::Number))) {
+            // A value pattern, `A(3)`: the module matches only with that value there.
+            const Token& sign = peek();
+            const bool negative = match(TokenKind::Minus);
+            const Token& value = advance();
+            auto expr = std::make_unique<Expr>();
+            expr->kind = Expr::Kind::Number;
+            expr->number = negative ? -value.number : value.number;
+            expr->span = sign.span.to(value.span);
+            result.args.push_back(std::move(expr));
+          } else if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
             const Token& name = peek();
             if (name.kind != TokenKind::Identifier)
-              failHere("a parameter name (patterns bind names, as in 'A(x)')");
+              failHere("a parameter name or a number (patterns bind names, as in 'A(x)', or test values, as in 'A(3)')");
             advance();
             auto expr = std::make_unique<Expr>();
             expr->kind = Expr::Kind::Name;
@@ -845,6 +856,7 @@ class Parser {
   System lsystem() {
     System result;
     result.isLSystem = true;
+    section_ = RuleKind::Production;
     const Token& keyword = advance();
     const Token& name = expect(TokenKind::Identifier, " (the L-system's name)");
     result.name = name.text;
@@ -887,7 +899,50 @@ class Parser {
     if ((checkWord("g") || checkWord("develop")) &&
         (peek(1).kind == TokenKind::Identifier || isSymbolToken(peek(1).kind)) && peek(2).kind == TokenKind::LParen)
       return system.functions.push_back(function());
+    if (sectionLine()) return section(system);
+    if (checkWord("maximum") && peek(1).kind == TokenKind::Identifier && peek(1).text == "depth" &&
+        peek(2).kind == TokenKind::Colon)
+      return maximumDepth(system);
     system.productions.push_back(production());
+    system.productions.back().kind = section_;
+  }
+
+  // `production:`, `decomposition:`, `homomorphism:` (or `interpretation:`) alone on
+  // their line switch the kind of the rules that follow (L-Py's sections).
+  bool sectionLine() const {
+    if (!(checkWord("production") || checkWord("decomposition") || checkWord("homomorphism") ||
+          checkWord("interpretation")))
+      return false;
+    if (peek(1).kind != TokenKind::Colon) return false;
+    const Token& after = peek(2);
+    return after.kind == TokenKind::Semicolon || after.kind == TokenKind::RBrace ||
+           after.kind == TokenKind::EndOfFile || after.line > peek(1).line;
+  }
+
+  void section(System& system) {
+    (void)system;
+    const std::string& word = advance().text;
+    advance();
+    section_ = word == "production"      ? RuleKind::Production
+               : word == "decomposition" ? RuleKind::Decomposition
+                                         : RuleKind::Homomorphism;
+    endStatement();
+  }
+
+  // `maximum depth: N` after `decomposition:` or `homomorphism:`.
+  void maximumDepth(System& system) {
+    const Token& first = peek();
+    advance();
+    advance();
+    advance();
+    if (section_ == RuleKind::Production)
+      fail(first.span, "'maximum depth' belongs to a 'decomposition:' or 'homomorphism:' section; write it after one");
+    ExprPtr& depth = section_ == RuleKind::Decomposition ? system.decompositionDepth : system.homomorphismDepth;
+    if (depth)
+      fail(first.span, std::string("the ") + (section_ == RuleKind::Decomposition ? "decomposition" : "homomorphism") +
+                           "'s maximum depth is given twice");
+    depth = expression();
+    endStatement();
   }
 
   DevelopmentFunction function() {
@@ -927,12 +982,25 @@ class Parser {
     return productionAfterLabel(first);
   }
 
+  // A module of a production's context: a pattern, or `*`, which matches any module.
+  Module contextModule() {
+    if (check(TokenKind::Star)) {
+      Module any;
+      any.label = "*";
+      any.span = advance().span;
+      if (check(TokenKind::LParen) && peek().span.begin == any.span.end)
+        fail(peek().span, "the wildcard '*' matches any module and binds nothing; write it without parameters");
+      return any;
+    }
+    return module(ModuleUse::Predecessor);
+  }
+
   Rule productionAfterLabel(const Token& first) {
     Rule rule;
     rule.terminal = true;
     std::vector<Module> items;
-    while (canStartModule() && !check(TokenKind::Less) && !check(TokenKind::Greater))
-      items.push_back(module(ModuleUse::Predecessor));
+    while ((canStartModule() || check(TokenKind::Star)) && !check(TokenKind::Less) && !check(TokenKind::Greater))
+      items.push_back(contextModule());
     if (match(TokenKind::Less)) {
       rule.hasContext = true;
       rule.left = std::move(items);
@@ -945,9 +1013,10 @@ class Parser {
       fail(items[1].span, "a production has one predecessor module; put context before '<' or after '>'");
     }
     rule.predecessor = std::move(items.front());
+    if (rule.predecessor.label == "*") fail(rule.predecessor.span, "the wildcard '*' stands in contexts, not as the predecessor");
     if (match(TokenKind::Greater)) {
       rule.hasContext = true;
-      while (canStartModule()) rule.right.push_back(module(ModuleUse::Predecessor));
+      while (canStartModule() || check(TokenKind::Star)) rule.right.push_back(contextModule());
       if (rule.right.empty()) failHere("a right context after '>'");
     }
     for (const auto* side : {&rule.left, &rule.right})
@@ -1133,6 +1202,7 @@ class Parser {
   int depth_ = 0;        // parentheses open in the current statement
   int speculating_ = 0;  // > 0: errors unwind without being reported
   int nesting_ = 0;      // expressions being parsed inside each other
+  RuleKind section_ = RuleKind::Production;  // the L-system section being read
 };
 
 }  // namespace

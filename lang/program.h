@@ -32,6 +32,9 @@ using MasterId = uint32_t;
 /// and the engine matches them into fixed arrays of this size.
 inline constexpr size_t kMaxContextItems = 64;
 inline constexpr double kForever = std::numeric_limits<double>::infinity();
+/// Largest `maximum depth` of a decomposition or homomorphism: the engine rewrites a
+/// module recursively on its stack, one small frame per level.
+inline constexpr int kMaxRewriteDepth = 256;
 
 /// Read-only internal state, in the slots after a cell's state values.
 struct FrameSlot {
@@ -160,6 +163,10 @@ struct MasterCell {
   bool timedNotation = false;
   std::vector<CompiledRule> rules;          ///< evaluated once per step, in order
   std::vector<CompiledRule> terminalRules;  ///< evaluated when age reaches lifetime
+  /// L-systems: rewrite the module right after the production step (decomposition) or
+  /// only for interpretation (homomorphism), in order, first match (docs/LANGUAGE.md 4.8a).
+  std::vector<CompiledRule> decompositionRules;
+  std::vector<CompiledRule> homomorphismRules;
   std::vector<InterpretationBlock> interpretations;
   int developmentFunction = -1;  ///< index into Program::functions
   std::string command;           ///< the instruction this symbol stands for (label or equiv)
@@ -254,6 +261,12 @@ struct SystemDefinition {
   bool sampledRules = false;     ///< some cell of this system has per-step rules
   bool rates = false;            ///< some cell of this system integrates `rate` variables
   bool stochastic = false;
+  /// Recursion limits of the decomposition and the homomorphism (`maximum depth: N`):
+  /// a module is rewritten at most this many times in a row. 1 as in L-Py.
+  int decompositionDepth = 1;
+  int homomorphismDepth = 1;
+  bool decomposes = false;    ///< some symbol of this system has decomposition rules
+  bool homomorphism = false;  ///< some symbol of this system has homomorphism rules
 };
 
 /// A `#define` of the program and the value it has, for callers that list or vary them.
