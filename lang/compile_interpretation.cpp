@@ -76,6 +76,12 @@ void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block
 void compileSymbolInterpretations(CompileContext& ctx, const ast::System& system, const Scope& scope, int index) {
   for (const auto& item : system.interpretations) {
     int master = ctx.program->findMaster(item.symbol, index);
+    // Of the block's modules with this label (one per number of parameters), the one
+    // with as many parameters as the block names.
+    for (size_t m = 0; m < ctx.program->masters.size(); ++m)
+      if (ctx.program->masters[m].label == item.symbol && ctx.program->masters[m].scope == index &&
+          ctx.program->masters[m].stateCount() == item.params.size())
+        master = static_cast<int>(m);
     if (master < 0 || ctx.program->masters[master].scope != index) {
       ctx.sink.error(item.symbolSpan, "'" + item.symbol + "' is not a symbol of L-system '" + system.name + "'");
       continue;
