@@ -9,6 +9,7 @@ namespace ontogen {
 
 HomomorphismImage::HomomorphismImage(const World& world)
     : world_(world), successors_(world.program()), frames_(static_cast<size_t>(world.rootSystem().homomorphismDepth) + 1) {
+  group_ = activeGroup(world.program(), world.rootSystem(), world.time(), world.seed());
   const Pool& pool = world.rootPool();
   const auto cells = pool.cells();
   cells_.reserve(cells.size());
@@ -41,7 +42,7 @@ void HomomorphismImage::rewrite(const CellRecord& cell, const double* state, siz
   EvalContext context{frame, EvalEnvironment{&random, world_.seed()}, &functions};
   context.ancestors = world_.ancestorValues();
   auto matches = [&](const CompiledRule& rule) { return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0; };
-  const CompiledRule* rule = chooseRule(master.homomorphismRules, matches, context, random, candidates_);
+  const CompiledRule* rule = chooseRule(master.homomorphismRules, group_, matches, context, random, candidates_);
   if (!rule) {
     push(cell, state, source);
     return;

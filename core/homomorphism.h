@@ -39,6 +39,7 @@ class HomomorphismImage {
   std::vector<size_t> sources_;
   std::vector<std::vector<double>> frames_;  // one per level of the rewriting
   std::vector<std::pair<const CompiledRule*, double>> candidates_;
+  int group_ = 0;  // the rule group active at the world's time
 };
 
 }  // namespace ontogen

@@ -59,6 +59,7 @@ void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
   successors_.recordLineage(context.lineage);
   double t = context.time;
   eventsThisStep_ = 0;
+  activeGroup_ = activeGroup(program_, system_, t, context.seed);
   if (system_.sampledRules && stepRules) applyStepRules(t);
   if (system_.rates)
     integrateAndExpire(t, t1);
@@ -209,7 +210,7 @@ const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule
     if (rule.hasContext() && (index < 0 || !matchContext(rule, static_cast<size_t>(index), frame))) return false;
     return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0;
   };
-  const CompiledRule* chosen = ontogen::chooseRule(rules, matches, context, random, candidates_);
+  const CompiledRule* chosen = ontogen::chooseRule(rules, activeGroup_, matches, context, random, candidates_);
   if (chosen && !chosen->probability.empty()) {
     evaluator_.useRule(*chosen);
     if (chosen->hasContext()) matchContext(*chosen, static_cast<size_t>(index), frame);  // rebind its values
@@ -415,7 +416,8 @@ void LinearDevelopment::decompose(const CellRecord& cell, const double* state, d
   EvalContext context{frame, EvalEnvironment{&random, context_->seed}, &functions_};
   context.ancestors = context_->ancestors;
   auto matches = [&](const CompiledRule& rule) { return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0; };
-  const CompiledRule* rule = ontogen::chooseRule(master.decompositionRules, matches, context, random, candidates_);
+  const CompiledRule* rule =
+      ontogen::chooseRule(master.decompositionRules, activeGroup_, matches, context, random, candidates_);
   if (!rule) {
     emit(cell, state, master.stateCount());
     return;

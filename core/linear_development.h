@@ -78,6 +78,7 @@ class LinearDevelopment final : public Development {
   CellArray work_;                                                  // cells still to expire, last = next
   StateArray workState_;
   uint64_t eventsThisStep_ = 0;
+  int activeGroup_ = 0;  // the rule group of the step under way (`use group:`)
   void findParents();
   bool readsParents_ = false;          // some rule reads me.parent
   std::vector<int64_t> parentIndex_;   // of the word at the start of the pass

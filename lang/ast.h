@@ -65,6 +65,7 @@ struct Rule {
   std::string name;            ///< `p1` in `p1: ...`, may be empty
   bool terminal = false;       ///< fires when the cell reaches its terminal age
   RuleKind kind = RuleKind::Production;  ///< L-systems: the section it stands in
+  int group = 0;                         ///< L-systems: the `group N:` it stands in
   bool hasContext = false;
   std::vector<Module> left;    ///< nearest last
   Module predecessor;          ///< L-systems: the strict predecessor; cells: `me`
@@ -178,6 +179,7 @@ struct System {
   /// `maximum depth: N` after `decomposition:` and after `homomorphism:`; may be null.
   ExprPtr decompositionDepth;
   ExprPtr homomorphismDepth;
+  ExprPtr useGroup;  ///< `use group: EXPR`, may be null (group 0)
   std::vector<SymbolInterpretation> interpretations;  ///< L-systems: `interpret SET X(a) { ... }`
   std::vector<DevelopmentFunction> functions;
   std::vector<SymbolList> ignore;

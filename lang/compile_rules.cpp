@@ -294,6 +294,7 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
   ctx.reader = Reader{master, -1};
   CompiledRule compiled;
   compiled.name = rule.name;
+  compiled.group = rule.group;
   compiled.span = rule.span;
   const int moduleScope = lsystem ? scopeIndex : -1;
   RuleFrame frame(ctx, master, moduleScope);
@@ -454,6 +455,27 @@ void compileRewriting(CompileContext& ctx, const ast::System& system, Scope& sco
   }
 }
 
+// Rule groups (L-Py): the active group's rules are tried before group 0's, which apply
+// whatever group is active. Each list keeps its text order within the groups, with the
+// numbered groups' rules first, so filtering by the active group gives that order.
+void orderGroups(CompileContext& ctx, const ast::System& system, Scope& scope, int index) {
+  SystemDefinition& definition = ctx.program->systems[index];
+  if (system.useGroup) {
+    std::map<std::string, int, std::less<>> none;
+    ctx.reader = Reader{-1, index};
+    NameLookup names = ctx.frameLookup(none, 0, scope);
+    definition.useGroup = compileExpression(*system.useGroup, names, ctx.sink);
+    definition.useGroupSpan = system.useGroup->span;
+    if (definition.useGroup.isStochastic())
+      ctx.sink.error(system.useGroup->span, "'use group' is evaluated once per step and draws no random numbers");
+  }
+  for (MasterCell& master : ctx.program->masters) {
+    if (master.scope != index) continue;
+    for (auto* rules : {&master.terminalRules, &master.decompositionRules, &master.homomorphismRules})
+      std::stable_partition(rules->begin(), rules->end(), [](const CompiledRule& rule) { return rule.group != 0; });
+  }
+}
+
 }  // namespace
 
 void compileProductions(CompileContext& ctx, const ast::System& system, Scope& scope, int index) {
@@ -495,6 +517,7 @@ void compileProductions(CompileContext& ctx, const ast::System& system, Scope& s
     ctx.program->masters[master].terminalRules.push_back(std::move(rule));
   }
   compileRewriting(ctx, system, scope, index);
+  orderGroups(ctx, system, scope, index);
 }
 
 }  // namespace ontogen::detail

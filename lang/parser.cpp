@@ -857,6 +857,7 @@ class Parser {
     System result;
     result.isLSystem = true;
     section_ = RuleKind::Production;
+    group_ = 0;
     const Token& keyword = advance();
     const Token& name = expect(TokenKind::Identifier, " (the L-system's name)");
     result.name = name.text;
@@ -900,11 +901,37 @@ class Parser {
         (peek(1).kind == TokenKind::Identifier || isSymbolToken(peek(1).kind)) && peek(2).kind == TokenKind::LParen)
       return system.functions.push_back(function());
     if (sectionLine()) return section(system);
+    if (checkWord("group") && peek(1).kind == TokenKind::Number && peek(2).kind == TokenKind::Colon) return group();
+    if (checkWord("use") && peek(1).kind == TokenKind::Identifier && peek(1).text == "group" &&
+        peek(2).kind == TokenKind::Colon)
+      return useGroup(system);
     if (checkWord("maximum") && peek(1).kind == TokenKind::Identifier && peek(1).text == "depth" &&
         peek(2).kind == TokenKind::Colon)
       return maximumDepth(system);
     system.productions.push_back(production());
     system.productions.back().kind = section_;
+    system.productions.back().group = group_;
+  }
+
+  // `group N:` (L-Py): the rules that follow belong to group N; `group 0:` is the default.
+  void group() {
+    advance();
+    const Token& number = advance();
+    advance();
+    if (!(number.number >= 0) || number.number != std::floor(number.number) || number.number > 1e6)
+      fail(number.span, "a group is a whole number from 0, as in 'group 1:'");
+    group_ = static_cast<int>(number.number);
+    endStatement();
+  }
+
+  // `use group: EXPR`: the active group, evaluated at the start of every step.
+  void useGroup(System& system) {
+    const Token& first = advance();
+    advance();
+    advance();
+    if (system.useGroup) fail(first.span, "the L-system already says which group it uses");
+    system.useGroup = expression();
+    endStatement();
   }
 
   // `production:`, `decomposition:`, `homomorphism:` (or `interpretation:`) alone on
@@ -1203,6 +1230,7 @@ class Parser {
   int speculating_ = 0;  // > 0: errors unwind without being reported
   int nesting_ = 0;      // expressions being parsed inside each other
   RuleKind section_ = RuleKind::Production;  // the L-system section being read
+  int group_ = 0;                            // the L-system rule group being read
 };
 
 }  // namespace

@@ -101,6 +101,7 @@ struct CompiledRule {
   CompiledExpression predicate;       ///< empty: always true
   std::vector<StateCalculation> calculations;
   bool hasAction = false;
+  int group = 0;  ///< L-systems: its rule group (0: applies whatever group is active)
   std::vector<SuccessorTemplate> successors;
   CompiledExpression probability;  ///< empty: not stochastic
   std::vector<AggregateQuery> aggregates;  ///< read by OpCode::Aggregate in this rule's expressions
@@ -265,6 +266,10 @@ struct SystemDefinition {
   /// a module is rewritten at most this many times in a row. 1 as in L-Py.
   int decompositionDepth = 1;
   int homomorphismDepth = 1;
+  /// `use group: EXPR`: the active rule group, over a frame of internal state only
+  /// (reads `time`), evaluated at the start of every step; empty: group 0.
+  CompiledExpression useGroup;
+  SourceSpan useGroupSpan;
   bool decomposes = false;    ///< some symbol of this system has decomposition rules
   bool homomorphism = false;  ///< some symbol of this system has homomorphism rules
 };
