@@ -179,7 +179,8 @@ void LinearDevelopment::fireStepRules(const CellRecord& cell, double t, size_t i
 // ---- context ----
 
 bool LinearDevelopment::matchContext(const CompiledRule& rule, size_t index, double* frame) {
-  const auto& classOf = system_.symbolClass;
+  // An L-system rule sees the classes of the ignore:/consider: line above it.
+  const auto& classOf = rule.symbolClasses < 0 ? system_.symbolClass : system_.ruleClasses[rule.symbolClasses];
   if (!rule.leftItems.empty()) {
     if (!pool_.matchLeft(index, rule.leftItems, classOf, matched_)) return false;
     for (size_t k = 0; k < rule.left.size(); ++k) {

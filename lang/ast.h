@@ -66,6 +66,7 @@ struct Rule {
   bool terminal = false;       ///< fires when the cell reaches its terminal age
   RuleKind kind = RuleKind::Production;  ///< L-systems: the section it stands in
   int group = 0;                         ///< L-systems: the `group N:` it stands in
+  int filter = -1;  ///< L-systems: the `ignore:` / `consider:` line above it (System::filters), -1: none
   bool hasContext = false;
   std::vector<Module> left;    ///< nearest last
   Module predecessor;          ///< L-systems: the strict predecessor; cells: `me`
@@ -149,6 +150,7 @@ struct Cell {
 struct SymbolList {
   SourceSpan span;
   std::vector<std::string> symbols;
+  bool consider = false;  ///< `consider:`: only these take part; `ignore:`: these do not
 };
 
 /// `fill A(e)` or `at(x, y) A(1)` in a grid system.
@@ -184,6 +186,9 @@ struct System {
   std::vector<DevelopmentFunction> functions;
   std::vector<SymbolList> ignore;
   std::vector<SymbolList> consider;
+  /// L-systems: every `ignore:` and `consider:` line in order; each applies to the
+  /// productions after it, up to the next one.
+  std::vector<SymbolList> filters;
 };
 
 /// `import "lib.cell";`: a file whose declarations join the program's.

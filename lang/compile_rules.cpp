@@ -295,6 +295,7 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
   CompiledRule compiled;
   compiled.name = rule.name;
   compiled.group = rule.group;
+  compiled.symbolClasses = rule.filter;  // -1, or the filter's index: classifySymbols makes them
   compiled.span = rule.span;
   const int moduleScope = lsystem ? scopeIndex : -1;
   RuleFrame frame(ctx, master, moduleScope);

@@ -848,6 +848,11 @@ class Parser {
       list.symbols.push_back(symbolSpelling(advance()));
     }
     list.span = keyword.span.to(previous().span);
+    list.consider = keyword.text == "consider";
+    if (system.isLSystem) {
+      filter_ = static_cast<int>(system.filters.size());
+      system.filters.push_back(list);
+    }
     (keyword.text == "ignore" ? system.ignore : system.consider).push_back(std::move(list));
     endStatement();
   }
@@ -858,6 +863,7 @@ class Parser {
     result.isLSystem = true;
     section_ = RuleKind::Production;
     group_ = 0;
+    filter_ = -1;
     const Token& keyword = advance();
     const Token& name = expect(TokenKind::Identifier, " (the L-system's name)");
     result.name = name.text;
@@ -911,6 +917,7 @@ class Parser {
     system.productions.push_back(production());
     system.productions.back().kind = section_;
     system.productions.back().group = group_;
+    system.productions.back().filter = filter_;
   }
 
   // `group N:` (L-Py): the rules that follow belong to group N; `group 0:` is the default.
@@ -1231,6 +1238,7 @@ class Parser {
   int nesting_ = 0;      // expressions being parsed inside each other
   RuleKind section_ = RuleKind::Production;  // the L-system section being read
   int group_ = 0;                            // the L-system rule group being read
+  int filter_ = -1;                          // the L-system's last ignore:/consider: line
 };
 
 }  // namespace

@@ -102,6 +102,9 @@ struct CompiledRule {
   std::vector<StateCalculation> calculations;
   bool hasAction = false;
   int group = 0;  ///< L-systems: its rule group (0: applies whatever group is active)
+  /// L-systems: which of SystemDefinition::ruleClasses its context matching sees (the
+  /// `ignore:` / `consider:` line above it); -1: the system's symbolClass.
+  int symbolClasses = -1;
   std::vector<SuccessorTemplate> successors;
   CompiledExpression probability;  ///< empty: not stochastic
   std::vector<AggregateQuery> aggregates;  ///< read by OpCode::Aggregate in this rule's expressions
@@ -257,6 +260,9 @@ struct SystemDefinition {
   std::vector<AxiomCell> axiom;
   std::vector<GridPlacement> placements;  ///< grid pools: after the axiom, in text order
   std::vector<uint8_t> symbolClass;  ///< per master: branch brackets and ignored symbols
+  /// L-systems: per `ignore:` / `consider:` line, then one without either, the classes
+  /// that the context of the rules below it sees (CompiledRule::symbolClasses).
+  std::vector<std::vector<uint8_t>> ruleClasses;
   InterpretSettings settings;
   bool terminalContext = false;  ///< some terminal rule of this system's cells reads context
   bool sampledRules = false;     ///< some cell of this system has per-step rules
