@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/world.h"
+#include "interpreters/geometry/turtle_queries.h"
 
 namespace ontogen::app {
 
@@ -57,6 +58,8 @@ inline WorldDef worldDefOf(const CommonOptions& options, const Program& program)
   def.seed = options.seed.value_or(program.seed);
   def.limits = options.limits;
   def.threads = options.threads;
+  // Query modules are answered by the turtle, as the geometry set draws the word.
+  if (program.hasQueries) def.environment = TurtleQueries::forSettings(program.rootSystem().settings);
   return def;
 }
 

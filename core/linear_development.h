@@ -23,6 +23,7 @@ class LinearDevelopment final : public Development {
 
   std::unique_ptr<Development> clone() const override { return std::make_unique<LinearDevelopment>(*this); }
   const Pool& pool() const override { return pool_; }
+  Pool& pool() override { return pool_; }
   const LinearPool& linearPool() const { return pool_; }
   void seed(StepContext& context) override;
   void step(StepContext& context, double t1, bool stepRules) override;

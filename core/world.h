@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "core/development.h"
+#include "core/environment_process.h"
 #include "core/limits.h"
 #include "core/successors.h"
 #include "lang/program.h"
@@ -46,6 +47,9 @@ struct WorldDef {
   unsigned threads = 1;
   /// Keep a log of every birth (child, parent, time) for lineage(); off, it costs nothing.
   bool recordLineage = false;
+  /// Answers the query modules (`?P(x, y, z)` ...) after seeding and after every step
+  /// (core/environment_process.h); null: they keep their values. Shared by copies.
+  std::shared_ptr<const EnvironmentProcess> environment = nullptr;
 };
 
 class World {
@@ -116,6 +120,8 @@ class World {
   void developStep(double t1, bool stepRules);
   void developChildren(double t1, bool stepRules, bool step);
   void updateAncestorValues();
+  /// Writes the environment's answers into the query modules of this world's pool.
+  void answerQueries();
   StepContext stepContext();
   /// Value of a system's variable (`age` or a state name) for the world `level` systems up.
   double systemValue(int level, const std::string& name) const;

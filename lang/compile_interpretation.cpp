@@ -110,6 +110,12 @@ void resolveCommands(CompileContext& ctx) {
     if (master.command == "]") master.symbolClass = kSymbolBranchClose;
     // The cut of cpfg and L-Py acts in the next step: it lives one time unit, like an
     // untimed module, and then removes itself and the rest of its branch.
+    if (master.command.size() == 2 && master.command[0] == '?') {
+      master.query = master.command[1];
+      if (master.stateCount() > 3)
+        ctx.sink.error(master.span, "'" + master.label + "' answers 3 values (x, y, z); it takes at most 3 parameters");
+      ctx.program->hasQueries = true;
+    }
     if (master.command == "%") {
       master.symbolClass = kSymbolCut;
       if (!master.terminalRules.empty())

@@ -178,6 +178,9 @@ struct MasterCell {
   /// -1 where the set does not know it, -2 where it knows it by name only.
   std::vector<int> commandIds;
   uint8_t symbolClass = kSymbolModule;
+  /// A query module of cpfg (ABOP 1.10): 'P', 'H', 'L' or 'U' for ?P, ?H, ?L, ?U (its
+  /// label or equiv), 0 for any other. The environment writes into its parameters.
+  char query = 0;
   /// A node of the axial tree (core/parents.h): a module named by a name, not a bracket
   /// or a punctuation symbol that only turns or sets the turtle.
   bool treeNode = true;
@@ -304,6 +307,7 @@ struct Program {
   /// in the order of `systems`. A name may appear in several blocks.
   std::vector<ProgramDefine> defines;
   bool hasSystemCells = false;            ///< some system's cell can appear in another's pool
+  bool hasQueries = false;  ///< some master is a query module (`?P` ...; core/environment_process.h)
   int root = 0;          ///< index of the root system
   uint64_t seed = 1;     ///< default seed (#seed), overridden by --seed
   bool hasSeed = false;

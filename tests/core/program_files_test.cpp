@@ -20,6 +20,7 @@
 #include "core/word.h"
 #include "interpreters/text/word_text.h"
 #include "core/world.h"
+#include "interpreters/geometry/turtle_queries.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 
@@ -130,6 +131,7 @@ TEST_P(ProgramFile, BehavesAsWritten) {
 
   WorldDef def;
   def.seed = expected.seed;
+  if (program->hasQueries) def.environment = TurtleQueries::forSettings(program->rootSystem().settings);
   World world(program, def);
   double step = expected.step.value_or(program->dt);
   try {
