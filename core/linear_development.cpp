@@ -190,6 +190,15 @@ bool LinearDevelopment::matchContext(const CompiledRule& rule, size_t index, dou
       std::copy(values, values + binding.count, frame + binding.firstSlot);
     }
   }
+  if (!rule.newLeftItems.empty()) {
+    if (!matchNewLeft(rule.newLeftItems, classOf)) return false;
+    for (size_t k = 0; k < rule.newLeft.size(); ++k) {
+      const ContextBinding& binding = rule.newLeft[k];
+      if (binding.count == 0) continue;
+      const double* values = outState_->data() + (*outCells_)[matched_[k]].state;
+      std::copy(values, values + binding.count, frame + binding.firstSlot);
+    }
+  }
   if (!rule.rightItems.empty()) {
     if (!pool_.matchRight(index, rule.rightItems, classOf, matched_)) return false;
     for (size_t k = 0; k < rule.right.size(); ++k) {
@@ -198,6 +207,34 @@ bool LinearDevelopment::matchContext(const CompiledRule& rule, size_t index, dou
       const double* values = pool_.stateOf(pool_.cells()[matched_[k]]);
       std::copy(values, values + binding.count, frame + binding.firstSlot);
     }
+  }
+  return true;
+}
+
+// L-Py's new left context (`<<`) in forward derivation: the word this step has produced
+// so far, left of the module being rewritten, read towards the root as the left context
+// reads the word (complete branches skipped, the branch's `[` left behind, ignored
+// symbols passed over). The prefix has no bracket index: branches are skipped by depth.
+bool LinearDevelopment::matchNewLeft(std::span<const ContextItem> items, std::span<const uint8_t> classOf) {
+  const CellArray& made = *outCells_;
+  int64_t pos = static_cast<int64_t>(made.size());
+  for (size_t k = 0; k < items.size(); ++k) {
+    for (;;) {
+      if (--pos < 0) return false;
+      const uint8_t symbol = classOf[made[pos].master];
+      if (symbol & kSymbolBranchClose) {
+        for (int depth = 1; depth > 0;) {
+          if (--pos < 0) return false;
+          const uint8_t inner = classOf[made[pos].master];
+          depth += (inner & kSymbolBranchClose) ? 1 : (inner & kSymbolBranchOpen) ? -1 : 0;
+        }
+        continue;
+      }
+      if (symbol & (kSymbolBranchOpen | kSymbolIgnored)) continue;
+      break;
+    }
+    if (items[k].kind != ContextItem::Kind::Any && made[pos].master != items[k].master) return false;
+    matched_[k] = static_cast<uint32_t>(pos);
   }
   return true;
 }

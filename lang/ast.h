@@ -71,6 +71,9 @@ struct Rule {
   std::vector<Module> left;    ///< nearest last
   Module predecessor;          ///< L-systems: the strict predecessor; cells: `me`
   std::vector<Module> right;   ///< nearest first
+  /// L-systems: L-Py's new left context `<<`, matched against what the step has already
+  /// produced to the left; nearest last.
+  std::vector<Module> newLeft;
   /// A 2-D or 3-D context (paper 002, Fig. 3: `(A) (B me C) (D)`): its modules are in
   /// `right`, each at the offset from `me` given here (x, y, z).
   int contextDimensions = 1;

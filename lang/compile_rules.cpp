@@ -195,6 +195,8 @@ void compileContext(RuleFrame& frame, const ast::Rule& rule, CompiledRule& compi
   for (auto it = rule.left.rbegin(); it != rule.left.rend(); ++it)
     compiled.left.push_back(frame.contextBinding(*it, true));
   for (const auto& module : rule.right) compiled.right.push_back(frame.contextBinding(module, false));
+  for (auto it = rule.newLeft.rbegin(); it != rule.newLeft.rend(); ++it)
+    compiled.newLeft.push_back(frame.contextBinding(*it, true));
   compiled.contextDimensions = rule.contextDimensions;
   for (size_t k = 0; k < rule.offsets.size() && k < compiled.right.size(); ++k) {
     compiled.right[k].offset = rule.offsets[k];
@@ -205,7 +207,9 @@ void compileContext(RuleFrame& frame, const ast::Rule& rule, CompiledRule& compi
   compiled.frameSize = frame.nextSlot;
   for (const auto& binding : compiled.left) compiled.leftItems.push_back(binding.item);
   for (const auto& binding : compiled.right) compiled.rightItems.push_back(binding.item);
-  if (compiled.leftItems.size() > kMaxContextItems || compiled.rightItems.size() > kMaxContextItems)
+  for (const auto& binding : compiled.newLeft) compiled.newLeftItems.push_back(binding.item);
+  if (compiled.leftItems.size() > kMaxContextItems || compiled.rightItems.size() > kMaxContextItems ||
+      compiled.newLeftItems.size() > kMaxContextItems)
     sink.error(rule.span, "a context has at most " + std::to_string(kMaxContextItems) + " modules on each side");
 }
 

@@ -1029,18 +1029,39 @@ class Parser {
     return module(ModuleUse::Predecessor);
   }
 
-  Rule productionAfterLabel(const Token& first) {
-    Rule rule;
-    rule.terminal = true;
+  // `<<` and `>>`: two touching '<' or '>'.
+  bool atDouble(TokenKind kind) const {
+    return check(kind) && peek(1).kind == kind && peek(1).span.begin == peek().span.end;
+  }
+
+  std::vector<Module> contextItems() {
     std::vector<Module> items;
     while ((canStartModule() || check(TokenKind::Star)) && !check(TokenKind::Less) && !check(TokenKind::Greater))
       items.push_back(contextModule());
-    if (match(TokenKind::Less)) {
+    return items;
+  }
+
+  // [left '<'] [new-left '<<'] predecessor ['>' right]
+  Rule productionAfterLabel(const Token& first) {
+    Rule rule;
+    rule.terminal = true;
+    std::vector<Module> items = contextItems();
+    auto newLeftContext = [&] {
+      advance();
+      advance();
+      rule.hasContext = true;
+      rule.newLeft = std::move(items);
+      if (rule.newLeft.empty()) failHere("a new left context before '<<'");
+      items = contextItems();
+    };
+    if (atDouble(TokenKind::Less)) {
+      newLeftContext();
+    } else if (match(TokenKind::Less)) {
       rule.hasContext = true;
       rule.left = std::move(items);
-      items.clear();
-      if (!canStartModule()) failHere("the predecessor after '<'");
-      items.push_back(module(ModuleUse::Predecessor));
+      items = contextItems();
+      if (atDouble(TokenKind::Less)) newLeftContext();
+      if (items.empty()) failHere("the predecessor after '<'");
     }
     if (items.size() != 1) {
       if (items.empty()) failHere("a production such as 'A(x) -> B(x + 1)'");
@@ -1048,12 +1069,15 @@ class Parser {
     }
     rule.predecessor = std::move(items.front());
     if (rule.predecessor.label == "*") fail(rule.predecessor.span, "the wildcard '*' stands in contexts, not as the predecessor");
+    if (atDouble(TokenKind::Greater))
+      fail(peek().span, "ontogen derives left to right, so a new right context '>>' (L-Py's backward derivation) "
+                        "has nothing produced yet to match; write '>' for the right context");
     if (match(TokenKind::Greater)) {
       rule.hasContext = true;
       while (canStartModule() || check(TokenKind::Star)) rule.right.push_back(contextModule());
       if (rule.right.empty()) failHere("a right context after '>'");
     }
-    for (const auto* side : {&rule.left, &rule.right})
+    for (const auto* side : {&rule.left, &rule.right, &rule.newLeft})
       for (const Module& item : *side)
         if (item.age) fail(item.span, "a context module has no terminal age; write it without '(..., age)'");
     if (match(TokenKind::Colon)) rule.predicate = expression();

@@ -96,6 +96,10 @@ struct CompiledRule {
   SourceSpan span;
   std::vector<ContextBinding> left;   ///< nearest first
   std::vector<ContextBinding> right;  ///< text order
+  /// L-systems: L-Py's new left context `<<`, nearest first, matched against the word the
+  /// step has produced so far (left of the module); and its items.
+  std::vector<ContextBinding> newLeft;
+  std::vector<ContextItem> newLeftItems;
   std::vector<ContextItem> leftItems;   ///< the items of `left`, contiguous for the pool
   std::vector<ContextItem> rightItems;  ///< the items of `right`
   CompiledExpression predicate;       ///< empty: always true
@@ -116,7 +120,7 @@ struct CompiledRule {
   /// with its offset (paper 002, Fig. 3).
   int contextDimensions = 1;
 
-  bool hasContext() const { return !left.empty() || !right.empty(); }
+  bool hasContext() const { return !left.empty() || !right.empty() || !newLeft.empty(); }
 };
 
 /// An instruction of an interpretation block, e.g. `F(1 + age)`.
