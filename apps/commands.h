@@ -11,6 +11,7 @@
 #include "core/world.h"
 #include "lang/diagnostics.h"
 #include "lang/source_reader.h"
+#include "interpreters/geometry/turtle_queries.h"
 
 namespace ontogen::app {
 
@@ -60,6 +61,7 @@ struct WordOptions {
   std::vector<double> times;
   bool json = false;
   int precision = 6;
+  bool interpreted = false;  ///< print the homomorphism's image, as interpretation reads it
 };
 
 struct TimelineOptions {
@@ -75,6 +77,8 @@ inline WorldDef worldDefOf(const CommonOptions& options, const Program& program)
   def.seed = options.seed.value_or(program.seed);
   def.limits = options.limits;
   def.threads = options.threads;
+  // Query modules are answered by the turtle, as the geometry set draws the word.
+  if (program.hasQueries) def.environment = TurtleQueries::forSettings(program.rootSystem().settings);
   return def;
 }
 

@@ -145,6 +145,8 @@ int dispatch(int argc, char** argv) {
   addRealListOption(*wordCommand, "--at", word.times, {RealRange::atLeast(0)}, "Global times, seconds, comma-separated")
       ->required();
   wordCommand->add_flag("--json", word.json, "Print one JSON object");
+  wordCommand->add_flag("--interpreted", word.interpreted,
+                        "Print the word as interpretation reads it, after the homomorphism rules");
   addWholeOption(*wordCommand, "--precision", word.precision, WholeRange::between(1, 17),
                  "Significant digits of the text form (default 6)");
 

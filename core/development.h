@@ -84,6 +84,8 @@ class Development {
   /// A deep copy: the pool and its state (a copied world develops on its own).
   virtual std::unique_ptr<Development> clone() const = 0;
   virtual const Pool& pool() const = 0;
+  /// The pool, for the world to write its environment's answers into (query modules).
+  virtual Pool& pool() = 0;
 
   /// Fills the empty pool from its system's axiom (and placements) at context.time.
   virtual void seed(StepContext& context) = 0;

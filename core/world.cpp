@@ -43,6 +43,7 @@ void World::seedPool(WorldHeld& tree) {
   const WorldHeld own = heldHere();
   tree.cells += own.cells;
   tree.bytes += own.bytes;
+  answerQueries();
   if (def_.recordLineage && parent_)
     for (const CellRecord& cell : development_->pool().cells()) lineage_.push_back({cell.id, cellId_, time_});
   developChildren(time_, false, /*step=*/false, tree);
@@ -263,7 +264,24 @@ void World::developStep(double t1, bool stepRules, WorldHeld& tree) {
   time_ = t1;
   ++stats_.steps;
   updateAncestorValues();  // as of t1, for interpretation and the next step
+  answerQueries();
   developChildren(t1, stepRules, /*step=*/true, tree);
+}
+
+// The environment reads the word as it is now and answers its query modules; rules read
+// the answers in the next step (ABOP 1.10: interpretation follows each derivation step).
+void World::answerQueries() {
+  if (!def_.environment || !program_->hasQueries) return;
+  std::vector<QueryAnswer> answers;
+  def_.environment->respond(*this, answers);
+  Pool& pool = development_->pool();
+  const auto cells = pool.cells();
+  for (const QueryAnswer& answer : answers) {
+    if (answer.cell >= cells.size()) continue;
+    const CellRecord& cell = cells[answer.cell];
+    const uint32_t n = std::min<uint32_t>(program_->masters[cell.master].stateCount(), 3);
+    std::copy(answer.values.begin(), answer.values.begin() + n, pool.stateOf(cell));
+  }
 }
 
 // Existing children step over the same interval as this pool (when `step`); a system
@@ -305,8 +323,11 @@ void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tre
 }
 
 void World::developedValues(const CellRecord& cell, std::vector<double>& out) const {
+  developedValues(cell, rootPool().stateOf(cell), out);
+}
+
+void World::developedValues(const CellRecord& cell, const double* state, std::vector<double>& out) const {
   const MasterCell& master = program_->masters[cell.master];
-  const double* state = rootPool().stateOf(cell);
   out.assign(state, state + master.stateCount());
   if (master.developmentFunction < 0) return;
   const DevelopmentFunction& function = program_->functions[master.developmentFunction];

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "core/development.h"
+#include "core/environment_process.h"
 #include "core/limits.h"
 #include "core/successors.h"
 #include "lang/program.h"
@@ -46,6 +47,9 @@ struct WorldDef {
   unsigned threads = 1;
   /// Keep a log of every birth (child, parent, time) for lineage(); off, it costs nothing.
   bool recordLineage = false;
+  /// Answers the query modules (`?P(x, y, z)` ...) after seeding and after every step
+  /// (core/environment_process.h); null: they keep their values. Shared by copies.
+  std::shared_ptr<const EnvironmentProcess> environment = nullptr;
 };
 
 class World {
@@ -116,6 +120,8 @@ class World {
   /// The parameters of a cell after its development function: λ' = g(λ, τ, β) · λ
   /// (paper 000, eq. 3). Equal to the state when the master has no function.
   void developedValues(const CellRecord& cell, std::vector<double>& out) const;
+  /// The same for a cell whose state is not in the pool (a homomorphism's image).
+  void developedValues(const CellRecord& cell, const double* state, std::vector<double>& out) const;
 
  private:
   void seedPool(WorldHeld& tree);
@@ -126,6 +132,8 @@ class World {
   void developRootStep(double t1, bool stepRules);
   WorldHeld heldHere() const { return {pool_->size(), pool_->bytes()}; }
   void updateAncestorValues();
+  /// Writes the environment's answers into the query modules of this world's pool.
+  void answerQueries();
   StepContext stepContext(const WorldHeld& elsewhere);
   /// Value of a system's variable (`age` or a state name) for the world `level` systems up.
   double systemValue(int level, const std::string& name) const;

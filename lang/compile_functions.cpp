@@ -182,6 +182,13 @@ void attachDevelopmentFunctions(CompileContext& ctx) {
     int moduleParams = 0;
     for (int source : definition.sources) moduleParams += source >= 0;
     if (moduleParams > static_cast<int>(master.stateCount())) {
+      // A label with several numbers of parameters (L-systems): the function develops
+      // those modules that have the parameters it names.
+      bool fitsAnother = false;
+      for (const MasterCell& other : ctx.program->masters)
+        fitsAnother = fitsAnother || (other.label == master.label && other.scope == master.scope &&
+                                      static_cast<int>(other.stateCount()) >= moduleParams);
+      if (fitsAnother) continue;
       ctx.sink.error(definition.span, "development function '" + definition.name + "' names " +
                                           std::to_string(moduleParams) + " module parameters, but '" + master.label +
                                           "' has " + std::to_string(master.stateCount()));

@@ -629,8 +629,8 @@ class Parser {
     rule.hasContext = true;
     if (check(TokenKind::LParen)) return gridContext(rule);
     bool seenMe = false;
-    while (canStartModule()) {
-      Module item = module(ModuleUse::Pattern);
+    while (canStartModule() || check(TokenKind::Star)) {
+      Module item = check(TokenKind::Star) ? contextModule() : module(ModuleUse::Pattern);
       if (item.isMe) {
         if (seenMe) fail(item.span, "'me' appears twice in the context");
         seenMe = true;
@@ -765,10 +765,21 @@ class Parser {
       result.hasArgs = true;
       if (!check(TokenKind::RParen)) {
         do {
-          if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
+          if ((use == ModuleUse::Pattern || use == ModuleUse::Predecessor) &&
+              (check(TokenKind::Number) || (check(TokenKind::Minus) && peek(1).kind == TokenKind::Number))) {
+            // A value pattern, `A(3)`: the module matches only with that value there.
+            const Token& sign = peek();
+            const bool negative = match(TokenKind::Minus);
+            const Token& value = advance();
+            auto expr = std::make_unique<Expr>();
+            expr->kind = Expr::Kind::Number;
+            expr->number = negative ? -value.number : value.number;
+            expr->span = sign.span.to(value.span);
+            result.args.push_back(std::move(expr));
+          } else if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
             const Token& name = peek();
             if (name.kind != TokenKind::Identifier)
-              failHere("a parameter name (patterns bind names, as in 'A(x)')");
+              failHere("a parameter name or a number (patterns bind names, as in 'A(x)', or test values, as in 'A(3)')");
             advance();
             auto expr = std::make_unique<Expr>();
             expr->kind = Expr::Kind::Name;
@@ -882,6 +893,11 @@ class Parser {
       list.symbols.push_back(symbolSpelling(advance()));
     }
     list.span = keyword.span.to(previous().span);
+    list.consider = keyword.text == "consider";
+    if (system.isLSystem) {
+      filter_ = static_cast<int>(system.filters.size());
+      system.filters.push_back(list);
+    }
     (keyword.text == "ignore" ? system.ignore : system.consider).push_back(std::move(list));
     endStatement();
   }
@@ -890,6 +906,9 @@ class Parser {
   System lsystem() {
     System result;
     result.isLSystem = true;
+    section_ = RuleKind::Production;
+    group_ = 0;
+    filter_ = -1;
     const Token& keyword = advance();
     const Token& name = expect(TokenKind::Identifier, " (the L-system's name)");
     result.name = name.text;
@@ -940,7 +959,77 @@ class Parser {
     if ((checkWord("g") || checkWord("develop")) &&
         (peek(1).kind == TokenKind::Identifier || isSymbolToken(peek(1).kind)) && peek(2).kind == TokenKind::LParen)
       return system.functions.push_back(function());
+    if (sectionLine()) return section(system);
+    if (checkWord("group") && peek(1).kind == TokenKind::Number && peek(2).kind == TokenKind::Colon) return group();
+    if (checkWord("use") && peek(1).kind == TokenKind::Identifier && peek(1).text == "group" &&
+        peek(2).kind == TokenKind::Colon)
+      return useGroup(system);
+    if (checkWord("maximum") && peek(1).kind == TokenKind::Identifier && peek(1).text == "depth" &&
+        peek(2).kind == TokenKind::Colon)
+      return maximumDepth(system);
     system.productions.push_back(production());
+    system.productions.back().kind = section_;
+    system.productions.back().group = group_;
+    system.productions.back().filter = filter_;
+  }
+
+  // `group N:` (L-Py): the rules that follow belong to group N; `group 0:` is the default.
+  void group() {
+    advance();
+    const Token& number = advance();
+    advance();
+    if (!(number.number >= 0) || number.number != std::floor(number.number) || number.number > 1e6)
+      fail(number.span, "a group is a whole number from 0, as in 'group 1:'");
+    group_ = static_cast<int>(number.number);
+    endStatement();
+  }
+
+  // `use group: EXPR`: the active group, evaluated at the start of every step.
+  void useGroup(System& system) {
+    const Token& first = advance();
+    advance();
+    advance();
+    if (system.useGroup) fail(first.span, "the L-system already says which group it uses");
+    system.useGroup = expression();
+    endStatement();
+  }
+
+  // `production:`, `decomposition:`, `homomorphism:` (or `interpretation:`) alone on
+  // their line switch the kind of the rules that follow (L-Py's sections).
+  bool sectionLine() const {
+    if (!(checkWord("production") || checkWord("decomposition") || checkWord("homomorphism") ||
+          checkWord("interpretation")))
+      return false;
+    if (peek(1).kind != TokenKind::Colon) return false;
+    const Token& after = peek(2);
+    return after.kind == TokenKind::Semicolon || after.kind == TokenKind::RBrace ||
+           after.kind == TokenKind::EndOfFile || after.line > peek(1).line;
+  }
+
+  void section(System& system) {
+    (void)system;
+    const std::string& word = advance().text;
+    advance();
+    section_ = word == "production"      ? RuleKind::Production
+               : word == "decomposition" ? RuleKind::Decomposition
+                                         : RuleKind::Homomorphism;
+    endStatement();
+  }
+
+  // `maximum depth: N` after `decomposition:` or `homomorphism:`.
+  void maximumDepth(System& system) {
+    const Token& first = peek();
+    advance();
+    advance();
+    advance();
+    if (section_ == RuleKind::Production)
+      fail(first.span, "'maximum depth' belongs to a 'decomposition:' or 'homomorphism:' section; write it after one");
+    ExprPtr& depth = section_ == RuleKind::Decomposition ? system.decompositionDepth : system.homomorphismDepth;
+    if (depth)
+      fail(first.span, std::string("the ") + (section_ == RuleKind::Decomposition ? "decomposition" : "homomorphism") +
+                           "'s maximum depth is given twice");
+    depth = expression();
+    endStatement();
   }
 
   DevelopmentFunction function() {
@@ -985,30 +1074,70 @@ class Parser {
     return productionAfterLabel(first);
   }
 
+  // A module of a production's context: a pattern, or `*`, which matches any module.
+  Module contextModule() {
+    if (check(TokenKind::Star)) {
+      Module any;
+      any.label = "*";
+      any.span = advance().span;
+      if (check(TokenKind::LParen) && peek().span.begin == any.span.end)
+        fail(peek().span, "the wildcard '*' matches any module and binds nothing; write it without parameters");
+      return any;
+    }
+    return module(ModuleUse::Predecessor);
+  }
+
+  // `<<` and `>>`: two touching '<' or '>'.
+  bool atDouble(TokenKind kind) const {
+    return check(kind) && peek(1).kind == kind && peek(1).span.begin == peek().span.end;
+  }
+
+  std::vector<Module> contextItems() {
+    std::vector<Module> items;
+    // A new line at or left of the statement's column ends it (section 3.8).
+    while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star)) && !check(TokenKind::Less) &&
+           !check(TokenKind::Greater))
+      items.push_back(contextModule());
+    return items;
+  }
+
+  // [left '<'] [new-left '<<'] predecessor ['>' right]
   Rule productionAfterLabel(const Token& first) {
     Rule rule;
     rule.terminal = true;
-    std::vector<Module> items;
-    while (!atStatementEnd() && canStartModule() && !check(TokenKind::Less) && !check(TokenKind::Greater))
-      items.push_back(module(ModuleUse::Predecessor));
-    if (match(TokenKind::Less)) {
+    std::vector<Module> items = contextItems();
+    auto newLeftContext = [&] {
+      advance();
+      advance();
+      rule.hasContext = true;
+      rule.newLeft = std::move(items);
+      if (rule.newLeft.empty()) failHere("a new left context before '<<'");
+      items = contextItems();
+    };
+    if (atDouble(TokenKind::Less)) {
+      newLeftContext();
+    } else if (match(TokenKind::Less)) {
       rule.hasContext = true;
       rule.left = std::move(items);
-      items.clear();
-      if (atStatementEnd() || !canStartModule()) failHere("the predecessor after '<'");
-      items.push_back(module(ModuleUse::Predecessor));
+      items = contextItems();
+      if (atDouble(TokenKind::Less)) newLeftContext();
+      if (items.empty()) failHere("the predecessor after '<'");
     }
     if (items.size() != 1) {
       if (items.empty()) failHere("a production such as 'A(x) -> B(x + 1)'");
       fail(items[1].span, "a production has one predecessor module; put context before '<' or after '>'");
     }
     rule.predecessor = std::move(items.front());
+    if (rule.predecessor.label == "*") fail(rule.predecessor.span, "the wildcard '*' stands in contexts, not as the predecessor");
+    if (atDouble(TokenKind::Greater))
+      fail(peek().span, "ontogen derives left to right, so a new right context '>>' (L-Py's backward derivation) "
+                        "has nothing produced yet to match; write '>' for the right context");
     if (match(TokenKind::Greater)) {
       rule.hasContext = true;
-      while (!atStatementEnd() && canStartModule()) rule.right.push_back(module(ModuleUse::Predecessor));
+      while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star))) rule.right.push_back(contextModule());
       if (rule.right.empty()) failHere("a right context after '>'");
     }
-    for (const auto* side : {&rule.left, &rule.right})
+    for (const auto* side : {&rule.left, &rule.right, &rule.newLeft})
       for (const Module& item : *side)
         if (item.age) fail(item.span, "a context module has no terminal age; write it without '(..., age)'");
     if (match(TokenKind::Colon)) rule.predicate = expression();
@@ -1212,6 +1341,9 @@ class Parser {
   int depth_ = 0;        // parentheses open in the current statement
   int speculating_ = 0;  // > 0: errors unwind without being reported
   int nesting_ = 0;      // expressions being parsed inside each other
+  RuleKind section_ = RuleKind::Production;  // the L-system section being read
+  int group_ = 0;                            // the L-system rule group being read
+  int filter_ = -1;                          // the L-system's last ignore:/consider: line
 };
 
 }  // namespace

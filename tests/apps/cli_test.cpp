@@ -380,6 +380,18 @@ TEST(Cli, WordJsonGivesIdsAndParents) {
   EXPECT_EQ(later[0]["id"], f1) << "ids are stable while a cell lives";
 }
 
+// `word --interpreted` prints the homomorphism's image; without it, the developing word.
+TEST(Cli, WordInterpretedPrintsTheHomomorphismsImage) {
+  fs::path dir = scratch("interpreted");
+  fs::path program = writeProgram(dir, "lsystem t {\n  axiom A\n  A -> A N\n  homomorphism:\n  N -> F\n}\n");
+  Result image = ontogen("word " + program.string() + " --at 0,2 --interpreted");
+  ASSERT_EQ(image.exitCode, 0) << image.err;
+  EXPECT_EQ(image.out, "t = 0: A\nt = 2: A F F\n");
+  Result word = ontogen("word " + program.string() + " --at 2");
+  ASSERT_EQ(word.exitCode, 0) << word.err;
+  EXPECT_EQ(word.out, "t = 2: A N N\n");
+}
+
 // `ontogen help` prints the directive table: a line per directive under the settings it
 // belongs to. The directives are those docs/LANGUAGE.md section 3.2 lists, which
 // tests/lang/directives_test.cpp holds to the table itself.

@@ -1,6 +1,7 @@
 // Walks tests/programs/*.cell: one small program per behaviour, with what it must do
 // written in the file as comments:
 //   // expect-word T: WORD        the derivation word at time T (6 significant digits)
+//   // expect-image T: WORD       the word as interpretation reads it at T (after homomorphism rules)
 //   // expect-error L:C: TEXT     an error at line L, column C whose message contains TEXT
 //   // expect-run-error: TEXT     developing on past the last expected word (1000 s) fails with TEXT
 //   // step: DT                   the step used to develop (default: the program's #dt)
@@ -19,14 +20,22 @@
 #include "core/word.h"
 #include "interpreters/text/word_text.h"
 #include "core/world.h"
+#include "interpreters/geometry/turtle_queries.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 
 namespace ontogen {
 namespace {
 
+// A word expected at a time: the developing word, or the image interpretation reads.
+struct ExpectedWord {
+  double time = 0;
+  std::string text;
+  bool image = false;
+};
+
 struct Expectations {
-  std::vector<std::pair<double, std::string>> words;
+  std::vector<ExpectedWord> words;  ///< in file order (time runs forward)
   std::vector<std::tuple<int, int, std::string>> errors;
   std::string runError;
   std::optional<double> step;
@@ -67,7 +76,10 @@ Expectations expectationsOf(const std::string& text) {
   while (std::getline(lines, line)) {
     if (auto wordLine = after(line, "expect-word ")) {
       auto [time, word] = splitAtColon(*wordLine);
-      result.words.push_back({std::stod(time), word});
+      result.words.push_back({std::stod(time), word, false});
+    } else if (auto imageLine = after(line, "expect-image ")) {
+      auto [time, word] = splitAtColon(*imageLine);
+      result.words.push_back({std::stod(time), word, true});
     } else if (auto errorLine = after(line, "expect-error ")) {
       auto [line_, tail] = splitAtColon(*errorLine);
       auto [column, message] = splitAtColon(tail);
@@ -119,12 +131,14 @@ TEST_P(ProgramFile, BehavesAsWritten) {
 
   WorldDef def;
   def.seed = expected.seed;
+  if (program->hasQueries) def.environment = TurtleQueries::forSettings(program->rootSystem().settings);
   World world(program, def);
   double step = expected.step.value_or(program->dt);
   try {
-    for (const auto& [time, word] : expected.words) {
+    for (const auto& [time, word, image] : expected.words) {
       world.advanceTo(time, step);
-      EXPECT_EQ(formatWord(captureWord(world)), word) << "at t = " << time;
+      EXPECT_EQ(formatWord(image ? captureInterpretedWord(world) : captureWord(world)), word)
+          << (image ? "the image " : "") << "at t = " << time;
     }
     if (!expected.runError.empty()) {
       world.advanceTo(world.time() + 1000, step);
