@@ -25,8 +25,8 @@ std::string padded(std::string_view text, size_t width) {
 
 void printDirectives() {
   std::cout << "\nDirectives (docs/LANGUAGE.md section 3.2), by the settings they belong to:\n";
-  for (DirectiveOwner owner :
-       {DirectiveOwner::Constants, DirectiveOwner::World, DirectiveOwner::Geometry, DirectiveOwner::Music}) {
+  for (DirectiveOwner owner : {DirectiveOwner::Constants, DirectiveOwner::World, DirectiveOwner::Geometry,
+                               DirectiveOwner::Music, DirectiveOwner::Notation}) {
     std::cout << "  " << directiveOwnerName(owner) << "\n";
     for (const Directive& directive : directives()) {
       if (directive.owner != owner) continue;
