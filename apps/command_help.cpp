@@ -46,10 +46,12 @@ int runHelp() {
                "  ontogen word FILE --at T1,T2 [--json] print the derivation word at those times\n"
                "  ontogen timeline FILE --out F.svg     draw the time-state diagram of the development\n"
                "  ontogen midi-ports                    list the MIDI output ports for --midi-port\n"
+               "  ontogen convert FILE.l|FILE.lpy       print a cpfg or L-Py L-system as a cell-language program\n"
                "  ontogen help                          this text\n"
                "\n"
                "check, run, word and timeline take --define NAME=VALUE (repeatable): the program\n"
-               "runs as if its #define NAME said the number VALUE.\n\n"
+               "runs as if its #define NAME said the number VALUE. They also read cpfg (.l) and\n"
+               "L-Py (.lpy) files, converted first as ontogen convert prints them.\n\n"
                "Interpretation sets:";
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
   std::cout << "\n\nTurtle commands (set 'geometry'):\n";

@@ -15,6 +15,7 @@
 #include "apps/commands.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
+#include "lang/convert/convert.h"
 
 namespace ontogen::app {
 
@@ -48,7 +49,48 @@ bool onlyOptionErrors(const DiagnosticSink& sink) {
                      [](const Diagnostic& d) { return d.severity != Severity::Error || !d.span.valid(); });
 }
 
+std::optional<std::string> readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace
+
+ProgramText readProgramText(const std::string& path) {
+  ProgramText result;
+  result.name = path;
+  std::optional<std::string> text = readFile(path);
+  if (!text) {
+    std::cerr << "ontogen: error: cannot read '" << path << "': " << std::strerror(errno) << "\n";
+    result.exitCode = kExitProgramError;
+    return result;
+  }
+  const std::optional<convert::Dialect> dialect = convert::dialectOfPath(path);
+  if (!dialect) {
+    result.text = std::move(text);
+    return result;
+  }
+  // cpfg keeps the turn angle in the view file beside the L-system, named alike.
+  std::string view;
+  if (*dialect == convert::Dialect::Cpfg)
+    view = readFile(std::filesystem::path(path).replace_extension(".v").string()).value_or("");
+  auto source = std::make_shared<const SourceFile>(path, std::move(*text));
+  DiagnosticSink sink;
+  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink);
+  std::cerr << formatDiagnostics(sink);
+  if (!converted.program) {
+    std::cerr << "ontogen: " << path << " cannot be converted from " << convert::dialectName(*dialect) << "\n";
+    result.exitCode = converted.untranslatable ? kExitUntranslatable : kExitProgramError;
+    return result;
+  }
+  result.text = std::move(converted.program);
+  result.name = path + " (converted)";
+  result.converted = true;
+  return result;
+}
 
 LoadedProgram loadProgram(const CommonOptions& common) {
   LoadedProgram loaded;
@@ -62,18 +104,15 @@ LoadedProgram loadProgram(const CommonOptions& common) {
     options.defines.push_back(std::move(*define));
   }
   const std::string& path = common.file;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    std::cerr << "ontogen: error: cannot read '" << path << "': " << std::strerror(errno) << "\n";
-    loaded.exitCode = kExitProgramError;
+  ProgramText text = readProgramText(path);
+  if (!text.text) {
+    loaded.exitCode = text.exitCode;
     return loaded;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
   DiagnosticSink sink;
   options.commandSets = commandSets();
   options.rootSystem = common.system;
-  std::unique_ptr<Program> program = compileSource(path, text.str(), sink, options);
+  std::unique_ptr<Program> program = compileSource(text.name, std::move(*text.text), sink, options);
   std::cerr << formatDiagnostics(sink);
   if (!program) {
     if (onlyOptionErrors(sink)) {
