@@ -1,6 +1,7 @@
 #include "lang/convert/foreign_syntax.h"
 
 #include <cctype>
+#include <optional>
 
 namespace ontogen::convert {
 
@@ -163,7 +164,45 @@ std::vector<std::string> ForeignSyntax::symbols(uint32_t begin, uint32_t end) co
   return result;
 }
 
+// The conditionals, C's `c ? a : b` and Python's `a if c else b`, become the cell
+// language's if(c, a, b); they bind loosest, so they are split off first.
+std::optional<std::string> ForeignSyntax::conditional(uint32_t begin, uint32_t end) const {
+  if (dialect_ == Dialect::Cpfg) {
+    const uint32_t question = find(begin, end, "?");
+    if (question == end) return std::nullopt;
+    // The ':' that matches this '?' (conditionals nest to the right).
+    int open = 0;
+    uint32_t colon = end;
+    int depth = 0;
+    for (uint32_t at = question + 1; at < end && colon == end; ++at) {
+      if (text_[at] == '(') ++depth;
+      if (text_[at] == ')') --depth;
+      if (depth != 0) continue;
+      if (text_[at] == '?') ++open;
+      if (text_[at] == ':' && open-- == 0) colon = at;
+    }
+    if (colon == end) fail(question, question + 1, "a '?' without its ':'", false);
+    return "if(" + expression(begin, question) + ", " + expression(question + 1, colon) + ", " +
+           expression(colon + 1, end) + ")";
+  }
+  auto word = [&](uint32_t from, std::string_view name) {
+    for (uint32_t at = find(from, end, name); at < end; at = find(at + 1, end, name)) {
+      const bool startsWord = at == begin || !isNameChar(text_[at - 1]);
+      const bool endsWord = at + name.size() >= end || !isNameChar(text_[at + name.size()]);
+      if (startsWord && endsWord) return at;
+    }
+    return end;
+  };
+  const uint32_t ifAt = word(begin, "if");
+  if (ifAt == end) return std::nullopt;
+  const uint32_t elseAt = word(ifAt + 2, "else");
+  if (elseAt == end) fail(ifAt, ifAt + 2, "Python's 'if' without 'else' in an expression", false);
+  return "if(" + expression(ifAt + 2, elseAt) + ", " + expression(begin, ifAt) + ", " + expression(elseAt + 4, end) +
+         ")";
+}
+
 std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
+  if (std::optional<std::string> chosen = conditional(begin, end)) return *chosen;
   const bool python = dialect_ == Dialect::LPy;
   std::string out;
   auto emit = [&](std::string_view token, bool glueLeft = false) {
@@ -229,7 +268,7 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
           name = "1";
         else if (name == "False")
           name = "0";
-        else if (name == "if" || name == "else" || name == "lambda" || name == "for" || name == "in" || name == "is")
+        else if (name == "lambda" || name == "for" || name == "in" || name == "is")
           code(at, stop, "Python's " + shown(name));
       }
       emit(name);
@@ -264,7 +303,7 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
       emit(text_.substr(at, 1));
       ++at;
     } else if (c == '?' || c == ':') {
-      code(at, at + 1, "the conditional operator '?:'");
+      fail(at, at + 1, "unexpected " + shown(text_.substr(at, 1)) + " in an expression", false);
     } else if (c == '{' || c == '}' || c == ';') {
       code(at, at + 1, "a block or statement " + shown(text_.substr(at, 1)));
     } else if (c == '[' || c == ']' || c == '"' || c == '\'') {

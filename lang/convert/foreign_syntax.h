@@ -6,6 +6,7 @@
 // is a byte offset into the whole file, so errors name the file, line and column.
 
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <string_view>
@@ -49,6 +50,7 @@ class ForeignSyntax {
 
  private:
   uint32_t moduleEnd(uint32_t at, uint32_t end, std::string& label) const;
+  std::optional<std::string> conditional(uint32_t begin, uint32_t end) const;
 
   Dialect dialect_;
   std::string_view text_;

@@ -46,6 +46,12 @@ TEST(CpfgReader, IgnoreConsiderSectionsAndTheViewFilesAngle) {
             "  maximum depth: 3\n  B -> F\n");
 }
 
+TEST(CpfgReader, ConditionalsBecomeIf) {
+  auto c = convertText(Dialect::Cpfg, "a.l", "Axiom: A(1)\nA(x) --> A(x > 1 ? 1 : x < 0 ? 2 : 3)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  axiom A(1)\n  A(x) -> A(if(x > 1, 1, if(x < 0, 2, 3)))\n");
+}
+
 TEST(CpfgReader, DigitModulesGiveTheBlockLetters) {
   auto c = convertText(Dialect::Cpfg, "fig 1.5.l", "Axiom: 0\n0 --> 1[0]0\n");
   ASSERT_EQ(c.error, "");
@@ -61,10 +67,10 @@ TEST(CpfgReader, CCodeAndUnspellableModulesAreErrorsAtTheirPlace) {
   EXPECT_TRUE(block.untranslatable);
   EXPECT_NE(block.error.find("C code"), std::string::npos) << block.error;
 
-  auto ternary = convertText(Dialect::Cpfg, "a.l", "Axiom: A(1)\nA(x) --> A(x > 1 ? 1 : 2)\n");
-  EXPECT_EQ(ternary.line, 2);
-  EXPECT_EQ(ternary.column, 18);
-  EXPECT_NE(ternary.error.find("the conditional operator '?:'"), std::string::npos) << ternary.error;
+  auto assignment = convertText(Dialect::Cpfg, "a.l", "Axiom: A(1)\nA(x) --> A(x = 2)\n");
+  EXPECT_EQ(assignment.line, 2);
+  EXPECT_EQ(assignment.column, 14);
+  EXPECT_NE(assignment.error.find("an assignment: C code"), std::string::npos) << assignment.error;
 
   auto comma = convertText(Dialect::Cpfg, "a.l", "Axiom: F,(2)F\n");
   EXPECT_EQ(comma.line, 1);

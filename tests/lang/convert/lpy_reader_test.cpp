@@ -27,6 +27,12 @@ TEST(LPyReader, ConstantsModulesAndPythonExpressions) {
             "  Apex(x) : x < R && !(x == 0) -> F(sqrt(x)) Apex(x + 1)\n");
 }
 
+TEST(LPyReader, ConditionalExpressionsBecomeIf) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: B(1)\nB(i) --> B(2 if i % 2 else 3)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  axiom B(1)\n  B(i) -> B(if(i % 2, 2, 3))\n");
+}
+
 TEST(LPyReader, NewContextsWildcardsAndAProduceBody) {
   auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: A B\nproduction:\nA << B >> * --> C\nB :\n    produce D\n");
   ASSERT_EQ(c.error, "");
@@ -51,10 +57,10 @@ TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
   EXPECT_EQ(body.line, 3);
   EXPECT_EQ(body.column, 5);
 
-  auto ternary = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(x) --> A(1 if x else 2)\n");
-  EXPECT_EQ(ternary.line, 2);
-  EXPECT_EQ(ternary.column, 14);
-  EXPECT_NE(ternary.error.find("Python's 'if'"), std::string::npos) << ternary.error;
+  auto identity = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(x) --> A(x is None)\n");
+  EXPECT_EQ(identity.line, 2);
+  EXPECT_EQ(identity.column, 14);
+  EXPECT_NE(identity.error.find("Python's 'is'"), std::string::npos) << identity.error;
 
   auto sphere = convertText(Dialect::LPy, "a.lpy", "Axiom: F @O(1)\n");
   EXPECT_EQ(sphere.line, 1);
