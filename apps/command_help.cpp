@@ -5,6 +5,7 @@
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "interpreters/creature/creature_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/set_registry.h"
@@ -58,6 +59,9 @@ int runHelp() {
   // The space after the column keeps long signatures (blend, obstaclebox) apart from their doc.
   for (const TurtleCommand& command : turtleCommands())
     std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";
+  std::cout << "\nCreature commands (set 'creature'; angles in deg, lengths in units):\n";
+  for (const CreatureCommand& command : creatureCommands())
+    std::cout << "  " << std::left << std::setw(16) << command.signature << "  " << command.doc << "\n";
   std::cout << "\nPlayer commands (set 'music'; pitches in MIDI notes, times in beats):\n";
   for (const MusicCommand& command : musicCommands())
     std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";

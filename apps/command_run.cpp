@@ -34,8 +34,11 @@ int runRun(const RunOptions& options) {
   def.world = worldDefOf(options.common, *loaded.program);
   def.until = options.until;
   def.step = options.common.step;
+  def.from = options.from;
   def.frames = options.frames;
-  def.sets = options.sets;
+  def.sets = !options.sets.empty()                     ? options.sets
+             : !loaded.program->interpretSets.empty() ? loaded.program->interpretSets
+                                                      : std::vector<std::string>{"geometry"};
   def.out = options.out;
   def.setOptions.formats = options.format;
   if (options.view.size() == 2) {

@@ -25,8 +25,9 @@ struct CommonOptions {
 struct RunOptions {
   CommonOptions common;
   std::optional<double> until;      ///< empty: the program's #until
-  int frames = 1;
-  std::vector<std::string> sets{"geometry"};
+  std::optional<double> from;       ///< empty: the program's #from
+  std::optional<int> frames;        ///< empty: the program's #fps, else 1
+  std::vector<std::string> sets;    ///< empty: the program's #interpret, else geometry
   std::string out = "out";
   bool stats = false;
   std::string format = "glb,png";   ///< geometry outputs, comma-separated

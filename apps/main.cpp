@@ -52,15 +52,18 @@ int main(int argc, char** argv) {
   addDevelopment(*runCommand, run.common);
   runCommand->add_option("--until", run.until, "End of the run, seconds of developmental time (default: #until)")
       ->check(CLI::NonNegativeNumber);
-  runCommand->add_option("--frames", run.frames, "Frames spread over [0, until]; 1: the end only")
-      ->check(CLI::Range(1, 1000000))
-      ->capture_default_str();
-  runCommand->add_option("--interpret", run.sets, "Interpretation sets, comma-separated (geometry, music, trace)")
-      ->delimiter(',')
-      ->capture_default_str();
+  runCommand->add_option("--from", run.from, "Time of the first frame, seconds (default: #from, else 0)")
+      ->check(CLI::NonNegativeNumber);
+  runCommand->add_option("--frames", run.frames,
+                         "Frames spread over [from, until]; 1: the end only (default: #fps frames a second, else 1)")
+      ->check(CLI::Range(1, 1000000));
+  runCommand->add_option("--interpret", run.sets,
+                         "Interpretation sets, comma-separated: geometry, creature, image, music, trace (default: the "
+                         "program's #interpret, else geometry)")
+      ->delimiter(',');
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
   runCommand->add_option("--format", run.format,
-                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, svg")
+                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, svg, joints")
       ->capture_default_str();
   runCommand->add_option("--view", run.view, "Camera azimuth,elevation in degrees (default: automatic)")
       ->delimiter(',')

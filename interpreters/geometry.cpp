@@ -72,7 +72,11 @@ void Geometry::clear() {
   cylinders_.clear();
   discs_.clear();
   spheres_.clear();
-  mesh_ = Mesh{};
+  // Cleared, not replaced: the next frame reuses the memory.
+  mesh_.positions.clear();
+  mesh_.normals.clear();
+  mesh_.texcoords.clear();
+  mesh_.triangles.clear();
   bounds_ = Box{};
   material_ = 0;
 }

@@ -1,6 +1,7 @@
 #include "interpreters/run.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <system_error>
 
@@ -32,7 +33,10 @@ Run::Run(RunDef def) : def_(std::move(def)) {
     setupErrors_.push_back(unlocated(Severity::Error, "the run has no program"));
     return;
   }
-  if (def_.frames < 1) setupErrors_.push_back(unlocated(Severity::Error, "a run needs at least one frame"));
+  if (def_.frames && *def_.frames < 1) setupErrors_.push_back(unlocated(Severity::Error, "a run needs at least one frame"));
+  if (!(def_.from.value_or(def_.program->from) <= def_.until.value_or(def_.program->until)))
+    setupErrors_.push_back(
+        unlocated(Severity::Error, "the first frame's time (#from, --from) is after the end of the run (#until, --until)"));
   for (const std::string& name : def_.sets) {
     std::unique_ptr<InterpretationSet> set;
     try {
@@ -99,14 +103,27 @@ RunReport Run::execute() {
   return report;
 }
 
-// Frames are spread over [0, until] (one frame: the state at `until`). Sets that follow
+namespace {
+// Frames at #fps over [from, until]: a whole number of frame intervals, rounded, so that
+// `#fps 30` over 2 s gives 61 frames 1/30 s apart. At most kMaxFrames.
+constexpr double kMaxFrames = 1e6;
+int framesOf(const RunDef& def, const Program& program, double from, double until) {
+  if (def.frames) return *def.frames;
+  if (!(program.framesPerSecond > 0)) return 1;
+  const double intervals = std::round((until - from) * program.framesPerSecond);
+  return static_cast<int>(std::clamp(intervals, 0.0, kMaxFrames)) + 1;
+}
+}  // namespace
+
+// Frames are spread over [from, until] (one frame: the state at `until`). Sets that follow
 // the development (music in developmental time) see the word at the start and after
 // every step, between frames too; the others see one word a frame.
 void Run::develop(RunReport& report) {
   const Program& program = *def_.program;
   const double dt = def_.step.value_or(program.dt);
   const double until = def_.until.value_or(program.until);
-  const int frames = def_.frames;
+  const double from = def_.from.value_or(program.from);
+  const int frames = framesOf(def_, program, from, until);
   world_ = std::make_unique<World>(def_.program, def_.world);
   World& world = *world_;
   std::vector<InterpretationSet*> following;
@@ -117,7 +134,7 @@ void Run::develop(RunReport& report) {
       interpretWord(world, *set);
     }
   for (int frame = 0; frame < frames; ++frame) {
-    const double t = frames == 1 ? until : until * frame / (frames - 1);
+    const double t = frames == 1 ? until : from + (until - from) * frame / (frames - 1);
     if (!following.empty()) {
       // The next instant of the step grid k * dt, where per-step rules fire.
       auto nextStep = [&] { return (std::floor(world.time() / dt + 1e-9) + 1) * dt; };

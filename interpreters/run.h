@@ -1,5 +1,5 @@
 #pragma once
-// A run as a library object: grows a program over frames spread evenly over [0, until],
+// A run as a library object: grows a program over frames spread evenly over [from, until],
 // feeds the interpretation sets (one word a frame, or every step for the sets that follow
 // the development), and returns a report of what happened: diagnostics (run-time errors
 // and the sets' warnings, each with the cell, its source span and the time), the files
@@ -34,7 +34,10 @@ struct RunDef {
   WorldDef world{};            ///< seed, limits, threads
   std::optional<double> until;  ///< seconds of developmental time; empty: the program's #until
   std::optional<double> step;   ///< seconds; empty: the program's #dt
-  int frames = 1;               ///< spread over [0, until]; one frame: the state at until
+  std::optional<double> from;   ///< time of the first frame, seconds; empty: the program's #from
+  /// Spread evenly over [from, until]; one frame: the state at until. Empty: the
+  /// program's #fps (round((until - from) * fps) + 1 frames), else one.
+  std::optional<int> frames;
   std::vector<std::string> sets{"geometry"};  ///< interpretation sets by name
   SetOptions setOptions{};                    ///< formats, picture size and view
   std::filesystem::path out = "out";          ///< the directory outputs go to (made if missing)

@@ -12,6 +12,8 @@ void Scene::clear() {
   time = 0;
   geometry.clear();
   nodes.clear();
+  skeleton.joints.clear();
+  skeleton.skin.clear();
 }
 
 void Scene::append(const Scene& other) {
@@ -22,6 +24,16 @@ void Scene::append(const Scene& other) {
     node.range.firstTriangle += triangles;
     node.range.firstSegment += segments;
     nodes.push_back(node);
+  }
+  const int joints = static_cast<int>(skeleton.joints.size());
+  for (SceneJoint joint : other.skeleton.joints) {
+    if (joint.parent >= 0) joint.parent += joints;
+    skeleton.joints.push_back(std::move(joint));
+  }
+  for (SkinRange range : other.skeleton.skin) {
+    range.firstTriangle += triangles;
+    range.joint += joints;
+    skeleton.skin.push_back(range);
   }
 }
 

@@ -9,6 +9,7 @@
 // skin); writers read the Geometry and, where a format has nodes, the graph.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -40,10 +41,42 @@ struct SceneNode {
   GeometryRange range;               ///< what it drew
 };
 
+/// Which side of its body a limb is on.
+enum class BodySide { None, Left, Right };
+
+/// A joint of an articulated body (interpreters/creature/): where it is in the frame and
+/// what hangs from it. Its id persists across frames, like a node's.
+struct SceneJoint {
+  uint64_t id = 0;        ///< the joint cell's stable id (a second joint of one cell: derived from it)
+  int parent = -1;        ///< index in Skeleton::joints of the joint it hangs from; -1: a root
+  std::string name;       ///< the cell's label and the joint's index, unique in the skeleton
+  glm::dvec3 position{0.0};         ///< world position, model units
+  glm::dmat3 orientation{1.0};      ///< world frame, columns H, L, U (unit, right-handed)
+  bool foot = false;                ///< the end of a leg
+  BodySide side = BodySide::None;   ///< of a leg's joints
+  int segment = -1;                 ///< body segment (from the head, 0), -1: none
+};
+
+/// A stretch of the scene's triangles that moves rigidly with one joint.
+struct SkinRange {
+  uint32_t firstTriangle = 0;
+  uint32_t triangleCount = 0;
+  int joint = 0;  ///< index in Skeleton::joints
+};
+
+/// The articulated bodies of a frame: joints in an order where parents come first, and
+/// which triangles of the scene each one carries.
+struct Skeleton {
+  std::vector<SceneJoint> joints;
+  std::vector<SkinRange> skin;
+  bool empty() const { return joints.empty(); }
+};
+
 struct Scene {
   double time = 0;  ///< seconds of developmental time
   Geometry geometry;
   std::vector<SceneNode> nodes;  ///< in the order the cells were drawn
+  Skeleton skeleton;             ///< empty unless a set draws articulated bodies
 
   /// The node of a cell, or null.
   const SceneNode* find(uint64_t id) const;

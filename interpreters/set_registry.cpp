@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "interpreters/creature/creature_commands.h"
+#include "interpreters/creature/creature_set.h"
 #include "interpreters/geometry/geometry_set.h"
 #include "interpreters/geometry/obj_reader.h"
 #include "interpreters/geometry/turtle_commands.h"
@@ -12,7 +14,7 @@
 
 namespace ontogen {
 
-std::vector<std::string> interpretationSetNames() { return {"geometry", "image", "music", "trace"}; }
+std::vector<std::string> interpretationSetNames() { return {"geometry", "creature", "image", "music", "trace"}; }
 
 SceneOutputDef sceneOutputDefOf(const SetOptions& options) {
   SceneOutputDef def;
@@ -46,6 +48,15 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     }
     return std::make_unique<GeometrySet>(def);
   }
+  if (name == "creature") {
+    CreatureSetDef def;
+    def.output = sceneOutputDefOf(options);
+    def.radians = settings.radians;
+    const SceneOutputDef& out = def.output;
+    if (!out.writeSvg && !out.writeObj && !out.writePly && !out.writePngFrames && !out.writeMp4)
+      def.meshing = out.writePng ? LimbMeshing::GrownAndLastFrame : LimbMeshing::GrownFrames;
+    return std::make_unique<CreatureSet>(def);
+  }
   if (name == "music") return std::make_unique<MusicSet>(MusicSet::defFrom(settings.music));
   if (name == "trace") return std::make_unique<TraceSet>();
   if (name == "image") return std::make_unique<ImageSet>();
@@ -59,6 +70,18 @@ std::vector<CommandSetInfo> commandSets() {
                     static const std::vector<CommandInfo> infos = [] {
                       std::vector<CommandInfo> list;
                       const auto table = turtleCommands();
+                      for (size_t i = 0; i < table.size(); ++i)
+                        list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
+                      return list;
+                    }();
+                    for (const CommandInfo& info : infos)
+                      if (info.name == command) return &info;
+                    return nullptr;
+                  }});
+  sets.push_back({"creature", [](std::string_view command) -> const CommandInfo* {
+                    static const std::vector<CommandInfo> infos = [] {
+                      std::vector<CommandInfo> list;
+                      const auto table = creatureCommands();
                       for (size_t i = 0; i < table.size(); ++i)
                         list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
                       return list;

@@ -1,5 +1,6 @@
 #include "lang/directives.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,9 @@ using Target = DirectiveTarget;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 constexpr std::array<std::string_view, 2> kMusicTimes{"sequential", "developmental"};
+// The interpretation sets (interpreters/set_registry.h, interpretationSetNames(); a test
+// keeps the two lists equal).
+constexpr std::array<std::string_view, 5> kSetNames{"geometry", "creature", "image", "music", "trace"};
 
 // The order is the one `unknown directive` lists and `ontogen help` prints.
 // Limits: ppq and the beats per bar are what a MIDI file can hold (a 15-bit division, a
@@ -81,6 +85,31 @@ const std::array kDirectives{
               .syntax = "#until T",
               .doc = "end of ontogen run, seconds of developmental time (--until overrides)",
               .apply = [](const Value& v, Target& t) { t.program.until = v.number; }},
+    Directive{.name = "from",
+              .owner = Owner::World,
+              .range = {.min = 0},
+              .rangeError = "#from must be 0 or more",
+              .syntax = "#from T",
+              .doc = "time of ontogen run's first frame, seconds (frames spread over [from, until]; --from overrides)",
+              .apply = [](const Value& v, Target& t) { t.program.from = v.number; }},
+    Directive{.name = "fps",
+              .owner = Owner::World,
+              .range = {.min = 0, .max = 1000, .minOpen = true},
+              .rangeError = "#fps is in frames per second of developmental time, above 0 and at most 1000",
+              .syntax = "#fps F",
+              .doc = "frames of ontogen run per second of developmental time when --frames is not given",
+              .apply = [](const Value& v, Target& t) { t.program.framesPerSecond = v.number; }},
+    Directive{.name = "interpret",
+              .kind = Kind::Word,
+              .owner = Owner::World,
+              .words = kSetNames,
+              .syntax = "#interpret SET",
+              .doc = "an interpretation set ontogen run uses when --interpret is not given; repeat for several",
+              .apply =
+                  [](const Value& v, Target& t) {
+                    auto& sets = t.program.interpretSets;
+                    if (std::find(sets.begin(), sets.end(), v.word) == sets.end()) sets.emplace_back(v.word);
+                  }},
     Directive{.name = "dt",
               .owner = Owner::World,
               .range = {.min = 0, .minOpen = true},

@@ -285,6 +285,9 @@ struct Program {
   bool hasSeed = false;
   double until = 10;     ///< default end of a run (#until), seconds of developmental time
   double dt = 1;         ///< default step (#dt); rules without a terminal age fire once per step
+  double from = 0;       ///< time of a run's first frame (#from), seconds
+  double framesPerSecond = 0;  ///< frames of a run per second (#fps); 0: one frame unless asked
+  std::vector<std::string> interpretSets;  ///< sets a run uses unless told (#interpret); empty: geometry
   /// #tolerance: integrate `rate` adaptively (Dormand-Prince) to this absolute and
   /// relative error; 0: classic Runge-Kutta 4, one step per world step.
   double rateTolerance = 0;

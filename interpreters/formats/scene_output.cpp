@@ -19,7 +19,7 @@ namespace ontogen {
 
 std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
   def.writeSvg = def.writeObj = def.writeMtl = def.writePly = false;
-  def.writePng = def.writePngFrames = def.writeGlb = def.writeMp4 = false;
+  def.writePng = def.writePngFrames = def.writeGlb = def.writeMp4 = def.writeJoints = false;
   std::size_t start = 0;
   while (start <= list.size()) {
     std::size_t end = list.find(',', start);
@@ -39,6 +39,8 @@ std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
       def.writeGlb = true;
     } else if (name == "mp4") {
       def.writeMp4 = true;
+    } else if (name == "joints") {
+      def.writeJoints = true;
     } else {
       return "unknown format '" + std::string(name) + "' (known: " + kGeometryFormats + ")";
     }
@@ -168,12 +170,34 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
                           [&](std::ostream& out) { writePng(image, out); });
     }
   }
-  if (def_.writeGlb) glb_.addFrame(geometry_, target_.time);
+  // A run whose frames hold a skeleton is written as one skin, from the first frame that
+  // holds one (it fixes the skeleton; the frames before it, where the body had not grown
+  // yet, are left out); any other run as a node per frame.
+  const bool skinned = skinnedGlb_.frameCount() > 0 || !scene.skeleton.empty();
+  if (def_.writeGlb) {
+    if (skinned)
+      skinnedGlb_.addFrame(scene);
+    else
+      glb_.addFrame(geometry_, target_.time);
+  }
+  if (def_.writeJoints) joints_.addFrame(scene);
   if (last) {
     if (def_.writeGlb) {
       std::filesystem::path path = outputPath(whole, "glb");
-      writeFileAtomically(path, [&](std::ostream& out) { glb_.write(out); });
+      writeFileAtomically(path, [&](std::ostream& out) {
+        if (skinned)
+          skinnedGlb_.write(out);
+        else
+          glb_.write(out);
+      });
       glb_.clear();
+      skinnedGlb_.clear();
+      written.push_back(std::move(path));
+    }
+    if (def_.writeJoints) {
+      std::filesystem::path path = outputPath(whole, "joints.json");
+      writeFileAtomically(path, [&](std::ostream& out) { joints_.write(out); });
+      joints_.clear();
       written.push_back(std::move(path));
     }
     if (def_.writeMp4) writeMp4(target_, written);

@@ -1,8 +1,8 @@
 #pragma once
 // The output stage of the geometry: writes the scenes of a run's frames in the formats
 // asked for. Per frame: SVG, OBJ (+ MTL), PLY, PNG pictures; once for the run: the
-// animated glTF binary of every frame, the picture of the last, the MP4 of all (through
-// ffmpeg). Sets only draw scenes (interpreters/scene.h); this writes them, so several
+// animated glTF binary of every frame (skinned when the frames hold a skeleton), the
+// picture of the last, the MP4 of all (through ffmpeg), the skeleton's joint tracks. Sets only draw scenes (interpreters/scene.h); this writes them, so several
 // sets can draw into one frame. Every file is written atomically: complete or absent.
 
 #include <filesystem>
@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "interpreters/formats/glb_writer.h"
+#include "interpreters/formats/joints_writer.h"
+#include "interpreters/formats/skinned_glb_writer.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/formats/svg_writer.h"
 #include "interpreters/interpretation_set.h"
@@ -28,13 +30,14 @@ struct SceneOutputDef {
   bool writePng = false;       ///< render <stem>.png of the last frame
   bool writeGlb = false;       ///< write <stem>.glb of every frame after the last
   bool writeMp4 = false;       ///< write <stem>.mp4 of every frame after the last (ffmpeg)
+  bool writeJoints = false;    ///< write <stem>.joints.json, the skeleton's tracks, after the last
   double framesPerSecond = 25; ///< of the MP4
   SvgOptions svg{};            ///< picture size and number format of the SVG
   RenderDef render{};          ///< size and view of PNG pictures and MP4 frames
 };
 
 /// The formats `--format` accepts, in the order `ontogen help` lists them.
-inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj, ply, svg";
+inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj, ply, svg, joints";
 
 /// Sets def's write flags from a comma-separated list of formats (kGeometryFormats),
 /// clearing the others. Returns an error message naming the bad entry, or "" on success.
@@ -63,6 +66,8 @@ class SceneOutput {
 
   SceneOutputDef def_;
   GlbAnimationWriter glb_;
+  SkinnedGlbWriter skinnedGlb_;  // the run's frames when they hold a skeleton
+  JointTrackWriter joints_;
   int mp4Frames_ = 0;
 };
 

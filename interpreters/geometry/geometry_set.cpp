@@ -5,7 +5,7 @@
 namespace ontogen {
 
 GeometrySet::GeometrySet(const GeometrySetDef& def)
-    : def_(def), output_(def.output), turtle_(def.turtle), scene_{0, Geometry(def.mesh), {}} {}
+    : def_(def), output_(def.output), turtle_(def.turtle), scene_{0, Geometry(def.mesh), {}, {}} {}
 
 bool GeometrySet::knows(std::string_view command) const {
   return findTurtleCommand(command) != nullptr;

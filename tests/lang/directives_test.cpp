@@ -100,7 +100,9 @@ std::string settingsOf(const Program& program, int system) {
 std::string worldOf(const Program& program) {
   std::ostringstream out;
   out << program.seed << ' ' << program.hasSeed << ' ' << program.until << ' ' << program.dt << ' '
-      << program.rateTolerance << ' ' << program.defines.size();
+      << program.rateTolerance << ' ' << program.defines.size() << ' ' << program.from << ' '
+      << program.framesPerSecond;
+  for (const std::string& set : program.interpretSets) out << ' ' << set;
   return out.str();
 }
 
@@ -180,7 +182,8 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   // docs/LANGUAGE.md section 6 quotes it.
   EXPECT_EQ(error.message,
             "unknown directive '#defne' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, "
-            "#seed, #until, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, #surface, #letters)");
+            "#seed, #until, #from, #fps, #interpret, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, "
+            "#surface, #letters)");
   for (const Directive& directive : directives()) {
     EXPECT_NE(error.message.find("#" + std::string(directive.name)), std::string::npos) << directive.name;
     const std::string misspelt = std::string(directive.name) + "s";
