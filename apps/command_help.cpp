@@ -40,8 +40,8 @@ constexpr size_t kSignatureColumn = 22;
 
 void printDirectives() {
   std::cout << "\nDirectives (docs/LANGUAGE.md section 3.2), by the settings they belong to:\n";
-  for (DirectiveOwner owner :
-       {DirectiveOwner::Constants, DirectiveOwner::World, DirectiveOwner::Geometry, DirectiveOwner::Music}) {
+  for (DirectiveOwner owner : {DirectiveOwner::Constants, DirectiveOwner::World, DirectiveOwner::Geometry,
+                               DirectiveOwner::Music, DirectiveOwner::Notation}) {
     std::cout << "  " << directiveOwnerName(owner) << "\n";
     for (const Directive& directive : directives()) {
       if (directive.owner != owner) continue;
@@ -62,6 +62,7 @@ int runHelp() {
       {"ontogen word FILE --at T1,T2 [--json]", "print the derivation word at those times"},
       {"ontogen timeline FILE --out F.svg", "draw the time-state diagram of the development"},
       {"ontogen midi-ports", "list the MIDI output ports for --midi-port"},
+      {"ontogen convert FILE.l|FILE.lpy", "print a cpfg or L-Py L-system as a cell-language program"},
       {"ontogen help", "this text"},
       {"ontogen --version", "the version"},
       {"ontogen COMMAND --help", "the options of a command"},
@@ -70,7 +71,8 @@ int runHelp() {
   std::cout << "\n"
                "check, run, word and timeline take --define NAME=VALUE (repeatable): the program\n"
                "runs as if its #define NAME said the number VALUE; --max-errors N (default 20,\n"
-               "0: all) and --max-source MIB (default 16) bound the check.\n\n"
+               "0: all) and --max-source MIB (default 16) bound the check. They also read cpfg (.l)\n"
+               "and L-Py (.lpy) files, converted first as ontogen convert prints them.\n\n"
                "Interpretation sets:";
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
   std::cout << "\n\nTurtle commands (set 'geometry'):\n";

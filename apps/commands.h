@@ -71,6 +71,10 @@ struct TimelineOptions {
   size_t maxRows = 4000;
 };
 
+struct ConvertOptions {
+  std::string file;  ///< a cpfg (.l) or L-Py (.lpy) file
+};
+
 /// The world's settings from the command line, the program's directives filling in.
 inline WorldDef worldDefOf(const CommonOptions& options, const Program& program) {
   WorldDef def;
@@ -91,6 +95,7 @@ int runTimeline(const TimelineOptions& options);
 int runRun(const RunOptions& options);
 int runWord(const WordOptions& options);
 int runHelp();
+int runConvert(const ConvertOptions& options);
 int runMidiPorts();
 
 }  // namespace ontogen::app

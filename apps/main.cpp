@@ -21,7 +21,7 @@ namespace {
 using namespace ontogen::app;
 
 void addCommon(CLI::App& command, CommonOptions& options) {
-  command.add_option("file", options.file, "The program (.cell)")->required()->check(CLI::ExistingFile);
+  command.add_option("file", options.file, "The program (.cell, or cpfg's .l and L-Py's .lpy, converted first)")->required()->check(CLI::ExistingFile);
   command.add_option("--system", options.system, "The root system (default: the first in the file)");
   // One NAME=VALUE per flag, so a --define before the file does not swallow it.
   command.add_option("--define", options.defines, "Set the program's #define NAME to a number (repeatable)")
@@ -160,6 +160,11 @@ int dispatch(int argc, char** argv) {
   addWholeOption(*timelineCommand, "--max-rows", timeline.maxRows, WholeRange::between(1, kMaxTimelineRows),
                  "Most cells drawn; later ones are counted (default 4000)");
 
+  ConvertOptions convert;
+  auto* convertCommand =
+      app.add_subcommand("convert", "Print a cpfg (.l) or L-Py (.lpy) L-system as a cell-language program");
+  convertCommand->add_option("file", convert.file, "The cpfg or L-Py file")->required()->check(CLI::ExistingFile);
+
   auto* midiPortsCommand = app.add_subcommand("midi-ports", "List the MIDI output ports --midi-port can play on");
   app.add_subcommand("help", "List commands, turtle commands and functions");
 
@@ -180,6 +185,7 @@ int dispatch(int argc, char** argv) {
   if (wordCommand->parsed()) return runWord(word);
   if (timelineCommand->parsed()) return runTimeline(timeline);
   if (midiPortsCommand->parsed()) return runMidiPorts();
+  if (convertCommand->parsed()) return runConvert(convert);
   return runHelp();
 }
 

@@ -12,6 +12,7 @@
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 #include "lang/source_reader.h"
+#include "lang/convert/convert.h"
 
 namespace ontogen::app {
 
@@ -42,7 +43,49 @@ bool onlyOptionErrors(const DiagnosticSink& sink) {
                      [](const Diagnostic& d) { return d.severity != Severity::Error || !d.span.valid(); });
 }
 
+std::optional<std::string> readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace
+
+ProgramText readProgramText(const std::string& path, uint64_t maxBytes) {
+  ProgramText result;
+  result.name = path;
+  SourceText read = readSourceFile(path, maxBytes);
+  if (!read.text) {
+    std::cerr << "ontogen: error: cannot read '" << path << "': " << read.error << "\n";
+    result.exitCode = kExitUsage;
+    return result;
+  }
+  std::optional<std::string>& text = read.text;
+  const std::optional<convert::Dialect> dialect = convert::dialectOfPath(path);
+  if (!dialect) {
+    result.text = std::move(text);
+    return result;
+  }
+  // cpfg keeps the turn angle in the view file beside the L-system, named alike.
+  std::string view;
+  if (*dialect == convert::Dialect::Cpfg)
+    view = readFile(std::filesystem::path(path).replace_extension(".v").string()).value_or("");
+  auto source = std::make_shared<const SourceFile>(path, std::move(*text));
+  DiagnosticSink sink;
+  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink);
+  std::cerr << formatDiagnostics(sink);
+  if (!converted.program) {
+    std::cerr << "ontogen: " << path << " cannot be converted from " << convert::dialectName(*dialect) << "\n";
+    result.exitCode = converted.untranslatable ? kExitUntranslatable : kExitProgramError;
+    return result;
+  }
+  result.text = std::move(converted.program);
+  result.name = path + " (converted)";
+  result.converted = true;
+  return result;
+}
 
 LoadedProgram loadProgram(const CommonOptions& common) {
   LoadedProgram loaded;
@@ -57,10 +100,9 @@ LoadedProgram loadProgram(const CommonOptions& common) {
   }
   const std::string& path = common.file;
   // The FILE argument names no program to read: a bad command line, like a missing file.
-  SourceText text = readSourceFile(path, common.maxSourceBytes);
+  ProgramText text = readProgramText(path, common.maxSourceBytes);
   if (!text.text) {
-    std::cerr << "ontogen: error: cannot read '" << path << "': " << text.error << "\n";
-    loaded.exitCode = kExitUsage;
+    loaded.exitCode = text.exitCode;
     return loaded;
   }
   // Checking a program takes about 100 bytes of memory a byte of text (a 5 MB axiom
@@ -81,7 +123,7 @@ LoadedProgram loadProgram(const CommonOptions& common) {
   options.commandSets = commandSets();
   options.rootSystem = common.system;
   options.maxSourceBytes = common.maxSourceBytes;
-  std::unique_ptr<Program> program = compileSource(path, std::move(*text.text), sink, options);
+  std::unique_ptr<Program> program = compileSource(text.name, std::move(*text.text), sink, options);
   if (!program) {
     if (onlyOptionErrors(sink)) {
       loaded.exitCode = kExitUsage;

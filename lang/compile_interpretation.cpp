@@ -124,7 +124,8 @@ void resolveCommands(CompileContext& ctx) {
     }
     const unsigned char first = master.label.empty() ? 0 : static_cast<unsigned char>(master.label[0]);
     master.treeNode = master.symbolClass == kSymbolModule &&
-                      ((first >= 'a' && first <= 'z') || (first >= 'A' && first <= 'Z') || first == '_' || first >= 0x80);
+                      ((first >= 'a' && first <= 'z') || (first >= 'A' && first <= 'Z') || first == '_' || first >= 0x80 ||
+                       (first >= '0' && first <= '9'));  // digits: ABOP's labels under #letters
     master.commandIds.clear();
     for (const auto& set : ctx.options.commandSets) {
       const CommandInfo* info = set.find(master.command);

@@ -43,6 +43,7 @@ std::unique_ptr<Program> run(CompileContext& ctx, std::vector<std::shared_ptr<co
   // Every master exists.
   attachDevelopmentFunctions(ctx);
   resolveCommands(ctx);
+  warnLetterRuns(ctx);
   classifySymbols(ctx);
   summariseSystems(ctx);
   checkSystemTree(ctx);

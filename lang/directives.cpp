@@ -188,6 +188,26 @@ const std::array kDirectives{
                   [](const Value& v, Target& t) {
                     t.settings.surfaces.push_back({static_cast<int>(v.number), v.path, v.location});
                   }},
+    // The parser reads it (lang/parser.cpp); nothing is left to apply.
+    Directive{
+        .name = "letters",
+        .kind = Kind::Flag,
+        .owner = Owner::Notation,
+        .syntax = "#letters",
+        .doc =
+            "one module per letter, digit or symbol in axioms and productions, as ABOP prints them (FF-[-F+F]+[+F-F])",
+        .apply = [](const Value&, Target&) {}},
+};
+
+// Directives of cpfg and lpfg that ontogen writes another way.
+struct ForeignDirective {
+  std::string_view name;
+  std::string_view instead;
+};
+constexpr ForeignDirective kForeignDirectives[] = {
+    {"ignore", "cpfg's '#ignore' is written 'ignore: A B' (without '#') in an lsystem block"},
+    {"consider", "cpfg's '#consider' is written 'consider: A B' (without '#') in an lsystem block"},
+    {"include", "cpfg's '#include' is written 'import \"file.cell\"' at the top level"},
 };
 
 std::string formatNumber(double value) {
@@ -239,6 +259,8 @@ const Directive* findDirective(std::string_view name) {
 }
 
 std::string unknownDirectiveMessage(std::string_view name) {
+  for (const ForeignDirective& foreign : kForeignDirectives)
+    if (foreign.name == name) return std::string(foreign.instead);
   std::string known;
   for (const Directive& directive : kDirectives) known += (known.empty() ? "#" : ", #") + std::string(directive.name);
   return "unknown directive '#" + std::string(name) + "' (known: " + known + ")";
@@ -290,6 +312,8 @@ std::string_view directiveOwnerName(DirectiveOwner owner) {
       return "geometry";
     case DirectiveOwner::Music:
       return "music";
+    case DirectiveOwner::Notation:
+      return "notation";
   }
   return "?";
 }

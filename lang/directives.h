@@ -36,6 +36,7 @@ enum class DirectiveOwner : uint8_t {
   World,      ///< the run of the whole program (Program): a block's value overrides the top level's
   Geometry,   ///< the geometry set's settings of its block (InterpretSettings); top-level ones start every block's
   Music,      ///< the music set's settings of its block (MusicSettings); likewise
+  Notation,   ///< how the parser reads the text after it (`#letters`); the compiler has nothing to apply
 };
 
 /// The numbers a directive's value may be: from min to max, either end open or closed.
@@ -98,7 +99,8 @@ inline constexpr int kMaxNoteValue = 64;
 std::span<const Directive> directives();
 /// nullptr when there is no such directive; `name` without the '#'.
 const Directive* findDirective(std::string_view name);
-/// "unknown directive '#defne' (known: #define, #angle, ..., #surface)".
+/// "unknown directive '#defne' (known: #define, #angle, ..., #surface)"; for the
+/// directives of other L-system tools (cpfg's `#ignore`), what ontogen writes instead.
 std::string unknownDirectiveMessage(std::string_view name);
 /// "'sequential' or 'developmental'": the words of a Word directive.
 std::string wordChoices(const Directive& directive);
@@ -109,7 +111,7 @@ std::string noteValueChoices();
 
 /// "constant", "number", "integer", "flag", "word", "time signature", "integer, file".
 std::string_view directiveKindName(DirectiveKind kind);
-/// "constants", "world", "geometry", "music".
+/// "constants", "world", "geometry", "music", "notation".
 std::string_view directiveOwnerName(DirectiveOwner owner);
 /// A range as messages print it: "finite" (any finite number), "1 to 32767", "> 0",
 /// "> 0 and ≤ 1000", "≥ 0".

@@ -88,6 +88,7 @@ class Lexer {
       // Past the sink's error limit the rest of the text is not read.
       if (sink_.limitReached()) pos_ = text_.size();
       Token token = next();
+      followNotation(token);
       bool done = token.kind == TokenKind::EndOfFile;
       tokens.push_back(std::move(token));
       if (done) break;
@@ -123,9 +124,27 @@ class Lexer {
 
   char peek(size_t ahead = 0) const { return pos_ + ahead < text_.size() ? text_[pos_ + ahead] : '\0'; }
 
+  // Under #letters (lang/parser.cpp), ABOP's `]/////` is five rolls: a `//` that touches
+  // the token before it is no comment. The lexer follows where #letters holds: after a
+  // top-level one, or to the end of the block that holds it.
+  void followNotation(const Token& token) {
+    if (token.kind == TokenKind::LBrace) ++braces_;
+    if (token.kind == TokenKind::RBrace && braces_ > 0 && --braces_ < lettersBraces_) lettersBraces_ = 0;
+    if (token.kind == TokenKind::Directive && token.text == "letters") {
+      if (braces_ == 0)
+        lettersEverywhere_ = true;
+      else if (lettersBraces_ == 0)
+        lettersBraces_ = braces_;
+    }
+  }
+  bool lettersHold() const { return lettersEverywhere_ || lettersBraces_ > 0; }
+
   void skipSpaceAndComments() {
     for (;;) {
       while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+      if (peek() == '/' && peek(1) == '/' && lettersHold() && pos_ > 0 &&
+          !std::isspace(static_cast<unsigned char>(text_[pos_ - 1])))
+        return;
       if (peek() == '/' && peek(1) == '/') {
         while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
       } else if (peek() == '/' && peek(1) == '*') {
@@ -283,6 +302,9 @@ class Lexer {
   const std::string& text_;
   DiagnosticSink& sink_;
   size_t pos_ = 0;
+  int braces_ = 0;                  // '{' open
+  int lettersBraces_ = 0;           // > 0: #letters holds while this many '{' are open
+  bool lettersEverywhere_ = false;  // a top-level #letters: to the end of the file
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <functional>
@@ -43,7 +44,12 @@ std::string symbolSpelling(const Token& token) {
 
 class Parser {
  public:
-  Parser(const SourceFile& file, DiagnosticSink& sink) : sink_(sink) { tokens_ = lex(file, sink); }
+  Parser(const SourceFile& file, DiagnosticSink& sink) : sink_(sink) {
+    tokens_ = lex(file, sink);
+    // #letters splits tokens in place (splitLetterRun); with room for every character
+    // the vector never reallocates, so references to tokens already read stay valid.
+    if (file.text().find("#letters") != std::string::npos) tokens_.reserve(tokens_.size() + file.text().size());
+  }
 
   Program run() {
     Program program;
@@ -241,6 +247,7 @@ class Parser {
       statement_.firstToken = pos_ - 1;  // the statement began at the '#name' already read
       const Directive* directive = findDirective(hash.text);
       if (!directive) fail(hash.span, unknownDirectiveMessage(hash.text));
+      if (directive->owner == DirectiveOwner::Notation) notation();
       switch (directive->kind) {
         case DirectiveKind::Define: defines.push_back(defineStatement(hash)); break;
         case DirectiveKind::Number:
@@ -701,6 +708,7 @@ class Parser {
     } else {
       while (!atStatementEnd() && (canStartModule() || check(TokenKind::Equal)))
         rule.successors.push_back(module(ModuleUse::Successor));
+      if (!atStatementEnd()) failOnDigitModule();
     }
     if (match(TokenKind::Colon)) rule.probability = expression();
   }
@@ -711,8 +719,79 @@ class Parser {
   bool canStartModule() const {
     const Token& token = peek();
     if (token.kind == TokenKind::Identifier || token.kind == TokenKind::LParen) return true;
+    if (letters_ &&
+        (token.kind == TokenKind::Number || token.kind == TokenKind::AmpAmp || token.kind == TokenKind::PipePipe))
+      return true;
     return isSymbolToken(token.kind);
   }
+
+  // ---- #letters: ABOP's strings as printed ----
+  // `#letters` at the top level holds for the lsystem blocks after it, in a block for the
+  // rest of the block. Under it a run of letters and digits where a module stands is one
+  // module per character, so `FF-[-F+F+F]` and ABOP's `0 -> 1[0]0` read as printed.
+  void notation() {
+    if (inLSystem_)
+      letters_ = true;
+    else
+      lettersEverywhere_ = true;
+  }
+
+  static size_t codePoints(std::string_view text) {
+    size_t count = 0;
+    for (unsigned char c : text) count += (c & 0xC0) != 0x80;
+    return count;
+  }
+
+  // Replaces the token at pos_ by one token per character when it is a run of several
+  // (`FF`, `01`), and `&&`, `||` by two symbols. A parameter list stays on the last one,
+  // since its '(' touches the last character.
+  void splitLetterRun() {
+    const Token token = peek();
+    std::vector<Token> pieces;
+    auto piece = [&](uint32_t begin, uint32_t end, TokenKind kind) {
+      Token part = token;
+      part.kind = kind;
+      part.text = kind == TokenKind::Identifier ? token.span.file->text().substr(begin, end - begin) : std::string();
+      part.span.begin = begin;
+      part.span.end = end;
+      part.column = token.column + static_cast<int>(begin - token.span.begin);
+      pieces.push_back(std::move(part));
+    };
+    if (token.kind == TokenKind::AmpAmp || token.kind == TokenKind::PipePipe) {
+      const TokenKind one = token.kind == TokenKind::AmpAmp ? TokenKind::Amp : TokenKind::Pipe;
+      piece(token.span.begin, token.span.begin + 1, one);
+      piece(token.span.begin + 1, token.span.end, one);
+    } else if ((token.kind == TokenKind::Identifier && codePoints(token.text) > 1) || token.kind == TokenKind::Number) {
+      const std::string& text = token.span.file->text();
+      for (uint32_t at = token.span.begin; at < token.span.end;) {
+        uint32_t end = at + 1;
+        while (end < token.span.end && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) ++end;
+        const unsigned char c = static_cast<unsigned char>(text[at]);
+        if (!std::isalnum(c) && c != '_' && c < 0x80)
+          fail(token.span, "under #letters every digit is a module, so '" + token.text +
+                               "' cannot stand here; write a number inside a module's parentheses, as in F(" +
+                               token.text + ")");
+        piece(at, end, TokenKind::Identifier);
+        at = end;
+      }
+      if (pieces.size() == 1 && token.kind == TokenKind::Identifier) return;
+    } else {
+      return;
+    }
+    tokens_.erase(tokens_.begin() + static_cast<std::ptrdiff_t>(pos_));
+    tokens_.insert(tokens_.begin() + static_cast<std::ptrdiff_t>(pos_), pieces.begin(), pieces.end());
+  }
+
+  // A number where a module could stand: ABOP's digit labels (`0 -> 1[0]0`).
+  void failOnDigitModule() {
+    if (!inLSystem_ || !check(TokenKind::Number)) return;
+    const Token& number = peek();
+    fail(number.span, "'" + number.text + "' is a number, not a module: a label starts with a letter (write 'A" +
+                          number.text +
+                          "'), or put #letters in the block, under which every letter and digit is a module, as in "
+                          "ABOP's 0 -> 1[0]0");
+  }
+
 
   // `X`, `X(args)` (the '(' must touch the label), `(X(args), age)` or `me`.
   // A successor may be written `=X` (or `=(X, age)`, `(=X, age)`): it keeps its
@@ -749,6 +828,7 @@ class Parser {
 
   Module bareModule(ModuleUse use) {
     Module result;
+    if (letters_ && use != ModuleUse::Instruction) splitLetterRun();
     const Token& label = peek();
     if (label.kind != TokenKind::Identifier && !isSymbolToken(label.kind)) failHere("a module such as 'A' or 'F(1)'");
     advance();
@@ -825,6 +905,8 @@ class Parser {
 
   void systemItem(System& system) {
     if (match(TokenKind::Semicolon)) return;
+    if (check(TokenKind::Directive) && peek().text == "letters")
+      fail(peek().span, "#letters reads ABOP's strings in lsystem blocks; a system's cells keep their names");
     if (check(TokenKind::Directive)) return directive(system.defines, system.settings);
     if (checkWord("equiv")) return system.equivs.push_back(equiv(Statement{}));
     if (checkWord("pool")) {
@@ -878,6 +960,7 @@ class Parser {
     match(TokenKind::Colon);
     if (!system.axiom.empty()) fail(keyword.span, "the system already has an axiom");
     while (!atStatementEnd() && canStartModule()) system.axiom.push_back(module(ModuleUse::Axiom));
+    if (!atStatementEnd()) failOnDigitModule();
     system.axiomSpan = keyword.span.to(previous().span);
     if (system.axiom.empty()) fail(keyword.span, "the axiom is empty: give at least one cell, as in 'axiom A(1)'");
     endStatement();
@@ -887,7 +970,9 @@ class Parser {
     const Token& keyword = advance();
     match(TokenKind::Colon);
     SymbolList list;
-    while (!atStatementEnd() && (check(TokenKind::Identifier) || isSymbolToken(peek().kind))) {
+    while (!atStatementEnd()) {
+      if (letters_) splitLetterRun();  // only within the statement: the next line's keyword stays whole
+      if (!check(TokenKind::Identifier) && !isSymbolToken(peek().kind)) break;
       if (check(TokenKind::LBracket) || check(TokenKind::RBracket))
         fail(peek().span, "brackets delimit branches and cannot be ignored");
       list.symbols.push_back(symbolSpelling(advance()));
@@ -914,6 +999,8 @@ class Parser {
     result.name = name.text;
     result.nameSpan = name.span;
     expect(TokenKind::LBrace, " to open the L-system");
+    inLSystem_ = true;
+    letters_ = lettersEverywhere_;
     while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
       size_t before = pos_;
       Statement line{true, peek().column};
@@ -933,6 +1020,7 @@ class Parser {
       }
       if (pos_ == before) advance();
     }
+    inLSystem_ = letters_ = false;
     const Token& close = expect(TokenKind::RBrace, " to close the L-system");
     result.span = keyword.span.to(close.span);
     if (!result.axiomSpan.valid() && !sink_.limitReached())
@@ -1050,7 +1138,9 @@ class Parser {
   // [label ':'] [left '<'] predecessor ['>' right] [':' condition] '->' successors [':' probability]
   Rule production() {
     const Token& first = peek();
-    if (check(TokenKind::Identifier) && peek(1).kind == TokenKind::Colon) {
+    // Under #letters a single letter before ':' is a predecessor (`A : x > 1 -> B`).
+    if (check(TokenKind::Identifier) && peek(1).kind == TokenKind::Colon &&
+        !(letters_ && codePoints(peek().text) == 1)) {
       // `p1: A -> B` or `A : cond -> B`: try the label first, then fall back.
       // Backtracking restores everything the attempt changed: the position and the
       // parentheses it left open, which would otherwise hide the line breaks after it.
@@ -1124,6 +1214,7 @@ class Parser {
       if (items.empty()) failHere("the predecessor after '<'");
     }
     if (items.size() != 1) {
+      failOnDigitModule();
       if (items.empty()) failHere("a production such as 'A(x) -> B(x + 1)'");
       fail(items[1].span, "a production has one predecessor module; put context before '<' or after '>'");
     }
@@ -1344,6 +1435,11 @@ class Parser {
   RuleKind section_ = RuleKind::Production;  // the L-system section being read
   int group_ = 0;                            // the L-system rule group being read
   int filter_ = -1;                          // the L-system's last ignore:/consider: line
+  // #letters (notation()): inside an lsystem block, whether it holds there, and a
+  // top-level one that holds in every block after it.
+  bool inLSystem_ = false;
+  bool letters_ = false;
+  bool lettersEverywhere_ = false;
 };
 
 }  // namespace

@@ -4,10 +4,13 @@
 //   // expect-image T: WORD       the word as interpretation reads it at T (after homomorphism rules)
 //   // expect-error L:C: TEXT     an error at line L, column C whose message contains TEXT
 //   // expect-run-error: TEXT     developing on past the last expected word (1000 s) fails with TEXT
+//   // expect-warning L:C: TEXT   a warning at line L, column C whose message contains TEXT
+//   // expect-no-warnings         the program compiles without warnings
 //   // step: DT                   the step used to develop (default: the program's #dt)
 //   // seed: S                    the seed (default 1)
 //   // define: NAME=VALUE         compile with this value for #define NAME (CompileOptions::defines)
-// A file with expect-error lines must report exactly those errors and no others.
+// A file with expect-error lines must report exactly those errors and no others; one with
+// expect-warning or expect-no-warnings lines exactly those warnings.
 
 #include <gtest/gtest.h>
 
@@ -37,6 +40,8 @@ struct ExpectedWord {
 struct Expectations {
   std::vector<ExpectedWord> words;  ///< in file order (time runs forward)
   std::vector<std::tuple<int, int, std::string>> errors;
+  std::vector<std::tuple<int, int, std::string>> warnings;
+  bool checkWarnings = false;
   std::string runError;
   std::optional<double> step;
   uint64_t seed = 1;
@@ -84,6 +89,13 @@ Expectations expectationsOf(const std::string& text) {
       auto [line_, tail] = splitAtColon(*errorLine);
       auto [column, message] = splitAtColon(tail);
       result.errors.push_back({std::stoi(line_), std::stoi(column), message});
+    } else if (auto warningLine = after(line, "expect-warning ")) {
+      auto [line_, tail] = splitAtColon(*warningLine);
+      auto [column, message] = splitAtColon(tail);
+      result.warnings.push_back({std::stoi(line_), std::stoi(column), message});
+      result.checkWarnings = true;
+    } else if (after(line, "expect-no-warnings")) {
+      result.checkWarnings = true;
     } else if (auto runLine = after(line, "expect-run-error:")) {
       result.runError = runLine->substr(runLine->find_first_not_of(' '));
     } else if (auto stepLine = after(line, "step:")) {
@@ -123,6 +135,19 @@ TEST_P(ProgramFile, BehavesAsWritten) {
                        << formatDiagnostics(sink);
   }
   EXPECT_EQ(reported.size(), expected.errors.size()) << formatDiagnostics(sink);
+  if (expected.checkWarnings) {
+    std::vector<std::tuple<int, int, std::string>> warned;
+    for (const auto& d : sink.diagnostics())
+      if (d.severity == Severity::Warning) warned.push_back({d.span.line(), d.span.column(), d.message});
+    for (const auto& [line, column, message] : expected.warnings) {
+      bool found = false;
+      for (const auto& [l, c, m] : warned) found |= l == line && c == column && m.find(message) != std::string::npos;
+      EXPECT_TRUE(found) << "expected a warning at " << line << ":" << column << " containing '" << message
+                         << "'; reported:\n"
+                         << formatDiagnostics(sink);
+    }
+    EXPECT_EQ(warned.size(), expected.warnings.size()) << formatDiagnostics(sink);
+  }
   if (!expected.errors.empty()) {
     EXPECT_EQ(program, nullptr);
     return;

@@ -135,6 +135,7 @@ TEST(Directives, NamesAreUniqueAndFound) {
 
 TEST(Directives, EveryRowParsesAndAppliesAtTheTopLevelAndInABlock) {
   for (const Directive& directive : directives()) {
+    if (directive.owner == DirectiveOwner::Notation) continue;  // read by the parser: NotationRowsChangeHowTheTextReads
     SCOPED_TRACE("#" + std::string(directive.name));
     const std::string first = before(directive);
     auto baseline = compileText(first + "\nlsystem a { axiom A }\n");
@@ -154,7 +155,7 @@ TEST(Directives, EveryRowParsesAndAppliesAtTheTopLevelAndInABlock) {
 // A set's settings written in a block are that block's; the world's hold for the program.
 TEST(Directives, TheOwnerDecidesWhereABlocksValueHolds) {
   for (const Directive& directive : directives()) {
-    if (directive.kind == DirectiveKind::Define) continue;
+    if (directive.kind == DirectiveKind::Define || directive.owner == DirectiveOwner::Notation) continue;
     SCOPED_TRACE("#" + std::string(directive.name));
     const std::string first = before(directive);
     auto baseline =
@@ -187,7 +188,8 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   // docs/LANGUAGE.md section 6 quotes it.
   EXPECT_EQ(error.message,
             "unknown directive '#defne' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, "
-            "#seed, #until, #from, #fps, #interpret, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, #surface)");
+            "#seed, #until, #from, #fps, #interpret, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, "
+            "#surface, #letters)");
   for (const Directive& directive : directives()) {
     EXPECT_NE(error.message.find("#" + std::string(directive.name)), std::string::npos) << directive.name;
     const std::string misspelt = std::string(directive.name) + "s";
@@ -195,6 +197,33 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
     ASSERT_EQ(wrong->sink.diagnostics().size(), 1u) << misspelt;
     EXPECT_EQ(wrong->sink.diagnostics()[0].message, unknownDirectiveMessage(misspelt));
   }
+}
+
+// #letters changes how the parser reads axioms and productions: in a block for that
+// block, at the top level for every block after it.
+TEST(Directives, NotationRowsChangeHowTheTextReads) {
+  auto spaced = compileText("lsystem a {\n  axiom FF\n}\n");
+  ASSERT_NE(spaced->program, nullptr) << formatDiagnostics(spaced->sink);
+  EXPECT_EQ(spaced->program->rootSystem().axiom.size(), 1u);
+  for (const std::string text :
+       {"lsystem a {\n  #letters\n  axiom FF\n}\n", "#letters\nlsystem a {\n  axiom FF\n}\n"}) {
+    auto letters = compileText(text);
+    ASSERT_NE(letters->program, nullptr) << formatDiagnostics(letters->sink);
+    EXPECT_EQ(letters->program->rootSystem().axiom.size(), 2u) << text;
+  }
+  // A block's #letters ends with the block.
+  auto scoped = compileText("lsystem a {\n  #letters\n  axiom FF\n}\nlsystem b {\n  axiom FF\n}\n");
+  ASSERT_NE(scoped->program, nullptr) << formatDiagnostics(scoped->sink);
+  EXPECT_EQ(scoped->program->systems[1].axiom.size(), 1u);
+}
+
+// Directives of cpfg say what ontogen writes instead.
+TEST(Directives, ForeignDirectivesSayWhatToWriteInstead) {
+  EXPECT_EQ(unknownDirectiveMessage("ignore"),
+            "cpfg's '#ignore' is written 'ignore: A B' (without '#') in an lsystem block");
+  EXPECT_EQ(unknownDirectiveMessage("consider"),
+            "cpfg's '#consider' is written 'consider: A B' (without '#') in an lsystem block");
+  EXPECT_EQ(unknownDirectiveMessage("include"), "cpfg's '#include' is written 'import \"file.cell\"' at the top level");
 }
 
 // Values just outside each end of a row's range, and fractions where it takes whole

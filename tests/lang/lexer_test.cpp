@@ -60,6 +60,18 @@ TEST(Lexer, DirectivesAndComments) {
   EXPECT_EQ(tokens[3].column, 12);
 }
 
+// Under #letters a '//' touching the token before it is two rolls (ABOP's ]/////); one
+// after a space is still a comment, and the rule ends with the block that says #letters.
+TEST(Lexer, UnderLettersTouchingSlashesAreRolls) {
+  DiagnosticSink sink;
+  auto tokens = lexText("a { #letters\n ]//F // note\n}\nb { ]//F\n}", sink);
+  using K = TokenKind;
+  EXPECT_EQ(kinds(tokens), (std::vector<K>{K::Identifier, K::LBrace, K::Directive, K::RBracket, K::Slash, K::Slash,
+                                           K::Identifier, K::RBrace, K::Identifier, K::LBrace, K::RBracket,
+                                           K::RBrace, K::EndOfFile}));
+  EXPECT_FALSE(sink.hasErrors());
+}
+
 TEST(Lexer, BadCharacterIsReportedAndLexingGoesOn) {
   DiagnosticSink sink;
   auto tokens = lexText("A ? B", sink);
