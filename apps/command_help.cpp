@@ -1,5 +1,5 @@
-#include <iomanip>
 #include <iostream>
+#include <utility>
 #include <string>
 #include <string_view>
 
@@ -25,10 +25,24 @@ std::string padded(std::string_view text, size_t width) {
   return std::string(text) + std::string(columns + 2 > width ? 2 : width - columns, ' ');
 }
 
+// One row of a table: the name in a column of `width`, then its doc. A name too long
+// for the column puts its doc on the next line, under the column, never against it.
+void printRow(std::string_view name, std::string_view doc, size_t width) {
+  size_t columns = 0;
+  for (unsigned char c : name) columns += (c & 0xC0) != 0x80;
+  std::cout << "  " << name;
+  if (columns + 2 > width) std::cout << "\n  " << std::string(width, ' ');
+  else std::cout << std::string(width - columns, ' ');
+  std::cout << doc << "\n";
+}
+
+// The column of the command tables, wide enough for all but the longest signatures.
+constexpr size_t kSignatureColumn = 22;
+
 void printDirectives() {
   std::cout << "\nDirectives (docs/LANGUAGE.md section 3.2), by the settings they belong to:\n";
-  for (DirectiveOwner owner :
-       {DirectiveOwner::Constants, DirectiveOwner::World, DirectiveOwner::Geometry, DirectiveOwner::Music}) {
+  for (DirectiveOwner owner : {DirectiveOwner::Constants, DirectiveOwner::World, DirectiveOwner::Geometry,
+                               DirectiveOwner::Music, DirectiveOwner::Notation}) {
     std::cout << "  " << directiveOwnerName(owner) << "\n";
     for (const Directive& directive : directives()) {
       if (directive.owner != owner) continue;
@@ -42,40 +56,41 @@ void printDirectives() {
 
 int runHelp() {
   std::cout << "ontogen: grows cell-language programs and realises them as geometry, music and text.\n\n"
-               "Commands:\n"
-               "  ontogen check FILE                    parse and check a program\n"
-               "  ontogen run FILE [options]            develop and write one output per frame\n"
-               "  ontogen word FILE --at T1,T2 [--json] print the derivation word at those times\n"
-               "  ontogen statics FILE [--at T] [--json] [--equations F.txt]\n"
-               "                                        solve the rods' statics (physics set) at a time\n"
-               "  ontogen timeline FILE --out F.svg     draw the time-state diagram of the development\n"
-               "  ontogen midi-ports                    list the MIDI output ports for --midi-port\n"
-               "  ontogen help                          this text\n"
-               "\n"
+               "Commands:\n";
+  constexpr std::pair<std::string_view, std::string_view> kUsage[] = {
+      {"ontogen check FILE", "parse and check a program"},
+      {"ontogen run FILE [options]", "develop and write one output per frame"},
+      {"ontogen word FILE --at T1,T2 [--json]", "print the derivation word at those times"},
+      {"ontogen statics FILE [--at T] [--json]", "solve the rods' statics (physics set) at a time"},
+      {"ontogen timeline FILE --out F.svg", "draw the time-state diagram of the development"},
+      {"ontogen midi-ports", "list the MIDI output ports for --midi-port"},
+      {"ontogen convert FILE.l|FILE.lpy", "print a cpfg or L-Py L-system as a cell-language program"},
+      {"ontogen help", "this text"},
+      {"ontogen --version", "the version"},
+      {"ontogen COMMAND --help", "the options of a command"},
+  };
+  for (const auto& [usage, doc] : kUsage) printRow(usage, doc, 40);
+  std::cout << "\n"
                "check, run, word, statics and timeline take --define NAME=VALUE (repeatable): the program\n"
-               "runs as if its #define NAME said the number VALUE.\n\n"
+               "runs as if its #define NAME said the number VALUE; --max-errors N (default 20,\n"
+               "0: all) and --max-source MIB (default 16) bound the check. They also read cpfg (.l)\n"
+               "and L-Py (.lpy) files, converted first as ontogen convert prints them.\n\n"
                "Interpretation sets:";
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
   std::cout << "\n\nTurtle commands (set 'geometry'):\n";
-  // The space after the column keeps long signatures (blend, obstaclebox) apart from their doc.
-  for (const TurtleCommand& command : turtleCommands())
-    std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";
+  for (const TurtleCommand& command : turtleCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nCreature commands (set 'creature'; angles in deg, lengths in units):\n";
-  for (const CreatureCommand& command : creatureCommands())
-    std::cout << "  " << std::left << std::setw(16) << command.signature << "  " << command.doc << "\n";
+  for (const CreatureCommand& command : creatureCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nPhysics commands (set 'physics', with every turtle command; SI units: m, kg, N):\n";
-  for (const PhysicsCommand& command : physicsCommands())
-    std::cout << "  " << std::left << std::setw(18) << command.signature << "  " << command.doc << "\n";
+  for (const PhysicsCommand& command : physicsCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nPlayer commands (set 'music'; pitches in MIDI notes, times in beats):\n";
-  for (const MusicCommand& command : musicCommands())
-    std::cout << "  " << std::left << std::setw(16) << command.signature << command.doc << "\n";
+  for (const MusicCommand& command : musicCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nFunctions:\n";
   for (const BuiltinFunction& function : builtinFunctions())
-    std::cout << "  " << std::left << std::setw(22) << function.signature << function.doc << "\n";
-  std::cout << "  " << std::left << std::setw(22) << "if(c, a, b)" << "a if c is not 0, else b (only one is evaluated)\n";
+    printRow(function.signature, function.doc, kSignatureColumn);
+  printRow("if(c, a, b)", "a if c is not 0, else b (only one is evaluated)", kSignatureColumn);
   std::cout << "\nConstants:\n";
-  for (const BuiltinConstant& constant : builtinConstants())
-    std::cout << "  " << std::left << std::setw(22) << constant.name << constant.doc << "\n";
+  for (const BuiltinConstant& constant : builtinConstants()) printRow(constant.name, constant.doc, kSignatureColumn);
   printDirectives();
   return kExitOk;
 }

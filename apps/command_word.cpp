@@ -19,7 +19,7 @@ int runWord(const WordOptions& options) {
     for (double t : options.times) {
       if (t < world->time()) world = std::make_unique<World>(loaded.program, def);  // time runs forward only
       world->advanceTo(t, dt);
-      words.push_back({t, captureWord(*world)});
+      words.push_back({t, options.interpreted ? captureInterpretedWord(*world) : captureWord(*world)});
     }
   });
   if (failed) return failed;

@@ -9,8 +9,25 @@
 #include <vector>
 
 #include "core/world.h"
+#include "lang/diagnostics.h"
+#include "lang/source_reader.h"
+#include "interpreters/geometry/turtle_queries.h"
 
 namespace ontogen::app {
+
+// The ranges of the flags, each with why it is that number.
+/// --max-errors: past a million errors no one reads them.
+inline constexpr uint64_t kMaxErrorsLimit = 1'000'000;
+/// --max-source, MiB: 4 GiB is what a byte offset in the source (uint32_t) can reach.
+inline constexpr uint64_t kMaxSourceMiB = 4095;
+/// --max-memory, MiB: the most whose bytes a uint64_t still holds.
+inline constexpr uint64_t kMaxMemoryMiB = (uint64_t{1} << 44) - 1;
+/// --threads: more threads than cores only slow a run down, and no machine has more.
+inline constexpr uint64_t kMaxThreads = 4096;
+/// --frames: a million frames is eleven hours of film at 25 per second.
+inline constexpr uint64_t kMaxFrames = 1'000'000;
+/// --max-rows: a diagram taller than ten million rows is no picture.
+inline constexpr uint64_t kMaxTimelineRows = 10'000'000;
 
 struct CommonOptions {
   std::string file;
@@ -20,6 +37,8 @@ struct CommonOptions {
   std::optional<double> step;       ///< empty: the program's #dt
   WorldLimits limits;
   unsigned threads = 0;             ///< 0: all cores
+  int maxErrors = kDefaultMaxErrors;  ///< errors reported before the check stops; 0: all
+  uint64_t maxSourceBytes = kDefaultMaxSourceBytes;  ///< of the program and its imports
 };
 
 struct RunOptions {
@@ -42,6 +61,7 @@ struct WordOptions {
   std::vector<double> times;
   bool json = false;
   int precision = 6;
+  bool interpreted = false;  ///< print the homomorphism's image, as interpretation reads it
 };
 
 struct TimelineOptions {
@@ -58,12 +78,18 @@ struct StaticsOptions {
   std::string equations;     ///< the text file of the equations to write; empty: none
 };
 
+struct ConvertOptions {
+  std::string file;  ///< a cpfg (.l) or L-Py (.lpy) file
+};
+
 /// The world's settings from the command line, the program's directives filling in.
 inline WorldDef worldDefOf(const CommonOptions& options, const Program& program) {
   WorldDef def;
   def.seed = options.seed.value_or(program.seed);
   def.limits = options.limits;
   def.threads = options.threads;
+  // Query modules are answered by the turtle, as the geometry set draws the word.
+  if (program.hasQueries) def.environment = TurtleQueries::forSettings(program.rootSystem().settings);
   return def;
 }
 
@@ -77,6 +103,7 @@ int runRun(const RunOptions& options);
 int runWord(const WordOptions& options);
 int runStatics(const StaticsOptions& options);
 int runHelp();
+int runConvert(const ConvertOptions& options);
 int runMidiPorts();
 
 }  // namespace ontogen::app

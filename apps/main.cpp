@@ -2,45 +2,101 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <exception>
 #include <iostream>
+#include <new>
+#include <string_view>
+#include <vector>
 
+#include "apps/cli_values.h"
+#include "apps/command_names.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "core/limits.h"
+#include "interpreters/temporary_files.h"
 
 namespace {
 
 using namespace ontogen::app;
 
 void addCommon(CLI::App& command, CommonOptions& options) {
-  command.add_option("file", options.file, "The program (.cell)")->required()->check(CLI::ExistingFile);
+  command.add_option("file", options.file, "The program (.cell, or cpfg's .l and L-Py's .lpy, converted first)")->required()->check(CLI::ExistingFile);
   command.add_option("--system", options.system, "The root system (default: the first in the file)");
   // One NAME=VALUE per flag, so a --define before the file does not swallow it.
   command.add_option("--define", options.defines, "Set the program's #define NAME to a number (repeatable)")
       ->type_name("NAME=VALUE")
       ->allow_extra_args(false);
+  addWholeOption(command, "--max-errors", options.maxErrors, WholeRange::between(0, kMaxErrorsLimit),
+                 "Stop after N errors in the program (default 20; 0: report every one)");
+  command
+      .add_option_function<std::string>(
+          "--max-source",
+          [&options](const std::string& text) {
+            options.maxSourceBytes = detail::wholeOrThrow("--max-source", text, WholeRange::between(1, kMaxSourceMiB)) << 20;
+          },
+          "Most MiB of source text, the program with its imports (default 16)")
+      ->type_name("MIB");
 }
 
 void addDevelopment(CLI::App& command, CommonOptions& options) {
-  command.add_option("--seed", options.seed, "Seed of every stochastic choice (default: #seed, else 1)");
-  command.add_option("--step", options.step, "Step of the development, seconds (default: #dt, else 1)")
-      ->check(CLI::PositiveNumber);
-  command.add_option("--max-cells", options.limits.maxCells, "Stop if the model grows past N cells")
-      ->capture_default_str();
-  command.add_option_function<uint64_t>(
-             "--max-memory", [&options](uint64_t mib) { options.limits.maxMemoryBytes = mib << 20; },
-             "Stop if the pools pass this many MiB (default 8192)")
-      ->check(CLI::PositiveNumber);
-  command.add_option("--max-events", options.limits.maxEventsPerStep, "Stop after N terminal events in one step")
-      ->capture_default_str();
-  command.add_option("--threads", options.threads, "Threads for rules and rates (0, the default: all cores; same result)")
-      ->check(CLI::NonNegativeNumber);
+  addWholeOption(command, "--seed", options.seed, WholeRange::any(), "Seed of every stochastic choice (default: #seed, else 1)");
+  addRealOption(command, "--step", options.step, RealRange::above(0),
+                "Step of the development, seconds (default: #dt, else 1)");
+  addWholeOption(command, "--max-cells", options.limits.maxCells, WholeRange::atLeast(1),
+                 "Stop if the model grows past N cells (default 100000000)");
+  command
+      .add_option_function<std::string>(
+          "--max-memory",
+          [&options](const std::string& text) {
+            options.limits.maxMemoryBytes =
+                detail::wholeOrThrow("--max-memory", text, WholeRange::between(1, kMaxMemoryMiB)) << 20;
+          },
+          "Stop if the pools and outputs pass this many MiB (default: half the machine's memory, here " +
+              std::to_string(ontogen::defaultMemoryLimitBytes() >> 20) + ")")
+      ->type_name("MIB");
+  addWholeOption(command, "--max-events", options.limits.maxEventsPerStep, WholeRange::atLeast(1),
+                 "Stop after N terminal events in one step (default 200000000)");
+  addWholeOption(command, "--max-steps", options.limits.maxSteps, WholeRange::atLeast(1),
+                 "Stop if the development would take more than N steps");
+  addWholeOption(command, "--threads", options.threads, WholeRange::between(0, kMaxThreads),
+                 "Threads for rules and rates (0, the default: all cores; same result)");
 }
 
-}  // namespace
+// A flag the command does not have, with the nearest one it does; empty when every
+// flag is known (the error is something else).
+std::string unknownFlagMessage(const CLI::App& command, int argc, const char* const* argv) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command.get_options())
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+  std::vector<std::string_view> views(names.begin(), names.end());
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (!arg.starts_with("--")) continue;
+    const std::string_view flag = arg.substr(0, arg.find('='));
+    if (std::find(views.begin(), views.end(), flag) != views.end()) continue;
+    std::string message = "unknown flag '" + std::string(flag) + "' for '" + command.get_name() + "'";
+    if (std::string nearest = nearMiss(flag, views); !nearest.empty()) message += "; did you mean '" + nearest + "'?";
+    return message + " (ontogen " + command.get_name() + " --help lists them)";
+  }
+  return {};
+}
 
-int main(int argc, char** argv) {
+int dispatch(int argc, char** argv) {
   CLI::App app{"ontogen: a simulator of hierarchical, cellular development for generative media"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("ontogen ") + ONTOGEN_VERSION);
+  // One line, like every other message of the executable; subcommands copy it.
+  app.failure_message(
+      [](const CLI::App*, const CLI::Error& error) { return "ontogen: error: " + std::string(error.what()) + "\n"; });
+  if (std::string message = emptyAssignment(argc, argv); !message.empty()) {
+    std::cerr << "ontogen: error: " << message << "\n";
+    return kExitUsage;
+  }
+  if (std::string message = unknownCommandMessage(argc, argv); !message.empty()) {
+    std::cerr << "ontogen: error: " << message << "\n";
+    return kExitUsage;
+  }
 
   CommonOptions check;
   auto* checkCommand = app.add_subcommand("check", "Parse and check a program");
@@ -50,13 +106,12 @@ int main(int argc, char** argv) {
   auto* runCommand = app.add_subcommand("run", "Develop a program and write one output per frame");
   addCommon(*runCommand, run.common);
   addDevelopment(*runCommand, run.common);
-  runCommand->add_option("--until", run.until, "End of the run, seconds of developmental time (default: #until)")
-      ->check(CLI::NonNegativeNumber);
-  runCommand->add_option("--from", run.from, "Time of the first frame, seconds (default: #from, else 0)")
-      ->check(CLI::NonNegativeNumber);
-  runCommand->add_option("--frames", run.frames,
-                         "Frames spread over [from, until]; 1: the end only (default: #fps frames a second, else 1)")
-      ->check(CLI::Range(1, 1000000));
+  addRealOption(*runCommand, "--until", run.until, RealRange::atLeast(0),
+                "End of the run, seconds of developmental time (default: #until)");
+  addRealOption(*runCommand, "--from", run.from, RealRange::atLeast(0),
+                "Time of the first frame, seconds (default: #from, else 0)");
+  addWholeOption(*runCommand, "--frames", run.frames, WholeRange::between(1, kMaxFrames),
+                 "Frames spread over [from, until]; 1: the end only (default: #fps frames a second, else 1)");
   runCommand->add_option("--interpret", run.sets,
                          "Interpretation sets, comma-separated: geometry, creature, physics, image, music, trace (default: the "
                          "program's #interpret, else geometry)")
@@ -65,10 +120,20 @@ int main(int argc, char** argv) {
   runCommand->add_option("--format", run.format,
                          "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, svg, joints")
       ->capture_default_str();
-  runCommand->add_option("--view", run.view, "Camera azimuth,elevation in degrees (default: automatic)")
-      ->delimiter(',')
-      ->expected(2);
-  runCommand->add_option("--size", run.size, "Picture size WIDTHxHEIGHT in pixels")->capture_default_str();
+  addRealListOption(*runCommand, "--view", run.view, {RealRange::between(-360, 360), RealRange::between(-90, 90)},
+                    "Camera azimuth,elevation in degrees (default: automatic)")
+      ->type_name("AZ,EL");
+  runCommand
+      ->add_option_function<std::string>(
+          "--size",
+          [&run](const std::string& text) {
+            if (!parsePictureSize(text))
+              throw CLI::ValidationError("--size", "'" + text + "' is not WIDTHxHEIGHT in pixels, each 1 to " +
+                                                       std::to_string(kMaxPictureSide) + ", as in 800x600");
+            run.size = text;
+          },
+          "Picture size WIDTHxHEIGHT in pixels (default 800x800)")
+      ->type_name("WxH");
   runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
   runCommand->add_option("--midi-port", run.midiPort, "Play the music set live on this MIDI port (name or index)");
   runCommand->add_flag("--virtual-port", run.virtualPort, "Play the music set live on a new MIDI port 'ontogen'");
@@ -77,11 +142,13 @@ int main(int argc, char** argv) {
   auto* wordCommand = app.add_subcommand("word", "Print the derivation word at given times");
   addCommon(*wordCommand, word.common);
   addDevelopment(*wordCommand, word.common);
-  wordCommand->add_option("--at", word.times, "Global times, comma-separated")->required()->delimiter(',');
+  addRealListOption(*wordCommand, "--at", word.times, {RealRange::atLeast(0)}, "Global times, seconds, comma-separated")
+      ->required();
   wordCommand->add_flag("--json", word.json, "Print one JSON object");
-  wordCommand->add_option("--precision", word.precision, "Significant digits of the text form")
-      ->check(CLI::Range(1, 17))
-      ->capture_default_str();
+  wordCommand->add_flag("--interpreted", word.interpreted,
+                        "Print the word as interpretation reads it, after the homomorphism rules");
+  addWholeOption(*wordCommand, "--precision", word.precision, WholeRange::between(1, 17),
+                 "Significant digits of the text form (default 6)");
 
   StaticsOptions statics;
   auto* staticsCommand =
@@ -98,12 +165,15 @@ int main(int argc, char** argv) {
       app.add_subcommand("timeline", "Draw the time-state diagram of a development (paper 002, Fig. 5)");
   addCommon(*timelineCommand, timeline.common);
   addDevelopment(*timelineCommand, timeline.common);
-  timelineCommand->add_option("--until", timeline.until, "End of the diagram, seconds (default: #until)")
-      ->check(CLI::NonNegativeNumber);
+  addRealOption(*timelineCommand, "--until", timeline.until, RealRange::atLeast(0), "End of the diagram, seconds (default: #until)");
   timelineCommand->add_option("--out", timeline.out, "The diagram to write (.svg, or .png without text)")->required();
-  timelineCommand->add_option("--max-rows", timeline.maxRows, "Most cells drawn; later ones are counted")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  addWholeOption(*timelineCommand, "--max-rows", timeline.maxRows, WholeRange::between(1, kMaxTimelineRows),
+                 "Most cells drawn; later ones are counted (default 4000)");
+
+  ConvertOptions convert;
+  auto* convertCommand =
+      app.add_subcommand("convert", "Print a cpfg (.l) or L-Py (.lpy) L-system as a cell-language program");
+  convertCommand->add_option("file", convert.file, "The cpfg or L-Py file")->required()->check(CLI::ExistingFile);
 
   auto* midiPortsCommand = app.add_subcommand("midi-ports", "List the MIDI output ports --midi-port can play on");
   app.add_subcommand("help", "List commands, turtle commands and functions");
@@ -111,6 +181,12 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
+    if (dynamic_cast<const CLI::ExtrasError*>(&error) && argc > 1)
+      for (const CLI::App* command : app.get_subcommands([&](CLI::App* c) { return c->get_name() == argv[1]; }))
+        if (std::string message = unknownFlagMessage(*command, argc, argv); !message.empty()) {
+          std::cerr << "ontogen: error: " << message << "\n";
+          return kExitUsage;
+        }
     int code = app.exit(error);
     return code == 0 ? kExitOk : kExitUsage;
   }
@@ -120,5 +196,30 @@ int main(int argc, char** argv) {
   if (staticsCommand->parsed()) return runStatics(statics);
   if (timelineCommand->parsed()) return runTimeline(timeline);
   if (midiPortsCommand->parsed()) return runMidiPorts();
+  if (convertCommand->parsed()) return runConvert(convert);
   return runHelp();
+}
+
+}  // namespace
+
+// Nothing ontogen throws may end the process through std::terminate: what the commands
+// do not turn into a message of their own becomes one here, with its exit code.
+int main(int argc, char** argv) {
+  ontogen::removeTemporariesOnSignals();
+  try {
+    return dispatch(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "\nontogen: error: the machine ran out of memory; lower the limits with --max-memory MIB or "
+                 "--max-cells N\n";
+    return kExitModelError;
+  } catch (const ontogen::LimitError& limit) {
+    std::cerr << "\nontogen: error: " << limit.what() << "\n";
+    return kExitModelError;
+  } catch (const std::exception& error) {
+    std::cerr << "\nontogen: internal error: " << error.what() << " (please report it)\n";
+    return kExitInternalError;
+  } catch (...) {
+    std::cerr << "\nontogen: internal error: an unknown exception (please report it)\n";
+    return kExitInternalError;
+  }
 }

@@ -1,20 +1,18 @@
 #include "apps/program_loader.h"
 
 #include <algorithm>
-#include <cerrno>
-#include <charconv>
-#include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
-#include <sstream>
 #include <string_view>
 
+#include "apps/cli_values.h"
 #include "apps/commands.h"
+#include "core/limits.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
+#include "lang/source_reader.h"
+#include "lang/convert/convert.h"
 
 namespace ontogen::app {
 
@@ -28,17 +26,14 @@ std::optional<DefineOverride> parseDefine(const std::string& text) {
     std::cerr << "ontogen: error: --define takes NAME=VALUE, as in --define WR=100, not '" << text << "'\n";
     return std::nullopt;
   }
-  DefineOverride define{text.substr(0, equals), 0};
-  std::string_view value = std::string_view(text).substr(equals + 1);
-  // from_chars takes no '+'; "+5" is as clear as "5".
-  std::string_view digits = value.starts_with('+') ? value.substr(1) : value;
-  auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), define.value);
-  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(define.value)) {
+  const std::string_view value = std::string_view(text).substr(equals + 1);
+  const std::optional<double> number = parseReal(value);
+  if (!number) {
     std::cerr << "ontogen: error: --define " << text << ": '" << value
               << "' is not a number (VALUE is a number such as 100, -2.5 or 1e-3)\n";
     return std::nullopt;
   }
-  return define;
+  return DefineOverride{text.substr(0, equals), *number};
 }
 
 // Errors with no place in the text come from the compile options, here --system and
@@ -48,7 +43,49 @@ bool onlyOptionErrors(const DiagnosticSink& sink) {
                      [](const Diagnostic& d) { return d.severity != Severity::Error || !d.span.valid(); });
 }
 
+std::optional<std::string> readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace
+
+ProgramText readProgramText(const std::string& path, uint64_t maxBytes) {
+  ProgramText result;
+  result.name = path;
+  SourceText read = readSourceFile(path, maxBytes);
+  if (!read.text) {
+    std::cerr << "ontogen: error: cannot read '" << path << "': " << read.error << "\n";
+    result.exitCode = kExitUsage;
+    return result;
+  }
+  std::optional<std::string>& text = read.text;
+  const std::optional<convert::Dialect> dialect = convert::dialectOfPath(path);
+  if (!dialect) {
+    result.text = std::move(text);
+    return result;
+  }
+  // cpfg keeps the turn angle in the view file beside the L-system, named alike.
+  std::string view;
+  if (*dialect == convert::Dialect::Cpfg)
+    view = readFile(std::filesystem::path(path).replace_extension(".v").string()).value_or("");
+  auto source = std::make_shared<const SourceFile>(path, std::move(*text));
+  DiagnosticSink sink;
+  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink);
+  std::cerr << formatDiagnostics(sink);
+  if (!converted.program) {
+    std::cerr << "ontogen: " << path << " cannot be converted from " << convert::dialectName(*dialect) << "\n";
+    result.exitCode = converted.untranslatable ? kExitUntranslatable : kExitProgramError;
+    return result;
+  }
+  result.text = std::move(converted.program);
+  result.name = path + " (converted)";
+  result.converted = true;
+  return result;
+}
 
 LoadedProgram loadProgram(const CommonOptions& common) {
   LoadedProgram loaded;
@@ -62,26 +99,41 @@ LoadedProgram loadProgram(const CommonOptions& common) {
     options.defines.push_back(std::move(*define));
   }
   const std::string& path = common.file;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    std::cerr << "ontogen: error: cannot read '" << path << "': " << std::strerror(errno) << "\n";
-    loaded.exitCode = kExitProgramError;
+  // The FILE argument names no program to read: a bad command line, like a missing file.
+  ProgramText text = readProgramText(path, common.maxSourceBytes);
+  if (!text.text) {
+    loaded.exitCode = text.exitCode;
     return loaded;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  DiagnosticSink sink;
+  // Checking a program takes about 100 bytes of memory a byte of text (a 5 MB axiom
+  // takes 520 MB): a text that could not be checked within the memory limit is stopped
+  // before it is.
+  constexpr uint64_t kCheckBytesPerSourceByte = 128;
+  try {
+    checkOutsideMemory("checking the " + std::to_string(text.text->size()) + " bytes of '" + path + "'",
+                       text.text->size() * kCheckBytesPerSourceByte, 0, common.limits);
+  } catch (const LimitError& limit) {
+    std::cerr << "ontogen: error: " << limit.what() << "\n";
+    loaded.exitCode = kExitModelError;
+    return loaded;
+  }
+  DiagnosticSink sink(common.maxErrors);
+  // Each error reaches the terminal as it is found, not all of them at the end.
+  sink.streamTo([](const Diagnostic& diagnostic) { std::cerr << formatDiagnostic(diagnostic); });
   options.commandSets = commandSets();
   options.rootSystem = common.system;
-  std::unique_ptr<Program> program = compileSource(path, text.str(), sink, options);
-  std::cerr << formatDiagnostics(sink);
+  options.maxSourceBytes = common.maxSourceBytes;
+  std::unique_ptr<Program> program = compileSource(text.name, std::move(*text.text), sink, options);
   if (!program) {
     if (onlyOptionErrors(sink)) {
       loaded.exitCode = kExitUsage;
       return loaded;
     }
     int errors = sink.errorCount();
-    std::cerr << errors << " error" << (errors == 1 ? "" : "s") << " in " << path << "\n";
+    std::cerr << errors << " error" << (errors == 1 ? "" : "s") << " in " << path;
+    if (sink.limitReached())
+      std::cerr << "; stopped at the error limit (--max-errors N changes it, 0 reports every error)";
+    std::cerr << "\n";
     loaded.exitCode = kExitProgramError;
     return loaded;
   }

@@ -3,9 +3,11 @@
 // place (with the commands) that writes to the terminal.
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "lang/program.h"
+#include "lang/source_reader.h"
 
 namespace ontogen::app {
 
@@ -17,6 +19,8 @@ enum ExitCode {
   kExitModelError = 3,    ///< the model failed or passed a limit while it ran
   kExitOutputError = 4,   ///< an output could not be written
   kExitMidiError = 5,     ///< live MIDI: no MIDI system runs, or no such port
+  kExitUntranslatable = 6,  ///< convert: the cpfg or L-Py file holds code ontogen cannot translate
+  kExitInternalError = 70, ///< a fault of ontogen itself (an exception nothing else caught; sysexits' EX_SOFTWARE)
   kExitInterrupted = 130, ///< stopped by Ctrl-C (SIGINT) during live playback, notes stopped
 };
 
@@ -24,11 +28,22 @@ struct LoadedProgram {
   std::shared_ptr<const Program> program;  ///< null when the program could not be loaded
   std::string stem;  ///< file name without directory and extension: names outputs
   /// Why loading failed: kExitProgramError for errors in the text, kExitUsage for a
-  /// --system or --define the program does not have or a malformed --define.
+  /// --system or --define the program does not have, a malformed --define, or a FILE
+  /// that is no regular file or passes the source size limit.
   int exitCode = kExitOk;
 };
 
 struct CommonOptions;
+
+/// A program's text: a cell-language file as it is, a cpfg (.l) or L-Py (.lpy) file
+/// converted (lang/convert/convert.h). On failure prints why to stderr and gives no text.
+struct ProgramText {
+  std::optional<std::string> text;
+  std::string name;  ///< for diagnostics: the path, "PATH (converted)" for another tool's file
+  bool converted = false;
+  int exitCode = kExitOk;  ///< kExitProgramError or kExitUntranslatable when there is no text
+};
+ProgramText readProgramText(const std::string& path, uint64_t maxBytes = kDefaultMaxSourceBytes);
 
 /// Reads and compiles the program file of `options` with its --system and --define. On
 /// failure prints the diagnostics (or the I/O error) to stderr and returns no program.

@@ -15,6 +15,12 @@ std::unique_ptr<Development> makeDevelopment(const Program& program, const Syste
   return std::make_unique<LinearDevelopment>(program, system);
 }
 
+void checkGrowth(const StepContext& context, uint64_t cells, uint64_t bytes) {
+  checkCellLimit(cells, context.limits);
+  if (context.elsewhere.cells > 0) checkTotalCellLimit(cells + context.elsewhere.cells, context.limits);
+  checkMemoryLimit(bytes + context.elsewhere.bytes, context.limits);
+}
+
 void seedFromAxiom(Pool& pool, StepContext& context) {
   uint64_t index = 0;
   for (const AxiomCell& axiom : context.system.axiom) {

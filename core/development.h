@@ -37,6 +37,13 @@ struct WorldStats {
   uint64_t rateEquations = 0;  ///< rate equations integrated in the last step
 };
 
+/// Cells and bytes held: by a pool, by a world and its nested systems, or by everything
+/// of a world but one pool.
+struct WorldHeld {
+  uint64_t cells = 0;
+  uint64_t bytes = 0;
+};
+
 /// What a step (or the seeding of a pool) may read and write of its world.
 struct StepContext {
   const Program& program;
@@ -50,7 +57,26 @@ struct StepContext {
   std::vector<LineageRecord>* lineage = nullptr;  ///< births are logged here when not null
   uint64_t idSalt = 0;                  ///< ids of the axiom's cells derive from it
   double systemCellId = -1;             ///< idValue of this pool's system cell, -1 for the root pool
+  /// What the rest of the world holds while this pool develops: the other pools of the
+  /// world and its systems, and what the world's owner holds outside them (a run's
+  /// frames). checkGrowth counts it with the pool's own.
+  WorldHeld elsewhere{};
 };
+
+/// Throws LimitError when a pool that holds `cells` cells and `bytes` bytes (its pool and
+/// the buffers of the step in progress), with what the rest of the world holds, passes
+/// the cell or memory limit. Pools call it as they make cells, not only between steps.
+void checkGrowth(const StepContext& context, uint64_t cells, uint64_t bytes);
+
+/// Cells made between two growth checks of a pool: often enough that a step stops near
+/// the limit it passes (within an eighth of the cell limit, an eighth of the memory limit
+/// in bare cells, and 64 Ki cells), rarely enough to cost nothing.
+inline uint64_t growthCheckInterval(const WorldLimits& limits) {
+  const uint64_t cells = limits.maxCells / 8;
+  const uint64_t bytes = limits.maxMemoryBytes / 8 / sizeof(CellRecord);
+  const uint64_t interval = cells < bytes ? cells : bytes;
+  return interval < 1 ? 1 : interval > (1u << 16) ? (1u << 16) : interval;
+}
 
 class Development {
  public:
@@ -58,6 +84,8 @@ class Development {
   /// A deep copy: the pool and its state (a copied world develops on its own).
   virtual std::unique_ptr<Development> clone() const = 0;
   virtual const Pool& pool() const = 0;
+  /// The pool, for the world to write its environment's answers into (query modules).
+  virtual Pool& pool() = 0;
 
   /// Fills the empty pool from its system's axiom (and placements) at context.time.
   virtual void seed(StepContext& context) = 0;

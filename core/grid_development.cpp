@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/cell_frame.h"
+#include "core/growth_meter.h"
 #include "core/pool_view.h"
 #include "core/rate_integrator.h"
 #include "core/rule_evaluator.h"
@@ -29,6 +30,7 @@ struct ChunkResult {
   std::vector<LineageRecord> lineage;  ///< births that took their parent's site
   uint64_t firings = 0;
   uint64_t born = 0;
+  GrowthMeter::Reported metered;
 };
 
 }  // namespace
@@ -50,7 +52,7 @@ std::array<double, 3> GridDevelopment::positionOf(size_t i) const {
 void GridDevelopment::seed(StepContext& context) {
   const SystemDefinition& system = *system_;
   const uint32_t sites = grid_.siteCount();
-  checkGridMemory(sites, sizeof(CellRecord) + 2 * sizeof(uint32_t), context.limits);
+  checkGridMemory(sites, sizeof(CellRecord) + 2 * sizeof(uint32_t), context.limits, context.elsewhere.bytes);
   // Which source decides each site: 0 .. axiom-1 are axiom cells, then placements.
   const int64_t axiomCount = static_cast<int64_t>(system.axiom.size());
   std::vector<int64_t> source(sites, -1);
@@ -111,6 +113,7 @@ void GridDevelopment::applyStepRules(StepContext& context) {
   const double t = context.time;
   const auto cells = grid_.cells();
   std::vector<ChunkResult> results;
+  GrowthMeter meter(context, WorldHeld{grid_.size(), grid_.bytes()});
   runStepRules(program, context, view_, results,
                [&](ChunkResult& out, size_t i, const CellRecord& cell, double* frame, const CompiledRule* action,
                    const EvalContext& evaluation, SuccessorWriter& successors) {
@@ -141,6 +144,11 @@ void GridDevelopment::applyStepRules(StepContext& context) {
                        }
                        first = false;
                      });
+                 // Successors waiting for a site are not cells yet (most may find none), but
+                 // their bytes are held.
+                 meter.update(out.metered, out.cells.size(),
+                              (out.cells.size() + out.extras.size()) * sizeof(CellRecord) +
+                                  (out.state.size() + out.extraState.size()) * sizeof(double));
                  // Only the first successor is sure of a site: the others are logged when they find one.
                  if (context.lineage) {
                    const uint64_t firstId = out.cells.back().id;

@@ -22,6 +22,7 @@ class GridDevelopment final : public Development {
 
   std::unique_ptr<Development> clone() const override { return std::make_unique<GridDevelopment>(*this); }
   const Pool& pool() const override { return grid_; }
+  Pool& pool() override { return grid_; }
   const GridPool& gridPool() const { return grid_; }
   void seed(StepContext& context) override;
   void step(StepContext& context, double t1, bool stepRules) override;

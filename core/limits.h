@@ -1,21 +1,36 @@
 #pragma once
 // The growth limits' checks, one message each: a model that passes a limit stops with a
-// LimitError naming the limit and the flag that raises it, never an out-of-memory kill.
+// LimitError naming the limit and the flag that raises it, never an out-of-memory kill
+// and never a run that goes on for ever. Pools check them as they make cells, within a
+// step, counting what the rest of the world holds too (StepContext::held).
 
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 
 namespace ontogen {
 
+/// The memory limit a world gets when none is given: half the memory this machine (or
+/// the control group it runs in) has, so a runaway model stops before the machine swaps,
+/// leaving the other half to the outputs, the system and other programs. 8 GiB when the
+/// machine does not say.
+uint64_t defaultMemoryLimitBytes();
+
 /// Growth limits of a world (and of all its nested systems together).
 struct WorldLimits {
-  /// Most cells in the root pool. 100 M cells take about 5 GB with double buffering.
+  /// Most cells in one pool, and in all pools together. 100 M cells take about 5 GB with
+  /// double buffering.
   uint64_t maxCells = 100'000'000;
-  /// Most bytes the pools may hold. 8 GiB leaves room on a 16 GB machine.
-  uint64_t maxMemoryBytes = 8ull << 30;
+  /// Most bytes the pools and the outputs a run holds may take (defaultMemoryLimitBytes()).
+  uint64_t maxMemoryBytes = defaultMemoryLimitBytes();
   /// Most terminal events in one step: a lifetime far shorter than the step would
   /// otherwise spin for ever renewing one cell.
   uint64_t maxEventsPerStep = 200'000'000;
+  /// Most steps of one world: a step far too small for the time to reach (#dt 1e-320,
+  /// --step 1e-12, #until 1e308) would otherwise run for ever without a word. 100 M steps
+  /// of a one-cell model take about 6 s, of a thousand-cell one hours; real runs take
+  /// thousands.
+  uint64_t maxSteps = 100'000'000;
 };
 
 /// A limit was passed; the message names the limit and how to raise it.
@@ -29,12 +44,22 @@ void checkCellLimit(uint64_t cells, const WorldLimits& limits);
 void checkTotalCellLimit(uint64_t cells, const WorldLimits& limits);
 /// Throws when a model starts (seeds a pool) with more cells than the limit allows.
 void checkSeedCellLimit(uint64_t cells, const WorldLimits& limits);
-/// Throws when the pools hold more than the memory limit.
+/// Throws when the pools (and what the run holds besides) take more than the memory limit.
 void checkMemoryLimit(uint64_t bytes, const WorldLimits& limits);
-/// Throws when a pool of `sites` grid sites could not be held within the memory limit.
-void checkGridMemory(uint64_t sites, uint64_t bytesPerSite, const WorldLimits& limits);
+/// Throws when something that is not a pool (`what`: "a 8192x8192 picture") would need
+/// `bytes` more, on top of `held` bytes already held, past the memory limit.
+void checkOutsideMemory(const std::string& what, uint64_t bytes, uint64_t held, const WorldLimits& limits);
+/// Throws when a pool of `sites` grid sites could not be held within the memory limit,
+/// with `held` bytes held elsewhere.
+void checkGridMemory(uint64_t sites, uint64_t bytesPerSite, const WorldLimits& limits, uint64_t held = 0);
 /// Throws when a step has had more than the allowed terminal events; `when` is the time
 /// of the last one (seconds).
 void checkEventLimit(uint64_t events, double when, const WorldLimits& limits);
+/// Throws when `steps` steps would pass the step limit: `steps` already taken, `more` to
+/// come (seconds `dt` each, to reach `target`).
+void checkStepLimit(uint64_t steps, double more, double dt, double target, const WorldLimits& limits);
+/// Throws when a step of `dt` from `time` no longer moves the time on (`next` ≤ `time`):
+/// the step is below the precision of the time.
+void checkTimeAdvances(double time, double next, double dt);
 
 }  // namespace ontogen

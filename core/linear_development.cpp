@@ -3,15 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/branch_cut.h"
 #include "core/cell_frame.h"
 #include "core/parents.h"
 #include "core/rate_integrator.h"
+#include "core/rule_choice.h"
 
 namespace ontogen {
-
-namespace {
-constexpr size_t kLimitCheckInterval = 1 << 16;  // cells between memory checks
-}  // namespace
 
 LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinition& system)
     : program_(program),
@@ -19,6 +17,7 @@ LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinit
       functions_(program.functionTable()),
       successors_(program),
       frame_(ruleFrameSize(program)),
+      decompositionFrames_(static_cast<size_t>(system.decompositionDepth) + 1),
       view_(pool_, system.symbolClass),
       evaluator_(program, view_) {
   for (const MasterCell& master : program.masters) readsParents_ = readsParents_ || master.readsParent;
@@ -33,6 +32,7 @@ LinearDevelopment::LinearDevelopment(const LinearDevelopment& other)
       functions_(other.functions_),
       successors_(other.program_),
       frame_(other.frame_.size()),
+      decompositionFrames_(other.decompositionFrames_.size()),
       lastGrowth_(other.lastGrowth_),
       readsParents_(other.readsParents_),
       view_(pool_, other.system_.symbolClass),
@@ -55,17 +55,19 @@ void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
   successors_.recordLineage(context.lineage);
   double t = context.time;
   eventsThisStep_ = 0;
+  activeGroup_ = activeGroup(program_, system_, t, context.seed);
   if (system_.sampledRules && stepRules) applyStepRules(t);
   if (system_.rates)
     integrateAndExpire(t, t1);
   else
-    expireUntil(t1);
+    expireUntil(t, t1);
   context_ = nullptr;
 }
 
-void LinearDevelopment::expireUntil(double t1) {
-  if (system_.terminalContext)
-    expireInTimeOrder(t1);
+void LinearDevelopment::expireUntil(double t, double t1) {
+  // Decomposition follows each production step: events go instant by instant.
+  if (system_.terminalContext || system_.decomposes)
+    expireInTimeOrder(t, t1);
   else
     expireContextFree(t1);
 }
@@ -82,7 +84,7 @@ void LinearDevelopment::integrateAndExpire(double t, double t1) {
     const double until = next < t1 ? std::max(next, now) : t1;
     pool_.indexBranches(system_.symbolClass);
     integrateRates(rates_, program_, *context_, pool_, view_, now, until);
-    expireUntil(until);
+    expireUntil(now, until);
     now = until;
   }
 }
@@ -103,12 +105,16 @@ void LinearDevelopment::beginWord() {
   nextState_.reserve(static_cast<size_t>(values));
   outCells_ = &nextCells_;
   outState_ = &nextState_;
+  checkInterval_ = growthCheckInterval(context_->limits);
+  sinceCheck_ = 0;
 }
 
 void LinearDevelopment::finishWord() {
   if (pool_.size() > 0) lastGrowth_ = static_cast<double>(nextCells_.size()) / pool_.size();
   pool_.swapContents(nextCells_, nextState_);
-  checkLimits(pool_.size());
+  // The old word is still held beside the new one until the next step reuses it.
+  checkGrowth(*context_, pool_.size(),
+              pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double));
 }
 
 void LinearDevelopment::emit(const CellRecord& cell, const double* values, uint32_t count) {
@@ -116,14 +122,17 @@ void LinearDevelopment::emit(const CellRecord& cell, const double* values, uint3
   copy.state = static_cast<uint32_t>(outState_->size());
   if (count > 0) outState_->insert(outState_->end(), values, values + count);
   outCells_->push_back(copy);
-  if (outCells_->size() % kLimitCheckInterval == 0) [[unlikely]]
-    checkLimits(outCells_->size());
+  if (++sinceCheck_ >= checkInterval_) [[unlikely]]
+    checkLimits();
 }
 
-void LinearDevelopment::checkLimits(size_t cells) {
-  checkCellLimit(cells, context_->limits);
-  checkMemoryLimit(pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double),
-                   context_->limits);
+// Within a step the new word is being written beside the old one, and cells that expire
+// within the step wait on the work list: all of it counts, as it is made.
+void LinearDevelopment::checkLimits() {
+  sinceCheck_ = 0;
+  const uint64_t cells = nextCells_.size() + work_.size() + expandedCells_.size();
+  const uint64_t values = nextState_.size() + workState_.size() + expandedState_.size();
+  checkGrowth(*context_, cells, pool_.bytes() + cells * sizeof(CellRecord) + values * sizeof(double));
 }
 
 // The rule frame of lang/program.h: [state...] [internal state] [context...]. The
@@ -173,13 +182,23 @@ void LinearDevelopment::fireStepRules(const CellRecord& cell, double t, size_t i
 // ---- context ----
 
 bool LinearDevelopment::matchContext(const CompiledRule& rule, size_t index, double* frame) {
-  const auto& classOf = system_.symbolClass;
+  // An L-system rule sees the classes of the ignore:/consider: line above it.
+  const auto& classOf = rule.symbolClasses < 0 ? system_.symbolClass : system_.ruleClasses[rule.symbolClasses];
   if (!rule.leftItems.empty()) {
     if (!pool_.matchLeft(index, rule.leftItems, classOf, matched_)) return false;
     for (size_t k = 0; k < rule.left.size(); ++k) {
       const ContextBinding& binding = rule.left[k];
       if (binding.count == 0) continue;
       const double* values = pool_.stateOf(pool_.cells()[matched_[k]]);
+      std::copy(values, values + binding.count, frame + binding.firstSlot);
+    }
+  }
+  if (!rule.newLeftItems.empty()) {
+    if (!matchNewLeft(rule.newLeftItems, classOf)) return false;
+    for (size_t k = 0; k < rule.newLeft.size(); ++k) {
+      const ContextBinding& binding = rule.newLeft[k];
+      if (binding.count == 0) continue;
+      const double* values = outState_->data() + (*outCells_)[matched_[k]].state;
       std::copy(values, values + binding.count, frame + binding.firstSlot);
     }
   }
@@ -195,6 +214,34 @@ bool LinearDevelopment::matchContext(const CompiledRule& rule, size_t index, dou
   return true;
 }
 
+// L-Py's new left context (`<<`) in forward derivation: the word this step has produced
+// so far, left of the module being rewritten, read towards the root as the left context
+// reads the word (complete branches skipped, the branch's `[` left behind, ignored
+// symbols passed over). The prefix has no bracket index: branches are skipped by depth.
+bool LinearDevelopment::matchNewLeft(std::span<const ContextItem> items, std::span<const uint8_t> classOf) {
+  const CellArray& made = *outCells_;
+  int64_t pos = static_cast<int64_t>(made.size());
+  for (size_t k = 0; k < items.size(); ++k) {
+    for (;;) {
+      if (--pos < 0) return false;
+      const uint8_t symbol = classOf[made[pos].master];
+      if (symbol & kSymbolBranchClose) {
+        for (int depth = 1; depth > 0;) {
+          if (--pos < 0) return false;
+          const uint8_t inner = classOf[made[pos].master];
+          depth += (inner & kSymbolBranchClose) ? 1 : (inner & kSymbolBranchOpen) ? -1 : 0;
+        }
+        continue;
+      }
+      if (symbol & (kSymbolBranchOpen | kSymbolIgnored)) continue;
+      break;
+    }
+    if (items[k].kind != ContextItem::Kind::Any && made[pos].master != items[k].master) return false;
+    matched_[k] = static_cast<uint32_t>(pos);
+  }
+  return true;
+}
+
 // ---- terminal ages ----
 
 const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
@@ -204,35 +251,12 @@ const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule
     if (rule.hasContext() && (index < 0 || !matchContext(rule, static_cast<size_t>(index), frame))) return false;
     return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0;
   };
-  for (size_t r = 0; r < rules.size(); ++r) {
-    const CompiledRule& rule = rules[r];
-    if (!matches(rule)) continue;
-    if (rule.probability.empty()) return &rule;
-    // A stochastic production: choose among it and the later matching stochastic
-    // alternatives, weighted by their probabilities.
-    candidates_.clear();
-    double total = 0;
-    for (size_t s = r; s < rules.size(); ++s) {
-      if (rules[s].probability.empty() || (s != r && !matches(rules[s]))) continue;
-      double weight = std::max(0.0, rules[s].probability.evaluate(context));
-      candidates_.push_back({&rules[s], weight});
-      total += weight;
-    }
-    if (!(total > 0)) return nullptr;
-    double x = random.uniform() * total;
-    const CompiledRule* chosen = candidates_.back().first;
-    for (const auto& [candidate, weight] : candidates_) {
-      if (x < weight) {
-        chosen = candidate;
-        break;
-      }
-      x -= weight;
-    }
+  const CompiledRule* chosen = ontogen::chooseRule(rules, activeGroup_, matches, context, random, candidates_);
+  if (chosen && !chosen->probability.empty()) {
     evaluator_.useRule(*chosen);
     if (chosen->hasContext()) matchContext(*chosen, static_cast<size_t>(index), frame);  // rebind its values
-    return chosen;
   }
-  return nullptr;
+  return chosen;
 }
 
 void LinearDevelopment::expire(const CellRecord& cell, const double* state, double when, int64_t index,
@@ -284,11 +308,18 @@ void LinearDevelopment::expireContextFree(double t1) {
   if (!any) return;
   findParents();
   beginWord();
+  const auto& classOf = system_.symbolClass;
+  BranchCut cut;
   for (size_t position = 0; position < cells.size(); ++position) {
     const CellRecord& cell = cells[position];
     const MasterCell& master = masters[cell.master];
+    if (cut.drops(classOf[cell.master])) continue;
     if (cell.birth + master.lifetime > horizon) {
       emit(cell, pool_.stateOf(cell), master.stateCount());
+      continue;
+    }
+    if (classOf[cell.master] & kSymbolCut) {
+      cut.start();
       continue;
     }
     // Expire straight into the word: in most steps the successors live past the horizon
@@ -315,9 +346,14 @@ void LinearDevelopment::expireContextFree(double t1) {
       CellRecord item = work_.back();
       work_.pop_back();
       const MasterCell& itemMaster = masters[item.master];
+      if (cut.drops(classOf[item.master])) continue;
       double death = item.birth + itemMaster.lifetime;
       if (death > horizon) {
         emit(item, workState_.data() + item.state, itemMaster.stateCount());
+        continue;
+      }
+      if (classOf[item.master] & kSymbolCut) {
+        cut.start();
         continue;
       }
       // Expire into a side list, then push its results so the leftmost comes out first.
@@ -344,31 +380,93 @@ void LinearDevelopment::expireContextFree(double t1) {
 
 // With context, events are processed instant by instant: all cells that reach their
 // terminal age at the earliest instant of the step rewrite together, reading the word
-// as it was just before; then the next instant, until the end of the step.
-void LinearDevelopment::expireInTimeOrder(double t1) {
+// as it was just before; then the next instant, until the end of the step. With
+// decomposition rules, every such instant and every whole time unit (L-Py's derivation
+// step, even when no production fires) ends with the decomposition pass.
+void LinearDevelopment::expireInTimeOrder(double t, double t1) {
   const double horizon = t1 + timeTolerance(t1);
   const auto& masters = program_.masters;
+  double last = t;  // the instant processed last
   for (;;) {
     double earliest = kForever;
     for (const CellRecord& cell : pool_.cells())
       earliest = std::min(earliest, cell.birth + masters[cell.master].lifetime);
+    if (system_.decomposes) earliest = std::min(earliest, std::floor(last + timeTolerance(last)) + 1);
     if (earliest > horizon) return;
+    last = earliest;
     const double instant = earliest + timeTolerance(earliest);
     pool_.indexBranches(system_.symbolClass);
     findParents();
     beginWord();
     auto cells = pool_.cells();
+    const auto& classOf = system_.symbolClass;
+    BranchCut cut;
     for (size_t i = 0; i < cells.size(); ++i) {
       const CellRecord& cell = cells[i];
       const MasterCell& master = masters[cell.master];
+      if (cut.drops(classOf[cell.master])) continue;
       double death = cell.birth + master.lifetime;
-      if (death <= instant)
-        expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
-      else
+      if (death > instant)
         emit(cell, pool_.stateOf(cell), master.stateCount());
+      else if (classOf[cell.master] & kSymbolCut)
+        cut.start();
+      else
+        expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
     }
     finishWord();
+    if (system_.decomposes) decomposeWord(earliest);
   }
+}
+
+// ---- decomposition ----
+
+// L-Py's decomposition pass after a production step: every module of the word, in
+// order, is rewritten by its first matching decomposition rule, and what that makes is
+// decomposed in turn, at most decompositionDepth rewrites deep. Like L-Py's pass, it
+// applies the cuts it meets at once.
+void LinearDevelopment::decomposeWord(double when) {
+  beginWord();
+  const auto cells = pool_.cells();
+  const auto& classOf = system_.symbolClass;
+  BranchCut cut;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const CellRecord& cell = cells[i];
+    if (cut.drops(classOf[cell.master])) continue;
+    if (classOf[cell.master] & kSymbolCut) {
+      cut.start();
+      continue;
+    }
+    decompose(cell, pool_.stateOf(cell), when, static_cast<int64_t>(i), 1);
+  }
+  finishWord();
+}
+
+void LinearDevelopment::decompose(const CellRecord& cell, const double* state, double when, int64_t position,
+                                  int depth) {
+  const MasterCell& master = program_.masters[cell.master];
+  if (master.decompositionRules.empty() || depth > system_.decompositionDepth) {
+    emit(cell, state, master.stateCount());
+    return;
+  }
+  // One frame per level: a successor's arguments are evaluated after deeper levels ran.
+  std::vector<double>& frameAtDepth = decompositionFrames_[static_cast<size_t>(depth)];
+  frameAtDepth.resize(frame_.size());
+  double* frame = frameAtDepth.data();
+  loadCellFrame(frame, master, cell, state, when, {static_cast<double>(position), 0, 0}, -1);
+  RandomStream random(mixKey(mixKey(context_->seed ^ kDecompositionSalt, cell.id), keyOf(when)));
+  EvalContext context{frame, EvalEnvironment{&random, context_->seed}, &functions_};
+  context.ancestors = context_->ancestors;
+  auto matches = [&](const CompiledRule& rule) { return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0; };
+  const CompiledRule* rule =
+      ontogen::chooseRule(master.decompositionRules, activeGroup_, matches, context, random, candidates_);
+  if (!rule) {
+    emit(cell, state, master.stateCount());
+    return;
+  }
+  checkEventLimit(++eventsThisStep_, when, context_->limits);
+  context_->stats.cellsBorn += successors_.write(
+      *rule, cell, frame, when, BirthCause::Terminal, context,
+      [&](const CellRecord& born, const double* values, uint32_t) { decompose(born, values, when, position, depth + 1); });
 }
 
 }  // namespace ontogen

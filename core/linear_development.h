@@ -23,6 +23,7 @@ class LinearDevelopment final : public Development {
 
   std::unique_ptr<Development> clone() const override { return std::make_unique<LinearDevelopment>(*this); }
   const Pool& pool() const override { return pool_; }
+  Pool& pool() override { return pool_; }
   const LinearPool& linearPool() const { return pool_; }
   void seed(StepContext& context) override;
   void step(StepContext& context, double t1, bool stepRules) override;
@@ -31,9 +32,9 @@ class LinearDevelopment final : public Development {
  private:
   void applyStepRules(double t);
   void integrateAndExpire(double t, double t1);
-  void expireUntil(double t1);
+  void expireUntil(double t, double t1);
   void expireContextFree(double t1);
-  void expireInTimeOrder(double t1);
+  void expireInTimeOrder(double t, double t1);
 
   /// Fires the terminal rules of a cell that reached its terminal age at `when`.
   /// `index` is its position in the current word (for context), or -1 for a newborn.
@@ -43,14 +44,21 @@ class LinearDevelopment final : public Development {
 
   double* loadFrame(const CellRecord& cell, const double* state, double when, int64_t position);
   bool matchContext(const CompiledRule& rule, size_t index, double* frame);
+  /// L-Py's new left context: items (nearest first) against the word produced so far.
+  bool matchNewLeft(std::span<const ContextItem> items, std::span<const uint8_t> classOf);
   const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
                                  RandomStream& random, const EvalContext& context);
+  /// The decomposition pass over the word just produced at `when` (docs/LANGUAGE.md 4.8a).
+  void decomposeWord(double when);
+  /// Emits `cell` decomposed: rewritten by its first matching decomposition rule, its
+  /// successors decomposed in turn while `depth` ≤ the system's maximum depth.
+  void decompose(const CellRecord& cell, const double* state, double when, int64_t position, int depth);
   void emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
                       BirthCause cause, const EvalContext& context);
   void emit(const CellRecord& cell, const double* values, uint32_t count);
   void beginWord();
   void finishWord();
-  void checkLimits(size_t cells);
+  void checkLimits();
 
   const Program& program_;
   const SystemDefinition& system_;
@@ -59,6 +67,7 @@ class LinearDevelopment final : public Development {
   FunctionTable functions_;
   SuccessorWriter successors_;
   std::vector<double> frame_;
+  std::vector<std::vector<double>> decompositionFrames_;  // one per level of the decomposition
   // The next word is built here and swapped with the pool's (kept to reuse the memory).
   CellArray nextCells_;
   StateArray nextState_;
@@ -72,6 +81,9 @@ class LinearDevelopment final : public Development {
   CellArray work_;                                                  // cells still to expire, last = next
   StateArray workState_;
   uint64_t eventsThisStep_ = 0;
+  uint64_t checkInterval_ = 1;  // cells made between growth checks (growthCheckInterval)
+  uint64_t sinceCheck_ = 0;     // cells made since the last check
+  int activeGroup_ = 0;  // the rule group of the step under way (`use group:`)
   void findParents();
   bool readsParents_ = false;          // some rule reads me.parent
   std::vector<int64_t> parentIndex_;   // of the word at the start of the pass

@@ -19,6 +19,10 @@ inline constexpr uint64_t kPlacementSalt = 0x504c414345ull;  // "PLACE"
 inline constexpr uint64_t kRateSalt = 0x52415445ull;  // "RATE"
 /// Draws of interpretation blocks (interpreters/interpret.cpp).
 inline constexpr uint64_t kInterpretSalt = 0x494e54455250ull;  // "INTERP"
+/// Draws of decomposition rules (a module decomposes at the instant it was produced).
+inline constexpr uint64_t kDecompositionSalt = 0x4445434f4d50ull;  // "DECOMP"
+/// Draws of homomorphism rules and the ids of the image's modules (core/homomorphism.h).
+inline constexpr uint64_t kHomomorphismSalt = 0x484f4d4f4dull;  // "HOMOM"
 /// Ids of a world's axiom cells start from this, mixed with the system's index.
 inline constexpr uint64_t kWorldIdSalt = 0x6f6e746f67656eull;  // "ontogen"
 

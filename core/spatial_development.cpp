@@ -1,5 +1,6 @@
 #include "core/spatial_development.h"
 
+#include "core/growth_meter.h"
 #include "core/pool_view.h"
 #include "core/rate_integrator.h"
 #include "core/rule_evaluator.h"
@@ -14,6 +15,7 @@ struct ChunkResult {
   std::vector<LineageRecord> lineage;
   uint64_t firings = 0;
   uint64_t born = 0;
+  GrowthMeter::Reported metered;
 };
 
 // For each master, the state indices of x, y and z (-1 where it has none).
@@ -58,6 +60,7 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
   const double t = context.time;
   pool_.index();
   std::vector<ChunkResult> results;
+  GrowthMeter meter(context, WorldHeld{pool_.size(), pool_.bytes()});
   runStepRules(program, context, view_, results,
                [&](ChunkResult& out, size_t, const CellRecord& cell, double* frame, const CompiledRule* action,
                    const EvalContext& evaluation, SuccessorWriter& successors) {
@@ -71,6 +74,8 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
                    emit(cell, frame, program.masters[cell.master].stateCount());
                  else
                    out.born += successors.write(*action, cell, frame, t, BirthCause::StepRule, evaluation, emit);
+                 meter.update(out.metered, out.cells.size(),
+                              out.cells.size() * sizeof(CellRecord) + out.state.size() * sizeof(double));
                });
 
   CellArray next;

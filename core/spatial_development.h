@@ -20,6 +20,7 @@ class SpatialDevelopment final : public Development {
 
   std::unique_ptr<Development> clone() const override { return std::make_unique<SpatialDevelopment>(*this); }
   const Pool& pool() const override { return pool_; }
+  Pool& pool() override { return pool_; }
   const SpatialPool& spatialPool() const { return pool_; }
   void seed(StepContext& context) override;
   void step(StepContext& context, double t1, bool stepRules) override;

@@ -32,4 +32,8 @@ struct WordAtTime {
 /// The world's cells in pool order; a system cell carries its own pool's cells.
 std::vector<WordCell> captureWord(const World& world);
 
+/// The word as the interpretation sets read it: the image of the world's word under its
+/// L-system's homomorphism (core/homomorphism.h); the word itself without one.
+std::vector<WordCell> captureInterpretedWord(const World& world);
+
 }  // namespace ontogen

@@ -16,10 +16,11 @@ World::World(std::shared_ptr<const Program> program, WorldDef def)
     : program_(std::move(program)), def_(def), system_(program_->root) {
   def_.threads = resolveThreadCount(def_.threads);
   if (const int master = rootSystem().master; master >= 0) cellState_ = program_->masters[master].defaults;
-  seedPool();
+  WorldHeld tree;
+  seedPool(tree);
 }
 
-World::World(const World& parent, const CellRecord& cell, const double* cellState)
+World::World(const World& parent, const CellRecord& cell, const double* cellState, WorldHeld* tree)
     : program_(parent.program_),
       def_(parent.def_),
       system_(program_->masters[cell.master].system),
@@ -28,24 +29,30 @@ World::World(const World& parent, const CellRecord& cell, const double* cellStat
       cellBirth_(cell.birth),
       cellState_(cellState, cellState + program_->masters[cell.master].stateCount()),
       time_(parent.time_) {
-  seedPool();
+  WorldHeld alone;
+  seedPool(tree ? *tree : alone);
 }
 
 // The pool from its system's axiom (and placements), then the pools of its system cells.
-void World::seedPool() {
+void World::seedPool(WorldHeld& tree) {
   development_ = makeDevelopment(*program_, rootSystem());
   pool_ = &development_->pool();
   updateAncestorValues();
-  StepContext context = stepContext();
+  StepContext context = stepContext(tree);
   development_->seed(context);
+  const WorldHeld own = heldHere();
+  tree.cells += own.cells;
+  tree.bytes += own.bytes;
+  answerQueries();
   if (def_.recordLineage && parent_)
     for (const CellRecord& cell : development_->pool().cells()) lineage_.push_back({cell.id, cellId_, time_});
-  developChildren(time_, false, /*step=*/false);
+  developChildren(time_, false, /*step=*/false, tree);
 }
 
-StepContext World::stepContext() {
+StepContext World::stepContext(const WorldHeld& elsewhere) {
   StepContext context{*program_, rootSystem(), def_.seed, def_.threads, def_.limits, time_, ancestorValues_.data(),
                       stats_};
+  context.elsewhere = elsewhere;
   context.lineage = def_.recordLineage ? &lineage_ : nullptr;
   context.idSalt = idSalt();
   context.systemCellId = parent_ ? idValue(cellId_) : -1;
@@ -64,6 +71,7 @@ World::World(const World& other)
       development_(other.development_->clone()),
       pool_(&development_->pool()),
       time_(other.time_),
+      heldOutside_(other.heldOutside_),
       stats_(other.stats_),
       lineage_(other.lineage_) {
   for (const auto& [id, child] : other.children_) {
@@ -87,6 +95,7 @@ World::World(World&& other) noexcept
       development_(std::move(other.development_)),
       pool_(other.pool_),
       time_(other.time_),
+      heldOutside_(other.heldOutside_),
       stats_(other.stats_),
       lineage_(std::move(other.lineage_)),
       onGrid_(std::move(other.onGrid_)) {
@@ -108,6 +117,7 @@ World& World::operator=(World&& other) noexcept {
   development_ = std::move(other.development_);
   pool_ = other.pool_;
   time_ = other.time_;
+  heldOutside_ = other.heldOutside_;
   stats_ = other.stats_;
   lineage_ = std::move(other.lineage_);
   onGrid_ = std::move(other.onGrid_);
@@ -151,6 +161,16 @@ uint64_t World::totalCells() const {
   return total;
 }
 
+WorldHeld World::held() const {
+  WorldHeld total = heldHere();
+  for (const auto& [id, child] : children_) {
+    const WorldHeld nested = child->held();
+    total.cells += nested.cells;
+    total.bytes += nested.bytes;
+  }
+  return total;
+}
+
 uint64_t World::idSalt() const {
   const uint64_t base = mixKey(kWorldIdSalt, static_cast<uint64_t>(system_));
   return parent_ ? mixKey(base, cellId_) : base;
@@ -190,10 +210,15 @@ void World::advanceTo(double target, double dt) {
   // times the caller stops at (frames, --at); a stop between grid points develops the
   // terminal events up to it and fires no per-step rule there.
   const bool keepGrid = integratesRates();
+  // Before the first step, so that a step far too small stops at once, not after the
+  // limit's worth of steps.
+  checkStepLimit(stats_.steps, std::ceil((target - time_) / dt), dt, target, def_.limits);
   while (time_ < target - timeTolerance(target)) {
     double k = std::floor(time_ / dt + 1e-9);
     bool onGrid = std::abs(time_ - k * dt) <= timeTolerance(time_);
     double next = (k + 1) * dt;
+    checkTimeAdvances(time_, next, dt);
+    checkStepLimit(stats_.steps, 1, dt, target, def_.limits);
     if (next > target - timeTolerance(target)) {
       if (keepGrid && next > target + timeTolerance(target)) {
         // Integrating only up to the stop would split this step: keep the world as it is
@@ -203,7 +228,7 @@ void World::advanceTo(double target, double dt) {
       }
       next = target;
     }
-    developStep(next, onGrid);
+    developRootStep(next, onGrid);
   }
 }
 
@@ -215,25 +240,54 @@ void World::returnToGrid() {
 }
 
 void World::step(double dt) {
+  if (!(dt > 0)) throw std::invalid_argument("the step must be greater than 0");
   returnToGrid();
-  developStep(time_ + dt, true);
+  checkTimeAdvances(time_, time_ + dt, dt);
+  checkStepLimit(stats_.steps, 1, dt, time_ + dt, def_.limits);
+  developRootStep(time_ + dt, true);
+}
+
+void World::developRootStep(double t1, bool stepRules) {
+  WorldHeld tree = held();
+  tree.bytes += heldOutside_;
+  developStep(t1, stepRules, tree);
 }
 
 // The ancestor values are those of the current time: made when the world is seeded and
 // after every step.
-void World::developStep(double t1, bool stepRules) {
-  StepContext context = stepContext();
+void World::developStep(double t1, bool stepRules, WorldHeld& tree) {
+  const WorldHeld before = heldHere();
+  StepContext context = stepContext({tree.cells - before.cells, tree.bytes - before.bytes});
   development_->step(context, t1, stepRules);
+  const WorldHeld after = heldHere();
+  tree = {tree.cells - before.cells + after.cells, tree.bytes - before.bytes + after.bytes};
   time_ = t1;
   ++stats_.steps;
   updateAncestorValues();  // as of t1, for interpretation and the next step
-  developChildren(t1, stepRules, /*step=*/true);
+  answerQueries();
+  developChildren(t1, stepRules, /*step=*/true, tree);
+}
+
+// The environment reads the word as it is now and answers its query modules; rules read
+// the answers in the next step (ABOP 1.10: interpretation follows each derivation step).
+void World::answerQueries() {
+  if (!def_.environment || !program_->hasQueries) return;
+  std::vector<QueryAnswer> answers;
+  def_.environment->respond(*this, answers);
+  Pool& pool = development_->pool();
+  const auto cells = pool.cells();
+  for (const QueryAnswer& answer : answers) {
+    if (answer.cell >= cells.size()) continue;
+    const CellRecord& cell = cells[answer.cell];
+    const uint32_t n = std::min<uint32_t>(program_->masters[cell.master].stateCount(), 3);
+    std::copy(answer.values.begin(), answer.values.begin() + n, pool.stateOf(cell));
+  }
 }
 
 // Existing children step over the same interval as this pool (when `step`); a system
 // cell that appeared in this step, or is in the axiom, gets a new child, seeded at t1;
 // a child whose cell is gone goes.
-void World::developChildren(double t1, bool stepRules, bool step) {
+void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tree) {
   if (!program_->hasSystemCells) return;
   const Pool& pool = rootPool();
   const auto cells = pool.cells();
@@ -245,25 +299,35 @@ void World::developChildren(double t1, bool stepRules, bool step) {
       child = std::move(it->second);
       if (step) {
         const WorldStats before = child->stats_;
-        child->developStep(t1, stepRules);
+        child->developStep(t1, stepRules, tree);
         stats_.events += child->stats_.events - before.events;
         stats_.ruleFirings += child->stats_.ruleFirings - before.ruleFirings;
         stats_.cellsBorn += child->stats_.cellsBorn - before.cellsBorn;
         stats_.crowded += child->stats_.crowded - before.crowded;
       }
     } else {
-      child = std::make_unique<World>(*this, cell, pool.stateOf(cell));
+      child = std::make_unique<World>(*this, cell, pool.stateOf(cell), &tree);
       stats_.cellsBorn += child->stats_.cellsBorn;
     }
     next.emplace(cell.id, std::move(child));
+  }
+  // The children whose cells are gone go, and what they held with them.
+  for (const auto& [id, child] : children_) {
+    if (!child) continue;
+    const WorldHeld gone = child->held();
+    tree.cells -= gone.cells;
+    tree.bytes -= gone.bytes;
   }
   children_ = std::move(next);
   if (!parent_) checkTotalCellLimit(totalCells(), def_.limits);
 }
 
 void World::developedValues(const CellRecord& cell, std::vector<double>& out) const {
+  developedValues(cell, rootPool().stateOf(cell), out);
+}
+
+void World::developedValues(const CellRecord& cell, const double* state, std::vector<double>& out) const {
   const MasterCell& master = program_->masters[cell.master];
-  const double* state = rootPool().stateOf(cell);
   out.assign(state, state + master.stateCount());
   if (master.developmentFunction < 0) return;
   const DevelopmentFunction& function = program_->functions[master.developmentFunction];

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "core/development.h"
+#include "core/environment_process.h"
 #include "core/limits.h"
 #include "core/successors.h"
 #include "lang/program.h"
@@ -46,14 +47,19 @@ struct WorldDef {
   unsigned threads = 1;
   /// Keep a log of every birth (child, parent, time) for lineage(); off, it costs nothing.
   bool recordLineage = false;
+  /// Answers the query modules (`?P(x, y, z)` ...) after seeding and after every step
+  /// (core/environment_process.h); null: they keep their values. Shared by copies.
+  std::shared_ptr<const EnvironmentProcess> environment = nullptr;
 };
 
 class World {
  public:
   World(std::shared_ptr<const Program> program, WorldDef def = {});
   /// The world of a system cell `cell` (whose state is `cellState`) in `parent`'s pool,
-  /// seeded from its system's axiom at the parent's current time.
-  World(const World& parent, const CellRecord& cell, const double* cellState);
+  /// seeded from its system's axiom at the parent's current time. `tree`, when given, is
+  /// what the whole world holds so far; the new world's pools are checked with it and
+  /// added to it.
+  World(const World& parent, const CellRecord& cell, const double* cellState, WorldHeld* tree = nullptr);
   /// A deep copy that develops on its own.
   World(const World& other);
   World& operator=(const World&) = delete;
@@ -74,6 +80,12 @@ class World {
   const World* parent() const { return parent_; }
   /// Cells in this world's pool and in all nested pools.
   uint64_t totalCells() const;
+  /// Cells and bytes of this world's pool and of all nested pools.
+  WorldHeld held() const;
+  /// Bytes the world's owner holds for it outside the pools (a run's frames, a picture),
+  /// counted against the memory limit as the pools grow.
+  void holdOutside(uint64_t bytes) { heldOutside_ = bytes; }
+  uint64_t heldOutside() const { return heldOutside_; }
   /// Values of Program::ancestorRefs as cells of this pool read them (`parent.x` is this
   /// system's own state), at the current time.
   const double* ancestorValues() const { return ancestorValues_.data(); }
@@ -108,13 +120,21 @@ class World {
   /// The parameters of a cell after its development function: λ' = g(λ, τ, β) · λ
   /// (paper 000, eq. 3). Equal to the state when the master has no function.
   void developedValues(const CellRecord& cell, std::vector<double>& out) const;
+  /// The same for a cell whose state is not in the pool (a homomorphism's image).
+  void developedValues(const CellRecord& cell, const double* state, std::vector<double>& out) const;
 
  private:
-  void seedPool();
-  void developStep(double t1, bool stepRules);
-  void developChildren(double t1, bool stepRules, bool step);
+  void seedPool(WorldHeld& tree);
+  /// `tree`: what the whole world holds, this world's pools as they are now; updated.
+  void developStep(double t1, bool stepRules, WorldHeld& tree);
+  void developChildren(double t1, bool stepRules, bool step, WorldHeld& tree);
+  /// A step of the root world: what the world holds is counted once, then kept up to date.
+  void developRootStep(double t1, bool stepRules);
+  WorldHeld heldHere() const { return {pool_->size(), pool_->bytes()}; }
   void updateAncestorValues();
-  StepContext stepContext();
+  /// Writes the environment's answers into the query modules of this world's pool.
+  void answerQueries();
+  StepContext stepContext(const WorldHeld& elsewhere);
   /// Value of a system's variable (`age` or a state name) for the world `level` systems up.
   double systemValue(int level, const std::string& name) const;
   uint64_t idSalt() const;
@@ -138,6 +158,7 @@ class World {
   std::unique_ptr<Development> development_;  ///< made once; owns the pool
   const Pool* pool_ = nullptr;                ///< development_->pool(), asked once (read per cell)
   double time_ = 0;
+  uint64_t heldOutside_ = 0;  ///< holdOutside(), root only
   WorldStats stats_;
   std::vector<LineageRecord> lineage_;
   /// The world as it was at the last grid instant, while a stop between grid instants

@@ -67,7 +67,18 @@ Geometry::Geometry(const MeshDef& def)
   checkSides("sphereStacks", def.sphereStacks, 2);
 }
 
+namespace {
+// Coordinates past ±1e30 model units are not drawn: the 32-bit floats of glTF, PLY and the
+// renderer hold up to 3.4e38, and the extent of a frame and the differences its writers
+// take must stay finite too.
+constexpr double kMaxCoordinate = 1e30;
+
+bool drawable(double value) { return std::abs(value) <= kMaxCoordinate; }  // false for NaN
+bool drawable(const glm::dvec3& p) { return drawable(p.x) && drawable(p.y) && drawable(p.z); }
+}  // namespace
+
 void Geometry::clear() {
+  dropped_ = 0;
   segments_.clear();
   cylinders_.clear();
   discs_.clear();
@@ -106,6 +117,15 @@ void Geometry::addTriangle(std::array<uint32_t, 3> positions, std::array<uint32_
 
 void Geometry::addMesh(const Mesh& part, bool keepMaterials) {
   if (part.triangles.empty()) return;
+  const bool finite =
+      std::all_of(part.positions.begin(), part.positions.end(), [](const glm::dvec3& p) { return drawable(p); }) &&
+      std::all_of(part.normals.begin(), part.normals.end(), [](const glm::dvec3& n) { return drawable(n); }) &&
+      std::all_of(part.texcoords.begin(), part.texcoords.end(),
+                  [](const glm::dvec2& t) { return drawable(t.x) && drawable(t.y); });
+  if (!finite) {
+    ++dropped_;
+    return;
+  }
   checkIndexSpace(part.positions.size(), part.normals.size());
   const auto positionBase = static_cast<uint32_t>(mesh_.positions.size());
   const auto normalBase = static_cast<uint32_t>(mesh_.normals.size());
@@ -127,6 +147,7 @@ void Geometry::addMesh(const Mesh& part, bool keepMaterials) {
 }
 
 void Geometry::append(const Geometry& other) {
+  dropped_ += other.dropped_;
   addMesh(other.mesh_, /*keepMaterials=*/true);
   segments_.insert(segments_.end(), other.segments_.begin(), other.segments_.end());
   cylinders_.insert(cylinders_.end(), other.cylinders_.begin(), other.cylinders_.end());
@@ -140,6 +161,10 @@ void Geometry::append(const Geometry& other) {
 
 void Geometry::addSegment(const glm::dvec3& start, const glm::dvec3& end) {
   if (start == end) return;
+  if (!drawable(start) || !drawable(end)) {
+    ++dropped_;
+    return;
+  }
   segments_.push_back({start, end, material_});
   bounds_.add(start);
   bounds_.add(end);
@@ -147,6 +172,10 @@ void Geometry::addSegment(const glm::dvec3& start, const glm::dvec3& end) {
 
 void Geometry::addCylinder(const glm::dvec3& start, const glm::dvec3& end, double radius,
                            bool capped, const glm::dvec3& side) {
+  if (!drawable(start) || !drawable(end) || !drawable(radius) || !drawable(side)) {
+    ++dropped_;
+    return;
+  }
   double length = glm::length(end - start);
   if (!(radius > 0) || !(length > 0)) return;
   const int n = def_.cylinderSides;
@@ -189,6 +218,10 @@ void Geometry::addCylinder(const glm::dvec3& start, const glm::dvec3& end, doubl
 
 void Geometry::addDisc(const glm::dvec3& centre, const glm::dvec3& axisA,
                        const glm::dvec3& axisB, double inner, double outer) {
+  if (!drawable(centre) || !drawable(axisA) || !drawable(axisB) || !drawable(inner) || !drawable(outer)) {
+    ++dropped_;
+    return;
+  }
   inner = std::max(inner, 0.0);
   if (!(outer > inner)) return;
   const int n = def_.discSides;
@@ -221,6 +254,10 @@ void Geometry::addDisc(const glm::dvec3& centre, const glm::dvec3& axisA,
 }
 
 void Geometry::addSphere(const glm::dvec3& centre, double radius) {
+  if (!drawable(centre) || !drawable(radius)) {
+    ++dropped_;
+    return;
+  }
   if (!(radius > 0)) return;
   const int slices = def_.sphereSlices;
   const int stacks = def_.sphereStacks;

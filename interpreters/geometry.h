@@ -156,6 +156,9 @@ class Geometry {
   std::size_t triangleCount() const { return mesh_.triangles.size(); }
   /// True when there is nothing to draw.
   bool empty() const { return segments_.empty() && mesh_.triangles.empty(); }
+  /// Primitives and meshes not drawn because a coordinate was not finite or beyond ±1e30
+  /// model units (so no writer ever writes a non-finite number).
+  uint64_t dropped() const { return dropped_; }
 
  private:
   uint32_t addPosition(const glm::dvec3& position);
@@ -173,6 +176,7 @@ class Geometry {
   std::vector<SpherePrimitive> spheres_;
   Mesh mesh_;
   Box bounds_;
+  uint64_t dropped_ = 0;
   uint32_t material_ = 0;
 };
 

@@ -1,6 +1,9 @@
 #include "interpreters/interpret.h"
 
+#include <optional>
+
 #include "core/cell_frame.h"
+#include "core/homomorphism.h"
 #include "core/parents.h"
 #include "core/salts.h"
 
@@ -20,20 +23,26 @@ void interpretPool(const World& world, InterpretationSet& set) {
   // for another set, whether it knows each master's command is asked once per master.
   const int setIndex = program.commandSetIndex(set.name());
   std::vector<int8_t> known(setIndex < 0 ? program.masters.size() : 0, -1);
-  const auto cells = pool.cells();
+  // An L-system with homomorphism rules is interpreted through its image (the word
+  // itself does not change); parents, positions and nested pools are the source's.
+  std::optional<HomomorphismImage> image;
+  if (world.rootSystem().homomorphism) image.emplace(world);
+  const auto cells = image ? image->cells() : pool.cells();
+  auto stateOf = [&](const CellRecord& cell) { return image ? image->stateOf(cell) : pool.stateOf(cell); };
   // Parents cost a pass over the word: found when the set or an interpretation block reads them.
   bool readsParent = set.wantsParents();
   for (const MasterCell& master : program.masters) readsParent = readsParent || master.readsParent;
   const std::vector<uint64_t> parents = readsParent ? parentIds(world) : std::vector<uint64_t>{};
-  auto parentOf = [&parents](size_t i) { return parents.empty() ? kNoParent : parents[i]; };
-  for (size_t i = 0; i < cells.size(); ++i) {
-    const CellRecord& cell = cells[i];
+  for (size_t k = 0; k < cells.size(); ++k) {
+    const CellRecord& cell = cells[k];
+    const size_t i = image ? image->sourceOf(k) : k;  // in the word
+    const uint64_t parent = parents.empty() ? kNoParent : parents[i];
     const MasterCell& master = program.masters[cell.master];
     if (const InterpretationBlock* block = master.interpretation(set.name())) {
       frame.resize(master.stateCount() + FrameSlot::kCount);
-      loadCellFrame(frame.data(), master, cell, pool.stateOf(cell), world.time(), world.positionOf(i),
-                    parentOf(i) == kNoParent ? -1 : idValue(parentOf(i)));
-      set.beginCell({cell.id, parentOf(i), cell.birth, master.lifetime, world.time()});
+      loadCellFrame(frame.data(), master, cell, stateOf(cell), world.time(), world.positionOf(i),
+                    parent == kNoParent ? -1 : idValue(parent));
+      set.beginCell({cell.id, parent, cell.birth, master.lifetime, world.time()});
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
       context.ancestors = world.ancestorValues();
@@ -56,8 +65,8 @@ void interpretPool(const World& world, InterpretationSet& set) {
         id = knows ? -2 : -1;
       }
       if (id != -1) {
-        world.developedValues(cell, developed);
-        set.beginCell({cell.id, parentOf(i), cell.birth, master.lifetime, world.time()});
+        world.developedValues(cell, stateOf(cell), developed);
+        set.beginCell({cell.id, parent, cell.birth, master.lifetime, world.time()});
         set.locate({master.span, master.label, world.time()});
         if (id >= 0)
           set.executeCommand(id, master.command, developed);

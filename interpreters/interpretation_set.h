@@ -54,6 +54,17 @@ struct InstructionSite {
   double time = 0;        ///< seconds
 };
 
+/// An instruction a set cannot carry out (a pixel outside any picture, a note past the
+/// end of any MIDI file, a surface never defined): a run-time error of the model,
+/// located at the instruction, its cell and the time of its word.
+struct InstructionError : std::runtime_error {
+  InstructionError(const std::string& message, const InstructionSite& site)
+      : std::runtime_error(message), span(site.span), cell(site.cell), time(site.time) {}
+  SourceSpan span;
+  std::string cell;  ///< the label of the cell whose instruction it is
+  double time = 0;   ///< of the word, seconds
+};
+
 /// A kind of problem a set skipped over: how often, and where it happened first.
 struct SetWarning {
   std::string message;  ///< "the turtle ignored 2 unmatched ']'"
@@ -122,12 +133,15 @@ class InterpretationSet {
   /// Finishes the frame and adds what the set drew to `scene`.
   virtual void contribute(Scene& /*scene*/) {}
 
-  /// Tells the set where the next instructions come from (for its warnings).
+  /// Tells the set where the next instructions come from (for its warnings and errors).
   void locate(const InstructionSite& site) { site_ = site; }
   /// The problems skipped over since the last call, one entry per kind; starts again.
   virtual std::vector<SetWarning> takeWarnings() { return {}; }
 
  protected:
+  /// Stops the run with an InstructionError at the instruction being executed.
+  [[noreturn]] void refuse(const std::string& message) const { throw InstructionError(message, site_); }
+
   InstructionSite site_;  ///< of the instruction being executed
 };
 

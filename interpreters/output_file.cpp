@@ -1,5 +1,7 @@
 #include "interpreters/output_file.h"
 
+#include "interpreters/temporary_files.h"
+
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -25,19 +27,22 @@ constexpr int kNameAttempts = 100;
 }
 
 /// Creates a new, empty file beside path with a name no one else uses, with the
-/// permissions a new file gets (0666 less the umask), and returns its path.
-std::filesystem::path createTemporary(const std::filesystem::path& path) {
+/// permissions a new file gets (0666 less the umask), and returns its path. The name is
+/// registered before the file is made (temporary_files.h), so a signal removes it.
+std::filesystem::path createTemporary(const std::filesystem::path& path, RegisteredTemporary& registered) {
   static std::atomic<unsigned> counter{0};
   std::filesystem::path directory = path.parent_path();
   for (int attempt = 0; attempt < kNameAttempts; ++attempt) {
     std::string name = "." + path.filename().string() + ".tmp" + std::to_string(::getpid()) +
                        "_" + std::to_string(counter++);
     std::filesystem::path temporary = directory / name;
+    registered.hold(temporary);
     int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0) {
       ::close(fd);
       return temporary;
     }
+    registered.release();
     if (errno != EEXIST) fail(path, "", errno);
   }
   fail(path, "no free temporary name", EEXIST);
@@ -48,7 +53,9 @@ std::filesystem::path createTemporary(const std::filesystem::path& path) {
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(std::ostream&)>& write) {
   if (path.filename().empty()) fail(path, "not a file name", 0);
-  const std::filesystem::path temporary = createTemporary(path);
+  // Registered until it is renamed or removed, so that SIGINT and SIGTERM remove it too.
+  RegisteredTemporary registered;
+  const std::filesystem::path temporary = createTemporary(path, registered);
   auto discard = [&] {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);

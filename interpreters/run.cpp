@@ -3,6 +3,9 @@
 #include <chrono>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <new>
+#include <stdexcept>
 #include <system_error>
 
 #include "interpreters/geometry/surface.h"
@@ -19,6 +22,12 @@ std::string formatRunDiagnostic(const RunDiagnostic& diagnostic) {
 }
 
 namespace {
+std::string formatTime(double seconds) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", seconds);
+  return buffer;
+}
+
 // A diagnostic that belongs to no source text or time.
 RunDiagnostic unlocated(Severity severity, std::string message) {
   RunDiagnostic diagnostic;
@@ -83,6 +92,12 @@ RunReport Run::execute() {
     report.status = RunStatus::ModelFailed;
     report.diagnostics.push_back(
         {Severity::Error, model.diagnostic.message, model.diagnostic.span, model.cell, model.time, 1});
+  } catch (const InstructionError& instruction) {
+    report.status = RunStatus::ModelFailed;
+    report.diagnostics.push_back({Severity::Error,
+                                  std::string(instruction.what()) + " (in the interpretation of '" + instruction.cell +
+                                      "' at t = " + formatTime(instruction.time) + ")",
+                                  instruction.span, instruction.cell, instruction.time, 1});
   } catch (const SurfaceError& surface) {
     report.status = RunStatus::ModelFailed;
     report.diagnostics.push_back(unlocated(Severity::Error, surface.what()));
@@ -92,6 +107,17 @@ RunReport Run::execute() {
   } catch (const RunInterrupted& interrupted) {
     report.status = RunStatus::Interrupted;
     report.diagnostics.push_back(unlocated(Severity::Note, interrupted.what()));
+  } catch (const std::bad_alloc&) {
+    // The machine's memory is a limit too, one the limits did not foresee.
+    report.status = RunStatus::ModelFailed;
+    report.diagnostics.push_back(unlocated(
+        Severity::Error, "the machine ran out of memory; lower the limits with --max-memory MIB or --max-cells N"));
+    if (world_) report.diagnostics.back().time = world_->time();
+  } catch (const std::length_error& length) {
+    // A frame's geometry past what 32-bit indices reach.
+    report.status = RunStatus::ModelFailed;
+    report.diagnostics.push_back(unlocated(Severity::Error, length.what()));
+    if (world_) report.diagnostics.back().time = world_->time();
   }
   collectWarnings(report);
   if (world_) {
@@ -165,7 +191,7 @@ void Run::develop(RunReport& report) {
     }
     if (drawn) {
       if (!output_) output_ = std::make_unique<SceneOutput>(sceneOutputDefOf(def_.setOptions));
-      for (auto& path : output_->write(scene_, target)) report.files.push_back(std::move(path));
+      writeScene(target, report);
     }
     if (def_.progress) def_.progress(frame + 1, frames);
   }
@@ -173,11 +199,31 @@ void Run::develop(RunReport& report) {
     for (auto& path : set->endFrame()) report.files.push_back(std::move(path));
 }
 
+// What the output stage holds (every frame of a .glb until the end) and renders (a
+// picture) counts against the memory limit with the pools.
+void Run::writeScene(const FrameTarget& target, RunReport& report) {
+  World& world = *world_;
+  const WorldLimits& limits = def_.world.limits;
+  const uint64_t pools = world.held().bytes;
+  if (const uint64_t picture = output_->pictureBytes(target); picture > 0) {
+    const RenderDef& render = output_->def().render;
+    checkOutsideMemory("a " + std::to_string(render.width) + "x" + std::to_string(render.height) + " picture", picture,
+                       pools + output_->heldBytes(), limits);
+  }
+  for (auto& path : output_->write(scene_, target)) report.files.push_back(std::move(path));
+  checkOutsideMemory("the .glb's " + std::to_string(output_->glbFrames()) + " frames held until the last",
+                     output_->heldBytes(), pools, limits);
+  world.holdOutside(output_->heldBytes());
+}
+
 void Run::collectWarnings(RunReport& report) {
-  for (auto& set : sets_)
-    for (SetWarning& warning : set->takeWarnings())
+  auto add = [&](std::vector<SetWarning> warnings) {
+    for (SetWarning& warning : warnings)
       report.diagnostics.push_back(
           {Severity::Warning, std::move(warning.message), warning.span, std::move(warning.cell), warning.time, warning.count});
+  };
+  for (auto& set : sets_) add(set->takeWarnings());
+  if (output_) add(output_->takeWarnings());
 }
 
 }  // namespace ontogen

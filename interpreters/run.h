@@ -105,6 +105,7 @@ class Run {
  private:
   void collectWarnings(RunReport& report);
   void develop(RunReport& report);
+  void writeScene(const FrameTarget& target, RunReport& report);
 
   RunDef def_;
   std::vector<std::unique_ptr<InterpretationSet>> sets_;

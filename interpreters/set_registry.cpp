@@ -89,6 +89,16 @@ std::vector<CommandSetInfo> commandSets() {
                     for (const CommandInfo& info : infos)
                       if (info.name == command) return &info;
                     return nullptr;
+                  },
+                  {},
+                  // #surface files are read as the run reads them, so check fails where run would.
+                  [](const std::string& path) -> std::string {
+                    try {
+                      loadObjSurface(path);
+                    } catch (const SurfaceError& bad) {
+                      return bad.what();
+                    }
+                    return {};
                   }});
   sets.push_back({"creature", [](std::string_view command) -> const CommandInfo* {
                     static const std::vector<CommandInfo> infos = [] {

@@ -28,6 +28,9 @@ struct Expr {
   std::string name;           ///< Name, Call (function), Member (field: `parent.x`)
   TokenKind op = TokenKind::EndOfFile;  ///< Unary, Binary
   std::vector<ExprPtr> args;  ///< operands or call arguments; Member: the object
+  /// Levels of the tree from this node down (1: a leaf). The parser bounds it, so that
+  /// the compiler's recursive walks (and the destructor's) cannot exhaust the stack.
+  int height = 1;
 };
 
 /// `X`, `X(a, b)`, `(X(a, b), age)` or `me`: a module in an axiom, a successor, a context
@@ -52,16 +55,28 @@ struct Assignment {
   ExprPtr value;
 };
 
+/// What an L-system rule does (L-Py's sections): a production rewrites the developing
+/// word; a decomposition rule rewrites a module right after the production step that
+/// made it, recursively; a homomorphism (interpretation) rule rewrites only the image
+/// the interpretation sets read.
+enum class RuleKind { Production, Decomposition, Homomorphism };
+
 /// A rule of a cell or a production of an L-system, in one shape:
 /// {left} predecessor {right} : predicate : calculations -> successors : probability.
 struct Rule {
   SourceSpan span;
   std::string name;            ///< `p1` in `p1: ...`, may be empty
   bool terminal = false;       ///< fires when the cell reaches its terminal age
+  RuleKind kind = RuleKind::Production;  ///< L-systems: the section it stands in
+  int group = 0;                         ///< L-systems: the `group N:` it stands in
+  int filter = -1;  ///< L-systems: the `ignore:` / `consider:` line above it (System::filters), -1: none
   bool hasContext = false;
   std::vector<Module> left;    ///< nearest last
   Module predecessor;          ///< L-systems: the strict predecessor; cells: `me`
   std::vector<Module> right;   ///< nearest first
+  /// L-systems: L-Py's new left context `<<`, matched against what the step has already
+  /// produced to the left; nearest last.
+  std::vector<Module> newLeft;
   /// A 2-D or 3-D context (paper 002, Fig. 3: `(A) (B me C) (D)`): its modules are in
   /// `right`, each at the offset from `me` given here (x, y, z).
   int contextDimensions = 1;
@@ -141,6 +156,7 @@ struct Cell {
 struct SymbolList {
   SourceSpan span;
   std::vector<std::string> symbols;
+  bool consider = false;  ///< `consider:`: only these take part; `ignore:`: these do not
 };
 
 /// `fill A(e)` or `at(x, y) A(1)` in a grid system.
@@ -167,11 +183,18 @@ struct System {
   std::vector<Define> defines;          ///< scoped to the block
   std::vector<Equiv> equivs;            ///< scoped to the block
   std::vector<Setting> settings;        ///< scoped to the block
-  std::vector<Rule> productions;        ///< L-systems
+  std::vector<Rule> productions;        ///< L-systems: every rule, each of its kind
+  /// `maximum depth: N` after `decomposition:` and after `homomorphism:`; may be null.
+  ExprPtr decompositionDepth;
+  ExprPtr homomorphismDepth;
+  ExprPtr useGroup;  ///< `use group: EXPR`, may be null (group 0)
   std::vector<SymbolInterpretation> interpretations;  ///< L-systems: `interpret SET X(a) { ... }`
   std::vector<DevelopmentFunction> functions;
   std::vector<SymbolList> ignore;
   std::vector<SymbolList> consider;
+  /// L-systems: every `ignore:` and `consider:` line in order; each applies to the
+  /// productions after it, up to the next one.
+  std::vector<SymbolList> filters;
 };
 
 /// `import "lib.cell";`: a file whose declarations join the program's.

@@ -47,6 +47,8 @@ std::string where(const SourceSpan& span) {
 }
 
 std::string formatNumber(double value) {
+  // printf writes "-nan" for some NaNs; a message says what it is.
+  if (std::isnan(value)) return "NaN";
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%g", value);
   return buffer;
@@ -166,13 +168,26 @@ void CompileContext::declareState(const std::vector<ast::Parameter>& state, int 
 // not change a cell other systems share); predecessors are resolved first, so a label
 // with a production stays local throughout the block.
 int CompileContext::resolveModule(const ast::Module& module, int scope, bool predecessor) {
+  int count = static_cast<int>(module.args.size());
   int index = program->findMaster(module.label, scope);
+  if (scope >= 0 && index >= 0 && program->masters[index].scope == scope) {
+    // In an L-system, as in L-Py, `A`, `A(x)` and `A(x, y)` are modules of their own.
+    index = -1;
+    for (size_t i = 0; i < program->masters.size(); ++i) {
+      const MasterCell& candidate = program->masters[i];
+      if (candidate.label == module.label && candidate.scope == scope &&
+          (!arityKnown[i] || static_cast<int>(candidate.stateCount()) == count)) {
+        index = static_cast<int>(i);
+        break;
+      }
+    }
+    if (index < 0) index = addMaster(module.label, scope, module.span);
+  }
   const bool sharedCell = index >= 0 && !predecessor && program->masters[index].declared;
   if (index < 0 || (scope >= 0 && program->masters[index].scope != scope && !sharedCell))
     index = addMaster(module.label, scope, module.span);
   MasterCell& master = program->masters[index];
   if (module.age) master.timedNotation = true;
-  int count = static_cast<int>(module.args.size());
   if (!arityKnown[index]) {
     arityKnown[index] = true;
     master.span = module.span;

@@ -29,6 +29,13 @@ void placeFile(const ast::Setting& setting, DirectiveValue& value) {
                    std::to_string(setting.span.column());
 }
 
+// The set that owns a file directive checks the file, if the caller gave the sets.
+std::string checkFile(const CompileContext& ctx, const Directive& directive, const std::string& path) {
+  for (const CommandSetInfo& set : ctx.options.commandSets)
+    if (set.name == directiveOwnerName(directive.owner) && set.checkFile) return set.checkFile(path);
+  return {};
+}
+
 }  // namespace
 
 void compileDirectives(CompileContext& ctx, const std::vector<ast::Setting>& list, InterpretSettings& target,
@@ -50,7 +57,13 @@ void compileDirectives(CompileContext& ctx, const std::vector<ast::Setting>& lis
       }
       value.number = *number;
     }
-    if (directive.kind == DirectiveKind::NumberedFile) placeFile(setting, value);
+    if (directive.kind == DirectiveKind::NumberedFile) {
+      placeFile(setting, value);
+      if (std::string problem = checkFile(ctx, directive, value.path); !problem.empty()) {
+        ctx.sink.error(setting.span, problem);
+        continue;
+      }
+    }
     directive.apply(value, into);
   }
 }

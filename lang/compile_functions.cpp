@@ -62,6 +62,9 @@ void compileDefines(CompileContext& ctx, const std::vector<ast::Define>& list, S
     else
       value = evaluateConstant(*define.value, ctx.constantLookup(scope), ctx.sink, "the value of #define");
     if (!value) continue;
+    // `inf` is a constant a define may name (a lifetime that never ends), but NaN is
+    // no value anything can use. Kept even so: its uses would each be an unknown name.
+    if (std::isnan(*value)) ctx.sink.error(define.span, "the value of #define " + define.name + " is not a number (NaN)");
     scope.constants.values[define.name] = *value;
     ctx.program->defines.push_back({define.name, *value, system, given != ctx.overrides.end(), define.span});
   }
@@ -179,6 +182,13 @@ void attachDevelopmentFunctions(CompileContext& ctx) {
     int moduleParams = 0;
     for (int source : definition.sources) moduleParams += source >= 0;
     if (moduleParams > static_cast<int>(master.stateCount())) {
+      // A label with several numbers of parameters (L-systems): the function develops
+      // those modules that have the parameters it names.
+      bool fitsAnother = false;
+      for (const MasterCell& other : ctx.program->masters)
+        fitsAnother = fitsAnother || (other.label == master.label && other.scope == master.scope &&
+                                      static_cast<int>(other.stateCount()) >= moduleParams);
+      if (fitsAnother) continue;
       ctx.sink.error(definition.span, "development function '" + definition.name + "' names " +
                                           std::to_string(moduleParams) + " module parameters, but '" + master.label +
                                           "' has " + std::to_string(master.stateCount()));

@@ -76,6 +76,12 @@ void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block
 void compileSymbolInterpretations(CompileContext& ctx, const ast::System& system, const Scope& scope, int index) {
   for (const auto& item : system.interpretations) {
     int master = ctx.program->findMaster(item.symbol, index);
+    // Of the block's modules with this label (one per number of parameters), the one
+    // with as many parameters as the block names.
+    for (size_t m = 0; m < ctx.program->masters.size(); ++m)
+      if (ctx.program->masters[m].label == item.symbol && ctx.program->masters[m].scope == index &&
+          ctx.program->masters[m].stateCount() == item.params.size())
+        master = static_cast<int>(m);
     if (master < 0 || ctx.program->masters[master].scope != index) {
       ctx.sink.error(item.symbolSpan, "'" + item.symbol + "' is not a symbol of L-system '" + system.name + "'");
       continue;
@@ -93,7 +99,7 @@ void compileSymbolInterpretations(CompileContext& ctx, const ast::System& system
 }
 
 // The instruction each master stands for (its label, or the command an equiv names),
-// and the brackets among them.
+// and the brackets and cuts among them.
 // With the sets known, each master's command is resolved in every set once, here.
 void resolveCommands(CompileContext& ctx) {
   for (const auto& set : ctx.options.commandSets) ctx.program->commandSets.push_back(set.name);
@@ -102,9 +108,24 @@ void resolveCommands(CompileContext& ctx) {
     master.command = equiv ? *equiv : master.label;
     if (master.command == "[") master.symbolClass = kSymbolBranchOpen;
     if (master.command == "]") master.symbolClass = kSymbolBranchClose;
+    // The cut of cpfg and L-Py acts in the next step: it lives one time unit, like an
+    // untimed module, and then removes itself and the rest of its branch.
+    if (master.command.size() == 2 && master.command[0] == '?') {
+      master.query = master.command[1];
+      if (master.stateCount() > 3)
+        ctx.sink.error(master.span, "'" + master.label + "' answers 3 values (x, y, z); it takes at most 3 parameters");
+      ctx.program->hasQueries = true;
+    }
+    if (master.command == "%") {
+      master.symbolClass = kSymbolCut;
+      if (!master.terminalRules.empty())
+        ctx.sink.error(master.terminalRules.front().span, "'%' is the cut: it removes the rest of its branch and has no productions");
+      master.lifetime = 1;
+    }
     const unsigned char first = master.label.empty() ? 0 : static_cast<unsigned char>(master.label[0]);
     master.treeNode = master.symbolClass == kSymbolModule &&
-                      ((first >= 'a' && first <= 'z') || (first >= 'A' && first <= 'Z') || first == '_' || first >= 0x80);
+                      ((first >= 'a' && first <= 'z') || (first >= 'A' && first <= 'Z') || first == '_' || first >= 0x80 ||
+                       (first >= '0' && first <= '9'));  // digits: ABOP's labels under #letters
     master.commandIds.clear();
     for (const auto& set : ctx.options.commandSets) {
       const CommandInfo* info = set.find(master.command);

@@ -5,9 +5,11 @@
 // (`count(A)`, `sum(x)` ...) become queries the engine answers.
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include "lang/compile_stages.h"
 #include "lang/expression_compiler.h"
@@ -23,6 +25,7 @@ std::unique_ptr<ast::Expr> cloneExpr(const ast::Expr& expr) {
   copy->number = expr.number;
   copy->name = expr.name;
   copy->op = expr.op;
+  copy->height = expr.height;
   for (const auto& arg : expr.args) copy->args.push_back(cloneExpr(*arg));
   return copy;
 }
@@ -129,6 +132,16 @@ struct RuleFrame {
   SlotMap slots;
   std::map<std::string, SourceSpan, std::less<>> boundAt;  // the names this rule binds, where
   int nextSlot;
+  // Value patterns, `A(3)`: the frame slot that must hold the value, and the value.
+  std::vector<std::tuple<int, double, SourceSpan>> valueTests;
+
+  // A pattern's parameter: a name binds the slot, a number tests it.
+  void bindParameter(const ast::Expr& arg, int slot) {
+    if (arg.kind == ast::Expr::Kind::Number)
+      valueTests.push_back({slot, arg.number, arg.span});
+    else
+      bind(arg.name, slot, arg.span);
+  }
 
   int stateCount() const { return static_cast<int>(stateNames.size()); }
 
@@ -150,6 +163,10 @@ struct RuleFrame {
 
   ContextBinding contextBinding(const ast::Module& module, bool leftSide) {
     ContextBinding binding;
+    if (module.label == "*") {
+      binding.item.kind = ContextItem::Kind::Any;  // the wildcard: any module
+      return binding;
+    }
     if (module.label == "[" || module.label == "]") {
       if (leftSide)
         ctx.sink.error(module.span, "a left context cannot contain brackets; it follows the path to the root");
@@ -165,7 +182,7 @@ struct RuleFrame {
         ctx.sink.error(module.span, "'" + module.label + "' has " +
                                         std::to_string(ctx.program->masters[contextMaster].stateCount()) +
                                         " state values; a context binds all of them or none");
-      for (const auto& arg : module.args) bind(arg->name, nextSlot++, arg->span);
+      for (const auto& arg : module.args) bindParameter(*arg, nextSlot++);
     }
     return binding;
   }
@@ -179,6 +196,8 @@ void compileContext(RuleFrame& frame, const ast::Rule& rule, CompiledRule& compi
   for (auto it = rule.left.rbegin(); it != rule.left.rend(); ++it)
     compiled.left.push_back(frame.contextBinding(*it, true));
   for (const auto& module : rule.right) compiled.right.push_back(frame.contextBinding(module, false));
+  for (auto it = rule.newLeft.rbegin(); it != rule.newLeft.rend(); ++it)
+    compiled.newLeft.push_back(frame.contextBinding(*it, true));
   compiled.contextDimensions = rule.contextDimensions;
   for (size_t k = 0; k < rule.offsets.size() && k < compiled.right.size(); ++k) {
     compiled.right[k].offset = rule.offsets[k];
@@ -189,7 +208,9 @@ void compileContext(RuleFrame& frame, const ast::Rule& rule, CompiledRule& compi
   compiled.frameSize = frame.nextSlot;
   for (const auto& binding : compiled.left) compiled.leftItems.push_back(binding.item);
   for (const auto& binding : compiled.right) compiled.rightItems.push_back(binding.item);
-  if (compiled.leftItems.size() > kMaxContextItems || compiled.rightItems.size() > kMaxContextItems)
+  for (const auto& binding : compiled.newLeft) compiled.newLeftItems.push_back(binding.item);
+  if (compiled.leftItems.size() > kMaxContextItems || compiled.rightItems.size() > kMaxContextItems ||
+      compiled.newLeftItems.size() > kMaxContextItems)
     sink.error(rule.span, "a context has at most " + std::to_string(kMaxContextItems) + " modules on each side");
 }
 
@@ -278,12 +299,14 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
   ctx.reader = Reader{master, -1};
   CompiledRule compiled;
   compiled.name = rule.name;
+  compiled.group = rule.group;
+  compiled.symbolClasses = rule.filter;  // -1, or the filter's index: classifySymbols makes them
   compiled.span = rule.span;
   const int moduleScope = lsystem ? scopeIndex : -1;
   RuleFrame frame(ctx, master, moduleScope);
   if (lsystem) {
     for (size_t i = 0; i < rule.predecessor.args.size(); ++i)
-      frame.bind(rule.predecessor.args[i]->name, static_cast<int>(i), rule.predecessor.args[i]->span);
+      frame.bindParameter(*rule.predecessor.args[i], static_cast<int>(i));
   } else {
     for (int i = 0; i < frame.stateCount(); ++i) frame.slots[frame.stateNames[i]] = i;
     if (rule.predecessor.isMe && rule.predecessor.hasArgs)
@@ -295,7 +318,39 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
   names.aggregate = [&ctx, &compiled, moduleScope](const ast::Expr& call, DiagnosticSink& sink) {
     return registerAggregate(ctx, call, sink, compiled.aggregates, moduleScope);
   };
-  if (rule.predicate) compiled.predicate = compileExpression(*rule.predicate, names, ctx.sink);
+  // Value patterns test their slots before the condition: `A(3) : x > 1` is
+  // `A(#) : # == 3 && x > 1`, with `#` a name no program can write.
+  std::unique_ptr<ast::Expr> predicate = rule.predicate ? cloneExpr(*rule.predicate) : nullptr;
+  for (auto it = frame.valueTests.rbegin(); it != frame.valueTests.rend(); ++it) {
+    const auto& [slot, value, span] = *it;
+    const std::string hidden = "#" + std::to_string(slot);
+    frame.slots[hidden] = slot;
+    auto name = std::make_unique<ast::Expr>();
+    name->kind = ast::Expr::Kind::Name;
+    name->name = hidden;
+    name->span = span;
+    auto number = std::make_unique<ast::Expr>();
+    number->number = value;
+    number->span = span;
+    auto test = std::make_unique<ast::Expr>();
+    test->kind = ast::Expr::Kind::Binary;
+    test->op = TokenKind::EqualEqual;
+    test->span = span;
+    test->args.push_back(std::move(name));
+    test->args.push_back(std::move(number));
+    if (predicate) {
+      auto both = std::make_unique<ast::Expr>();
+      both->kind = ast::Expr::Kind::Binary;
+      both->op = TokenKind::AmpAmp;
+      both->span = span;
+      both->args.push_back(std::move(test));
+      both->args.push_back(std::move(predicate));
+      predicate = std::move(both);
+    } else {
+      predicate = std::move(test);
+    }
+  }
+  if (predicate) compiled.predicate = compileExpression(*predicate, names, ctx.sink);
   compileCalculations(frame, rule, lsystem, names, compiled);
   compiled.hasAction = rule.hasAction;
   if (rule.hasAction) compiled.hasDiscrete = true;
@@ -360,11 +415,81 @@ void compileCells(CompileContext& ctx) {
   }
 }
 
+namespace {
+
+// `maximum depth: N`: a whole number from 1 to kMaxRewriteDepth.
+int rewriteDepth(CompileContext& ctx, const ast::ExprPtr& expr, const Scope& scope) {
+  if (!expr) return 1;
+  auto value = evaluateConstant(*expr, ctx.constantLookup(scope), ctx.sink, "a maximum depth");
+  if (!value) return 1;
+  if (!(*value >= 1) || *value != std::floor(*value) || *value > kMaxRewriteDepth) {
+    ctx.sink.error(expr->span, "a maximum depth is a whole number from 1 to " + std::to_string(kMaxRewriteDepth) +
+                                   ", not " + formatNumber(*value));
+    return 1;
+  }
+  return static_cast<int>(*value);
+}
+
+// Decomposition and homomorphism rules: context-free rewriting of one module.
+void compileRewriting(CompileContext& ctx, const ast::System& system, Scope& scope, int index) {
+  SystemDefinition& definition = ctx.program->systems[index];
+  definition.decompositionDepth = rewriteDepth(ctx, system.decompositionDepth, scope);
+  definition.homomorphismDepth = rewriteDepth(ctx, system.homomorphismDepth, scope);
+  for (const auto& rule : system.productions) {
+    if (rule.kind == ast::RuleKind::Production) continue;
+    const bool decomposition = rule.kind == ast::RuleKind::Decomposition;
+    const char* what = decomposition ? "a decomposition rule" : "a homomorphism rule";
+    if (rule.predecessor.age) {
+      ctx.sink.error(rule.predecessor.age->span, std::string(what) + " has no terminal age; it rewrites at once");
+      continue;
+    }
+    if (rule.hasContext) {
+      ctx.sink.error(rule.span, std::string(what) + " rewrites one module without context; move the context to a production");
+      continue;
+    }
+    int master = ctx.resolveModule(rule.predecessor, index, /*predecessor=*/true);
+    ctx.readsPosition = ctx.readsParent = false;
+    CompiledRule compiled = compileRule(ctx, rule, master, index, scope, /*lsystem=*/true);
+    if (!compiled.aggregates.empty())
+      ctx.sink.error(rule.span, std::string(what) + " does not read neighbours (count, sum, mean, min, max)");
+    if (ctx.readsParent) ctx.sink.error(rule.span, std::string(what) + " does not read me.parent");
+    if (ctx.readsPosition) ctx.program->masters[master].readsPosition = true;
+    auto& rules = decomposition ? ctx.program->masters[master].decompositionRules
+                                : ctx.program->masters[master].homomorphismRules;
+    rules.push_back(std::move(compiled));
+    (decomposition ? definition.decomposes : definition.homomorphism) = true;
+  }
+}
+
+// Rule groups (L-Py): the active group's rules are tried before group 0's, which apply
+// whatever group is active. Each list keeps its text order within the groups, with the
+// numbered groups' rules first, so filtering by the active group gives that order.
+void orderGroups(CompileContext& ctx, const ast::System& system, Scope& scope, int index) {
+  SystemDefinition& definition = ctx.program->systems[index];
+  if (system.useGroup) {
+    std::map<std::string, int, std::less<>> none;
+    ctx.reader = Reader{-1, index};
+    NameLookup names = ctx.frameLookup(none, 0, scope);
+    definition.useGroup = compileExpression(*system.useGroup, names, ctx.sink);
+    definition.useGroupSpan = system.useGroup->span;
+    if (definition.useGroup.isStochastic())
+      ctx.sink.error(system.useGroup->span, "'use group' is evaluated once per step and draws no random numbers");
+  }
+  for (MasterCell& master : ctx.program->masters) {
+    if (master.scope != index) continue;
+    for (auto* rules : {&master.terminalRules, &master.decompositionRules, &master.homomorphismRules})
+      std::stable_partition(rules->begin(), rules->end(), [](const CompiledRule& rule) { return rule.group != 0; });
+  }
+}
+
+}  // namespace
+
 void compileProductions(CompileContext& ctx, const ast::System& system, Scope& scope, int index) {
   // Terminal ages: one per symbol; untimed productions live one time unit.
   std::map<int, std::pair<double, SourceSpan>> terminal;
   std::vector<std::pair<int, const ast::Rule*>> productions;
   for (const auto& production : system.productions) {
+    if (production.kind != ast::RuleKind::Production) continue;
     int master = ctx.resolveModule(production.predecessor, index, /*predecessor=*/true);
     double age = 1.0;
     if (production.predecessor.age) {
@@ -397,6 +522,8 @@ void compileProductions(CompileContext& ctx, const ast::System& system, Scope& s
     if (ctx.readsParent) ctx.program->masters[master].readsParent = true;
     ctx.program->masters[master].terminalRules.push_back(std::move(rule));
   }
+  compileRewriting(ctx, system, scope, index);
+  orderGroups(ctx, system, scope, index);
 }
 
 }  // namespace ontogen::detail

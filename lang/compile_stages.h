@@ -74,4 +74,10 @@ void summariseSystems(CompileContext& ctx);
 /// the first system no other contains); every `parent.x` read reaches systems with x.
 void checkSystemTree(CompileContext& ctx);
 
+// ---- lang/letter_runs.cpp: ABOP's strings written without #letters ----
+
+/// Warns at a successor or axiom module such as `FF` whose label nothing defines while
+/// each of its letters is a symbol of its block: ABOP's `FF`, meant as two modules.
+void warnLetterRuns(CompileContext& ctx);
+
 }  // namespace ontogen::detail

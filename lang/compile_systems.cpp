@@ -180,11 +180,12 @@ std::vector<AxiomCell> compileAxiom(CompileContext& ctx, const ast::System& syst
     if (module.age) {
       cell.age = evaluateConstant(*module.age, names, ctx.sink, "an axiom age").value_or(0);
       const MasterCell& target = ctx.program->masters[master];
-      if (cell.age < 0 || cell.age >= target.lifetime)
+      // Written so that NaN, which passes every comparison, fails this one.
+      if (!(cell.age >= 0) || cell.age >= target.lifetime)
         ctx.sink.error(
             module.age->span,
             "'" + module.label + "' cannot start with age " + formatNumber(cell.age) +
-                (cell.age < 0 ? "; ages are ≥ 0" : ", not below its terminal age " + formatNumber(target.lifetime)));
+                (!(cell.age >= 0) ? "; ages are ≥ 0" : ", not below its terminal age " + formatNumber(target.lifetime)));
     }
     axiom.push_back(std::move(cell));
   }
@@ -275,6 +276,37 @@ void compileSystem(CompileContext& ctx, const ast::System& system, int index) {
   ctx.ignoreLists.push_back({index, &system});
 }
 
+namespace {
+
+// The classes of every master with the symbols one list leaves out of context matching.
+std::vector<uint8_t> classesWith(const CompileContext& ctx, const ast::SymbolList& list) {
+  std::vector<uint8_t> classes(ctx.program->masters.size());
+  const std::set<std::string> listed(list.symbols.begin(), list.symbols.end());
+  for (size_t m = 0; m < ctx.program->masters.size(); ++m) {
+    const MasterCell& master = ctx.program->masters[m];
+    classes[m] = master.symbolClass;
+    if (master.symbolClass == kSymbolModule && (listed.count(master.label) > 0) != list.consider)
+      classes[m] |= kSymbolIgnored;
+  }
+  return classes;
+}
+
+// An L-system's `ignore:` and `consider:` lines apply each to the productions after it,
+// up to the next one (L-Py); productions above the first see every module.
+void classifyPerRule(CompileContext& ctx, const ast::System& system, int index) {
+  SystemDefinition& definition = ctx.program->systems[index];
+  for (const auto& list : system.filters) definition.ruleClasses.push_back(classesWith(ctx, list));
+  definition.ruleClasses.push_back(classesWith(ctx, ast::SymbolList{}));  // no list: nothing ignored
+  const int none = static_cast<int>(system.filters.size());
+  for (MasterCell& master : ctx.program->masters) {
+    if (master.scope != index) continue;
+    for (CompiledRule& rule : master.terminalRules)
+      if (rule.symbolClasses < 0) rule.symbolClasses = none;
+  }
+}
+
+}  // namespace
+
 // Per system, the class of every master: branch brackets, and the symbols its
 // `ignore:` or `consider:` list leaves out of context matching.
 void classifySymbols(CompileContext& ctx) {
@@ -283,8 +315,10 @@ void classifySymbols(CompileContext& ctx) {
     definition.symbolClass.resize(ctx.program->masters.size());
     for (size_t m = 0; m < ctx.program->masters.size(); ++m)
       definition.symbolClass[m] = ctx.program->masters[m].symbolClass;
-    if (!system->ignore.empty() && !system->consider.empty())
-      ctx.sink.error(system->consider.front().span, "a system has either 'ignore' or 'consider', not both");
+    if (system->isLSystem && !system->filters.empty()) classifyPerRule(ctx, *system, index);
+    const bool both = !system->ignore.empty() && !system->consider.empty();
+    if (both && system->isLSystem) continue;  // each rule sees its own list; neighbours see every module
+    if (both) ctx.sink.error(system->consider.front().span, "a system has either 'ignore' or 'consider', not both");
     std::set<std::string> listed;
     for (const auto& list : system->ignore) listed.insert(list.symbols.begin(), list.symbols.end());
     for (const auto& list : system->consider) listed.insert(list.symbols.begin(), list.symbols.end());

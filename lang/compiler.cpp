@@ -6,6 +6,7 @@
 #include "lang/compile_stages.h"
 #include "lang/imports.h"
 #include "lang/parser.h"
+#include "lang/system_tree.h"
 
 namespace ontogen {
 
@@ -24,6 +25,13 @@ std::unique_ptr<Program> run(CompileContext& ctx, std::vector<std::shared_ptr<co
   compileEquivs(ctx, ctx.tree.equivs, ctx.global);
   compileDirectives(ctx, ctx.tree.settings, ctx.globalSettings, ctx.global);
   compileFunctions(ctx, ctx.tree.functions, ctx.global);
+  // Before the passes whose cost grows with the square of the systems.
+  if (ctx.tree.systems.size() > kMaxSystems) {
+    const ast::System& first = ctx.tree.systems[kMaxSystems];
+    ctx.sink.error(first.nameSpan, "system '" + first.name + "' is one too many: a program has at most " +
+                                       std::to_string(kMaxSystems) + " systems");
+    return nullptr;
+  }
   // Every master a declaration makes, before any rule names one.
   declareCells(ctx);
   declareSystemCells(ctx);
@@ -35,6 +43,7 @@ std::unique_ptr<Program> run(CompileContext& ctx, std::vector<std::shared_ptr<co
   // Every master exists.
   attachDevelopmentFunctions(ctx);
   resolveCommands(ctx);
+  warnLetterRuns(ctx);
   classifySymbols(ctx);
   summariseSystems(ctx);
   checkSystemTree(ctx);
@@ -61,7 +70,7 @@ std::unique_ptr<Program> compile(const ast::Program& tree, std::vector<std::shar
 std::unique_ptr<Program> compileSource(std::string name, std::string text, DiagnosticSink& sink,
                                        const CompileOptions& options) {
   auto source = std::make_shared<const SourceFile>(std::move(name), std::move(text));
-  ParsedProgram parsed = parseWithImports(std::move(source), sink);
+  ParsedProgram parsed = parseWithImports(std::move(source), sink, options.maxSourceBytes);
   if (sink.hasErrors()) return nullptr;
   return compile(parsed.tree, std::move(parsed.sources), sink, options);
 }

@@ -14,6 +14,7 @@
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
 #include "lang/program.h"
+#include "lang/source_reader.h"
 
 namespace ontogen {
 
@@ -35,6 +36,10 @@ struct CommandSetInfo {
   /// Names the set gives meaning to in its blocks' arguments, as `minor` in
   /// `scale(minor)`; program constants shadow them. Empty: none.
   std::function<std::optional<double>(std::string_view)> constant = {};
+  /// Checks a file a directive of this set names (#surface's OBJ file), resolved against
+  /// the program's folder: empty when the set can use it, else why not, so that `check`
+  /// finds what `run` would fail on. Null: files are not checked.
+  std::function<std::string(const std::string& path)> checkFile = {};
 };
 
 /// A value for a program's `#define`, given from outside the text (`--define NAME=VALUE`),
@@ -54,6 +59,8 @@ struct CompileOptions {
   /// expressions, axioms, lifetimes, grid sizes and directives all see it. A name given
   /// twice takes the last value; a name the program does not define is an error.
   std::vector<DefineOverride> defines;
+  /// compileSource: the most source text the program and its imports may have, bytes.
+  uint64_t maxSourceBytes = kDefaultMaxSourceBytes;
 };
 
 /// Compiles a parsed program whose text is `source`. Returns null when there were errors.

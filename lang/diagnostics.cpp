@@ -2,16 +2,24 @@
 
 #include <algorithm>
 
+#include "lang/utf8.h"
+
 namespace ontogen {
 
 void DiagnosticSink::report(Severity severity, SourceSpan span, std::string message) {
+  if (limitReached()) {
+    ++dropped_;
+    return;
+  }
   if (severity == Severity::Error) ++errors_;
   diagnostics_.push_back({severity, span, std::move(message)});
+  if (consumer_) consumer_(diagnostics_.back());
 }
 
 void DiagnosticSink::clear() {
   diagnostics_.clear();
   errors_ = 0;
+  dropped_ = 0;
 }
 
 static const char* severityName(Severity severity) {
@@ -22,6 +30,41 @@ static const char* severityName(Severity severity) {
   }
   return "error";
 }
+
+namespace {
+
+// One column of an echoed line: a character as written, or '?' for a byte that is no
+// valid UTF-8 or a control character (a terminal would act on it).
+struct Column {
+  size_t begin = 0;  ///< byte offset in the line
+  std::string_view shown;
+};
+
+std::vector<Column> columnsOf(std::string_view text) {
+  std::vector<Column> columns;
+  for (size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const size_t length = utf8SequenceLength(text, i);
+    const bool control = (c < 0x20 && c != '\t') || c == 0x7F;
+    if (length == 0 || control) {
+      columns.push_back({i, "?"});
+      ++i;
+    } else {
+      columns.push_back({i, text.substr(i, length)});
+      i += length;
+    }
+  }
+  return columns;
+}
+
+// The first column whose character starts at or after `byte`.
+size_t columnAt(const std::vector<Column>& columns, size_t byte) {
+  return std::lower_bound(columns.begin(), columns.end(), byte,
+                          [](const Column& column, size_t at) { return column.begin < at; }) -
+         columns.begin();
+}
+
+}  // namespace
 
 std::string formatDiagnostic(const Diagnostic& d) {
   std::string out;
@@ -38,24 +81,25 @@ std::string formatDiagnostic(const Diagnostic& d) {
   out += severityName(d.severity);
   out += ": " + d.message + "\n";
   std::string_view text = file.lineText(line);
-  out.append(text);
-  out += "\n";
-  // One caret column per character (UTF-8 continuation bytes take none); tabs are kept
-  // so the caret lines up under the same columns.
-  auto isContinuation = [](char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; };
-  std::string caret;
-  size_t start = std::min<size_t>(text.size(), column - 1);
-  for (size_t i = 0; i < start; ++i)
-    if (!isContinuation(text[i])) caret += text[i] == '\t' ? '\t' : ' ';
+  const std::vector<Column> columns = columnsOf(text);
+  const size_t startByte = std::min<size_t>(text.size(), column - 1);
+  const size_t endByte = std::min<size_t>(text.size(), startByte + (d.span.end - d.span.begin));
+  const size_t start = columnAt(columns, startByte);
+  const size_t end = std::max(start + 1, columnAt(columns, endByte));
+  // A long line shows a window around the caret, so that a diagnostic stays a few
+  // lines whatever the line's length.
+  const size_t width = kEchoColumns, n = columns.size();
+  const size_t first = n <= width ? 0 : std::min(start > width / 2 ? start - width / 2 : 0, n - width);
+  const size_t last = std::min(n, first + width);
+  std::string echo = first > 0 ? "…" : "";
+  std::string caret = first > 0 ? " " : "";
+  for (size_t k = first; k < last; ++k) echo += columns[k].shown;
+  if (last < n) echo += "…";
+  // Tabs are kept so the caret lines up under the same columns.
+  for (size_t k = first; k < start && k < last; ++k) caret += columns[k].shown == "\t" ? '\t' : ' ';
   caret += '^';
-  size_t end = std::min<size_t>(text.size(), start + (d.span.end - d.span.begin));
-  bool first = true;
-  for (size_t i = start; i < end; ++i) {
-    if (isContinuation(text[i])) continue;
-    if (!first) caret += '~';
-    first = false;
-  }
-  out += caret + "\n";
+  for (size_t k = start + 1; k < end && k < last; ++k) caret += '~';
+  out += echo + "\n" + caret + "\n";
   return out;
 }
 

@@ -18,6 +18,9 @@ using Value = DirectiveValue;
 using Target = DirectiveTarget;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// Seeds are whole numbers a double holds exactly: 2^53 - 1 is the largest below which
+// every whole number is one.
+constexpr double kMaxSeed = 9007199254740991.0;
 
 constexpr std::array<std::string_view, 2> kMusicTimes{"sequential", "developmental"};
 // The interpretation sets (interpreters/set_registry.h, interpretationSetNames(); a test
@@ -36,21 +39,26 @@ const std::array kDirectives{
               .doc = "a named constant; its value may use the constants defined before it"},
     Directive{.name = "angle",
               .owner = Owner::Geometry,
+              .rangeError = "#angle must be a finite number",
               .syntax = "#angle A",
               .doc = "default angle of + - & ^ \\ /; also sets #yawangle",
               .apply = [](const Value& v, Target& t) { t.settings.angle = t.settings.yawAngle = v.number; }},
     Directive{.name = "yawangle",
               .owner = Owner::Geometry,
+              .rangeError = "#yawangle must be a finite number",
               .syntax = "#yawangle A",
               .doc = "default angle of < and >",
               .apply = [](const Value& v, Target& t) { t.settings.yawAngle = v.number; }},
     Directive{.name = "length",
               .owner = Owner::Geometry,
+              .rangeError = "#length must be a finite number",
               .syntax = "#length L",
               .doc = "default length of F, f and cC, model units",
               .apply = [](const Value& v, Target& t) { t.settings.step = v.number; }},
     Directive{.name = "radius",
               .owner = Owner::Geometry,
+              .range = {.min = 0},
+              .rangeError = "#radius must be a number ≥ 0",
               .syntax = "#radius R",
               .doc = "initial radius of F and cC; 0 draws lines",
               .apply = [](const Value& v, Target& t) { t.settings.radius = v.number; }},
@@ -69,8 +77,8 @@ const std::array kDirectives{
     Directive{.name = "seed",
               .kind = Kind::Integer,
               .owner = Owner::World,
-              .range = {.min = 0},
-              .rangeError = "#seed must be a whole number ≥ 0",
+              .range = {.min = 0, .max = kMaxSeed},
+              .rangeError = "#seed must be a whole number from 0 to 2^53 - 1 (9007199254740991)",
               .syntax = "#seed N",
               .doc = "seed of every random choice (--seed overrides)",
               .apply =
@@ -81,14 +89,14 @@ const std::array kDirectives{
     Directive{.name = "until",
               .owner = Owner::World,
               .range = {.min = 0, .minOpen = true},
-              .rangeError = "#until must be greater than 0",
+              .rangeError = "#until must be a finite number greater than 0",
               .syntax = "#until T",
               .doc = "end of ontogen run, seconds of developmental time (--until overrides)",
               .apply = [](const Value& v, Target& t) { t.program.until = v.number; }},
     Directive{.name = "from",
               .owner = Owner::World,
               .range = {.min = 0},
-              .rangeError = "#from must be 0 or more",
+              .rangeError = "#from must be a finite number, 0 or more",
               .syntax = "#from T",
               .doc = "time of ontogen run's first frame, seconds (frames spread over [from, until]; --from overrides)",
               .apply = [](const Value& v, Target& t) { t.program.from = v.number; }},
@@ -113,7 +121,7 @@ const std::array kDirectives{
     Directive{.name = "dt",
               .owner = Owner::World,
               .range = {.min = 0, .minOpen = true},
-              .rangeError = "#dt must be greater than 0",
+              .rangeError = "#dt must be a finite number greater than 0",
               .syntax = "#dt D",
               .doc = "step of the development, seconds (--step overrides)",
               .apply = [](const Value& v, Target& t) { t.program.dt = v.number; }},
@@ -180,11 +188,35 @@ const std::array kDirectives{
                   [](const Value& v, Target& t) {
                     t.settings.surfaces.push_back({static_cast<int>(v.number), v.path, v.location});
                   }},
+    // The parser reads it (lang/parser.cpp); nothing is left to apply.
+    Directive{
+        .name = "letters",
+        .kind = Kind::Flag,
+        .owner = Owner::Notation,
+        .syntax = "#letters",
+        .doc =
+            "one module per letter, digit or symbol in axioms and productions, as ABOP prints them (FF-[-F+F]+[+F-F])",
+        .apply = [](const Value&, Target&) {}},
+};
+
+// Directives of cpfg and lpfg that ontogen writes another way.
+struct ForeignDirective {
+  std::string_view name;
+  std::string_view instead;
+};
+constexpr ForeignDirective kForeignDirectives[] = {
+    {"ignore", "cpfg's '#ignore' is written 'ignore: A B' (without '#') in an lsystem block"},
+    {"consider", "cpfg's '#consider' is written 'consider: A B' (without '#') in an lsystem block"},
+    {"include", "cpfg's '#include' is written 'import \"file.cell\"' at the top level"},
 };
 
 std::string formatNumber(double value) {
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
+  // Whole numbers in full (the largest seed has 16 digits), others short.
+  if (value == std::floor(value) && std::fabs(value) < 1e16)
+    std::snprintf(buffer, sizeof buffer, "%.0f", value);
+  else
+    std::snprintf(buffer, sizeof buffer, "%g", value);
   return buffer;
 }
 
@@ -208,6 +240,9 @@ bool DirectiveRange::contains(double value) const {
 }
 
 bool Directive::accepts(double value) const {
+  // No setting means anything infinite or undefined: the turtle, the world and the
+  // writers all take finite numbers only.
+  if (!std::isfinite(value)) return false;
   if (kind == DirectiveKind::Number && range.any()) return true;
   if (kind != DirectiveKind::Number && value != std::floor(value)) return false;
   return range.contains(value);
@@ -224,6 +259,8 @@ const Directive* findDirective(std::string_view name) {
 }
 
 std::string unknownDirectiveMessage(std::string_view name) {
+  for (const ForeignDirective& foreign : kForeignDirectives)
+    if (foreign.name == name) return std::string(foreign.instead);
   std::string known;
   for (const Directive& directive : kDirectives) known += (known.empty() ? "#" : ", #") + std::string(directive.name);
   return "unknown directive '#" + std::string(name) + "' (known: " + known + ")";
@@ -275,12 +312,14 @@ std::string_view directiveOwnerName(DirectiveOwner owner) {
       return "geometry";
     case DirectiveOwner::Music:
       return "music";
+    case DirectiveOwner::Notation:
+      return "notation";
   }
   return "?";
 }
 
 std::string describeRange(const DirectiveRange& range) {
-  if (range.any()) return "any";
+  if (range.any()) return "finite";
   const bool closed = std::isfinite(range.min) && std::isfinite(range.max) && !range.minOpen && !range.maxOpen;
   if (closed) return formatNumber(range.min) + " to " + formatNumber(range.max);
   std::string text;

@@ -36,6 +36,7 @@ enum class DirectiveOwner : uint8_t {
   World,      ///< the run of the whole program (Program): a block's value overrides the top level's
   Geometry,   ///< the geometry set's settings of its block (InterpretSettings); top-level ones start every block's
   Music,      ///< the music set's settings of its block (MusicSettings); likewise
+  Notation,   ///< how the parser reads the text after it (`#letters`); the compiler has nothing to apply
 };
 
 /// The numbers a directive's value may be: from min to max, either end open or closed.
@@ -46,7 +47,7 @@ struct DirectiveRange {
   bool minOpen = false;  ///< min itself is outside the range
   bool maxOpen = false;  ///< max itself is outside the range
 
-  /// No bounds: any value is taken as it is (not even NaN is refused).
+  /// No bounds: any finite value is taken (every directive refuses NaN and infinities).
   bool any() const;
   /// Within the bounds; NaN is within none.
   bool contains(double value) const;
@@ -85,7 +86,8 @@ struct Directive {
   std::string_view doc = {};                     ///< one line
   DirectiveApply apply = nullptr;                ///< null for #define, which the compiler keeps as a constant
 
-  /// Whether `value` may follow the name: in the range, and whole unless the kind is Number.
+  /// Whether `value` may follow the name: finite, in the range, and whole unless the kind
+  /// is Number.
   bool accepts(double value) const;
 };
 
@@ -97,7 +99,8 @@ inline constexpr int kMaxNoteValue = 64;
 std::span<const Directive> directives();
 /// nullptr when there is no such directive; `name` without the '#'.
 const Directive* findDirective(std::string_view name);
-/// "unknown directive '#defne' (known: #define, #angle, ..., #surface)".
+/// "unknown directive '#defne' (known: #define, #angle, ..., #surface)"; for the
+/// directives of other L-system tools (cpfg's `#ignore`), what ontogen writes instead.
 std::string unknownDirectiveMessage(std::string_view name);
 /// "'sequential' or 'developmental'": the words of a Word directive.
 std::string wordChoices(const Directive& directive);
@@ -108,12 +111,13 @@ std::string noteValueChoices();
 
 /// "constant", "number", "integer", "flag", "word", "time signature", "integer, file".
 std::string_view directiveKindName(DirectiveKind kind);
-/// "constants", "world", "geometry", "music".
+/// "constants", "world", "geometry", "music", "notation".
 std::string_view directiveOwnerName(DirectiveOwner owner);
-/// A range as messages print it: "any", "1 to 32767", "> 0", "> 0 and ≤ 1000", "≥ 0".
+/// A range as messages print it: "finite" (any finite number), "1 to 32767", "> 0",
+/// "> 0 and ≤ 1000", "≥ 0".
 std::string describeRange(const DirectiveRange& range);
 /// The values a directive takes, as `ontogen help` prints them: "> 0", "1 to 32767",
-/// "sequential or developmental", "N 1 to 255, D 1, 2, 4 ... 64", "any".
+/// "sequential or developmental", "N 1 to 255, D 1, 2, 4 ... 64", "finite".
 std::string describeValues(const Directive& directive);
 
 }  // namespace ontogen

@@ -1,14 +1,12 @@
 #include "lang/imports.h"
 
-#include <cerrno>
-#include <cstring>
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <set>
-#include <sstream>
 
 #include "lang/parser.h"
+#include "lang/source_reader.h"
 
 namespace ontogen {
 
@@ -27,7 +25,7 @@ void append(std::vector<T>& into, std::vector<T>&& items) {
 
 class ImportResolver {
  public:
-  explicit ImportResolver(DiagnosticSink& sink) : sink_(sink) {}
+  ImportResolver(DiagnosticSink& sink, uint64_t maxBytes) : sink_(sink), maxBytes_(maxBytes) {}
 
   ParsedProgram run(std::shared_ptr<const SourceFile> main) {
     ParsedProgram result;
@@ -42,6 +40,7 @@ class ImportResolver {
   ast::Program load(std::shared_ptr<const SourceFile> file, std::vector<std::shared_ptr<const SourceFile>>& sources) {
     sink_.retain(file);
     sources.push_back(file);
+    usedBytes_ += file->text().size();
     ast::Program tree = parse(*file, sink_);
     const fs::path base = fs::path(file->name()).parent_path();
     ast::Program imported;
@@ -50,15 +49,12 @@ class ImportResolver {
       std::error_code error;
       const std::string key = fs::weakly_canonical(path, error).string();
       if (!seen_.insert(key).second) continue;
-      std::ifstream in(path, std::ios::binary);
-      if (!in || fs::is_directory(path, error)) {
-        sink_.error(import.span,
-                    "cannot import '" + import.path + "': " + (in ? "it is a folder" : std::strerror(errno)));
+      SourceText read = readSourceFile(path, maxBytes_ - std::min(maxBytes_, usedBytes_));
+      if (!read.text) {
+        sink_.error(import.span, "cannot import '" + import.path + "': " + read.error);
         continue;
       }
-      std::ostringstream text;
-      text << in.rdbuf();
-      ast::Program library = load(std::make_shared<const SourceFile>(path.string(), text.str()), sources);
+      ast::Program library = load(std::make_shared<const SourceFile>(path.string(), std::move(*read.text)), sources);
       append(imported.defines, std::move(library.defines));
       append(imported.equivs, std::move(library.equivs));
       append(imported.settings, std::move(library.settings));
@@ -76,12 +72,14 @@ class ImportResolver {
   }
 
   DiagnosticSink& sink_;
+  const uint64_t maxBytes_;  // of the program and its imports together
+  uint64_t usedBytes_ = 0;
   std::set<std::string> seen_;
 };
 }  // namespace
 
-ParsedProgram parseWithImports(std::shared_ptr<const SourceFile> main, DiagnosticSink& sink) {
-  return ImportResolver(sink).run(std::move(main));
+ParsedProgram parseWithImports(std::shared_ptr<const SourceFile> main, DiagnosticSink& sink, uint64_t maxSourceBytes) {
+  return ImportResolver(sink, maxSourceBytes).run(std::move(main));
 }
 
 }  // namespace ontogen

@@ -12,6 +12,7 @@
 
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
+#include "lang/source_reader.h"
 
 namespace ontogen {
 
@@ -23,6 +24,9 @@ struct ParsedProgram {
 /// Parses `main` and everything it imports. Constants, equivs, functions and cells of
 /// imported files come before the importer's (so its #defines may use theirs); systems
 /// come after (so the program's own first system stays the root). Errors go to the sink.
-ParsedProgram parseWithImports(std::shared_ptr<const SourceFile> main, DiagnosticSink& sink);
+/// An import must be a regular file (lang/source_reader.h), and `main` with everything
+/// it imports at most `maxSourceBytes` bytes.
+ParsedProgram parseWithImports(std::shared_ptr<const SourceFile> main, DiagnosticSink& sink,
+                               uint64_t maxSourceBytes = kDefaultMaxSourceBytes);
 
 }  // namespace ontogen

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "lang/utf8.h"
+
 namespace ontogen {
 
 std::string_view tokenKindName(TokenKind kind) {
@@ -79,10 +81,14 @@ class Lexer {
   Lexer(const SourceFile& file, DiagnosticSink& sink) : file_(file), text_(file.text()), sink_(sink) {}
 
   std::vector<Token> run() {
+    reportInvalidUtf8();
     std::vector<Token> tokens;
     for (;;) {
       skipSpaceAndComments();
+      // Past the sink's error limit the rest of the text is not read.
+      if (sink_.limitReached()) pos_ = text_.size();
       Token token = next();
+      followNotation(token);
       bool done = token.kind == TokenKind::EndOfFile;
       tokens.push_back(std::move(token));
       if (done) break;
@@ -91,6 +97,25 @@ class Lexer {
   }
 
  private:
+  // The source is UTF-8: the first byte of each line that breaks it is an error, so a
+  // file of binary noise gives one error a line, not one a byte.
+  void reportInvalidUtf8() {
+    int reportedLine = 0;
+    for (size_t at = findInvalidUtf8(text_); at < text_.size(); at = findInvalidUtf8(text_, at + 1)) {
+      const int line = file_.lineOf(static_cast<uint32_t>(at));
+      if (line == reportedLine) continue;
+      reportedLine = line;
+      sink_.error(span(at, at + 1), "invalid UTF-8: byte " + hexByte(text_[at]) + " starts no character (the source must be UTF-8 text)");
+      if (sink_.limitReached()) return;
+    }
+  }
+
+  static std::string hexByte(char c) {
+    static constexpr char kDigits[] = "0123456789ABCDEF";
+    const auto byte = static_cast<unsigned char>(c);
+    return std::string("0x") + kDigits[byte >> 4] + kDigits[byte & 15];
+  }
+
   bool atUtf8Operator() const {
     for (const auto& op : kUtf8Operators)
       if (text_.compare(pos_, std::strlen(op.bytes), op.bytes) == 0) return true;
@@ -99,9 +124,27 @@ class Lexer {
 
   char peek(size_t ahead = 0) const { return pos_ + ahead < text_.size() ? text_[pos_ + ahead] : '\0'; }
 
+  // Under #letters (lang/parser.cpp), ABOP's `]/////` is five rolls: a `//` that touches
+  // the token before it is no comment. The lexer follows where #letters holds: after a
+  // top-level one, or to the end of the block that holds it.
+  void followNotation(const Token& token) {
+    if (token.kind == TokenKind::LBrace) ++braces_;
+    if (token.kind == TokenKind::RBrace && braces_ > 0 && --braces_ < lettersBraces_) lettersBraces_ = 0;
+    if (token.kind == TokenKind::Directive && token.text == "letters") {
+      if (braces_ == 0)
+        lettersEverywhere_ = true;
+      else if (lettersBraces_ == 0)
+        lettersBraces_ = braces_;
+    }
+  }
+  bool lettersHold() const { return lettersEverywhere_ || lettersBraces_ > 0; }
+
   void skipSpaceAndComments() {
     for (;;) {
       while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+      if (peek() == '/' && peek(1) == '/' && lettersHold() && pos_ > 0 &&
+          !std::isspace(static_cast<unsigned char>(text_[pos_ - 1])))
+        return;
       if (peek() == '/' && peek(1) == '/') {
         while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
       } else if (peek() == '/' && peek(1) == '*') {
@@ -237,10 +280,21 @@ class Lexer {
       case '$': return make(TokenKind::Dollar, begin);
       case '~': return make(TokenKind::Tilde, begin);
       case '@': return make(TokenKind::At, begin);
+      case '?':
+        // cpfg's query modules ?P ?H ?L ?U (ABOP 1.10) are labels.
+        if (pos_ < text_.size() && std::strchr("PHLU", text_[pos_]) && text_[pos_] != '\0' &&
+            !(pos_ + 1 < text_.size() && isIdentChar(static_cast<unsigned char>(text_[pos_ + 1])))) {
+          ++pos_;
+          return make(TokenKind::Identifier, begin, text_.substr(begin, 2));
+        }
+        break;
       default: break;
     }
+    // Control bytes are named, not echoed: the terminal would act on them.
+    const bool printable = c >= 0x20 && c < 0x7F;
     std::string shown(1, static_cast<char>(c));
-    sink_.error(span(begin, pos_), "unexpected character '" + shown + "'");
+    sink_.error(span(begin, pos_), printable ? "unexpected character '" + shown + "'"
+                                             : "unexpected control character " + hexByte(static_cast<char>(c)));
     return make(TokenKind::Error, begin, shown);
   }
 
@@ -248,6 +302,9 @@ class Lexer {
   const std::string& text_;
   DiagnosticSink& sink_;
   size_t pos_ = 0;
+  int braces_ = 0;                  // '{' open
+  int lettersBraces_ = 0;           // > 0: #letters holds while this many '{' are open
+  bool lettersEverywhere_ = false;  // a top-level #letters: to the end of the file
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <functional>
@@ -19,6 +20,9 @@ using ast::Program;  // not ontogen::Program, which lang/directives.h declares
 // Thrown to unwind to the enclosing statement after an error was reported (or, while
 // speculating, instead of reporting it).
 struct SyntaxError {};
+// Thrown past every recovery point when the sink's error limit is reached: the rest of
+// the file is not read.
+struct ErrorLimitReached {};
 
 bool isSymbolToken(TokenKind kind) {
   switch (kind) {
@@ -40,18 +44,26 @@ std::string symbolSpelling(const Token& token) {
 
 class Parser {
  public:
-  Parser(const SourceFile& file, DiagnosticSink& sink) : sink_(sink) { tokens_ = lex(file, sink); }
+  Parser(const SourceFile& file, DiagnosticSink& sink) : sink_(sink) {
+    tokens_ = lex(file, sink);
+    // #letters splits tokens in place (splitLetterRun); with room for every character
+    // the vector never reallocates, so references to tokens already read stay valid.
+    if (file.text().find("#letters") != std::string::npos) tokens_.reserve(tokens_.size() + file.text().size());
+  }
 
   Program run() {
     Program program;
-    while (!check(TokenKind::EndOfFile)) {
-      size_t before = pos_;
-      try {
-        topLevel(program);
-      } catch (const SyntaxError&) {
-        synchronize();
+    try {
+      while (!check(TokenKind::EndOfFile)) {
+        size_t before = pos_;
+        try {
+          topLevel(program);
+        } catch (const SyntaxError&) {
+          synchronize();
+        }
+        if (pos_ == before) advance();  // never loop on a token nobody consumes
       }
-      if (pos_ == before) advance();  // never loop on a token nobody consumes
+    } catch (const ErrorLimitReached&) {
     }
     return program;
   }
@@ -80,11 +92,18 @@ class Parser {
     if (speculating_ == 0) {
       // An Error token was already reported by the lexer: stay silent on it.
       if (peek().kind != TokenKind::Error) sink_.error(span, std::move(message));
+      if (sink_.limitReached()) throw ErrorLimitReached{};
     }
     throw SyntaxError{};
   }
   [[noreturn]] void failHere(std::string expected) {
     const Token& token = peek();
+    // A line-based statement that stops short is reported where its line ends, not on
+    // the line after it, which is another statement.
+    if (atLineEnd()) {
+      const SourceSpan& last = previous().span;
+      fail(SourceSpan{last.file, last.end, last.end}, "expected " + expected + ", found the end of the line");
+    }
     std::string found = token.kind == TokenKind::Identifier ? "'" + token.text + "'"
                         : token.kind == TokenKind::Number   ? "number '" + token.text + "'"
                                                             : std::string(tokenKindName(token.kind));
@@ -102,13 +121,22 @@ class Parser {
   struct Statement {
     bool lineBased = false;
     int startColumn = INT_MAX;
+    size_t firstToken = 0;  // set by inStatement; the first token never ends its statement
   };
 
   bool atStatementEnd() const {
     const Token& token = peek();
     if (token.kind == TokenKind::Semicolon || token.kind == TokenKind::RBrace || token.kind == TokenKind::EndOfFile)
       return true;
-    if (!statement_.lineBased || depth_ > 0 || pos_ == 0) return false;
+    return atLineEnd();
+  }
+
+  // The next token starts a new line-based statement: its line begins at or left of the
+  // column the current statement began in.
+  bool atLineEnd() const {
+    if (!statement_.lineBased || depth_ > 0 || pos_ <= statement_.firstToken) return false;
+    const Token& token = peek();
+    if (token.kind == TokenKind::RBrace || token.kind == TokenKind::EndOfFile) return false;
     return token.line > previous().line && token.column <= statement_.startColumn;
   }
 
@@ -117,6 +145,7 @@ class Parser {
     Statement saved = statement_;
     int savedDepth = depth_;
     statement_ = statement;
+    statement_.firstToken = pos_;
     depth_ = 0;
     struct Restore {
       Parser* parser;
@@ -135,6 +164,22 @@ class Parser {
     if (check(TokenKind::RBrace) || check(TokenKind::EndOfFile)) return;
     if (statement_.lineBased && atStatementEnd()) return;
     failHere("';' or the end of the statement");
+  }
+
+  // Whether an arrow comes before the end of the current line-based statement.
+  bool arrowInStatement() const {
+    int parens = 0;
+    for (size_t i = pos_; i < tokens_.size(); ++i) {
+      const Token& token = tokens_[i];
+      if (token.kind == TokenKind::Semicolon || token.kind == TokenKind::RBrace || token.kind == TokenKind::EndOfFile)
+        return false;
+      if (i > pos_ && parens == 0 && token.line > tokens_[i - 1].line && token.column <= statement_.startColumn)
+        return false;
+      if (token.kind == TokenKind::LParen) ++parens;
+      if (token.kind == TokenKind::RParen && parens > 0) --parens;
+      if (token.kind == TokenKind::Arrow && parens == 0) return true;
+    }
+    return false;
   }
 
   // Skips to a point where a new statement can start.
@@ -166,6 +211,7 @@ class Parser {
   void topLevel(Program& program) {
     Statement top{};
     statement_ = top;
+    depth_ = 0;  // an error inside parentheses leaves them counted
     if (check(TokenKind::Directive)) return directive(program.defines, program.settings);
     if (checkWord("equiv")) return program.equivs.push_back(equiv(Statement{true, peek().column}));
     if (checkWord("import")) return program.imports.push_back(importStatement());
@@ -198,8 +244,10 @@ class Parser {
   // What follows a directive's name depends on its kind (lang/directives.h).
   void directiveBody(const Token& hash, std::vector<Define>& defines, std::vector<Setting>& settings) {
     inStatement(Statement{true, INT_MAX}, [&] {
+      statement_.firstToken = pos_ - 1;  // the statement began at the '#name' already read
       const Directive* directive = findDirective(hash.text);
       if (!directive) fail(hash.span, unknownDirectiveMessage(hash.text));
+      if (directive->owner == DirectiveOwner::Notation) notation();
       switch (directive->kind) {
         case DirectiveKind::Define: defines.push_back(defineStatement(hash)); break;
         case DirectiveKind::Number:
@@ -321,12 +369,14 @@ class Parser {
 
   void cellItem(Cell& cell) {
     statement_ = Statement{};
+    depth_ = 0;
     if (checkWord("rules")) {
       advance();
       expect(TokenKind::LBrace, " after 'rules'");
       while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
         size_t before = pos_;
         try {
+          depth_ = 0;
           cell.rules.push_back(cellRule());
         } catch (const SyntaxError&) {
           synchronize();
@@ -501,6 +551,7 @@ class Parser {
 
   ContextGroup contextGroup() {
     ContextGroup group;
+    Nested nested = nest(peek().span, "context");
     const Token& open = expect(TokenKind::LParen, "");
     ++depth_;
     if (check(TokenKind::LParen)) {
@@ -585,8 +636,8 @@ class Parser {
     rule.hasContext = true;
     if (check(TokenKind::LParen)) return gridContext(rule);
     bool seenMe = false;
-    while (canStartModule()) {
-      Module item = module(ModuleUse::Pattern);
+    while (canStartModule() || check(TokenKind::Star)) {
+      Module item = check(TokenKind::Star) ? contextModule() : module(ModuleUse::Pattern);
       if (item.isMe) {
         if (seenMe) fail(item.span, "'me' appears twice in the context");
         seenMe = true;
@@ -657,6 +708,7 @@ class Parser {
     } else {
       while (!atStatementEnd() && (canStartModule() || check(TokenKind::Equal)))
         rule.successors.push_back(module(ModuleUse::Successor));
+      if (!atStatementEnd()) failOnDigitModule();
     }
     if (match(TokenKind::Colon)) rule.probability = expression();
   }
@@ -667,8 +719,79 @@ class Parser {
   bool canStartModule() const {
     const Token& token = peek();
     if (token.kind == TokenKind::Identifier || token.kind == TokenKind::LParen) return true;
+    if (letters_ &&
+        (token.kind == TokenKind::Number || token.kind == TokenKind::AmpAmp || token.kind == TokenKind::PipePipe))
+      return true;
     return isSymbolToken(token.kind);
   }
+
+  // ---- #letters: ABOP's strings as printed ----
+  // `#letters` at the top level holds for the lsystem blocks after it, in a block for the
+  // rest of the block. Under it a run of letters and digits where a module stands is one
+  // module per character, so `FF-[-F+F+F]` and ABOP's `0 -> 1[0]0` read as printed.
+  void notation() {
+    if (inLSystem_)
+      letters_ = true;
+    else
+      lettersEverywhere_ = true;
+  }
+
+  static size_t codePoints(std::string_view text) {
+    size_t count = 0;
+    for (unsigned char c : text) count += (c & 0xC0) != 0x80;
+    return count;
+  }
+
+  // Replaces the token at pos_ by one token per character when it is a run of several
+  // (`FF`, `01`), and `&&`, `||` by two symbols. A parameter list stays on the last one,
+  // since its '(' touches the last character.
+  void splitLetterRun() {
+    const Token token = peek();
+    std::vector<Token> pieces;
+    auto piece = [&](uint32_t begin, uint32_t end, TokenKind kind) {
+      Token part = token;
+      part.kind = kind;
+      part.text = kind == TokenKind::Identifier ? token.span.file->text().substr(begin, end - begin) : std::string();
+      part.span.begin = begin;
+      part.span.end = end;
+      part.column = token.column + static_cast<int>(begin - token.span.begin);
+      pieces.push_back(std::move(part));
+    };
+    if (token.kind == TokenKind::AmpAmp || token.kind == TokenKind::PipePipe) {
+      const TokenKind one = token.kind == TokenKind::AmpAmp ? TokenKind::Amp : TokenKind::Pipe;
+      piece(token.span.begin, token.span.begin + 1, one);
+      piece(token.span.begin + 1, token.span.end, one);
+    } else if ((token.kind == TokenKind::Identifier && codePoints(token.text) > 1) || token.kind == TokenKind::Number) {
+      const std::string& text = token.span.file->text();
+      for (uint32_t at = token.span.begin; at < token.span.end;) {
+        uint32_t end = at + 1;
+        while (end < token.span.end && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) ++end;
+        const unsigned char c = static_cast<unsigned char>(text[at]);
+        if (!std::isalnum(c) && c != '_' && c < 0x80)
+          fail(token.span, "under #letters every digit is a module, so '" + token.text +
+                               "' cannot stand here; write a number inside a module's parentheses, as in F(" +
+                               token.text + ")");
+        piece(at, end, TokenKind::Identifier);
+        at = end;
+      }
+      if (pieces.size() == 1 && token.kind == TokenKind::Identifier) return;
+    } else {
+      return;
+    }
+    tokens_.erase(tokens_.begin() + static_cast<std::ptrdiff_t>(pos_));
+    tokens_.insert(tokens_.begin() + static_cast<std::ptrdiff_t>(pos_), pieces.begin(), pieces.end());
+  }
+
+  // A number where a module could stand: ABOP's digit labels (`0 -> 1[0]0`).
+  void failOnDigitModule() {
+    if (!inLSystem_ || !check(TokenKind::Number)) return;
+    const Token& number = peek();
+    fail(number.span, "'" + number.text + "' is a number, not a module: a label starts with a letter (write 'A" +
+                          number.text +
+                          "'), or put #letters in the block, under which every letter and digit is a module, as in "
+                          "ABOP's 0 -> 1[0]0");
+  }
+
 
   // `X`, `X(args)` (the '(' must touch the label), `(X(args), age)` or `me`.
   // A successor may be written `=X` (or `=(X, age)`, `(=X, age)`): it keeps its
@@ -705,6 +828,7 @@ class Parser {
 
   Module bareModule(ModuleUse use) {
     Module result;
+    if (letters_ && use != ModuleUse::Instruction) splitLetterRun();
     const Token& label = peek();
     if (label.kind != TokenKind::Identifier && !isSymbolToken(label.kind)) failHere("a module such as 'A' or 'F(1)'");
     advance();
@@ -721,10 +845,21 @@ class Parser {
       result.hasArgs = true;
       if (!check(TokenKind::RParen)) {
         do {
-          if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
+          if ((use == ModuleUse::Pattern || use == ModuleUse::Predecessor) &&
+              (check(TokenKind::Number) || (check(TokenKind::Minus) && peek(1).kind == TokenKind::Number))) {
+            // A value pattern, `A(3)`: the module matches only with that value there.
+            const Token& sign = peek();
+            const bool negative = match(TokenKind::Minus);
+            const Token& value = advance();
+            auto expr = std::make_unique<Expr>();
+            expr->kind = Expr::Kind::Number;
+            expr->number = negative ? -value.number : value.number;
+            expr->span = sign.span.to(value.span);
+            result.args.push_back(std::move(expr));
+          } else if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
             const Token& name = peek();
             if (name.kind != TokenKind::Identifier)
-              failHere("a parameter name (patterns bind names, as in 'A(x)')");
+              failHere("a parameter name or a number (patterns bind names, as in 'A(x)', or test values, as in 'A(3)')");
             advance();
             auto expr = std::make_unique<Expr>();
             expr->kind = Expr::Kind::Name;
@@ -756,6 +891,7 @@ class Parser {
       size_t before = pos_;
       try {
         statement_ = Statement{};
+        depth_ = 0;
         systemItem(result);
       } catch (const SyntaxError&) {
         synchronize();
@@ -769,6 +905,8 @@ class Parser {
 
   void systemItem(System& system) {
     if (match(TokenKind::Semicolon)) return;
+    if (check(TokenKind::Directive) && peek().text == "letters")
+      fail(peek().span, "#letters reads ABOP's strings in lsystem blocks; a system's cells keep their names");
     if (check(TokenKind::Directive)) return directive(system.defines, system.settings);
     if (checkWord("equiv")) return system.equivs.push_back(equiv(Statement{}));
     if (checkWord("pool")) {
@@ -822,6 +960,7 @@ class Parser {
     match(TokenKind::Colon);
     if (!system.axiom.empty()) fail(keyword.span, "the system already has an axiom");
     while (!atStatementEnd() && canStartModule()) system.axiom.push_back(module(ModuleUse::Axiom));
+    if (!atStatementEnd()) failOnDigitModule();
     system.axiomSpan = keyword.span.to(previous().span);
     if (system.axiom.empty()) fail(keyword.span, "the axiom is empty: give at least one cell, as in 'axiom A(1)'");
     endStatement();
@@ -831,12 +970,19 @@ class Parser {
     const Token& keyword = advance();
     match(TokenKind::Colon);
     SymbolList list;
-    while (!atStatementEnd() && (check(TokenKind::Identifier) || isSymbolToken(peek().kind))) {
+    while (!atStatementEnd()) {
+      if (letters_) splitLetterRun();  // only within the statement: the next line's keyword stays whole
+      if (!check(TokenKind::Identifier) && !isSymbolToken(peek().kind)) break;
       if (check(TokenKind::LBracket) || check(TokenKind::RBracket))
         fail(peek().span, "brackets delimit branches and cannot be ignored");
       list.symbols.push_back(symbolSpelling(advance()));
     }
     list.span = keyword.span.to(previous().span);
+    list.consider = keyword.text == "consider";
+    if (system.isLSystem) {
+      filter_ = static_cast<int>(system.filters.size());
+      system.filters.push_back(list);
+    }
     (keyword.text == "ignore" ? system.ignore : system.consider).push_back(std::move(list));
     endStatement();
   }
@@ -845,11 +991,16 @@ class Parser {
   System lsystem() {
     System result;
     result.isLSystem = true;
+    section_ = RuleKind::Production;
+    group_ = 0;
+    filter_ = -1;
     const Token& keyword = advance();
     const Token& name = expect(TokenKind::Identifier, " (the L-system's name)");
     result.name = name.text;
     result.nameSpan = name.span;
     expect(TokenKind::LBrace, " to open the L-system");
+    inLSystem_ = true;
+    letters_ = lettersEverywhere_;
     while (!check(TokenKind::RBrace) && !check(TokenKind::EndOfFile)) {
       size_t before = pos_;
       Statement line{true, peek().column};
@@ -869,8 +1020,11 @@ class Parser {
       }
       if (pos_ == before) advance();
     }
+    inLSystem_ = letters_ = false;
     const Token& close = expect(TokenKind::RBrace, " to close the L-system");
     result.span = keyword.span.to(close.span);
+    if (!result.axiomSpan.valid() && !sink_.limitReached())
+      sink_.error(name.span, "L-system '" + name.text + "' has no axiom: give it one, as in 'axiom A'");
     return result;
   }
 
@@ -881,13 +1035,89 @@ class Parser {
     if (checkWord("interpret") && peek(1).kind == TokenKind::Identifier && peek(1).line == peek().line)
       return symbolInterpretation(system);
     if (checkWord("axiom") && (peek(1).kind == TokenKind::Colon || peek(1).line == peek().line) &&
-        peek(1).kind != TokenKind::Arrow && peek(1).kind != TokenKind::Less && peek(1).kind != TokenKind::Greater)
+        peek(1).kind != TokenKind::Arrow && peek(1).kind != TokenKind::Less && peek(1).kind != TokenKind::Greater) {
+      system.axiomSpan = peek().span;  // an axiom was written, even if it fails to parse
       return axiom(system);
+    }
     if ((checkWord("ignore") || checkWord("consider")) && peek(1).kind == TokenKind::Colon) return symbolList(system);
+    if ((checkWord("ignore") || checkWord("consider")) && !arrowInStatement()) {
+      const std::string word = peek().text;
+      fail(peek().span, "'" + word + "' needs a colon in an L-system, as in '" + word + ": F'");
+    }
     if ((checkWord("g") || checkWord("develop")) &&
         (peek(1).kind == TokenKind::Identifier || isSymbolToken(peek(1).kind)) && peek(2).kind == TokenKind::LParen)
       return system.functions.push_back(function());
+    if (sectionLine()) return section(system);
+    if (checkWord("group") && peek(1).kind == TokenKind::Number && peek(2).kind == TokenKind::Colon) return group();
+    if (checkWord("use") && peek(1).kind == TokenKind::Identifier && peek(1).text == "group" &&
+        peek(2).kind == TokenKind::Colon)
+      return useGroup(system);
+    if (checkWord("maximum") && peek(1).kind == TokenKind::Identifier && peek(1).text == "depth" &&
+        peek(2).kind == TokenKind::Colon)
+      return maximumDepth(system);
     system.productions.push_back(production());
+    system.productions.back().kind = section_;
+    system.productions.back().group = group_;
+    system.productions.back().filter = filter_;
+  }
+
+  // `group N:` (L-Py): the rules that follow belong to group N; `group 0:` is the default.
+  void group() {
+    advance();
+    const Token& number = advance();
+    advance();
+    if (!(number.number >= 0) || number.number != std::floor(number.number) || number.number > 1e6)
+      fail(number.span, "a group is a whole number from 0, as in 'group 1:'");
+    group_ = static_cast<int>(number.number);
+    endStatement();
+  }
+
+  // `use group: EXPR`: the active group, evaluated at the start of every step.
+  void useGroup(System& system) {
+    const Token& first = advance();
+    advance();
+    advance();
+    if (system.useGroup) fail(first.span, "the L-system already says which group it uses");
+    system.useGroup = expression();
+    endStatement();
+  }
+
+  // `production:`, `decomposition:`, `homomorphism:` (or `interpretation:`) alone on
+  // their line switch the kind of the rules that follow (L-Py's sections).
+  bool sectionLine() const {
+    if (!(checkWord("production") || checkWord("decomposition") || checkWord("homomorphism") ||
+          checkWord("interpretation")))
+      return false;
+    if (peek(1).kind != TokenKind::Colon) return false;
+    const Token& after = peek(2);
+    return after.kind == TokenKind::Semicolon || after.kind == TokenKind::RBrace ||
+           after.kind == TokenKind::EndOfFile || after.line > peek(1).line;
+  }
+
+  void section(System& system) {
+    (void)system;
+    const std::string& word = advance().text;
+    advance();
+    section_ = word == "production"      ? RuleKind::Production
+               : word == "decomposition" ? RuleKind::Decomposition
+                                         : RuleKind::Homomorphism;
+    endStatement();
+  }
+
+  // `maximum depth: N` after `decomposition:` or `homomorphism:`.
+  void maximumDepth(System& system) {
+    const Token& first = peek();
+    advance();
+    advance();
+    advance();
+    if (section_ == RuleKind::Production)
+      fail(first.span, "'maximum depth' belongs to a 'decomposition:' or 'homomorphism:' section; write it after one");
+    ExprPtr& depth = section_ == RuleKind::Decomposition ? system.decompositionDepth : system.homomorphismDepth;
+    if (depth)
+      fail(first.span, std::string("the ") + (section_ == RuleKind::Decomposition ? "decomposition" : "homomorphism") +
+                           "'s maximum depth is given twice");
+    depth = expression();
+    endStatement();
   }
 
   DevelopmentFunction function() {
@@ -908,9 +1138,14 @@ class Parser {
   // [label ':'] [left '<'] predecessor ['>' right] [':' condition] '->' successors [':' probability]
   Rule production() {
     const Token& first = peek();
-    if (check(TokenKind::Identifier) && peek(1).kind == TokenKind::Colon) {
+    // Under #letters a single letter before ':' is a predecessor (`A : x > 1 -> B`).
+    if (check(TokenKind::Identifier) && peek(1).kind == TokenKind::Colon &&
+        !(letters_ && codePoints(peek().text) == 1)) {
       // `p1: A -> B` or `A : cond -> B`: try the label first, then fall back.
-      size_t saved = pos_;
+      // Backtracking restores everything the attempt changed: the position and the
+      // parentheses it left open, which would otherwise hide the line breaks after it.
+      const size_t savedPos = pos_;
+      const int savedDepth = depth_, savedNesting = nesting_;
       ++speculating_;
       try {
         std::string name = advance().text;
@@ -921,36 +1156,79 @@ class Parser {
         return rule;
       } catch (const SyntaxError&) {
         --speculating_;
-        pos_ = saved;
+        pos_ = savedPos;
+        depth_ = savedDepth;
+        nesting_ = savedNesting;
       }
     }
     return productionAfterLabel(first);
   }
 
+  // A module of a production's context: a pattern, or `*`, which matches any module.
+  Module contextModule() {
+    if (check(TokenKind::Star)) {
+      Module any;
+      any.label = "*";
+      any.span = advance().span;
+      if (check(TokenKind::LParen) && peek().span.begin == any.span.end)
+        fail(peek().span, "the wildcard '*' matches any module and binds nothing; write it without parameters");
+      return any;
+    }
+    return module(ModuleUse::Predecessor);
+  }
+
+  // `<<` and `>>`: two touching '<' or '>'.
+  bool atDouble(TokenKind kind) const {
+    return check(kind) && peek(1).kind == kind && peek(1).span.begin == peek().span.end;
+  }
+
+  std::vector<Module> contextItems() {
+    std::vector<Module> items;
+    // A new line at or left of the statement's column ends it (section 3.8).
+    while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star)) && !check(TokenKind::Less) &&
+           !check(TokenKind::Greater))
+      items.push_back(contextModule());
+    return items;
+  }
+
+  // [left '<'] [new-left '<<'] predecessor ['>' right]
   Rule productionAfterLabel(const Token& first) {
     Rule rule;
     rule.terminal = true;
-    std::vector<Module> items;
-    while (canStartModule() && !check(TokenKind::Less) && !check(TokenKind::Greater))
-      items.push_back(module(ModuleUse::Predecessor));
-    if (match(TokenKind::Less)) {
+    std::vector<Module> items = contextItems();
+    auto newLeftContext = [&] {
+      advance();
+      advance();
+      rule.hasContext = true;
+      rule.newLeft = std::move(items);
+      if (rule.newLeft.empty()) failHere("a new left context before '<<'");
+      items = contextItems();
+    };
+    if (atDouble(TokenKind::Less)) {
+      newLeftContext();
+    } else if (match(TokenKind::Less)) {
       rule.hasContext = true;
       rule.left = std::move(items);
-      items.clear();
-      if (!canStartModule()) failHere("the predecessor after '<'");
-      items.push_back(module(ModuleUse::Predecessor));
+      items = contextItems();
+      if (atDouble(TokenKind::Less)) newLeftContext();
+      if (items.empty()) failHere("the predecessor after '<'");
     }
     if (items.size() != 1) {
+      failOnDigitModule();
       if (items.empty()) failHere("a production such as 'A(x) -> B(x + 1)'");
       fail(items[1].span, "a production has one predecessor module; put context before '<' or after '>'");
     }
     rule.predecessor = std::move(items.front());
+    if (rule.predecessor.label == "*") fail(rule.predecessor.span, "the wildcard '*' stands in contexts, not as the predecessor");
+    if (atDouble(TokenKind::Greater))
+      fail(peek().span, "ontogen derives left to right, so a new right context '>>' (L-Py's backward derivation) "
+                        "has nothing produced yet to match; write '>' for the right context");
     if (match(TokenKind::Greater)) {
       rule.hasContext = true;
-      while (canStartModule()) rule.right.push_back(module(ModuleUse::Predecessor));
+      while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star))) rule.right.push_back(contextModule());
       if (rule.right.empty()) failHere("a right context after '>'");
     }
-    for (const auto* side : {&rule.left, &rule.right})
+    for (const auto* side : {&rule.left, &rule.right, &rule.newLeft})
       for (const Module& item : *side)
         if (item.age) fail(item.span, "a context module has no terminal age; write it without '(..., age)'");
     if (match(TokenKind::Colon)) rule.predicate = expression();
@@ -966,13 +1244,35 @@ class Parser {
   // Deeper nesting than this is no program a person writes; it would only exhaust the stack.
   static constexpr int kMaxNesting = 200;
 
+  // One level deeper for as long as it lives; past kMaxNesting an error, so that no
+  // input, however deep, recurses further than that.
+  struct Nested {
+    int& nesting;
+    ~Nested() { --nesting; }
+  };
+  [[nodiscard]] Nested nest(const SourceSpan& at, std::string_view what) {
+    if (nesting_ >= kMaxNesting)
+      fail(at, std::string(what) + " nested too deeply (more than " + std::to_string(kMaxNesting) + " levels)");
+    ++nesting_;
+    return Nested{nesting_};
+  }
+
   ExprPtr expression() {
-    if (++nesting_ > kMaxNesting) fail(peek().span, "expression nested too deeply (more than 200 levels)");
-    struct Leave {
-      int& nesting;
-      ~Leave() { --nesting; }
-    } leave{nesting_};
+    Nested nested = nest(peek().span, "expression");
     return logicalOr();
+  }
+
+  // A chain `a + b + c ...` grows the tree without the parser recursing, so the tree's
+  // height has a bound of its own, looser than the nesting: long sums are plausible.
+  static constexpr int kMaxHeight = 1000;
+
+  // Sets a node's height from its operands' and checks it.
+  ExprPtr measured(ExprPtr node) {
+    for (const ExprPtr& arg : node->args) node->height = std::max(node->height, arg->height + 1);
+    if (node->height > kMaxHeight)
+      fail(node->span, "expression too deep: more than " + std::to_string(kMaxHeight) +
+                           " operators inside each other (split it with #define or a function)");
+    return node;
   }
 
   ExprPtr binary(TokenKind op, ExprPtr left, ExprPtr right) {
@@ -982,7 +1282,7 @@ class Parser {
     node->span = left->span.to(right->span);
     node->args.push_back(std::move(left));
     node->args.push_back(std::move(right));
-    return node;
+    return measured(std::move(node));
   }
 
   bool operatorAhead(std::initializer_list<TokenKind> kinds) const {
@@ -1048,23 +1348,22 @@ class Parser {
   ExprPtr unary() {
     if (check(TokenKind::Minus) || check(TokenKind::Plus) || check(TokenKind::Bang)) {
       const Token& op = advance();
-      if (++nesting_ > kMaxNesting) fail(op.span, "expression nested too deeply (more than 200 levels)");
+      Nested nested = nest(op.span, "expression");
       ExprPtr operand = unary();
-      --nesting_;
       if (op.kind == TokenKind::Plus) return operand;
       auto node = std::make_unique<Expr>();
       node->kind = Expr::Kind::Unary;
       node->op = op.kind;
       node->span = op.span.to(operand->span);
       node->args.push_back(std::move(operand));
-      return node;
+      return measured(std::move(node));
     }
     return power();
   }
   ExprPtr power() {
     ExprPtr base = postfix();
     if (operatorAhead({TokenKind::Caret})) {
-      advance();
+      Nested nested = nest(advance().span, "expression");
       ExprPtr exponent = unary();  // right-associative; allows 2^-1
       return binary(TokenKind::Caret, std::move(base), std::move(exponent));
     }
@@ -1080,7 +1379,7 @@ class Parser {
       member->name = field.text;
       member->span = node->span.to(field.span);
       member->args.push_back(std::move(node));
-      node = std::move(member);
+      node = measured(std::move(member));
     }
     return node;
   }
@@ -1110,7 +1409,7 @@ class Parser {
         --depth_;
         const Token& close = expect(TokenKind::RParen, " to close the call of '" + token.text + "'");
         node->span = token.span.to(close.span);
-        return node;
+        return measured(std::move(node));
       }
       node->kind = Expr::Kind::Name;
       return node;
@@ -1133,6 +1432,14 @@ class Parser {
   int depth_ = 0;        // parentheses open in the current statement
   int speculating_ = 0;  // > 0: errors unwind without being reported
   int nesting_ = 0;      // expressions being parsed inside each other
+  RuleKind section_ = RuleKind::Production;  // the L-system section being read
+  int group_ = 0;                            // the L-system rule group being read
+  int filter_ = -1;                          // the L-system's last ignore:/consider: line
+  // #letters (notation()): inside an lsystem block, whether it holds there, and a
+  // top-level one that holds in every block after it.
+  bool inLSystem_ = false;
+  bool letters_ = false;
+  bool lettersEverywhere_ = false;
 };
 
 }  // namespace

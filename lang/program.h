@@ -32,6 +32,9 @@ using MasterId = uint32_t;
 /// and the engine matches them into fixed arrays of this size.
 inline constexpr size_t kMaxContextItems = 64;
 inline constexpr double kForever = std::numeric_limits<double>::infinity();
+/// Largest `maximum depth` of a decomposition or homomorphism: the engine rewrites a
+/// module recursively on its stack, one small frame per level.
+inline constexpr int kMaxRewriteDepth = 256;
 
 /// Read-only internal state, in the slots after a cell's state values.
 struct FrameSlot {
@@ -93,11 +96,19 @@ struct CompiledRule {
   SourceSpan span;
   std::vector<ContextBinding> left;   ///< nearest first
   std::vector<ContextBinding> right;  ///< text order
+  /// L-systems: L-Py's new left context `<<`, nearest first, matched against the word the
+  /// step has produced so far (left of the module); and its items.
+  std::vector<ContextBinding> newLeft;
+  std::vector<ContextItem> newLeftItems;
   std::vector<ContextItem> leftItems;   ///< the items of `left`, contiguous for the pool
   std::vector<ContextItem> rightItems;  ///< the items of `right`
   CompiledExpression predicate;       ///< empty: always true
   std::vector<StateCalculation> calculations;
   bool hasAction = false;
+  int group = 0;  ///< L-systems: its rule group (0: applies whatever group is active)
+  /// L-systems: which of SystemDefinition::ruleClasses its context matching sees (the
+  /// `ignore:` / `consider:` line above it); -1: the system's symbolClass.
+  int symbolClasses = -1;
   std::vector<SuccessorTemplate> successors;
   CompiledExpression probability;  ///< empty: not stochastic
   std::vector<AggregateQuery> aggregates;  ///< read by OpCode::Aggregate in this rule's expressions
@@ -109,7 +120,7 @@ struct CompiledRule {
   /// with its offset (paper 002, Fig. 3).
   int contextDimensions = 1;
 
-  bool hasContext() const { return !left.empty() || !right.empty(); }
+  bool hasContext() const { return !left.empty() || !right.empty() || !newLeft.empty(); }
 };
 
 /// An instruction of an interpretation block, e.g. `F(1 + age)`.
@@ -160,6 +171,10 @@ struct MasterCell {
   bool timedNotation = false;
   std::vector<CompiledRule> rules;          ///< evaluated once per step, in order
   std::vector<CompiledRule> terminalRules;  ///< evaluated when age reaches lifetime
+  /// L-systems: rewrite the module right after the production step (decomposition) or
+  /// only for interpretation (homomorphism), in order, first match (docs/LANGUAGE.md 4.8a).
+  std::vector<CompiledRule> decompositionRules;
+  std::vector<CompiledRule> homomorphismRules;
   std::vector<InterpretationBlock> interpretations;
   int developmentFunction = -1;  ///< index into Program::functions
   std::string command;           ///< the instruction this symbol stands for (label or equiv)
@@ -167,6 +182,9 @@ struct MasterCell {
   /// -1 where the set does not know it, -2 where it knows it by name only.
   std::vector<int> commandIds;
   uint8_t symbolClass = kSymbolModule;
+  /// A query module of cpfg (ABOP 1.10): 'P', 'H', 'L' or 'U' for ?P, ?H, ?L, ?U (its
+  /// label or equiv), 0 for any other. The environment writes into its parameters.
+  char query = 0;
   /// A node of the axial tree (core/parents.h): a module named by a name, not a bracket
   /// or a punctuation symbol that only turns or sets the turtle.
   bool treeNode = true;
@@ -249,11 +267,24 @@ struct SystemDefinition {
   std::vector<AxiomCell> axiom;
   std::vector<GridPlacement> placements;  ///< grid pools: after the axiom, in text order
   std::vector<uint8_t> symbolClass;  ///< per master: branch brackets and ignored symbols
+  /// L-systems: per `ignore:` / `consider:` line, then one without either, the classes
+  /// that the context of the rules below it sees (CompiledRule::symbolClasses).
+  std::vector<std::vector<uint8_t>> ruleClasses;
   InterpretSettings settings;
   bool terminalContext = false;  ///< some terminal rule of this system's cells reads context
   bool sampledRules = false;     ///< some cell of this system has per-step rules
   bool rates = false;            ///< some cell of this system integrates `rate` variables
   bool stochastic = false;
+  /// Recursion limits of the decomposition and the homomorphism (`maximum depth: N`):
+  /// a module is rewritten at most this many times in a row. 1 as in L-Py.
+  int decompositionDepth = 1;
+  int homomorphismDepth = 1;
+  /// `use group: EXPR`: the active rule group, over a frame of internal state only
+  /// (reads `time`), evaluated at the start of every step; empty: group 0.
+  CompiledExpression useGroup;
+  SourceSpan useGroupSpan;
+  bool decomposes = false;    ///< some symbol of this system has decomposition rules
+  bool homomorphism = false;  ///< some symbol of this system has homomorphism rules
 };
 
 /// A `#define` of the program and the value it has, for callers that list or vary them.
@@ -280,6 +311,7 @@ struct Program {
   /// in the order of `systems`. A name may appear in several blocks.
   std::vector<ProgramDefine> defines;
   bool hasSystemCells = false;            ///< some system's cell can appear in another's pool
+  bool hasQueries = false;  ///< some master is a query module (`?P` ...; core/environment_process.h)
   int root = 0;          ///< index of the root system
   uint64_t seed = 1;     ///< default seed (#seed), overridden by --seed
   bool hasSeed = false;

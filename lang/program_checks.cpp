@@ -98,6 +98,22 @@ void checkAncestorReads(CompileContext& ctx, const SystemTree& tree) {
   }
 }
 
+// Systems nest at most kMaxSystemDepth deep; the message names the chain's two ends.
+void checkDepth(CompileContext& ctx, const SystemTree& tree) {
+  const SystemTree::Depths depths = tree.depths();
+  const auto deepest = std::max_element(depths.depth.begin(), depths.depth.end());
+  if (deepest == depths.depth.end() || *deepest <= kMaxSystemDepth) return;
+  int s = static_cast<int>(deepest - depths.depth.begin());
+  // The first system of the chain past the limit is where the text goes too deep.
+  while (depths.depth[s] > kMaxSystemDepth + 1) s = depths.above[s];
+  int top = s;
+  while (depths.above[top] >= 0) top = depths.above[top];
+  const auto& systems = ctx.program->systems;
+  ctx.sink.error(systems[s].span, "system '" + systems[s].name + "' is nested " + std::to_string(depths.depth[s]) +
+                                      " deep (under '" + systems[top].name + "'), past the limit of " +
+                                      std::to_string(kMaxSystemDepth) + " nested systems");
+}
+
 }  // namespace
 
 // What each system's engine needs to know of the cells its pool can hold (terminal
@@ -155,6 +171,7 @@ void checkSystemTree(CompileContext& ctx) {
   }
   SystemTree tree(*ctx.program);
   if (!checkCycles(ctx, tree)) return;
+  checkDepth(ctx, tree);
   for (size_t s = 0; s < ctx.program->systems.size(); ++s)
     if (!tree.containers(static_cast<int>(s)).empty()) ctx.program->hasSystemCells = true;
   chooseRoot(ctx, tree);

@@ -2,10 +2,14 @@
 
 #include <algorithm>
 
+#include "lang/utf8.h"
+
 namespace ontogen {
 
 SourceFile::SourceFile(std::string name, std::string text)
     : name_(std::move(name)), text_(std::move(text)) {
+  // Editors that write a byte-order mark hide it; columns count from after it.
+  if (text_.starts_with(kUtf8ByteOrderMark)) text_.erase(0, kUtf8ByteOrderMark.size());
   lineStarts_.push_back(0);
   for (uint32_t i = 0; i < text_.size(); ++i)
     if (text_[i] == '\n') lineStarts_.push_back(i + 1);

@@ -10,7 +10,8 @@
 
 namespace ontogen {
 
-/// A program text with its name (a path or "<string>") and an index of line starts.
+/// A program text with its name (a path or "<string>") and an index of line starts. A
+/// UTF-8 byte-order mark at the start is dropped: offsets count from after it.
 class SourceFile {
  public:
   SourceFile(std::string name, std::string text);

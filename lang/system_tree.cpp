@@ -80,6 +80,27 @@ std::vector<int> SystemTree::containers(int s) const {
   return master < 0 ? std::vector<int>{} : systemsHolding(static_cast<MasterId>(master));
 }
 
+SystemTree::Depths SystemTree::depths() const {
+  const size_t n = program_.systems.size();
+  Depths result{std::vector<int>(n, 0), std::vector<int>(n, -1)};
+  std::vector<std::vector<int>> containersOf(n);
+  for (size_t s = 0; s < n; ++s) containersOf[s] = containers(static_cast<int>(s));
+  // Longest path in a DAG, by relaxing until nothing changes: at most n rounds, and the
+  // systems number at most kMaxSystems.
+  for (size_t s = 0; s < n; ++s) result.depth[s] = 1;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t s = 0; s < n; ++s)
+      for (int c : containersOf[s])
+        if (result.depth[c] + 1 > result.depth[s]) {
+          result.depth[s] = result.depth[c] + 1;
+          result.above[s] = c;
+          changed = true;
+        }
+  }
+  return result;
+}
+
 std::vector<int> SystemTree::systemsHolding(MasterId master) const {
   std::vector<int> result;
   for (size_t s = 0; s < holds_.size(); ++s)

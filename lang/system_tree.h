@@ -11,6 +11,16 @@
 
 namespace ontogen {
 
+/// Most systems in one program. The compiler's whole-program passes weigh every system
+/// against every cell, so their cost grows with the square of the count (30,000 systems
+/// took minutes and gigabytes); the models have three at most, generated programs a few
+/// hundred.
+inline constexpr size_t kMaxSystems = 1024;
+/// Most systems nested inside each other, the root counting as one. Paper 002's
+/// hierarchies are a few levels deep (an orchard of trees of branches is three); the
+/// engine steps and captures nested pools recursively, so depth costs stack.
+inline constexpr int kMaxSystemDepth = 64;
+
 class SystemTree {
  public:
   explicit SystemTree(const Program& program);
@@ -26,6 +36,14 @@ class SystemTree {
   std::vector<int> containers(int s) const;
   /// The systems whose pools can hold cells of this master.
   std::vector<int> systemsHolding(MasterId master) const;
+  /// The longest chain of containment that ends at each system, from a system no other
+  /// contains (1 for such a system), with the system above it on that chain (-1 for
+  /// none). Only for a tree (findCycle() empty).
+  struct Depths {
+    std::vector<int> depth;
+    std::vector<int> above;
+  };
+  Depths depths() const;
 
  private:
   const Program& program_;

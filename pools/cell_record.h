@@ -21,6 +21,7 @@ enum SymbolClass : uint8_t {
   kSymbolBranchOpen = 1,   ///< `[`
   kSymbolBranchClose = 2,  ///< `]`
   kSymbolIgnored = 4,      ///< left out of context matching (`ignore:` / `consider:`)
+  kSymbolCut = 8,          ///< `%`: when it expires, it and the rest of its branch are removed
 };
 
 }  // namespace ontogen

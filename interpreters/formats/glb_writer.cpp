@@ -24,6 +24,10 @@ constexpr double kFallbackFramesPerSecond = 25;
 
 void GlbAnimationWriter::addFrame(const Geometry& geometry, double time) {
   frames_.push_back({batchByMaterial(geometry), time});
+  for (const MeshBatch& batch : frames_.back().batches)
+    heldBytes_ += batch.positions.size() * sizeof(glm::vec3) + batch.normals.size() * sizeof(glm::vec3) +
+                  batch.texcoords.size() * sizeof(glm::vec2) + batch.indices.size() * sizeof(uint32_t) +
+                  batch.lines.size() * sizeof(glm::vec3);
 }
 
 void GlbAnimationWriter::write(std::ostream& out) const {

@@ -11,6 +11,7 @@
 // side).
 
 #include <ostream>
+#include <cstdint>
 #include <vector>
 
 #include "interpreters/formats/mesh_batches.h"
@@ -26,7 +27,12 @@ class GlbAnimationWriter {
   /// Frames added so far.
   std::size_t frameCount() const { return frames_.size(); }
   /// Removes every frame.
-  void clear() { frames_.clear(); }
+  void clear() {
+    frames_.clear();
+    heldBytes_ = 0;
+  }
+  /// Bytes the frames added so far hold (they are all written at the end).
+  uint64_t heldBytes() const { return heldBytes_; }
   /// Writes the file. Stream errors are left in out's state.
   void write(std::ostream& out) const;
 
@@ -36,6 +42,7 @@ class GlbAnimationWriter {
     double time = 0;
   };
   std::vector<Frame> frames_;
+  uint64_t heldBytes_ = 0;
 };
 
 }  // namespace ontogen

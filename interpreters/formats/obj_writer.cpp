@@ -82,6 +82,12 @@ void writeObjWith(const Geometry& geometry, std::ostream& out, std::string_view 
       << " normals, " << mesh.triangles.size() << " triangles, " << segments.size()
       << " line segments\n";
   if (materials) out << "mtllib " << mtlName << '\n';
+  if (geometry.empty()) {
+    // Readers (assimp) refuse a file without a mesh: a frame with nothing to draw holds
+    // one point at the origin.
+    out << "# nothing to draw in this frame: one point at the origin\nv 0 0 0\np 1\n";
+    return;
+  }
   for (const glm::dvec3& p : mesh.positions) writeVector(out, "v", p);
   for (std::size_t i = 0; i < segments.size(); ++i) {
     if (!continues(segments, i)) writeVector(out, "v", segments[i].start);

@@ -4,7 +4,9 @@
 // anticlockwise seen from outside), and zero-radius segments as `l a b` over vertices
 // that follow the mesh's (a segment that starts where the previous one ended reuses its
 // vertex). Numbers have 10 significant digits, so a written file reads back to within
-// 1e-10 of the geometry, relative to the model's size.
+// 1e-10 of the geometry, relative to the model's size. Empty geometry is written as one
+// point at the origin (`v 0 0 0`, `p 1`): readers such as assimp refuse an OBJ without a
+// mesh.
 
 #include <ostream>
 #include <string_view>

@@ -91,7 +91,7 @@ glm::dvec3 rgbOf(uint32_t material) {
 
 }  // namespace
 
-Image renderGeometry(const Geometry& geometry, const RenderDef& def) {
+void checkRenderDef(const RenderDef& def) {
   if (def.width < 1 || def.width > kMaxSize || def.height < 1 || def.height > kMaxSize) {
     throw std::invalid_argument("picture size must be in 1..8192 pixels, got " + std::to_string(def.width) + "x" +
                                 std::to_string(def.height));
@@ -100,6 +100,17 @@ Image renderGeometry(const Geometry& geometry, const RenderDef& def) {
     throw std::invalid_argument("elevation must be in -90..90 degrees");
   }
   if (!(def.margin >= 0 && def.margin < 0.5)) throw std::invalid_argument("margin must be in [0, 0.5)");
+}
+
+uint64_t renderBytes(const RenderDef& def) {
+  const uint64_t pixels = static_cast<uint64_t>(std::max(def.width, 0)) * static_cast<uint64_t>(std::max(def.height, 0));
+  // The supersampled canvas: a depth (double) and a colour (3 floats) a sample.
+  const uint64_t canvas = pixels * kSupersample * kSupersample * (sizeof(double) + 3 * sizeof(float));
+  return canvas + pixels * 6;  // the picture, and about as much for its PNG
+}
+
+Image renderGeometry(const Geometry& geometry, const RenderDef& def) {
+  checkRenderDef(def);
   Canvas canvas{def.width * kSupersample, def.height * kSupersample, {}, {}};
   const std::size_t pixels = static_cast<std::size_t>(canvas.width) * canvas.height;
   canvas.depth.assign(pixels, -std::numeric_limits<double>::infinity());

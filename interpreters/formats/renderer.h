@@ -35,6 +35,13 @@ struct Image {
 /// The colour every picture starts from (R, G, B).
 inline constexpr uint8_t kBackground[3] = {245, 245, 242};
 
+/// Throws std::invalid_argument when def is out of range.
+void checkRenderDef(const RenderDef& def);
+
+/// Bytes rendering a picture of def's size takes while it is made and written: the
+/// supersampled canvas (depth and colour), the picture and its PNG.
+uint64_t renderBytes(const RenderDef& def);
+
 /// Renders geometry. Throws std::invalid_argument when def is out of range.
 Image renderGeometry(const Geometry& geometry, const RenderDef& def = {});
 

@@ -1,9 +1,12 @@
 #include "interpreters/formats/scene_output.h"
 
+#include "interpreters/temporary_files.h"
+
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <system_error>
@@ -65,7 +68,7 @@ bool ffmpegAvailable() {
 
 SceneOutput::SceneOutput(const SceneOutputDef& def) : def_(def) {
   checkSvgOptions(def.svg);
-  if (def.writePng || def.writePngFrames || def.writeMp4) renderGeometry(Geometry(), def.render);  // validates
+  if (def.writePng || def.writePngFrames || def.writeMp4) checkRenderDef(def.render);
   if (def.writeMp4 && !ffmpegAvailable()) {
     throw std::invalid_argument("the mp4 format needs ffmpeg, which is not installed (Debian: apt-get install ffmpeg)");
   }
@@ -105,6 +108,7 @@ void SceneOutput::writeMp4(const FrameTarget& target, std::vector<std::filesyste
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
+  const RegisteredTemporary registered(temporary);  // removed on SIGINT and SIGTERM too
   pid_t pid = 0;
   int status = 0;
   bool ok = ::posix_spawnp(&pid, "ffmpeg", nullptr, nullptr, argv.data(), environ) == 0 &&
@@ -122,6 +126,27 @@ void SceneOutput::writeMp4(const FrameTarget& target, std::vector<std::filesyste
   written.push_back(path);
 }
 
+std::vector<SetWarning> SceneOutput::takeWarnings() {
+  std::vector<SetWarning> out;
+  auto frames = [](const WarningCounter& counter) {
+    char first[32];
+    std::snprintf(first, sizeof first, "%g", counter.first.time);
+    return std::to_string(counter.count) + (counter.count == 1 ? " frame" : " frames") + " (the first at t = " + first +
+           ")";
+  };
+  emptyObj_.takeInto(out, frames(emptyObj_) + " had nothing to draw: " + (emptyObj_.count == 1 ? "its" : "their") +
+                              " .obj holds one point at the origin, as readers refuse one without a mesh");
+  emptyPly_.takeInto(out, frames(emptyPly_) + " had no surface: no .ply was written for " +
+                              (emptyPly_.count == 1 ? "it" : "them") + ", as readers refuse one without a face");
+  return out;
+}
+
+uint64_t SceneOutput::pictureBytes(const FrameTarget& target) const {
+  const bool last = target.frame + 1 >= target.frameCount;
+  const bool picture = def_.writePngFrames || (def_.writePng && last) || def_.writeMp4;
+  return picture ? renderBytes(def_.render) : 0;
+}
+
 std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const FrameTarget& target_) {
   const Geometry& geometry_ = scene.geometry;
   std::vector<std::filesystem::path> written;
@@ -133,6 +158,12 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
     writeFileAtomically(path, [&](std::ostream& out) { writeSvg(geometry_, out, def_.svg); });
     written.push_back(std::move(path));
   }
+  // Readers (assimp) refuse an .obj without a mesh, or a .ply without a face: the .obj of
+  // a frame with nothing to draw holds a point (obj_writer.h), a frame without a surface
+  // gets no .ply; both are warned of.
+  if (def_.writeObj && geometry_.empty()) emptyObj_.add(1, InstructionSite{SourceSpan{}, "", target_.time});
+  if (def_.writePly && geometry_.triangleCount() == 0)
+    emptyPly_.add(1, InstructionSite{SourceSpan{}, "", target_.time});
   if (def_.writeObj) {
     std::filesystem::path path = outputPath(target_, "obj");
     std::filesystem::path mtl = outputPath(target_, "mtl");
@@ -147,7 +178,7 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
       written.push_back(std::move(mtl));
     }
   }
-  if (def_.writePly) {
+  if (def_.writePly && geometry_.triangleCount() > 0) {
     std::filesystem::path path = outputPath(target_, "ply");
     writeFileAtomically(path, [&](std::ostream& out) { writePly(geometry_, out); });
     written.push_back(std::move(path));

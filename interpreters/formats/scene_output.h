@@ -59,6 +59,15 @@ class SceneOutput {
   /// run); returns the paths written, SVG first. Throws OutputError on failure.
   std::vector<std::filesystem::path> write(const Scene& scene, const FrameTarget& target);
   const SceneOutputDef& def() const { return def_; }
+  /// Bytes this stage holds between frames (the .glb's frames, all written at the end).
+  uint64_t heldBytes() const { return glb_.heldBytes(); }
+  /// Bytes the write() of `target` needs for a while to render a picture (0: none).
+  uint64_t pictureBytes(const FrameTarget& target) const;
+  /// Frames the .glb holds so far.
+  std::size_t glbFrames() const { return glb_.frameCount(); }
+  /// What the stage left out since the last call (frames with nothing an .obj or .ply
+  /// can hold, which get no such file), one entry per kind; starts again.
+  std::vector<SetWarning> takeWarnings();
 
  private:
   std::filesystem::path mp4FramesDirectory(const FrameTarget& target) const;
@@ -69,6 +78,8 @@ class SceneOutput {
   SkinnedGlbWriter skinnedGlb_;  // the run's frames when they hold a skeleton
   JointTrackWriter joints_;
   int mp4Frames_ = 0;
+  WarningCounter emptyObj_;  // frames with nothing to draw: no .obj
+  WarningCounter emptyPly_;  // frames without a surface: no .ply
 };
 
 }  // namespace ontogen

@@ -2,6 +2,8 @@
 
 #include "interpreters/geometry/turtle_commands.h"
 
+#include <stdexcept>
+
 namespace ontogen {
 
 GeometrySet::GeometrySet(const GeometrySetDef& def)
@@ -60,10 +62,18 @@ void GeometrySet::executeCommand(int id, std::string_view command, std::span<con
 
 void GeometrySet::run(const TurtleCommand& command, std::span<const double> args) {
   const TurtleWarnings before = turtle_.warnings();
-  turtle_.execute(command, args, scene_.geometry);
+  const uint64_t dropped = scene_.geometry.dropped();
+  try {
+    turtle_.execute(command, args, scene_.geometry);
+  } catch (const SurfaceError& surface) {
+    refuse(surface.what());  // an undefined surface, a bad blend: at the instruction that names it
+  } catch (const std::length_error& full) {
+    refuse(full.what());  // the frame's mesh is full
+  }
   const TurtleWarnings& after = turtle_.warnings();
   unmatchedPops_.add(static_cast<uint64_t>(after.unmatchedPops - before.unmatchedPops), site_);
   badArguments_.add(static_cast<uint64_t>(after.badArguments - before.badArguments), site_);
+  notDrawn_.add(scene_.geometry.dropped() - dropped, site_);
 }
 
 std::vector<SetWarning> GeometrySet::takeWarnings() {
@@ -73,6 +83,11 @@ std::vector<SetWarning> GeometrySet::takeWarnings() {
   badArguments_.takeInto(out, "the turtle ignored " + std::to_string(badArguments_.count) +
                                   " commands with bad arguments: a wrong count, or values not finite or out of range "
                                   "(the first here)");
+  notDrawn_.takeInto(out, "the turtle left out " + std::to_string(notDrawn_.count) +
+                              " shapes with coordinates not finite or beyond ±1e30 model units, which no output can "
+                              "hold (the first here)");
+  // And what its own output stage left out, when the set writes its frames itself.
+  for (SetWarning& warning : output_.takeWarnings()) out.push_back(std::move(warning));
   return out;
 }
 
@@ -80,7 +95,9 @@ void GeometrySet::finishScene() {
   closeNode();
   // What the turtle meshes at the end (open generalized cylinders, plates) belongs to
   // the frame, not to the last cell.
+  const uint64_t dropped = scene_.geometry.dropped();
   turtle_.finish(scene_.geometry);
+  notDrawn_.add(scene_.geometry.dropped() - dropped, site_);
 }
 
 void GeometrySet::contribute(Scene& scene) {

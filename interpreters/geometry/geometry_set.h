@@ -78,6 +78,7 @@ class GeometrySet : public InterpretationSet {
   SceneOutput output_;
   WarningCounter unmatchedPops_;
   WarningCounter badArguments_;
+  WarningCounter notDrawn_;  // shapes left out: a coordinate not finite or beyond ±1e30
   Turtle turtle_;
   Scene scene_;
   SceneNode pending_;        // the cell being drawn, a node if it draws

@@ -145,7 +145,11 @@ Surface readObjSurface(std::istream& in, const std::string& name) {
 
 Surface loadObjSurface(const std::filesystem::path& path) {
   std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw SurfaceError("cannot read surface " + path.string() + ": it is a directory");
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::is_directory(status)) throw SurfaceError("cannot read surface " + path.string() + ": it is a directory");
+  // Asked before opening: a FIFO would block, a device never end.
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw SurfaceError("cannot read surface " + path.string() + ": it is not a regular file");
   std::ifstream in(path);
   if (!in) throw SurfaceError("cannot read surface " + path.string() + ": no such file or not readable");
   return readObjSurface(in, path.string());

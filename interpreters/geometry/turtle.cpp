@@ -377,6 +377,8 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
     case TurtleOp::GapFilter:
       executeSurfaceCommand(command.op, args, geometry);
       break;
+    case TurtleOp::Query:
+      break;  // a query draws nothing; the turtle environment reads the frame here
   }
 }
 

@@ -118,6 +118,16 @@ constexpr std::array kCommands = {
     TurtleCommand{"gapfilter", TurtleOp::GapFilter, 1, 1, "gapfilter(t)",
                   "at the end of the frame join plate corners closer than t units and colour "
                   "each plate by how much its edges stretched, blue to red; 0 turns it off"},
+    // cpfg's query modules (ABOP 1.10): the turtle environment writes its frame into them.
+    TurtleCommand{"?P", TurtleOp::Query, 0, 3, "?P(x, y, z)",
+                  "query: draws nothing; after each step the turtle's position here is written into "
+                  "the module's parameters"},
+    TurtleCommand{"?H", TurtleOp::Query, 0, 3, "?H(x, y, z)",
+                  "query: after each step the turtle's heading H here is written into the module"},
+    TurtleCommand{"?L", TurtleOp::Query, 0, 3, "?L(x, y, z)",
+                  "query: after each step the turtle's left vector L here is written into the module"},
+    TurtleCommand{"?U", TurtleOp::Query, 0, 3, "?U(x, y, z)",
+                  "query: after each step the turtle's up vector U here is written into the module"},
 };
 
 }  // namespace

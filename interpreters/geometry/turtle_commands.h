@@ -62,6 +62,7 @@ enum class TurtleOp {
   Plate,           ///< plate: start a flat facet
   EndPlate,        ///< endplate: close it
   GapFilter,       ///< gapfilter: join plate corners at the end of the frame
+  Query,           ///< ?P ?H ?L ?U: cpfg's query modules; draw nothing (core/environment_process.h)
 };
 
 /// One row of the table.

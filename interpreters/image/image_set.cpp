@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "interpreters/formats/picture_output.h"
@@ -24,6 +25,14 @@ std::array<uint8_t, 3> colourMap(double t) {
   return rgb;
 }
 
+namespace {
+std::string formatCoordinate(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+}  // namespace
+
 void ImageSet::beginFrame(const FrameTarget& target) {
   target_ = target;
   sites_.clear();
@@ -38,11 +47,10 @@ void ImageSet::execute(std::string_view command, std::span<const double> args) {
     return;
   }
   if (command != "pixel" || args.size() < 3) return;
-  if (!std::isfinite(args[0]) || !std::isfinite(args[1])) return;
   const double x = std::round(args[0]), y = std::round(args[1]);
-  if (x < 0 || y < 0 || x >= kMaxImageSide || y >= kMaxImageSide)
-    throw OutputError("pixel(" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the image's 0 to " +
-                      std::to_string(kMaxImageSide - 1) + " sites");
+  if (!(x >= 0 && y >= 0 && x < kMaxImageSide && y < kMaxImageSide))
+    refuse("pixel(" + formatCoordinate(args[0]) + ", " + formatCoordinate(args[1]) +
+           ") is outside the picture: a site's coordinates are whole numbers 0 to " + std::to_string(kMaxImageSide - 1));
   const double span = high_ - low_;
   const double t = span != 0 ? (args[2] - low_) / span : 0.5;
   sites_.push_back({static_cast<int>(x), static_cast<int>(y), t});
@@ -56,7 +64,8 @@ Image ImageSet::picture() const {
     columns = std::max(columns, site.x + 1);
     rows = std::max(rows, site.y + 1);
   }
-  const int scale = std::max(1, 512 / columns);
+  // By the longer side, so that a tall grid is no taller than a wide one is wide.
+  const int scale = std::max(1, 512 / std::max(columns, rows));
   Image image;
   image.width = columns * scale;
   image.height = rows * scale;

@@ -4,7 +4,9 @@
 #include <jack/jack.h>
 
 #include <algorithm>
+#include <charconv>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <thread>
@@ -111,8 +113,11 @@ LiveMidiOutput::LiveMidiOutput(const LiveMidiDef& def) : def_(def) {
   int chosen = -1;
   bool isIndex = !def.port.empty() && std::all_of(def.port.begin(), def.port.end(), ::isdigit);
   if (isIndex) {
-    unsigned long index = std::stoul(def.port);
-    if (index < ports.size()) chosen = static_cast<int>(index);
+    // from_chars, not stoul: an index of 30 digits is no port, not an exception.
+    unsigned long index = 0;
+    const auto [end, error] = std::from_chars(def.port.data(), def.port.data() + def.port.size(), index);
+    if (error == std::errc() && end == def.port.data() + def.port.size() && index < ports.size())
+      chosen = static_cast<int>(index);
   } else {
     for (size_t i = 0; i < ports.size() && chosen < 0; ++i)
       if (ports[i].name == def.port) chosen = static_cast<int>(i);

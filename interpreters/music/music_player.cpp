@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace ontogen {
@@ -29,6 +30,7 @@ MusicPlayer::MusicPlayer(const MusicPlayerDef& def) : def_(def) {
   if (s.scale < 0 || s.scale >= static_cast<int>(musicScales().size()))
     throw std::invalid_argument("no such scale");
   if (s.key < 0 || s.key > 11) throw std::invalid_argument("the key must be 0..11");
+  if (!(def.maxBeats > 0)) throw std::invalid_argument("the latest time must be > 0 beats");
   reset();
 }
 
@@ -83,6 +85,7 @@ void MusicPlayer::execute(const MusicCommand& command, std::span<const double> a
       playNote(state_.duration, state_.velocity, score);
       return;
     case MusicOp::TurtleRest:
+      checkTime(state_.time + state_.duration, "the rest would end at");
       state_.time += state_.duration;
       return;
     case MusicOp::TurtleUp:
@@ -134,10 +137,12 @@ void MusicPlayer::execute(const MusicCommand& command, std::span<const double> a
         ++warnings_.badArguments;
         break;
       }
+      checkTime(state_.time + d, "the rest would end at");
       state_.time += d;
       break;
     }
     case MusicOp::At:
+      checkTime(args[0], "the time would move to");
       setTime(args[0]);
       break;
     case MusicOp::Pitch:
@@ -218,11 +223,21 @@ void MusicPlayer::execute(const MusicCommand& command, std::span<const double> a
   }
 }
 
+void MusicPlayer::checkTime(double beats, const char* what) const {
+  if (beats <= def_.maxBeats) [[likely]]
+    return;
+  char buffer[160];
+  std::snprintf(buffer, sizeof buffer, "%s beat %g, past beat %g, the end of any MIDI file at this resolution (#ppq)",
+                what, beats, def_.maxBeats);
+  throw MusicTimeError(buffer);
+}
+
 void MusicPlayer::playNote(double duration, double velocity, Score& score) {
   if (!std::isfinite(duration) || !(duration > 0) || !std::isfinite(velocity)) {
     ++warnings_.badArguments;
     return;
   }
+  checkTime(state_.time + duration, "the note would end at");
   // Velocity 0 is MIDI's note-off: such a note is a rest, so blocks can silence notes
   // with an expression, e.g. note(1, if(on, 90, 0)).
   if (notesEnabled_ && clampToInt(velocity, 0, 127) > 0) {

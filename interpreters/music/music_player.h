@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <map>
 #include <span>
+#include <stdexcept>
 #include <string_view>
 #include <tuple>
 #include <vector>
@@ -37,6 +38,20 @@ struct MusicState {
 struct MusicPlayerDef {
   double tempo = 120;    ///< quarter notes per minute at the start, > 0
   MusicState initial{};  ///< the state after reset()
+  /// Latest time anything may sound or end, beats: what a MIDI file reaches at its
+  /// resolution (musicBeatsWithin). Later is a MusicTimeError.
+  double maxBeats = 559240;  // 2^28 - 1 ticks at 480 ppq
+};
+
+/// The latest time, beats, a MIDI file of `ppq` ticks a quarter note reaches with every
+/// gap between its events in one variable-length quantity (2^28 - 1 ticks): 559 240 beats
+/// at 480 ppq, 77 hours at 120 bpm. A score that long is a mistake, not music.
+inline double musicBeatsWithin(int ppq) { return ppq > 0 ? static_cast<double>(0x0FFFFFFF) / ppq : 0; }
+
+/// A command would move the time past MusicPlayerDef::maxBeats (note(1e308), at(1e9)):
+/// the program's error, which the music set locates at the instruction.
+struct MusicTimeError : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 /// Problems the player skipped over; the run reports them as warnings.
@@ -82,6 +97,8 @@ class MusicPlayer {
   const MusicPlayerDef& def() const { return def_; }
 
  private:
+  /// Throws MusicTimeError when `beats` is past def.maxBeats; `what` leads the message.
+  void checkTime(double beats, const char* what) const;
   void playNote(double duration, double velocity, Score& score);
   void moveDegrees(double degrees);
   void sendControl(ScoreControl::Kind kind, double number, double value, Score& score);

@@ -1,5 +1,6 @@
 #include "interpreters/music/music_set.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -7,8 +8,17 @@
 
 namespace ontogen {
 
+namespace {
+// No later than the MIDI file reaches at its resolution.
+MusicPlayerDef playerWithin(const MusicSetDef& def) {
+  MusicPlayerDef player = def.player;
+  if (def.file.ppq > 0) player.maxBeats = std::min(player.maxBeats, musicBeatsWithin(def.file.ppq));
+  return player;
+}
+}  // namespace
+
 MusicSet::MusicSet(const MusicSetDef& def)
-    : def_(def), player_(def.player), output_(ScoreOutputDef{def.file, def.writeFile}) {
+    : def_(def), player_(playerWithin(def)), output_(ScoreOutputDef{def.file, def.writeFile}) {
   checkMidiFileDef(def.file);
   player_.setDevelopmental(def.time == MusicTime::Developmental);
 }
@@ -51,7 +61,11 @@ void MusicSet::executeCommand(int id, std::string_view command, std::span<const 
 
 void MusicSet::run(const MusicCommand& command, std::span<const double> args) {
   const MusicWarnings before = player_.warnings();
-  player_.execute(command, args, score_);
+  try {
+    player_.execute(command, args, score_);
+  } catch (const MusicTimeError& late) {
+    refuse(late.what());
+  }
   const MusicWarnings& after = player_.warnings();
   droppedNotes_.add(static_cast<uint64_t>(after.droppedNotes - before.droppedNotes), site_);
   badArguments_.add(static_cast<uint64_t>(after.badArguments - before.badArguments), site_);

@@ -316,12 +316,22 @@ TEST(Cli, SurfaceFilesLoadRelativeToTheProgramAndBadOnesStopTheRun) {
 
   writeProgram(dir, "#surface 2 \"shapes/none.obj\"\nlsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n"
                     "  interpret geometry { surface(2) }\n}\n");
+  // A file the run could not use is the program's error, found by check as by run.
   Result missing = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());
-  EXPECT_EQ(missing.exitCode, 2);
-  EXPECT_NE(missing.err.find("program.cell:1:1: cannot read surface " + (dir / "shapes" / "none.obj").string()),
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_NE(missing.err.find("program.cell:1:1: error: cannot read surface " + (dir / "shapes" / "none.obj").string()),
             std::string::npos)
       << missing.err;
   EXPECT_FALSE(fs::exists(dir / "bad" / "program.obj"));
+  EXPECT_EQ(ontogen("check " + (dir / "program.cell").string()).exitCode, 1);
+  std::ofstream(dir / "shapes" / "points.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  writeProgram(dir, "lsystem s {\n  #surface 3 \"shapes/points.obj\"\n  axiom Leaf\n}\n");
+  Result faceless = ontogen("check " + (dir / "program.cell").string());
+  EXPECT_EQ(faceless.exitCode, 1);
+  EXPECT_NE(faceless.err.find("program.cell:2:3: error: " + (dir / "shapes" / "points.obj").string() +
+                              ": no faces (an OBJ surface needs 'f' lines)"),
+            std::string::npos)
+      << faceless.err;
 
   writeProgram(dir, "lsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n  interpret geometry { surface(5) }\n}\n");
   Result undefined = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());
@@ -370,6 +380,18 @@ TEST(Cli, WordJsonGivesIdsAndParents) {
   EXPECT_EQ(later[0]["id"], f1) << "ids are stable while a cell lives";
 }
 
+// `word --interpreted` prints the homomorphism's image; without it, the developing word.
+TEST(Cli, WordInterpretedPrintsTheHomomorphismsImage) {
+  fs::path dir = scratch("interpreted");
+  fs::path program = writeProgram(dir, "lsystem t {\n  axiom A\n  A -> A N\n  homomorphism:\n  N -> F\n}\n");
+  Result image = ontogen("word " + program.string() + " --at 0,2 --interpreted");
+  ASSERT_EQ(image.exitCode, 0) << image.err;
+  EXPECT_EQ(image.out, "t = 0: A\nt = 2: A F F\n");
+  Result word = ontogen("word " + program.string() + " --at 2");
+  ASSERT_EQ(word.exitCode, 0) << word.err;
+  EXPECT_EQ(word.out, "t = 2: A N N\n");
+}
+
 // `ontogen help` prints the directive table: a line per directive under the settings it
 // belongs to. The directives are those docs/LANGUAGE.md section 3.2 lists, which
 // tests/lang/directives_test.cpp holds to the table itself.
@@ -404,7 +426,7 @@ TEST(Cli, HelpListsEveryDirective) {
     }
   }
   EXPECT_EQ(listed, documented);
-  EXPECT_EQ(owners, (std::set<std::string>{"constants", "world", "geometry", "music"}));
+  EXPECT_EQ(owners, (std::set<std::string>{"constants", "world", "geometry", "music", "notation"}));
 }
 
 }  // namespace

@@ -314,6 +314,26 @@ TEST_F(JackPeer, NoSuchPortIsExitCode5AndNamesThePorts) {
                                "'midi-monitor:input'"),
             std::string::npos)
       << readFile(err);
+  // An index past every number is no port either, not an exception.
+  runCommand(std::string(ONTOGEN_EXECUTABLE) + " run " + ONTOGEN_SOURCE_DIR +
+                 "/models/koch_melody.cell --interpret music --midi-port 999999999999999999999999 --out '" +
+                 (dir_ / "out").string() + "' 2>'" + err.string() + "'",
+             &code);
+  EXPECT_EQ(code, 5);
+  EXPECT_NE(readFile(err).find("ontogen: error: no MIDI output port '999999999999999999999999'"), std::string::npos)
+      << readFile(err);
+}
+
+TEST_F(JackPeer, APortIndexPastEveryNumberIsNoSuchPort) {
+  fs::path err = dir_ / "err.txt";
+  int code = -1;
+  runCommand(std::string(ONTOGEN_EXECUTABLE) + " run " + ONTOGEN_SOURCE_DIR +
+                 "/models/koch_melody.cell --interpret music --midi-port 99999999999999999999999 --out '" +
+                 (dir_ / "out").string() + "' 2>'" + err.string() + "'",
+             &code);
+  EXPECT_EQ(code, 5);
+  EXPECT_NE(readFile(err).find("ontogen: error: no MIDI output port '99999999999999999999999'"), std::string::npos)
+      << readFile(err);
 }
 
 TEST(LiveMidi, WithoutAMidiSystemTheErrorIsClearAndExitCode5) {

@@ -1,12 +1,16 @@
 // Walks tests/programs/*.cell: one small program per behaviour, with what it must do
 // written in the file as comments:
 //   // expect-word T: WORD        the derivation word at time T (6 significant digits)
+//   // expect-image T: WORD       the word as interpretation reads it at T (after homomorphism rules)
 //   // expect-error L:C: TEXT     an error at line L, column C whose message contains TEXT
 //   // expect-run-error: TEXT     developing on past the last expected word (1000 s) fails with TEXT
+//   // expect-warning L:C: TEXT   a warning at line L, column C whose message contains TEXT
+//   // expect-no-warnings         the program compiles without warnings
 //   // step: DT                   the step used to develop (default: the program's #dt)
 //   // seed: S                    the seed (default 1)
 //   // define: NAME=VALUE         compile with this value for #define NAME (CompileOptions::defines)
-// A file with expect-error lines must report exactly those errors and no others.
+// A file with expect-error lines must report exactly those errors and no others; one with
+// expect-warning or expect-no-warnings lines exactly those warnings.
 
 #include <gtest/gtest.h>
 
@@ -19,15 +23,25 @@
 #include "core/word.h"
 #include "interpreters/text/word_text.h"
 #include "core/world.h"
+#include "interpreters/geometry/turtle_queries.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 
 namespace ontogen {
 namespace {
 
+// A word expected at a time: the developing word, or the image interpretation reads.
+struct ExpectedWord {
+  double time = 0;
+  std::string text;
+  bool image = false;
+};
+
 struct Expectations {
-  std::vector<std::pair<double, std::string>> words;
+  std::vector<ExpectedWord> words;  ///< in file order (time runs forward)
   std::vector<std::tuple<int, int, std::string>> errors;
+  std::vector<std::tuple<int, int, std::string>> warnings;
+  bool checkWarnings = false;
   std::string runError;
   std::optional<double> step;
   uint64_t seed = 1;
@@ -67,11 +81,21 @@ Expectations expectationsOf(const std::string& text) {
   while (std::getline(lines, line)) {
     if (auto wordLine = after(line, "expect-word ")) {
       auto [time, word] = splitAtColon(*wordLine);
-      result.words.push_back({std::stod(time), word});
+      result.words.push_back({std::stod(time), word, false});
+    } else if (auto imageLine = after(line, "expect-image ")) {
+      auto [time, word] = splitAtColon(*imageLine);
+      result.words.push_back({std::stod(time), word, true});
     } else if (auto errorLine = after(line, "expect-error ")) {
       auto [line_, tail] = splitAtColon(*errorLine);
       auto [column, message] = splitAtColon(tail);
       result.errors.push_back({std::stoi(line_), std::stoi(column), message});
+    } else if (auto warningLine = after(line, "expect-warning ")) {
+      auto [line_, tail] = splitAtColon(*warningLine);
+      auto [column, message] = splitAtColon(tail);
+      result.warnings.push_back({std::stoi(line_), std::stoi(column), message});
+      result.checkWarnings = true;
+    } else if (after(line, "expect-no-warnings")) {
+      result.checkWarnings = true;
     } else if (auto runLine = after(line, "expect-run-error:")) {
       result.runError = runLine->substr(runLine->find_first_not_of(' '));
     } else if (auto stepLine = after(line, "step:")) {
@@ -111,6 +135,19 @@ TEST_P(ProgramFile, BehavesAsWritten) {
                        << formatDiagnostics(sink);
   }
   EXPECT_EQ(reported.size(), expected.errors.size()) << formatDiagnostics(sink);
+  if (expected.checkWarnings) {
+    std::vector<std::tuple<int, int, std::string>> warned;
+    for (const auto& d : sink.diagnostics())
+      if (d.severity == Severity::Warning) warned.push_back({d.span.line(), d.span.column(), d.message});
+    for (const auto& [line, column, message] : expected.warnings) {
+      bool found = false;
+      for (const auto& [l, c, m] : warned) found |= l == line && c == column && m.find(message) != std::string::npos;
+      EXPECT_TRUE(found) << "expected a warning at " << line << ":" << column << " containing '" << message
+                         << "'; reported:\n"
+                         << formatDiagnostics(sink);
+    }
+    EXPECT_EQ(warned.size(), expected.warnings.size()) << formatDiagnostics(sink);
+  }
   if (!expected.errors.empty()) {
     EXPECT_EQ(program, nullptr);
     return;
@@ -119,12 +156,14 @@ TEST_P(ProgramFile, BehavesAsWritten) {
 
   WorldDef def;
   def.seed = expected.seed;
+  if (program->hasQueries) def.environment = TurtleQueries::forSettings(program->rootSystem().settings);
   World world(program, def);
   double step = expected.step.value_or(program->dt);
   try {
-    for (const auto& [time, word] : expected.words) {
+    for (const auto& [time, word, image] : expected.words) {
       world.advanceTo(time, step);
-      EXPECT_EQ(formatWord(captureWord(world)), word) << "at t = " << time;
+      EXPECT_EQ(formatWord(image ? captureInterpretedWord(world) : captureWord(world)), word)
+          << (image ? "the image " : "") << "at t = " << time;
     }
     if (!expected.runError.empty()) {
       world.advanceTo(world.time() + 1000, step);

@@ -67,6 +67,24 @@ class MarkerSet final : public InterpretationSet {
   Scene drawn_;
 };
 
+// Homomorphism rules (docs/LANGUAGE.md 4.8a): the set draws the image, N -> F F, while
+// the word keeps its N's; the image's F's stand where their N stands in the tree.
+TEST(Scene, TheGeometrySetDrawsTheHomomorphismsImage) {
+  auto program = testing_support::compileOrFail("lsystem t {\n  axiom N [ + N ]\n  homomorphism:\n  N -> F F\n}");
+  World world(program);
+  ASSERT_EQ(world.rootPool().size(), 5u);
+  GeometrySet set(GeometrySetDef{.sceneNodes = true});
+  set.beginFrame({});
+  interpretWord(world, set);
+  Scene scene;
+  set.contribute(scene);
+  ASSERT_EQ(scene.nodes.size(), 4u) << "two F's for each N";
+  const uint64_t trunk = world.rootPool().cells()[0].id;
+  EXPECT_EQ(scene.nodes[0].parent, kNoParentNode);
+  EXPECT_EQ(scene.nodes[2].parent, trunk) << "the image of the branch's N hangs where that N hangs";
+  for (const SceneNode& node : scene.nodes) EXPECT_NE(node.id, trunk) << "ids of their own";
+}
+
 TEST(Scene, TwoSetsDrawIntoOneFrameAndTheOutputStageWritesIt) {
   RunDef def;
   def.program = testing_support::compileOrFail("lsystem t {\n  axiom F F F\n}");

@@ -4,6 +4,9 @@
 
 #include "lang/directives.h"
 
+#include <cmath>
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,11 +118,14 @@ TEST(Directives, NamesAreUniqueAndFound) {
     EXPECT_EQ(directive.syntax.rfind("#" + std::string(directive.name), 0), 0u) << directive.syntax;
     EXPECT_EQ(directive.apply == nullptr, directive.kind == DirectiveKind::Define) << directive.name;
     EXPECT_EQ(directive.kind == DirectiveKind::Word, !directive.words.empty()) << directive.name;
-    // A value the compiler checks has a message for when it is out of range, and only then.
+    // Every value the compiler checks has a message for when it is out of range: none
+    // takes every number, as none takes NaN or an infinity.
     const bool compilerChecks = directive.kind == DirectiveKind::Number || directive.kind == DirectiveKind::Integer ||
                                 directive.kind == DirectiveKind::NumberedFile;
     if (compilerChecks) {
-      EXPECT_EQ(directive.rangeError.empty(), directive.range.any()) << directive.name;
+      EXPECT_FALSE(directive.rangeError.empty()) << directive.name;
+      EXPECT_FALSE(directive.accepts(std::numeric_limits<double>::infinity())) << directive.name;
+      EXPECT_FALSE(directive.accepts(std::nan(""))) << directive.name;
     }
   }
   EXPECT_EQ(findDirective("defne"), nullptr);
@@ -129,6 +135,7 @@ TEST(Directives, NamesAreUniqueAndFound) {
 
 TEST(Directives, EveryRowParsesAndAppliesAtTheTopLevelAndInABlock) {
   for (const Directive& directive : directives()) {
+    if (directive.owner == DirectiveOwner::Notation) continue;  // read by the parser: NotationRowsChangeHowTheTextReads
     SCOPED_TRACE("#" + std::string(directive.name));
     const std::string first = before(directive);
     auto baseline = compileText(first + "\nlsystem a { axiom A }\n");
@@ -148,7 +155,7 @@ TEST(Directives, EveryRowParsesAndAppliesAtTheTopLevelAndInABlock) {
 // A set's settings written in a block are that block's; the world's hold for the program.
 TEST(Directives, TheOwnerDecidesWhereABlocksValueHolds) {
   for (const Directive& directive : directives()) {
-    if (directive.kind == DirectiveKind::Define) continue;
+    if (directive.kind == DirectiveKind::Define || directive.owner == DirectiveOwner::Notation) continue;
     SCOPED_TRACE("#" + std::string(directive.name));
     const std::string first = before(directive);
     auto baseline =
@@ -181,7 +188,8 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   // docs/LANGUAGE.md section 6 quotes it.
   EXPECT_EQ(error.message,
             "unknown directive '#defne' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, "
-            "#seed, #until, #from, #fps, #interpret, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, #surface)");
+            "#seed, #until, #from, #fps, #interpret, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, "
+            "#surface, #letters)");
   for (const Directive& directive : directives()) {
     EXPECT_NE(error.message.find("#" + std::string(directive.name)), std::string::npos) << directive.name;
     const std::string misspelt = std::string(directive.name) + "s";
@@ -189,6 +197,33 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
     ASSERT_EQ(wrong->sink.diagnostics().size(), 1u) << misspelt;
     EXPECT_EQ(wrong->sink.diagnostics()[0].message, unknownDirectiveMessage(misspelt));
   }
+}
+
+// #letters changes how the parser reads axioms and productions: in a block for that
+// block, at the top level for every block after it.
+TEST(Directives, NotationRowsChangeHowTheTextReads) {
+  auto spaced = compileText("lsystem a {\n  axiom FF\n}\n");
+  ASSERT_NE(spaced->program, nullptr) << formatDiagnostics(spaced->sink);
+  EXPECT_EQ(spaced->program->rootSystem().axiom.size(), 1u);
+  for (const std::string text :
+       {"lsystem a {\n  #letters\n  axiom FF\n}\n", "#letters\nlsystem a {\n  axiom FF\n}\n"}) {
+    auto letters = compileText(text);
+    ASSERT_NE(letters->program, nullptr) << formatDiagnostics(letters->sink);
+    EXPECT_EQ(letters->program->rootSystem().axiom.size(), 2u) << text;
+  }
+  // A block's #letters ends with the block.
+  auto scoped = compileText("lsystem a {\n  #letters\n  axiom FF\n}\nlsystem b {\n  axiom FF\n}\n");
+  ASSERT_NE(scoped->program, nullptr) << formatDiagnostics(scoped->sink);
+  EXPECT_EQ(scoped->program->systems[1].axiom.size(), 1u);
+}
+
+// Directives of cpfg say what ontogen writes instead.
+TEST(Directives, ForeignDirectivesSayWhatToWriteInstead) {
+  EXPECT_EQ(unknownDirectiveMessage("ignore"),
+            "cpfg's '#ignore' is written 'ignore: A B' (without '#') in an lsystem block");
+  EXPECT_EQ(unknownDirectiveMessage("consider"),
+            "cpfg's '#consider' is written 'consider: A B' (without '#') in an lsystem block");
+  EXPECT_EQ(unknownDirectiveMessage("include"), "cpfg's '#include' is written 'import \"file.cell\"' at the top level");
 }
 
 // Values just outside each end of a row's range, and fractions where it takes whole
@@ -263,9 +298,10 @@ TEST(Directives, WordsAndTimeSignaturesAreCheckedAsTheyAreRead) {
 TEST(Directives, RangesAreDescribedAsHelpPrintsThem) {
   EXPECT_EQ(describeValues(*findDirective("tempo")), "> 0 and ≤ 1000");
   EXPECT_EQ(describeValues(*findDirective("tolerance")), "> 0 and < 1");
-  EXPECT_EQ(describeValues(*findDirective("seed")), "≥ 0");
+  EXPECT_EQ(describeValues(*findDirective("seed")), "0 to 9007199254740991");
+  EXPECT_EQ(describeValues(*findDirective("radius")), "≥ 0");
   EXPECT_EQ(describeValues(*findDirective("ppq")), "1 to 32767");
-  EXPECT_EQ(describeValues(*findDirective("angle")), "any");
+  EXPECT_EQ(describeValues(*findDirective("angle")), "finite");
   EXPECT_EQ(describeValues(*findDirective("music")), "sequential or developmental");
   EXPECT_EQ(describeValues(*findDirective("timesig")), "N 1 to 255, D 1, 2, 4 ... 64");
 }

@@ -60,6 +60,18 @@ TEST(Lexer, DirectivesAndComments) {
   EXPECT_EQ(tokens[3].column, 12);
 }
 
+// Under #letters a '//' touching the token before it is two rolls (ABOP's ]/////); one
+// after a space is still a comment, and the rule ends with the block that says #letters.
+TEST(Lexer, UnderLettersTouchingSlashesAreRolls) {
+  DiagnosticSink sink;
+  auto tokens = lexText("a { #letters\n ]//F // note\n}\nb { ]//F\n}", sink);
+  using K = TokenKind;
+  EXPECT_EQ(kinds(tokens), (std::vector<K>{K::Identifier, K::LBrace, K::Directive, K::RBracket, K::Slash, K::Slash,
+                                           K::Identifier, K::RBrace, K::Identifier, K::LBrace, K::RBracket,
+                                           K::RBrace, K::EndOfFile}));
+  EXPECT_FALSE(sink.hasErrors());
+}
+
 TEST(Lexer, BadCharacterIsReportedAndLexingGoesOn) {
   DiagnosticSink sink;
   auto tokens = lexText("A ? B", sink);
@@ -67,6 +79,45 @@ TEST(Lexer, BadCharacterIsReportedAndLexingGoesOn) {
   EXPECT_EQ(sink.diagnostics()[0].message, "unexpected character '?'");
   EXPECT_EQ(sink.diagnostics()[0].span.column(), 3);
   EXPECT_EQ(tokens[2].text, "B");
+}
+
+TEST(Lexer, InvalidUtf8IsAnErrorAtItsByteOncePerLine) {
+  DiagnosticSink sink;
+  // A stray continuation byte, an overlong '/', a surrogate, a truncated sequence.
+  lexText("A \x80 B\nC \xC0\xAF \xED\xA0\x80\nok \xCF\x81\nD \xE2\x88", sink);
+  ASSERT_EQ(sink.errorCount(), 3) << formatDiagnostics(sink);
+  EXPECT_EQ(sink.diagnostics()[0].message,
+            "invalid UTF-8: byte 0x80 starts no character (the source must be UTF-8 text)");
+  EXPECT_EQ(sink.diagnostics()[0].span.line(), 1);
+  EXPECT_EQ(sink.diagnostics()[0].span.column(), 3);
+  EXPECT_EQ(sink.diagnostics()[1].span.line(), 2);
+  EXPECT_EQ(sink.diagnostics()[1].span.column(), 3);
+  EXPECT_EQ(sink.diagnostics()[2].span.line(), 4);
+  EXPECT_EQ(sink.diagnostics()[2].span.column(), 3);
+}
+
+TEST(Lexer, AByteOrderMarkIsNotPartOfTheFirstName) {
+  DiagnosticSink sink;
+  auto tokens = lexText("\xEF\xBB\xBFlsystem a", sink);
+  EXPECT_FALSE(sink.hasErrors());
+  ASSERT_EQ(tokens.size(), 3u);
+  EXPECT_EQ(tokens[0].text, "lsystem");
+  EXPECT_EQ(tokens[0].column, 1);
+}
+
+TEST(Lexer, ControlCharactersAreNamedNotEchoed) {
+  DiagnosticSink sink;
+  lexText("A \x01 B", sink);
+  ASSERT_EQ(sink.errorCount(), 1);
+  EXPECT_EQ(sink.diagnostics()[0].message, "unexpected control character 0x01");
+}
+
+TEST(Lexer, StopsReadingAtTheErrorLimit) {
+  DiagnosticSink sink(20);
+  auto tokens = lexText(std::string(100000, '?'), sink);
+  EXPECT_EQ(sink.errorCount(), 20);
+  EXPECT_LT(tokens.size(), 100u);
+  EXPECT_EQ(tokens.back().kind, TokenKind::EndOfFile);
 }
 
 }  // namespace

@@ -131,5 +131,70 @@ TEST(Parser, RecoversAndReportsEveryBadStatement) {
   EXPECT_EQ(p->program.systems[0].productions.size(), 1u);
 }
 
+// Inputs 100,000 levels deep end in one located error, not in a stack overflow.
+std::string repeat(std::string_view piece, int times) {
+  std::string text;
+  for (int i = 0; i < times; ++i) text += piece;
+  return text;
+}
+
+void expectOneDepthError(const std::string& text, const std::string& message) {
+  auto p = parseText(text);
+  ASSERT_EQ(p->sink.errorCount(), 1) << formatDiagnostics(p->sink).substr(0, 2000);
+  const Diagnostic& error = p->sink.diagnostics().front();
+  EXPECT_NE(error.message.find(message), std::string::npos) << error.message;
+  EXPECT_EQ(error.span.line(), 1);
+}
+
+TEST(Parser, DeepParenthesesEndInOneError) {
+  expectOneDepthError("#define K " + repeat("(", 100000) + "1" + repeat(")", 100000) + "\nlsystem a { axiom X }\n",
+                      "expression nested too deeply (more than 200 levels)");
+}
+
+TEST(Parser, DeepPowersAndSignsEndInOneError) {
+  expectOneDepthError("#define K " + repeat("2^", 100000) + "2\nlsystem a { axiom X }\n",
+                      "expression nested too deeply (more than 200 levels)");
+  expectOneDepthError("#define K " + repeat("-", 100000) + "2\nlsystem a { axiom X }\n",
+                      "expression nested too deeply (more than 200 levels)");
+}
+
+TEST(Parser, LongChainsOfOperatorsEndInOneError) {
+  // Left-associative chains recurse in the compiler, not in the parser.
+  expectOneDepthError("#define K 1" + repeat(" + 1", 100000) + "\nlsystem a { axiom X }\n",
+                      "expression too deep: more than 1000 operators inside each other");
+  auto ok = parseText("#define K 1" + repeat(" + 1", 999) + "\nlsystem a { axiom X }\n");
+  EXPECT_FALSE(ok->sink.hasErrors()) << formatDiagnostics(ok->sink).substr(0, 500);
+}
+
+TEST(Parser, DeepContextsEndInOneError) {
+  expectOneDepthError("cell A { rules { " + repeat("(", 100000) + "me" + repeat(")", 100000) + " : -> A; } }\n",
+                      "context nested too deeply (more than 200 levels)");
+}
+
+TEST(Parser, DeepBracketsAreModulesNotNesting) {
+  auto p = parseText("lsystem a {\n  axiom " + repeat("[", 100000) + "F" + repeat("]", 100000) + "\n}\n");
+  ASSERT_FALSE(p->sink.hasErrors());
+  EXPECT_EQ(p->program.systems[0].axiom.size(), 200001u);
+}
+
+TEST(Parser, AProductionEndsAtTheLineAfterIt) {
+  // `A > B` has no arrow; the next line is a production of its own.
+  auto p = parseText("lsystem a {\n  axiom A B\n  A > B\n  B -> C\n}\n");
+  ASSERT_EQ(p->sink.errorCount(), 1) << formatDiagnostics(p->sink);
+  EXPECT_EQ(p->sink.diagnostics()[0].span.line(), 3);
+  ASSERT_EQ(p->program.systems[0].productions.size(), 1u);
+  EXPECT_EQ(p->program.systems[0].productions[0].predecessor.label, "B");
+}
+
+TEST(Parser, BacktrackingFromALabelRestoresTheParentheses) {
+  auto p = parseText("lsystem a {\n  A : (time) == 1 -> B\n  axiom A\n}\n");
+  ASSERT_FALSE(p->sink.hasErrors()) << formatDiagnostics(p->sink);
+  const auto& system = p->program.systems[0];
+  ASSERT_EQ(system.productions.size(), 1u);
+  EXPECT_TRUE(system.productions[0].name.empty());
+  EXPECT_NE(system.productions[0].predicate, nullptr);
+  ASSERT_EQ(system.axiom.size(), 1u);
+}
+
 }  // namespace
 }  // namespace ontogen

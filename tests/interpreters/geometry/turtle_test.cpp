@@ -69,6 +69,19 @@ TEST(TurtleTest, StartsInAbopFrameAtOrigin) {
   EXPECT_EQ(turtle.state().radius, 0);
 }
 
+// Query modules are read by the turtle environment (interpreters/geometry/turtle_queries.h);
+// the turtle itself neither moves nor draws at them.
+TEST(TurtleTest, QueryModulesDrawNothingAndLeaveTheTurtleWhereItIs) {
+  Turtle turtle;
+  Geometry geometry;
+  const double args[] = {5, 6, 7};
+  for (const char* query : {"?P", "?H", "?L", "?U"}) EXPECT_TRUE(turtle.execute(query, args, geometry));
+  expectNear(turtle.state().position, {0, 0, 0});
+  expectNear(turtle.state().heading, {0, 1, 0});
+  EXPECT_EQ(geometry.segmentCount(), 0u);
+  EXPECT_EQ(turtle.warnings().badArguments, 0);
+}
+
 TEST(TurtleTest, PlusTurnsHeadingTowardsLeft) {
   Turtle turtle;
   Geometry geometry;
@@ -442,10 +455,10 @@ TEST(TurtleCommandsTest, TableIsCompleteAndConsistent) {
                                 "point", "endsection", "usesection", "gcbegin", "gcend", "ceiling", "ground",
                                 "obstaclesphere", "obstaclebox", "attractor", "repeller", "maxlength",
                                 "maxdepth", "surface", "blend", "patch", "patchpoint", "endpatch", "plate",
-                                "endplate", "gapfilter"}) {
+                                "endplate", "gapfilter", "?P", "?H", "?L", "?U"}) {
     EXPECT_NE(findTurtleCommand(name), nullptr) << name;
   }
-  EXPECT_EQ(names.size(), 43u);
+  EXPECT_EQ(names.size(), 47u);
   EXPECT_EQ(findTurtleCommand("c"), nullptr);
 }
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <unistd.h>
@@ -61,11 +62,36 @@ TEST(ImageSet, EachSiteIsASquareOfItsColour) {
   fs::remove_all(dir);
 }
 
-TEST(ImageSet, ASiteFarOutsideIsAnOutputError) {
+// A site outside any picture is the program's error, located at its instruction.
+TEST(ImageSet, ASiteOutsideThePictureIsALocatedInstructionError) {
   ImageSet set;
   set.beginFrame(FrameTarget{fs::temp_directory_path(), "x", 0, 1, 0});
-  const double far[3] = {1e6, 0, 0};
-  EXPECT_THROW(set.execute("pixel", far), OutputError);
+  set.locate({SourceSpan{}, "C", 2.5});
+  for (const std::array<double, 3>& at : {std::array<double, 3>{1e6, 0, 0}, {-5, -5, 1}, {NAN, 0, 0}, {0, INFINITY, 0}}) {
+    try {
+      set.execute("pixel", at);
+      FAIL() << at[0] << ", " << at[1];
+    } catch (const InstructionError& error) {
+      EXPECT_EQ(error.cell, "C");
+      EXPECT_EQ(error.time, 2.5);
+      EXPECT_NE(std::string(error.what()).find("is outside the picture: a site's coordinates are whole numbers 0 to 8191"),
+                std::string::npos)
+          << error.what();
+    }
+  }
+  const double edge[3] = {8191, 8191, 0};
+  EXPECT_NO_THROW(set.execute("pixel", edge));
+}
+
+// A picture is at most 512 pixels along its longer side (or one pixel a site).
+TEST(ImageSet, ATallGridMakesAPictureNoTallerThanAWideOneIsWide) {
+  ImageSet set;
+  set.beginFrame(FrameTarget{fs::temp_directory_path(), "x", 0, 1, 0});
+  const double top[3] = {0, 1000, 0};
+  set.execute("pixel", top);
+  const Image image = set.picture();
+  EXPECT_EQ(image.width, 1);
+  EXPECT_EQ(image.height, 1001);
 }
 
 }  // namespace

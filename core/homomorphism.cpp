@@ -1,0 +1,63 @@
+#include "core/homomorphism.h"
+
+#include "core/cell_frame.h"
+#include "core/rule_choice.h"
+#include "core/rule_evaluator.h"
+#include "core/salts.h"
+
+namespace ontogen {
+
+HomomorphismImage::HomomorphismImage(const World& world)
+    : world_(world), successors_(world.program()), frames_(static_cast<size_t>(world.rootSystem().homomorphismDepth) + 1) {
+  group_ = activeGroup(world.program(), world.rootSystem(), world.time(), world.seed());
+  const Pool& pool = world.rootPool();
+  const auto cells = pool.cells();
+  cells_.reserve(cells.size());
+  for (size_t i = 0; i < cells.size(); ++i) rewrite(cells[i], pool.stateOf(cells[i]), i, 1);
+}
+
+void HomomorphismImage::push(const CellRecord& cell, const double* state, size_t source) {
+  const uint32_t n = world_.program().masters[cell.master].stateCount();
+  CellRecord copy = cell;
+  copy.state = static_cast<uint32_t>(state_.size());
+  state_.insert(state_.end(), state, state + n);
+  cells_.push_back(copy);
+  sources_.push_back(source);
+}
+
+void HomomorphismImage::rewrite(const CellRecord& cell, const double* state, size_t source, int depth) {
+  const Program& program = world_.program();
+  const MasterCell& master = program.masters[cell.master];
+  if (master.homomorphismRules.empty() || depth > world_.rootSystem().homomorphismDepth) {
+    push(cell, state, source);
+    return;
+  }
+  std::vector<double>& frameAtDepth = frames_[static_cast<size_t>(depth)];
+  frameAtDepth.resize(ruleFrameSize(program));
+  double* frame = frameAtDepth.data();
+  const double time = world_.time();
+  loadCellFrame(frame, master, cell, state, time, world_.positionOf(source), -1);
+  RandomStream random(mixKey(mixKey(world_.seed() ^ kHomomorphismSalt, cell.id), keyOf(time)));
+  const FunctionTable functions = program.functionTable();
+  EvalContext context{frame, EvalEnvironment{&random, world_.seed()}, &functions};
+  context.ancestors = world_.ancestorValues();
+  auto matches = [&](const CompiledRule& rule) { return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0; };
+  const CompiledRule* rule = chooseRule(master.homomorphismRules, group_, matches, context, random, candidates_);
+  if (!rule) {
+    push(cell, state, source);
+    return;
+  }
+  // The image's modules stand for the module they come from: its birth, ids of its own
+  // (salted apart from the ids of its real successors).
+  CellRecord salted = cell;
+  salted.id = cell.id ^ kHomomorphismSalt;
+  // Keyed by the birth, not the time, so the image's ids stay the same from frame to frame.
+  successors_.write(*rule, salted, frame, cell.birth, BirthCause::Terminal, context,
+                    [&](const CellRecord& made, const double* values, uint32_t) {
+                      CellRecord image = made;
+                      image.birth = cell.birth;
+                      rewrite(image, values, source, depth + 1);
+                    });
+}
+
+}  // namespace ontogen

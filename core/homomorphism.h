@@ -1,0 +1,45 @@
+#pragma once
+// The image of a linear word under its L-system's homomorphism (L-Py's interpretation
+// rules, docs/LANGUAGE.md 4.8a): every module with homomorphism rules is rewritten by
+// its first matching rule, and what that makes is rewritten in turn, at most the
+// system's homomorphismDepth rewrites deep. The image is made for interpretation only:
+// the developing word never changes. Modules of the image keep the birth time of the
+// module they come from (so development functions and interpretation blocks see its
+// age), and get ids derived from its id, deterministically.
+
+#include <cstddef>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "core/successors.h"
+#include "core/world.h"
+
+namespace ontogen {
+
+class HomomorphismImage {
+ public:
+  /// The image of the world's word at its current time. A world whose system has no
+  /// homomorphism rules is its own image.
+  explicit HomomorphismImage(const World& world);
+
+  std::span<const CellRecord> cells() const { return cells_; }
+  const double* stateOf(const CellRecord& cell) const { return state_.data() + cell.state; }
+  /// Index in the world's word of the module the i-th cell of the image comes from.
+  size_t sourceOf(size_t i) const { return sources_[i]; }
+
+ private:
+  void rewrite(const CellRecord& cell, const double* state, size_t source, int depth);
+  void push(const CellRecord& cell, const double* state, size_t source);
+
+  const World& world_;
+  SuccessorWriter successors_;
+  std::vector<CellRecord> cells_;
+  std::vector<double> state_;
+  std::vector<size_t> sources_;
+  std::vector<std::vector<double>> frames_;  // one per level of the rewriting
+  std::vector<std::pair<const CompiledRule*, double>> candidates_;
+  int group_ = 0;  // the rule group active at the world's time
+};
+
+}  // namespace ontogen

@@ -1,0 +1,57 @@
+#pragma once
+// How a module chooses among its L-system rules (productions, decomposition and
+// homomorphism rules alike; docs/LANGUAGE.md 4.5): the first rule that matches is
+// chosen; if it is stochastic, the choice is made among it and the later matching
+// stochastic rules, weighted by their probabilities. Of an L-system's rule groups, only
+// the active group's rules and group 0's take part (the compiler puts group 0's last).
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "lang/expression.h"
+#include "lang/program.h"
+#include "lang/random.h"
+
+namespace ontogen {
+
+/// The rule group `system` uses at `time` (`use group: EXPR`), 0 without one. A value that
+/// is not a whole number ≥ 0 stops the run with a ModelError at the expression.
+int activeGroup(const Program& program, const SystemDefinition& system, double time, uint64_t seed);
+
+/// The rule chosen from `rules`, or null, with `group` the active rule group.
+/// `matches(rule)` tells whether a rule's context and condition hold; `candidates` is
+/// scratch space, kept by the caller to reuse.
+template <typename Matches>
+const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int group, Matches&& matches,
+                               const EvalContext& context, RandomStream& random,
+                               std::vector<std::pair<const CompiledRule*, double>>& candidates) {
+  auto applies = [&](const CompiledRule& rule) { return (rule.group == 0 || rule.group == group) && matches(rule); };
+  for (size_t r = 0; r < rules.size(); ++r) {
+    const CompiledRule& rule = rules[r];
+    if (!applies(rule)) continue;
+    if (rule.probability.empty()) return &rule;
+    candidates.clear();
+    double total = 0;
+    for (size_t s = r; s < rules.size(); ++s) {
+      if (rules[s].probability.empty() || (s != r && !applies(rules[s]))) continue;
+      double weight = std::max(0.0, rules[s].probability.evaluate(context));
+      candidates.push_back({&rules[s], weight});
+      total += weight;
+    }
+    if (!(total > 0)) return nullptr;
+    double x = random.uniform() * total;
+    const CompiledRule* chosen = candidates.back().first;
+    for (const auto& [candidate, weight] : candidates) {
+      if (x < weight) {
+        chosen = candidate;
+        break;
+      }
+      x -= weight;
+    }
+    return chosen;
+  }
+  return nullptr;
+}
+
+}  // namespace ontogen

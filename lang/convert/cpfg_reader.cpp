@@ -1,0 +1,208 @@
+#include "lang/convert/cpfg_reader.h"
+
+#include <cctype>
+#include <string>
+
+#include "lang/convert/foreign_syntax.h"
+#include "lang/convert/line_reader.h"
+
+namespace ontogen::convert {
+
+namespace {
+
+// The text with its `/* */` comments made spaces, so that offsets stay the file's.
+std::string withoutComments(std::string_view text) {
+  std::string result(text);
+  for (size_t open = result.find("/*"); open != std::string::npos; open = result.find("/*", open)) {
+    size_t close = result.find("*/", open + 2);
+    size_t stop = close == std::string::npos ? result.size() : close + 2;
+    for (size_t i = open; i < stop; ++i)
+      if (result[i] != '\n') result[i] = ' ';
+    open = stop;
+  }
+  return result;
+}
+
+// The angle of a view file: `angle increment: D` or `angle factor: N`.
+std::optional<std::string> angleOfView(std::string_view view) {
+  for (const Line& line : splitLines(view)) {
+    if (auto at = afterKeyword(view, line, "angle increment:")) {
+      std::string value(view.substr(*at, line.end - *at));
+      value.erase(0, value.find_first_not_of(" \t"));
+      value.erase(value.find_last_not_of(" \t") + 1);
+      if (!value.empty()) return value;
+    }
+    if (auto at = afterKeyword(view, line, "angle factor:")) {
+      std::string value(view.substr(*at, line.end - *at));
+      value.erase(0, value.find_first_not_of(" \t"));
+      value.erase(value.find_last_not_of(" \t") + 1);
+      if (!value.empty()) return "360 / " + value;
+    }
+  }
+  return std::nullopt;
+}
+
+class CpfgReader {
+ public:
+  CpfgReader(std::string_view text, std::string_view path)
+      : clean_(withoutComments(text)), syntax_(Dialect::Cpfg, clean_) {
+    file_.dialect = Dialect::Cpfg;
+    file_.name = blockNameOf(path);
+  }
+
+  LSystemFile read() {
+    bool ended = false;
+    int lsystems = 0;
+    for (const Line& line : splitLines(clean_)) {
+      uint32_t begin = firstNonSpace(clean_, line), end = line.end;
+      syntax_.trim(begin, end);
+      if (begin == end) continue;
+      if (ended) syntax_.fail(begin, end, "text after endlsystem: ontogen convert reads one L-system per file", false);
+      if (auto at = afterKeyword(clean_, line, "lsystem:")) {
+        if (++lsystems > 1)
+          syntax_.fail(begin, end, "a second L-system (cpfg's sub-L-systems) cannot be translated yet");
+        (void)at;
+        continue;
+      }
+      if (auto at = afterKeyword(clean_, line, "endlsystem")) {
+        ended = true;
+        continue;
+      }
+      if (auto at = afterKeyword(clean_, line, "#define")) {
+        define(*at, end);
+        continue;
+      }
+      if (auto at = afterKeyword(clean_, line, "#include")) {
+        syntax_.fail(begin, end, "#include cannot be translated: put the included text in the file");
+        continue;
+      }
+      if (auto at = keyword(line, {"#ignore", "ignore:"})) {
+        symbols(StatementKind::Ignore, *at, end);
+        continue;
+      }
+      if (auto at = keyword(line, {"#consider", "consider:"})) {
+        symbols(StatementKind::Consider, *at, end);
+        continue;
+      }
+      if (auto at = afterKeyword(clean_, line, "seed:")) {
+        file_.seed = syntax_.expression(*at, end);
+        continue;
+      }
+      if (auto at = afterKeyword(clean_, line, "derivation length:")) {
+        file_.derivationLength = syntax_.expression(*at, end);
+        continue;
+      }
+      if (auto at = afterKeyword(clean_, line, "axiom:")) {
+        file_.axiom = syntax_.modules(*at, end, false);
+        continue;
+      }
+      if (auto at = afterKeyword(clean_, line, "maximum depth:")) {
+        Statement s;
+        s.kind = StatementKind::MaximumDepth;
+        s.word = syntax_.expression(*at, end);
+        file_.statements.push_back(std::move(s));
+        continue;
+      }
+      if (auto section = sectionOf(line)) {
+        Statement s;
+        s.kind = StatementKind::Section;
+        s.word = *section;
+        file_.statements.push_back(std::move(s));
+        continue;
+      }
+      if (auto at = afterKeyword(clean_, line, "endgroup")) {
+        group("0");
+        continue;
+      }
+      if (auto at = afterKeyword(clean_, line, "group")) {
+        uint32_t stop = end;
+        if (stop > *at && clean_[stop - 1] == ':') --stop;
+        group(syntax_.expression(*at, stop));
+        continue;
+      }
+      if (codeBlock(line)) {
+        syntax_.fail(begin, end,
+                     "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code, which ontogen convert "
+                     "does not translate");
+        continue;
+      }
+      if (syntax_.find(begin, end, "->") < end) {
+        file_.statements.push_back(syntax_.production(begin, end));
+        continue;
+      }
+      {
+        syntax_.fail(begin, end,
+                     "cannot read this line of a cpfg file (expected a production with '-->' or a "
+                     "keyword such as Axiom:)",
+                     false);
+      }
+    }
+    return std::move(file_);
+  }
+
+  LSystemFile file_;
+
+ private:
+  std::optional<uint32_t> keyword(const Line& line, std::initializer_list<std::string_view> words) const {
+    for (std::string_view word : words)
+      if (auto at = afterKeyword(clean_, line, word)) return at;
+    return std::nullopt;
+  }
+
+  // `decomposition`, `homomorphism` (optionally `: ` and cpfg's `no warnings`), `production:`.
+  std::optional<std::string> sectionOf(const Line& line) const {
+    for (std::string_view word : {"decomposition", "homomorphism", "production"})
+      if (auto at = afterKeyword(clean_, line, word)) {
+        std::string rest(clean_.substr(*at, line.end - *at));
+        for (char& c : rest) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        rest.erase(0, rest.find_first_not_of(" \t:"));
+        rest.erase(rest.find_last_not_of(" \t") + 1);
+        if (rest.empty() || rest == "warnings" || rest == "no warnings") return std::string(word);
+      }
+    return std::nullopt;
+  }
+
+  bool codeBlock(const Line& line) const {
+    for (std::string_view word : {"start:", "end:", "starteach:", "endeach:", "{"})
+      if (afterKeyword(clean_, line, word)) return true;
+    return false;
+  }
+
+  void define(uint32_t at, uint32_t end) {
+    while (at < end && std::isspace(static_cast<unsigned char>(clean_[at]))) ++at;
+    uint32_t stop = at;
+    while (stop < end && (std::isalnum(static_cast<unsigned char>(clean_[stop])) || clean_[stop] == '_')) ++stop;
+    if (stop == at) syntax_.fail(at, end, "expected a name after #define", false);
+    if (stop < end && clean_[stop] == '(')
+      syntax_.fail(at, end, "a #define with parameters is a C macro, which ontogen convert does not translate");
+    file_.defines.emplace_back(std::string(clean_.substr(at, stop - at)), syntax_.expression(stop, end));
+  }
+
+  void symbols(StatementKind kind, uint32_t at, uint32_t end) {
+    Statement s;
+    s.kind = kind;
+    s.symbols = syntax_.symbols(at, end);
+    file_.statements.push_back(std::move(s));
+  }
+
+  void group(std::string value) {
+    Statement s;
+    s.kind = StatementKind::Group;
+    s.word = std::move(value);
+    file_.statements.push_back(std::move(s));
+  }
+
+  std::string clean_;
+  ForeignSyntax syntax_;
+};
+
+}  // namespace
+
+LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view) {
+  CpfgReader reader(text, path);
+  LSystemFile file = reader.read();
+  file.angle = angleOfView(view);
+  return file;
+}
+
+}  // namespace ontogen::convert

@@ -1,0 +1,19 @@
+#pragma once
+// cpfg's L-system files (.l), as the Virtual Laboratory writes them: `Lsystem:`,
+// `Seed:`, `derivation length:`, `Axiom:`, `#define`, `#ignore` / `ignore:`,
+// `#consider` / `consider:`, `decomposition`, `homomorphism`, `maximum depth:`,
+// `group`, productions `lc < pred > rc : cond --> succ : prob`, `endlsystem`, and
+// `/* */` comments. Modules are one character each. The turn angle lives in the
+// view file (.v): `angle increment: D` (degrees) or `angle factor: N` (360 / N).
+
+#include <string_view>
+
+#include "lang/convert/lsystem_file.h"
+
+namespace ontogen::convert {
+
+/// Reads a cpfg file; `view` is the text of its view file, or empty. Throws ConvertError
+/// (lang/convert/foreign_syntax.h) at the first construct it cannot translate.
+LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view);
+
+}  // namespace ontogen::convert

@@ -1,0 +1,386 @@
+#include "lang/convert/foreign_syntax.h"
+
+#include <cctype>
+#include <optional>
+
+namespace ontogen::convert {
+
+namespace {
+
+bool isLetter(char c) {
+  return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
+}
+bool isNameChar(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+bool isSpace(char c) {
+  return std::isspace(static_cast<unsigned char>(c)) != 0;
+}
+
+// The one-character symbols the cell language takes as labels (docs/LANGUAGE.md 2).
+bool isCellSymbol(char c) {
+  return std::string_view("+-^&/\\|!<>[]$~@%").find(c) != std::string_view::npos;
+}
+
+// L-Py's predefined modules whose names are longer than a letter and that the cell
+// language spells the same way.
+constexpr std::string_view kLPyNamedModules[] = {
+    "SetWidth", "SetColor", "IncColor", "DecColor",   "Sphere",   "Circle",   "Label",      "Frame", "MoveTo",
+    "LineTo",   "Pinpoint", "Tropism",  "Elasticity", "SetGuide", "EndGuide", "TurnAround", "RollL", "RollR"};
+
+std::string shown(std::string_view text) {
+  return "'" + std::string(text) + "'";
+}
+
+}  // namespace
+
+void ForeignSyntax::fail(uint32_t begin, uint32_t end, std::string message, bool untranslatable) const {
+  throw ConvertError{begin, end > begin ? end : begin + 1, std::move(message), untranslatable};
+}
+
+void ForeignSyntax::trim(uint32_t& begin, uint32_t& end) const {
+  while (begin < end && isSpace(text_[begin])) ++begin;
+  while (end > begin && isSpace(text_[end - 1])) --end;
+}
+
+uint32_t ForeignSyntax::find(uint32_t begin, uint32_t end, std::string_view what) const {
+  int depth = 0;
+  for (uint32_t at = begin; at < end; ++at) {
+    const char c = text_[at];
+    if (c == '(') ++depth;
+    if (c == ')') --depth;
+    if (depth == 0 && text_.compare(at, what.size(), what) == 0 && at + what.size() <= end) return at;
+  }
+  return end;
+}
+
+// The end of the label that starts at `at` (before its parameters).
+uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label) const {
+  const char c = text_[at];
+  // Query modules ?P ?H ?L ?U (ABOP section 1.10), in both tools.
+  if (c == '?' && at + 1 < end && isLetter(text_[at + 1])) {
+    label = std::string(text_.substr(at, 2));
+    return at + 2;
+  }
+  if (dialect_ == Dialect::LPy && (c == '@' || c == '~') && at + 1 < end && isLetter(text_[at + 1])) {
+    uint32_t stop = at + 1;
+    while (stop < end && isNameChar(text_[stop])) ++stop;
+    fail(at, stop,
+         "L-Py's module " + shown(text_.substr(at, stop - at)) +
+             " has no cell-language spelling (labels are names or one of + - ^ & / \\ | ! < > [ ] $ ~ @ %); "
+             "write a module of the geometry set instead, such as sphere(r) for @O(r)");
+  }
+  if (dialect_ == Dialect::LPy && isLetter(c)) {
+    // Longest declared or predefined name first; otherwise one letter is one module.
+    size_t best = 1;
+    auto consider = [&](std::string_view name) {
+      if (name.size() > best && at + name.size() <= end && text_.compare(at, name.size(), name) == 0)
+        best = name.size();
+    };
+    for (const std::string& name : declaredNames) consider(name);
+    for (std::string_view name : kLPyNamedModules) consider(name);
+    label = std::string(text_.substr(at, best));
+    return at + static_cast<uint32_t>(best);
+  }
+  if (isNameChar(c) || isCellSymbol(c)) {
+    label = std::string(1, c);
+    return at + 1;
+  }
+  std::string name(1, c);
+  if (static_cast<unsigned char>(c) >= 0x80) {
+    uint32_t stop = at + 1;
+    while (stop < end && (static_cast<unsigned char>(text_[stop]) & 0xC0) == 0x80) ++stop;
+    name = std::string(text_.substr(at, stop - at));
+  }
+  fail(at, at + 1,
+       "the module " + shown(name) + " of " + std::string(dialectName(dialect_)) +
+           " has no cell-language spelling (labels are names or one of + - ^ & / \\ | ! < > [ ] $ ~ @ %)");
+}
+
+std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, bool pattern) const {
+  std::vector<ModuleText> result;
+  uint32_t at = begin;
+  while (at < end) {
+    if (isSpace(text_[at])) {
+      ++at;
+      continue;
+    }
+    if (text_[at] == '(' || text_[at] == ')')
+      fail(at, at + 1, "expected a module before " + shown(text_.substr(at, 1)), false);
+    ModuleText module;
+    if (text_[at] == '*' && pattern) {
+      module.label = "*";  // a wildcard in a context
+      ++at;
+    } else if (text_[at] == '*') {
+      fail(at, at + 1, "'*' (the empty word) stands alone as a successor, as in A --> *", false);
+    } else {
+      at = moduleEnd(at, end, module.label);
+    }
+    if (at < end && text_[at] == '(') {
+      int depth = 0;
+      uint32_t stop = at;
+      for (; stop < end; ++stop) {
+        if (text_[stop] == '(') ++depth;
+        if (text_[stop] == ')' && --depth == 0) break;
+      }
+      if (stop >= end) fail(at, end, "the parameters of " + shown(module.label) + " have no closing ')'", false);
+      module.hasArgs = true;
+      uint32_t argBegin = at + 1;
+      // Parameters split at commas outside inner parentheses.
+      for (uint32_t comma = find(argBegin, stop, ","); argBegin <= stop; comma = find(argBegin, stop, ",")) {
+        uint32_t a = argBegin, b = comma;
+        trim(a, b);
+        if (a == b) {
+          if (comma == stop && module.args.empty()) break;  // X()
+          fail(argBegin, comma, "an empty parameter of " + shown(module.label), false);
+        }
+        if (pattern) {
+          std::string_view name = text_.substr(a, b - a);
+          bool isName = isLetter(name[0]);
+          for (char c : name) isName = isName && isNameChar(c);
+          if (!isName)
+            fail(a, b,
+                 "a value pattern such as " + shown(module.label + "(" + std::string(name) + ")") +
+                     " cannot be translated yet: a predecessor's parameters are names; test the value in a "
+                     "condition, as in " +
+                     module.label + "(x) : x == " + std::string(name));
+          module.args.emplace_back(name);
+        } else {
+          module.args.push_back(expression(a, b));
+        }
+        if (comma == stop) break;
+        argBegin = comma + 1;
+      }
+      at = stop + 1;
+    }
+    result.push_back(std::move(module));
+  }
+  return result;
+}
+
+std::vector<std::string> ForeignSyntax::symbols(uint32_t begin, uint32_t end) const {
+  std::vector<std::string> result;
+  for (const ModuleText& module : modules(begin, end, false)) result.push_back(module.label);
+  return result;
+}
+
+// The conditionals, C's `c ? a : b` and Python's `a if c else b`, become the cell
+// language's if(c, a, b); they bind loosest, so they are split off first.
+std::optional<std::string> ForeignSyntax::conditional(uint32_t begin, uint32_t end) const {
+  if (dialect_ == Dialect::Cpfg) {
+    const uint32_t question = find(begin, end, "?");
+    if (question == end) return std::nullopt;
+    // The ':' that matches this '?' (conditionals nest to the right).
+    int open = 0;
+    uint32_t colon = end;
+    int depth = 0;
+    for (uint32_t at = question + 1; at < end && colon == end; ++at) {
+      if (text_[at] == '(') ++depth;
+      if (text_[at] == ')') --depth;
+      if (depth != 0) continue;
+      if (text_[at] == '?') ++open;
+      if (text_[at] == ':' && open-- == 0) colon = at;
+    }
+    if (colon == end) fail(question, question + 1, "a '?' without its ':'", false);
+    return "if(" + expression(begin, question) + ", " + expression(question + 1, colon) + ", " +
+           expression(colon + 1, end) + ")";
+  }
+  auto word = [&](uint32_t from, std::string_view name) {
+    for (uint32_t at = find(from, end, name); at < end; at = find(at + 1, end, name)) {
+      const bool startsWord = at == begin || !isNameChar(text_[at - 1]);
+      const bool endsWord = at + name.size() >= end || !isNameChar(text_[at + name.size()]);
+      if (startsWord && endsWord) return at;
+    }
+    return end;
+  };
+  const uint32_t ifAt = word(begin, "if");
+  if (ifAt == end) return std::nullopt;
+  const uint32_t elseAt = word(ifAt + 2, "else");
+  if (elseAt == end) fail(ifAt, ifAt + 2, "Python's 'if' without 'else' in an expression", false);
+  return "if(" + expression(ifAt + 2, elseAt) + ", " + expression(begin, ifAt) + ", " + expression(elseAt + 4, end) +
+         ")";
+}
+
+std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
+  if (std::optional<std::string> chosen = conditional(begin, end)) return *chosen;
+  const bool python = dialect_ == Dialect::LPy;
+  std::string out;
+  auto emit = [&](std::string_view token, bool glueLeft = false) {
+    if (!out.empty() && !glueLeft && out.back() != '(' && out.back() != '!') out += ' ';
+    out += token;
+  };
+  auto code = [&](uint32_t at, uint32_t stop, const std::string& what) {
+    fail(at, stop,
+         what + (python ? ": Python code, which ontogen convert does not translate (it reads L-Py's declarative "
+                          "part: modules, productions with -->, conditions over arithmetic)"
+                        : ": C code, which ontogen convert does not translate (it reads cpfg's productions, "
+                          "conditions and expressions over arithmetic)"));
+  };
+  // Python's `not` binds looser than comparisons (`not x == 0` is `!(x == 0)`): its
+  // operand runs to the next `and`, `or`, ',' or ')' at the same depth.
+  std::vector<int> notDepths;
+  int depth = 0;
+  auto closeNots = [&] {
+    while (!notDepths.empty() && notDepths.back() == depth) {
+      out += ")";
+      notDepths.pop_back();
+    }
+  };
+  uint32_t at = begin;
+  while (at < end) {
+    const char c = text_[at];
+    if (isSpace(c)) {
+      ++at;
+      continue;
+    }
+    if (std::isdigit(static_cast<unsigned char>(c)) ||
+        (c == '.' && at + 1 < end && std::isdigit(static_cast<unsigned char>(text_[at + 1])))) {
+      uint32_t stop = at;
+      while (stop < end && (std::isdigit(static_cast<unsigned char>(text_[stop])) || text_[stop] == '.')) ++stop;
+      if (stop < end && (text_[stop] == 'e' || text_[stop] == 'E')) {
+        uint32_t exponent = stop + 1;
+        if (exponent < end && (text_[exponent] == '+' || text_[exponent] == '-')) ++exponent;
+        if (exponent < end && std::isdigit(static_cast<unsigned char>(text_[exponent]))) {
+          stop = exponent;
+          while (stop < end && std::isdigit(static_cast<unsigned char>(text_[stop]))) ++stop;
+        }
+      }
+      emit(text_.substr(at, stop - at));
+      at = stop;
+      continue;
+    }
+    if (isLetter(c)) {
+      uint32_t stop = at;
+      while (stop < end && (isNameChar(text_[stop]) || (python && text_[stop] == '.'))) ++stop;
+      std::string name(text_.substr(at, stop - at));
+      if (python) {
+        if (name.rfind("math.", 0) == 0) name = name.substr(5);  // math.sqrt is sqrt
+        if (name.find('.') != std::string::npos) code(at, stop, "the attribute " + shown(name));
+        if (name == "and" || name == "or") {
+          closeNots();
+          name = name == "and" ? "&&" : "||";
+        } else if (name == "not") {
+          emit("!(");
+          notDepths.push_back(depth);
+          at = stop;
+          continue;
+        } else if (name == "True")
+          name = "1";
+        else if (name == "False")
+          name = "0";
+        else if (name == "lambda" || name == "for" || name == "in" || name == "is")
+          code(at, stop, "Python's " + shown(name));
+      }
+      emit(name);
+      at = stop;
+      continue;
+    }
+    auto two = [&](std::string_view op) { return text_.compare(at, 2, op) == 0 && at + 1 < end; };
+    if (two("**")) {
+      if (!python) fail(at, at + 2, "'**' is no operator of cpfg's expressions", false);
+      emit("^");
+      at += 2;
+    } else if (two("//")) {
+      code(at, at + 2, "Python's floor division '//' (write floor(a / b))");
+    } else if (two("==") || two("!=") || two("<=") || two(">=") || two("&&") || two("||")) {
+      emit(text_.substr(at, 2));
+      at += 2;
+    } else if (c == '=') {
+      code(at, at + 1, "an assignment");
+    } else if (c == '(') {
+      // A call keeps its '(' on the name: f(x).
+      const bool call = !out.empty() && (isNameChar(out.back()));
+      emit("(", call);
+      ++depth;
+      ++at;
+    } else if (c == ')' || c == ',') {
+      closeNots();
+      if (c == ')') --depth;
+      emit(text_.substr(at, 1), true);
+      ++at;
+    } else if (std::string_view("+-*/%<>!^").find(c) != std::string_view::npos) {
+      if (c == '^' && python) code(at, at + 1, "Python's '^' (exclusive or; a power is '**')");
+      emit(text_.substr(at, 1));
+      ++at;
+    } else if (c == '?' || c == ':') {
+      fail(at, at + 1, "unexpected " + shown(text_.substr(at, 1)) + " in an expression", false);
+    } else if (c == '{' || c == '}' || c == ';') {
+      code(at, at + 1, "a block or statement " + shown(text_.substr(at, 1)));
+    } else if (c == '[' || c == ']' || c == '"' || c == '\'') {
+      code(at, at + 1, python ? "a list, index or string" : "an array or string");
+    } else {
+      fail(at, at + 1, "unexpected " + shown(text_.substr(at, 1)) + " in an expression", false);
+    }
+  }
+  depth = 0;
+  closeNots();
+  if (out.empty()) fail(begin, end, "expected an expression", false);
+  return out;
+}
+
+Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
+  Statement s;
+  uint32_t arrow = find(begin, end, "-->");
+  uint32_t arrowEnd = arrow + 3;
+  if (arrow == end) {
+    arrow = find(begin, end, "->");
+    arrowEnd = arrow + 2;
+  }
+  // The head: left < predecessor > right : condition.
+  uint32_t headEnd = arrow;
+  const uint32_t colon = find(begin, arrow, ":");
+  if (colon < arrow) {
+    uint32_t a = colon + 1, b = arrow;
+    trim(a, b);
+    if (text_.substr(a, b - a) != "*") {  // cpfg's '*': no condition
+      if (find(a, b, "{") < b) {
+        const uint32_t brace = find(a, b, "{");
+        fail(brace, brace + 1,
+             "a C block '{ ... }' in the condition: C code, which ontogen convert does not translate (it reads "
+             "conditions over arithmetic)");
+      }
+      s.condition = expression(a, b);
+    }
+    headEnd = colon;
+  }
+  uint32_t predBegin = begin, predEnd = headEnd;
+  const uint32_t less = find(begin, headEnd, "<");
+  if (less < headEnd) {
+    s.leftArrow = text_.compare(less, 2, "<<") == 0 ? "<<" : "<";
+    s.left = modules(begin, less, true);
+    predBegin = less + static_cast<uint32_t>(s.leftArrow.size());
+  }
+  const uint32_t greater = find(predBegin, headEnd, ">");
+  if (greater < headEnd) {
+    s.rightArrow = text_.compare(greater, 2, ">>") == 0 ? ">>" : ">";
+    s.right = modules(greater + static_cast<uint32_t>(s.rightArrow.size()), headEnd, true);
+    predEnd = greater;
+  }
+  std::vector<ModuleText> predecessor = modules(predBegin, predEnd, true);
+  if (predecessor.size() != 1) {
+    uint32_t a = predBegin, b = predEnd;
+    trim(a, b);
+    fail(a, b,
+         predecessor.empty() ? std::string("expected a predecessor before the arrow")
+                             : "a production has one predecessor module, found " + std::to_string(predecessor.size()) +
+                                   " (" + std::string(text_.substr(a, b - a)) + ")",
+         false);
+  }
+  s.predecessor = std::move(predecessor.front());
+  // The body: successors : probability (cpfg's stochastic productions).
+  uint32_t bodyEnd = end;
+  const uint32_t probability = find(arrowEnd, end, ":");
+  if (probability < end) {
+    if (dialect_ == Dialect::LPy)
+      fail(probability, probability + 1, "L-Py writes no probability after a production; this ':' cannot be read",
+           false);
+    s.probability = expression(probability + 1, end);
+    bodyEnd = probability;
+  }
+  uint32_t a = arrowEnd, b = bodyEnd;
+  trim(a, b);
+  if (text_.substr(a, b - a) != "*") s.successors = modules(a, b, false);
+  return s;
+}
+
+}  // namespace ontogen::convert

@@ -1,0 +1,72 @@
+#pragma once
+// What `ontogen convert` reads from another tool's L-system file (cpfg's .l, L-Py's
+// .lpy), before it is written in the cell language: the readers (cpfg_reader.h,
+// lpy_reader.h) fill one LSystemFile, the writer prints it as an lsystem block. Labels
+// and expressions are held already spelt as ontogen spells them, so the writer only
+// lays them out; statements keep their order, so sections, groups and ignore lists
+// stay where the file put them.
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace ontogen::convert {
+
+/// The tool whose file this is.
+enum class Dialect { Cpfg, LPy };
+
+/// "cpfg" or "L-Py".
+std::string_view dialectName(Dialect dialect);
+
+/// One module of an axiom, predecessor, context or successor.
+struct ModuleText {
+  std::string label;              ///< as the cell language spells it: `F`, `+`, `?P`, `*`
+  bool hasArgs = false;           ///< `X()` and `X` differ
+  std::vector<std::string> args;  ///< cell-language expressions (patterns: parameter names)
+};
+
+enum class StatementKind {
+  Production,    ///< `left < predecessor > right : condition -> successors : probability`
+  Section,       ///< `production:`, `decomposition:`, `homomorphism:`
+  MaximumDepth,  ///< `maximum depth: N` of the section before it
+  Group,         ///< `group N:`: the group of the productions after it
+  Ignore,        ///< `ignore: A B`
+  Consider,      ///< `consider: A B`
+};
+
+struct Statement {
+  StatementKind kind = StatementKind::Production;
+  std::string word;                  ///< Section: its name; MaximumDepth, Group: the value
+  std::vector<std::string> symbols;  ///< Ignore, Consider
+  std::vector<ModuleText> left;      ///< Production: the left context, in text order
+  std::string leftArrow = "<";       ///< `<`, or `<<` for a new left context
+  ModuleText predecessor;
+  std::vector<ModuleText> right;
+  std::string rightArrow = ">";        ///< `>`, or `>>` for a new right context
+  std::string condition;               ///< empty: none
+  std::vector<ModuleText> successors;  ///< empty: the empty word
+  std::string probability;             ///< empty: none
+};
+
+struct LSystemFile {
+  Dialect dialect = Dialect::Cpfg;
+  std::string name;                                          ///< the block's name, an identifier
+  std::vector<std::pair<std::string, std::string>> defines;  ///< name, cell-language expression
+  std::optional<std::string> angle;                          ///< degrees: the default turn
+  std::optional<std::string> seed;
+  std::optional<std::string> derivationLength;  ///< steps: `#until`
+  std::vector<ModuleText> axiom;
+  std::vector<Statement> statements;
+};
+
+/// The file as a cell-language program: one lsystem block, with a comment naming the
+/// file it came from. A block whose labels include digits gets `#letters`.
+std::string writeCellProgram(const LSystemFile& file, std::string_view sourceName);
+
+/// A block name from a file name: its stem, other characters than letters, digits and
+/// '_' made '_', a leading digit prefixed with "l_".
+std::string blockNameOf(std::string_view path);
+
+}  // namespace ontogen::convert

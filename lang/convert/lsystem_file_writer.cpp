@@ -1,0 +1,94 @@
+#include "lang/convert/lsystem_file.h"
+
+#include <cctype>
+#include <filesystem>
+
+namespace ontogen::convert {
+
+namespace {
+
+std::string moduleText(const ModuleText& module) {
+  std::string text = module.label;
+  if (!module.hasArgs) return text;
+  text += "(";
+  for (size_t i = 0; i < module.args.size(); ++i) text += (i ? ", " : "") + module.args[i];
+  return text + ")";
+}
+
+std::string wordText(const std::vector<ModuleText>& modules) {
+  std::string text;
+  for (const ModuleText& module : modules) text += (text.empty() ? "" : " ") + moduleText(module);
+  return text;
+}
+
+bool hasDigitLabel(const std::vector<ModuleText>& modules) {
+  for (const ModuleText& module : modules)
+    if (!module.label.empty() && std::isdigit(static_cast<unsigned char>(module.label[0]))) return true;
+  return false;
+}
+
+bool needsLetters(const LSystemFile& file) {
+  if (hasDigitLabel(file.axiom)) return true;
+  for (const Statement& s : file.statements)
+    if (s.kind == StatementKind::Production && (hasDigitLabel(s.left) || hasDigitLabel(s.right) ||
+                                                hasDigitLabel(s.successors) || hasDigitLabel({s.predecessor})))
+      return true;
+  return false;
+}
+
+std::string statementText(const Statement& s) {
+  switch (s.kind) {
+    case StatementKind::Section:
+      return s.word + ":";
+    case StatementKind::MaximumDepth:
+      return "maximum depth: " + s.word;
+    case StatementKind::Group:
+      return "group " + s.word + ":";
+    case StatementKind::Ignore:
+    case StatementKind::Consider: {
+      std::string text = s.kind == StatementKind::Ignore ? "ignore:" : "consider:";
+      for (const std::string& symbol : s.symbols) text += " " + symbol;
+      return text;
+    }
+    case StatementKind::Production:
+      break;
+  }
+  std::string text;
+  if (!s.left.empty()) text += wordText(s.left) + " " + s.leftArrow + " ";
+  text += moduleText(s.predecessor);
+  if (!s.right.empty()) text += " " + s.rightArrow + " " + wordText(s.right);
+  if (!s.condition.empty()) text += " : " + s.condition;
+  text += " -> " + (s.successors.empty() ? std::string("∅") : wordText(s.successors));
+  if (!s.probability.empty()) text += " : " + s.probability;
+  return text;
+}
+
+}  // namespace
+
+std::string_view dialectName(Dialect dialect) {
+  return dialect == Dialect::Cpfg ? "cpfg" : "L-Py";
+}
+
+std::string blockNameOf(std::string_view path) {
+  std::string name = std::filesystem::path(path).stem().string();
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') c = '_';
+  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))) name = "l_" + name;
+  return name;
+}
+
+std::string writeCellProgram(const LSystemFile& file, std::string_view sourceName) {
+  std::string out = "// Converted by ontogen convert from " + std::string(sourceName) + " (" +
+                    std::string(dialectName(file.dialect)) + ")\n";
+  out += "lsystem " + file.name + " {\n";
+  if (needsLetters(file)) out += "  #letters\n";
+  for (const auto& [name, value] : file.defines) out += "  #define " + name + " " + value + "\n";
+  if (file.angle) out += "  #angle " + *file.angle + "\n";
+  if (file.seed) out += "  #seed " + *file.seed + "\n";
+  if (file.derivationLength) out += "  #until " + *file.derivationLength + "\n";
+  if (!file.axiom.empty()) out += "  axiom " + wordText(file.axiom) + "\n";
+  for (const Statement& statement : file.statements) out += "  " + statementText(statement) + "\n";
+  return out + "}\n";
+}
+
+}  // namespace ontogen::convert

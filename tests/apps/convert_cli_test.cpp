@@ -1,0 +1,193 @@
+// `ontogen convert` and the commands that read cpfg (.l) and L-Py (.lpy) files by
+// converting them first: words compared by value with models written in the cell
+// language, and the located errors of code the converter cannot translate.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Result ontogen(const std::string& args) {
+  fs::path errFile =
+      fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / ("stderr_" + std::to_string(getpid()) + ".txt");
+  fs::create_directories(errFile.parent_path());
+  std::string command = std::string(ONTOGEN_EXECUTABLE) + " " + args + " 2>" + errFile.string();
+  Result result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.out.append(buffer.data(), n);
+  int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.err = readFile(errFile);
+  return result;
+}
+
+std::string file(const std::string& name) {
+  return std::string(ONTOGEN_SOURCE_DIR) + "/tests/convert/" + name;
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+  return n;
+}
+
+// ABOP Fig. 1.24 (d) as cpfg and L-Py write it grows to the word of the model written
+// in the cell language: 5^5 segments after five steps.
+TEST(Convert, Figure124dGrowsAlikeFromCpfgLPyAndTheCellLanguage) {
+  Result cell = ontogen("word " + file("fig1_24d.cell") + " --at 5");
+  ASSERT_EQ(cell.exitCode, 0) << cell.err;
+  EXPECT_EQ(count(cell.out, "F"), 3125u);
+  for (const char* name : {"fig1_24d.l", "fig1_24d.lpy"}) {
+    Result other = ontogen("word " + file(name) + " --at 5");
+    ASSERT_EQ(other.exitCode, 0) << name << "\n" << other.err;
+    EXPECT_EQ(other.out, cell.out) << name;
+    EXPECT_EQ(other.err, "") << name;
+  }
+}
+
+TEST(Convert, PrintsTheCellLanguageProgram) {
+  Result cpfg = ontogen("convert " + file("fig1_24d.l"));
+  ASSERT_EQ(cpfg.exitCode, 0) << cpfg.err;
+  EXPECT_EQ(cpfg.out,
+            "// Converted by ontogen convert from fig1_24d.l (cpfg)\n"
+            "lsystem fig1_24d {\n"
+            "  #angle 20\n"
+            "  #until 5\n"
+            "  axiom F\n"
+            "  F -> F [ + F ] F [ - F ] [ F ]\n"
+            "}\n");
+  Result lpy = ontogen("convert " + file("fig1_24d.lpy"));
+  ASSERT_EQ(lpy.exitCode, 0) << lpy.err;
+  EXPECT_EQ(lpy.out,
+            "// Converted by ontogen convert from fig1_24d.lpy (L-Py)\n"
+            "lsystem fig1_24d {\n"
+            "  #angle 60\n"
+            "  #until 5\n"
+            "  axiom F\n"
+            "  production:\n"
+            "  F -> F [ + F ] F [ - F ] [ F ]\n"
+            "}\n");
+}
+
+// More of ABOP's chapter 1 through both readers, by their expected words.
+TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
+  struct Case {
+    const char* file;
+    const char* times;
+    const char* words;
+  };
+  const Case cases[] = {
+      {"fig1_5_digits.l", "1,3",
+       "t = 1: 1 [ 0 ] 0\n"
+       "t = 3: 1 1 1 1 [ 1 1 [ 1 [ 0 ] 0 ] 1 [ 0 ] 0 ] 1 1 [ 1 [ 0 ] 0 ] 1 [ 0 ] 0\n"},
+      {"signal.lpy", "1,2,3", "t = 1: a b a a a\nt = 2: a a b a a\nt = 3: a a a b a\n"},
+      {"signal.l", "1,2,3", "t = 1: a + b - a a\nt = 2: a + a - b a\nt = 3: a + a - a b\n"},
+      {"parametric_1_35.l", "1,2,3,4",
+       "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
+      {"parametric_1_35.lpy", "1,2,3,4",
+       "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
+  };
+  for (const Case& c : cases) {
+    Result result = ontogen(std::string("word ") + file(c.file) + " --at " + c.times);
+    ASSERT_EQ(result.exitCode, 0) << c.file << "\n" << result.err;
+    EXPECT_EQ(result.out, c.words) << c.file;
+    Result check = ontogen(std::string("check ") + file(c.file));
+    EXPECT_EQ(check.exitCode, 0) << c.file << "\n" << check.err;
+  }
+}
+
+// Code of the other tool is named at its file:line:col, with exit code 6.
+TEST(Convert, CodeItCannotTranslateIsAnErrorAtItsPlace) {
+  struct Case {
+    const char* file;
+    const char* where;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"python_code.lpy",
+       "python_code.lpy:4:1: error: ", "'def': Python code, which ontogen convert does not translate"},
+      {"python_body.lpy",
+       "python_body.lpy:5:5: error: ", "'if': Python code, which ontogen convert does not translate"},
+      {"c_code.l", "c_code.l:3:1: error: ", "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code"},
+      {"c_condition.l", "c_condition.l:4:8: error: ", "a C block '{ ... }' in the condition: C code"},
+  };
+  for (const Case& c : cases) {
+    for (const char* command : {"convert", "run", "word", "check"}) {
+      const std::string args =
+          std::string(command) + " " + file(c.file) + (std::string(command) == "word" ? " --at 1" : "");
+      Result result = ontogen(args + (std::string(command) == "run"
+                                          ? " --out " + std::string(ONTOGEN_BINARY_DIR) + "/convert_cli_test/out"
+                                          : ""));
+      EXPECT_EQ(result.exitCode, 6) << args << "\n" << result.err;
+      EXPECT_EQ(result.out, "") << args;
+      EXPECT_NE(result.err.find(std::string(c.where) + c.message), std::string::npos) << args << "\n" << result.err;
+    }
+  }
+}
+
+// Constructs the cell language is gaining convert as text: sections, maximum depth,
+// groups, cut, query modules, the empty word.
+TEST(Convert, SectionsGroupsCutAndQueriesConvertAsText) {
+  Result result = ontogen("convert " + file("sections.lpy"));
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "// Converted by ontogen convert from sections.lpy (L-Py)\n"
+            "lsystem sections {\n"
+            "  #angle 60\n"
+            "  #until 2\n"
+            "  axiom A\n"
+            "  ignore: +\n"
+            "  production:\n"
+            "  A -> B [ % C ] ?P(0, 0, 0)\n"
+            "  group 1:\n"
+            "  B -> ∅\n"
+            "  group 0:\n"
+            "  decomposition:\n"
+            "  maximum depth: 2\n"
+            "  B -> F F\n"
+            "  homomorphism:\n"
+            "  C -> F\n"
+            "}\n");
+}
+
+TEST(Convert, OnlyReadsOtherToolsFiles) {
+  Result result = ontogen("convert " + file("fig1_24d.cell"));
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_NE(result.err.find("convert reads cpfg files (.l) and L-Py files (.lpy)"), std::string::npos) << result.err;
+}
+
+TEST(Convert, HelpListsTheCommand) {
+  Result result = ontogen("help");
+  ASSERT_EQ(result.exitCode, 0);
+  EXPECT_NE(result.out.find("ontogen convert FILE.l|FILE.lpy"), std::string::npos);
+  EXPECT_NE(result.out.find("#letters"), std::string::npos);
+}
+
+}  // namespace

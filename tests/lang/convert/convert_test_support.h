@@ -1,0 +1,36 @@
+#pragma once
+// Converting a text of another tool's notation in a test: the program, or the error's
+// line, column and message.
+
+#include <string>
+
+#include "lang/convert/convert.h"
+
+namespace ontogen::convert::test {
+
+struct Converted {
+  std::string program;  ///< empty on error
+  int line = 0;
+  int column = 0;
+  std::string error;
+  bool untranslatable = false;
+};
+
+inline Converted convertText(Dialect dialect, const std::string& name, const std::string& text,
+                             const std::string& view = "") {
+  SourceFile file(name, text);
+  DiagnosticSink sink;
+  ConvertResult result = convertFile(file, dialect, view, sink);
+  Converted converted;
+  converted.program = result.program.value_or("");
+  converted.untranslatable = result.untranslatable;
+  if (!sink.diagnostics().empty()) {
+    const Diagnostic& d = sink.diagnostics().front();
+    converted.line = d.span.line();
+    converted.column = d.span.column();
+    converted.error = d.message;
+  }
+  return converted;
+}
+
+}  // namespace ontogen::convert::test

@@ -1,0 +1,96 @@
+// cpfg's .l files read into cell-language text (lang/convert/cpfg_reader.cpp).
+
+#include "lang/convert/cpfg_reader.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/lang/convert/convert_test_support.h"
+
+namespace ontogen::convert {
+namespace {
+
+using test::convertText;
+
+std::string body(const std::string& program) {
+  // The lines of the block, without the comment and the braces.
+  const size_t open = program.find("{\n"), close = program.rfind("}");
+  return program.substr(open + 2, close - open - 2);
+}
+
+TEST(CpfgReader, ModulesAreOneCharacterEachAndParametersStayOnTheirModule) {
+  auto c = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nderivation length: 3\nAxiom: F(1)+AB(2,x*3)\nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  #until 3\n  axiom F(1) + A B(2, x * 3)\n");
+}
+
+TEST(CpfgReader, ProductionsKeepContextsConditionsProbabilitiesAndTheEmptyWord) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "Lsystem: 1\nSeed: 7\n#define K 2\nAxiom: A\n"
+                       "B < A(x) > C : x < K && x != 1 --> A(x+1)C : 0.5\n"
+                       "A(x) : * --> *\nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #define K 2\n  #seed 7\n  axiom A\n"
+            "  B < A(x) > C : x < K && x != 1 -> A(x + 1) C : 0.5\n"
+            "  A(x) -> ∅\n");
+}
+
+TEST(CpfgReader, IgnoreConsiderSectionsAndTheViewFilesAngle) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "/* a comment\n over lines */\nLsystem: 1\n#ignore +-\nconsider: AB\nAxiom: A\nA --> B\n"
+                       "homomorphism no warnings\nmaximum depth: 3\nB --> F\nendlsystem\n",
+                       "angle factor: 18\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #angle 360 / 18\n  axiom A\n  ignore: + -\n  consider: A B\n  A -> B\n  homomorphism:\n"
+            "  maximum depth: 3\n  B -> F\n");
+}
+
+TEST(CpfgReader, ConditionalsBecomeIf) {
+  auto c = convertText(Dialect::Cpfg, "a.l", "Axiom: A(1)\nA(x) --> A(x > 1 ? 1 : x < 0 ? 2 : 3)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  axiom A(1)\n  A(x) -> A(if(x > 1, 1, if(x < 0, 2, 3)))\n");
+}
+
+TEST(CpfgReader, DigitModulesGiveTheBlockLetters) {
+  auto c = convertText(Dialect::Cpfg, "fig 1.5.l", "Axiom: 0\n0 --> 1[0]0\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(c.program,
+            "// Converted by ontogen convert from fig 1.5.l (cpfg)\nlsystem fig_1_5 {\n  #letters\n  axiom 0\n"
+            "  0 -> 1 [ 0 ] 0\n}\n");
+}
+
+TEST(CpfgReader, CCodeAndUnspellableModulesAreErrorsAtTheirPlace) {
+  auto block = convertText(Dialect::Cpfg, "a.l", "Axiom: A\nEnd: { print(); }\n");
+  EXPECT_EQ(block.line, 2);
+  EXPECT_EQ(block.column, 1);
+  EXPECT_TRUE(block.untranslatable);
+  EXPECT_NE(block.error.find("C code"), std::string::npos) << block.error;
+
+  auto assignment = convertText(Dialect::Cpfg, "a.l", "Axiom: A(1)\nA(x) --> A(x = 2)\n");
+  EXPECT_EQ(assignment.line, 2);
+  EXPECT_EQ(assignment.column, 14);
+  EXPECT_NE(assignment.error.find("an assignment: C code"), std::string::npos) << assignment.error;
+
+  auto comma = convertText(Dialect::Cpfg, "a.l", "Axiom: F,(2)F\n");
+  EXPECT_EQ(comma.line, 1);
+  EXPECT_EQ(comma.column, 9);
+  EXPECT_NE(comma.error.find("the module ',' of cpfg has no cell-language spelling"), std::string::npos) << comma.error;
+
+  auto macro = convertText(Dialect::Cpfg, "a.l", "#define SQ(x) x*x\nAxiom: A\n");
+  EXPECT_EQ(macro.line, 1);
+  EXPECT_NE(macro.error.find("C macro"), std::string::npos) << macro.error;
+
+  auto value = convertText(Dialect::Cpfg, "a.l", "Axiom: A(3)\nA(3) --> B\n");
+  EXPECT_EQ(value.line, 2);
+  EXPECT_EQ(value.column, 3);
+  EXPECT_NE(value.error.find("a value pattern such as 'A(3)' cannot be translated yet"), std::string::npos)
+      << value.error;
+
+  auto unreadable = convertText(Dialect::Cpfg, "a.l", "Axiom: A\nthis is not cpfg\n");
+  EXPECT_EQ(unreadable.line, 2);
+  EXPECT_FALSE(unreadable.untranslatable);
+}
+
+}  // namespace
+}  // namespace ontogen::convert

@@ -1,0 +1,82 @@
+// L-Py's .lpy files read into cell-language text (lang/convert/lpy_reader.cpp).
+
+#include "lang/convert/lpy_reader.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/lang/convert/convert_test_support.h"
+
+namespace ontogen::convert {
+namespace {
+
+using test::convertText;
+
+std::string body(const std::string& program) {
+  const size_t open = program.find("{\n"), close = program.rfind("}");
+  return program.substr(open + 2, close - open - 2);
+}
+
+TEST(LPyReader, ConstantsModulesAndPythonExpressions) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "# a comment\nR = 1.5 ** 2  # trailing\nmodule Apex, Leaf\n"
+                       "Axiom: Apex(1) LeafAB _(0.1)\nderivation length: 2\nproduction:\n"
+                       "Apex(x) : x < R and not x == 0 --> F(math.sqrt(x)) Apex(x + 1)\nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #define R 1.5 ^ 2\n  #angle 60\n  #until 2\n  axiom Apex(1) Leaf A B _(0.1)\n  production:\n"
+            "  Apex(x) : x < R && !(x == 0) -> F(sqrt(x)) Apex(x + 1)\n");
+}
+
+TEST(LPyReader, ConditionalExpressionsBecomeIf) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: B(1)\nB(i) --> B(2 if i % 2 else 3)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  axiom B(1)\n  B(i) -> B(if(i % 2, 2, 3))\n");
+}
+
+TEST(LPyReader, NewContextsWildcardsAndAProduceBody) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: A B\nproduction:\nA << B >> * --> C\nB :\n    produce D\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  axiom A B\n  production:\n  A << B >> * -> C\n  B -> D\n");
+}
+
+TEST(LPyReader, TheEditorsInitialisationSectionIsNotRead) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "Axiom: A\n###### INITIALISATION ######\ndef __initialiseContext__(context):\n\tpass\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  axiom A\n");
+}
+
+TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
+  auto def = convertText(Dialect::LPy, "a.lpy", "Axiom: A\n\ndef f(x):\n    return x\n");
+  EXPECT_EQ(def.line, 3);
+  EXPECT_EQ(def.column, 1);
+  EXPECT_TRUE(def.untranslatable);
+  EXPECT_NE(def.error.find("'def': Python code"), std::string::npos) << def.error;
+
+  auto body = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nA :\n    nproduce B\n    produce C\n");
+  EXPECT_EQ(body.line, 3);
+  EXPECT_EQ(body.column, 5);
+
+  auto identity = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(x) --> A(x is None)\n");
+  EXPECT_EQ(identity.line, 2);
+  EXPECT_EQ(identity.column, 14);
+  EXPECT_NE(identity.error.find("Python's 'is'"), std::string::npos) << identity.error;
+
+  auto sphere = convertText(Dialect::LPy, "a.lpy", "Axiom: F @O(1)\n");
+  EXPECT_EQ(sphere.line, 1);
+  EXPECT_EQ(sphere.column, 10);
+  EXPECT_NE(sphere.error.find("L-Py's module '@O' has no cell-language spelling"), std::string::npos) << sphere.error;
+
+  auto import = convertText(Dialect::LPy, "a.lpy", "from random import random\nAxiom: A\n");
+  EXPECT_EQ(import.line, 1);
+  EXPECT_NE(import.error.find("'from': Python code"), std::string::npos) << import.error;
+}
+
+TEST(LPyReader, TheToolIsKnownByTheExtension) {
+  EXPECT_EQ(dialectOfPath("a/b.lpy"), Dialect::LPy);
+  EXPECT_EQ(dialectOfPath("b.l"), Dialect::Cpfg);
+  EXPECT_EQ(dialectOfPath("b.cell"), std::nullopt);
+}
+
+}  // namespace
+}  // namespace ontogen::convert
