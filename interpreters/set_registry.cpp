@@ -63,21 +63,27 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
   return nullptr;
 }
 
+namespace {
+// The compiler's view of a set's command table (rows with name, minArity, maxArity): a
+// lookup by name whose ids are the rows' indices. Tables are static, so the infos are too.
+template <auto Table>
+const CommandInfo* findInTable(std::string_view command) {
+  static const std::vector<CommandInfo> infos = [] {
+    std::vector<CommandInfo> list;
+    const auto table = Table();
+    for (size_t i = 0; i < table.size(); ++i)
+      list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
+    return list;
+  }();
+  for (const CommandInfo& info : infos)
+    if (info.name == command) return &info;
+  return nullptr;
+}
+}  // namespace
+
 std::vector<CommandSetInfo> commandSets() {
   std::vector<CommandSetInfo> sets;
-  sets.push_back({"geometry", [](std::string_view command) -> const CommandInfo* {
-                    // The table is static, so the infos made from it can be too.
-                    static const std::vector<CommandInfo> infos = [] {
-                      std::vector<CommandInfo> list;
-                      const auto table = turtleCommands();
-                      for (size_t i = 0; i < table.size(); ++i)
-                        list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
-                      return list;
-                    }();
-                    for (const CommandInfo& info : infos)
-                      if (info.name == command) return &info;
-                    return nullptr;
-                  },
+  sets.push_back({"geometry", findInTable<turtleCommands>,
                   {},
                   // #surface files are read as the run reads them, so check fails where run would.
                   [](const std::string& path) -> std::string {
@@ -88,18 +94,7 @@ std::vector<CommandSetInfo> commandSets() {
                     }
                     return {};
                   }});
-  sets.push_back({"creature", [](std::string_view command) -> const CommandInfo* {
-                    static const std::vector<CommandInfo> infos = [] {
-                      std::vector<CommandInfo> list;
-                      const auto table = creatureCommands();
-                      for (size_t i = 0; i < table.size(); ++i)
-                        list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
-                      return list;
-                    }();
-                    for (const CommandInfo& info : infos)
-                      if (info.name == command) return &info;
-                    return nullptr;
-                  }});
+  sets.push_back({"creature", findInTable<creatureCommands>});
   sets.push_back({"image", [](std::string_view command) -> const CommandInfo* {
                     static const CommandInfo pixel{"pixel", 3, 3}, range{"range", 2, 2};
                     if (command == "pixel") return &pixel;
@@ -107,18 +102,7 @@ std::vector<CommandSetInfo> commandSets() {
                     return nullptr;
                   }});
   sets.push_back({"music",
-                  [](std::string_view command) -> const CommandInfo* {
-                    static const std::vector<CommandInfo> infos = [] {
-                      std::vector<CommandInfo> list;
-                      const auto table = musicCommands();
-                      for (size_t i = 0; i < table.size(); ++i)
-                        list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
-                      return list;
-                    }();
-                    for (const CommandInfo& info : infos)
-                      if (info.name == command) return &info;
-                    return nullptr;
-                  },
+                  findInTable<musicCommands>,
                   musicConstant});
   sets.push_back({"trace", [](std::string_view command) -> const CommandInfo* {
                     static thread_local CommandInfo any;
