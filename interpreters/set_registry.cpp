@@ -75,21 +75,30 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
   return nullptr;
 }
 
+namespace {
+// The compiler's view of a set's command tables (rows with name, minArity, maxArity): a
+// lookup by name whose ids number the rows of the tables in order. Tables are static, so
+// the infos are too.
+template <auto... Tables>
+const CommandInfo* findInTable(std::string_view command) {
+  static const std::vector<CommandInfo> infos = [] {
+    std::vector<CommandInfo> list;
+    const auto add = [&list](const auto& table) {
+      for (const auto& row : table)
+        list.push_back({row.name, row.minArity, row.maxArity, static_cast<int>(list.size())});
+    };
+    (add(Tables()), ...);
+    return list;
+  }();
+  for (const CommandInfo& info : infos)
+    if (info.name == command) return &info;
+  return nullptr;
+}
+}  // namespace
+
 std::vector<CommandSetInfo> commandSets() {
   std::vector<CommandSetInfo> sets;
-  sets.push_back({"geometry", [](std::string_view command) -> const CommandInfo* {
-                    // The table is static, so the infos made from it can be too.
-                    static const std::vector<CommandInfo> infos = [] {
-                      std::vector<CommandInfo> list;
-                      const auto table = turtleCommands();
-                      for (size_t i = 0; i < table.size(); ++i)
-                        list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
-                      return list;
-                    }();
-                    for (const CommandInfo& info : infos)
-                      if (info.name == command) return &info;
-                    return nullptr;
-                  },
+  sets.push_back({"geometry", findInTable<turtleCommands>,
                   {},
                   // #surface files are read as the run reads them, so check fails where run would.
                   [](const std::string& path) -> std::string {
@@ -100,32 +109,9 @@ std::vector<CommandSetInfo> commandSets() {
                     }
                     return {};
                   }});
-  sets.push_back({"creature", [](std::string_view command) -> const CommandInfo* {
-                    static const std::vector<CommandInfo> infos = [] {
-                      std::vector<CommandInfo> list;
-                      const auto table = creatureCommands();
-                      for (size_t i = 0; i < table.size(); ++i)
-                        list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
-                      return list;
-                    }();
-                    for (const CommandInfo& info : infos)
-                      if (info.name == command) return &info;
-                    return nullptr;
-                  }});
-  sets.push_back({"physics", [](std::string_view command) -> const CommandInfo* {
-                    // Its own commands, then the turtle's, numbered after them.
-                    static const std::vector<CommandInfo> infos = [] {
-                      std::vector<CommandInfo> list;
-                      for (const PhysicsCommand& c : physicsCommands())
-                        list.push_back({c.name, c.minArity, c.maxArity, static_cast<int>(list.size())});
-                      for (const TurtleCommand& c : turtleCommands())
-                        list.push_back({c.name, c.minArity, c.maxArity, static_cast<int>(list.size())});
-                      return list;
-                    }();
-                    for (const CommandInfo& info : infos)
-                      if (info.name == command) return &info;
-                    return nullptr;
-                  }});
+  sets.push_back({"creature", findInTable<creatureCommands>});
+  // Its own commands, then the turtle's, numbered after them.
+  sets.push_back({"physics", findInTable<physicsCommands, turtleCommands>});
   sets.push_back({"image", [](std::string_view command) -> const CommandInfo* {
                     static const CommandInfo pixel{"pixel", 3, 3}, range{"range", 2, 2};
                     if (command == "pixel") return &pixel;
@@ -133,18 +119,7 @@ std::vector<CommandSetInfo> commandSets() {
                     return nullptr;
                   }});
   sets.push_back({"music",
-                  [](std::string_view command) -> const CommandInfo* {
-                    static const std::vector<CommandInfo> infos = [] {
-                      std::vector<CommandInfo> list;
-                      const auto table = musicCommands();
-                      for (size_t i = 0; i < table.size(); ++i)
-                        list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
-                      return list;
-                    }();
-                    for (const CommandInfo& info : infos)
-                      if (info.name == command) return &info;
-                    return nullptr;
-                  },
+                  findInTable<musicCommands>,
                   musicConstant});
   sets.push_back({"trace", [](std::string_view command) -> const CommandInfo* {
                     static thread_local CommandInfo any;
