@@ -11,7 +11,7 @@
 #include "core/world.h"
 #include "lang/diagnostics.h"
 #include "lang/source_reader.h"
-#include "interpreters/geometry/turtle_queries.h"
+#include "interpreters/set_registry.h"
 
 namespace ontogen::app {
 
@@ -88,8 +88,9 @@ inline WorldDef worldDefOf(const CommonOptions& options, const Program& program)
   def.seed = options.seed.value_or(program.seed);
   def.limits = options.limits;
   def.threads = options.threads;
-  // Query modules are answered by the turtle, as the geometry set draws the word.
-  if (program.hasQueries) def.environment = TurtleQueries::forSettings(program.rootSystem().settings);
+  // Query modules are answered by the turtle, as the geometry set draws the word, or by
+  // the physics set's solve.
+  def.environment = queryEnvironmentOf(program);
   return def;
 }
 

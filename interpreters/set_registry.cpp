@@ -11,6 +11,7 @@
 #include "interpreters/music/music_commands.h"
 #include "interpreters/music/music_set.h"
 #include "interpreters/physics/physics_commands.h"
+#include "interpreters/physics/physics_queries.h"
 #include "interpreters/physics/physics_set.h"
 #include "interpreters/text/trace_set.h"
 
@@ -73,6 +74,13 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
   if (name == "trace") return std::make_unique<TraceSet>();
   if (name == "image") return std::make_unique<ImageSet>();
   return nullptr;
+}
+
+std::shared_ptr<const EnvironmentProcess> queryEnvironmentOf(const Program& program) {
+  if (!program.hasQueries) return nullptr;
+  const InterpretSettings& settings = program.rootSystem().settings;
+  if (asksPhysics(program)) return PhysicsQueries::forSettings(settings);
+  return TurtleQueries::forSettings(settings);
 }
 
 namespace {

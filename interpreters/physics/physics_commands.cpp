@@ -26,6 +26,12 @@ constexpr std::array kCommands = {
     PhysicsCommand{"arrows", PhysicsOp::Arrows, 2, 2, "arrows(f, m)",
                    "force arrows f m/N, moment arrows m m/(N m) long; 0: scaled so the largest is as long as the "
                    "longest rod (the default); < 0: not drawn"},
+    PhysicsCommand{"?F", PhysicsOp::Query, 0, 3, "?F(x, y, z)",
+                   "query: after each step, the force (N) at the base of the rod before it on its path"},
+    PhysicsCommand{"?M", PhysicsOp::Query, 0, 3, "?M(x, y, z)",
+                   "query: after each step, the moment (N m) about the base of the rod before it on its path"},
+    PhysicsCommand{"?D", PhysicsOp::Query, 0, 3, "?D(x, y, z)",
+                   "query: after each step, how far the tip of the rod before it sags (m; 0 for rigid rods)"},
 };
 
 }  // namespace

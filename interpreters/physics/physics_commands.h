@@ -19,6 +19,7 @@ enum class PhysicsOp {
   Stiffness,  ///< stiffness: their bending stiffness EI, given
   Elastic,    ///< elastic: the elastic design model on, drawn deflected
   Arrows,     ///< arrows: how force and moment arrows are scaled
+  Query,      ///< ?F, ?M, ?D: the rod before it answers its force, moment or deflection
 };
 
 struct PhysicsCommand {

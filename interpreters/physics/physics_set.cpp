@@ -57,6 +57,8 @@ void PhysicsSet::beginFrame(const FrameTarget& target) {
   forceScale_ = momentScale_ = 0;
   drawn_ = false;
   drawnShape_.clear();
+  queries_.clear();
+  answers_.clear();
 }
 
 void PhysicsSet::beginCell(const CellContext& cell) {
@@ -107,6 +109,11 @@ void PhysicsSet::runTurtle(const TurtleCommand& command, std::span<const double>
 }
 
 void PhysicsSet::runPhysics(const PhysicsCommand& command, std::span<const double> args) {
+  // A query's parameters are what it was answered last; whatever they hold, it asks.
+  if (command.op == PhysicsOp::Query) {
+    if (attributes_.rod != kNoParentRod) queries_.push_back({cellId_, attributes_.rod, command.name[1]});
+    return;
+  }
   const auto count = static_cast<int>(args.size());
   if (count < command.minArity || count > command.maxArity || !finite(args)) {
     badArguments_.add(1, site_);
@@ -156,6 +163,7 @@ void PhysicsSet::runPhysics(const PhysicsCommand& command, std::span<const doubl
       forceScale_ = args[0];
       momentScale_ = args[1];
       break;
+    case PhysicsOp::Query: break;  // answered above
   }
 }
 
@@ -186,7 +194,27 @@ void PhysicsSet::addRod(const glm::dvec3& base, double radius, double density) {
   attributes_.rod = rod.id;
 }
 
-void PhysicsSet::endWord() { solve(); }
+void PhysicsSet::endWord() {
+  solve();
+  answerQueries();
+}
+
+void PhysicsSet::answerQueries() {
+  if (queries_.empty()) return;
+  std::unordered_map<uint64_t, size_t> indexOf;
+  for (size_t i = 0; i < frame_.rods.size(); ++i) indexOf.emplace(frame_.rods[i].id, i);
+  for (const NotedQuery& query : queries_) {
+    const auto it = indexOf.find(query.rod);
+    if (it == indexOf.end()) continue;
+    const RodResult& rod = frame_.rods[it->second];
+    const Eigen::Vector3d value = query.kind == 'F'   ? rod.force
+                                  : query.kind == 'M' ? rod.moment
+                                                      : Eigen::Vector3d(rod.tip - rod.restTip);
+    // The solver's results are finite (solve() keeps the rigid ones otherwise); a rule
+    // must never read what an output could not write.
+    if (value.allFinite()) answers_[query.cell] = value;
+  }
+}
 
 void PhysicsSet::solve() {
   table_.finish();

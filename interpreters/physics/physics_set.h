@@ -63,6 +63,10 @@ class PhysicsSet : public InterpretationSet {
   const PhysicsFrame& frame() const { return frame_; }
   /// The relationship and design-model tables.
   const RodTable& table() const { return table_; }
+  /// The answers to the word's query modules ?F, ?M and ?D after the word: by the query
+  /// cell's id, the force, moment or deflection of the rod before it on its path (a
+  /// query with no rod before it has no answer).
+  const std::unordered_map<uint64_t, Eigen::Vector3d>& queryAnswers() const { return answers_; }
   /// The arrows of the frame, after it is drawn (contribute or endFrame).
   const std::vector<DrawnArrow>& arrows() const { return arrows_; }
   /// The scene of the frame being drawn, or of the last one.
@@ -81,7 +85,15 @@ class PhysicsSet : public InterpretationSet {
   void runPhysics(const PhysicsCommand& command, std::span<const double> args);
   void addRod(const glm::dvec3& base, double radius, double density);
   void solve();
+  void answerQueries();
   void draw();
+
+  // A query module met in the word: its cell, the rod before it, and what it asks.
+  struct NotedQuery {
+    uint64_t cell;
+    uint64_t rod;
+    char kind;  // 'F', 'M' or 'D'
+  };
 
   PhysicsSetDef def_;
   SceneOutput output_;
@@ -92,6 +104,8 @@ class PhysicsSet : public InterpretationSet {
   RodTable table_;
   PhysicsFrame frame_;
   std::vector<DrawnArrow> arrows_;
+  std::vector<NotedQuery> queries_;
+  std::unordered_map<uint64_t, Eigen::Vector3d> answers_;
   std::vector<Eigen::Vector3d> drawnShape_;  // per rod 2 n + 1 points when elastic
   Attributes attributes_;
   std::vector<Attributes> stack_;
