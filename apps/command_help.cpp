@@ -8,6 +8,7 @@
 #include "interpreters/creature/creature_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/music/music_commands.h"
+#include "interpreters/physics/physics_commands.h"
 #include "interpreters/set_registry.h"
 #include "lang/builtins.h"
 #include "lang/directives.h"
@@ -60,6 +61,7 @@ int runHelp() {
       {"ontogen check FILE", "parse and check a program"},
       {"ontogen run FILE [options]", "develop and write one output per frame"},
       {"ontogen word FILE --at T1,T2 [--json]", "print the derivation word at those times"},
+      {"ontogen statics FILE [--at T] [--json]", "solve the rods' statics (physics set) at a time"},
       {"ontogen timeline FILE --out F.svg", "draw the time-state diagram of the development"},
       {"ontogen midi-ports", "list the MIDI output ports for --midi-port"},
       {"ontogen convert FILE.l|FILE.lpy", "print a cpfg or L-Py L-system as a cell-language program"},
@@ -69,7 +71,7 @@ int runHelp() {
   };
   for (const auto& [usage, doc] : kUsage) printRow(usage, doc, 40);
   std::cout << "\n"
-               "check, run, word and timeline take --define NAME=VALUE (repeatable): the program\n"
+               "check, run, word, statics and timeline take --define NAME=VALUE (repeatable): the program\n"
                "runs as if its #define NAME said the number VALUE; --max-errors N (default 20,\n"
                "0: all) and --max-source MIB (default 16) bound the check. They also read cpfg (.l)\n"
                "and L-Py (.lpy) files, converted first as ontogen convert prints them.\n\n"
@@ -79,6 +81,8 @@ int runHelp() {
   for (const TurtleCommand& command : turtleCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nCreature commands (set 'creature'; angles in deg, lengths in units):\n";
   for (const CreatureCommand& command : creatureCommands()) printRow(command.signature, command.doc, kSignatureColumn);
+  std::cout << "\nPhysics commands (set 'physics', with every turtle command; SI units: m, kg, N):\n";
+  for (const PhysicsCommand& command : physicsCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nPlayer commands (set 'music'; pitches in MIDI notes, times in beats):\n";
   for (const MusicCommand& command : musicCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nFunctions:\n";

@@ -11,7 +11,7 @@
 #include "core/world.h"
 #include "lang/diagnostics.h"
 #include "lang/source_reader.h"
-#include "interpreters/geometry/turtle_queries.h"
+#include "interpreters/set_registry.h"
 
 namespace ontogen::app {
 
@@ -71,6 +71,13 @@ struct TimelineOptions {
   size_t maxRows = 4000;
 };
 
+struct StaticsOptions {
+  CommonOptions common;
+  std::optional<double> at;  ///< empty: the program's #until
+  bool json = false;
+  std::string equations;     ///< the text file of the equations to write; empty: none
+};
+
 struct ConvertOptions {
   std::string file;  ///< a cpfg (.l) or L-Py (.lpy) file
 };
@@ -81,8 +88,9 @@ inline WorldDef worldDefOf(const CommonOptions& options, const Program& program)
   def.seed = options.seed.value_or(program.seed);
   def.limits = options.limits;
   def.threads = options.threads;
-  // Query modules are answered by the turtle, as the geometry set draws the word.
-  if (program.hasQueries) def.environment = TurtleQueries::forSettings(program.rootSystem().settings);
+  // Query modules are answered by the turtle, as the geometry set draws the word, or by
+  // the physics set's solve.
+  def.environment = queryEnvironmentOf(program);
   return def;
 }
 
@@ -94,6 +102,7 @@ int runCheck(const CommonOptions& options);
 int runTimeline(const TimelineOptions& options);
 int runRun(const RunOptions& options);
 int runWord(const WordOptions& options);
+int runStatics(const StaticsOptions& options);
 int runHelp();
 int runConvert(const ConvertOptions& options);
 int runMidiPorts();

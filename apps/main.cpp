@@ -113,7 +113,7 @@ int dispatch(int argc, char** argv) {
   addWholeOption(*runCommand, "--frames", run.frames, WholeRange::between(1, kMaxFrames),
                  "Frames spread over [from, until]; 1: the end only (default: #fps frames a second, else 1)");
   runCommand->add_option("--interpret", run.sets,
-                         "Interpretation sets, comma-separated: geometry, creature, image, music, trace (default: the "
+                         "Interpretation sets, comma-separated: geometry, creature, physics, image, music, trace (default: the "
                          "program's #interpret, else geometry)")
       ->delimiter(',');
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
@@ -150,6 +150,16 @@ int dispatch(int argc, char** argv) {
   addWholeOption(*wordCommand, "--precision", word.precision, WholeRange::between(1, 17),
                  "Significant digits of the text form (default 6)");
 
+  StaticsOptions statics;
+  auto* staticsCommand =
+      app.add_subcommand("statics", "Solve the physics design model of the word at a time (paper 003)");
+  addCommon(*staticsCommand, statics.common);
+  addDevelopment(*staticsCommand, statics.common);
+  staticsCommand->add_option("--at", statics.at, "Global time, seconds (default: #until)")
+      ->check(CLI::NonNegativeNumber);
+  staticsCommand->add_flag("--json", statics.json, "Print one JSON object");
+  staticsCommand->add_option("--equations", statics.equations, "Write the system of equations to this text file");
+
   TimelineOptions timeline;
   auto* timelineCommand =
       app.add_subcommand("timeline", "Draw the time-state diagram of a development (paper 002, Fig. 5)");
@@ -183,6 +193,7 @@ int dispatch(int argc, char** argv) {
   if (checkCommand->parsed()) return runCheck(check);
   if (runCommand->parsed()) return runRun(run);
   if (wordCommand->parsed()) return runWord(word);
+  if (staticsCommand->parsed()) return runStatics(statics);
   if (timelineCommand->parsed()) return runTimeline(timeline);
   if (midiPortsCommand->parsed()) return runMidiPorts();
   if (convertCommand->parsed()) return runConvert(convert);

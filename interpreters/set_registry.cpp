@@ -10,11 +10,14 @@
 #include "interpreters/image/image_set.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/music/music_set.h"
+#include "interpreters/physics/physics_commands.h"
+#include "interpreters/physics/physics_queries.h"
+#include "interpreters/physics/physics_set.h"
 #include "interpreters/text/trace_set.h"
 
 namespace ontogen {
 
-std::vector<std::string> interpretationSetNames() { return {"geometry", "creature", "image", "music", "trace"}; }
+std::vector<std::string> interpretationSetNames() { return {"geometry", "creature", "physics", "image", "music", "trace"}; }
 
 SceneOutputDef sceneOutputDefOf(const SetOptions& options) {
   SceneOutputDef def;
@@ -57,22 +60,42 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
       def.meshing = out.writePng ? LimbMeshing::GrownAndLastFrame : LimbMeshing::GrownFrames;
     return std::make_unique<CreatureSet>(def);
   }
+  if (name == "physics") {
+    PhysicsSetDef def;
+    def.output = sceneOutputDefOf(options);
+    def.turtle.step = settings.step;
+    def.turtle.angle = settings.angle;
+    def.turtle.yawAngle = settings.yawAngle;
+    def.turtle.radius = settings.radius;
+    def.turtle.radians = settings.radians;
+    return std::make_unique<PhysicsSet>(def);
+  }
   if (name == "music") return std::make_unique<MusicSet>(MusicSet::defFrom(settings.music));
   if (name == "trace") return std::make_unique<TraceSet>();
   if (name == "image") return std::make_unique<ImageSet>();
   return nullptr;
 }
 
+std::shared_ptr<const EnvironmentProcess> queryEnvironmentOf(const Program& program) {
+  if (!program.hasQueries) return nullptr;
+  const InterpretSettings& settings = program.rootSystem().settings;
+  if (asksPhysics(program)) return PhysicsQueries::forSettings(settings);
+  return TurtleQueries::forSettings(settings);
+}
+
 namespace {
-// The compiler's view of a set's command table (rows with name, minArity, maxArity): a
-// lookup by name whose ids are the rows' indices. Tables are static, so the infos are too.
-template <auto Table>
+// The compiler's view of a set's command tables (rows with name, minArity, maxArity): a
+// lookup by name whose ids number the rows of the tables in order. Tables are static, so
+// the infos are too.
+template <auto... Tables>
 const CommandInfo* findInTable(std::string_view command) {
   static const std::vector<CommandInfo> infos = [] {
     std::vector<CommandInfo> list;
-    const auto table = Table();
-    for (size_t i = 0; i < table.size(); ++i)
-      list.push_back({table[i].name, table[i].minArity, table[i].maxArity, static_cast<int>(i)});
+    const auto add = [&list](const auto& table) {
+      for (const auto& row : table)
+        list.push_back({row.name, row.minArity, row.maxArity, static_cast<int>(list.size())});
+    };
+    (add(Tables()), ...);
     return list;
   }();
   for (const CommandInfo& info : infos)
@@ -95,6 +118,8 @@ std::vector<CommandSetInfo> commandSets() {
                     return {};
                   }});
   sets.push_back({"creature", findInTable<creatureCommands>});
+  // Its own commands, then the turtle's, numbered after them.
+  sets.push_back({"physics", findInTable<physicsCommands, turtleCommands>});
   sets.push_back({"image", [](std::string_view command) -> const CommandInfo* {
                     static const CommandInfo pixel{"pixel", 3, 3}, range{"range", 2, 2};
                     if (command == "pixel") return &pixel;

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/environment_process.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/formats/scene_output.h"
 #include "interpreters/interpretation_set.h"
@@ -36,6 +37,10 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
 /// The output stage's settings from a run's output settings; throws std::invalid_argument
 /// with a message for the user when they are wrong.
 SceneOutputDef sceneOutputDefOf(const SetOptions& options);
+
+/// What answers a program's query modules (core/environment_process.h): the physics set
+/// when it asks ?F, ?M or ?D, otherwise the turtle; null when it has none.
+std::shared_ptr<const EnvironmentProcess> queryEnvironmentOf(const Program& program);
 
 /// For the compiler: the commands of every set (the trace set accepts any).
 std::vector<CommandSetInfo> commandSets();

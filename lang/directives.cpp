@@ -25,7 +25,7 @@ constexpr double kMaxSeed = 9007199254740991.0;
 constexpr std::array<std::string_view, 2> kMusicTimes{"sequential", "developmental"};
 // The interpretation sets (interpreters/set_registry.h, interpretationSetNames(); a test
 // keeps the two lists equal).
-constexpr std::array<std::string_view, 5> kSetNames{"geometry", "creature", "image", "music", "trace"};
+constexpr std::array<std::string_view, 6> kSetNames{"geometry", "creature", "physics", "image", "music", "trace"};
 
 // The order is the one `unknown directive` lists and `ontogen help` prints.
 // Limits: ppq and the beats per bar are what a MIDI file can hold (a 15-bit division, a

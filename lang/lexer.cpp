@@ -281,8 +281,9 @@ class Lexer {
       case '~': return make(TokenKind::Tilde, begin);
       case '@': return make(TokenKind::At, begin);
       case '?':
-        // cpfg's query modules ?P ?H ?L ?U (ABOP 1.10) are labels.
-        if (pos_ < text_.size() && std::strchr("PHLU", text_[pos_]) && text_[pos_] != '\0' &&
+        // cpfg's query modules ?P ?H ?L ?U (ABOP 1.10), and the physics set's ?F ?M ?D,
+        // are labels.
+        if (pos_ < text_.size() && std::strchr("PHLUFMD", text_[pos_]) && text_[pos_] != '\0' &&
             !(pos_ + 1 < text_.size() && isIdentChar(static_cast<unsigned char>(text_[pos_ + 1])))) {
           ++pos_;
           return make(TokenKind::Identifier, begin, text_.substr(begin, 2));

@@ -150,11 +150,11 @@ TEST(BadInput, AnUnknownCommandSuggestsTheNearestOne) {
   CliResult result = runOntogen("chek x.cell");
   EXPECT_EQ(result.exitCode, 2);
   EXPECT_EQ(result.err, "ontogen: error: unknown command 'chek'; did you mean 'check'? "
-                        "(commands: check, run, word, timeline, midi-ports, convert, help)\n");
+                        "(commands: check, run, word, statics, timeline, midi-ports, convert, help)\n");
   EXPECT_NE(runOntogen("timelin").err.find("did you mean 'timeline'?"), std::string::npos);
   // Nothing near: no suggestion.
   EXPECT_EQ(runOntogen("frobnicate").err, "ontogen: error: unknown command 'frobnicate' "
-                                          "(commands: check, run, word, timeline, midi-ports, convert, help)\n");
+                                          "(commands: check, run, word, statics, timeline, midi-ports, convert, help)\n");
 }
 
 TEST(BadInput, AnUnknownFlagSuggestsTheNearestFlagOfItsCommand) {
@@ -183,7 +183,7 @@ TEST(BadInput, HelpKeepsEverySignatureApartFromItsDocAndListsEveryCommand) {
   EXPECT_NE(result.out.find("  disc(inner, outer)    draw an annulus"), std::string::npos);
   EXPECT_NE(result.out.find("  obstaclebox(x0, y0, z0, x1, y1, z1)\n                        environment:"),
             std::string::npos);
-  for (const char* command : {"check", "run", "word", "timeline", "midi-ports", "convert", "help", "--version"})
+  for (const char* command : {"check", "run", "word", "statics", "timeline", "midi-ports", "convert", "help", "--version"})
     EXPECT_NE(result.out.find(std::string("  ontogen ") + command), std::string::npos) << command;
 }
 

@@ -23,7 +23,6 @@
 #include "core/word.h"
 #include "interpreters/text/word_text.h"
 #include "core/world.h"
-#include "interpreters/geometry/turtle_queries.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 
@@ -156,7 +155,7 @@ TEST_P(ProgramFile, BehavesAsWritten) {
 
   WorldDef def;
   def.seed = expected.seed;
-  if (program->hasQueries) def.environment = TurtleQueries::forSettings(program->rootSystem().settings);
+  def.environment = queryEnvironmentOf(*program);
   World world(program, def);
   double step = expected.step.value_or(program->dt);
   try {

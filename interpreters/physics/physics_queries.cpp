@@ -1,0 +1,47 @@
+#include "interpreters/physics/physics_queries.h"
+
+#include <algorithm>
+
+#include "core/world.h"
+#include "interpreters/interpret.h"
+
+namespace ontogen {
+
+std::shared_ptr<const PhysicsQueries> PhysicsQueries::forSettings(const InterpretSettings& settings) {
+  PhysicsSetDef def;
+  def.turtle.step = settings.step;
+  def.turtle.angle = settings.angle;
+  def.turtle.yawAngle = settings.yawAngle;
+  def.turtle.radius = settings.radius;
+  def.turtle.radians = settings.radians;
+  return std::make_shared<const PhysicsQueries>(def, TurtleQueries::forSettings(settings));
+}
+
+void PhysicsQueries::respond(const World& world, std::vector<QueryAnswer>& answers) const {
+  if (turtle_) turtle_->respond(world, answers);
+  // A set of its own each time: respond() is const and may be called from any world.
+  PhysicsSet set(def_);
+  FrameTarget target;
+  target.time = world.time();
+  set.beginFrame(target);
+  interpretWord(world, set);
+  const auto& solved = set.queryAnswers();
+  if (solved.empty()) return;
+  const Program& program = world.program();
+  const auto cells = world.rootPool().cells();
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const char kind = program.masters[cells[i].master].query;
+    if (kind != 'F' && kind != 'M' && kind != 'D') continue;
+    const auto it = solved.find(cells[i].id);
+    if (it == solved.end()) continue;
+    answers.push_back({static_cast<uint32_t>(i), {it->second.x(), it->second.y(), it->second.z()}});
+  }
+}
+
+bool asksPhysics(const Program& program) {
+  return std::any_of(program.masters.begin(), program.masters.end(), [](const auto& master) {
+    return master.query == 'F' || master.query == 'M' || master.query == 'D';
+  });
+}
+
+}  // namespace ontogen
