@@ -12,19 +12,22 @@ double Rod::mass() const { return density * std::numbers::pi * radius * radius *
 
 std::vector<int> leavesFirstOrder(std::span<const int> parentIndices) {
   using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::directedS>;
+  // Edges child -> parent: topological_sort writes the vertices in reverse topological
+  // order, every parent before its children, and the sweep is that order reversed. Rods
+  // are drawn parents first (a rod hangs from one drawn before it), so its depth-first
+  // search finishes them in drawing order and the sweep runs through memory backwards,
+  // in order, not jumping about the tree.
   Graph graph(parentIndices.size());
   for (size_t child = 0; child < parentIndices.size(); ++child)
-    if (parentIndices[child] >= 0) boost::add_edge(static_cast<size_t>(parentIndices[child]), child, graph);
+    if (parentIndices[child] >= 0) boost::add_edge(child, static_cast<size_t>(parentIndices[child]), graph);
   std::vector<size_t> sorted;
   sorted.reserve(parentIndices.size());
   try {
-    // topological_sort writes the vertices in reverse topological order: for an edge
-    // parent -> child the child comes first, which is the leaves-to-root sweep.
     boost::topological_sort(graph, std::back_inserter(sorted));
   } catch (const boost::not_a_dag&) {
     throw std::logic_error("the rods' parents form a cycle");
   }
-  return {sorted.begin(), sorted.end()};
+  return {sorted.rbegin(), sorted.rend()};
 }
 
 void RodTable::beginFrame(double time) {

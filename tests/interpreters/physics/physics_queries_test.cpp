@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -101,6 +102,39 @@ TEST(PhysicsQueries, GrowthStopsWhereTheRootCarriesTheLoadItWasGivenAndTheAnswer
 TEST(PhysicsQueries, AQueryWithNoRodBeforeItKeepsItsValues) {
   World world = worldOf("lsystem lone {\n  axiom ?F(1, 2, 3) rod(1, 0.1, 1)\n}\n");
   EXPECT_EQ(paramsOf(world, "?F"), (std::vector<double>{1, 2, 3}));
+}
+
+// models/statics_adaptive_tree.cell: rods thicken while their bending stress 4|M|/(pi r^3)
+// is above STRESS; once grown, every rod bears it, and the loaded ones are thicker than
+// the germ's schedule of radii (0.8 a generation) made them.
+TEST(PhysicsQueries, TheAdaptiveTreeThickensUntilEveryRodBearsItsStress) {
+  for (const double stress : {1e6, 4e6}) {
+    std::shared_ptr<const Program> program =
+        compileWithDefines(testing_support::readModel("statics_adaptive_tree.cell"), "models/statics_adaptive_tree.cell",
+                           {{"STRESS", stress}});
+    ASSERT_NE(program, nullptr);
+    WorldDef def;
+    def.environment = queryEnvironmentOf(*program);
+    World world(program, def);
+    world.advanceTo(program->until, program->dt);
+    PhysicsSet set;
+    FrameTarget target;
+    target.time = world.time();
+    set.beginFrame(target);
+    interpretWord(world, set);
+    const auto rods = set.table().rods();
+    ASSERT_EQ(rods.size(), 31u);
+    int thickened = 0;
+    for (size_t i = 0; i < rods.size(); ++i) {
+      const double r = rods[i].radius;
+      const double sigma = 4 * set.frame().rods[i].moment.norm() / (std::numbers::pi * r * r * r);
+      EXPECT_LE(sigma, stress) << "rod " << i << " at STRESS " << stress;
+      // The schedule: 0.01 m at the root, 0.8 times a generation; the length says which.
+      const double generation = std::round(std::log(rods[i].length()) / std::log(0.8));
+      thickened += r > 0.01 * std::pow(0.8, generation) * 1.05;
+    }
+    EXPECT_GT(thickened, 0) << "STRESS " << stress;
+  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace ontogen {
@@ -31,6 +32,17 @@ TEST(RodTable, TheSweepVisitsEveryRodAfterAllOfItsChildren) {
       EXPECT_LT(position[child], position[static_cast<size_t>(parents[child])]) << child;
     }
   }
+}
+
+// Rods are drawn parents first: the sweep is then the drawing order reversed, which walks
+// memory in order; a parent drawn after its child is still swept after it.
+TEST(RodTable, TheSweepOfRodsDrawnParentsFirstIsTheirOrderReversed) {
+  EXPECT_EQ(leavesFirstOrder(std::vector<int>{-1, 0, 1, 1, 0, 4, 4}), (std::vector<int>{6, 5, 4, 3, 2, 1, 0}));
+  const std::vector<int> order = leavesFirstOrder(std::vector<int>{2, -1, 1});
+  ASSERT_EQ(order.size(), 3u);
+  const auto at = [&](int rod) { return std::find(order.begin(), order.end(), rod) - order.begin(); };
+  EXPECT_LT(at(0), at(2));
+  EXPECT_LT(at(2), at(1));
 }
 
 TEST(RodTable, ParentsAreFoundByIdAndAnUnknownParentMakesARoot) {
