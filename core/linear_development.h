@@ -44,8 +44,6 @@ class LinearDevelopment final : public Development {
 
   double* loadFrame(const CellRecord& cell, const double* state, double when, int64_t position);
   bool matchContext(const CompiledRule& rule, size_t index, double* frame);
-  /// L-Py's new left context: items (nearest first) against the word produced so far.
-  bool matchNewLeft(std::span<const ContextItem> items, std::span<const uint8_t> classOf);
   const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
                                  RandomStream& random, const EvalContext& context);
   /// The decomposition pass over the word just produced at `when` (docs/LANGUAGE.md 4.8a).

@@ -43,6 +43,9 @@ struct Module {
   bool hasArgs = false;       ///< `X()` and `X` differ only here
   std::vector<ExprPtr> args;  ///< patterns: Name expressions (formal parameters)
   ExprPtr age;                ///< birth age (successor) or terminal age (predecessor), may be null
+  /// L-system contexts: `(B C | D)`, alternatives each a sequence of patterns (label
+  /// "(|)"); empty for any other module. The compiler makes one rule per combination.
+  std::vector<std::vector<Module>> alternatives;
 };
 
 /// `x = e`, `x += e` ..., `rate(x) = e`.

@@ -68,6 +68,9 @@ struct ContextBinding {
   int firstSlot = -1;  ///< frame slot of its first state value, -1 when nothing is bound
   int count = 0;       ///< number of state values bound
   std::array<int, 3> offset{0, 0, 0};  ///< a 2-D or 3-D context: the site relative to `me`
+  /// A wildcard with parameters, `*(x, y)`: the number of parameters the module must
+  /// have; -1: any (`*`, or not a wildcard).
+  int arity = -1;
 };
 
 /// A cell to create: `B(x / 2)`, `(C(j + 1), 0.5)` or `me`.
@@ -102,6 +105,12 @@ struct CompiledRule {
   std::vector<ContextItem> newLeftItems;
   std::vector<ContextItem> leftItems;   ///< the items of `left`, contiguous for the pool
   std::vector<ContextItem> rightItems;  ///< the items of `right`
+  /// L-systems: the alternatives of a context, `(B(x) | C(y))`, make one rule per
+  /// combination, tried in turn; `variant` > 0 continues the rule before it (a stochastic
+  /// choice counts the rule once). `unboundSlots` are the slots of names only other
+  /// variants bind: they read 0 when this one matches.
+  int variant = 0;
+  std::vector<int> unboundSlots;
   CompiledExpression predicate;       ///< empty: always true
   std::vector<StateCalculation> calculations;
   bool hasAction = false;
