@@ -1201,6 +1201,7 @@ class Parser {
   // `(B C | D)`: alternatives; or `(A(x), 3)`, a timed predecessor.
   Module alternativesOrTimed() {
     const Token& open = advance();
+    Nested nested = nest(open.span, "context");
     ++depth_;
     Module group;
     group.label = "(|)";
