@@ -37,6 +37,10 @@ bool matchLinearContext(const Program& program, const CompiledRule& rule, const 
     if (!LinearPool::matchLeftOfEnd(written.cells, rule.newLeftItems, classOf, matched)) return false;
     if (!bindSide(program, rule.newLeft, written.cells, written.state, matched, frame)) return false;
   }
+  if (!rule.newRightItems.empty()) {
+    if (!LinearPool::matchRightOfReversed(written.cells, rule.newRightItems, classOf, matched)) return false;
+    if (!bindSide(program, rule.newRight, written.cells, written.state, matched, frame)) return false;
+  }
   if (!rule.rightItems.empty()) {
     if (!pool.matchRight(index, rule.rightItems, classOf, matched)) return false;
     if (!bindSide(program, rule.right, pool.cells(), arena, matched, frame)) return false;

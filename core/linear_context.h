@@ -13,14 +13,16 @@
 
 namespace ontogen {
 
-/// The word a new left context reads: the cells written so far and their state arena.
+/// The word a new context reads: the cells written so far and their state arena. A
+/// forward pass writes them in word order (`<<` reads the end); a backward pass writes
+/// them right to left, the nearest cell last (`>>` reads from the end).
 struct WrittenWord {
   std::span<const CellRecord> cells;
   const double* state = nullptr;
 };
 
 /// Matches `rule`'s context around cell `index` of `pool` (whose branches are indexed),
-/// its new left context against `written`, seeing `classOf`; copies the bound values
+/// its new left or right context against `written`, seeing `classOf`; copies the bound values
 /// into `frame` (names of other alternatives read 0). `matched` is scratch space of
 /// kMaxContextItems entries.
 bool matchLinearContext(const Program& program, const CompiledRule& rule, const LinearPool& pool, size_t index,

@@ -348,22 +348,60 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
     beginWord();
     auto cells = pool_.cells();
     const auto& classOf = system_.symbolClass;
-    BranchCut cut;
-    for (size_t i = 0; i < cells.size(); ++i) {
-      const CellRecord& cell = cells[i];
-      const MasterCell& master = masters[cell.master];
-      if (cut.drops(classOf[cell.master])) continue;
-      double death = cell.birth + master.lifetime;
-      if (death > instant)
-        emit(cell, pool_.stateOf(cell), master.stateCount());
-      else if (classOf[cell.master] & kSymbolCut)
-        cut.start();
-      else
-        expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
+    if (system_.backward) {
+      expireBackward(instant);
+    } else {
+      BranchCut cut;
+      for (size_t i = 0; i < cells.size(); ++i) {
+        const CellRecord& cell = cells[i];
+        const MasterCell& master = masters[cell.master];
+        if (cut.drops(classOf[cell.master])) continue;
+        double death = cell.birth + master.lifetime;
+        if (death > instant)
+          emit(cell, pool_.stateOf(cell), master.stateCount());
+        else if (classOf[cell.master] & kSymbolCut)
+          cut.start();
+        else
+          expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
+      }
     }
     finishWord();
     if (system_.decomposes) decomposeWord(earliest);
   }
+}
+
+// The production pass of a block with a new right context `>>`: right to left, each
+// module's successors written after those of the modules right of it, so that `>>` reads
+// them; the new word is written reversed and turned round at the end. Which cells a cut
+// drops is found first, in word order.
+void LinearDevelopment::expireBackward(double instant) {
+  const auto& masters = program_.masters;
+  const auto cells = pool_.cells();
+  const auto& classOf = system_.symbolClass;
+  dropped_.assign(cells.size(), 0);
+  BranchCut cut;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const CellRecord& cell = cells[i];
+    if (cut.drops(classOf[cell.master])) {
+      dropped_[i] = 1;
+    } else if ((classOf[cell.master] & kSymbolCut) && cell.birth + masters[cell.master].lifetime <= instant) {
+      dropped_[i] = 1;
+      cut.start();
+    }
+  }
+  for (size_t i = cells.size(); i-- > 0;) {
+    if (dropped_[i]) continue;
+    const CellRecord& cell = cells[i];
+    const MasterCell& master = masters[cell.master];
+    const size_t first = nextCells_.size();
+    const double death = cell.birth + master.lifetime;
+    if (death > instant)
+      emit(cell, pool_.stateOf(cell), master.stateCount());
+    else
+      expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
+    std::reverse(nextCells_.begin() + static_cast<std::ptrdiff_t>(first), nextCells_.end());
+  }
+  std::reverse(nextCells_.begin(), nextCells_.end());
 }
 
 // ---- decomposition ----

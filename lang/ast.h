@@ -80,6 +80,10 @@ struct Rule {
   /// L-systems: L-Py's new left context `<<`, matched against what the step has already
   /// produced to the left; nearest last.
   std::vector<Module> newLeft;
+  /// L-systems: L-Py's new right context `>>`, matched against what the step has already
+  /// produced to the right (the block then derives right to left); nearest first.
+  std::vector<Module> newRight;
+  SourceSpan newRightSpan;  ///< the `>>`
   /// A 2-D or 3-D context (paper 002, Fig. 3: `(A) (B me C) (D)`): its modules are in
   /// `right`, each at the offset from `me` given here (x, y, z).
   int contextDimensions = 1;

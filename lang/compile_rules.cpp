@@ -209,7 +209,7 @@ struct RuleFrame {
 // One combination of a rule's context alternatives: each side as a flat sequence of
 // patterns in text order (`(B | C D) < A` gives `B < A` and `C D < A`).
 struct ContextVariant {
-  std::vector<const ast::Module*> left, right, newLeft;
+  std::vector<const ast::Module*> left, right, newLeft, newRight;
 };
 
 // Most rules the alternatives of one context may make: each is tried in turn, and a
@@ -242,12 +242,14 @@ std::vector<ContextVariant> contextVariants(const ast::Rule& rule) {
   const auto lefts = expandSide(rule.left);
   const auto rights = expandSide(rule.right);
   const auto newLefts = expandSide(rule.newLeft);
+  const auto newRights = expandSide(rule.newRight);
   for (const auto& newLeft : newLefts)
-    for (const auto& left : lefts)
-      for (const auto& right : rights) {
-        if (variants.size() > kMaxContextVariants) return variants;
-        variants.push_back({left, right, newLeft});
-      }
+    for (const auto& newRight : newRights)
+      for (const auto& left : lefts)
+        for (const auto& right : rights) {
+          if (variants.size() > kMaxContextVariants) return variants;
+          variants.push_back({left, right, newLeft, newRight});
+        }
   return variants;
 }
 
@@ -278,15 +280,17 @@ void compileContext(RuleFrame& frame, const ast::Rule& rule, const ContextVarian
   checkEnds(sink, variant.left, true);
   checkEnds(sink, variant.right, false);
   checkEnds(sink, variant.newLeft, true);
+  checkEnds(sink, variant.newRight, false);
   // Left context nearest first.
   for (auto it = variant.left.rbegin(); it != variant.left.rend(); ++it)
     compiled.left.push_back(frame.contextBinding(**it, true));
   for (const auto* module : variant.right) compiled.right.push_back(frame.contextBinding(*module, false));
   for (auto it = variant.newLeft.rbegin(); it != variant.newLeft.rend(); ++it)
     compiled.newLeft.push_back(frame.contextBinding(**it, true));
+  for (const auto* module : variant.newRight) compiled.newRight.push_back(frame.contextBinding(*module, false));
   // Names that other alternatives bind read 0 in this one.
   std::vector<const ast::Expr*> names;
-  for (const auto* side : {&rule.left, &rule.right, &rule.newLeft}) patternNames(*side, names);
+  for (const auto* side : {&rule.left, &rule.right, &rule.newLeft, &rule.newRight}) patternNames(*side, names);
   for (const ast::Expr* name : names) {
     if (frame.slots.count(name->name)) continue;
     frame.slots[name->name] = frame.nextSlot;
@@ -304,8 +308,9 @@ void compileContext(RuleFrame& frame, const ast::Rule& rule, const ContextVarian
   for (const auto& binding : compiled.left) compiled.leftItems.push_back(binding.item);
   for (const auto& binding : compiled.right) compiled.rightItems.push_back(binding.item);
   for (const auto& binding : compiled.newLeft) compiled.newLeftItems.push_back(binding.item);
+  for (const auto& binding : compiled.newRight) compiled.newRightItems.push_back(binding.item);
   if (compiled.leftItems.size() > kMaxContextItems || compiled.rightItems.size() > kMaxContextItems ||
-      compiled.newLeftItems.size() > kMaxContextItems)
+      compiled.newLeftItems.size() > kMaxContextItems || compiled.newRightItems.size() > kMaxContextItems)
     sink.error(rule.span, "a context has at most " + std::to_string(kMaxContextItems) + " modules on each side");
 }
 
@@ -566,6 +571,11 @@ void compileRewriting(CompileContext& ctx, const ast::System& system, Scope& sco
                                 "belongs to productions and decomposition rules");
       continue;
     }
+    if (!rule.newRight.empty()) {
+      ctx.sink.error(rule.newRightSpan, std::string(what) + " rewrites the word left to right, so a new right "
+                                        "context '>>' has nothing produced yet to match; write '>'");
+      continue;
+    }
     int master = ctx.resolveModule(rule.predecessor, index, /*predecessor=*/true);
     ctx.readsPosition = ctx.readsParent = false;
     std::vector<CompiledRule> variants = compileRuleVariants(ctx, rule, master, index, scope, /*lsystem=*/true);
@@ -630,6 +640,19 @@ void compileProductions(CompileContext& ctx, const ast::System& system, Scope& s
     }
     productions.push_back({master, &production});
   }
+  // One direction per block: `>>` derives right to left, where nothing left of a module
+  // is produced yet for a `<<` to match.
+  const ast::Rule* newRight = nullptr;
+  const ast::Rule* newLeft = nullptr;
+  for (const auto& [master, production] : productions) {
+    if (!production->newRight.empty() && !newRight) newRight = production;
+    if (!production->newLeft.empty() && !newLeft) newLeft = production;
+  }
+  if (newRight) ctx.program->systems[index].backward = true;
+  if (newRight && newLeft)
+    ctx.sink.error(newLeft->span, "a new left context '<<' needs the block to derive left to right, but the '>>' "
+                                  "at line " + std::to_string(newRight->newRightSpan.line()) +
+                                  " makes it derive right to left; a block has one or the other");
   for (auto& [master, age] : terminal) {
     ctx.program->masters[master].lifetime = age.first;
     ctx.program->masters[master].declared = true;

@@ -1282,9 +1282,16 @@ class Parser {
     if (!rule.predecessor.alternatives.empty())
       fail(rule.predecessor.span, "alternatives stand in contexts; the predecessor is one module (write one "
                                   "production per alternative)");
-    if (atDouble(TokenKind::Greater))
-      fail(peek().span, "ontogen derives left to right, so a new right context '>>' (L-Py's backward derivation) "
-                        "has nothing produced yet to match; write '>' for the right context");
+    if (atDouble(TokenKind::Greater)) {
+      rule.newRightSpan = peek().span.to(peek(1).span);
+      advance();
+      advance();
+      rule.hasContext = true;
+      while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star) || check(TokenKind::EmptySet)) &&
+             !check(TokenKind::Greater))
+        rule.newRight.push_back(contextModule());
+      if (rule.newRight.empty()) failHere("a new right context after '>>'");
+    }
     if (match(TokenKind::Greater)) {
       rule.hasContext = true;
       while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star) || check(TokenKind::EmptySet)))
@@ -1297,7 +1304,7 @@ class Parser {
         for (const auto& alternative : item.alternatives) untimed(alternative);
       }
     };
-    for (const auto* side : {&rule.left, &rule.right, &rule.newLeft}) untimed(*side);
+    for (const auto* side : {&rule.left, &rule.right, &rule.newLeft, &rule.newRight}) untimed(*side);
     if (match(TokenKind::Colon)) rule.predicate = expression();
     if (!match(TokenKind::Arrow)) failHere("'->' in the production");
     rule.hasAction = true;

@@ -103,6 +103,10 @@ struct CompiledRule {
   /// step has produced so far (left of the module); and its items.
   std::vector<ContextBinding> newLeft;
   std::vector<ContextItem> newLeftItems;
+  /// L-Py's new right context `>>`, text order, matched against the word the step has
+  /// produced so far right of the module (the block derives right to left); its items.
+  std::vector<ContextBinding> newRight;
+  std::vector<ContextItem> newRightItems;
   std::vector<ContextItem> leftItems;   ///< the items of `left`, contiguous for the pool
   std::vector<ContextItem> rightItems;  ///< the items of `right`
   /// L-systems: the alternatives of a context, `(B(x) | C(y))`, make one rule per
@@ -129,7 +133,7 @@ struct CompiledRule {
   /// with its offset (paper 002, Fig. 3).
   int contextDimensions = 1;
 
-  bool hasContext() const { return !left.empty() || !right.empty() || !newLeft.empty(); }
+  bool hasContext() const { return !left.empty() || !right.empty() || !newLeft.empty() || !newRight.empty(); }
 };
 
 /// An instruction of an interpretation block, e.g. `F(1 + age)`.
@@ -292,6 +296,9 @@ struct SystemDefinition {
   /// (reads `time`), evaluated at the start of every step; empty: group 0.
   CompiledExpression useGroup;
   SourceSpan useGroupSpan;
+  /// Some production has a new right context `>>`: each production pass goes right to
+  /// left, so that what stands right of a module is rewritten before it.
+  bool backward = false;
   bool decomposes = false;    ///< some symbol of this system has decomposition rules
   bool homomorphism = false;  ///< some symbol of this system has homomorphism rules
 };

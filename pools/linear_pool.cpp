@@ -131,4 +131,56 @@ bool LinearPool::matchLeftOfEnd(std::span<const CellRecord> cells, std::span<con
   return true;
 }
 
+// Reading rightwards is reading `reversed` from its end; branches are skipped by depth.
+bool LinearPool::matchRightOfReversed(std::span<const CellRecord> reversed, std::span<const ContextItem> items,
+                                      std::span<const uint8_t> classOf, uint32_t* matched) {
+  int64_t pos = static_cast<int64_t>(reversed.size());
+  // From the '[' at pos, to the ']' that closes its branch.
+  auto skipBranch = [&] {
+    for (int depth = 1; depth > 0;) {
+      if (--pos < 0) return false;
+      const uint8_t inner = classOf[reversed[pos].master];
+      depth += (inner & kSymbolBranchOpen) ? 1 : (inner & kSymbolBranchClose) ? -1 : 0;
+    }
+    return true;
+  };
+  for (size_t k = 0; k < items.size(); ++k) {
+    const ContextItem& item = items[k];
+    if (item.kind == ContextItem::Kind::BranchClose) {
+      // Skip the rest of the current branch, nested branches included, up to its ']'.
+      for (;;) {
+        if (--pos < 0) return false;
+        const uint8_t symbol = classOf[reversed[pos].master];
+        if (symbol & kSymbolBranchOpen) {
+          if (!skipBranch()) return false;
+        } else if (symbol & kSymbolBranchClose) {
+          break;
+        }
+      }
+      matched[k] = static_cast<uint32_t>(pos);
+      continue;
+    }
+    for (;;) {
+      if (--pos < 0) return item.kind == ContextItem::Kind::End;
+      const uint8_t symbol = classOf[reversed[pos].master];
+      if (symbol & kSymbolIgnored) continue;
+      if (symbol & kSymbolBranchOpen) {
+        if (item.kind == ContextItem::Kind::BranchOpen) break;  // enter this branch
+        if (!skipBranch()) return false;
+        continue;
+      }
+      if (symbol & kSymbolBranchClose) return item.kind == ContextItem::Kind::End;
+      break;
+    }
+    if (item.kind == ContextItem::Kind::End) return false;
+    if (item.kind == ContextItem::Kind::BranchOpen) {
+      if (!(classOf[reversed[pos].master] & kSymbolBranchOpen)) return false;
+    } else if (item.kind != ContextItem::Kind::Any && reversed[pos].master != item.master) {
+      return false;
+    }
+    matched[k] = static_cast<uint32_t>(pos);
+  }
+  return true;
+}
+
 }  // namespace ontogen

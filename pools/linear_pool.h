@@ -53,6 +53,12 @@ class LinearPool final : public Pool {
   static bool matchLeftOfEnd(std::span<const CellRecord> cells, std::span<const ContextItem> items,
                              std::span<const uint8_t> classOf, uint32_t* matched);
 
+  /// Matches a right context, text order, against `reversed`: the part of a word right of
+  /// a module, written right to left (its nearest cell last), read as matchRight reads a
+  /// word; matched[k] indexes `reversed`.
+  static bool matchRightOfReversed(std::span<const CellRecord> reversed, std::span<const ContextItem> items,
+                                   std::span<const uint8_t> classOf, uint32_t* matched);
+
   /// Matching bracket of cell i, or kNoPartner (an unmatched bracket or not a bracket).
   uint32_t partnerOf(size_t i) const { return partner_[i]; }
   static constexpr uint32_t kNoPartner = UINT32_MAX;
