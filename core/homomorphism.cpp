@@ -55,6 +55,7 @@ void HomomorphismImage::rewrite(const CellRecord& cell, const double* state, siz
   // place there, so rules with context do not apply to it.
   const SystemDefinition& system = world_.rootSystem();
   auto contextHolds = [&](const CompiledRule& rule) {
+    rule.clearUnbound(frame);
     if (!rule.hasContext()) return true;
     if (depth > 1 || !word_) return false;
     const auto& classOf = rule.symbolClasses < 0 ? system.symbolClass : system.ruleClasses[rule.symbolClasses];

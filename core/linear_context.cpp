@@ -27,7 +27,7 @@ bool bindSide(const Program& program, const std::vector<ContextBinding>& binding
 bool matchLinearContext(const Program& program, const CompiledRule& rule, const LinearPool& pool, size_t index,
                         const WrittenWord& written, std::span<const uint8_t> classOf, double* frame,
                         uint32_t* matched) {
-  for (int slot : rule.unboundSlots) frame[slot] = 0;
+  rule.clearUnbound(frame);
   const double* arena = pool.stateArena().data();
   if (!rule.leftItems.empty()) {
     if (!pool.matchLeft(index, rule.leftItems, classOf, matched)) return false;

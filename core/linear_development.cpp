@@ -196,12 +196,14 @@ const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule
                                                   RandomStream& random, const EvalContext& context) {
   auto matches = [&](const CompiledRule& rule) {
     evaluator_.useRule(rule);
+    rule.clearUnbound(frame);
     if (rule.hasContext() && (index < 0 || !matchContext(rule, static_cast<size_t>(index), frame))) return false;
     return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0;
   };
   const CompiledRule* chosen = ontogen::chooseRule(rules, activeGroup_, matches, context, random, candidates_);
   if (chosen && !chosen->probability.empty()) {
     evaluator_.useRule(*chosen);
+    chosen->clearUnbound(frame);
     if (chosen->hasContext()) matchContext(*chosen, static_cast<size_t>(index), frame);  // rebind its values
   }
   return chosen;
@@ -448,6 +450,7 @@ void LinearDevelopment::decompose(const CellRecord& cell, const double* state, d
   // in that word, so rules with context do not apply to it.
   const bool inWord = depth == 1;
   auto matches = [&](const CompiledRule& rule) {
+    rule.clearUnbound(frame);
     if (rule.hasContext() && (!inWord || !matchContext(rule, static_cast<size_t>(position), frame))) return false;
     return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0;
   };
@@ -457,8 +460,10 @@ void LinearDevelopment::decompose(const CellRecord& cell, const double* state, d
     emit(cell, state, master.stateCount());
     return;
   }
-  if (!rule->probability.empty() && rule->hasContext())
-    matchContext(*rule, static_cast<size_t>(position), frame);  // rebind its values
+  if (!rule->probability.empty()) {  // rebind its values
+    rule->clearUnbound(frame);
+    if (rule->hasContext()) matchContext(*rule, static_cast<size_t>(position), frame);
+  }
   checkEventLimit(++eventsThisStep_, when, context_->limits);
   context_->stats.cellsBorn += successors_.write(
       *rule, cell, frame, when, BirthCause::Terminal, context,

@@ -134,6 +134,11 @@ struct CompiledRule {
   int contextDimensions = 1;
 
   bool hasContext() const { return !left.empty() || !right.empty() || !newLeft.empty() || !newRight.empty(); }
+  /// Sets the names only other alternatives bind to 0, before matching (a variant may
+  /// have no context left at all: `A > (B |)`).
+  void clearUnbound(double* frame) const {
+    for (int slot : unboundSlots) frame[slot] = 0;
+  }
 };
 
 /// An instruction of an interpretation block, e.g. `F(1 + age)`.

@@ -133,14 +133,18 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
         uint32_t argBegin = at + 1;
         for (uint32_t comma = find(argBegin, stop, ","); argBegin <= stop; comma = find(argBegin, stop, ",")) {
           std::string sequence;
-          for (const ModuleText& item : modules(argBegin, comma, true)) {
+          uint32_t a = argBegin, b = comma;
+          trim(a, b);
+          // L-Py's None: an alternative of nothing.
+          const bool none = text_.substr(a, b - a) == "None";
+          for (const ModuleText& item : none ? std::vector<ModuleText>{} : modules(argBegin, comma, true)) {
             sequence += (sequence.empty() ? "" : " ") + item.label;
             if (!item.hasArgs) continue;
             sequence += "(";
             for (size_t k = 0; k < item.args.size(); ++k) sequence += (k ? ", " : "") + item.args[k];
             sequence += ")";
           }
-          group += (group.empty() ? "(" : " | ") + sequence;
+          group += (group.empty() ? "(" : sequence.empty() ? " |" : " | ") + sequence;
           if (comma == stop) break;
           argBegin = comma + 1;
         }

@@ -116,7 +116,8 @@ TEST(Convert, PrintsTheCellLanguageProgram) {
             "}\n");
 }
 
-// More of ABOP's chapter 1 through both readers, by their expected words.
+// More of ABOP's chapter 1 through both readers, by their expected words, and L-Py's
+// new contexts and patterns as its tests state them.
 TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
   struct Case {
     const char* file;
@@ -133,6 +134,8 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
       {"parametric_1_35.lpy", "1,2,3,4",
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
+      {"new_contexts.lpy", "1",
+       "t = 1: B A S B A S C(1) B(2) M(1, 2, 3) H(4) E(4) H(11) F(5) G(6) H(0) K\n"},
   };
   for (const Case& c : cases) {
     Result result = ontogen(std::string("word ") + file(c.file) + " --at " + c.times);
