@@ -26,7 +26,6 @@ struct WrittenWord {
 /// into `frame` (names of other alternatives read 0). `matched` is scratch space of
 /// kMaxContextItems entries.
 bool matchLinearContext(const Program& program, const CompiledRule& rule, const LinearPool& pool, size_t index,
-                        const WrittenWord& written, std::span<const uint8_t> classOf, double* frame,
-                        uint32_t* matched);
+                        const WrittenWord& written, std::span<const uint8_t> classOf, double* frame, uint32_t* matched);
 
 }  // namespace ontogen

@@ -470,8 +470,8 @@ std::vector<CompiledRule> compileRuleVariants(CompileContext& ctx, const ast::Ru
   const std::vector<ContextVariant> variants = contextVariants(rule);
   std::vector<CompiledRule> compiled;
   if (variants.size() > kMaxContextVariants) {
-    ctx.sink.error(rule.span, "the alternatives of this context make more than " +
-                                  std::to_string(kMaxContextVariants) + " combinations; split the production");
+    ctx.sink.error(rule.span, "the alternatives of this context make more than " + std::to_string(kMaxContextVariants) +
+                                  " combinations; split the production");
     return compiled;
   }
   ctx.sink.beginRepeats();
@@ -567,13 +567,15 @@ void compileRewriting(CompileContext& ctx, const ast::System& system, Scope& sco
       continue;
     }
     if (!decomposition && !rule.newLeft.empty()) {
-      ctx.sink.error(rule.span, "a homomorphism rule reads the word as it developed; a new left context '<<' "
-                                "belongs to productions and decomposition rules");
+      ctx.sink.error(rule.span,
+                     "a homomorphism rule reads the word as it developed; a new left context '<<' "
+                     "belongs to productions and decomposition rules");
       continue;
     }
     if (!rule.newRight.empty()) {
-      ctx.sink.error(rule.newRightSpan, std::string(what) + " rewrites the word left to right, so a new right "
-                                        "context '>>' has nothing produced yet to match; write '>'");
+      ctx.sink.error(rule.newRightSpan, std::string(what) +
+                                            " rewrites the word left to right, so a new right "
+                                            "context '>>' has nothing produced yet to match; write '>'");
       continue;
     }
     int master = ctx.resolveModule(rule.predecessor, index, /*predecessor=*/true);
@@ -650,9 +652,11 @@ void compileProductions(CompileContext& ctx, const ast::System& system, Scope& s
   }
   if (newRight) ctx.program->systems[index].backward = true;
   if (newRight && newLeft)
-    ctx.sink.error(newLeft->span, "a new left context '<<' needs the block to derive left to right, but the '>>' "
-                                  "at line " + std::to_string(newRight->newRightSpan.line()) +
-                                  " makes it derive right to left; a block has one or the other");
+    ctx.sink.error(newLeft->span,
+                   "a new left context '<<' needs the block to derive left to right, but the '>>' "
+                   "at line " +
+                       std::to_string(newRight->newRightSpan.line()) +
+                       " makes it derive right to left; a block has one or the other");
   for (auto& [master, age] : terminal) {
     ctx.program->masters[master].lifetime = age.first;
     ctx.program->masters[master].declared = true;

@@ -848,41 +848,39 @@ class Parser {
 
   // `(a, b)` after a label: names or value patterns in patterns, expressions elsewhere.
   void patternArguments(Module& result, ModuleUse use) {
-    {
-      advance();
-      ++depth_;
-      result.hasArgs = true;
-      if (!check(TokenKind::RParen)) {
-        do {
-          if ((use == ModuleUse::Pattern || use == ModuleUse::Predecessor) &&
-              (check(TokenKind::Number) || (check(TokenKind::Minus) && peek(1).kind == TokenKind::Number))) {
-            // A value pattern, `A(3)`: the module matches only with that value there.
-            const Token& sign = peek();
-            const bool negative = match(TokenKind::Minus);
-            const Token& value = advance();
-            auto expr = std::make_unique<Expr>();
-            expr->kind = Expr::Kind::Number;
-            expr->number = negative ? -value.number : value.number;
-            expr->span = sign.span.to(value.span);
-            result.args.push_back(std::move(expr));
-          } else if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
-            const Token& name = peek();
-            if (name.kind != TokenKind::Identifier)
-              failHere("a parameter name or a number (patterns bind names, as in 'A(x)', or test values, as in 'A(3)')");
-            advance();
-            auto expr = std::make_unique<Expr>();
-            expr->kind = Expr::Kind::Name;
-            expr->name = name.text;
-            expr->span = name.span;
-            result.args.push_back(std::move(expr));
-          } else {
-            result.args.push_back(expression());
-          }
-        } while (match(TokenKind::Comma));
-      }
-      --depth_;
-      expect(TokenKind::RParen, " to close the arguments of '" + result.label + "'");
+    advance();
+    ++depth_;
+    result.hasArgs = true;
+    if (!check(TokenKind::RParen)) {
+      do {
+        if ((use == ModuleUse::Pattern || use == ModuleUse::Predecessor) &&
+            (check(TokenKind::Number) || (check(TokenKind::Minus) && peek(1).kind == TokenKind::Number))) {
+          // A value pattern, `A(3)`: the module matches only with that value there.
+          const Token& sign = peek();
+          const bool negative = match(TokenKind::Minus);
+          const Token& value = advance();
+          auto expr = std::make_unique<Expr>();
+          expr->kind = Expr::Kind::Number;
+          expr->number = negative ? -value.number : value.number;
+          expr->span = sign.span.to(value.span);
+          result.args.push_back(std::move(expr));
+        } else if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
+          const Token& name = peek();
+          if (name.kind != TokenKind::Identifier)
+            failHere("a parameter name or a number (patterns bind names, as in 'A(x)', or test values, as in 'A(3)')");
+          advance();
+          auto expr = std::make_unique<Expr>();
+          expr->kind = Expr::Kind::Name;
+          expr->name = name.text;
+          expr->span = name.span;
+          result.args.push_back(std::move(expr));
+        } else {
+          result.args.push_back(expression());
+        }
+      } while (match(TokenKind::Comma));
     }
+    --depth_;
+    expect(TokenKind::RParen, " to close the arguments of '" + result.label + "'");
   }
 
   // ---- systems ----
@@ -1181,8 +1179,9 @@ class Parser {
       any.span = advance().span;
       if (check(TokenKind::LParen) && peek().span.begin == any.span.end) {
         if (!lsystem)
-          fail(peek().span, "the wildcard '*' of a cell's context matches any module and binds nothing; write it "
-                            "without parameters");
+          fail(peek().span,
+               "the wildcard '*' of a cell's context matches any module and binds nothing; write it "
+               "without parameters");
         patternArguments(any, ModuleUse::Pattern);
         any.span = any.span.to(previous().span);
       }
@@ -1240,8 +1239,7 @@ class Parser {
     std::vector<Module> items;
     // A new line at or left of the statement's column ends it (section 3.8).
     while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star) || check(TokenKind::EmptySet)) &&
-           !check(TokenKind::Less) &&
-           !check(TokenKind::Greater))
+           !check(TokenKind::Less) && !check(TokenKind::Greater))
       items.push_back(contextModule());
     return items;
   }
@@ -1275,13 +1273,15 @@ class Parser {
     }
     rule.predecessor = std::move(items.front());
     if (rule.predecessor.label == "*")
-      fail(rule.predecessor.span, "the wildcard '*' stands in contexts, not as the predecessor: a production "
-                                  "belongs to the module it rewrites; write one per label");
+      fail(rule.predecessor.span,
+           "the wildcard '*' stands in contexts, not as the predecessor: a production "
+           "belongs to the module it rewrites; write one per label");
     if (rule.predecessor.label == "∅")
       fail(rule.predecessor.span, "'∅' (nothing) stands in contexts, not as the predecessor");
     if (!rule.predecessor.alternatives.empty())
-      fail(rule.predecessor.span, "alternatives stand in contexts; the predecessor is one module (write one "
-                                  "production per alternative)");
+      fail(rule.predecessor.span,
+           "alternatives stand in contexts; the predecessor is one module (write one "
+           "production per alternative)");
     if (atDouble(TokenKind::Greater)) {
       rule.newRightSpan = peek().span.to(peek(1).span);
       advance();

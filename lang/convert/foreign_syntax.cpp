@@ -180,12 +180,15 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
           }
           isNumber = isNumber && digits > 0;
           if (name[0] == '*')
-            fail(a, b, "L-Py's '*args' takes any number of parameters; a pattern of the cell language takes a "
-                       "fixed number, as in *(x, y)");
+            fail(a, b,
+                 "L-Py's '*args' takes any number of parameters; a pattern of the cell language takes a "
+                 "fixed number, as in *(x, y)");
           if (!isName && !isNumber)
             fail(a, b,
-                 "a pattern's parameter " + shown(std::string(name)) + " is neither a name nor a number; write a "
-                 "name and test it in a condition, as in " + module.label + "(x) : x == ...");
+                 "a pattern's parameter " + shown(std::string(name)) +
+                     " is neither a name nor a number; write a "
+                     "name and test it in a condition, as in " +
+                     module.label + "(x) : x == ...");
           // L-Py's wildcard names the module's label first, *(name, x): the cell language
           // has numbers only, so its wildcard binds the parameters alone.
           if (dialect_ == Dialect::LPy && module.label == "*" && !skippedLabel)

@@ -64,7 +64,8 @@ size_t count(const std::string& text, const std::string& what) {
 TEST(Convert, Figure124dGrowsAlikeFromCpfgLPyAndTheCellLanguage) {
   Result two = ontogen("word " + file("fig1_24d.cell") + " --at 2");
   ASSERT_EQ(two.exitCode, 0) << two.err;
-  EXPECT_EQ(two.out, "t = 2: F F [ + F [ + X ] F [ - X ] + X ] F F [ - F [ + X ] F [ - X ] + X ] + F [ + X ] F [ - X ] + X\n");
+  EXPECT_EQ(two.out,
+            "t = 2: F F [ + F [ + X ] F [ - X ] + X ] F F [ - F [ + X ] F [ - X ] + X ] + F [ + X ] F [ - X ] + X\n");
   Result cell = ontogen("word " + file("fig1_24d.cell") + " --at 7");
   ASSERT_EQ(cell.exitCode, 0) << cell.err;
   EXPECT_EQ(count(cell.out, "X"), 2187u);
@@ -134,8 +135,7 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
       {"parametric_1_35.lpy", "1,2,3,4",
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
-      {"new_contexts.lpy", "1",
-       "t = 1: B A S B A S C(1) B(2) M(1, 2, 3) H(4) E(4) H(11) F(5) G(6) H(0) K\n"},
+      {"new_contexts.lpy", "1", "t = 1: B A S B A S C(1) B(2) M(1, 2, 3) H(4) E(4) H(11) F(5) G(6) H(0) K\n"},
   };
   for (const Case& c : cases) {
     Result result = ontogen(std::string("word ") + file(c.file) + " --at " + c.times);

@@ -202,8 +202,7 @@ TEST(World, SymbolsThatAreNoPredecessorKeepAgeing) {
 TEST(World, ContextAlternativesCountOnceInAStochasticChoice) {
   std::string axiom;
   for (int i = 0; i < 2000; ++i) axiom += " X A";
-  auto program = compileOrFail("lsystem choice {\n  axiom" + axiom +
-                               "\n  X > (A | *) -> P : 1\n  X > * -> Q : 1\n}\n");
+  auto program = compileOrFail("lsystem choice {\n  axiom" + axiom + "\n  X > (A | *) -> P : 1\n  X > * -> Q : 1\n}\n");
   ASSERT_NE(program, nullptr);
   World world(program, WorldDef{.seed = 7});
   world.advanceTo(1, 1);

@@ -52,8 +52,7 @@ TEST(LPyReader, WildcardParametersAndAlternatives) {
   auto variadic = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nA > *(*args) --> B\n");
   EXPECT_EQ(variadic.line, 2);
   EXPECT_EQ(variadic.column, 7);
-  EXPECT_NE(variadic.error.find("L-Py's '*args' takes any number of parameters"), std::string::npos)
-      << variadic.error;
+  EXPECT_NE(variadic.error.find("L-Py's '*args' takes any number of parameters"), std::string::npos) << variadic.error;
 }
 
 TEST(LPyReader, TheEditorsInitialisationSectionIsNotRead) {
