@@ -368,6 +368,16 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
   return out;
 }
 
+void ForeignSyntax::checkPredecessor(const ModuleText& predecessor, uint32_t begin, uint32_t end) const {
+  trim(begin, end);
+  if (predecessor.label == "*")
+    fail(begin, end,
+         "a wildcard predecessor: a production of the cell language belongs to the module it rewrites; "
+         "write one production per label");
+  if (!predecessor.label.empty() && predecessor.label[0] == '(')
+    fail(begin, end, "alternatives as the predecessor: write one production per alternative");
+}
+
 Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   Statement s;
   uint32_t arrow = find(begin, end, "-->");
@@ -416,6 +426,7 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
                                    " (" + std::string(text_.substr(a, b - a)) + ")",
          false);
   }
+  checkPredecessor(predecessor.front(), predBegin, predEnd);
   s.predecessor = std::move(predecessor.front());
   // The body: successors : probability (cpfg's stochastic productions).
   uint32_t bodyEnd = end;

@@ -53,6 +53,11 @@ TEST(LPyReader, WildcardParametersAndAlternatives) {
   EXPECT_EQ(variadic.line, 2);
   EXPECT_EQ(variadic.column, 7);
   EXPECT_NE(variadic.error.find("L-Py's '*args' takes any number of parameters"), std::string::npos) << variadic.error;
+  auto predecessor = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nproduction:\n*(n,x) --> B\n");
+  EXPECT_EQ(predecessor.line, 3);
+  EXPECT_EQ(predecessor.column, 1);
+  EXPECT_TRUE(predecessor.untranslatable);
+  EXPECT_NE(predecessor.error.find("a wildcard predecessor"), std::string::npos) << predecessor.error;
 }
 
 TEST(LPyReader, TheEditorsInitialisationSectionIsNotRead) {
