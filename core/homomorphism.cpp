@@ -1,6 +1,7 @@
 #include "core/homomorphism.h"
 
 #include "core/cell_frame.h"
+#include "core/linear_context.h"
 #include "core/rule_choice.h"
 #include "core/rule_evaluator.h"
 #include "core/salts.h"
@@ -11,6 +12,15 @@ HomomorphismImage::HomomorphismImage(const World& world)
     : world_(world), successors_(world.program()), frames_(static_cast<size_t>(world.rootSystem().homomorphismDepth) + 1) {
   group_ = activeGroup(world.program(), world.rootSystem(), world.time(), world.seed());
   const Pool& pool = world.rootPool();
+  // Rules with context read the word around the module: a copy with its branches indexed
+  // (the world's own index may be older than its word).
+  if (pool.kind() == PoolKind::Linear)
+    for (const MasterCell& master : world.program().masters)
+      for (const CompiledRule& rule : master.homomorphismRules)
+        if (rule.hasContext() && !word_) {
+          word_ = std::make_unique<LinearPool>(static_cast<const LinearPool&>(pool));
+          word_->indexBranches(world.rootSystem().symbolClass);
+        }
   const auto cells = pool.cells();
   cells_.reserve(cells.size());
   for (size_t i = 0; i < cells.size(); ++i) rewrite(cells[i], pool.stateOf(cells[i]), i, 1);
@@ -41,12 +51,25 @@ void HomomorphismImage::rewrite(const CellRecord& cell, const double* state, siz
   const FunctionTable functions = program.functionTable();
   EvalContext context{frame, EvalEnvironment{&random, world_.seed()}, &functions};
   context.ancestors = world_.ancestorValues();
-  auto matches = [&](const CompiledRule& rule) { return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0; };
+  // Context is read around the module in the developing word; what a rule makes has no
+  // place there, so rules with context do not apply to it.
+  const SystemDefinition& system = world_.rootSystem();
+  auto contextHolds = [&](const CompiledRule& rule) {
+    rule.clearUnbound(frame);
+    if (!rule.hasContext()) return true;
+    if (depth > 1 || !word_) return false;
+    const auto& classOf = rule.symbolClasses < 0 ? system.symbolClass : system.ruleClasses[rule.symbolClasses];
+    return matchLinearContext(program, rule, *word_, source, WrittenWord{}, classOf, frame, matched_);
+  };
+  auto matches = [&](const CompiledRule& rule) {
+    return contextHolds(rule) && (rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0);
+  };
   const CompiledRule* rule = chooseRule(master.homomorphismRules, group_, matches, context, random, candidates_);
   if (!rule) {
     push(cell, state, source);
     return;
   }
+  if (!rule->probability.empty()) contextHolds(*rule);  // rebind its values
   // The image's modules stand for the module they come from: its birth, ids of its own
   // (salted apart from the ids of its real successors).
   CellRecord salted = cell;

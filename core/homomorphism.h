@@ -5,15 +5,18 @@
 // system's homomorphismDepth rewrites deep. The image is made for interpretation only:
 // the developing word never changes. Modules of the image keep the birth time of the
 // module they come from (so development functions and interpretation blocks see its
-// age), and get ids derived from its id, deterministically.
+// age), and get ids derived from its id, deterministically. Rules with context read it
+// around the module in the developing word.
 
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
 
 #include "core/successors.h"
 #include "core/world.h"
+#include "pools/linear_pool.h"
 
 namespace ontogen {
 
@@ -40,6 +43,8 @@ class HomomorphismImage {
   std::vector<std::vector<double>> frames_;  // one per level of the rewriting
   std::vector<std::pair<const CompiledRule*, double>> candidates_;
   int group_ = 0;  // the rule group active at the world's time
+  std::unique_ptr<LinearPool> word_;  // the word, indexed, when some rule reads context
+  uint32_t matched_[kMaxContextItems];
 };
 
 }  // namespace ontogen

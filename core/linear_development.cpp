@@ -5,6 +5,7 @@
 
 #include "core/branch_cut.h"
 #include "core/cell_frame.h"
+#include "core/linear_context.h"
 #include "core/parents.h"
 #include "core/rate_integrator.h"
 #include "core/rule_choice.h"
@@ -181,65 +182,12 @@ void LinearDevelopment::fireStepRules(const CellRecord& cell, double t, size_t i
 
 // ---- context ----
 
+// An L-system rule sees the classes of the ignore:/consider: line above it; its new left
+// context reads the word written so far.
 bool LinearDevelopment::matchContext(const CompiledRule& rule, size_t index, double* frame) {
-  // An L-system rule sees the classes of the ignore:/consider: line above it.
   const auto& classOf = rule.symbolClasses < 0 ? system_.symbolClass : system_.ruleClasses[rule.symbolClasses];
-  if (!rule.leftItems.empty()) {
-    if (!pool_.matchLeft(index, rule.leftItems, classOf, matched_)) return false;
-    for (size_t k = 0; k < rule.left.size(); ++k) {
-      const ContextBinding& binding = rule.left[k];
-      if (binding.count == 0) continue;
-      const double* values = pool_.stateOf(pool_.cells()[matched_[k]]);
-      std::copy(values, values + binding.count, frame + binding.firstSlot);
-    }
-  }
-  if (!rule.newLeftItems.empty()) {
-    if (!matchNewLeft(rule.newLeftItems, classOf)) return false;
-    for (size_t k = 0; k < rule.newLeft.size(); ++k) {
-      const ContextBinding& binding = rule.newLeft[k];
-      if (binding.count == 0) continue;
-      const double* values = outState_->data() + (*outCells_)[matched_[k]].state;
-      std::copy(values, values + binding.count, frame + binding.firstSlot);
-    }
-  }
-  if (!rule.rightItems.empty()) {
-    if (!pool_.matchRight(index, rule.rightItems, classOf, matched_)) return false;
-    for (size_t k = 0; k < rule.right.size(); ++k) {
-      const ContextBinding& binding = rule.right[k];
-      if (binding.count == 0) continue;
-      const double* values = pool_.stateOf(pool_.cells()[matched_[k]]);
-      std::copy(values, values + binding.count, frame + binding.firstSlot);
-    }
-  }
-  return true;
-}
-
-// L-Py's new left context (`<<`) in forward derivation: the word this step has produced
-// so far, left of the module being rewritten, read towards the root as the left context
-// reads the word (complete branches skipped, the branch's `[` left behind, ignored
-// symbols passed over). The prefix has no bracket index: branches are skipped by depth.
-bool LinearDevelopment::matchNewLeft(std::span<const ContextItem> items, std::span<const uint8_t> classOf) {
-  const CellArray& made = *outCells_;
-  int64_t pos = static_cast<int64_t>(made.size());
-  for (size_t k = 0; k < items.size(); ++k) {
-    for (;;) {
-      if (--pos < 0) return false;
-      const uint8_t symbol = classOf[made[pos].master];
-      if (symbol & kSymbolBranchClose) {
-        for (int depth = 1; depth > 0;) {
-          if (--pos < 0) return false;
-          const uint8_t inner = classOf[made[pos].master];
-          depth += (inner & kSymbolBranchClose) ? 1 : (inner & kSymbolBranchOpen) ? -1 : 0;
-        }
-        continue;
-      }
-      if (symbol & (kSymbolBranchOpen | kSymbolIgnored)) continue;
-      break;
-    }
-    if (items[k].kind != ContextItem::Kind::Any && made[pos].master != items[k].master) return false;
-    matched_[k] = static_cast<uint32_t>(pos);
-  }
-  return true;
+  return matchLinearContext(program_, rule, pool_, index, WrittenWord{*outCells_, outState_->data()}, classOf, frame,
+                            matched_);
 }
 
 // ---- terminal ages ----
@@ -248,12 +196,14 @@ const CompiledRule* LinearDevelopment::chooseRule(const std::vector<CompiledRule
                                                   RandomStream& random, const EvalContext& context) {
   auto matches = [&](const CompiledRule& rule) {
     evaluator_.useRule(rule);
+    rule.clearUnbound(frame);
     if (rule.hasContext() && (index < 0 || !matchContext(rule, static_cast<size_t>(index), frame))) return false;
     return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0;
   };
   const CompiledRule* chosen = ontogen::chooseRule(rules, activeGroup_, matches, context, random, candidates_);
   if (chosen && !chosen->probability.empty()) {
     evaluator_.useRule(*chosen);
+    chosen->clearUnbound(frame);
     if (chosen->hasContext()) matchContext(*chosen, static_cast<size_t>(index), frame);  // rebind its values
   }
   return chosen;
@@ -400,22 +350,60 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
     beginWord();
     auto cells = pool_.cells();
     const auto& classOf = system_.symbolClass;
-    BranchCut cut;
-    for (size_t i = 0; i < cells.size(); ++i) {
-      const CellRecord& cell = cells[i];
-      const MasterCell& master = masters[cell.master];
-      if (cut.drops(classOf[cell.master])) continue;
-      double death = cell.birth + master.lifetime;
-      if (death > instant)
-        emit(cell, pool_.stateOf(cell), master.stateCount());
-      else if (classOf[cell.master] & kSymbolCut)
-        cut.start();
-      else
-        expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
+    if (system_.backward) {
+      expireBackward(instant);
+    } else {
+      BranchCut cut;
+      for (size_t i = 0; i < cells.size(); ++i) {
+        const CellRecord& cell = cells[i];
+        const MasterCell& master = masters[cell.master];
+        if (cut.drops(classOf[cell.master])) continue;
+        double death = cell.birth + master.lifetime;
+        if (death > instant)
+          emit(cell, pool_.stateOf(cell), master.stateCount());
+        else if (classOf[cell.master] & kSymbolCut)
+          cut.start();
+        else
+          expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
+      }
     }
     finishWord();
     if (system_.decomposes) decomposeWord(earliest);
   }
+}
+
+// The production pass of a block with a new right context `>>`: right to left, each
+// module's successors written after those of the modules right of it, so that `>>` reads
+// them; the new word is written reversed and turned round at the end. Which cells a cut
+// drops is found first, in word order.
+void LinearDevelopment::expireBackward(double instant) {
+  const auto& masters = program_.masters;
+  const auto cells = pool_.cells();
+  const auto& classOf = system_.symbolClass;
+  dropped_.assign(cells.size(), 0);
+  BranchCut cut;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const CellRecord& cell = cells[i];
+    if (cut.drops(classOf[cell.master])) {
+      dropped_[i] = 1;
+    } else if ((classOf[cell.master] & kSymbolCut) && cell.birth + masters[cell.master].lifetime <= instant) {
+      dropped_[i] = 1;
+      cut.start();
+    }
+  }
+  for (size_t i = cells.size(); i-- > 0;) {
+    if (dropped_[i]) continue;
+    const CellRecord& cell = cells[i];
+    const MasterCell& master = masters[cell.master];
+    const size_t first = nextCells_.size();
+    const double death = cell.birth + master.lifetime;
+    if (death > instant)
+      emit(cell, pool_.stateOf(cell), master.stateCount());
+    else
+      expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
+    std::reverse(nextCells_.begin() + static_cast<std::ptrdiff_t>(first), nextCells_.end());
+  }
+  std::reverse(nextCells_.begin(), nextCells_.end());
 }
 
 // ---- decomposition ----
@@ -425,6 +413,7 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
 // decomposed in turn, at most decompositionDepth rewrites deep. Like L-Py's pass, it
 // applies the cuts it meets at once.
 void LinearDevelopment::decomposeWord(double when) {
+  pool_.indexBranches(system_.symbolClass);
   beginWord();
   const auto cells = pool_.cells();
   const auto& classOf = system_.symbolClass;
@@ -456,12 +445,24 @@ void LinearDevelopment::decompose(const CellRecord& cell, const double* state, d
   RandomStream random(mixKey(mixKey(context_->seed ^ kDecompositionSalt, cell.id), keyOf(when)));
   EvalContext context{frame, EvalEnvironment{&random, context_->seed}, &functions_};
   context.ancestors = context_->ancestors;
-  auto matches = [&](const CompiledRule& rule) { return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0; };
+  // Context is read around the module in the word the production step made (the new
+  // left context in the word decomposed so far); what a decomposition makes has no place
+  // in that word, so rules with context do not apply to it.
+  const bool inWord = depth == 1;
+  auto matches = [&](const CompiledRule& rule) {
+    rule.clearUnbound(frame);
+    if (rule.hasContext() && (!inWord || !matchContext(rule, static_cast<size_t>(position), frame))) return false;
+    return rule.predicate.empty() || rule.predicate.evaluate(context) != 0.0;
+  };
   const CompiledRule* rule =
       ontogen::chooseRule(master.decompositionRules, activeGroup_, matches, context, random, candidates_);
   if (!rule) {
     emit(cell, state, master.stateCount());
     return;
+  }
+  if (!rule->probability.empty()) {  // rebind its values
+    rule->clearUnbound(frame);
+    if (rule->hasContext()) matchContext(*rule, static_cast<size_t>(position), frame);
   }
   checkEventLimit(++eventsThisStep_, when, context_->limits);
   context_->stats.cellsBorn += successors_.write(

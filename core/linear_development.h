@@ -1,6 +1,7 @@
 #pragma once
 // Development of a linear pool over one step: per-step rules at the start, then the
-// terminal-age events of the interval in time order. The word is rebuilt into a second
+// terminal-age events of the interval in time order (right to left in a block with a
+// new right context `>>`). The word is rebuilt into a second
 // buffer (parallel rewriting: every cell reads the word as it was), then swapped in; the
 // buffers are kept from step to step.
 
@@ -35,6 +36,7 @@ class LinearDevelopment final : public Development {
   void expireUntil(double t, double t1);
   void expireContextFree(double t1);
   void expireInTimeOrder(double t, double t1);
+  void expireBackward(double instant);
 
   /// Fires the terminal rules of a cell that reached its terminal age at `when`.
   /// `index` is its position in the current word (for context), or -1 for a newborn.
@@ -44,8 +46,6 @@ class LinearDevelopment final : public Development {
 
   double* loadFrame(const CellRecord& cell, const double* state, double when, int64_t position);
   bool matchContext(const CompiledRule& rule, size_t index, double* frame);
-  /// L-Py's new left context: items (nearest first) against the word produced so far.
-  bool matchNewLeft(std::span<const ContextItem> items, std::span<const uint8_t> classOf);
   const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
                                  RandomStream& random, const EvalContext& context);
   /// The decomposition pass over the word just produced at `when` (docs/LANGUAGE.md 4.8a).
@@ -84,6 +84,7 @@ class LinearDevelopment final : public Development {
   uint64_t checkInterval_ = 1;  // cells made between growth checks (growthCheckInterval)
   uint64_t sinceCheck_ = 0;     // cells made since the last check
   int activeGroup_ = 0;  // the rule group of the step under way (`use group:`)
+  std::vector<uint8_t> dropped_;  // a backward pass: the cells a cut leaves out
   void findParents();
   bool readsParents_ = false;          // some rule reads me.parent
   std::vector<int64_t> parentIndex_;   // of the word at the start of the pass

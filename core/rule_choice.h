@@ -2,7 +2,8 @@
 // How a module chooses among its L-system rules (productions, decomposition and
 // homomorphism rules alike; docs/LANGUAGE.md 4.5): the first rule that matches is
 // chosen; if it is stochastic, the choice is made among it and the later matching
-// stochastic rules, weighted by their probabilities. Of an L-system's rule groups, only
+// stochastic rules, weighted by their probabilities, each rule once however many of its
+// variants (the alternatives of its context) match. Of an L-system's rule groups, only
 // the active group's rules and group 0's take part (the compiler puts group 0's last).
 
 #include <algorithm>
@@ -33,11 +34,14 @@ const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int group
     if (rule.probability.empty()) return &rule;
     candidates.clear();
     double total = 0;
+    bool taken = false;  // a variant of the rule at hand (alternatives of a context) is a candidate
     for (size_t s = r; s < rules.size(); ++s) {
-      if (rules[s].probability.empty() || (s != r && !applies(rules[s]))) continue;
+      if (s == r || rules[s].variant == 0) taken = false;
+      if (taken || rules[s].probability.empty() || (s != r && !applies(rules[s]))) continue;
       double weight = std::max(0.0, rules[s].probability.evaluate(context));
       candidates.push_back({&rules[s], weight});
       total += weight;
+      taken = true;
     }
     if (!(total > 0)) return nullptr;
     double x = random.uniform() * total;

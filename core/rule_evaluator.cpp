@@ -7,7 +7,8 @@ size_t ruleFrameSize(const Program& program) {
   for (const MasterCell& master : program.masters) {
     size = std::max<size_t>(size, master.stateCount() + FrameSlot::kCount);
     for (const auto& rule : master.rules) size = std::max<size_t>(size, rule.frameSize);
-    for (const auto& rule : master.terminalRules) size = std::max<size_t>(size, rule.frameSize);
+    for (const auto* rules : {&master.terminalRules, &master.decompositionRules, &master.homomorphismRules})
+      for (const auto& rule : *rules) size = std::max<size_t>(size, rule.frameSize);
   }
   return size;
 }

@@ -43,6 +43,9 @@ struct Module {
   bool hasArgs = false;       ///< `X()` and `X` differ only here
   std::vector<ExprPtr> args;  ///< patterns: Name expressions (formal parameters)
   ExprPtr age;                ///< birth age (successor) or terminal age (predecessor), may be null
+  /// L-system contexts: `(B C | D)`, alternatives each a sequence of patterns (label
+  /// "(|)"); empty for any other module. The compiler makes one rule per combination.
+  std::vector<std::vector<Module>> alternatives;
 };
 
 /// `x = e`, `x += e` ..., `rate(x) = e`.
@@ -77,6 +80,10 @@ struct Rule {
   /// L-systems: L-Py's new left context `<<`, matched against what the step has already
   /// produced to the left; nearest last.
   std::vector<Module> newLeft;
+  /// L-systems: L-Py's new right context `>>`, matched against what the step has already
+  /// produced to the right (the block then derives right to left); nearest first.
+  std::vector<Module> newRight;
+  SourceSpan newRightSpan;  ///< the `>>`
   /// A 2-D or 3-D context (paper 002, Fig. 3: `(A) (B me C) (D)`): its modules are in
   /// `right`, each at the offset from `me` given here (x, y, z).
   int contextDimensions = 1;

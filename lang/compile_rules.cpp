@@ -165,11 +165,29 @@ struct RuleFrame {
     ContextBinding binding;
     if (module.label == "*") {
       binding.item.kind = ContextItem::Kind::Any;  // the wildcard: any module
+      if (module.hasArgs) {
+        // `*(x, y)`: any module with two parameters, bound to x and y.
+        binding.arity = static_cast<int>(module.args.size());
+        binding.count = binding.arity;
+        if (binding.count > 0) binding.firstSlot = nextSlot;
+        for (const auto& arg : module.args) bindParameter(*arg, nextSlot++);
+      }
+      return binding;
+    }
+    if (module.label == "∅") {
+      binding.item.kind = ContextItem::Kind::End;  // nothing more on this side
+      return binding;
+    }
+    if (module.label == "[" && leftSide && moduleScope >= 0) {
+      binding.item.kind = ContextItem::Kind::BranchOpen;  // the module starts a branch
       return binding;
     }
     if (module.label == "[" || module.label == "]") {
       if (leftSide)
-        ctx.sink.error(module.span, "a left context cannot contain brackets; it follows the path to the root");
+        ctx.sink.error(module.span, moduleScope >= 0
+                                        ? "a left context cannot contain ']'; it follows the path to the root (a "
+                                          "'[' says that the module starts a branch)"
+                                        : "a left context cannot contain brackets; it follows the path to the root");
       binding.item.kind = module.label == "[" ? ContextItem::Kind::BranchOpen : ContextItem::Kind::BranchClose;
       return binding;
     }
@@ -188,16 +206,97 @@ struct RuleFrame {
   }
 };
 
+// One combination of a rule's context alternatives: each side as a flat sequence of
+// patterns in text order (`(B | C D) < A` gives `B < A` and `C D < A`).
+struct ContextVariant {
+  std::vector<const ast::Module*> left, right, newLeft, newRight;
+};
+
+// Most rules the alternatives of one context may make: each is tried in turn, and a
+// product of alternatives grows fast; more is a context nobody means.
+constexpr size_t kMaxContextVariants = 64;
+
+// Every flat sequence a side's patterns stand for, in the order they are tried.
+std::vector<std::vector<const ast::Module*>> expandSide(const std::vector<ast::Module>& items) {
+  std::vector<std::vector<const ast::Module*>> result(1);
+  for (const ast::Module& item : items) {
+    if (item.alternatives.empty()) {
+      for (auto& sequence : result) sequence.push_back(&item);
+      continue;
+    }
+    std::vector<std::vector<const ast::Module*>> next;
+    for (const auto& prefix : result)
+      for (const auto& alternative : item.alternatives)
+        for (const auto& tail : expandSide(alternative)) {
+          if (next.size() > kMaxContextVariants) return next;
+          next.push_back(prefix);
+          next.back().insert(next.back().end(), tail.begin(), tail.end());
+        }
+    result = std::move(next);
+  }
+  return result;
+}
+
+std::vector<ContextVariant> contextVariants(const ast::Rule& rule) {
+  std::vector<ContextVariant> variants;
+  const auto lefts = expandSide(rule.left);
+  const auto rights = expandSide(rule.right);
+  const auto newLefts = expandSide(rule.newLeft);
+  const auto newRights = expandSide(rule.newRight);
+  for (const auto& newLeft : newLefts)
+    for (const auto& newRight : newRights)
+      for (const auto& left : lefts)
+        for (const auto& right : rights) {
+          if (variants.size() > kMaxContextVariants) return variants;
+          variants.push_back({left, right, newLeft, newRight});
+        }
+  return variants;
+}
+
+// The names a side's patterns bind, alternatives included, in text order.
+void patternNames(const std::vector<ast::Module>& items, std::vector<const ast::Expr*>& names) {
+  for (const ast::Module& item : items) {
+    for (const auto& arg : item.args)
+      if (arg->kind == ast::Expr::Kind::Name) names.push_back(arg.get());
+    for (const auto& alternative : item.alternatives) patternNames(alternative, names);
+  }
+}
+
+// `∅` is the far end of a side: first on the left, last on the right.
+void checkEnds(DiagnosticSink& sink, const std::vector<const ast::Module*>& side, bool leftSide) {
+  for (size_t k = 0; k < side.size(); ++k) {
+    const bool farthest = leftSide ? k == 0 : k + 1 == side.size();
+    if (side[k]->label == "∅" && !farthest)
+      sink.error(side[k]->span, leftSide ? "'∅' (nothing: the start of the word) stands first in a left context"
+                                         : "'∅' (nothing: the end of the branch or the word) stands last in a "
+                                           "right context");
+  }
+}
+
 // `A < me > B`, `(A) (B me C) (D)`: the modules around the cell and the frame slots
 // their parameters take.
-void compileContext(RuleFrame& frame, const ast::Rule& rule, CompiledRule& compiled) {
+void compileContext(RuleFrame& frame, const ast::Rule& rule, const ContextVariant& variant, CompiledRule& compiled) {
   DiagnosticSink& sink = frame.ctx.sink;
+  checkEnds(sink, variant.left, true);
+  checkEnds(sink, variant.right, false);
+  checkEnds(sink, variant.newLeft, true);
+  checkEnds(sink, variant.newRight, false);
   // Left context nearest first.
-  for (auto it = rule.left.rbegin(); it != rule.left.rend(); ++it)
-    compiled.left.push_back(frame.contextBinding(*it, true));
-  for (const auto& module : rule.right) compiled.right.push_back(frame.contextBinding(module, false));
-  for (auto it = rule.newLeft.rbegin(); it != rule.newLeft.rend(); ++it)
-    compiled.newLeft.push_back(frame.contextBinding(*it, true));
+  for (auto it = variant.left.rbegin(); it != variant.left.rend(); ++it)
+    compiled.left.push_back(frame.contextBinding(**it, true));
+  for (const auto* module : variant.right) compiled.right.push_back(frame.contextBinding(*module, false));
+  for (auto it = variant.newLeft.rbegin(); it != variant.newLeft.rend(); ++it)
+    compiled.newLeft.push_back(frame.contextBinding(**it, true));
+  for (const auto* module : variant.newRight) compiled.newRight.push_back(frame.contextBinding(*module, false));
+  // Names that other alternatives bind read 0 in this one.
+  std::vector<const ast::Expr*> names;
+  for (const auto* side : {&rule.left, &rule.right, &rule.newLeft, &rule.newRight}) patternNames(*side, names);
+  for (const ast::Expr* name : names) {
+    if (frame.slots.count(name->name)) continue;
+    frame.slots[name->name] = frame.nextSlot;
+    frame.boundAt[name->name] = name->span;
+    compiled.unboundSlots.push_back(frame.nextSlot++);
+  }
   compiled.contextDimensions = rule.contextDimensions;
   for (size_t k = 0; k < rule.offsets.size() && k < compiled.right.size(); ++k) {
     compiled.right[k].offset = rule.offsets[k];
@@ -209,8 +308,9 @@ void compileContext(RuleFrame& frame, const ast::Rule& rule, CompiledRule& compi
   for (const auto& binding : compiled.left) compiled.leftItems.push_back(binding.item);
   for (const auto& binding : compiled.right) compiled.rightItems.push_back(binding.item);
   for (const auto& binding : compiled.newLeft) compiled.newLeftItems.push_back(binding.item);
+  for (const auto& binding : compiled.newRight) compiled.newRightItems.push_back(binding.item);
   if (compiled.leftItems.size() > kMaxContextItems || compiled.rightItems.size() > kMaxContextItems ||
-      compiled.newLeftItems.size() > kMaxContextItems)
+      compiled.newLeftItems.size() > kMaxContextItems || compiled.newRightItems.size() > kMaxContextItems)
     sink.error(rule.span, "a context has at most " + std::to_string(kMaxContextItems) + " modules on each side");
 }
 
@@ -295,7 +395,7 @@ void compileSuccessors(CompileContext& ctx, const ast::Rule& rule, int moduleSco
 }
 
 CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master, int scopeIndex, const Scope& scope,
-                         bool lsystem) {
+                         bool lsystem, const ContextVariant& variant) {
   ctx.reader = Reader{master, -1};
   CompiledRule compiled;
   compiled.name = rule.name;
@@ -312,7 +412,7 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
     if (rule.predecessor.isMe && rule.predecessor.hasArgs)
       ctx.sink.error(rule.predecessor.span, "'me' takes no parameters; the cell's state is read by name");
   }
-  compileContext(frame, rule, compiled);
+  compileContext(frame, rule, variant, compiled);
 
   NameLookup names = ctx.frameLookup(frame.slots, frame.stateCount(), scope);
   names.aggregate = [&ctx, &compiled, moduleScope](const ast::Expr& call, DiagnosticSink& sink) {
@@ -363,6 +463,26 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
   return compiled;
 }
 
+// A rule with its context as written; the alternatives of an L-system context make one
+// rule per combination (CompiledRule::variant), whose diagnostics are reported once.
+std::vector<CompiledRule> compileRuleVariants(CompileContext& ctx, const ast::Rule& rule, int master, int scopeIndex,
+                                              const Scope& scope, bool lsystem) {
+  const std::vector<ContextVariant> variants = contextVariants(rule);
+  std::vector<CompiledRule> compiled;
+  if (variants.size() > kMaxContextVariants) {
+    ctx.sink.error(rule.span, "the alternatives of this context make more than " + std::to_string(kMaxContextVariants) +
+                                  " combinations; split the production");
+    return compiled;
+  }
+  ctx.sink.beginRepeats();
+  for (size_t v = 0; v < variants.size(); ++v) {
+    compiled.push_back(compileRule(ctx, rule, master, scopeIndex, scope, lsystem, variants[v]));
+    compiled.back().variant = static_cast<int>(v);
+  }
+  ctx.sink.endRepeats();
+  return compiled;
+}
+
 }  // namespace
 
 void declareCells(CompileContext& ctx) {
@@ -398,7 +518,10 @@ void compileCells(CompileContext& ctx) {
     bool anyTerminal = false;
     for (const auto& rule : cell.rules) {
       ctx.readsPosition = ctx.readsParent = false;
-      CompiledRule compiled = compileRule(ctx, rule, master, -1, ctx.global, /*lsystem=*/false);
+      ContextVariant variant;
+      for (const auto& module : rule.left) variant.left.push_back(&module);
+      for (const auto& module : rule.right) variant.right.push_back(&module);
+      CompiledRule compiled = compileRule(ctx, rule, master, -1, ctx.global, /*lsystem=*/false, variant);
       if (ctx.readsPosition) ctx.program->masters[master].readsPosition = true;
       if (ctx.readsParent) ctx.program->masters[master].readsParent = true;
       if (rule.terminal) {
@@ -443,20 +566,28 @@ void compileRewriting(CompileContext& ctx, const ast::System& system, Scope& sco
       ctx.sink.error(rule.predecessor.age->span, std::string(what) + " has no terminal age; it rewrites at once");
       continue;
     }
-    if (rule.hasContext) {
-      ctx.sink.error(rule.span, std::string(what) + " rewrites one module without context; move the context to a production");
+    if (!decomposition && !rule.newLeft.empty()) {
+      ctx.sink.error(rule.span,
+                     "a homomorphism rule reads the word as it developed; a new left context '<<' "
+                     "belongs to productions and decomposition rules");
+      continue;
+    }
+    if (!rule.newRight.empty()) {
+      ctx.sink.error(rule.newRightSpan, std::string(what) +
+                                            " rewrites the word left to right, so a new right "
+                                            "context '>>' has nothing produced yet to match; write '>'");
       continue;
     }
     int master = ctx.resolveModule(rule.predecessor, index, /*predecessor=*/true);
     ctx.readsPosition = ctx.readsParent = false;
-    CompiledRule compiled = compileRule(ctx, rule, master, index, scope, /*lsystem=*/true);
-    if (!compiled.aggregates.empty())
+    std::vector<CompiledRule> variants = compileRuleVariants(ctx, rule, master, index, scope, /*lsystem=*/true);
+    if (!variants.empty() && !variants.front().aggregates.empty())
       ctx.sink.error(rule.span, std::string(what) + " does not read neighbours (count, sum, mean, min, max)");
     if (ctx.readsParent) ctx.sink.error(rule.span, std::string(what) + " does not read me.parent");
     if (ctx.readsPosition) ctx.program->masters[master].readsPosition = true;
     auto& rules = decomposition ? ctx.program->masters[master].decompositionRules
                                 : ctx.program->masters[master].homomorphismRules;
-    rules.push_back(std::move(compiled));
+    for (auto& compiled : variants) rules.push_back(std::move(compiled));
     (decomposition ? definition.decomposes : definition.homomorphism) = true;
   }
 }
@@ -511,16 +642,31 @@ void compileProductions(CompileContext& ctx, const ast::System& system, Scope& s
     }
     productions.push_back({master, &production});
   }
+  // One direction per block: `>>` derives right to left, where nothing left of a module
+  // is produced yet for a `<<` to match.
+  const ast::Rule* newRight = nullptr;
+  const ast::Rule* newLeft = nullptr;
+  for (const auto& [master, production] : productions) {
+    if (!production->newRight.empty() && !newRight) newRight = production;
+    if (!production->newLeft.empty() && !newLeft) newLeft = production;
+  }
+  if (newRight) ctx.program->systems[index].backward = true;
+  if (newRight && newLeft)
+    ctx.sink.error(newLeft->span,
+                   "a new left context '<<' needs the block to derive left to right, but the '>>' "
+                   "at line " +
+                       std::to_string(newRight->newRightSpan.line()) +
+                       " makes it derive right to left; a block has one or the other");
   for (auto& [master, age] : terminal) {
     ctx.program->masters[master].lifetime = age.first;
     ctx.program->masters[master].declared = true;
   }
   for (auto& [master, production] : productions) {
     ctx.readsPosition = ctx.readsParent = false;
-    CompiledRule rule = compileRule(ctx, *production, master, index, scope, /*lsystem=*/true);
+    std::vector<CompiledRule> variants = compileRuleVariants(ctx, *production, master, index, scope, /*lsystem=*/true);
     if (ctx.readsPosition) ctx.program->masters[master].readsPosition = true;
     if (ctx.readsParent) ctx.program->masters[master].readsParent = true;
-    ctx.program->masters[master].terminalRules.push_back(std::move(rule));
+    for (auto& rule : variants) ctx.program->masters[master].terminalRules.push_back(std::move(rule));
   }
   compileRewriting(ctx, system, scope, index);
   orderGroups(ctx, system, scope, index);

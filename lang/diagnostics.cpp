@@ -11,6 +11,13 @@ void DiagnosticSink::report(Severity severity, SourceSpan span, std::string mess
     ++dropped_;
     return;
   }
+  if (repeatsFrom_ != kNoRepeats)
+    for (size_t i = repeatsFrom_; i < diagnostics_.size(); ++i) {
+      const Diagnostic& kept = diagnostics_[i];
+      if (kept.severity == severity && kept.span.file == span.file && kept.span.begin == span.begin &&
+          kept.span.end == span.end && kept.message == message)
+        return;
+    }
   if (severity == Severity::Error) ++errors_;
   diagnostics_.push_back({severity, span, std::move(message)});
   if (consumer_) consumer_(diagnostics_.back());

@@ -5,6 +5,7 @@
 // error limit, as compilers have) and may hand each one on as it arrives, so a file of
 // garbage neither floods the terminal nor fills memory.
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -39,6 +40,12 @@ class DiagnosticSink {
   void warning(SourceSpan span, std::string message) { report(Severity::Warning, span, std::move(message)); }
   void note(SourceSpan span, std::string message) { report(Severity::Note, span, std::move(message)); }
 
+  /// Between these, a diagnostic identical to one kept since beginRepeats (severity,
+  /// place and message) is dropped: for text the compiler compiles several times over,
+  /// as the alternatives of a context. Not nested.
+  void beginRepeats() { repeatsFrom_ = diagnostics_.size(); }
+  void endRepeats() { repeatsFrom_ = kNoRepeats; }
+
   /// Errors kept (at most the limit).
   int errorCount() const { return errors_; }
   bool hasErrors() const { return errors_ > 0; }
@@ -62,6 +69,8 @@ class DiagnosticSink {
   int maxErrors_ = kDefaultMaxErrors;
   int errors_ = 0;
   int dropped_ = 0;
+  static constexpr size_t kNoRepeats = SIZE_MAX;
+  size_t repeatsFrom_ = kNoRepeats;
 };
 
 /// Columns of a source line a diagnostic echoes: a longer line is shown as a window of

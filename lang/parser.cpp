@@ -637,7 +637,7 @@ class Parser {
     if (check(TokenKind::LParen)) return gridContext(rule);
     bool seenMe = false;
     while (canStartModule() || check(TokenKind::Star)) {
-      Module item = check(TokenKind::Star) ? contextModule() : module(ModuleUse::Pattern);
+      Module item = check(TokenKind::Star) ? contextModule(/*lsystem=*/false) : module(ModuleUse::Pattern);
       if (item.isMe) {
         if (seenMe) fail(item.span, "'me' appears twice in the context");
         seenMe = true;
@@ -840,42 +840,47 @@ class Parser {
       result.isMe = true;
     }
     if (check(TokenKind::LParen) && peek().span.begin == label.span.end) {
-      advance();
-      ++depth_;
-      result.hasArgs = true;
-      if (!check(TokenKind::RParen)) {
-        do {
-          if ((use == ModuleUse::Pattern || use == ModuleUse::Predecessor) &&
-              (check(TokenKind::Number) || (check(TokenKind::Minus) && peek(1).kind == TokenKind::Number))) {
-            // A value pattern, `A(3)`: the module matches only with that value there.
-            const Token& sign = peek();
-            const bool negative = match(TokenKind::Minus);
-            const Token& value = advance();
-            auto expr = std::make_unique<Expr>();
-            expr->kind = Expr::Kind::Number;
-            expr->number = negative ? -value.number : value.number;
-            expr->span = sign.span.to(value.span);
-            result.args.push_back(std::move(expr));
-          } else if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
-            const Token& name = peek();
-            if (name.kind != TokenKind::Identifier)
-              failHere("a parameter name or a number (patterns bind names, as in 'A(x)', or test values, as in 'A(3)')");
-            advance();
-            auto expr = std::make_unique<Expr>();
-            expr->kind = Expr::Kind::Name;
-            expr->name = name.text;
-            expr->span = name.span;
-            result.args.push_back(std::move(expr));
-          } else {
-            result.args.push_back(expression());
-          }
-        } while (match(TokenKind::Comma));
-      }
-      --depth_;
-      const Token& close = expect(TokenKind::RParen, " to close the arguments of '" + result.label + "'");
-      result.span = label.span.to(close.span);
+      patternArguments(result, use);
+      result.span = label.span.to(previous().span);
     }
     return result;
+  }
+
+  // `(a, b)` after a label: names or value patterns in patterns, expressions elsewhere.
+  void patternArguments(Module& result, ModuleUse use) {
+    advance();
+    ++depth_;
+    result.hasArgs = true;
+    if (!check(TokenKind::RParen)) {
+      do {
+        if ((use == ModuleUse::Pattern || use == ModuleUse::Predecessor) &&
+            (check(TokenKind::Number) || (check(TokenKind::Minus) && peek(1).kind == TokenKind::Number))) {
+          // A value pattern, `A(3)`: the module matches only with that value there.
+          const Token& sign = peek();
+          const bool negative = match(TokenKind::Minus);
+          const Token& value = advance();
+          auto expr = std::make_unique<Expr>();
+          expr->kind = Expr::Kind::Number;
+          expr->number = negative ? -value.number : value.number;
+          expr->span = sign.span.to(value.span);
+          result.args.push_back(std::move(expr));
+        } else if (use == ModuleUse::Pattern || use == ModuleUse::Predecessor) {
+          const Token& name = peek();
+          if (name.kind != TokenKind::Identifier)
+            failHere("a parameter name or a number (patterns bind names, as in 'A(x)', or test values, as in 'A(3)')");
+          advance();
+          auto expr = std::make_unique<Expr>();
+          expr->kind = Expr::Kind::Name;
+          expr->name = name.text;
+          expr->span = name.span;
+          result.args.push_back(std::move(expr));
+        } else {
+          result.args.push_back(expression());
+        }
+      } while (match(TokenKind::Comma));
+    }
+    --depth_;
+    expect(TokenKind::RParen, " to close the arguments of '" + result.label + "'");
   }
 
   // ---- systems ----
@@ -1164,17 +1169,65 @@ class Parser {
     return productionAfterLabel(first);
   }
 
-  // A module of a production's context: a pattern, or `*`, which matches any module.
-  Module contextModule() {
+  // A module of a context: a pattern, or `*`, which matches any module. In an L-system
+  // also `*(x, y)` (any module with that many parameters, binding them), `∅` (nothing:
+  // the start of the word, the end of a branch) and `(B C | D)` (alternatives).
+  Module contextModule(bool lsystem = true) {
     if (check(TokenKind::Star)) {
       Module any;
       any.label = "*";
       any.span = advance().span;
-      if (check(TokenKind::LParen) && peek().span.begin == any.span.end)
-        fail(peek().span, "the wildcard '*' matches any module and binds nothing; write it without parameters");
+      if (check(TokenKind::LParen) && peek().span.begin == any.span.end) {
+        if (!lsystem)
+          fail(peek().span,
+               "the wildcard '*' of a cell's context matches any module and binds nothing; write it "
+               "without parameters");
+        patternArguments(any, ModuleUse::Pattern);
+        any.span = any.span.to(previous().span);
+      }
       return any;
     }
+    if (lsystem && check(TokenKind::EmptySet)) {
+      Module none;
+      none.label = "∅";
+      none.span = advance().span;
+      return none;
+    }
+    if (lsystem && check(TokenKind::LParen)) return alternativesOrTimed();
     return module(ModuleUse::Predecessor);
+  }
+
+  // `(B C | D)`: alternatives; or `(A(x), 3)`, a timed predecessor.
+  Module alternativesOrTimed() {
+    const Token& open = advance();
+    Nested nested = nest(open.span, "context");
+    ++depth_;
+    Module group;
+    group.label = "(|)";
+    group.alternatives.emplace_back();
+    for (;;) {
+      auto& sequence = group.alternatives.back();
+      while (!check(TokenKind::Pipe) && !check(TokenKind::RParen) && !check(TokenKind::Comma) &&
+             (canStartModule() || check(TokenKind::Star) || check(TokenKind::EmptySet)))
+        sequence.push_back(contextModule());
+      if (check(TokenKind::Comma) && group.alternatives.size() == 1 && sequence.size() == 1 &&
+          sequence.front().alternatives.empty()) {
+        advance();
+        Module timed = std::move(sequence.front());
+        timed.age = expression();
+        --depth_;
+        const Token& close = expect(TokenKind::RParen, " to close the timed module");
+        timed.span = open.span.to(close.span);
+        return timed;
+      }
+      if (!match(TokenKind::Pipe)) break;
+      group.alternatives.emplace_back();
+    }
+    --depth_;
+    const Token& close =
+        expect(TokenKind::RParen, " to close the alternatives, as in '(B | C D)', or ', age' after a timed module");
+    group.span = open.span.to(close.span);
+    return group;
   }
 
   // `<<` and `>>`: two touching '<' or '>'.
@@ -1185,8 +1238,8 @@ class Parser {
   std::vector<Module> contextItems() {
     std::vector<Module> items;
     // A new line at or left of the statement's column ends it (section 3.8).
-    while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star)) && !check(TokenKind::Less) &&
-           !check(TokenKind::Greater))
+    while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star) || check(TokenKind::EmptySet)) &&
+           !check(TokenKind::Less) && !check(TokenKind::Greater))
       items.push_back(contextModule());
     return items;
   }
@@ -1219,18 +1272,39 @@ class Parser {
       fail(items[1].span, "a production has one predecessor module; put context before '<' or after '>'");
     }
     rule.predecessor = std::move(items.front());
-    if (rule.predecessor.label == "*") fail(rule.predecessor.span, "the wildcard '*' stands in contexts, not as the predecessor");
-    if (atDouble(TokenKind::Greater))
-      fail(peek().span, "ontogen derives left to right, so a new right context '>>' (L-Py's backward derivation) "
-                        "has nothing produced yet to match; write '>' for the right context");
+    if (rule.predecessor.label == "*")
+      fail(rule.predecessor.span,
+           "the wildcard '*' stands in contexts, not as the predecessor: a production "
+           "belongs to the module it rewrites; write one per label");
+    if (rule.predecessor.label == "∅")
+      fail(rule.predecessor.span, "'∅' (nothing) stands in contexts, not as the predecessor");
+    if (!rule.predecessor.alternatives.empty())
+      fail(rule.predecessor.span,
+           "alternatives stand in contexts; the predecessor is one module (write one "
+           "production per alternative)");
+    if (atDouble(TokenKind::Greater)) {
+      rule.newRightSpan = peek().span.to(peek(1).span);
+      advance();
+      advance();
+      rule.hasContext = true;
+      while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star) || check(TokenKind::EmptySet)) &&
+             !check(TokenKind::Greater))
+        rule.newRight.push_back(contextModule());
+      if (rule.newRight.empty()) failHere("a new right context after '>>'");
+    }
     if (match(TokenKind::Greater)) {
       rule.hasContext = true;
-      while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star))) rule.right.push_back(contextModule());
+      while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star) || check(TokenKind::EmptySet)))
+        rule.right.push_back(contextModule());
       if (rule.right.empty()) failHere("a right context after '>'");
     }
-    for (const auto* side : {&rule.left, &rule.right, &rule.newLeft})
-      for (const Module& item : *side)
+    std::function<void(const std::vector<Module>&)> untimed = [&](const std::vector<Module>& side) {
+      for (const Module& item : side) {
         if (item.age) fail(item.span, "a context module has no terminal age; write it without '(..., age)'");
+        for (const auto& alternative : item.alternatives) untimed(alternative);
+      }
+    };
+    for (const auto* side : {&rule.left, &rule.right, &rule.newLeft, &rule.newRight}) untimed(*side);
     if (match(TokenKind::Colon)) rule.predicate = expression();
     if (!match(TokenKind::Arrow)) failHere("'->' in the production");
     rule.hasAction = true;

@@ -68,6 +68,9 @@ struct ContextBinding {
   int firstSlot = -1;  ///< frame slot of its first state value, -1 when nothing is bound
   int count = 0;       ///< number of state values bound
   std::array<int, 3> offset{0, 0, 0};  ///< a 2-D or 3-D context: the site relative to `me`
+  /// A wildcard with parameters, `*(x, y)`: the number of parameters the module must
+  /// have; -1: any (`*`, or not a wildcard).
+  int arity = -1;
 };
 
 /// A cell to create: `B(x / 2)`, `(C(j + 1), 0.5)` or `me`.
@@ -100,8 +103,18 @@ struct CompiledRule {
   /// step has produced so far (left of the module); and its items.
   std::vector<ContextBinding> newLeft;
   std::vector<ContextItem> newLeftItems;
+  /// L-Py's new right context `>>`, text order, matched against the word the step has
+  /// produced so far right of the module (the block derives right to left); its items.
+  std::vector<ContextBinding> newRight;
+  std::vector<ContextItem> newRightItems;
   std::vector<ContextItem> leftItems;   ///< the items of `left`, contiguous for the pool
   std::vector<ContextItem> rightItems;  ///< the items of `right`
+  /// L-systems: the alternatives of a context, `(B(x) | C(y))`, make one rule per
+  /// combination, tried in turn; `variant` > 0 continues the rule before it (a stochastic
+  /// choice counts the rule once). `unboundSlots` are the slots of names only other
+  /// variants bind: they read 0 when this one matches.
+  int variant = 0;
+  std::vector<int> unboundSlots;
   CompiledExpression predicate;       ///< empty: always true
   std::vector<StateCalculation> calculations;
   bool hasAction = false;
@@ -120,7 +133,12 @@ struct CompiledRule {
   /// with its offset (paper 002, Fig. 3).
   int contextDimensions = 1;
 
-  bool hasContext() const { return !left.empty() || !right.empty() || !newLeft.empty(); }
+  bool hasContext() const { return !left.empty() || !right.empty() || !newLeft.empty() || !newRight.empty(); }
+  /// Sets the names only other alternatives bind to 0, before matching (a variant may
+  /// have no context left at all: `A > (B |)`).
+  void clearUnbound(double* frame) const {
+    for (int slot : unboundSlots) frame[slot] = 0;
+  }
 };
 
 /// An instruction of an interpretation block, e.g. `F(1 + age)`.
@@ -283,6 +301,9 @@ struct SystemDefinition {
   /// (reads `time`), evaluated at the start of every step; empty: group 0.
   CompiledExpression useGroup;
   SourceSpan useGroupSpan;
+  /// Some production has a new right context `>>`: each production pass goes right to
+  /// left, so that what stands right of a module is rewritten before it.
+  bool backward = false;
   bool decomposes = false;    ///< some symbol of this system has decomposition rules
   bool homomorphism = false;  ///< some symbol of this system has homomorphism rules
 };

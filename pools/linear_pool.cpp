@@ -22,14 +22,25 @@ bool LinearPool::matchLeft(size_t index, std::span<const ContextItem> items, std
   int64_t pos = static_cast<int64_t>(index);
   for (size_t k = 0; k < items.size(); ++k) {
     for (;;) {
-      if (--pos < 0) return false;
+      if (--pos < 0) break;
       uint8_t symbol = classOf[cells_[pos].master];
       if (symbol & kSymbolBranchClose) {
         if (partner_[pos] != kNoPartner) pos = partner_[pos];  // skip a complete sibling branch
         continue;
       }
-      if (symbol & (kSymbolBranchOpen | kSymbolIgnored)) continue;  // leave the branch / ignore
+      if (symbol & kSymbolBranchOpen) {
+        if (items[k].kind == ContextItem::Kind::BranchOpen) break;  // the branch starts here
+        continue;                                                   // leave the branch
+      }
+      if (symbol & kSymbolIgnored) continue;
       break;
+    }
+    if (pos < 0) return items[k].kind == ContextItem::Kind::End;  // the start of the word
+    if (items[k].kind == ContextItem::Kind::End) return false;
+    if (items[k].kind == ContextItem::Kind::BranchOpen) {
+      if (!(classOf[cells_[pos].master] & kSymbolBranchOpen)) return false;
+      matched[k] = static_cast<uint32_t>(pos);
+      continue;
     }
     if (items[k].kind != ContextItem::Kind::Any &&
         (items[k].kind != ContextItem::Kind::Module || cells_[pos].master != items[k].master))
@@ -61,7 +72,7 @@ bool LinearPool::matchRight(size_t index, std::span<const ContextItem> items, st
       continue;
     }
     for (;;) {
-      if (++pos >= size) return false;
+      if (++pos >= size) return item.kind == ContextItem::Kind::End;  // the end of the word
       uint8_t symbol = classOf[cells_[pos].master];
       if (symbol & kSymbolIgnored) continue;
       if (symbol & kSymbolBranchOpen) {
@@ -70,12 +81,101 @@ bool LinearPool::matchRight(size_t index, std::span<const ContextItem> items, st
         pos = partner_[pos];  // skip the whole branch
         continue;
       }
-      if (symbol & kSymbolBranchClose) return false;  // the current branch ends here
+      if (symbol & kSymbolBranchClose) return item.kind == ContextItem::Kind::End;  // the current branch ends here
       break;
     }
+    if (item.kind == ContextItem::Kind::End) return false;
     if (item.kind == ContextItem::Kind::BranchOpen) {
       if (!(classOf[cells_[pos].master] & kSymbolBranchOpen)) return false;
     } else if (item.kind != ContextItem::Kind::Any && cells_[pos].master != item.master) {
+      return false;
+    }
+    matched[k] = static_cast<uint32_t>(pos);
+  }
+  return true;
+}
+
+// The word being written has no bracket index: branches are skipped by depth.
+bool LinearPool::matchLeftOfEnd(std::span<const CellRecord> cells, std::span<const ContextItem> items,
+                                std::span<const uint8_t> classOf, uint32_t* matched) {
+  int64_t pos = static_cast<int64_t>(cells.size());
+  for (size_t k = 0; k < items.size(); ++k) {
+    const ContextItem& item = items[k];
+    for (;;) {
+      if (--pos < 0) return item.kind == ContextItem::Kind::End;
+      const uint8_t symbol = classOf[cells[pos].master];
+      if (symbol & kSymbolBranchClose) {
+        for (int depth = 1; depth > 0;) {
+          if (--pos < 0) return false;
+          const uint8_t inner = classOf[cells[pos].master];
+          depth += (inner & kSymbolBranchClose) ? 1 : (inner & kSymbolBranchOpen) ? -1 : 0;
+        }
+        continue;
+      }
+      if (symbol & kSymbolBranchOpen) {
+        if (item.kind == ContextItem::Kind::BranchOpen) break;
+        continue;
+      }
+      if (symbol & kSymbolIgnored) continue;
+      break;
+    }
+    if (item.kind == ContextItem::Kind::End) return false;
+    if (item.kind == ContextItem::Kind::BranchOpen) {
+      if (!(classOf[cells[pos].master] & kSymbolBranchOpen)) return false;
+      matched[k] = static_cast<uint32_t>(pos);
+      continue;
+    }
+    if (item.kind != ContextItem::Kind::Any && cells[pos].master != item.master) return false;
+    matched[k] = static_cast<uint32_t>(pos);
+  }
+  return true;
+}
+
+// Reading rightwards is reading `reversed` from its end; branches are skipped by depth.
+bool LinearPool::matchRightOfReversed(std::span<const CellRecord> reversed, std::span<const ContextItem> items,
+                                      std::span<const uint8_t> classOf, uint32_t* matched) {
+  int64_t pos = static_cast<int64_t>(reversed.size());
+  // From the '[' at pos, to the ']' that closes its branch.
+  auto skipBranch = [&] {
+    for (int depth = 1; depth > 0;) {
+      if (--pos < 0) return false;
+      const uint8_t inner = classOf[reversed[pos].master];
+      depth += (inner & kSymbolBranchOpen) ? 1 : (inner & kSymbolBranchClose) ? -1 : 0;
+    }
+    return true;
+  };
+  for (size_t k = 0; k < items.size(); ++k) {
+    const ContextItem& item = items[k];
+    if (item.kind == ContextItem::Kind::BranchClose) {
+      // Skip the rest of the current branch, nested branches included, up to its ']'.
+      for (;;) {
+        if (--pos < 0) return false;
+        const uint8_t symbol = classOf[reversed[pos].master];
+        if (symbol & kSymbolBranchOpen) {
+          if (!skipBranch()) return false;
+        } else if (symbol & kSymbolBranchClose) {
+          break;
+        }
+      }
+      matched[k] = static_cast<uint32_t>(pos);
+      continue;
+    }
+    for (;;) {
+      if (--pos < 0) return item.kind == ContextItem::Kind::End;
+      const uint8_t symbol = classOf[reversed[pos].master];
+      if (symbol & kSymbolIgnored) continue;
+      if (symbol & kSymbolBranchOpen) {
+        if (item.kind == ContextItem::Kind::BranchOpen) break;  // enter this branch
+        if (!skipBranch()) return false;
+        continue;
+      }
+      if (symbol & kSymbolBranchClose) return item.kind == ContextItem::Kind::End;
+      break;
+    }
+    if (item.kind == ContextItem::Kind::End) return false;
+    if (item.kind == ContextItem::Kind::BranchOpen) {
+      if (!(classOf[reversed[pos].master] & kSymbolBranchOpen)) return false;
+    } else if (item.kind != ContextItem::Kind::Any && reversed[pos].master != item.master) {
       return false;
     }
     matched[k] = static_cast<uint32_t>(pos);

@@ -17,9 +17,11 @@
 
 namespace ontogen {
 
-/// One position of a context pattern: a module of a given master, or a bracket.
+/// One position of a context pattern: a module of a given master, a bracket, any module,
+/// or the end: nothing more on that side (the start of the word on the left, the end of
+/// the branch or the word on the right), always the farthest item.
 struct ContextItem {
-  enum class Kind : uint8_t { Module, BranchOpen, BranchClose, Any };  ///< Any: any module
+  enum class Kind : uint8_t { Module, BranchOpen, BranchClose, Any, End };
   Kind kind = Kind::Module;
   uint32_t master = 0;
 };
@@ -36,13 +38,26 @@ class LinearPool final : public Pool {
   void indexBranches(std::span<const uint8_t> classOf);
 
   /// Matches a left context given nearest-first (for `A B < C`: B, then A). On success
-  /// matched[k] is the index of the cell that matched items[k].
+  /// matched[k] is the index of the cell that matched items[k]. A `[` item matches the
+  /// opening of the branch the cell starts (complete sibling branches passed over).
   bool matchLeft(size_t index, std::span<const ContextItem> items, std::span<const uint8_t> classOf,
                  uint32_t* matched) const;
   /// Matches a right context given in text order. Brackets in items enter a branch (`[`)
   /// or leave the current one (`]`); matched[k] is meaningful for module items only.
   bool matchRight(size_t index, std::span<const ContextItem> items, std::span<const uint8_t> classOf,
                   uint32_t* matched) const;
+
+  /// Matches a left context, nearest first, against the end of `cells`, a word being
+  /// written (which has no bracket index), as matchLeft reads a word; matched[k] indexes
+  /// `cells`.
+  static bool matchLeftOfEnd(std::span<const CellRecord> cells, std::span<const ContextItem> items,
+                             std::span<const uint8_t> classOf, uint32_t* matched);
+
+  /// Matches a right context, text order, against `reversed`: the part of a word right of
+  /// a module, written right to left (its nearest cell last), read as matchRight reads a
+  /// word; matched[k] indexes `reversed`.
+  static bool matchRightOfReversed(std::span<const CellRecord> reversed, std::span<const ContextItem> items,
+                                   std::span<const uint8_t> classOf, uint32_t* matched);
 
   /// Matching bracket of cell i, or kNoPartner (an unmatched bracket or not a bracket).
   uint32_t partnerOf(size_t i) const { return partner_[i]; }

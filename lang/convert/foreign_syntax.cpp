@@ -113,6 +113,9 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
       ++at;
     } else if (text_[at] == '*') {
       fail(at, at + 1, "'*' (the empty word) stands alone as a successor, as in A --> *", false);
+    } else if (pattern && dialect_ == Dialect::LPy && text_.substr(at, 3) == "or(") {
+      module.label = "or";  // L-Py's alternatives, below
+      at += 2;
     } else {
       at = moduleEnd(at, end, module.label);
     }
@@ -124,7 +127,34 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
         if (text_[stop] == ')' && --depth == 0) break;
       }
       if (stop >= end) fail(at, end, "the parameters of " + shown(module.label) + " have no closing ')'", false);
+      if (pattern && dialect_ == Dialect::LPy && module.label == "or") {
+        // L-Py's or(B(x) C, D) in a context: the cell language's alternatives (B(x) C | D).
+        std::string group;
+        uint32_t argBegin = at + 1;
+        for (uint32_t comma = find(argBegin, stop, ","); argBegin <= stop; comma = find(argBegin, stop, ",")) {
+          std::string sequence;
+          uint32_t a = argBegin, b = comma;
+          trim(a, b);
+          // L-Py's None: an alternative of nothing.
+          const bool none = text_.substr(a, b - a) == "None";
+          for (const ModuleText& item : none ? std::vector<ModuleText>{} : modules(argBegin, comma, true)) {
+            sequence += (sequence.empty() ? "" : " ") + item.label;
+            if (!item.hasArgs) continue;
+            sequence += "(";
+            for (size_t k = 0; k < item.args.size(); ++k) sequence += (k ? ", " : "") + item.args[k];
+            sequence += ")";
+          }
+          group += (group.empty() ? "(" : sequence.empty() ? " |" : " | ") + sequence;
+          if (comma == stop) break;
+          argBegin = comma + 1;
+        }
+        module.label = group + ")";
+        at = stop + 1;
+        result.push_back(std::move(module));
+        continue;
+      }
       module.hasArgs = true;
+      bool skippedLabel = false;  // L-Py's *(name, ...)
       uint32_t argBegin = at + 1;
       // Parameters split at commas outside inner parentheses.
       for (uint32_t comma = find(argBegin, stop, ","); argBegin <= stop; comma = find(argBegin, stop, ",")) {
@@ -138,13 +168,33 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
           std::string_view name = text_.substr(a, b - a);
           bool isName = isLetter(name[0]);
           for (char c : name) isName = isName && isNameChar(c);
-          if (!isName)
+          // A value pattern, A(3) or A(-1.5): a number, as the cell language writes it.
+          bool isNumber = !name.empty();
+          size_t digits = 0;
+          for (size_t k = 0; k < name.size(); ++k) {
+            const char c = name[k];
+            if (std::isdigit(static_cast<unsigned char>(c)))
+              ++digits;
+            else if (!(c == '.' || (c == '-' && k == 0)))
+              isNumber = false;
+          }
+          isNumber = isNumber && digits > 0;
+          if (name[0] == '*')
             fail(a, b,
-                 "a value pattern such as " + shown(module.label + "(" + std::string(name) + ")") +
-                     " cannot be translated yet: a predecessor's parameters are names; test the value in a "
-                     "condition, as in " +
-                     module.label + "(x) : x == " + std::string(name));
-          module.args.emplace_back(name);
+                 "L-Py's '*args' takes any number of parameters; a pattern of the cell language takes a "
+                 "fixed number, as in *(x, y)");
+          if (!isName && !isNumber)
+            fail(a, b,
+                 "a pattern's parameter " + shown(std::string(name)) +
+                     " is neither a name nor a number; write a "
+                     "name and test it in a condition, as in " +
+                     module.label + "(x) : x == ...");
+          // L-Py's wildcard names the module's label first, *(name, x): the cell language
+          // has numbers only, so its wildcard binds the parameters alone.
+          if (dialect_ == Dialect::LPy && module.label == "*" && !skippedLabel)
+            skippedLabel = true;
+          else
+            module.args.emplace_back(name);
         } else {
           module.args.push_back(expression(a, b));
         }
@@ -318,6 +368,16 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
   return out;
 }
 
+void ForeignSyntax::checkPredecessor(const ModuleText& predecessor, uint32_t begin, uint32_t end) const {
+  trim(begin, end);
+  if (predecessor.label == "*")
+    fail(begin, end,
+         "a wildcard predecessor: a production of the cell language belongs to the module it rewrites; "
+         "write one production per label");
+  if (!predecessor.label.empty() && predecessor.label[0] == '(')
+    fail(begin, end, "alternatives as the predecessor: write one production per alternative");
+}
+
 Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   Statement s;
   uint32_t arrow = find(begin, end, "-->");
@@ -366,6 +426,7 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
                                    " (" + std::string(text_.substr(a, b - a)) + ")",
          false);
   }
+  checkPredecessor(predecessor.front(), predBegin, predEnd);
   s.predecessor = std::move(predecessor.front());
   // The body: successors : probability (cpfg's stochastic productions).
   uint32_t bodyEnd = end;

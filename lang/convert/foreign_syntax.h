@@ -41,6 +41,10 @@ class ForeignSyntax {
   /// A production of [begin, end), which holds an arrow (`-->` or `->`).
   Statement production(uint32_t begin, uint32_t end) const;
 
+  /// A predecessor the cell language can write: one module of a label, not L-Py's
+  /// wildcard `*` or alternatives. Throws ConvertError at [begin, end).
+  void checkPredecessor(const ModuleText& predecessor, uint32_t begin, uint32_t end) const;
+
   /// [begin, end) without the spaces at its ends.
   void trim(uint32_t& begin, uint32_t& end) const;
   /// The first `what` in [begin, end) outside parentheses, or `end`.

@@ -196,6 +196,7 @@ class LPyReader {
     }
     std::vector<ModuleText> predecessor = syntax_.modules(predBegin, predEnd, true);
     if (predecessor.size() != 1) syntax_.fail(predBegin, predEnd, "a production has one predecessor module", false);
+    syntax_.checkPredecessor(predecessor.front(), predBegin, predEnd);
     s.predecessor = std::move(predecessor.front());
     uint32_t c = bodyBegin, d = bodyEnd;
     syntax_.trim(c, d);

@@ -59,12 +59,33 @@ size_t count(const std::string& text, const std::string& what) {
 }
 
 // ABOP Fig. 1.24 (d) as cpfg and L-Py write it grows to the word of the model written
-// in the cell language: 5^5 segments after five steps.
+// in the cell language: after two steps the word as the book's productions give it, and
+// after seven (the figure's n) 3^7 apices X and 4118 segments F.
 TEST(Convert, Figure124dGrowsAlikeFromCpfgLPyAndTheCellLanguage) {
-  Result cell = ontogen("word " + file("fig1_24d.cell") + " --at 5");
+  Result two = ontogen("word " + file("fig1_24d.cell") + " --at 2");
+  ASSERT_EQ(two.exitCode, 0) << two.err;
+  EXPECT_EQ(two.out,
+            "t = 2: F F [ + F [ + X ] F [ - X ] + X ] F F [ - F [ + X ] F [ - X ] + X ] + F [ + X ] F [ - X ] + X\n");
+  Result cell = ontogen("word " + file("fig1_24d.cell") + " --at 7");
+  ASSERT_EQ(cell.exitCode, 0) << cell.err;
+  EXPECT_EQ(count(cell.out, "X"), 2187u);
+  EXPECT_EQ(count(cell.out, "F"), 4118u);
+  for (const char* name : {"fig1_24d.l", "fig1_24d.lpy"}) {
+    for (const char* at : {"2", "7"}) {
+      Result other = ontogen("word " + file(name) + " --at " + at);
+      ASSERT_EQ(other.exitCode, 0) << name << "\n" << other.err;
+      EXPECT_EQ(other.out, std::string(at) == "2" ? two.out : cell.out) << name;
+      EXPECT_EQ(other.err, "") << name;
+    }
+  }
+}
+
+// ABOP Fig. 1.24 (b), edge rewriting, the same way: 5^5 segments after five steps.
+TEST(Convert, Figure124bGrowsAlikeFromCpfgLPyAndTheCellLanguage) {
+  Result cell = ontogen("word " + file("fig1_24b.cell") + " --at 5");
   ASSERT_EQ(cell.exitCode, 0) << cell.err;
   EXPECT_EQ(count(cell.out, "F"), 3125u);
-  for (const char* name : {"fig1_24d.l", "fig1_24d.lpy"}) {
+  for (const char* name : {"fig1_24b.l", "fig1_24b.lpy"}) {
     Result other = ontogen("word " + file(name) + " --at 5");
     ASSERT_EQ(other.exitCode, 0) << name << "\n" << other.err;
     EXPECT_EQ(other.out, cell.out) << name;
@@ -73,21 +94,21 @@ TEST(Convert, Figure124dGrowsAlikeFromCpfgLPyAndTheCellLanguage) {
 }
 
 TEST(Convert, PrintsTheCellLanguageProgram) {
-  Result cpfg = ontogen("convert " + file("fig1_24d.l"));
+  Result cpfg = ontogen("convert " + file("fig1_24b.l"));
   ASSERT_EQ(cpfg.exitCode, 0) << cpfg.err;
   EXPECT_EQ(cpfg.out,
-            "// Converted by ontogen convert from fig1_24d.l (cpfg)\n"
-            "lsystem fig1_24d {\n"
+            "// Converted by ontogen convert from fig1_24b.l (cpfg)\n"
+            "lsystem fig1_24b {\n"
             "  #angle 20\n"
             "  #until 5\n"
             "  axiom F\n"
             "  F -> F [ + F ] F [ - F ] [ F ]\n"
             "}\n");
-  Result lpy = ontogen("convert " + file("fig1_24d.lpy"));
+  Result lpy = ontogen("convert " + file("fig1_24b.lpy"));
   ASSERT_EQ(lpy.exitCode, 0) << lpy.err;
   EXPECT_EQ(lpy.out,
-            "// Converted by ontogen convert from fig1_24d.lpy (L-Py)\n"
-            "lsystem fig1_24d {\n"
+            "// Converted by ontogen convert from fig1_24b.lpy (L-Py)\n"
+            "lsystem fig1_24b {\n"
             "  #angle 60\n"
             "  #until 5\n"
             "  axiom F\n"
@@ -96,7 +117,8 @@ TEST(Convert, PrintsTheCellLanguageProgram) {
             "}\n");
 }
 
-// More of ABOP's chapter 1 through both readers, by their expected words.
+// More of ABOP's chapter 1 through both readers, by their expected words, and L-Py's
+// new contexts and patterns as its tests state them.
 TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
   struct Case {
     const char* file;
@@ -113,6 +135,7 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
       {"parametric_1_35.lpy", "1,2,3,4",
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
+      {"new_contexts.lpy", "1", "t = 1: B A S B A S C(1) B(2) M(1, 2, 3) H(4) E(4) H(11) F(5) G(6) H(0) K\n"},
   };
   for (const Case& c : cases) {
     Result result = ontogen(std::string("word ") + file(c.file) + " --at " + c.times);

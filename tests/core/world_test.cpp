@@ -196,5 +196,24 @@ TEST(World, SymbolsThatAreNoPredecessorKeepAgeing) {
   EXPECT_NEAR(word[3].age, 2.5, 1e-12);  // never dies
 }
 
+// A stochastic production whose context alternatives both match takes part in the
+// choice once: against another production of the same weight it wins about half the time
+// (counted once per matching alternative it would win two thirds).
+TEST(World, ContextAlternativesCountOnceInAStochasticChoice) {
+  std::string axiom;
+  for (int i = 0; i < 2000; ++i) axiom += " X A";
+  auto program = compileOrFail("lsystem choice {\n  axiom" + axiom + "\n  X > (A | *) -> P : 1\n  X > * -> Q : 1\n}\n");
+  ASSERT_NE(program, nullptr);
+  World world(program, WorldDef{.seed = 7});
+  world.advanceTo(1, 1);
+  int p = 0, q = 0;
+  for (const WordCell& cell : captureWord(world)) {
+    p += cell.label == "P";
+    q += cell.label == "Q";
+  }
+  EXPECT_EQ(p + q, 2000);
+  EXPECT_NEAR(p / 2000.0, 0.5, 0.05);
+}
+
 }  // namespace
 }  // namespace ontogen

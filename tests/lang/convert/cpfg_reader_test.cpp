@@ -81,15 +81,22 @@ TEST(CpfgReader, CCodeAndUnspellableModulesAreErrorsAtTheirPlace) {
   EXPECT_EQ(macro.line, 1);
   EXPECT_NE(macro.error.find("C macro"), std::string::npos) << macro.error;
 
-  auto value = convertText(Dialect::Cpfg, "a.l", "Axiom: A(3)\nA(3) --> B\n");
-  EXPECT_EQ(value.line, 2);
-  EXPECT_EQ(value.column, 3);
-  EXPECT_NE(value.error.find("a value pattern such as 'A(3)' cannot be translated yet"), std::string::npos)
-      << value.error;
+  auto pattern = convertText(Dialect::Cpfg, "a.l", "Axiom: A(3)\nA(x+1) --> B\n");
+  EXPECT_EQ(pattern.line, 2);
+  EXPECT_EQ(pattern.column, 3);
+  EXPECT_NE(pattern.error.find("a pattern's parameter 'x+1' is neither a name nor a number"), std::string::npos)
+      << pattern.error;
 
   auto unreadable = convertText(Dialect::Cpfg, "a.l", "Axiom: A\nthis is not cpfg\n");
   EXPECT_EQ(unreadable.line, 2);
   EXPECT_FALSE(unreadable.untranslatable);
+}
+
+// Value patterns, A(3) and B(-1.5), are the cell language's own.
+TEST(CpfgReader, ValuePatternsAreTranslated) {
+  auto c = convertText(Dialect::Cpfg, "a.l", "Axiom: A(3)B(-1.5)\nA(3) < B(-1.5) --> C\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  A(3) < B(-1.5) -> C\n"), std::string::npos) << c.program;
 }
 
 }  // namespace

@@ -39,6 +39,27 @@ TEST(LPyReader, NewContextsWildcardsAndAProduceBody) {
   EXPECT_EQ(body(c.program), "  #angle 60\n  axiom A B\n  production:\n  A << B >> * -> C\n  B -> D\n");
 }
 
+// L-Py's wildcard names the label first, *(name, x); the cell language's binds the
+// parameters alone. Its or(...) in a context is the cell language's alternatives.
+TEST(LPyReader, WildcardParametersAndAlternatives) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "Axiom: C(1)B(2)A(3)\nproduction:\nC(x)*(n,y) < A(z) --> M(x,y,z)\n"
+                       "*(n) < B(y) --> B(y)\nA > or( B(x)C(y)D(z), E(i), F(j)G(k) ) --> H\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #angle 60\n  axiom C(1) B(2) A(3)\n  production:\n  C(x) *(y) < A(z) -> M(x, y, z)\n"
+            "  *() < B(y) -> B(y)\n  A > (B(x) C(y) D(z) | E(i) | F(j) G(k)) -> H\n");
+  auto variadic = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nA > *(*args) --> B\n");
+  EXPECT_EQ(variadic.line, 2);
+  EXPECT_EQ(variadic.column, 7);
+  EXPECT_NE(variadic.error.find("L-Py's '*args' takes any number of parameters"), std::string::npos) << variadic.error;
+  auto predecessor = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nproduction:\n*(n,x) --> B\n");
+  EXPECT_EQ(predecessor.line, 3);
+  EXPECT_EQ(predecessor.column, 1);
+  EXPECT_TRUE(predecessor.untranslatable);
+  EXPECT_NE(predecessor.error.find("a wildcard predecessor"), std::string::npos) << predecessor.error;
+}
+
 TEST(LPyReader, TheEditorsInitialisationSectionIsNotRead) {
   auto c = convertText(Dialect::LPy, "a.lpy",
                        "Axiom: A\n###### INITIALISATION ######\ndef __initialiseContext__(context):\n\tpass\n");
