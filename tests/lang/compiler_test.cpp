@@ -154,3 +154,20 @@ TEST(CompilerDefines, ImportedDefinesCanBeSet) {
 
 }  // namespace
 }  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+// Past the error limit the sink drops errors without counting them as kept; an
+// expression with an unknown function must still not be compiled (found by fuzz_grow).
+TEST(CompilerErrorLimit, AnExpressionWithAnErrorPastTheLimitIsNotCompiled) {
+  DiagnosticSink sink(1);
+  const auto program = compileSource("limit.cell",
+                                     "lsystem a {\n  axiom A(1)\n  A(x) -> A(nosuch(x))\n  B(x) -> B(other(x))\n}\n", sink);
+  EXPECT_EQ(program, nullptr);
+  EXPECT_EQ(sink.errorCount(), 1);
+  EXPECT_EQ(sink.errorsReported(), 2);
+}
+
+}  // namespace
+}  // namespace ontogen
