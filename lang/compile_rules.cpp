@@ -69,7 +69,7 @@ int registerAggregate(CompileContext& ctx, const ast::Expr& call, DiagnosticSink
                : call.name == "min"  ? AggregateKind::Min
                                      : AggregateKind::Max;
   auto findLabel = [&](const std::string& label, SourceSpan span) {
-    int master = ctx.program->findMaster(label, moduleScope);
+    int master = ctx.findMaster(label, moduleScope);
     if (master < 0) sink.error(span, "no cell is called '" + label + "'");
     return master;
   };
@@ -367,9 +367,9 @@ CompiledRule compileRule(CompileContext& ctx, const ast::Rule& rule, int master,
 
 void declareCells(CompileContext& ctx) {
   for (const auto& cell : ctx.tree.cells) {
-    if (ctx.program->findMaster(cell.name, -1) >= 0) {
+    if (ctx.findMaster(cell.name, -1) >= 0) {
       ctx.sink.error(cell.nameSpan, "cell '" + cell.name + "' is defined twice (also at " +
-                                        where(ctx.program->masters[ctx.program->findMaster(cell.name, -1)].span) + ")");
+                                        where(ctx.program->masters[ctx.findMaster(cell.name, -1)].span) + ")");
       continue;
     }
     int index = ctx.addMaster(cell.name, -1, cell.nameSpan);

@@ -204,7 +204,7 @@ void declareSystemCells(CompileContext& ctx) {
         ctx.sink.error(system.state.front().span, "an lsystem has no state; write 'system' to give it some");
       continue;
     }
-    if (int other = ctx.program->findMaster(system.name, -1); other >= 0) {
+    if (int other = ctx.findMaster(system.name, -1); other >= 0) {
       ctx.sink.error(system.nameSpan, "'" + system.name + "' is already a cell (at " +
                                           where(ctx.program->masters[other].span) +
                                           "); a system's name labels its cell, so the two need different names");
