@@ -286,7 +286,17 @@ void compileSuccessors(CompileContext& ctx, const ast::Rule& rule, int moduleSco
       else
         result.args.push_back(CompiledExpression::constant(target.defaults[i]));
     }
-    if (successor.age) result.birthAge = compileExpression(*successor.age, names, ctx.sink);
+    if (successor.age) {
+      result.birthAge = compileExpression(*successor.age, names, ctx.sink);
+      // A constant age that no cell can be born with fails every time the rule fires:
+      // say so here, as `check` should, not only when the model runs.
+      if (result.birthAge.isConstant()) {
+        const double age = result.birthAge.constantValue();
+        if (!(age >= 0) || !std::isfinite(age))
+          ctx.sink.error(successor.age->span, "'" + successor.label + "' cannot be born with age " + formatNumber(age) +
+                                                   "; ages are finite and ≥ 0");
+      }
+    }
     bool bornAtZero =
         result.birthAge.empty() || (result.birthAge.isConstant() && result.birthAge.constantValue() == 0.0);
     result.stateless = target.stateCount() == 0 && bornAtZero && target.lifetime > 0;
