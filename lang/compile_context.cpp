@@ -151,12 +151,12 @@ int CompileContext::addMaster(std::string label, int scope, SourceSpan span) {
 int CompileContext::findMaster(std::string_view label, int scope) const {
   const auto found = mastersByLabel.find(label);
   if (found == mastersByLabel.end()) return -1;
-  int global = -1;
+  int outside = -1;  // the global master of that label, if the scope has none
   for (int i : found->second) {
     if (program->masters[i].scope == scope) return i;
-    if (program->masters[i].scope == -1) global = i;
+    if (program->masters[i].scope == -1) outside = i;
   }
-  return global;
+  return outside;
 }
 
 void CompileContext::declareState(const std::vector<ast::Parameter>& state, int index) {
