@@ -119,6 +119,25 @@ std::string emptyAssignment(int argc, const char* const* argv) {
   return {};
 }
 
+std::string emptyListItem(int argc, const char* const* argv, std::initializer_list<std::string_view> listFlags) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    for (std::string_view flag : listFlags) {
+      std::string_view value;
+      if (arg == flag && i + 1 < argc)
+        value = argv[i + 1];
+      else if (arg.size() > flag.size() && arg.starts_with(flag) && arg[flag.size()] == '=')
+        value = arg.substr(flag.size() + 1);
+      else
+        continue;
+      if (value.empty()) continue;  // emptyAssignment's case, or no value at all
+      if (value.front() == ',' || value.back() == ',' || value.find(",,") != std::string_view::npos)
+        return std::string(flag) + ": '" + std::string(value) + "' has an empty item: write the values with one comma between each";
+    }
+  }
+  return {};
+}
+
 namespace detail {
 
 uint64_t wholeOrThrow(const std::string& name, const std::string& text, WholeRange range) {

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -71,6 +72,11 @@ CLI::Option* addWholeOption(CLI::App& app, const std::string& name, std::optiona
 /// A `--name=` with nothing after the '=' (CLI11 would take the next argument as its
 /// value): the message for the first such argument, or empty.
 std::string emptyAssignment(int argc, const char* const* argv);
+
+/// A value of a comma-separated flag (`listFlags`, as "--at") with an empty item
+/// (`1,,2`, `1,`, `,1`), which CLI11 would drop without a word: the message for the
+/// first, or empty.
+std::string emptyListItem(int argc, const char* const* argv, std::initializer_list<std::string_view> listFlags);
 
 namespace detail {
 /// Parses `text` as a whole number of `range` or throws CLI::ValidationError for `name`.

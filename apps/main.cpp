@@ -93,6 +93,10 @@ int dispatch(int argc, char** argv) {
     std::cerr << "ontogen: error: " << message << "\n";
     return kExitUsage;
   }
+  if (std::string message = emptyListItem(argc, argv, {"--at", "--view", "--format", "--interpret"}); !message.empty()) {
+    std::cerr << "ontogen: error: " << message << "\n";
+    return kExitUsage;
+  }
   if (std::string message = unknownCommandMessage(argc, argv); !message.empty()) {
     std::cerr << "ontogen: error: " << message << "\n";
     return kExitUsage;

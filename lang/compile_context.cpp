@@ -141,9 +141,22 @@ int CompileContext::addMaster(std::string label, int scope, SourceSpan span) {
   master.label = std::move(label);
   master.scope = scope;
   master.span = span;
+  const int index = static_cast<int>(program->masters.size());
+  mastersByLabel[master.label].push_back(index);
   program->masters.push_back(std::move(master));
   arityKnown.push_back(false);
-  return static_cast<int>(program->masters.size() - 1);
+  return index;
+}
+
+int CompileContext::findMaster(std::string_view label, int scope) const {
+  const auto found = mastersByLabel.find(label);
+  if (found == mastersByLabel.end()) return -1;
+  int outside = -1;  // the global master of that label, if the scope has none
+  for (int i : found->second) {
+    if (program->masters[i].scope == scope) return i;
+    if (program->masters[i].scope == -1) outside = i;
+  }
+  return outside;
 }
 
 void CompileContext::declareState(const std::vector<ast::Parameter>& state, int index) {
@@ -169,15 +182,14 @@ void CompileContext::declareState(const std::vector<ast::Parameter>& state, int 
 // with a production stays local throughout the block.
 int CompileContext::resolveModule(const ast::Module& module, int scope, bool predecessor) {
   int count = static_cast<int>(module.args.size());
-  int index = program->findMaster(module.label, scope);
+  int index = findMaster(module.label, scope);
   if (scope >= 0 && index >= 0 && program->masters[index].scope == scope) {
     // In an L-system, as in L-Py, `A`, `A(x)` and `A(x, y)` are modules of their own.
     index = -1;
-    for (size_t i = 0; i < program->masters.size(); ++i) {
+    for (int i : mastersByLabel.find(module.label)->second) {
       const MasterCell& candidate = program->masters[i];
-      if (candidate.label == module.label && candidate.scope == scope &&
-          (!arityKnown[i] || static_cast<int>(candidate.stateCount()) == count)) {
-        index = static_cast<int>(i);
+      if (candidate.scope == scope && (!arityKnown[i] || static_cast<int>(candidate.stateCount()) == count)) {
+        index = i;
         break;
       }
     }

@@ -99,6 +99,9 @@ struct CompileContext {
   // ---- functions, masters ----
   std::set<size_t> reportedRecursion;  ///< functions already reported as calling themselves
   std::vector<bool> arityKnown;        ///< per master: its state count is fixed by a declaration or a first use
+  /// Every master's index by its label, in the order they were added: a program of
+  /// 200,000 productions looks labels up hundreds of thousands of times.
+  std::map<std::string, std::vector<int>, std::less<>> mastersByLabel;
   std::unordered_map<const ast::Cell*, int> cellMaster;  ///< a declared cell -> its master
   std::map<size_t, int> systemMaster;                    ///< tree index of a system -> its master
 
@@ -131,6 +134,9 @@ struct CompileContext {
 
   /// A new master with no state yet; returns its index.
   int addMaster(std::string label, int scope, SourceSpan span);
+  /// The master labelled `label` in `scope`, else the global one (-1: none), as
+  /// Program::findMaster answers, through mastersByLabel.
+  int findMaster(std::string_view label, int scope = -1) const;
   /// A cell's or a system's state variables and their constant defaults.
   void declareState(const std::vector<ast::Parameter>& state, int index);
   /// Finds or creates the master a module label refers to in a scope, and checks that

@@ -75,7 +75,7 @@ void compileInterpretation(CompileContext& ctx, const ast::Interpretation& block
 // its parameters named as the pattern names them.
 void compileSymbolInterpretations(CompileContext& ctx, const ast::System& system, const Scope& scope, int index) {
   for (const auto& item : system.interpretations) {
-    int master = ctx.program->findMaster(item.symbol, index);
+    int master = ctx.findMaster(item.symbol, index);
     // Of the block's modules with this label (one per number of parameters), the one
     // with as many parameters as the block names.
     for (size_t m = 0; m < ctx.program->masters.size(); ++m)

@@ -69,7 +69,7 @@ int registerAggregate(CompileContext& ctx, const ast::Expr& call, DiagnosticSink
                : call.name == "min"  ? AggregateKind::Min
                                      : AggregateKind::Max;
   auto findLabel = [&](const std::string& label, SourceSpan span) {
-    int master = ctx.program->findMaster(label, moduleScope);
+    int master = ctx.findMaster(label, moduleScope);
     if (master < 0) sink.error(span, "no cell is called '" + label + "'");
     return master;
   };
@@ -386,7 +386,17 @@ void compileSuccessors(CompileContext& ctx, const ast::Rule& rule, int moduleSco
       else
         result.args.push_back(CompiledExpression::constant(target.defaults[i]));
     }
-    if (successor.age) result.birthAge = compileExpression(*successor.age, names, ctx.sink);
+    if (successor.age) {
+      result.birthAge = compileExpression(*successor.age, names, ctx.sink);
+      // A constant age that no cell can be born with fails every time the rule fires:
+      // say so here, as `check` should, not only when the model runs.
+      if (result.birthAge.isConstant()) {
+        const double age = result.birthAge.constantValue();
+        if (!(age >= 0) || !std::isfinite(age))
+          ctx.sink.error(successor.age->span, "'" + successor.label + "' cannot be born with age " + formatNumber(age) +
+                                                   "; ages are finite and ≥ 0");
+      }
+    }
     bool bornAtZero =
         result.birthAge.empty() || (result.birthAge.isConstant() && result.birthAge.constantValue() == 0.0);
     result.stateless = target.stateCount() == 0 && bornAtZero && target.lifetime > 0;
@@ -487,9 +497,9 @@ std::vector<CompiledRule> compileRuleVariants(CompileContext& ctx, const ast::Ru
 
 void declareCells(CompileContext& ctx) {
   for (const auto& cell : ctx.tree.cells) {
-    if (ctx.program->findMaster(cell.name, -1) >= 0) {
+    if (ctx.findMaster(cell.name, -1) >= 0) {
       ctx.sink.error(cell.nameSpan, "cell '" + cell.name + "' is defined twice (also at " +
-                                        where(ctx.program->masters[ctx.program->findMaster(cell.name, -1)].span) + ")");
+                                        where(ctx.program->masters[ctx.findMaster(cell.name, -1)].span) + ")");
       continue;
     }
     int index = ctx.addMaster(cell.name, -1, cell.nameSpan);

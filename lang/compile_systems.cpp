@@ -159,15 +159,15 @@ std::vector<AxiomCell> compileAxiom(CompileContext& ctx, const ast::System& syst
     for (uint32_t i = 0; i < definition.stateCount(); ++i) {
       if (i < module.args.size()) {
         const int usesBefore = ctx.ancestorUses;
-        const int errorsBefore = ctx.sink.errorCount();
+        const int errorsBefore = ctx.sink.errorsReported();
         CompiledExpression compiled = compileExpression(*module.args[i], withSystems, ctx.sink);
-        if (ctx.ancestorUses != usesBefore && ctx.sink.errorCount() == errorsBefore && !compiled.isStochastic()) {
+        if (ctx.ancestorUses != usesBefore && ctx.sink.errorsReported() == errorsBefore && !compiled.isStochastic()) {
           cell.fromSystems.resize(definition.stateCount());
           cell.fromSystems[i] = std::move(compiled);
           cell.values.push_back(0);
           continue;
         }
-        if (ctx.sink.errorCount() != errorsBefore) {
+        if (ctx.sink.errorsReported() != errorsBefore) {
           cell.values.push_back(0);
           continue;
         }
@@ -204,7 +204,7 @@ void declareSystemCells(CompileContext& ctx) {
         ctx.sink.error(system.state.front().span, "an lsystem has no state; write 'system' to give it some");
       continue;
     }
-    if (int other = ctx.program->findMaster(system.name, -1); other >= 0) {
+    if (int other = ctx.findMaster(system.name, -1); other >= 0) {
       ctx.sink.error(system.nameSpan, "'" + system.name + "' is already a cell (at " +
                                           where(ctx.program->masters[other].span) +
                                           "); a system's name labels its cell, so the two need different names");

@@ -7,6 +7,7 @@
 namespace ontogen {
 
 void DiagnosticSink::report(Severity severity, SourceSpan span, std::string message) {
+  if (severity == Severity::Error) ++errorsReported_;
   if (limitReached()) {
     ++dropped_;
     return;
@@ -26,6 +27,7 @@ void DiagnosticSink::report(Severity severity, SourceSpan span, std::string mess
 void DiagnosticSink::clear() {
   diagnostics_.clear();
   errors_ = 0;
+  errorsReported_ = 0;
   dropped_ = 0;
 }
 

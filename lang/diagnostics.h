@@ -49,6 +49,9 @@ class DiagnosticSink {
   /// Errors kept (at most the limit).
   int errorCount() const { return errors_; }
   bool hasErrors() const { return errors_ > 0; }
+  /// Errors reported, kept or dropped past the limit: what a caller compares before and
+  /// after a step to learn whether the step failed (errorCount() stops at the limit).
+  int errorsReported() const { return errorsReported_; }
   /// The error limit was reached: later diagnostics are dropped.
   bool limitReached() const { return maxErrors_ > 0 && errors_ >= maxErrors_; }
   int maxErrors() const { return maxErrors_; }
@@ -68,6 +71,7 @@ class DiagnosticSink {
   std::function<void(const Diagnostic&)> consumer_;
   int maxErrors_ = kDefaultMaxErrors;
   int errors_ = 0;
+  int errorsReported_ = 0;
   int dropped_ = 0;
   static constexpr size_t kNoRepeats = SIZE_MAX;
   size_t repeatsFrom_ = kNoRepeats;

@@ -12,9 +12,9 @@ class ExpressionCompiler {
   ExpressionCompiler(const NameLookup& names, DiagnosticSink& sink) : names_(names), sink_(sink) {}
 
   CompiledExpression run(const Expr& expr) {
-    int errorsBefore = sink_.errorCount();
+    int errorsBefore = sink_.errorsReported();
     check(expr);
-    if (sink_.errorCount() > errorsBefore) return {};
+    if (sink_.errorsReported() > errorsBefore) return {};
     emit(expr);
     if (builder_.maxDepth() > CompiledExpression::kMaxStack) {
       sink_.error(expr.span, "expression is too deeply nested (more than " +
@@ -377,9 +377,9 @@ CompiledExpression compileExpression(const ast::Expr& expr, const NameLookup& na
 
 std::optional<double> evaluateConstant(const ast::Expr& expr, const NameLookup& names, DiagnosticSink& sink,
                                        std::string_view what) {
-  int errorsBefore = sink.errorCount();
+  int errorsBefore = sink.errorsReported();
   CompiledExpression compiled = compileExpression(expr, names, sink);
-  if (sink.errorCount() > errorsBefore) return std::nullopt;
+  if (sink.errorsReported() > errorsBefore) return std::nullopt;
   if (!compiled.isConstant()) {
     sink.error(expr.span, std::string(what) + " must be a constant (numbers, #define names and pure functions)");
     return std::nullopt;

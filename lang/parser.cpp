@@ -300,7 +300,9 @@ class Parser {
     advance();
     if (!match(TokenKind::Slash)) failHere("'/' in the time signature, as in #" + hash.text + " 3/4");
     const Token& bottom = peek();
-    int d = bottom.kind == TokenKind::Number && bottom.number == std::floor(bottom.number)
+    // Bounded before the conversion: 3/1e999 is infinite, which no int holds.
+    int d = bottom.kind == TokenKind::Number && bottom.number == std::floor(bottom.number) && bottom.number >= 1 &&
+                    bottom.number <= 1024
                 ? static_cast<int>(bottom.number)
                 : 0;
     if (!isNoteValue(d)) failHere("a note value " + noteValueChoices() + " below the '/' of #" + hash.text);

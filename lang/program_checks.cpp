@@ -175,6 +175,8 @@ void checkSystemTree(CompileContext& ctx) {
   for (size_t s = 0; s < ctx.program->systems.size(); ++s)
     if (!tree.containers(static_cast<int>(s)).empty()) ctx.program->hasSystemCells = true;
   chooseRoot(ctx, tree);
+  // With no system there is no root for `root.x` to read (chooseRoot said so).
+  if (ctx.program->systems.empty()) return;
   checkAncestorReads(ctx, tree);
 }
 

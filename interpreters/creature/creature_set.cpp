@@ -45,6 +45,16 @@ glm::dvec3 level(const glm::dvec3& v, const glm::dvec3& up) { return v - glm::do
 
 constexpr double kHeldTolerance = 1e-9;  // radians a driver may overshoot without a warning
 
+// Places past ±1e30 model units are refused, as the geometry set refuses shapes there
+// (interpreters/geometry.cpp): the 32-bit floats of glTF and the joints' tracks hold up
+// to 3.4e38, and differences taken between places must stay finite too.
+constexpr double kMaxPlace = 1e30;
+
+bool placeable(const glm::dvec3& p) {
+  return std::abs(p.x) <= kMaxPlace && std::abs(p.y) <= kMaxPlace && std::abs(p.z) <= kMaxPlace;  // false for NaN
+}
+bool placeable(const glm::dmat3& frame) { return placeable(frame[0]) && placeable(frame[1]) && placeable(frame[2]); }
+
 }  // namespace
 
 CreatureSet::CreatureSet(const CreatureSetDef& def)
@@ -144,12 +154,48 @@ int CreatureSet::addJoint(bool foot) {
   return index;
 }
 
+// Finite arguments can still place the turtle beyond any output (f(1e308) f(1e308), a
+// gait whose walk has gone past 1e30 by the word's time): such a command is undone and
+// counted with the bad arguments, so the set never writes a non-finite number.
 void CreatureSet::run(const CreatureCommand& command, std::span<const double> args) {
   if (static_cast<int>(args.size()) < command.minArity || static_cast<int>(args.size()) > command.maxArity ||
       !finite(args)) {
     badArguments_.add(1, site_);
     return;
   }
+  const Undo undo{pose_, scene_.skeleton.joints.size(), creatures_.size(), legs_.size(), limbs_.size()};
+  runChecked(command, args);
+  if (placeable(undo)) return;
+  pose_ = undo.pose;
+  scene_.skeleton.joints.resize(undo.joints);
+  creatures_.resize(undo.creatures);
+  legs_.resize(undo.legs);
+  limbs_.resize(undo.limbs);
+  stats_.creatures = static_cast<int>(creatures_.size());
+  stats_.legs = static_cast<int>(legs_.size());
+  badArguments_.add(1, site_);
+}
+
+bool CreatureSet::placeable(const Undo& undo) const {
+  using ontogen::placeable;
+  if (!placeable(pose_.position) || !placeable(pose_.restPosition) || !placeable(pose_.frame) ||
+      !placeable(pose_.restFrame))
+    return false;
+  const auto& joints = scene_.skeleton.joints;
+  for (std::size_t i = undo.joints; i < joints.size(); ++i)
+    if (!placeable(joints[i].position) || !placeable(joints[i].orientation)) return false;
+  for (std::size_t i = undo.creatures; i < creatures_.size(); ++i)
+    if (!placeable(creatures_[i].root)) return false;
+  for (std::size_t i = undo.legs; i < legs_.size(); ++i)
+    if (!placeable(legs_[i].target) || !std::isfinite(legs_[i].kneeAngle)) return false;
+  for (std::size_t i = undo.limbs; i < limbs_.size(); ++i)
+    if (!placeable(limbs_[i].start) || !placeable(limbs_[i].frame) ||
+        !placeable(limbs_[i].start + limbs_[i].length * limbs_[i].frame[0]))
+      return false;
+  return true;
+}
+
+void CreatureSet::runChecked(const CreatureCommand& command, std::span<const double> args) {
   Pose& p = pose_;
   switch (command.op) {
     case CreatureOp::Gait: startCreature(args); break;

@@ -124,6 +124,14 @@ class CreatureSet : public InterpretationSet {
   };
 
   void run(const CreatureCommand& command, std::span<const double> args);
+  void runChecked(const CreatureCommand& command, std::span<const double> args);
+  // What a command may add, to undo it: the sizes of what it appends to.
+  struct Undo {
+    Pose pose;
+    std::size_t joints = 0, creatures = 0, legs = 0, limbs = 0;
+  };
+  /// The command since `undo` placed nothing beyond what outputs can hold.
+  bool placeable(const Undo& undo) const;
   double angle(double value) const;
   double held(int dof, double value);
   int addJoint(bool foot = false);

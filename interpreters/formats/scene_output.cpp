@@ -115,6 +115,7 @@ void SceneOutput::writeMp4(const FrameTarget& target, std::vector<std::filesyste
             ::waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
   std::error_code ignored;
   std::filesystem::remove_all(frames, ignored);
+  mp4FramesRegistered_.reset();
   mp4Frames_ = 0;
   if (!ok) {
     std::filesystem::remove(temporary, ignored);
@@ -193,6 +194,9 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
     }
     if (def_.writeMp4) {
       std::error_code error;
+      if (!mp4FramesRegistered_)
+        mp4FramesRegistered_ =
+            std::make_unique<RegisteredTemporary>(mp4FramesDirectory(target_), RegisteredTemporary::Kind::Folder);
       std::filesystem::create_directories(mp4FramesDirectory(target_), error);
       if (error) throw OutputError("cannot create " + mp4FramesDirectory(target_).string() + ": " + error.message());
       std::string number = std::to_string(mp4Frames_++);

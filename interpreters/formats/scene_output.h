@@ -6,6 +6,7 @@
 // sets can draw into one frame. Every file is written atomically: complete or absent.
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "interpreters/formats/svg_writer.h"
 #include "interpreters/interpretation_set.h"
 #include "interpreters/scene.h"
+#include "interpreters/temporary_files.h"
 
 namespace ontogen {
 
@@ -78,6 +80,8 @@ class SceneOutput {
   SkinnedGlbWriter skinnedGlb_;  // the run's frames when they hold a skeleton
   JointTrackWriter joints_;
   int mp4Frames_ = 0;
+  /// The folder of the .mp4's frames while it exists, removed on SIGINT and SIGTERM too.
+  std::unique_ptr<RegisteredTemporary> mp4FramesRegistered_;
   WarningCounter emptyObj_;  // frames with nothing to draw: no .obj
   WarningCounter emptyPly_;  // frames without a surface: no .ply
 };

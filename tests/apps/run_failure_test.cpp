@@ -66,8 +66,11 @@ Result ontogen(const fs::path& dir, const std::string& args, const std::string& 
 // process on a failed allocation instead of throwing std::bad_alloc, so an address-space
 // limit cannot be put on a sanitized ontogen. The plain build runs these checks in the same
 // test command; the sanitized build bounds the runaway cases by time instead.
+// GCC says so with __SANITIZE_ADDRESS__, clang with __has_feature(address_sanitizer).
 #if defined(__SANITIZE_ADDRESS__)
 constexpr bool kAddressSanitized = true;
+#elif defined(__has_feature)
+constexpr bool kAddressSanitized = __has_feature(address_sanitizer);
 #else
 constexpr bool kAddressSanitized = false;
 #endif
@@ -209,6 +212,50 @@ TEST(RunFailure, ASignalWhileWritingLeavesNoTemporaryFile) {
         << "the process ends as the signal would have ended it, status " << status;
     EXPECT_TRUE(temporaries(out).empty()) << temporaries(out).front();
     EXPECT_FALSE(fs::exists(out / "big.obj")) << "nothing half-written either";
+  }
+}
+
+// The folder of frames an .mp4 is encoded from goes with the run's other temporaries.
+TEST(RunFailure, ASignalWhileDrawingMp4FramesLeavesNoFrameFolder) {
+  for (int signal : {SIGTERM, SIGINT}) {
+    const fs::path dir = scratch("mp4_signal_" + std::to_string(signal));
+    // 50,000 frames: the run is still drawing them when signalled.
+    const fs::path program = writeProgram(
+        dir, "#until 100000\nlsystem movie {\n  axiom A\n  A -> A\n  interpret geometry A { F(1) }\n}\n", "movie.cell");
+    const fs::path out = dir / "out";
+    fs::create_directories(out);
+    std::vector<std::string> args = {ONTOGEN_EXECUTABLE, "run", program.string(), "--format", "mp4",
+                                      "--size", "64x64", "--frames", "50000", "--out", out.string()};
+    std::vector<char*> argv;
+    for (std::string& arg : args) argv.push_back(arg.data());
+    argv.push_back(nullptr);
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t defaults;
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGINT);
+    sigaddset(&defaults, SIGTERM);
+    posix_spawnattr_setsigdefault(&attributes, &defaults);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
+    pid_t pid = 0;
+    ASSERT_EQ(posix_spawn(&pid, ONTOGEN_EXECUTABLE, nullptr, &attributes, argv.data(), environ), 0);
+    posix_spawnattr_destroy(&attributes);
+    const fs::path frames = out / ".movie.mp4-frames";
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    bool drawing = false;
+    while (!drawing && std::chrono::steady_clock::now() < deadline) {
+      std::error_code error;
+      drawing = fs::exists(frames / "frame_000010.png", error);
+      if (!drawing) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ASSERT_TRUE(drawing) << "the run never drew ten frames";
+    kill(pid, signal);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
+        << "the process ends as the signal would have ended it, status " << status;
+    EXPECT_FALSE(fs::exists(frames)) << "the frames' folder is left behind";
+    EXPECT_TRUE(temporaries(out).empty()) << temporaries(out).front();
   }
 }
 

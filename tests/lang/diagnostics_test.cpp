@@ -68,6 +68,7 @@ TEST(Diagnostics, SinkStopsKeepingAtItsErrorLimit) {
   EXPECT_EQ(sink.diagnostics().size(), 3u);
   EXPECT_EQ(sink.droppedCount(), 99997);
   EXPECT_EQ(sink.diagnostics()[2].message, "e2");
+  EXPECT_EQ(sink.errorsReported(), 100000);  // dropped ones too: a step that failed says so
   DiagnosticSink unlimited(0);
   for (int i = 0; i < 1000; ++i) unlimited.error({}, "e");
   EXPECT_EQ(unlimited.errorCount(), 1000);

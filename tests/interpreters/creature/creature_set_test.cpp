@@ -118,5 +118,26 @@ TEST(CreatureSet, BadArgumentsAreIgnoredAndCounted) {
   EXPECT_EQ(warnings[0].count, 5u);
 }
 
+// Finite arguments that would place a joint, a foot or a limb beyond what outputs hold
+// (past ±1e30, or overflowing to infinity) are undone and counted: nothing non-finite
+// reaches the joints' tracks or the glTF.
+TEST(CreatureSet, CommandsThatWouldPlaceBeyondTheOutputsAreUndoneAndCounted) {
+  CreatureSet set;
+  draw(set, 10,
+       {{{"f", {1e29}}, {"f", {1e308}}, {"bend", {0, 0}}, {"limb", {1e308, 0.1}}, {"limb", {1, 0.1}},
+         {"gait", {1, 0.5, 1e300, 0.1, 1}}, {"hip", {0, 1, 1, 1, 0}}, {"knee", {}}, {"foot", {}}}});
+  const auto& joints = set.scene().skeleton.joints;
+  ASSERT_FALSE(joints.empty());
+  for (const SceneJoint& joint : joints)
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_LE(std::abs(joint.position[i]), 1e30) << joint.name;
+      for (int j = 0; j < 3; ++j) EXPECT_TRUE(std::isfinite(joint.orientation[i][j])) << joint.name;
+    }
+  EXPECT_EQ(joints[0].position.x, 1e29) << "the first move fits; the second goes past 1e30";
+  const auto warnings = set.takeWarnings();
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_NE(warnings[0].message.find("bad arguments"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace ontogen
