@@ -4,61 +4,25 @@
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
+
+#include "tests/apps/cli_support.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using ontogen::test::CliResult;
 
-struct Result {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-fs::path scratch(const std::string& name) {
-  fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "statics_cli_test" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-Result ontogen(const std::string& args) {
-  const fs::path errFile = scratch("stderr_" + std::to_string(getpid())) / "stderr.txt";
-  const std::string command = std::string(ONTOGEN_EXECUTABLE) + " " + args + " 2>" + errFile.string();
-  Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = readFile(errFile);
-  return result;
-}
-
+fs::path scratch(const std::string& name) { return ontogen::test::scratchDir("statics_" + name); }
+CliResult ontogen(const std::string& args) { return ontogen::test::runOntogen(args); }
+std::string readFile(const fs::path& path) { return ontogen::test::readWholeFile(path); }
 std::string model(const std::string& name) { return std::string(ONTOGEN_SOURCE_DIR) + "/models/" + name; }
 
 TEST(StaticsCli, TheBinaryTreeAsJsonAndAsEquations) {
   const fs::path equations = scratch("tree") / "tree.txt";
-  const Result result =
+  const CliResult result =
       ontogen("statics " + model("statics_binary_tree.cell") + " --json --equations " + equations.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const nlohmann::json json = nlohmann::json::parse(result.out);
@@ -78,21 +42,21 @@ TEST(StaticsCli, TheBinaryTreeAsJsonAndAsEquations) {
 }
 
 TEST(StaticsCli, TheSpiralHas29RodsInAChainAndAtTwoSecondsTwo) {
-  const Result all = ontogen("statics " + model("statics_spiral.cell") + " --json");
+  const CliResult all = ontogen("statics " + model("statics_spiral.cell") + " --json");
   ASSERT_EQ(all.exitCode, 0) << all.err;
   const nlohmann::json json = nlohmann::json::parse(all.out);
   ASSERT_EQ(json["rods"].size(), 29u);
   for (size_t i = 1; i < 29; ++i) EXPECT_EQ(json["rods"][i]["parent"], json["rods"][i - 1]["id"]);
-  const Result early = ontogen("statics " + model("statics_spiral.cell") + " --json --at 2");
+  const CliResult early = ontogen("statics " + model("statics_spiral.cell") + " --json --at 2");
   ASSERT_EQ(early.exitCode, 0) << early.err;
   EXPECT_EQ(nlohmann::json::parse(early.out)["rods"].size(), 2u);
-  const Result text = ontogen("statics " + model("statics_spiral.cell") + " --define RODS=3");
+  const CliResult text = ontogen("statics " + model("statics_spiral.cell") + " --define RODS=3");
   ASSERT_EQ(text.exitCode, 0) << text.err;
   EXPECT_EQ(text.out.rfind("3 rods at t = 3 s\n", 0), 0u) << text.out;
 }
 
 TEST(StaticsCli, TheCantileverBendsAndReportsItsDeflectedTip) {
-  const Result result = ontogen("statics " + model("cantilever.cell") + " --json --define P=2000");
+  const CliResult result = ontogen("statics " + model("cantilever.cell") + " --json --define P=2000");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const nlohmann::json last = nlohmann::json::parse(result.out)["rods"].back();
   EXPECT_NEAR(last["rest_tip"][0].get<double>(), 1, 1e-12);
@@ -104,16 +68,16 @@ TEST(StaticsCli, BadInputHasItsExitCode) {
   EXPECT_EQ(ontogen("statics " + model("cantilever.cell") + " --define Q=1").exitCode, 2);
   const fs::path dir = scratch("bad");
   std::ofstream(dir / "bad.cell") << "lsystem a {\n  axiom rod(1, y)\n}\n";
-  const Result bad = ontogen("statics " + (dir / "bad.cell").string());
+  const CliResult bad = ontogen("statics " + (dir / "bad.cell").string());
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_NE(bad.err.find("bad.cell:2:16: error: unknown name 'y'"), std::string::npos) << bad.err;
-  const Result unwritable =
+  const CliResult unwritable =
       ontogen("statics " + model("cantilever.cell") + " --equations " + (dir / "no" / "such" / "dir.txt").string());
   EXPECT_EQ(unwritable.exitCode, 4) << unwritable.err;
 }
 
 TEST(StaticsCli, HelpListsThePhysicsCommands) {
-  const Result result = ontogen("help");
+  const CliResult result = ontogen("help");
   ASSERT_EQ(result.exitCode, 0);
   EXPECT_NE(result.out.find("Physics commands (set 'physics'"), std::string::npos);
   EXPECT_NE(result.out.find("load(x, y, z, at)"), std::string::npos);
