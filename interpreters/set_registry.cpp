@@ -37,11 +37,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     GeometrySetDef def;
     def.output = sceneOutputDefOf(options);
     def.sceneNodes = options.sceneNodes;
-    def.turtle.step = settings.step;
-    def.turtle.angle = settings.angle;
-    def.turtle.yawAngle = settings.yawAngle;
-    def.turtle.radius = settings.radius;
-    def.turtle.radians = settings.radians;
+    def.turtle = turtleDefOf(settings);
     for (const SurfaceFile& file : settings.surfaces) {
       try {
         def.turtle.surfaces[file.id] = loadObjSurface(file.path);
@@ -63,11 +59,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
   if (name == "physics") {
     PhysicsSetDef def;
     def.output = sceneOutputDefOf(options);
-    def.turtle.step = settings.step;
-    def.turtle.angle = settings.angle;
-    def.turtle.yawAngle = settings.yawAngle;
-    def.turtle.radius = settings.radius;
-    def.turtle.radians = settings.radians;
+    def.turtle = turtleDefOf(settings);
     return std::make_unique<PhysicsSet>(def);
   }
   if (name == "music") return std::make_unique<MusicSet>(MusicSet::defFrom(settings.music));

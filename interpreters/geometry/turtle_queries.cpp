@@ -58,14 +58,18 @@ class QueryingTurtle final : public InterpretationSet {
 
 }  // namespace
 
-std::shared_ptr<const TurtleQueries> TurtleQueries::forSettings(const InterpretSettings& settings) {
+TurtleDef turtleDefOf(const InterpretSettings& settings) {
   TurtleDef def;
   def.step = settings.step;
   def.angle = settings.angle;
   def.yawAngle = settings.yawAngle;
   def.radius = settings.radius;
   def.radians = settings.radians;
-  return std::make_shared<const TurtleQueries>(def);
+  return def;
+}
+
+std::shared_ptr<const TurtleQueries> TurtleQueries::forSettings(const InterpretSettings& settings) {
+  return std::make_shared<const TurtleQueries>(turtleDefOf(settings));
 }
 
 void TurtleQueries::respond(const World& world, std::vector<QueryAnswer>& answers) const {

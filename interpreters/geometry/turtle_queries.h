@@ -13,6 +13,10 @@
 
 namespace ontogen {
 
+/// The turtle of a system's geometry settings (#length, #angle, #radius ...), without
+/// surfaces: what every set that runs the turtle starts from.
+TurtleDef turtleDefOf(const InterpretSettings& settings);
+
 class TurtleQueries final : public EnvironmentProcess {
  public:
   /// A turtle with these settings (step, angles, radius; no surfaces: placing one does

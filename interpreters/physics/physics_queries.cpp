@@ -9,11 +9,7 @@ namespace ontogen {
 
 std::shared_ptr<const PhysicsQueries> PhysicsQueries::forSettings(const InterpretSettings& settings) {
   PhysicsSetDef def;
-  def.turtle.step = settings.step;
-  def.turtle.angle = settings.angle;
-  def.turtle.yawAngle = settings.yawAngle;
-  def.turtle.radius = settings.radius;
-  def.turtle.radians = settings.radians;
+  def.turtle = turtleDefOf(settings);
   return std::make_shared<const PhysicsQueries>(def, TurtleQueries::forSettings(settings));
 }
 
