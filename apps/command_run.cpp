@@ -10,6 +10,12 @@
 namespace ontogen::app {
 
 namespace {
+std::string formatMebibytes(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024.0));
+  return text;
+}
+
 int exitCodeOf(RunStatus status) {
   switch (status) {
     case RunStatus::Ok: return kExitOk;
@@ -28,6 +34,15 @@ int runRun(const RunOptions& options) {
   LoadedProgram loaded = loadProgram(options.common);
   if (!loaded.program) return loaded.exitCode;
 
+  // `--format none` grows the model and interprets and writes nothing, whatever the
+  // program's #interpret says: a run for measuring and for scripts (with --stats).
+  const bool growOnly = options.format == "none";
+  if (growOnly && (!options.sets.empty() || !options.midiPort.empty() || options.virtualPort)) {
+    std::cerr << "ontogen: error: --format none grows without interpreting; it takes no --interpret, --midi-port "
+                 "or --virtual-port\n";
+    return kExitUsage;
+  }
+
   RunDef def;
   def.program = loaded.program;
   def.stem = loaded.stem;
@@ -36,11 +51,12 @@ int runRun(const RunOptions& options) {
   def.step = options.common.step;
   def.from = options.from;
   def.frames = options.frames;
-  def.sets = !options.sets.empty()                     ? options.sets
+  def.sets = growOnly                                    ? std::vector<std::string>{}
+             : !options.sets.empty()                     ? options.sets
              : !loaded.program->interpretSets.empty() ? loaded.program->interpretSets
                                                       : std::vector<std::string>{"geometry"};
   def.out = options.out;
-  def.setOptions.formats = options.format;
+  if (!growOnly) def.setOptions.formats = options.format;
   if (options.view.size() == 2) {
     def.setOptions.render.azimuth = options.view[0];
     def.setOptions.render.elevation = options.view[1];
@@ -75,8 +91,10 @@ int runRun(const RunOptions& options) {
     const WorldStats& stats = report.stats;
     std::cout << "time " << report.time << ", cells " << report.cells << ", steps " << stats.steps << ", events "
               << stats.events << ", cells born " << stats.cellsBorn << ", rule firings " << stats.ruleFirings
-              << ", files " << report.files.size() << ", wall " << report.wallSeconds << " s\n";
+              << ", held " << formatMebibytes(report.held) << ", files " << report.files.size() << ", wall "
+              << report.wallSeconds << " s\n";
   }
+  if (growOnly) return kExitOk;
   std::cerr << "wrote " << report.files.size() << " file" << (report.files.size() == 1 ? "" : "s") << " to "
             << options.out << "\n";
   return kExitOk;

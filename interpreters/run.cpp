@@ -75,7 +75,7 @@ RunReport Run::execute() {
   }
   const auto started = std::chrono::steady_clock::now();
   std::error_code error;
-  std::filesystem::create_directories(def_.out, error);
+  if (!sets_.empty()) std::filesystem::create_directories(def_.out, error);
   if (error) {
     report.status = RunStatus::OutputFailed;
     report.diagnostics.push_back(unlocated(
@@ -124,6 +124,7 @@ RunReport Run::execute() {
     report.stats = world_->stats();
     report.time = world_->time();
     report.cells = world_->totalCells();
+    report.held = world_->held().bytes;
   }
   report.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return report;
@@ -152,6 +153,11 @@ void Run::develop(RunReport& report) {
   const int frames = framesOf(def_, program, from, until);
   world_ = std::make_unique<World>(def_.program, def_.world);
   World& world = *world_;
+  if (sets_.empty()) {
+    // Nothing sees the frames, and the development does not depend on them.
+    world.advanceTo(until, dt);
+    return;
+  }
   std::vector<InterpretationSet*> following;
   for (auto& set : sets_)
     if (set->followsDevelopment()) {

@@ -38,7 +38,9 @@ struct RunDef {
   /// Spread evenly over [from, until]; one frame: the state at until. Empty: the
   /// program's #fps (round((until - from) * fps) + 1 frames), else one.
   std::optional<int> frames;
-  std::vector<std::string> sets{"geometry"};  ///< interpretation sets by name
+  /// Interpretation sets by name. None: the run grows the world to `until` and writes
+  /// nothing (not even the output directory); the report has its statistics.
+  std::vector<std::string> sets{"geometry"};
   SetOptions setOptions{};                    ///< formats, picture size and view
   std::filesystem::path out = "out";          ///< the directory outputs go to (made if missing)
   /// Called after each frame with the frames done and the frames in all (a progress bar).
@@ -71,6 +73,7 @@ struct RunReport {
   WorldStats stats{};
   double time = 0;     ///< the world's time at the end, seconds
   uint64_t cells = 0;  ///< cells in all pools at the end
+  uint64_t held = 0;   ///< bytes the world's pools held at the end (WorldHeld::bytes)
   double wallSeconds = 0;
 
   bool ok() const { return status == RunStatus::Ok; }

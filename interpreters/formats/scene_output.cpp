@@ -44,8 +44,10 @@ std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
       def.writeMp4 = true;
     } else if (name == "joints") {
       def.writeJoints = true;
+    } else if (name == "none") {
+      return "the format 'none' (grow only, write nothing) goes alone, not with other formats";
     } else {
-      return "unknown format '" + std::string(name) + "' (known: " + kGeometryFormats + ")";
+      return "unknown format '" + std::string(name) + "' (known: " + kGeometryFormats + ", or none alone)";
     }
     start = end + 1;
   }

@@ -106,7 +106,7 @@ TEST_F(OutputsTest, FormatsAreParsedAndUnknownOnesNamed) {
   EXPECT_TRUE(def.writeGlb && def.writePng);
   EXPECT_FALSE(def.writeSvg || def.writeObj || def.writePly || def.writeMp4 || def.writePngFrames);
   EXPECT_EQ(applyGeometryFormats("obj,gltf", def),
-            "unknown format 'gltf' (known: glb, png, png-frames, mp4, obj, ply, svg, joints)");
+            "unknown format 'gltf' (known: glb, png, png-frames, mp4, obj, ply, svg, joints, or none alone)");
 }
 
 TEST_F(OutputsTest, AnimatedGlbPassesTheKhronosValidator) {
