@@ -1,4 +1,5 @@
 #include <iostream>
+#include <sstream>
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
@@ -7,28 +8,61 @@
 
 namespace ontogen::app {
 
+// The words stream to standard output cell by cell, without a record per cell. Nothing
+// is printed unless every time was reached: the words before the last are kept as text
+// (far smaller than the pools that made them) and the last, often by far the largest,
+// streams once the world has reached it, when nothing can fail any more (an interpreted
+// word is kept to the end too: making its image can still fail).
 int runWord(const WordOptions& options) {
   LoadedProgram loaded = loadProgram(options.common);
   if (!loaded.program) return loaded.exitCode;
   const Program& program = *loaded.program;
   const WorldDef def = worldDefOf(options.common, program);
   double dt = options.common.step.value_or(program.dt);
-  std::vector<WordAtTime> words;
+  std::ostringstream earlier;
+  std::unique_ptr<World> world;
+  auto writeWord = [&](std::ostream& out, double t, bool first, bool last) {
+    BufferedOutput buffered(out);
+    if (options.json) {
+      WordJsonWriter writer(buffered);
+      if (first) writer.begin();
+      writer.beginTime(t, first);
+      if (options.interpreted)
+        visitInterpretedWord(*world, writer);
+      else
+        visitWord(*world, writer);
+      writer.endTime();
+      if (last) writer.end();
+    } else {
+      buffered.text() += "t = " + formatExact(t) + ": ";
+      WordTextWriter writer(buffered, options.precision);
+      if (options.interpreted)
+        visitInterpretedWord(*world, writer);
+      else
+        visitWord(*world, writer);
+      buffered.text() += '\n';
+    }
+  };
   const int failed = developReporting([&] {
-    auto world = std::make_unique<World>(loaded.program, def);
-    for (double t : options.times) {
+    world = std::make_unique<World>(loaded.program, def);
+    for (size_t i = 0; i < options.times.size(); ++i) {
+      const double t = options.times[i];
       if (t < world->time()) world = std::make_unique<World>(loaded.program, def);  // time runs forward only
       world->advanceTo(t, dt);
-      words.push_back({t, options.interpreted ? captureInterpretedWord(*world) : captureWord(*world)});
+      const bool last = i + 1 == options.times.size();
+      // The homomorphism's image can still pass a limit while it is made: an interpreted
+      // word is kept as text to the end too.
+      const bool stream = last && !options.interpreted;
+      if (stream) {
+        std::cout << earlier.str();
+        earlier = std::ostringstream();
+      }
+      writeWord(stream ? std::cout : earlier, t, i == 0, last);
     }
   });
   if (failed) return failed;
-  if (options.json) {
-    writeWordJson(std::cout, words);
-  } else {
-    for (const auto& word : words)
-      std::cout << "t = " << formatExact(word.time) << ": " << formatWord(word.cells, options.precision) << "\n";
-  }
+  std::cout << earlier.str();
+  std::cout.flush();
   return kExitOk;
 }
 

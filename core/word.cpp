@@ -1,5 +1,7 @@
 #include "core/word.h"
 
+#include <array>
+
 #include "core/homomorphism.h"
 #include "core/parents.h"
 
@@ -7,64 +9,136 @@ namespace ontogen {
 
 namespace {
 
-// The word of `cells` (the pool's, or a homomorphism's image whose i-th cell comes from
-// the pool's cell sourceOf(i)), with state from `stateOf`.
+// Streams the word of `cells` (the pool's, or a homomorphism's image whose i-th cell comes
+// from the pool's cell sourceOf(i)), with state from `stateOf`.
 template <typename StateOf, typename SourceOf>
-std::vector<WordCell> capture(const World& world, std::span<const CellRecord> cells, StateOf&& stateOf,
-                              SourceOf&& sourceOf, bool interpreted) {
-  std::vector<WordCell> word;
+void stream(const World& world, std::span<const CellRecord> cells, StateOf&& stateOf, SourceOf&& sourceOf,
+            bool interpreted, WordVisitor& visitor) {
   const Program& program = world.program();
-  word.reserve(cells.size());
   const bool grid = world.rootSystem().poolKind == PoolKind::Grid;
   const bool spatial = world.rootSystem().poolKind == PoolKind::Spatial;
   const int dimensions = spatial ? 3 : world.rootSystem().grid.dimensions;
   const uint64_t above = world.parent() ? world.systemCellId() : kNoParent;
   const bool linear = world.rootSystem().poolKind == PoolKind::Linear;
   AxialWalk walk(above);
+  std::vector<double> developed;
+  std::array<double, 3> position{};
+  // One view, refilled for each cell (a fresh one per cell costs more than the cell).
+  WordCellView view;
   for (size_t i = 0; i < cells.size(); ++i) {
     const CellRecord& cell = cells[i];
     const MasterCell& master = program.masters[cell.master];
-    WordCell entry;
     if (grid || spatial) {
-      const auto position = world.positionOf(sourceOf(i));
-      entry.position.assign(position.begin(), position.begin() + dimensions);
+      position = world.positionOf(sourceOf(i));
+      view.position = std::span<const double>(position.data(), static_cast<size_t>(dimensions));
     }
-    entry.label = master.label;
+    view.label = master.label;
     const double* state = stateOf(cell);
-    entry.params.assign(state, state + master.stateCount());
-    world.developedValues(cell, state, entry.developed);
-    entry.age = world.ageOf(cell);
-    entry.timed = master.timedNotation;
-    entry.id = cell.id;
-    entry.parent = linear ? walk.next(cell, master) : above;
-    entry.system = master.system >= 0;
-    if (const World* child = world.childOf(cell))
-      entry.pool = interpreted ? captureInterpretedWord(*child) : captureWord(*child);
-    word.push_back(std::move(entry));
+    const size_t count = master.stateCount();
+    view.params = std::span<const double>(state, count);
+    if (master.developmentFunction < 0) {
+      view.developed = std::span<const double>(state, count);
+    } else {
+      world.developedValues(cell, state, developed);
+      view.developed = developed;
+    }
+    view.age = world.ageOf(cell);
+    view.timed = master.timedNotation;
+    view.id = cell.id;
+    view.parent = linear ? walk.next(cell, master) : above;
+    view.system = master.system >= 0;
+    visitor.cell(view);
+    if (!view.system) continue;
+    visitor.enterPool();
+    if (const World* child = world.childOf(cell)) {
+      if (interpreted)
+        visitInterpretedWord(*child, visitor);
+      else
+        visitWord(*child, visitor);
+    }
+    visitor.leavePool();
   }
-  return word;
 }
+
+// Collects a streamed word into records, nested pools into their system cells.
+class WordCollector final : public WordVisitor {
+ public:
+  void cell(const WordCellView& view) override {
+    WordCell entry;
+    entry.label = view.label;
+    entry.params.assign(view.params.begin(), view.params.end());
+    entry.developed.assign(view.developed.begin(), view.developed.end());
+    entry.age = view.age;
+    entry.timed = view.timed;
+    entry.id = view.id;
+    entry.parent = view.parent;
+    entry.position.assign(view.position.begin(), view.position.end());
+    entry.system = view.system;
+    current().push_back(std::move(entry));
+  }
+  void enterPool() override { open_.push_back(&current().back().pool); }
+  void leavePool() override { open_.pop_back(); }
+  std::vector<WordCell> take() { return std::move(word_); }
+
+ private:
+  std::vector<WordCell>& current() { return open_.empty() ? word_ : *open_.back(); }
+  std::vector<WordCell> word_;
+  std::vector<std::vector<WordCell>*> open_;  // the pools being filled, innermost last
+};
 
 }  // namespace
 
-std::vector<WordCell> captureWord(const World& world) {
+void visitWord(const World& world, WordVisitor& visitor) {
   const Pool& pool = world.rootPool();
-  return capture(
-      world, pool.cells(), [&pool](const CellRecord& cell) { return pool.stateOf(cell); },
-      [](size_t i) { return i; }, false);
+  stream(
+      world, pool.cells(), [&pool](const CellRecord& cell) { return pool.stateOf(cell); }, [](size_t i) { return i; },
+      false, visitor);
+}
+
+void visitInterpretedWord(const World& world, WordVisitor& visitor) {
+  if (!world.rootSystem().homomorphism) {
+    const Pool& pool = world.rootPool();
+    stream(
+        world, pool.cells(), [&pool](const CellRecord& cell) { return pool.stateOf(cell); },
+        [](size_t i) { return i; }, true, visitor);
+    return;
+  }
+  const HomomorphismImage image(world);
+  stream(
+      world, image.cells(), [&image](const CellRecord& cell) { return image.stateOf(cell); },
+      [&image](size_t i) { return image.sourceOf(i); }, true, visitor);
+}
+
+void visitWord(const std::vector<WordCell>& word, WordVisitor& visitor) {
+  for (const WordCell& cell : word) {
+    WordCellView view;
+    view.label = cell.label;
+    view.params = cell.params;
+    view.developed = cell.developed;
+    view.age = cell.age;
+    view.timed = cell.timed;
+    view.id = cell.id;
+    view.parent = cell.parent;
+    view.position = cell.position;
+    view.system = cell.system;
+    visitor.cell(view);
+    if (!cell.system) continue;
+    visitor.enterPool();
+    visitWord(cell.pool, visitor);
+    visitor.leavePool();
+  }
+}
+
+std::vector<WordCell> captureWord(const World& world) {
+  WordCollector collector;
+  visitWord(world, collector);
+  return collector.take();
 }
 
 std::vector<WordCell> captureInterpretedWord(const World& world) {
-  if (!world.rootSystem().homomorphism) {
-    const Pool& pool = world.rootPool();
-    return capture(
-        world, pool.cells(), [&pool](const CellRecord& cell) { return pool.stateOf(cell); },
-        [](size_t i) { return i; }, true);
-  }
-  const HomomorphismImage image(world);
-  return capture(
-      world, image.cells(), [&image](const CellRecord& cell) { return image.stateOf(cell); },
-      [&image](size_t i) { return image.sourceOf(i); }, true);
+  WordCollector collector;
+  visitInterpretedWord(world, collector);
+  return collector.take();
 }
 
 }  // namespace ontogen

@@ -4,7 +4,9 @@
 // the style of paper 000's Table 1) and JSON are in interpreters/text/word_text.h.
 
 #include <cstdint>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/world.h"
@@ -28,6 +30,38 @@ struct WordAtTime {
   double time = 0;
   std::vector<WordCell> cells;
 };
+
+/// One cell of a word as it streams past a WordVisitor; the views are valid during the
+/// call only.
+struct WordCellView {
+  std::string_view label;
+  std::span<const double> params;
+  std::span<const double> developed;
+  double age = 0;
+  bool timed = false;
+  uint64_t id = 0;
+  uint64_t parent = ~uint64_t{0};
+  std::span<const double> position;
+  bool system = false;
+};
+
+/// Receives a word cell by cell, in pool order, without a record per cell: what `ontogen
+/// word` streams to its output. A system cell is followed by enterPool(), its pool's
+/// cells (none when it has no pool yet), and leavePool().
+class WordVisitor {
+ public:
+  virtual ~WordVisitor() = default;
+  virtual void cell(const WordCellView& cell) = 0;
+  virtual void enterPool() {}
+  virtual void leavePool() {}
+};
+
+/// Streams the world's cells in pool order to `visitor`.
+void visitWord(const World& world, WordVisitor& visitor);
+/// Streams the interpreted word (captureInterpretedWord) to `visitor`.
+void visitInterpretedWord(const World& world, WordVisitor& visitor);
+/// Streams a captured word to `visitor`, as visitWord streamed it.
+void visitWord(const std::vector<WordCell>& word, WordVisitor& visitor);
 
 /// The world's cells in pool order; a system cell carries its own pool's cells.
 std::vector<WordCell> captureWord(const World& world);

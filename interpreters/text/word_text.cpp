@@ -3,118 +3,212 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 #include "core/parents.h"
 #include "core/salts.h"
 
 namespace ontogen {
 
-static std::string formatShort(double value, int precision) {
-  if (value == 0) return "0";  // also turns -0 into 0
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
-  return buffer;
-}
+namespace {
 
-std::string formatWord(const std::vector<WordCell>& word, int precision) {
-  std::string text;
-  for (const WordCell& cell : word) {
-    if (!text.empty()) text += ' ';
-    std::string module = cell.label;
-    if (!cell.developed.empty()) {
-      module += '(';
-      for (size_t i = 0; i < cell.developed.size(); ++i) {
-        if (i) module += ", ";
-        module += formatShort(cell.developed[i], precision);
-      }
-      module += ')';
-    }
-    if (cell.timed)
-      text += "(" + module + ", " + formatShort(cell.age, precision) + ")";
-    else
-      text += module;
-    if (cell.system) text += cell.pool.empty() ? " { }" : " { " + formatWord(cell.pool, precision) + " }";
+// %.*g, as printf writes it, without -0.
+void appendShort(std::string& text, double value, int precision) {
+  if (value == 0) {
+    text += '0';
+    return;
   }
-  return text;
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, precision);
+  text.append(buffer, result.ptr);
 }
 
-std::string formatExact(double value) {
-  if (!std::isfinite(value)) return "null";
-  if (value == 0) return "0";
+// The shortest form that reads back exactly; null for infinities and NaN.
+void appendExact(std::string& text, double value) {
+  if (!std::isfinite(value)) {
+    text += "null";
+    return;
+  }
+  if (value == 0) {
+    text += '0';
+    return;
+  }
   char buffer[40];
-  auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  text.append(buffer, result.ptr);
 }
 
-static void writeString(std::ostream& out, const std::string& text) {
-  out << '"';
-  for (unsigned char c : text) {
+void appendString(std::string& text, std::string_view value) {
+  text += '"';
+  for (unsigned char c : value) {
     switch (c) {
-      case '"':
-        out << "\\\"";
-        break;
-      case '\\':
-        out << "\\\\";
-        break;
-      case '\n':
-        out << "\\n";
-        break;
-      case '\t':
-        out << "\\t";
-        break;
+      case '"': text += "\\\""; break;
+      case '\\': text += "\\\\"; break;
+      case '\n': text += "\\n"; break;
+      case '\t': text += "\\t"; break;
       default:
         if (c < 0x20) {
           char escaped[8];
           std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-          out << escaped;
+          text += escaped;
         } else {
-          out << static_cast<char>(c);
+          text += static_cast<char>(c);
         }
     }
   }
-  out << '"';
+  text += '"';
 }
 
-static void writeArray(std::ostream& out, const std::vector<double>& values) {
-  out << '[';
-  for (size_t i = 0; i < values.size(); ++i) out << (i ? ", " : "") << formatExact(values[i]);
-  out << ']';
-}
-
-static void writeCells(std::ostream& out, const std::vector<WordCell>& cells, const std::string& indent) {
-  out << '[';
-  for (size_t c = 0; c < cells.size(); ++c) {
-    out << (c ? ",\n" : "\n") << indent << "{\"label\": ";
-    writeString(out, cells[c].label);
-    out << ", \"params\": ";
-    writeArray(out, cells[c].params);
-    out << ", \"developed\": ";
-    writeArray(out, cells[c].developed);
-    out << ", \"age\": " << formatExact(cells[c].age);
-    out << ", \"id\": " << formatExact(idValue(cells[c].id)) << ", \"parent\": "
-        << (cells[c].parent == kNoParent ? std::string("-1") : formatExact(idValue(cells[c].parent)));
-    if (!cells[c].position.empty()) {
-      out << ", \"position\": ";
-      writeArray(out, cells[c].position);
-    }
-    if (cells[c].system) {
-      out << ", \"pool\": ";
-      writeCells(out, cells[c].pool, indent + "  ");
-    }
-    out << "}";
+void appendArray(std::string& text, std::span<const double> values) {
+  text += '[';
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (i) text += ", ";
+    appendExact(text, values[i]);
   }
-  if (!cells.empty()) out << "\n" << indent.substr(2);
-  out << ']';
+  text += ']';
+}
+
+}  // namespace
+
+void BufferedOutput::flush() {
+  if (text_.empty()) return;
+  out_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+  text_.clear();
+}
+
+void WordTextWriter::cell(const WordCellView& cell) {
+  std::string& text = out_.text();
+  if (depth_ > 0 || !first_) text += ' ';
+  first_ = false;
+  if (cell.timed) text += '(';
+  text += cell.label;
+  if (!cell.developed.empty()) {
+    text += '(';
+    for (size_t i = 0; i < cell.developed.size(); ++i) {
+      if (i) text += ", ";
+      appendShort(text, cell.developed[i], precision_);
+    }
+    text += ')';
+  }
+  if (cell.timed) {
+    text += ", ";
+    appendShort(text, cell.age, precision_);
+    text += ')';
+  }
+  out_.wrote();
+}
+
+void WordTextWriter::enterPool() {
+  out_.text() += " {";
+  ++depth_;
+}
+
+void WordTextWriter::leavePool() {
+  out_.text() += " }";
+  --depth_;
+}
+
+std::string formatWord(const std::vector<WordCell>& word, int precision) {
+  std::ostringstream text;
+  {
+    BufferedOutput out(text);
+    WordTextWriter writer(out, precision);
+    visitWord(word, writer);
+  }
+  return text.str();
+}
+
+std::string formatExact(double value) {
+  std::string text;
+  appendExact(text, value);
+  return text;
+}
+
+void WordJsonWriter::begin() { out_.text() += "{\"times\": ["; }
+
+void WordJsonWriter::beginTime(double t, bool first) {
+  std::string& text = out_.text();
+  text += first ? "\n  " : ",\n  ";
+  text += "{\"t\": ";
+  appendExact(text, t);
+  text += ", \"cells\": ";
+  openList();
+}
+
+void WordJsonWriter::endTime() {
+  closeList();
+  out_.text() += '}';
+  out_.wrote();
+}
+
+void WordJsonWriter::end() {
+  out_.text() += "\n]}\n";
+  out_.flush();
+}
+
+void WordJsonWriter::openList() {
+  out_.text() += '[';
+  cellsInList_.push_back(0);
+}
+
+// The list's closing bracket on a line of its own, at the indentation of what holds it.
+void WordJsonWriter::closeList() {
+  std::string& text = out_.text();
+  if (cellsInList_.back() > 0) {
+    text += '\n';
+    text.append(2 * cellsInList_.size(), ' ');
+  }
+  text += ']';
+  cellsInList_.pop_back();
+}
+
+void WordJsonWriter::cell(const WordCellView& cell) {
+  std::string& text = out_.text();
+  text += cellsInList_.back()++ ? ",\n" : "\n";
+  text.append(2 * cellsInList_.size() + 2, ' ');
+  text += "{\"label\": ";
+  appendString(text, cell.label);
+  text += ", \"params\": ";
+  appendArray(text, cell.params);
+  text += ", \"developed\": ";
+  appendArray(text, cell.developed);
+  text += ", \"age\": ";
+  appendExact(text, cell.age);
+  text += ", \"id\": ";
+  appendExact(text, idValue(cell.id));
+  text += ", \"parent\": ";
+  if (cell.parent == kNoParent)
+    text += "-1";
+  else
+    appendExact(text, idValue(cell.parent));
+  if (!cell.position.empty()) {
+    text += ", \"position\": ";
+    appendArray(text, cell.position);
+  }
+  if (cell.system)
+    text += ", \"pool\": ";
+  else
+    text += '}';
+  out_.wrote();
+}
+
+void WordJsonWriter::enterPool() { openList(); }
+
+void WordJsonWriter::leavePool() {
+  closeList();
+  out_.text() += '}';
 }
 
 void writeWordJson(std::ostream& out, const std::vector<WordAtTime>& words) {
-  out << "{\"times\": [";
-  for (size_t w = 0; w < words.size(); ++w) {
-    out << (w ? ",\n  " : "\n  ") << "{\"t\": " << formatExact(words[w].time) << ", \"cells\": ";
-    writeCells(out, words[w].cells, "    ");
-    out << "}";
+  BufferedOutput buffered(out);
+  WordJsonWriter writer(buffered);
+  writer.begin();
+  for (const WordAtTime& word : words) {
+    writer.beginTime(word.time, &word == words.data());
+    visitWord(word.cells, writer);
+    writer.endTime();
   }
-  out << "\n]}\n";
+  writer.end();
 }
 
 }  // namespace ontogen

@@ -14,6 +14,63 @@ namespace ontogen {
 /// Table 1 style text, numbers with `precision` significant digits.
 std::string formatWord(const std::vector<WordCell>& word, int precision = 6);
 
+/// Output written through a buffer of its own, handed to the stream in large pieces (a
+/// word of millions of cells streams without a record or a string per cell).
+class BufferedOutput {
+ public:
+  explicit BufferedOutput(std::ostream& out) : out_(out) { text_.reserve(kFlushAt + 4096); }
+  ~BufferedOutput() { flush(); }
+  BufferedOutput(const BufferedOutput&) = delete;
+  BufferedOutput& operator=(const BufferedOutput&) = delete;
+  std::string& text() { return text_; }
+  /// Hands the buffer to the stream when it is full.
+  void wrote() {
+    if (text_.size() >= kFlushAt) flush();
+  }
+  void flush();
+
+ private:
+  static constexpr size_t kFlushAt = size_t{1} << 16;
+  std::ostream& out_;
+  std::string text_;
+};
+
+/// Streams a word as formatWord writes it.
+class WordTextWriter final : public WordVisitor {
+ public:
+  WordTextWriter(BufferedOutput& out, int precision) : out_(out), precision_(precision) {}
+  void cell(const WordCellView& cell) override;
+  void enterPool() override;
+  void leavePool() override;
+
+ private:
+  BufferedOutput& out_;
+  int precision_;
+  int depth_ = 0;       // pools entered
+  bool first_ = true;   // no cell written yet at the top level
+};
+
+/// Streams the JSON of writeWordJson: begin(), then for each time beginTime(t), the
+/// word's cells through the visitor and endTime(), then end().
+class WordJsonWriter final : public WordVisitor {
+ public:
+  explicit WordJsonWriter(BufferedOutput& out) : out_(out) {}
+  void begin();
+  /// `first`: the first time of the document (a writer may write one time of many).
+  void beginTime(double t, bool first);
+  void endTime();
+  void end();
+  void cell(const WordCellView& cell) override;
+  void enterPool() override;
+  void leavePool() override;
+
+ private:
+  void openList();
+  void closeList();
+  BufferedOutput& out_;
+  std::vector<size_t> cellsInList_;  // cells written in each open list, innermost last
+};
+
 /// {"times": [{"t": T, "cells": [{"label": ..., "params": [...], "developed": [...],
 /// "age": A, "id": I, "parent": P}, ...]}, ...]} (ids' low 53 bits; P is -1 for none), a system cell with "pool": [its cells], numbers in the shortest form that reads back exactly;
 /// infinities and NaN as null.

@@ -1,0 +1,125 @@
+// Writing a word: what `ontogen word` does after developing. The word streams cell by cell
+// through WordTextWriter / WordJsonWriter into a stream that counts and drops its bytes,
+// so the figures do not measure a disk or a pipe. The baseline writes the same text of
+// the same Koch word by hand, from a byte per module, through the same kind of buffer.
+
+#include <benchmark/benchmark.h>
+
+#include <ostream>
+#include <streambuf>
+#include <string>
+#include <vector>
+
+#include "bench/bench_support.h"
+#include "core/word.h"
+#include "core/world.h"
+#include "interpreters/text/word_text.h"
+
+namespace ontogen::bench {
+namespace {
+
+// A stream buffer that keeps only the number of bytes written to it.
+class CountingBuffer final : public std::streambuf {
+ public:
+  size_t bytes = 0;
+
+ protected:
+  std::streamsize xsputn(const char*, std::streamsize count) override {
+    bytes += static_cast<size_t>(count);
+    return count;
+  }
+  int_type overflow(int_type c) override {
+    if (c != traits_type::eof()) ++bytes;
+    return c;
+  }
+};
+
+const Compiled& koch() {
+  static const Compiled compiled = compileModel("koch.cell");
+  return compiled;
+}
+
+void report(benchmark::State& state, size_t modules, size_t bytes) {
+  state.counters["modules"] = static_cast<double>(modules);
+  state.counters["MB"] = static_cast<double>(bytes) / 1e6;
+  state.counters["modules/s"] =
+      benchmark::Counter(static_cast<double>(modules * state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_KochWordText(benchmark::State& state) {
+  if (!koch().program) return state.SkipWithError(koch().error.c_str());
+  World world(koch().program, kBenchWorld);
+  world.advanceTo(static_cast<double>(state.range(0)), 1.0);
+  CountingBuffer counter;
+  std::ostream out(&counter);
+  for (auto _ : state) {
+    counter.bytes = 0;
+    BufferedOutput buffered(out);
+    WordTextWriter writer(buffered, 6);
+    visitWord(world, writer);
+    buffered.flush();
+  }
+  // 2 bytes a module ("F " or "+ "), less the last space.
+  if (counter.bytes != 2 * world.rootPool().size() - 1) return state.SkipWithError("wrong text size");
+  report(state, world.rootPool().size(), counter.bytes);
+}
+BENCHMARK(BM_KochWordText)->Arg(8)->Unit(benchmark::kMillisecond);
+
+void BM_KochWordJson(benchmark::State& state) {
+  if (!koch().program) return state.SkipWithError(koch().error.c_str());
+  World world(koch().program, kBenchWorld);
+  world.advanceTo(static_cast<double>(state.range(0)), 1.0);
+  CountingBuffer counter;
+  std::ostream out(&counter);
+  for (auto _ : state) {
+    counter.bytes = 0;
+    BufferedOutput buffered(out);
+    WordJsonWriter writer(buffered);
+    writer.begin();
+    writer.beginTime(world.time(), true);
+    visitWord(world, writer);
+    writer.endTime();
+    writer.end();
+  }
+  report(state, world.rootPool().size(), counter.bytes);
+}
+BENCHMARK(BM_KochWordJson)->Arg(8)->Unit(benchmark::kMillisecond);
+
+// The same text from a byte per module: Koch's word derived by hand, then written as
+// symbols separated by spaces through a 64 KiB buffer.
+void BM_KochWordTextHandWritten(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::vector<char> word{'F'}, next;
+  for (int i = 0; i < n; ++i) {
+    next.clear();
+    for (char c : word) {
+      if (c == 'F')
+        for (char s : {'F', '+', 'F', '-', 'F', '-', 'F', '+', 'F'}) next.push_back(s);
+      else
+        next.push_back(c);
+    }
+    word.swap(next);
+  }
+  CountingBuffer counter;
+  std::ostream out(&counter);
+  for (auto _ : state) {
+    counter.bytes = 0;
+    std::string buffer;
+    buffer.reserve((size_t{1} << 16) + 16);
+    for (size_t i = 0; i < word.size(); ++i) {
+      if (i) buffer += ' ';
+      buffer += word[i];
+      if (buffer.size() >= (size_t{1} << 16)) {
+        out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+        buffer.clear();
+      }
+    }
+    out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+  }
+  if (counter.bytes != 2 * word.size() - 1) return state.SkipWithError("wrong text size");
+  report(state, word.size(), counter.bytes);
+}
+BENCHMARK(BM_KochWordTextHandWritten)->Arg(8)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace ontogen::bench

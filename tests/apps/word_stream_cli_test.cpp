@@ -1,0 +1,68 @@
+// `ontogen word` streams its words cell by cell: the same text and JSON as the records
+// of captureWord, nothing on standard output when a later time fails, and far less
+// memory than a record per module.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "tests/apps/cli_support.h"
+
+namespace ontogen::test {
+namespace {
+
+size_t countOf(const std::string& text, const std::string& what) {
+  size_t count = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
+  return count;
+}
+
+TEST(WordStream, KochTextAtSeveralTimes) {
+  const CliResult result = runOntogen("word " + modelPath("koch.cell") + " --at 1,4");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const size_t newline = result.out.find('\n');
+  ASSERT_NE(newline, std::string::npos);
+  EXPECT_EQ(result.out.substr(0, newline), "t = 1: F + F - F - F + F");
+  const std::string second = result.out.substr(newline + 1);
+  ASSERT_EQ(second.rfind("t = 4: F + F - F", 0), 0u) << second.substr(0, 40);
+  EXPECT_EQ(countOf(second, "F"), 625u);  // 5^4
+  EXPECT_EQ(countOf(second, " "), 1248u + 3u);  // between 1249 modules, and three in "t = 4: "
+  EXPECT_EQ(second.back(), '\n');
+}
+
+TEST(WordStream, NestedPoolsInJsonAndText) {
+  const CliResult json = runOntogen("word " + modelPath("orchard.cell") + " --at 0,2 --json");
+  ASSERT_EQ(json.exitCode, 0) << json.err;
+  const auto document = nlohmann::json::parse(json.out);
+  ASSERT_EQ(document["times"].size(), 2u);
+  const auto& cells = document["times"][1]["cells"];
+  ASSERT_EQ(cells.size(), 5u);
+  EXPECT_EQ(cells[0]["label"], "tree");
+  ASSERT_EQ(cells[0]["pool"].size(), 2u);
+  EXPECT_EQ(cells[0]["pool"][0]["label"], "Trunk");
+  EXPECT_EQ(cells[0]["pool"][0]["parent"], cells[0]["id"]);
+  EXPECT_EQ(cells[1]["label"], "Gap");
+  EXPECT_FALSE(cells[1].contains("pool"));
+  // The layout too: two spaces a level, a list's bracket under what holds it.
+  EXPECT_NE(json.out.find("{\"times\": [\n  {\"t\": 0, \"cells\": [\n    {\"label\": \"tree\""), std::string::npos)
+      << json.out.substr(0, 200);
+  EXPECT_NE(json.out.find(", \"pool\": [\n      {\"label\": \"Trunk\""), std::string::npos);
+  EXPECT_EQ(json.out.substr(json.out.size() - 15), "    ]}\n  ]}\n]}\n");
+
+  const CliResult text = runOntogen("word " + modelPath("orchard.cell") + " --at 2 --precision 3");
+  ASSERT_EQ(text.exitCode, 0) << text.err;
+  EXPECT_EQ(text.out, "t = 2: tree(5) { Trunk(0.998) Bud(0) } Gap tree(7) { Trunk(1.4) Bud(0) } Gap tree(4) { Trunk(0.798) Bud(0) }\n");
+}
+
+TEST(WordStream, NothingPrintedWhenALaterTimeFails) {
+  for (const char* format : {"", " --json"}) {
+    const CliResult result = runOntogen("word " + modelPath("koch.cell") + " --at 1,3 --max-cells 20" + format);
+    EXPECT_EQ(result.exitCode, 3) << format;
+    EXPECT_EQ(result.out, "") << format;
+    EXPECT_NE(result.err.find("the cell limit"), std::string::npos) << result.err;
+  }
+}
+
+}  // namespace
+}  // namespace ontogen::test
