@@ -18,6 +18,15 @@ bool draws(const CompiledRule& rule) {
 }  // namespace
 
 template <typename View>
+struct RateIntegrator<View>::Rk4 {
+  // always_resizer: the stages follow the state's size when the pool has grown.
+  boost::numeric::odeint::runge_kutta4<StateArray, double, StateArray, double, boost::numeric::odeint::range_algebra,
+                                       boost::numeric::odeint::default_operations,
+                                       boost::numeric::odeint::always_resizer>
+      stepper;
+};
+
+template <typename View>
 RateIntegrator<View>::RateIntegrator(const Program& program, uint64_t seed, unsigned threads)
     : program_(program), seed_(seed), threads_(std::max(1u, threads)), functions_(program.functionTable()) {
   for (const MasterCell& master : program.masters)
@@ -141,8 +150,8 @@ void RateIntegrator<View>::integrate(Pool& pool, const View& view, double t0, do
     odeint::integrate_adaptive(odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<StateArray>()),
                                system, x, t0, t1, t1 - t0);
   } else {
-    odeint::runge_kutta4<StateArray> stepper;
-    stepper.do_step(system, x, t0, t1 - t0);
+    if (!rk4_) rk4_ = std::make_unique<Rk4>();
+    rk4_->stepper.do_step(system, x, t0, t1 - t0);  // resizes its stages when the pool grew
   }
 }
 

@@ -65,6 +65,10 @@ class RateIntegrator {
   const Pool* equationsPool_ = nullptr;
   uint64_t equationsVersion_ = UINT64_MAX;
   bool conditional_ = false;  // some rate rule has a context, predicate or probability
+  // The RK4 stepper with its four stage arrays, kept from step to step: made fresh each
+  // step, it took and zeroed the pool's state size four times over every step.
+  struct Rk4;
+  std::unique_ptr<Rk4> rk4_;
 };
 
 /// One step of a pool's rates from t0 to t1: the development's integrator, made on the

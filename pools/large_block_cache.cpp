@@ -1,0 +1,104 @@
+#include "pools/large_block_cache.h"
+
+#include <cstdlib>
+#include <map>
+#include <mutex>
+#include <new>
+#include <unordered_map>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace ontogen {
+
+namespace {
+
+struct Cache {
+  std::mutex mutex;
+  std::multimap<size_t, void*> kept;           // size → block, waiting for reuse
+  std::unordered_map<void*, size_t> inUse;     // block → its size, handed out
+  uint64_t keptBytes = 0;
+  uint64_t reused = 0;
+  uint64_t fresh = 0;
+};
+
+// Never destroyed: arrays of static objects may give their blocks back after main().
+Cache& cache() {
+  static Cache* instance = new Cache;
+  return *instance;
+}
+
+void freeKept(Cache& state) {
+  for (auto& [size, block] : state.kept) std::free(block);
+  state.kept.clear();
+  state.keptBytes = 0;
+}
+
+void* freshBlock(size_t rounded) {
+  void* block = std::aligned_alloc(kLargePageBytes, rounded);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  if (block) ::madvise(block, rounded, MADV_HUGEPAGE);  // a hint: failure leaves ordinary pages
+#endif
+  return block;
+}
+
+}  // namespace
+
+void* acquireLargeBlock(size_t bytes) {
+  const size_t rounded = (bytes + kLargePageBytes - 1) / kLargePageBytes * kLargePageBytes;
+  Cache& state = cache();
+  std::lock_guard lock(state.mutex);
+  // The smallest kept block that fits, if it wastes at most half of itself.
+  if (auto fit = state.kept.lower_bound(rounded); fit != state.kept.end() && fit->first / 2 <= rounded) {
+    void* block = fit->second;
+    state.inUse.emplace(block, fit->first);
+    state.keptBytes -= fit->first;
+    state.kept.erase(fit);
+    ++state.reused;
+    return block;
+  }
+  void* block = freshBlock(rounded);
+  if (!block && !state.kept.empty()) {
+    freeKept(state);
+    block = freshBlock(rounded);
+  }
+  if (!block) throw std::bad_alloc();
+  state.inUse.emplace(block, rounded);
+  ++state.fresh;
+  return block;
+}
+
+void releaseLargeBlock(void* block) noexcept {
+  if (!block) return;
+  Cache& state = cache();
+  std::lock_guard lock(state.mutex);
+  const auto found = state.inUse.find(block);
+  if (found == state.inUse.end()) return std::free(block);  // not ours: cannot happen
+  const size_t size = found->second;
+  state.inUse.erase(found);
+  // Over budget: the smallest kept blocks go first, the largest are the costliest to fault in.
+  while (state.keptBytes + size > kLargeBlockCacheBytes && !state.kept.empty() &&
+         state.kept.begin()->first <= size) {
+    std::free(state.kept.begin()->second);
+    state.keptBytes -= state.kept.begin()->first;
+    state.kept.erase(state.kept.begin());
+  }
+  if (state.keptBytes + size > kLargeBlockCacheBytes) return std::free(block);
+  state.kept.emplace(size, block);
+  state.keptBytes += size;
+}
+
+void trimLargeBlockCache() noexcept {
+  Cache& state = cache();
+  std::lock_guard lock(state.mutex);
+  freeKept(state);
+}
+
+LargeBlockCacheStats largeBlockCacheStats() noexcept {
+  Cache& state = cache();
+  std::lock_guard lock(state.mutex);
+  return {state.keptBytes, state.reused, state.fresh};
+}
+
+}  // namespace ontogen
