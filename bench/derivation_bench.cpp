@@ -26,15 +26,18 @@ uint64_t power(uint64_t base, int exponent) {
 /// Checks the developed word; returns an empty string when it is right.
 using WordCheck = std::string (*)(const Program& program, const World& world, int n);
 
-// Grows `program` from its axiom to generation n once per iteration.
+// Grows `program` from its axiom to generation n once per iteration, on the threads of
+// the second argument (the context-free pass of core/parallel_rewrite.h).
 void deriveFromAxiom(benchmark::State& state, const Compiled& compiled, uint64_t expectedSize, WordCheck check) {
   if (!compiled.program) {
     state.SkipWithError(compiled.error.c_str());
     return;
   }
   const int n = static_cast<int>(state.range(0));
+  WorldDef def = kBenchWorld;
+  def.threads = static_cast<unsigned>(state.range(1));
   for (auto _ : state) {
-    World world(compiled.program, kBenchWorld);
+    World world(compiled.program, def);
     world.advanceTo(n, 1.0);
     if (world.rootPool().size() != expectedSize) {
       state.SkipWithError(
@@ -79,7 +82,7 @@ void BM_KochFromAxiom(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   deriveFromAxiom(state, compiled, 2 * power(5, n) - 1, checkKoch);
 }
-BENCHMARK(BM_KochFromAxiom)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+BENCHMARK(BM_KochFromAxiom)->Args({10, 1})->Args({10, 2})->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 // ---- Thue-Morse: a -> ab, b -> ba ----
 // |w_n| = 2^n, and symbol i is b exactly when i has an odd number of ones.
@@ -105,7 +108,7 @@ void BM_ThueMorseFromAxiom(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   deriveFromAxiom(state, compiled, power(2, n), checkThueMorse);
 }
-BENCHMARK(BM_ThueMorseFromAxiom)->Arg(24)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+BENCHMARK(BM_ThueMorseFromAxiom)->Args({24, 1})->Args({24, 2})->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 // ---- Parametric: A(x) -> A(x+1) B(x*0.5), B(y) -> B(y+1) B(y*0.5) ----
 // |w_n| = 2^n: one A, whose parameter is 1 + n, then 2^n - 1 B.
@@ -134,7 +137,7 @@ void BM_ParametricFromAxiom(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   deriveFromAxiom(state, compiled, power(2, n), checkParametric);
 }
-BENCHMARK(BM_ParametricFromAxiom)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(10)->UseRealTime();
+BENCHMARK(BM_ParametricFromAxiom)->Args({20, 1})->Args({20, 2})->Unit(benchmark::kMillisecond)->Iterations(10)->UseRealTime();
 
 }  // namespace
 }  // namespace ontogen::bench

@@ -35,6 +35,7 @@ struct WorldStats {
   uint64_t cellsBorn = 0;
   uint64_t crowded = 0;        ///< grid successors that found no free site and were not born
   uint64_t rateEquations = 0;  ///< rate equations integrated in the last step
+  uint64_t parallelRewrites = 0;  ///< linear words rewritten on several threads (core/parallel_rewrite.h)
 };
 
 /// Cells and bytes held: by a pool, by a world and its nested systems, or by everything

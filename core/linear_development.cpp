@@ -19,6 +19,7 @@ LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinit
       successors_(program),
       frame_(ruleFrameSize(program)),
       decompositionFrames_(static_cast<size_t>(system.decompositionDepth) + 1),
+      parallel_(program, system),
       view_(pool_, system.symbolClass),
       evaluator_(program, view_) {
   for (const MasterCell& master : program.masters) readsParents_ = readsParents_ || master.readsParent;
@@ -36,6 +37,7 @@ LinearDevelopment::LinearDevelopment(const LinearDevelopment& other)
       decompositionFrames_(other.decompositionFrames_.size()),
       lastGrowth_(other.lastGrowth_),
       readsParents_(other.readsParents_),
+      parallel_(other.program_, other.system_),
       view_(pool_, other.system_.symbolClass),
       evaluator_(other.program_, view_) {}
 
@@ -257,6 +259,11 @@ void LinearDevelopment::expireContextFree(double t1) {
     }
   if (!any) return;
   findParents();
+  if (parallel_.applies() && parallel_.rewrite(pool_, horizon, *context_, readsParents_ ? parentValues_.data() : nullptr,
+                                               eventsThisStep_, nextCells_, nextState_)) {
+    finishWord();
+    return;
+  }
   beginWord();
   const auto& classOf = system_.symbolClass;
   BranchCut cut;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/development.h"
+#include "core/parallel_rewrite.h"
 #include "core/pool_view.h"
 #include "core/rate_integrator.h"
 #include "core/rule_evaluator.h"
@@ -89,6 +90,7 @@ class LinearDevelopment final : public Development {
   bool readsParents_ = false;          // some rule reads me.parent
   std::vector<int64_t> parentIndex_;   // of the word at the start of the pass
   std::vector<double> parentValues_;   // me.parent of each cell of that word
+  ParallelRewrite parallel_;  // the context-free pass of a large word on every core
   LinearPoolView view_;
   RuleEvaluator<LinearPoolView> evaluator_;  // per-step rules; count(), sum(x) ... for terminal rules too
   std::unique_ptr<RateIntegrator<LinearPoolView>> rates_;  // made on the first step that needs it; not copied

@@ -304,6 +304,7 @@ void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tre
         stats_.ruleFirings += child->stats_.ruleFirings - before.ruleFirings;
         stats_.cellsBorn += child->stats_.cellsBorn - before.cellsBorn;
         stats_.crowded += child->stats_.crowded - before.crowded;
+        stats_.parallelRewrites += child->stats_.parallelRewrites - before.parallelRewrites;
       }
     } else {
       child = std::make_unique<World>(*this, cell, pool.stateOf(cell), &tree);

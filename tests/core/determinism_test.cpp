@@ -69,6 +69,12 @@ cell C(u = 0) {
 system plate { pool grid(24, 24) closed vonneumann; at(12, 12) C(1); at(3, 5) C(0.5); }
 )";
 
+// Large enough (781,249 modules at t = 8) for the context-free pass on several threads.
+const char* kKoch = R"(lsystem koch {
+  axiom F
+  F -> F + F - F - F + F
+})";
+
 std::vector<Case> cases() {
   using testing_support::readModel;
   return {
@@ -78,6 +84,7 @@ std::vector<Case> cases() {
       {"grid with rate and actions", kGridWithRatesAndActions, 20, 0.25, 0xad51dde22eefe0d0ull},
       {"colony: spatial", readModel("colony.cell"), 20, 0.1, 0xef470aea37d9c7b1ull},
       {"orchard: nested systems", readModel("orchard.cell"), 8, 0.1, 0xcb9b8bcee7ff1a6cull},
+      {"koch: a large context-free word", kKoch, 8, 1, 0x3aa7a9ac08c47be6ull},
   };
 }
 

@@ -1,0 +1,130 @@
+// The context-free pass on several threads (core/parallel_rewrite.h) writes the word the
+// serial pass writes, bit for bit: records, ids, birth times, state values and
+// statistics, on any number of threads; and it is the pass taken for large words.
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <string>
+
+#include "core/parallel_rewrite.h"
+#include "core/world.h"
+#include "test_support.h"
+
+namespace ontogen {
+namespace {
+
+// Every kind of successor the pass writes: `me`, `=X`, stateful and stateless cells,
+// arguments that draw and that read me.parent, a calculation without an action (a
+// renewal), and a cell with no rules that renews itself every 2 s.
+const char* kEveryKindOfSuccessor = R"(
+cell A(x = 1) { lifetime 1; rules { terminal: x += 1, -> A(x * 0.5) B(uniform(0, 1)) me; } }
+cell B(y = 0) { lifetime 1; rules { terminal: -> =B(y + me.parent) C; } }
+cell C { lifetime 2; }
+cell D(z = 0) { lifetime 1; rules { terminal: z += 1; } }
+system s { pool linear; axiom D A; }
+)";
+
+const char* kKoch = R"(lsystem koch {
+  axiom F
+  F -> F + F - F - F + F
+})";
+
+struct Grown {
+  std::unique_ptr<World> world;
+  WorldStats stats;
+};
+
+Grown grow(const std::shared_ptr<const Program>& program, double until, unsigned threads) {
+  WorldDef def;
+  def.seed = 11;
+  def.threads = threads;
+  Grown grown{std::make_unique<World>(program, def), {}};
+  grown.world->advanceTo(until, 1.0);
+  grown.stats = grown.world->stats();
+  return grown;
+}
+
+void expectSameWords(const World& serial, const World& parallel, const std::string& what) {
+  const Pool& a = serial.rootPool();
+  const Pool& b = parallel.rootPool();
+  ASSERT_EQ(a.size(), b.size()) << what;
+  ASSERT_EQ(a.stateArena().size(), b.stateArena().size()) << what;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const CellRecord& x = a.cells()[i];
+    const CellRecord& y = b.cells()[i];
+    ASSERT_TRUE(x.master == y.master && x.state == y.state && x.id == y.id &&
+                std::bit_cast<uint64_t>(x.birth) == std::bit_cast<uint64_t>(y.birth))
+        << what << ": cell " << i;
+  }
+  for (size_t k = 0; k < a.stateArena().size(); ++k)
+    ASSERT_EQ(std::bit_cast<uint64_t>(a.stateArena()[k]), std::bit_cast<uint64_t>(b.stateArena()[k]))
+        << what << ": state value " << k;
+}
+
+TEST(ParallelRewrite, EveryKindOfSuccessorIsWrittenAsTheSerialPassWritesIt) {
+  auto program = testing_support::compileOrFail(kEveryKindOfSuccessor);
+  ASSERT_NE(program, nullptr);
+  const Grown serial = grow(program, 16, 1);
+  ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
+  EXPECT_EQ(serial.stats.parallelRewrites, 0u);
+  for (unsigned threads : {2u, 3u, 7u}) {
+    const Grown parallel = grow(program, 16, threads);
+    EXPECT_GT(parallel.stats.parallelRewrites, 0u) << threads << " threads: the serial pass was taken";
+    expectSameWords(*serial.world, *parallel.world, std::to_string(threads) + " threads");
+    EXPECT_EQ(parallel.stats.events, serial.stats.events);
+    EXPECT_EQ(parallel.stats.cellsBorn, serial.stats.cellsBorn);
+  }
+}
+
+TEST(ParallelRewrite, KochOnTwoThreadsIsKochOnOne) {
+  auto program = testing_support::compileOrFail(kKoch);
+  ASSERT_NE(program, nullptr);
+  const Grown serial = grow(program, 8, 1);
+  const Grown parallel = grow(program, 8, 2);
+  EXPECT_EQ(serial.world->rootPool().size(), 2u * 390625u - 1u);  // 2 * 5^8 - 1
+  EXPECT_GT(parallel.stats.parallelRewrites, 0u);
+  expectSameWords(*serial.world, *parallel.world, "Koch");
+}
+
+TEST(ParallelRewrite, ChoicesAndStepsWhereSuccessorsExpireTakeTheSerialPass) {
+  // A stochastic rule: the counts are not fixed per master.
+  auto stochastic = testing_support::compileOrFail(R"(lsystem s {
+  axiom A
+  A -> A B : 0.5
+  A -> B A : 0.5
+  B -> B
+})");
+  ASSERT_NE(stochastic, nullptr);
+  const Grown chosen = grow(stochastic, 17, 2);
+  EXPECT_EQ(chosen.stats.parallelRewrites, 0u);
+  expectSameWords(*grow(stochastic, 17, 1).world, *chosen.world, "stochastic");
+
+  // Steps of 2 s over lifetimes of 1 s: successors expire within the step.
+  auto koch = testing_support::compileOrFail(kKoch);
+  WorldDef def;
+  def.threads = 2;
+  World world(koch, def);
+  world.advanceTo(8, 2.0);
+  EXPECT_EQ(world.rootPool().size(), 2u * 390625u - 1u);
+  EXPECT_EQ(world.stats().parallelRewrites, 0u);
+}
+
+TEST(ParallelRewrite, ALimitIsReportedAsTheSerialPassReportsIt) {
+  auto program = testing_support::compileOrFail(kKoch);
+  for (unsigned threads : {1u, 2u}) {
+    WorldDef def;
+    def.threads = threads;
+    def.limits.maxCells = 100'000;
+    World world(program, def);
+    try {
+      world.advanceTo(10, 1.0);
+      ADD_FAILURE() << "no limit on " << threads << " threads";
+    } catch (const LimitError& error) {
+      EXPECT_NE(std::string(error.what()).find("100000 cells"), std::string::npos) << error.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ontogen
