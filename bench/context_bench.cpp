@@ -45,8 +45,10 @@ void BM_ContextSignal(benchmark::State& state) {
     return;
   }
   const int steps = static_cast<int>(state.range(0));
+  WorldDef def = kBenchWorld;
+  def.threads = static_cast<unsigned>(state.range(1));  // 2: the pass of core/parallel_rewrite.h
   for (auto _ : state) {
-    World world(compiled.program, kBenchWorld);
+    World world(compiled.program, def);
     world.advanceTo(steps, 1.0);
     state.PauseTiming();
     std::string error = checkSignal(*compiled.program, world, steps);
@@ -59,7 +61,7 @@ void BM_ContextSignal(benchmark::State& state) {
   const double rewrites = static_cast<double>(kSignalModules) * steps * static_cast<double>(state.iterations());
   state.counters["rewrites/s"] = benchmark::Counter(rewrites, benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_ContextSignal)->Arg(1000)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_ContextSignal)->Args({1000, 1})->Args({1000, 2})->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 
 }  // namespace
 }  // namespace ontogen::bench

@@ -35,7 +35,7 @@ struct WorldStats {
   uint64_t cellsBorn = 0;
   uint64_t crowded = 0;        ///< grid successors that found no free site and were not born
   uint64_t rateEquations = 0;  ///< rate equations integrated in the last step
-  uint64_t parallelRewrites = 0;  ///< linear words rewritten on several threads (core/parallel_rewrite.h)
+  uint64_t rewritesBySlices = 0;  ///< linear words rewritten by slices (core/parallel_rewrite.h)
 };
 
 /// Cells and bytes held: by a pool, by a world and its nested systems, or by everything
@@ -62,6 +62,7 @@ struct StepContext {
   /// world and its systems, and what the world's owner holds outside them (a run's
   /// frames). checkGrowth counts it with the pool's own.
   WorldHeld elsewhere{};
+  bool rewriteBySlices = true;  ///< WorldDef::rewriteBySlices
 };
 
 /// Throws LimitError when a pool that holds `cells` cells and `bytes` bytes (its pool and

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/branch_cut.h"
 #include "core/cell_frame.h"
@@ -259,8 +260,9 @@ void LinearDevelopment::expireContextFree(double t1) {
     }
   if (!any) return;
   findParents();
-  if (parallel_.applies() && parallel_.rewrite(pool_, horizon, *context_, readsParents_ ? parentValues_.data() : nullptr,
-                                               eventsThisStep_, nextCells_, nextState_)) {
+  if (parallel_.appliesContextFree() &&
+      parallel_.rewriteContextFree(pool_, horizon, *context_, readsParents_ ? parentValues_.data() : nullptr,
+                                   eventsThisStep_, nextCells_, nextState_)) {
     finishWord();
     return;
   }
@@ -344,19 +346,33 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
   const double horizon = t1 + timeTolerance(t1);
   const auto& masters = program_.masters;
   double last = t;  // the instant processed last
+  std::optional<double> known;  // the earliest terminal age of the word, when the rewrite found it
   for (;;) {
     double earliest = kForever;
-    for (const CellRecord& cell : pool_.cells())
-      earliest = std::min(earliest, cell.birth + masters[cell.master].lifetime);
+    if (known) {
+      earliest = *known;
+      known.reset();
+    } else {
+      for (const CellRecord& cell : pool_.cells())
+        earliest = std::min(earliest, cell.birth + masters[cell.master].lifetime);
+    }
     if (system_.decomposes) earliest = std::min(earliest, std::floor(last + timeTolerance(last)) + 1);
     if (earliest > horizon) return;
     last = earliest;
     const double instant = earliest + timeTolerance(earliest);
     pool_.indexBranches(system_.symbolClass);
     findParents();
-    beginWord();
     auto cells = pool_.cells();
     const auto& classOf = system_.symbolClass;
+    if (parallel_.appliesAtInstants() &&
+        parallel_.rewriteAtInstant(pool_, instant, activeGroup_, *context_,
+                                   readsParents_ ? parentValues_.data() : nullptr, eventsThisStep_, nextCells_,
+                                   nextState_)) {
+      finishWord();
+      known = parallel_.earliestDeath();
+      continue;
+    }
+    beginWord();
     if (system_.backward) {
       expireBackward(instant);
     } else {

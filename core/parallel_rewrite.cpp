@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 
 #include "core/cell_frame.h"
+#include "core/linear_context.h"
 #include "core/parallel_for.h"
+#include "core/rule_choice.h"
 #include "core/rule_evaluator.h"
 #include "core/salts.h"
 #include "lang/random.h"
@@ -17,77 +20,150 @@ namespace {
 // rest, few enough that their bookkeeping costs nothing.
 constexpr size_t kSlicesPerThread = 4;
 
-bool rewritesWithoutChoice(const CompiledRule& rule) {
-  if (rule.group != 0 || !rule.predicate.empty() || !rule.probability.empty() || rule.hasContext() ||
-      !rule.aggregates.empty())
-    return false;
-  for (const SuccessorTemplate& successor : rule.successors)
-    if (!successor.birthAge.empty()) return false;
+bool bindsNothing(const std::vector<ContextBinding>& side) {
+  for (const ContextBinding& binding : side)
+    if (binding.count > 0 || binding.arity >= 0) return false;
+  return true;
+}
+
+// Whether a master's rules are chosen by comparing labels alone and write no state.
+bool comparesLabelsOnly(const Program& program, const MasterCell& master) {
+  if (master.stateCount() > 0) return false;
+  for (const CompiledRule& rule : master.terminalRules) {
+    if (!rule.predicate.empty() || !rule.probability.empty() || !rule.calculations.empty() ||
+        !rule.aggregates.empty() || !rule.unboundSlots.empty() || !bindsNothing(rule.left) ||
+        !bindsNothing(rule.right) || !bindsNothing(rule.newLeft) || !bindsNothing(rule.newRight))
+      return false;
+    for (const SuccessorTemplate& successor : rule.successors)
+      if (!successor.isMe && !(successor.stateless && program.masters[successor.master].stateCount() == 0))
+        return false;
+  }
   return true;
 }
 }  // namespace
 
 ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition& system)
-    : program_(program), functions_(program.functionTable()), frameSize_(ruleFrameSize(program)) {
+    : program_(program), system_(system), functions_(program.functionTable()), frameSize_(ruleFrameSize(program)) {
   for (uint8_t symbolClass : system.symbolClass)
-    if (symbolClass & kSymbolCut) applies_ = false;
-  masters_.resize(program.masters.size());
+    if (symbolClass & kSymbolCut) contextFree_ = atInstants_ = false;
+  if (system.backward || system.decomposes) atInstants_ = false;
+  labelsOnly_.resize(program.masters.size());
+  shortestLife_.resize(program.masters.size());
   for (size_t m = 0; m < program.masters.size(); ++m) {
     const MasterCell& master = program.masters[m];
-    PerMaster& info = masters_[m];
-    info.values = master.stateCount();
-    info.shortestLife = master.lifetime;
-    if (master.terminalRules.empty()) continue;
-    if (master.terminalRules.size() > 1 || !rewritesWithoutChoice(master.terminalRules[0])) {
-      applies_ = false;
-      continue;
+    labelsOnly_[m] = comparesLabelsOnly(program, master) && master.terminalRules.size() < UINT16_MAX;
+    allLabelsOnly_ = allLabelsOnly_ && labelsOnly_[m];
+    double shortest = master.lifetime;  // a renewal
+    for (const CompiledRule& rule : master.terminalRules) {
+      if (!rule.newLeft.empty() || !rule.newRight.empty() || !rule.aggregates.empty() || rule.contextDimensions != 1)
+        atInstants_ = false;
+      if (rule.group != 0 || !rule.predicate.empty() || !rule.probability.empty() || rule.hasContext() ||
+          !rule.aggregates.empty())
+        contextFree_ = false;
+      for (const SuccessorTemplate& successor : rule.successors) {
+        if (!successor.birthAge.empty()) contextFree_ = atInstants_ = false;
+        shortest = std::min(shortest, successor.isMe ? master.lifetime : program.masters[successor.master].lifetime);
+      }
     }
-    info.rule = &master.terminalRules[0];
-    if (!info.rule->hasAction) continue;  // renews itself after its calculations
-    info.cells = 0;
-    info.values = 0;
-    info.shortestLife = kForever;
-    for (const SuccessorTemplate& successor : info.rule->successors) {
-      const MasterCell& target = successor.isMe ? master : program.masters[successor.master];
-      ++info.cells;
-      info.values += target.stateCount();
-      info.born += successor.isMe ? 0 : 1;
-      info.shortestLife = std::min(info.shortestLife, target.lifetime);
-    }
+    if (master.terminalRules.size() > 1) contextFree_ = false;
+    shortestLife_[m] = shortest;
   }
 }
 
-void ParallelRewrite::count(const LinearPool& pool, double horizon, Slice& slice) const {
-  const auto cells = pool.cells();
+bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const {
+  const auto& classOf = rule.symbolClasses < 0 ? system_.symbolClass : system_.ruleClasses[rule.symbolClasses];
+  if (!rule.leftItems.empty() && !step.pool.matchLeft(i, rule.leftItems, classOf, worker.matched)) return false;
+  if (!rule.rightItems.empty() && !step.pool.matchRight(i, rule.rightItems, classOf, worker.matched)) return false;
+  return true;
+}
+
+const CompiledRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const {
+  const CellRecord& cell = step.pool.cells()[i];
+  for (const CompiledRule& rule : program_.masters[cell.master].terminalRules) {
+    if (rule.group != 0 && rule.group != step.group) continue;
+    if (!rule.hasContext() || (pass == Pass::AtInstant && matchesLabels(step, rule, i, worker))) return &rule;
+  }
+  return nullptr;
+}
+
+const CompiledRule* ParallelRewrite::choose(Pass pass, const Step& step, size_t i, double death, Worker& worker,
+                                            RandomStream& random, const EvalContext& evaluation) const {
+  const CellRecord& cell = step.pool.cells()[i];
+  const MasterCell& master = program_.masters[cell.master];
+  double* frame = worker.frame.data();
+  loadCellFrame(frame, master, cell, step.pool.stateOf(cell), death, {static_cast<double>(i), 0, 0},
+                step.parents ? step.parents[i] : -1);
+  auto classOf = [&](const CompiledRule& rule) -> const std::vector<uint8_t>& {
+    return rule.symbolClasses < 0 ? system_.symbolClass : system_.ruleClasses[rule.symbolClasses];
+  };
+  auto matches = [&](const CompiledRule& rule) {
+    rule.clearUnbound(frame);
+    if (rule.hasContext() &&
+        (pass == Pass::ContextFree ||
+         !matchLinearContext(program_, rule, step.pool, i, WrittenWord{}, classOf(rule), frame, worker.matched)))
+      return false;
+    return rule.predicate.empty() || rule.predicate.evaluate(evaluation) != 0.0;
+  };
+  const CompiledRule* chosen =
+      ontogen::chooseRule(master.terminalRules, step.group, matches, evaluation, random, worker.candidates);
+  if (chosen && !chosen->probability.empty()) {  // rebind its values
+    chosen->clearUnbound(frame);
+    if (chosen->hasContext())
+      matchLinearContext(program_, *chosen, step.pool, i, WrittenWord{}, classOf(*chosen), frame, worker.matched);
+  }
+  return chosen;
+}
+
+void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& worker) {
+  const auto cells = step.pool.cells();
   const auto& masters = program_.masters;
+  worker.frame.resize(frameSize_);
   for (size_t i = slice.begin; i < slice.end; ++i) {
     const CellRecord& cell = cells[i];
-    const double death = cell.birth + masters[cell.master].lifetime;
-    const PerMaster& info = masters_[cell.master];
-    if (death > horizon) {
+    const MasterCell& master = masters[cell.master];
+    const double death = cell.birth + master.lifetime;
+    if (death > step.horizon) {
       ++slice.cells;
-      slice.values += masters[cell.master].stateCount();
+      slice.values += master.stateCount();
       continue;
     }
     ++slice.events;
-    slice.cells += info.cells;
-    slice.values += info.values;
-    slice.born += info.born;
     // As the serial pass finds it: a successor born at `death` that expires by the horizon.
-    if (death + info.shortestLife <= horizon) slice.chained = true;
+    if (pass == Pass::ContextFree && death + shortestLife_[cell.master] <= step.horizon) slice.chained = true;
+    const CompiledRule* rule = nullptr;
+    if (labelsOnly_[cell.master]) {
+      rule = chooseByLabels(pass, step, i, worker);
+      chosen_[i] = rule ? static_cast<uint16_t>(rule - master.terminalRules.data() + 1) : 0;
+    } else {
+      RandomStream random(mixKey(mixKey(step.context.seed, cell.id), keyOf(death)));
+      EvalContext evaluation{worker.frame.data(), EvalEnvironment{&random, step.context.seed}, &functions_, nullptr};
+      evaluation.ancestors = step.context.ancestors;
+      rule = choose(pass, step, i, death, worker, random, evaluation);
+    }
+    if (!rule || !rule->hasAction) {
+      ++slice.cells;
+      slice.values += master.stateCount();
+      continue;
+    }
+    for (const SuccessorTemplate& successor : rule->successors) {
+      ++slice.cells;
+      slice.values += successor.isMe ? master.stateCount() : masters[successor.master].stateCount();
+      slice.born += successor.isMe ? 0 : 1;
+    }
   }
 }
 
-// What LinearDevelopment::expire does for a rule without a choice, written in place.
-void ParallelRewrite::write(const LinearPool& pool, double horizon, const StepContext& context, const double* parents,
-                            const Slice& slice, uint64_t firstCell, uint64_t firstValue, Worker& worker,
-                            CellArray& cells, StateArray& state) const {
-  const auto word = pool.cells();
+// What LinearDevelopment::expire does, written in place.
+void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t firstCell, uint64_t firstValue,
+                            Worker& worker, CellArray& cells, StateArray& state) const {
+  const auto word = step.pool.cells();
   const auto& masters = program_.masters;
   CellRecord* outCells = cells.data() + firstCell;
   double* outValues = state.data();
   uint64_t valueAt = firstValue;
+  double earliest = kForever;
   auto put = [&](const CellRecord& record, const double* values, uint32_t count) {
+    earliest = std::min(earliest, record.birth + masters[record.master].lifetime);
     CellRecord copy = record;
     copy.state = static_cast<uint32_t>(valueAt);
     *outCells++ = copy;
@@ -100,22 +176,31 @@ void ParallelRewrite::write(const LinearPool& pool, double horizon, const StepCo
     const CellRecord& cell = word[i];
     const MasterCell& master = masters[cell.master];
     const uint32_t n = master.stateCount();
-    const double* values = pool.stateOf(cell);
     const double death = cell.birth + master.lifetime;
-    if (death > horizon) {
-      put(cell, values, n);
+    if (death > step.horizon) {
+      put(cell, step.pool.stateOf(cell), n);
       continue;
     }
-    loadCellFrame(frame, master, cell, values, death, {static_cast<double>(i), 0, 0}, parents ? parents[i] : -1);
-    RandomStream random(mixKey(mixKey(context.seed, cell.id), keyOf(death)));
-    EvalContext evaluation{frame, EvalEnvironment{&random, context.seed}, &functions_, nullptr};
-    evaluation.ancestors = context.ancestors;
-    const CompiledRule* rule = masters_[cell.master].rule;
-    if (rule) {
-      rule->clearUnbound(frame);
+    if (labelsOnly_[cell.master]) {
+      // Nothing to evaluate: no frame, no random stream.
+      const CompiledRule* rule = chosen_[i] ? &master.terminalRules[chosen_[i] - 1u] : nullptr;
+      if (rule && rule->hasAction) {
+        const EvalContext none{};
+        worker.successors.write(*rule, cell, nullptr, death, BirthCause::Terminal, none, put);
+      } else {
+        CellRecord renewed = cell;
+        renewed.birth = death;
+        put(renewed, nullptr, 0);
+      }
+      continue;
+    }
+    RandomStream random(mixKey(mixKey(step.context.seed, cell.id), keyOf(death)));
+    EvalContext evaluation{frame, EvalEnvironment{&random, step.context.seed}, &functions_, nullptr};
+    evaluation.ancestors = step.context.ancestors;
+    const CompiledRule* rule = choose(pass, step, i, death, worker, random, evaluation);
+    if (rule)
       for (const StateCalculation& calculation : rule->calculations)
         frame[calculation.slot] = calculation.value.evaluate(evaluation);
-    }
     if (!rule || !rule->hasAction) {
       CellRecord renewed = cell;
       renewed.birth = death;
@@ -124,15 +209,41 @@ void ParallelRewrite::write(const LinearPool& pool, double horizon, const StepCo
     }
     worker.successors.write(*rule, cell, frame, death, BirthCause::Terminal, evaluation, put);
   }
+  slice.earliestDeath = earliest;
+  // Counting and writing choose alike by construction; a slice that wrote other than it
+  // counted is a defect of this file, stopped here rather than left in the word.
+  if (outCells != cells.data() + firstCell + slice.cells || valueAt != firstValue + slice.values) [[unlikely]]
+    throw std::logic_error("ontogen: internal error: a slice of the parallel rewrite wrote other than it counted");
 }
 
-bool ParallelRewrite::rewrite(const LinearPool& pool, double horizon, StepContext& context, const double* parents,
-                              uint64_t& events, CellArray& cells, StateArray& state) {
+bool ParallelRewrite::rewriteContextFree(const LinearPool& pool, double horizon, StepContext& context,
+                                         const double* parents, uint64_t& events, CellArray& cells,
+                                         StateArray& state) {
   cells.clear();
   state.clear();
+  if (!contextFree_) return false;
+  return rewrite(Pass::ContextFree, Step{pool, horizon, 0, context, parents}, context, events, cells, state);
+}
+
+bool ParallelRewrite::rewriteAtInstant(const LinearPool& pool, double instant, int group, StepContext& context,
+                                       const double* parents, uint64_t& events, CellArray& cells,
+                                       StateArray& state) {
+  cells.clear();
+  state.clear();
+  if (!atInstants_) return false;
+  return rewrite(Pass::AtInstant, Step{pool, instant, group, context, parents}, context, events, cells, state);
+}
+
+bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context, uint64_t& events, CellArray& cells,
+                              StateArray& state) {
   const unsigned threads = context.threads;
-  const size_t size = pool.size();
-  if (!applies_ || threads < 2 || size < kMinimumCells || context.lineage) return false;
+  const size_t size = step.pool.size();
+  // On one thread the slices pay where nothing is evaluated (two quick passes beat the
+  // general one); a word with state keeps the serial pass there.
+  if (!context.rewriteBySlices || (threads < 2 && !allLabelsOnly_) || size < kMinimumCells || context.lineage)
+    return false;
+  while (workers_.size() < threads) workers_.push_back(std::make_unique<Worker>(program_));
+  if (chosen_.size() < size) chosen_.resize(size);
   const size_t sliceCount = std::min<size_t>(size, size_t{threads} * kSlicesPerThread);
   slices_.assign(sliceCount, Slice{});
   for (size_t s = 0; s < sliceCount; ++s) {
@@ -141,8 +252,8 @@ bool ParallelRewrite::rewrite(const LinearPool& pool, double horizon, StepContex
   }
   parallelFor(
       sliceCount, threads,
-      [&](size_t begin, size_t end, unsigned) {
-        for (size_t s = begin; s < end; ++s) count(pool, horizon, slices_[s]);
+      [&](size_t begin, size_t end, unsigned worker) {
+        for (size_t s = begin; s < end; ++s) count(pass, step, slices_[s], *workers_[worker]);
       },
       1);
   uint64_t totalCells = 0, totalValues = 0, totalEvents = 0, totalBorn = 0;
@@ -156,13 +267,12 @@ bool ParallelRewrite::rewrite(const LinearPool& pool, double horizon, StepContex
   if (events + totalEvents > context.limits.maxEventsPerStep || totalValues > UINT32_MAX) return false;
   try {
     checkGrowth(context, totalCells,
-                pool.bytes() + totalCells * sizeof(CellRecord) + totalValues * sizeof(double));
+                step.pool.bytes() + totalCells * sizeof(CellRecord) + totalValues * sizeof(double));
   } catch (const LimitError&) {
     return false;  // the serial pass stops where it passes the limit, as it always did
   }
   resizeForOverwrite(cells, totalCells);
   resizeForOverwrite(state, totalValues);
-  while (workers_.size() < threads) workers_.push_back(std::make_unique<Worker>(program_));
   std::vector<uint64_t> firstCell(sliceCount), firstValue(sliceCount);
   for (size_t s = 0, c = 0, v = 0; s < sliceCount; ++s) {
     firstCell[s] = c;
@@ -174,14 +284,15 @@ bool ParallelRewrite::rewrite(const LinearPool& pool, double horizon, StepContex
       sliceCount, threads,
       [&](size_t begin, size_t end, unsigned worker) {
         for (size_t s = begin; s < end; ++s)
-          write(pool, horizon, context, parents, slices_[s], firstCell[s], firstValue[s], *workers_[worker], cells,
-                state);
+          write(pass, step, slices_[s], firstCell[s], firstValue[s], *workers_[worker], cells, state);
       },
       1);
+  earliestDeath_ = kForever;
+  for (const Slice& slice : slices_) earliestDeath_ = std::min(earliestDeath_, slice.earliestDeath);
   events += totalEvents;
   context.stats.events += totalEvents;
   context.stats.cellsBorn += totalBorn;
-  ++context.stats.parallelRewrites;
+  ++context.stats.rewritesBySlices;
   return true;
 }
 

@@ -1,16 +1,26 @@
 #pragma once
-// The context-free rewriting of a large linear word on every core. Each thread takes a
-// slice of the word; a first pass counts what each slice will write (the cells and state
-// values of its successors, which for a rule without condition, chance or context are
-// fixed per master), prefix sums give each slice its place in the next word, and a second
-// pass writes every slice in place. The next word is bit for bit the one the serial pass
-// writes, whatever the thread count: ids and random streams derive from each cell alone.
+// The production pass of a large linear word on every core. Each thread takes a slice of
+// the word; a first pass counts what each slice will write (the cells and state values
+// of the successors its cells' chosen rules make), prefix sums give each slice its place
+// in the next word, and a second pass writes every slice in place, choosing again. The
+// next word is bit for bit the one the serial pass writes, whatever the thread count: a
+// cell's choice, ids and random numbers derive from the cell and the old word alone.
 //
-// It applies when every master of the system rewrites without a choice: at most one
-// terminal rule, of group 0, with no predicate, probability, context, neighbour
-// aggregate or birth age, and no cut symbol; and in a step where no successor reaches its
-// own terminal age before the step's end and the limits are not passed. Otherwise the
-// development takes its serial pass (which reports a limit as it always did).
+// Two passes of the linear development come here:
+//  - the context-free pass (rewriteContextFree), when every master rewrites without a
+//    choice: at most one terminal rule, of group 0, with no predicate, probability,
+//    context, neighbour aggregate or birth age; in a step where no successor reaches its
+//    own terminal age before the step's end;
+//  - the pass of one instant with context (rewriteAtInstant), when no rule reads the
+//    word being written (`<<`, `>>`), aggregates neighbours or gives a birth age, and the
+//    system has no decomposition. Masters without state whose rules only compare labels
+//    (no condition, chance, calculation or bound value, successors without state) are
+//    rewritten without loading a frame or a random stream.
+// Neither applies with a cut symbol, with the lineage being logged, or when the new word
+// would pass a limit: then the development takes its serial pass, which reports the
+// limit as it always did. On one thread the slices are taken only when every master
+// compares labels only (Koch, Thue-Morse, a signal): there two quick passes beat the
+// general one; a word with state keeps the serial pass.
 
 #include <cstdint>
 #include <memory>
@@ -27,50 +37,80 @@ class ParallelRewrite {
  public:
   ParallelRewrite(const Program& program, const SystemDefinition& system);
 
-  /// Whether the system's rules allow it at all.
-  bool applies() const { return applies_; }
+  bool appliesContextFree() const { return contextFree_; }
+  bool appliesAtInstants() const { return atInstants_; }
 
-  /// Rewrites `pool`'s word for the step ending at `horizon` into `cells` and `state`
-  /// (emptied first), with `parents` the me.parent value of each cell (null when no rule
-  /// reads it). Returns false, leaving them empty, when the step needs the serial pass;
-  /// else adds the step's events and births to `events` and `context.stats`.
-  bool rewrite(const LinearPool& pool, double horizon, StepContext& context, const double* parents,
-               uint64_t& events, CellArray& cells, StateArray& state);
+  /// The context-free pass of the step ending at `horizon`: rewrites `pool`'s word into
+  /// `cells` and `state` (emptied first), with `parents` the me.parent value of each cell
+  /// (null when no rule reads it). Returns false, leaving them empty, when the step needs
+  /// the serial pass; else adds the step's events to `events` and `context.stats`.
+  bool rewriteContextFree(const LinearPool& pool, double horizon, StepContext& context, const double* parents,
+                          uint64_t& events, CellArray& cells, StateArray& state);
+
+  /// The pass of the cells that expire by `instant` in a word with context (its branches
+  /// indexed), with rule group `group` active; as rewriteContextFree otherwise.
+  bool rewriteAtInstant(const LinearPool& pool, double instant, int group, StepContext& context,
+                        const double* parents, uint64_t& events, CellArray& cells, StateArray& state);
+
+  /// The earliest terminal age (birth + lifetime) in the word rewriteAtInstant wrote last,
+  /// found while writing it, so the development need not look for it again.
+  double earliestDeath() const { return earliestDeath_; }
 
   /// Words smaller than this go the serial way: threads would cost more than they save.
   static constexpr size_t kMinimumCells = size_t{1} << 15;
 
  private:
-  struct PerMaster {
-    const CompiledRule* rule = nullptr;  // its only terminal rule; null: it renews itself
-    uint32_t cells = 1;                  // cells written when it expires
-    uint32_t values = 0;                 // state values written when it expires
-    uint32_t born = 0;                   // new cells among them (not `me`)
-    double shortestLife = kForever;      // the shortest lifetime among what it writes
-  };
+  enum class Pass : uint8_t { ContextFree, AtInstant };
   struct Slice {
-    size_t begin = 0, end = 0;    // cells of the word
+    size_t begin = 0, end = 0;  // cells of the word
     uint64_t cells = 0, values = 0, events = 0, born = 0;
-    bool chained = false;         // a successor expires within the step
+    bool chained = false;       // the context-free pass: a successor expires within the step
+    double earliestDeath = kForever;  // of the cells it wrote
   };
   struct Worker {
     explicit Worker(const Program& program) : successors(program) {}
     SuccessorWriter successors;
     std::vector<double> frame;
+    std::vector<std::pair<const CompiledRule*, double>> candidates;
+    uint32_t matched[kMaxContextItems];
+  };
+  /// What one pass reads besides the word.
+  struct Step {
+    const LinearPool& pool;
+    double horizon;  // cells that die by it expire
+    int group;
+    const StepContext& context;
+    const double* parents;
   };
 
-  void count(const LinearPool& pool, double horizon, Slice& slice) const;
-  void write(const LinearPool& pool, double horizon, const StepContext& context, const double* parents,
-             const Slice& slice, uint64_t firstCell, uint64_t firstValue, Worker& worker, CellArray& cells,
-             StateArray& state) const;
+  bool rewrite(Pass pass, const Step& step, StepContext& context, uint64_t& events, CellArray& cells,
+               StateArray& state);
+  void count(Pass pass, const Step& step, Slice& slice, Worker& worker);
+  void write(Pass pass, const Step& step, Slice& slice, uint64_t firstCell, uint64_t firstValue,
+             Worker& worker, CellArray& cells, StateArray& state) const;
+  /// The rule cell i chooses (null: it renews itself), with its frame loaded and its
+  /// context's values bound; as LinearDevelopment::expire chooses.
+  const CompiledRule* choose(Pass pass, const Step& step, size_t i, double death, Worker& worker,
+                             RandomStream& random, const EvalContext& evaluation) const;
+  /// The same for a master whose rules compare labels only: no frame, no random stream.
+  const CompiledRule* chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const;
+  bool matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const;
 
   const Program& program_;
-  bool applies_ = true;
-  std::vector<PerMaster> masters_;
+  const SystemDefinition& system_;
+  bool contextFree_ = true;
+  bool atInstants_ = true;
+  std::vector<uint8_t> labelsOnly_;  // per master: its rules compare labels only
+  bool allLabelsOnly_ = true;
+  // Per cell of the word, for a master whose rules compare labels only: the rule the
+  // counting pass chose (1 + its index; 0: none), which the writing pass takes as it is.
+  std::vector<uint16_t> chosen_;
+  std::vector<double> shortestLife_;  // per master: the shortest lifetime of what its rule writes
   FunctionTable functions_;
   std::vector<Slice> slices_;
   std::vector<std::unique_ptr<Worker>> workers_;
   size_t frameSize_ = 0;
+  double earliestDeath_ = kForever;
 };
 
 }  // namespace ontogen

@@ -54,6 +54,7 @@ StepContext World::stepContext(const WorldHeld& elsewhere) {
                       stats_};
   context.elsewhere = elsewhere;
   context.lineage = def_.recordLineage ? &lineage_ : nullptr;
+  context.rewriteBySlices = def_.rewriteBySlices;
   context.idSalt = idSalt();
   context.systemCellId = parent_ ? idValue(cellId_) : -1;
   return context;
@@ -304,7 +305,7 @@ void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tre
         stats_.ruleFirings += child->stats_.ruleFirings - before.ruleFirings;
         stats_.cellsBorn += child->stats_.cellsBorn - before.cellsBorn;
         stats_.crowded += child->stats_.crowded - before.crowded;
-        stats_.parallelRewrites += child->stats_.parallelRewrites - before.parallelRewrites;
+        stats_.rewritesBySlices += child->stats_.rewritesBySlices - before.rewritesBySlices;
       }
     } else {
       child = std::make_unique<World>(*this, cell, pool.stateOf(cell), &tree);

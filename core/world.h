@@ -47,6 +47,10 @@ struct WorldDef {
   unsigned threads = 1;
   /// Keep a log of every birth (child, parent, time) for lineage(); off, it costs nothing.
   bool recordLineage = false;
+  /// Rewrite large linear words by slices (core/parallel_rewrite.h) where it applies. Off,
+  /// every word takes the one-pass serial rewriting; the result is the same bits, which is
+  /// what tests compare.
+  bool rewriteBySlices = true;
   /// Answers the query modules (`?P(x, y, z)` ...) after seeding and after every step
   /// (core/environment_process.h); null: they keep their values. Shared by copies.
   std::shared_ptr<const EnvironmentProcess> environment = nullptr;

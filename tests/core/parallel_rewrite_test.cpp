@@ -1,6 +1,6 @@
-// The context-free pass on several threads (core/parallel_rewrite.h) writes the word the
-// serial pass writes, bit for bit: records, ids, birth times, state values and
-// statistics, on any number of threads; and it is the pass taken for large words.
+// The rewriting by slices (core/parallel_rewrite.h) writes the word the one-pass serial
+// rewriting writes, bit for bit: records, ids, birth times, state values and statistics,
+// on any number of threads; and it is the pass taken for large words.
 
 #include <gtest/gtest.h>
 
@@ -35,10 +35,12 @@ struct Grown {
   WorldStats stats;
 };
 
-Grown grow(const std::shared_ptr<const Program>& program, double until, unsigned threads) {
+// `slices` false: the one-pass serial rewriting, the reference.
+Grown grow(const std::shared_ptr<const Program>& program, double until, unsigned threads, bool slices = true) {
   WorldDef def;
   def.seed = 11;
   def.threads = threads;
+  def.rewriteBySlices = slices;
   Grown grown{std::make_unique<World>(program, def), {}};
   grown.world->advanceTo(until, 1.0);
   grown.stats = grown.world->stats();
@@ -65,12 +67,14 @@ void expectSameWords(const World& serial, const World& parallel, const std::stri
 TEST(ParallelRewrite, EveryKindOfSuccessorIsWrittenAsTheSerialPassWritesIt) {
   auto program = testing_support::compileOrFail(kEveryKindOfSuccessor);
   ASSERT_NE(program, nullptr);
-  const Grown serial = grow(program, 16, 1);
+  const Grown serial = grow(program, 16, 1, false);
   ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
-  EXPECT_EQ(serial.stats.parallelRewrites, 0u);
+  EXPECT_EQ(serial.stats.rewritesBySlices, 0u);
+  // On one thread, a word with state keeps the serial pass.
+  EXPECT_EQ(grow(program, 16, 1).stats.rewritesBySlices, 0u);
   for (unsigned threads : {2u, 3u, 7u}) {
     const Grown parallel = grow(program, 16, threads);
-    EXPECT_GT(parallel.stats.parallelRewrites, 0u) << threads << " threads: the serial pass was taken";
+    EXPECT_GT(parallel.stats.rewritesBySlices, 0u) << threads << " threads: the serial pass was taken";
     expectSameWords(*serial.world, *parallel.world, std::to_string(threads) + " threads");
     EXPECT_EQ(parallel.stats.events, serial.stats.events);
     EXPECT_EQ(parallel.stats.cellsBorn, serial.stats.cellsBorn);
@@ -80,11 +84,59 @@ TEST(ParallelRewrite, EveryKindOfSuccessorIsWrittenAsTheSerialPassWritesIt) {
 TEST(ParallelRewrite, KochOnTwoThreadsIsKochOnOne) {
   auto program = testing_support::compileOrFail(kKoch);
   ASSERT_NE(program, nullptr);
-  const Grown serial = grow(program, 8, 1);
-  const Grown parallel = grow(program, 8, 2);
+  const Grown serial = grow(program, 8, 1, false);
   EXPECT_EQ(serial.world->rootPool().size(), 2u * 390625u - 1u);  // 2 * 5^8 - 1
-  EXPECT_GT(parallel.stats.parallelRewrites, 0u);
-  expectSameWords(*serial.world, *parallel.world, "Koch");
+  for (unsigned threads : {1u, 2u}) {
+    // Koch's modules compare labels only: by slices on one thread too.
+    const Grown sliced = grow(program, 8, threads);
+    EXPECT_GT(sliced.stats.rewritesBySlices, 0u) << threads << " threads";
+    expectSameWords(*serial.world, *sliced.world, "Koch on " + std::to_string(threads) + " threads");
+  }
+}
+
+// The context signal of the benchmarks: labels only, no frame.
+std::string signalProgram(int cells) {
+  std::string axiom = "b";
+  for (int i = 1; i < cells; ++i) axiom += " a";
+  return "lsystem signal {\n  axiom " + axiom + "\n  b < a -> b\n  b -> a\n}\n";
+}
+
+TEST(ParallelRewrite, ALabelOnlyContextIsWrittenAsTheSerialPassWritesIt) {
+  auto program = testing_support::compileOrFail(signalProgram(50'000));
+  ASSERT_NE(program, nullptr);
+  const Grown serial = grow(program, 40, 1, false);
+  EXPECT_EQ(serial.stats.rewritesBySlices, 0u);
+  // The signal has moved 40 places.
+  EXPECT_EQ(program->masters[serial.world->rootPool().cells()[40].master].label, "b");
+  for (unsigned threads : {1u, 2u, 5u}) {
+    const Grown parallel = grow(program, 40, threads);
+    EXPECT_EQ(parallel.stats.rewritesBySlices, 40u) << threads << " threads";
+    expectSameWords(*serial.world, *parallel.world, "signal on " + std::to_string(threads) + " threads");
+    EXPECT_EQ(parallel.stats.events, serial.stats.events);
+  }
+}
+
+// Context with bound values, conditions, chance and draws in the successors.
+const char* kContextWithChoices = R"(lsystem g {
+  axiom A(1) B(1)
+  A(x) -> A(x * 0.5) B(x)
+  A(x) < B(y) : y > 0.3 -> B(x + y) A(y) : 0.6
+  A(x) < B(y) -> B(y + uniform(0, 1)) : 0.4
+  B(y) > A(z) -> B(y - z)
+  B(y) -> B(y) A(y * 2)
+})";
+
+TEST(ParallelRewrite, ContextWithChoicesIsWrittenAsTheSerialPassWritesIt) {
+  auto program = testing_support::compileOrFail(kContextWithChoices);
+  ASSERT_NE(program, nullptr);
+  const Grown serial = grow(program, 25, 1, false);
+  ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
+  for (unsigned threads : {2u, 3u}) {
+    const Grown parallel = grow(program, 25, threads);
+    EXPECT_GT(parallel.stats.rewritesBySlices, 0u) << threads << " threads";
+    expectSameWords(*serial.world, *parallel.world, "context with choices on " + std::to_string(threads) + " threads");
+    EXPECT_EQ(parallel.stats.cellsBorn, serial.stats.cellsBorn);
+  }
 }
 
 TEST(ParallelRewrite, ChoicesAndStepsWhereSuccessorsExpireTakeTheSerialPass) {
@@ -97,8 +149,8 @@ TEST(ParallelRewrite, ChoicesAndStepsWhereSuccessorsExpireTakeTheSerialPass) {
 })");
   ASSERT_NE(stochastic, nullptr);
   const Grown chosen = grow(stochastic, 17, 2);
-  EXPECT_EQ(chosen.stats.parallelRewrites, 0u);
-  expectSameWords(*grow(stochastic, 17, 1).world, *chosen.world, "stochastic");
+  EXPECT_EQ(chosen.stats.rewritesBySlices, 0u);
+  expectSameWords(*grow(stochastic, 17, 1, false).world, *chosen.world, "stochastic");
 
   // Steps of 2 s over lifetimes of 1 s: successors expire within the step.
   auto koch = testing_support::compileOrFail(kKoch);
@@ -107,7 +159,7 @@ TEST(ParallelRewrite, ChoicesAndStepsWhereSuccessorsExpireTakeTheSerialPass) {
   World world(koch, def);
   world.advanceTo(8, 2.0);
   EXPECT_EQ(world.rootPool().size(), 2u * 390625u - 1u);
-  EXPECT_EQ(world.stats().parallelRewrites, 0u);
+  EXPECT_EQ(world.stats().rewritesBySlices, 0u);
 }
 
 TEST(ParallelRewrite, ALimitIsReportedAsTheSerialPassReportsIt) {
