@@ -48,5 +48,23 @@ void BM_SpatialIndexAndQueries(benchmark::State& state) {
 }
 BENCHMARK(BM_SpatialIndexAndQueries)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
 
+// The same queries as the engine asks them for a step's rules or rates: every cell's
+// neighbours at once, in bucket order (SpatialPool::neighbourTable).
+void BM_SpatialNeighbourTable(benchmark::State& state) {
+  const size_t n = static_cast<size_t>(state.range(0));
+  SpatialPool pool = makePool(n);
+  std::vector<uint32_t> offsets, cells;
+  for (auto _ : state) {
+    pool.index();
+    pool.neighbourTable(offsets, cells);
+    benchmark::DoNotOptimize(cells.data());
+  }
+  const double mean = static_cast<double>(cells.size()) / static_cast<double>(n);
+  if (mean < 2 || mean > 4) state.SkipWithError("the density is not the intended one");
+  state.counters["neighbours/cell"] = mean;
+  state.counters["cells/s"] = benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_SpatialNeighbourTable)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace ontogen::bench

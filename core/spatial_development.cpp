@@ -36,11 +36,18 @@ std::vector<std::array<int, 3>> positionSlots(const Program& program) {
 }  // namespace
 
 SpatialDevelopment::SpatialDevelopment(const Program& program, const SystemDefinition& system)
-    : program_(&program), system_(&system), pool_(system.spatialRadius, positionSlots(program)) {}
+    : program_(&program), system_(&system), pool_(system.spatialRadius, positionSlots(program)) {
+  for (const MasterCell& master : program.masters)
+    for (const CompiledRule& rule : master.rules) aggregates_ = aggregates_ || !rule.aggregates.empty();
+}
 
 // A copy develops on its own: its view looks at its own pool.
 SpatialDevelopment::SpatialDevelopment(const SpatialDevelopment& other)
-    : Development(other), program_(other.program_), system_(other.system_), pool_(other.pool_) {}
+    : Development(other),
+      program_(other.program_),
+      system_(other.system_),
+      pool_(other.pool_),
+      aggregates_(other.aggregates_) {}
 
 void SpatialDevelopment::seed(StepContext& context) {
   seedFromAxiom(pool_, context);
@@ -59,6 +66,8 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
   const Program& program = *program_;
   const double t = context.time;
   pool_.index();
+  // The neighbours of every cell, found in bucket order rather than cell by cell.
+  if (aggregates_) pool_.neighbourTable(neighbourOffsets_, neighbourCells_);
   std::vector<ChunkResult> results;
   GrowthMeter meter(context, WorldHeld{pool_.size(), pool_.bytes()});
   runStepRules(program, context, view_, results,
@@ -76,7 +85,10 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
                    out.born += successors.write(*action, cell, frame, t, BirthCause::StepRule, evaluation, emit);
                  meter.update(out.metered, out.cells.size(),
                               out.cells.size() * sizeof(CellRecord) + out.state.size() * sizeof(double));
-               });
+               },
+               aggregates_ ? std::pair{static_cast<const uint32_t*>(neighbourOffsets_.data()),
+                                       static_cast<const uint32_t*>(neighbourCells_.data())}
+                           : std::pair<const uint32_t*, const uint32_t*>{nullptr, nullptr});
 
   CellArray next;
   StateArray nextState;

@@ -7,6 +7,7 @@
 // evaluator one cell at a time (its context is branch-aware and its word is rebuilt in
 // order), in LinearDevelopment::fireStepRules.
 
+#include <utility>
 #include <vector>
 
 #include "core/development.h"
@@ -22,9 +23,11 @@ namespace ontogen {
 /// `results` gets one per worker. For each cell calls
 /// `place(Chunk&, size_t i, const CellRecord&, double* frame, const CompiledRule* action,
 ///        const EvalContext&, SuccessorWriter&)`, `action` null when no rule with an action fired.
+/// `table`, when given, holds every cell's neighbours as compressed rows (offsets, cells),
+/// found once for the pass (RuleEvaluator::useNeighbourTable).
 template <typename View, typename Chunk, typename Place>
 void runStepRules(const Program& program, const StepContext& context, const View& view, std::vector<Chunk>& results,
-                  Place&& place) {
+                  Place&& place, const std::pair<const uint32_t*, const uint32_t*>& table = {nullptr, nullptr}) {
   const double t = context.time;
   const Pool& pool = view.pool();
   const auto cells = pool.cells();
@@ -36,6 +39,7 @@ void runStepRules(const Program& program, const StepContext& context, const View
     Chunk& out = results[worker];
     RuleEvaluator<View> evaluator(program, view);
     evaluator.useParent(context.systemCellId);
+    evaluator.useNeighbourTable(table.first, table.second);
     SuccessorWriter successors(program);
     if (context.lineage) successors.recordLineage(&out.lineage);
     for (size_t i = begin; i < end; ++i) {

@@ -93,16 +93,15 @@ void SpatialPool::index() {
   ++version_;
 }
 
-void SpatialPool::neighbours(size_t i, std::vector<uint32_t>& out) const {
-  out.clear();
-  const auto p = positionOf(i);
+template <typename Found>
+void SpatialPool::scanAround(const std::array<double, 3>& p, size_t self, Found&& found) const {
   const auto b = bucketOf(p);
   const double r2 = radius_ * radius_;
   auto scan = [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
       const auto& q = sorted_[k];
       const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]);
-      if (d2 <= r2 && order_[k] != i) out.push_back(order_[k]);
+      if (d2 <= r2 && order_[k] != self) found(k);
     }
   };
   for (int64_t dz = -1; dz <= 1; ++dz)
@@ -116,6 +115,31 @@ void SpatialPool::neighbours(size_t i, std::vector<uint32_t>& out) const {
         auto it = buckets_.find(bucketKey(b[0] + dx, b[1] + dy, b[2] + dz));
         if (it != buckets_.end()) scan(it->second.first, it->second.second);
       }
+}
+
+void SpatialPool::neighbours(size_t i, std::vector<uint32_t>& out) const {
+  out.clear();
+  scanAround(positionOf(i), i, [&](uint32_t k) { out.push_back(order_[k]); });
+}
+
+void SpatialPool::neighbourTable(std::vector<uint32_t>& offsets, std::vector<uint32_t>& cells) const {
+  const size_t n = order_.size();
+  // The queries in bucket order (their positions are sorted_, contiguous), each list
+  // appended in that order...
+  flat_.clear();
+  starts_.resize(n + 1);
+  for (size_t k = 0; k < n; ++k) {
+    starts_[k] = static_cast<uint32_t>(flat_.size());
+    scanAround(sorted_[k], order_[k], [&](uint32_t found) { flat_.push_back(order_[found]); });
+  }
+  starts_[n] = static_cast<uint32_t>(flat_.size());
+  // ...then the rows moved to pool order, a contiguous copy each.
+  offsets.assign(n + 1, 0);
+  for (size_t k = 0; k < n; ++k) offsets[order_[k] + 1] = starts_[k + 1] - starts_[k];
+  for (size_t i = 0; i < n; ++i) offsets[i + 1] += offsets[i];
+  cells.resize(flat_.size());
+  for (size_t k = 0; k < n; ++k)
+    std::copy(flat_.begin() + starts_[k], flat_.begin() + starts_[k + 1], cells.begin() + offsets[order_[k]]);
 }
 
 }  // namespace ontogen

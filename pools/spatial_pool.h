@@ -35,9 +35,18 @@ class SpatialPool final : public Pool {
   /// Replaces `out` with the cells within the radius of cell i, other than i, in a
   /// fixed order (bucket by bucket, then pool order). Needs index().
   void neighbours(size_t i, std::vector<uint32_t>& out) const;
+  /// Every cell's neighbours at once, as compressed rows by pool index: cell i's are
+  /// cells[offsets[i]] .. cells[offsets[i + 1] - 1], in the order neighbours(i) gives.
+  /// The queries go in bucket order, so that neighbouring queries read the same buckets
+  /// from the cache (in pool order, a million cells miss it on almost every bucket).
+  void neighbourTable(std::vector<uint32_t>& offsets, std::vector<uint32_t>& cells) const;
 
  private:
   static uint64_t bucketKey(int64_t x, int64_t y, int64_t z);
+  /// Calls found(k) for each position k of order_ within the radius of `p`, bucket by
+  /// bucket, then pool order; `self` (a pool index) is left out.
+  template <typename Found>
+  void scanAround(const std::array<double, 3>& p, size_t self, Found&& found) const;
   std::array<int64_t, 3> bucketOf(const std::array<double, 3>& p) const;
   /// Index of a bucket in the dense grid, or -1 outside it.
   int64_t denseIndex(int64_t x, int64_t y, int64_t z) const;
@@ -48,6 +57,8 @@ class SpatialPool final : public Pool {
   // positions copied alongside so that a query reads contiguous memory.
   std::vector<uint32_t> order_;
   std::vector<std::array<double, 3>> sorted_;
+  mutable std::vector<uint32_t> flat_;   // neighbourTable's lists in bucket order, kept for reuse
+  mutable std::vector<uint32_t> starts_;
   // Buckets as a dense box over the occupied range when it is not much larger than the
   // number of cells (start offsets into order_), else hashed.
   bool dense_ = true;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <random>
 #include <vector>
@@ -40,6 +41,36 @@ TEST(SpatialPool, NeighboursMatchABruteForceSearch) {
     }
     std::sort(found.begin(), found.end());
     ASSERT_EQ(found, expected) << "cell " << i;
+  }
+}
+
+// The table found in bucket order holds, row by row, what neighbours(i) gives, in its
+// order: with dense buckets (cells filling their box) and hashed ones (a sparse scatter).
+TEST(SpatialPool, TheNeighbourTableIsEveryCellsNeighbours) {
+  for (const double spread : {8.0, 4000.0}) {
+    SpatialPool pool(1.0, {{0, 1, -1}});
+    std::mt19937_64 random(5);
+    // Clusters 8 wide around 12 centres spread over `spread`: one box, or far apart.
+    std::uniform_real_distribution<double> centre(0, spread), offset(0, 8);
+    std::vector<std::array<double, 2>> centres(12);
+    for (auto& c : centres) c = {centre(random), centre(random)};
+    for (uint64_t id = 0; id < 3000; ++id) {
+      const auto& c = centres[id % centres.size()];
+      const double p[2] = {c[0] + offset(random), c[1] + offset(random)};
+      pool.append(CellRecord{0, 0, 0, id}, p, 2);
+    }
+    pool.index();
+    std::vector<uint32_t> offsets, cells, found;
+    pool.neighbourTable(offsets, cells);
+    ASSERT_EQ(offsets.size(), pool.size() + 1);
+    size_t pairs = 0;
+    for (size_t i = 0; i < pool.size(); ++i) {
+      pool.neighbours(i, found);
+      pairs += found.size();
+      ASSERT_EQ(std::vector<uint32_t>(cells.begin() + offsets[i], cells.begin() + offsets[i + 1]), found)
+          << "cell " << i << ", spread " << spread;
+    }
+    EXPECT_GT(pairs, pool.size()) << "spread " << spread << ": too few neighbours to tell";
   }
 }
 
