@@ -53,7 +53,7 @@ BENCHMARK(BM_SpatialIndexAndQueries)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)-
 void BM_SpatialNeighbourTable(benchmark::State& state) {
   const size_t n = static_cast<size_t>(state.range(0));
   SpatialPool pool = makePool(n);
-  std::vector<uint32_t> offsets, cells;
+  LargeVector<uint32_t> offsets, cells;
   for (auto _ : state) {
     pool.index();
     pool.neighbourTable(offsets, cells);

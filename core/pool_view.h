@@ -59,7 +59,7 @@ class SpatialPoolView {
   const Pool& pool() const { return pool_; }
   void neighbours(size_t i, std::vector<uint32_t>& out) const { pool_.neighbours(i, out); }
   /// Every cell's neighbours at once, found in bucket order (SpatialPool::neighbourTable).
-  void neighbourTable(std::vector<uint32_t>& offsets, std::vector<uint32_t>& cells) const {
+  void neighbourTable(LargeVector<uint32_t>& offsets, LargeVector<uint32_t>& cells) const {
     pool_.neighbourTable(offsets, cells);
   }
   bool matchContext(const CompiledRule& rule, size_t, uint32_t*, uint32_t*) const {

@@ -5,6 +5,7 @@
 
 #include "core/parallel_for.h"
 #include "core/salts.h"
+#include "lang/expression_batch.h"
 
 namespace ontogen {
 
@@ -46,7 +47,7 @@ void RateIntegrator<View>::activate(const Pool& pool, double t0) {
   for (auto& chunk : chunkEquations_) chunk.clear();
   parallelFor(cells.size(), threads_, [&](size_t begin, size_t end, unsigned worker) {
     RuleEvaluator<View>& evaluator = *evaluators_[worker];
-    std::vector<Equation>& out = chunkEquations_[worker];
+    LargeVector<Equation>& out = chunkEquations_[worker];
     for (size_t i = begin; i < end; ++i) {
       const MasterCell& master = program_.masters[cells[i].master];
       const size_t first = out.size();
@@ -74,6 +75,15 @@ void RateIntegrator<View>::activate(const Pool& pool, double t0) {
   });
   equations_.clear();
   for (const auto& chunk : chunkEquations_) equations_.insert(equations_.end(), chunk.begin(), chunk.end());
+  // Which equations can be evaluated a batch of cells at a time: their expression reads
+  // the cell's own state and its neighbours' aggregates only, and draws nothing.
+  batchable_.resize(equations_.size());
+  for (size_t e = 0; e < equations_.size(); ++e) {
+    const Equation& equation = equations_[e];
+    const MasterCell& master = program_.masters[cells[equation.cell].master];
+    batchable_[e] = !equation.draws &&
+                    equation.calculation->value.batchable(static_cast<int>(master.stateCount()));
+  }
 }
 
 template <typename View>
@@ -89,6 +99,29 @@ void RateIntegrator<View>::derivative(const Pool& pool, const StateArray& x, Sta
     const CompiledRule* loadedRule = nullptr;
     for (size_t e = begin; e < end; ++e) {
       const Equation& equation = equations_[e];
+      if (batchable_[e]) {
+        // A run of the same equation over consecutive cells, evaluated together (a
+        // stencil such as diffusion's sum(x) - count() * x, once per instruction).
+        size_t lanes = 1;
+        while (lanes < CompiledExpression::kBatchLanes && e + lanes < end && batchable_[e + lanes] &&
+               equations_[e + lanes].calculation == equation.calculation)
+          ++lanes;
+        const Equation* run = &equations_[e];
+        auto load = [&](int lane, int slot) { return x[cells[run[lane].cell].state + static_cast<uint32_t>(slot)]; };
+        auto aggregate = [&](int lane, int query) {
+          const uint32_t cell = run[lane].cell;
+          const uint32_t first = neighbourOffsets_[cell];
+          return aggregateOf(equation.rule->aggregates[static_cast<size_t>(query)], neighbourCells_.data() + first,
+                             static_cast<int>(neighbourOffsets_[cell + 1] - first), cells, x.data());
+        };
+        double values[CompiledExpression::kBatchLanes];
+        equation.calculation->value.evaluateBatch(static_cast<int>(lanes), load, aggregate, context, values);
+        for (size_t l = 0; l < lanes; ++l)
+          dxdt[cells[run[l].cell].state + run[l].calculation->slot] = values[l];
+        e += lanes - 1;
+        loadedCell = UINT32_MAX;  // the evaluator's frame is not the last equation's
+        continue;
+      }
       if (equation.cell != loadedCell || equation.rule != loadedRule) {
         context.frame = evaluator.load(equation.cell, x.data(), t);
         evaluator.bind(*equation.rule);  // the structure does not change while integrating

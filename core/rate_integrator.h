@@ -17,6 +17,7 @@
 #include "core/pool_view.h"
 #include "core/rule_evaluator.h"
 #include "lang/program.h"
+#include "pools/large_page_allocator.h"
 
 namespace ontogen {
 
@@ -53,13 +54,15 @@ class RateIntegrator {
   unsigned threads_;
   FunctionTable functions_;
   const View* view_ = nullptr;
-  std::vector<Equation> equations_;
-  std::vector<std::vector<Equation>> chunkEquations_;
+  // Per cell or per equation, in buffers that the next world reuses (pools/large_block_cache.h).
+  LargeVector<Equation> equations_;
+  LargeVector<uint8_t> batchable_;  // per equation: evaluated with its neighbours in a batch
+  std::vector<LargeVector<Equation>> chunkEquations_;
   std::vector<std::unique_ptr<RuleEvaluator<View>>> evaluators_;  // one per worker
   // The neighbours of every cell, and the switched-on equations when no rate rule has a
   // condition, are kept while the pool's structure does not change.
-  std::vector<uint32_t> neighbourOffsets_;
-  std::vector<uint32_t> neighbourCells_;
+  LargeVector<uint32_t> neighbourOffsets_;
+  LargeVector<uint32_t> neighbourCells_;
   const Pool* tablePool_ = nullptr;
   uint64_t tableVersion_ = UINT64_MAX;
   const Pool* equationsPool_ = nullptr;

@@ -131,6 +131,52 @@ const CompiledRule* RuleEvaluator<View>::fireStepRules(const MasterCell& master,
   return nullptr;
 }
 
+/// Neighbour aggregate `q` over the `count` neighbours in `list` (indices of `cells`),
+/// their values in `arena`: what count(), sum(x), mean(x), min(x) and max(x) answer.
+inline double aggregateOf(const AggregateQuery& q, const uint32_t* list, int count, std::span<const CellRecord> cells,
+                          const double* arena) {
+  if (q.kind == AggregateKind::Sum && q.label < 0) {
+    // The common case (diffusion): a plain sum, without the bookkeeping of the others.
+    double sum = 0;
+    for (int k = 0; k < count; ++k) {
+      const CellRecord& neighbour = cells[list[k]];
+      if (neighbour.master < q.slotOf.size() && q.slotOf[neighbour.master] >= 0)
+        sum += arena[neighbour.state + q.slotOf[neighbour.master]];
+    }
+    return sum;
+  }
+  if (q.kind == AggregateKind::Count && q.label < 0) return count;
+  double counted = 0, sum = 0;
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (int k = 0; k < count; ++k) {
+    const CellRecord& neighbour = cells[list[k]];
+    if (q.label >= 0 && neighbour.master != static_cast<uint32_t>(q.label)) continue;
+    if (q.kind == AggregateKind::Count) {
+      ++counted;
+      continue;
+    }
+    if (neighbour.master >= q.slotOf.size() || q.slotOf[neighbour.master] < 0) continue;
+    const double value = arena[neighbour.state + q.slotOf[neighbour.master]];
+    ++counted;
+    sum += value;
+    low = std::min(low, value);
+    high = std::max(high, value);
+  }
+  switch (q.kind) {
+    case AggregateKind::Count:
+      return counted;
+    case AggregateKind::Sum:
+      return sum;
+    case AggregateKind::Mean:
+      return counted > 0 ? sum / counted : 0.0;
+    case AggregateKind::Min:
+      return counted > 0 ? low : 0.0;
+    case AggregateKind::Max:
+      return counted > 0 ? high : 0.0;
+  }
+  return 0.0;
+}
+
 template <typename View>
 double RuleEvaluator<View>::aggregate(int query) const {
   if (neighbourCount_ < 0) {
@@ -143,48 +189,7 @@ double RuleEvaluator<View>::aggregate(int query) const {
       neighbourCount_ = static_cast<int>(neighbours_.size());
     }
   }
-  const AggregateQuery& q = rule_->aggregates[query];
-  const auto cells = pool_.cells();
-  if (q.kind == AggregateKind::Sum && q.label < 0) {
-    // The common case (diffusion): a plain sum, without the bookkeeping of the others.
-    double sum = 0;
-    for (int k = 0; k < neighbourCount_; ++k) {
-      const CellRecord& neighbour = cells[neighbourList_[k]];
-      if (neighbour.master < q.slotOf.size() && q.slotOf[neighbour.master] >= 0)
-        sum += arena_[neighbour.state + q.slotOf[neighbour.master]];
-    }
-    return sum;
-  }
-  if (q.kind == AggregateKind::Count && q.label < 0) return neighbourCount_;
-  double count = 0, sum = 0;
-  double low = std::numeric_limits<double>::infinity(), high = -low;
-  for (int k = 0; k < neighbourCount_; ++k) {
-    const CellRecord& neighbour = cells[neighbourList_[k]];
-    if (q.label >= 0 && neighbour.master != static_cast<uint32_t>(q.label)) continue;
-    if (q.kind == AggregateKind::Count) {
-      ++count;
-      continue;
-    }
-    if (neighbour.master >= q.slotOf.size() || q.slotOf[neighbour.master] < 0) continue;
-    const double value = arena_[neighbour.state + q.slotOf[neighbour.master]];
-    ++count;
-    sum += value;
-    low = std::min(low, value);
-    high = std::max(high, value);
-  }
-  switch (q.kind) {
-    case AggregateKind::Count:
-      return count;
-    case AggregateKind::Sum:
-      return sum;
-    case AggregateKind::Mean:
-      return count > 0 ? sum / count : 0.0;
-    case AggregateKind::Min:
-      return count > 0 ? low : 0.0;
-    case AggregateKind::Max:
-      return count > 0 ? high : 0.0;
-  }
-  return 0.0;
+  return aggregateOf(rule_->aggregates[query], neighbourList_, neighbourCount_, pool_.cells(), arena_);
 }
 
 }  // namespace ontogen

@@ -34,7 +34,7 @@ class SpatialDevelopment final : public Development {
   SpatialPool pool_;
   SpatialPoolView view_{pool_};
   bool aggregates_ = false;  // some per-step rule reads its neighbours (count(), sum(x) ...)
-  std::vector<uint32_t> neighbourOffsets_, neighbourCells_;  // found once for a step's rules
+  LargeVector<uint32_t> neighbourOffsets_, neighbourCells_;  // found once for a step's rules
   std::unique_ptr<RateIntegrator<SpatialPoolView>> rates_;  // made on the first step that needs it; not copied
 };
 

@@ -17,6 +17,16 @@ std::vector<int> CompiledExpression::calledFunctions() const {
   return called;
 }
 
+bool CompiledExpression::batchable(int slots) const {
+  if (stochastic_ || code_.empty()) return false;
+  for (const Bytecode& in : code_) {
+    if (in.op == OpCode::Jump || in.op == OpCode::JumpIfFalse || in.op == OpCode::CallFunction) return false;
+    if (in.op == OpCode::Load && (in.operand < 0 || in.operand >= slots)) return false;
+    if (in.op == OpCode::CallBuiltin && builtinFunctions()[in.operand].kind == BuiltinKind::Stochastic) return false;
+  }
+  return true;
+}
+
 bool CompiledExpression::aggregates() const {
   for (const Bytecode& in : code_)
     if (in.op == OpCode::Aggregate) return true;

@@ -100,6 +100,17 @@ class CompiledExpression {
   /// Deepest stack the code needs; bounded by kMaxStack at compile time.
   static constexpr int kMaxStack = 64;  // nesting deeper than 64 operands is not a program people write
 
+  /// Whether evaluateBatch can evaluate it: straight-line code (no `&&`, `||` or `if`),
+  /// no user function, no random draw, and frame slots below `slots` only.
+  bool batchable(int slots) const;
+  /// Evaluates it for `lanes` (at most kBatchLanes) cells at once, each lane to the bits
+  /// evaluate() gives: `load(lane, slot)` reads a frame slot of a lane's cell and
+  /// `aggregate(lane, query)` its neighbour aggregate; out[lane] gets the value. One pass
+  /// over the code for all lanes instead of one per cell (lang/expression_batch.h).
+  template <typename Load, typename Aggregate>
+  void evaluateBatch(int lanes, Load&& load, Aggregate&& aggregate, const EvalContext& context, double* out) const;
+  static constexpr int kBatchLanes = 32;
+
  private:
   friend class ExpressionBuilder;
   double run(const EvalContext& context) const;

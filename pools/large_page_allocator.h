@@ -57,6 +57,10 @@ class LargePageAllocator {
   }
 };
 
+/// A vector whose large buffers come from the large block cache.
+template <class T>
+using LargeVector = std::vector<T, LargePageAllocator<T>>;
+
 /// Grows `array` to `size` elements without writing the new ones (no pass over fresh
 /// memory before the real one), for a caller that writes every one of them next, each
 /// thread its own slice. Elements already there are kept.

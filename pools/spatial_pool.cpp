@@ -122,7 +122,7 @@ void SpatialPool::neighbours(size_t i, std::vector<uint32_t>& out) const {
   scanAround(positionOf(i), i, [&](uint32_t k) { out.push_back(order_[k]); });
 }
 
-void SpatialPool::neighbourTable(std::vector<uint32_t>& offsets, std::vector<uint32_t>& cells) const {
+void SpatialPool::neighbourTable(LargeVector<uint32_t>& offsets, LargeVector<uint32_t>& cells) const {
   const size_t n = order_.size();
   // The queries in bucket order (their positions are sorted_, contiguous), each list
   // appended in that order...

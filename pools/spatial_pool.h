@@ -39,7 +39,7 @@ class SpatialPool final : public Pool {
   /// cells[offsets[i]] .. cells[offsets[i + 1] - 1], in the order neighbours(i) gives.
   /// The queries go in bucket order, so that neighbouring queries read the same buckets
   /// from the cache (in pool order, a million cells miss it on almost every bucket).
-  void neighbourTable(std::vector<uint32_t>& offsets, std::vector<uint32_t>& cells) const;
+  void neighbourTable(LargeVector<uint32_t>& offsets, LargeVector<uint32_t>& cells) const;
 
  private:
   static uint64_t bucketKey(int64_t x, int64_t y, int64_t z);
@@ -57,8 +57,8 @@ class SpatialPool final : public Pool {
   // positions copied alongside so that a query reads contiguous memory.
   std::vector<uint32_t> order_;
   std::vector<std::array<double, 3>> sorted_;
-  mutable std::vector<uint32_t> flat_;   // neighbourTable's lists in bucket order, kept for reuse
-  mutable std::vector<uint32_t> starts_;
+  mutable LargeVector<uint32_t> flat_;  // neighbourTable's lists in bucket order, kept for reuse
+  mutable LargeVector<uint32_t> starts_;
   // Buckets as a dense box over the occupied range when it is not much larger than the
   // number of cells (start offsets into order_), else hashed.
   bool dense_ = true;

@@ -60,7 +60,8 @@ TEST(SpatialPool, TheNeighbourTableIsEveryCellsNeighbours) {
       pool.append(CellRecord{0, 0, 0, id}, p, 2);
     }
     pool.index();
-    std::vector<uint32_t> offsets, cells, found;
+    LargeVector<uint32_t> offsets, cells;
+    std::vector<uint32_t> found;
     pool.neighbourTable(offsets, cells);
     ASSERT_EQ(offsets.size(), pool.size() + 1);
     size_t pairs = 0;
