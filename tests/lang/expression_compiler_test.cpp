@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
+#include "lang/expression_batch.h"
 #include "lang/parser.h"
 
 namespace ontogen {
@@ -90,6 +93,55 @@ TEST(ExpressionCompiler, ErrorsNameTheProblem) {
   EXPECT_EQ(h->sink.diagnostics()[0].message, "'if' takes 3 arguments (if(condition, then, else)), given 2");
   auto k = compileText("min(1)");
   EXPECT_NE(k->sink.diagnostics()[0].message.find("'min' takes at least 2 arguments"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+// A batch gives, lane for lane, the bits of one evaluation per cell: arithmetic,
+// comparisons, powers, remainders, built-ins, NaN and infinities alike.
+TEST(ExpressionBatch, EachLaneIsTheOneCellEvaluation) {
+  const char* expressions[] = {
+      "x * y + 1",         "-x / (y - 0.5)",     "x ^ y - 2 ^ -x",          "x % (y + 0.25)",
+      "(x < y) + (x >= y) * 3 - (x == y)", "sin(x) * cos(y) + sqrt(abs(x))", "min(x, y) - max(x, 2 * y) + exp(-x)",
+      "!x + !!y",          "x / 0 + y",          "1e308 * x * 10 - y",
+  };
+  const double values[] = {0.0, -0.0, 1.5, -2.25, 3e-310, 7.0, -1e300, std::nan(""), INFINITY, 0.5};
+  for (const char* text : expressions) {
+    auto f = compileText(text);
+    ASSERT_FALSE(f->sink.hasErrors()) << text << formatDiagnostics(f->sink);
+    ASSERT_TRUE(f->compiled.batchable(2)) << text;
+    EXPECT_FALSE(f->compiled.batchable(1)) << text << " reads y, slot 1";
+    constexpr int kLanes = CompiledExpression::kBatchLanes;
+    double xs[kLanes], ys[kLanes], batch[kLanes];
+    for (int l = 0; l < kLanes; ++l) {
+      xs[l] = values[l % 10];
+      ys[l] = values[(l * 7 + 3) % 10];
+    }
+    RandomStream random(1);
+    EvalContext context{nullptr, EvalEnvironment{&random, 1}, nullptr};
+    f->compiled.evaluateBatch(
+        kLanes, [&](int lane, int slot) { return slot == 0 ? xs[lane] : ys[lane]; },
+        [](int, int) { return 0.0; }, context, batch);
+    for (int l = 0; l < kLanes; ++l) {
+      double frame[2] = {xs[l], ys[l]};
+      context.frame = frame;
+      const double one = f->compiled.evaluate(context);
+      EXPECT_EQ(std::bit_cast<uint64_t>(batch[l]), std::bit_cast<uint64_t>(one))
+          << text << " at x = " << xs[l] << ", y = " << ys[l] << ": " << batch[l] << " and " << one;
+    }
+  }
+}
+
+TEST(ExpressionBatch, JumpsDrawsAndFunctionsAreNotBatched) {
+  for (const char* text : {"x > 0 && y > 0", "x > 0 || y", "uniform(0, 1) * x", "if(x > 1, x, y)"}) {
+    auto f = compileText(text);
+    ASSERT_FALSE(f->sink.hasErrors()) << text << formatDiagnostics(f->sink);
+    EXPECT_FALSE(f->compiled.batchable(2)) << text;
+  }
 }
 
 }  // namespace
