@@ -18,10 +18,45 @@ bool draws(const CompiledRule& rule) {
 }
 }  // namespace
 
+namespace {
+// odeint's algebra with its loops split over the threads: each RK4 stage's sums are
+// element by element, so slices give the same bits as one loop.
+struct SlicedAlgebra {
+  unsigned threads = 1;
+
+  template <class Op, class First, class... Rest>
+  void apply(Op op, First& first, Rest&... rest) const {
+    parallelFor(
+        first.size(), threads,
+        [&](size_t begin, size_t end, unsigned) {
+          for (size_t i = begin; i < end; ++i) op(first[i], rest[i]...);
+        },
+        size_t{1} << 15);
+  }
+  template <class S1, class Op>
+  void for_each1(S1& s1, Op op) const { apply(op, s1); }
+  template <class S1, class S2, class Op>
+  void for_each2(S1& s1, S2& s2, Op op) const { apply(op, s1, s2); }
+  template <class S1, class S2, class S3, class Op>
+  void for_each3(S1& s1, S2& s2, S3& s3, Op op) const { apply(op, s1, s2, s3); }
+  template <class S1, class S2, class S3, class S4, class Op>
+  void for_each4(S1& s1, S2& s2, S3& s3, S4& s4, Op op) const { apply(op, s1, s2, s3, s4); }
+  template <class S1, class S2, class S3, class S4, class S5, class Op>
+  void for_each5(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, Op op) const { apply(op, s1, s2, s3, s4, s5); }
+  template <class S1, class S2, class S3, class S4, class S5, class S6, class Op>
+  void for_each6(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, S6& s6, Op op) const { apply(op, s1, s2, s3, s4, s5, s6); }
+  template <class S1, class S2, class S3, class S4, class S5, class S6, class S7, class Op>
+  void for_each7(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, S6& s6, S7& s7, Op op) const {
+    apply(op, s1, s2, s3, s4, s5, s6, s7);
+  }
+};
+}  // namespace
+
 template <typename View>
 struct RateIntegrator<View>::Rk4 {
+  explicit Rk4(unsigned threads) : stepper(SlicedAlgebra{threads}) {}
   // always_resizer: the stages follow the state's size when the pool has grown.
-  boost::numeric::odeint::runge_kutta4<StateArray, double, StateArray, double, boost::numeric::odeint::range_algebra,
+  boost::numeric::odeint::runge_kutta4<StateArray, double, StateArray, double, SlicedAlgebra,
                                        boost::numeric::odeint::default_operations,
                                        boost::numeric::odeint::always_resizer>
       stepper;
@@ -187,7 +222,7 @@ void RateIntegrator<View>::integrate(Pool& pool, const View& view, double t0, do
     odeint::integrate_adaptive(odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<StateArray>()),
                                system, x, t0, t1, t1 - t0);
   } else {
-    if (!rk4_) rk4_ = std::make_unique<Rk4>();
+    if (!rk4_) rk4_ = std::make_unique<Rk4>(threads_);
     rk4_->stepper.do_step(system, x, t0, t1 - t0);  // resizes its stages when the pool grew
   }
 }
