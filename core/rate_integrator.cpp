@@ -113,9 +113,11 @@ void RateIntegrator<View>::activate(const Pool& pool, double t0) {
   // Which equations can be evaluated a batch of cells at a time: their expression reads
   // the cell's own state and its neighbours' aggregates only, and draws nothing.
   batchable_.resize(equations_.size());
+  stateOf_.resize(equations_.size());
   for (size_t e = 0; e < equations_.size(); ++e) {
     const Equation& equation = equations_[e];
     const MasterCell& master = program_.masters[cells[equation.cell].master];
+    stateOf_[e] = cells[equation.cell].state;
     batchable_[e] = !equation.draws &&
                     equation.calculation->value.batchable(static_cast<int>(master.stateCount()));
   }
@@ -142,17 +144,19 @@ void RateIntegrator<View>::derivative(const Pool& pool, const StateArray& x, Sta
                equations_[e + lanes].calculation == equation.calculation)
           ++lanes;
         const Equation* run = &equations_[e];
-        auto load = [&](int lane, int slot) { return x[cells[run[lane].cell].state + static_cast<uint32_t>(slot)]; };
+        const uint32_t* states = &stateOf_[e];
+        auto load = [&](int lane, int slot) { return x[states[lane] + static_cast<uint32_t>(slot)]; };
         auto aggregate = [&](int lane, int query) {
           const uint32_t cell = run[lane].cell;
-          const uint32_t first = neighbourOffsets_[cell];
-          return aggregateOf(equation.rule->aggregates[static_cast<size_t>(query)], neighbourCells_.data() + first,
-                             static_cast<int>(neighbourOffsets_[cell + 1] - first), cells, x.data());
+          const NeighbourRef* around = neighbourRefs_.data() + neighbourOffsets_[cell];
+          return aggregateOver(
+              equation.rule->aggregates[static_cast<size_t>(query)],
+              static_cast<int>(neighbourOffsets_[cell + 1] - neighbourOffsets_[cell]),
+              [&](int k) -> const NeighbourRef& { return around[k]; }, x.data());
         };
         double values[CompiledExpression::kBatchLanes];
         equation.calculation->value.evaluateBatch(static_cast<int>(lanes), load, aggregate, context, values);
-        for (size_t l = 0; l < lanes; ++l)
-          dxdt[cells[run[l].cell].state + run[l].calculation->slot] = values[l];
+        for (size_t l = 0; l < lanes; ++l) dxdt[states[l] + run[l].calculation->slot] = values[l];
         e += lanes - 1;
         loadedCell = UINT32_MAX;  // the evaluator's frame is not the last equation's
         continue;
@@ -210,6 +214,11 @@ void RateIntegrator<View>::integrate(Pool& pool, const View& view, double t0, do
         neighbourOffsets_[i + 1] = static_cast<uint32_t>(neighbourCells_.size());
       }
     }
+    // What the batches read of each neighbour, side by side rather than through its record.
+    const auto all = pool.cells();
+    neighbourRefs_.resize(neighbourCells_.size());
+    for (size_t k = 0; k < neighbourCells_.size(); ++k)
+      neighbourRefs_[k] = NeighbourRef{all[neighbourCells_[k]].master, all[neighbourCells_[k]].state};
   }
   for (auto& evaluator : evaluators_)
     evaluator->useNeighbourTable(aggregates ? neighbourOffsets_.data() : nullptr,

@@ -57,12 +57,14 @@ class RateIntegrator {
   // Per cell or per equation, in buffers that the next world reuses (pools/large_block_cache.h).
   LargeVector<Equation> equations_;
   LargeVector<uint8_t> batchable_;  // per equation: evaluated with its neighbours in a batch
+  LargeVector<uint32_t> stateOf_;   // per equation: where its cell's state starts
   std::vector<LargeVector<Equation>> chunkEquations_;
   std::vector<std::unique_ptr<RuleEvaluator<View>>> evaluators_;  // one per worker
   // The neighbours of every cell, and the switched-on equations when no rate rule has a
   // condition, are kept while the pool's structure does not change.
   LargeVector<uint32_t> neighbourOffsets_;
   LargeVector<uint32_t> neighbourCells_;
+  LargeVector<NeighbourRef> neighbourRefs_;  // of neighbourCells_, rebuilt with it
   const Pool* tablePool_ = nullptr;
   uint64_t tableVersion_ = UINT64_MAX;
   const Pool* equationsPool_ = nullptr;

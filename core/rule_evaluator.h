@@ -131,15 +131,22 @@ const CompiledRule* RuleEvaluator<View>::fireStepRules(const MasterCell& master,
   return nullptr;
 }
 
-/// Neighbour aggregate `q` over the `count` neighbours in `list` (indices of `cells`),
-/// their values in `arena`: what count(), sum(x), mean(x), min(x) and max(x) answer.
-inline double aggregateOf(const AggregateQuery& q, const uint32_t* list, int count, std::span<const CellRecord> cells,
-                          const double* arena) {
+/// What an aggregate reads of a neighbour: its master and where its state starts.
+struct NeighbourRef {
+  uint32_t master;
+  uint32_t state;
+};
+
+/// Neighbour aggregate `q` over `count` neighbours, at(k) the k-th (a NeighbourRef or a
+/// CellRecord), their values in `arena`: what count(), sum(x), mean(x), min(x) and
+/// max(x) answer.
+template <typename At>
+double aggregateOver(const AggregateQuery& q, int count, At&& at, const double* arena) {
   if (q.kind == AggregateKind::Sum && q.label < 0) {
     // The common case (diffusion): a plain sum, without the bookkeeping of the others.
     double sum = 0;
     for (int k = 0; k < count; ++k) {
-      const CellRecord& neighbour = cells[list[k]];
+      const auto& neighbour = at(k);
       if (neighbour.master < q.slotOf.size() && q.slotOf[neighbour.master] >= 0)
         sum += arena[neighbour.state + q.slotOf[neighbour.master]];
     }
@@ -149,7 +156,7 @@ inline double aggregateOf(const AggregateQuery& q, const uint32_t* list, int cou
   double counted = 0, sum = 0;
   double low = std::numeric_limits<double>::infinity(), high = -low;
   for (int k = 0; k < count; ++k) {
-    const CellRecord& neighbour = cells[list[k]];
+    const auto& neighbour = at(k);
     if (q.label >= 0 && neighbour.master != static_cast<uint32_t>(q.label)) continue;
     if (q.kind == AggregateKind::Count) {
       ++counted;
@@ -189,7 +196,10 @@ double RuleEvaluator<View>::aggregate(int query) const {
       neighbourCount_ = static_cast<int>(neighbours_.size());
     }
   }
-  return aggregateOf(rule_->aggregates[query], neighbourList_, neighbourCount_, pool_.cells(), arena_);
+  const auto cells = pool_.cells();
+  return aggregateOver(
+      rule_->aggregates[query], neighbourCount_,
+      [&](int k) -> const CellRecord& { return cells[neighbourList_[k]]; }, arena_);
 }
 
 }  // namespace ontogen
