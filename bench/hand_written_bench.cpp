@@ -1,10 +1,12 @@
-// Koch's curve rewritten by hand, the baseline for the engine's modules per second:
-// a std::vector<char> rewritten generation by generation into a second buffer, both
-// reserved once for the final size (a competent programmer knows |w_n| = 2 * 5^n - 1).
-// Same n, same counter and same check as BM_KochFromAxiom in derivation_bench.cpp.
+// The derivation benchmarks written by hand, the baselines for the engine's rates: a
+// word rewritten generation by generation into a second buffer, both reserved once for
+// the final size (a competent programmer knows |w_n|). Same n, same counters and same
+// checks as derivation_bench.cpp and context_bench.cpp: Koch and Thue-Morse as bytes, the
+// parametric system as a label byte and a double per module, the signal as bytes.
 
 #include <benchmark/benchmark.h>
 
+#include <bit>
 #include <cstdint>
 #include <string_view>
 #include <vector>
@@ -54,6 +56,94 @@ void BM_KochHandWritten(benchmark::State& state) {
       static_cast<double>(expected) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_KochHandWritten)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
+
+// a -> ab, b -> ba to n = 24: 2^n bytes, symbol i is b iff popcount(i) is odd.
+void BM_ThueMorseHandWritten(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const uint64_t expected = uint64_t{1} << n;
+  for (auto _ : state) {
+    std::vector<char> word, next;
+    word.reserve(expected);
+    next.reserve(expected);
+    word.push_back('a');
+    for (int generation = 0; generation < n; ++generation) {
+      next.clear();
+      for (char symbol : word) {
+        next.push_back(symbol);
+        next.push_back(symbol == 'a' ? 'b' : 'a');
+      }
+      word.swap(next);
+    }
+    benchmark::DoNotOptimize(word.data());
+    state.PauseTiming();
+    for (uint64_t i = 0; i < word.size(); ++i)
+      if (word[i] != (std::popcount(i) % 2 ? 'b' : 'a')) {
+        state.SkipWithError("hand-written Thue-Morse: wrong word");
+        return;
+      }
+    state.ResumeTiming();
+  }
+  state.counters["modules/s"] = benchmark::Counter(
+      static_cast<double>(expected) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ThueMorseHandWritten)->Arg(24)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
+// A(x) -> A(x + 1) B(x * 0.5), B(y) -> B(y + 1) B(y * 0.5) from A(1) to n = 20, with a
+// label and a double per module: 2^n modules, A(1 + n) first.
+void BM_ParametricHandWritten(benchmark::State& state) {
+  struct Module {
+    char label;
+    double value;
+  };
+  const int n = static_cast<int>(state.range(0));
+  const uint64_t expected = uint64_t{1} << n;
+  for (auto _ : state) {
+    std::vector<Module> word, next;
+    word.reserve(expected);
+    next.reserve(expected);
+    word.push_back({'A', 1.0});
+    for (int generation = 0; generation < n; ++generation) {
+      next.clear();
+      for (const Module& module : word) {
+        next.push_back({module.label, module.value + 1});
+        next.push_back({'B', module.value * 0.5});
+      }
+      word.swap(next);
+    }
+    benchmark::DoNotOptimize(word.data());
+    if (word.size() != expected || word[0].label != 'A' || word[0].value != 1.0 + n) {
+      state.SkipWithError("hand-written parametric: wrong word");
+      return;
+    }
+  }
+  state.counters["modules/s"] = benchmark::Counter(
+      static_cast<double>(expected) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ParametricHandWritten)->Arg(20)->Unit(benchmark::kMillisecond)->Iterations(10)->UseRealTime();
+
+// b < a -> b, b -> a on b and 99,999 a, 1,000 steps, as bytes in two buffers.
+void BM_ContextSignalHandWritten(benchmark::State& state) {
+  constexpr size_t kModules = 100'000;
+  const int steps = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    std::vector<char> word(kModules, 'a'), next(kModules);
+    word[0] = 'b';
+    for (int step = 0; step < steps; ++step) {
+      next[0] = word[0] == 'b' ? 'a' : word[0];
+      for (size_t i = 1; i < kModules; ++i)
+        next[i] = word[i] == 'b' ? 'a' : (word[i] == 'a' && word[i - 1] == 'b' ? 'b' : word[i]);
+      word.swap(next);
+    }
+    benchmark::DoNotOptimize(word.data());
+    if (word[static_cast<size_t>(steps)] != 'b') {
+      state.SkipWithError("hand-written signal: the b is not at position steps");
+      return;
+    }
+  }
+  state.counters["rewrites/s"] = benchmark::Counter(
+      static_cast<double>(kModules) * steps * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ContextSignalHandWritten)->Arg(1000)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 }  // namespace
 }  // namespace ontogen::bench
