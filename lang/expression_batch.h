@@ -2,7 +2,10 @@
 // CompiledExpression::evaluateBatch: the bytecode of lang/expression.cpp run for many
 // cells at once, each instruction over every lane before the next. The arithmetic of each
 // lane is the one run() does, operation for operation, so each lane's value is the bits
-// a one-cell evaluation gives; what it saves is the dispatch of every instruction per cell.
+// a one-cell evaluation gives, except for the sign and payload of a NaN: once the lanes
+// are vectorised, which operand's NaN an instruction passes on is the compiler's choice
+// (outputs write every NaN as null). What it saves is the dispatch of every instruction
+// per cell.
 
 #include <cmath>
 

@@ -102,7 +102,8 @@ namespace ontogen {
 namespace {
 
 // A batch gives, lane for lane, the bits of one evaluation per cell: arithmetic,
-// comparisons, powers, remainders, built-ins, NaN and infinities alike.
+// comparisons, powers, remainders, built-ins, infinities and denormals alike (a NaN for a
+// NaN).
 TEST(ExpressionBatch, EachLaneIsTheOneCellEvaluation) {
   const char* expressions[] = {
       "x * y + 1",         "-x / (y - 0.5)",     "x ^ y - 2 ^ -x",          "x % (y + 0.25)",
@@ -130,6 +131,9 @@ TEST(ExpressionBatch, EachLaneIsTheOneCellEvaluation) {
       double frame[2] = {xs[l], ys[l]};
       context.frame = frame;
       const double one = f->compiled.evaluate(context);
+      // A NaN is a NaN: which operand's NaN an instruction passes on (its sign and
+      // payload) is the compiler's choice once it vectorises the lanes.
+      if (std::isnan(one) && std::isnan(batch[l])) continue;
       EXPECT_EQ(std::bit_cast<uint64_t>(batch[l]), std::bit_cast<uint64_t>(one))
           << text << " at x = " << xs[l] << ", y = " << ys[l] << ": " << batch[l] << " and " << one;
     }
