@@ -46,7 +46,11 @@ void report(benchmark::State& state, size_t modules, size_t bytes) {
       benchmark::Counter(static_cast<double>(modules * state.iterations()), benchmark::Counter::kIsRate);
 }
 
-void BM_KochWordText(benchmark::State& state) {
+// Grows Koch to generation range(0) once, then in every iteration writes its word through
+// `write(world, buffered)` into the counting stream. `sizeIsRight(modules, bytes)` checks
+// what the last iteration wrote.
+template <typename Write, typename Check>
+void writeKochWord(benchmark::State& state, Write&& write, Check&& sizeIsRight) {
   if (!koch().program) return state.SkipWithError(koch().error.c_str());
   World world(koch().program, kBenchWorld);
   world.advanceTo(static_cast<double>(state.range(0)), 1.0);
@@ -55,33 +59,37 @@ void BM_KochWordText(benchmark::State& state) {
   for (auto _ : state) {
     counter.bytes = 0;
     BufferedOutput buffered(out);
-    WordTextWriter writer(buffered, 6);
-    visitWord(world, writer);
+    write(world, buffered);
     buffered.flush();
   }
-  // 2 bytes a module ("F " or "+ "), less the last space.
-  if (counter.bytes != 2 * world.rootPool().size() - 1) return state.SkipWithError("wrong text size");
+  if (!sizeIsRight(world.rootPool().size(), counter.bytes)) return state.SkipWithError("wrong output size");
   report(state, world.rootPool().size(), counter.bytes);
+}
+
+void BM_KochWordText(benchmark::State& state) {
+  writeKochWord(
+      state,
+      [](const World& world, BufferedOutput& buffered) {
+        WordTextWriter writer(buffered, 6);
+        visitWord(world, writer);
+      },
+      // 2 bytes a module ("F " or "+ "), less the last space.
+      [](size_t modules, size_t bytes) { return bytes == 2 * modules - 1; });
 }
 BENCHMARK(BM_KochWordText)->Arg(8)->Unit(benchmark::kMillisecond);
 
 void BM_KochWordJson(benchmark::State& state) {
-  if (!koch().program) return state.SkipWithError(koch().error.c_str());
-  World world(koch().program, kBenchWorld);
-  world.advanceTo(static_cast<double>(state.range(0)), 1.0);
-  CountingBuffer counter;
-  std::ostream out(&counter);
-  for (auto _ : state) {
-    counter.bytes = 0;
-    BufferedOutput buffered(out);
-    WordJsonWriter writer(buffered);
-    writer.begin();
-    writer.beginTime(world.time(), true);
-    visitWord(world, writer);
-    writer.endTime();
-    writer.end();
-  }
-  report(state, world.rootPool().size(), counter.bytes);
+  writeKochWord(
+      state,
+      [](const World& world, BufferedOutput& buffered) {
+        WordJsonWriter writer(buffered);
+        writer.begin();
+        writer.beginTime(world.time(), true);
+        visitWord(world, writer);
+        writer.endTime();
+        writer.end();
+      },
+      [](size_t modules, size_t bytes) { return bytes > 100 * modules; });  // a record of ~110 bytes each
 }
 BENCHMARK(BM_KochWordJson)->Arg(8)->Unit(benchmark::kMillisecond);
 
