@@ -63,6 +63,7 @@ int runHelp() {
       {"ontogen word FILE --at T1,T2 [--json]", "print the derivation word at those times"},
       {"ontogen statics FILE [--at T] [--json]", "solve the rods' statics (physics set) at a time"},
       {"ontogen timeline FILE --out F.svg", "draw the time-state diagram of the development"},
+      {"ontogen studio FILE [--port N]", "a live page at 127.0.0.1: the model re-grown as it is saved"},
       {"ontogen midi-ports", "list the MIDI output ports for --midi-port"},
       {"ontogen convert FILE.l|FILE.lpy", "print a cpfg or L-Py L-system as a cell-language program"},
       {"ontogen help", "this text"},

@@ -8,7 +8,7 @@
 namespace ontogen::app {
 
 namespace {
-constexpr std::array<std::string_view, 8> kCommands{"check", "run", "word", "statics", "timeline", "midi-ports", "convert", "help"};
+constexpr std::array<std::string_view, 9> kCommands{"check", "run", "word", "statics", "timeline", "studio", "midi-ports", "convert", "help"};
 }  // namespace
 
 std::span<const std::string_view> commandNames() { return kCommands; }

@@ -78,6 +78,16 @@ struct StaticsOptions {
   std::string equations;     ///< the text file of the equations to write; empty: none
 };
 
+struct StudioOptions {
+  CommonOptions common;
+  std::optional<double> until;  ///< empty: the program's #until
+  std::optional<int> frames;    ///< empty: the program's #fps, else 60
+  uint16_t port = 8420;         ///< 0: a free port
+  uint64_t gallerySeed = 1;     ///< of the gallery's mutations
+  bool varyConstants = false;   ///< the gallery varies numeric constants as well as defines
+  std::string save;             ///< where saved variants go; empty: the program's folder
+};
+
 struct ConvertOptions {
   std::string file;  ///< a cpfg (.l) or L-Py (.lpy) file
 };
@@ -105,6 +115,7 @@ int runWord(const WordOptions& options);
 int runStatics(const StaticsOptions& options);
 int runHelp();
 int runConvert(const ConvertOptions& options);
+int runStudio(const StudioOptions& options);
 int runMidiPorts();
 
 }  // namespace ontogen::app

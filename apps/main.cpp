@@ -175,6 +175,24 @@ int dispatch(int argc, char** argv) {
   addWholeOption(*timelineCommand, "--max-rows", timeline.maxRows, WholeRange::between(1, kMaxTimelineRows),
                  "Most cells drawn; later ones are counted (default 4000)");
 
+  StudioOptions studio;
+  auto* studioCommand = app.add_subcommand(
+      "studio", "Serve a live page at 127.0.0.1: the model in 3-D, re-grown as its file is saved, with time and "
+                "#define sliders, its music, and a gallery of variants to breed");
+  addCommon(*studioCommand, studio.common);
+  addDevelopment(*studioCommand, studio.common);
+  addRealOption(*studioCommand, "--until", studio.until, RealRange::atLeast(0),
+                "End of the development, seconds (default: #until)");
+  addWholeOption(*studioCommand, "--frames", studio.frames, WholeRange::between(1, kMaxFrames),
+                 "Frames of the animation over [from, until] (default: #fps frames a second, else 60)");
+  addWholeOption(*studioCommand, "--port", studio.port, WholeRange::between(0, 65535),
+                 "Port on 127.0.0.1 (default 8420; 0: a free one, printed)");
+  addWholeOption(*studioCommand, "--gallery-seed", studio.gallerySeed, WholeRange::any(),
+                 "Seed of the gallery's mutations (default 1)");
+  studioCommand->add_flag("--vary-constants", studio.varyConstants,
+                          "The gallery varies the program's numeric constants as well as its #defines");
+  studioCommand->add_option("--save", studio.save, "Folder saved variants go to (default: the program's folder)");
+
   ConvertOptions convert;
   auto* convertCommand =
       app.add_subcommand("convert", "Print a cpfg (.l) or L-Py (.lpy) L-system as a cell-language program");
@@ -202,6 +220,7 @@ int dispatch(int argc, char** argv) {
   if (timelineCommand->parsed()) return runTimeline(timeline);
   if (midiPortsCommand->parsed()) return runMidiPorts();
   if (convertCommand->parsed()) return runConvert(convert);
+  if (studioCommand->parsed()) return runStudio(studio);
   return runHelp();
 }
 

@@ -1,0 +1,99 @@
+// `ontogen studio FILE`: the live page (apps/studio/). Serves 127.0.0.1 until Ctrl-C.
+
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <system_error>
+
+#include "apps/commands.h"
+#include "apps/program_loader.h"
+#include "apps/studio/gallery.h"
+#include "apps/studio/http_server.h"
+#include "apps/studio/studio_assets.h"
+#include "apps/studio/studio_model.h"
+#include "apps/studio/studio_server.h"
+
+namespace ontogen::app {
+
+namespace {
+volatile std::sig_atomic_t stopRequested = 0;
+
+// The first Ctrl-C stops the studio once the request or growth at hand is done (so no
+// output is left half-written); a second one ends it at once.
+extern "C" void requestStop(int) {
+  if (stopRequested) ::_exit(kExitInterrupted);
+  stopRequested = 1;
+}
+
+// A folder of the studio's own for the outputs it serves, removed when it stops.
+std::filesystem::path makeWorkFolder() {
+  std::error_code error;
+  std::filesystem::path base = std::filesystem::temp_directory_path(error);
+  if (error) base = ".";
+  const std::filesystem::path folder = base / ("ontogen-studio-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  return folder;
+}
+}  // namespace
+
+int runStudio(const StudioOptions& options) {
+  // The program must load once before the page opens: a file that is no program, or a
+  // --define it lacks, is a bad command line. Later errors are shown in the page.
+  LoadedProgram loaded = loadProgram(options.common);
+  if (!loaded.program) return loaded.exitCode;
+
+  const std::filesystem::path work = makeWorkFolder();
+  struct RemoveWork {
+    std::filesystem::path folder;
+    ~RemoveWork() {
+      std::error_code ignored;
+      std::filesystem::remove_all(folder, ignored);
+    }
+  } removeWork{work};
+
+  studio::StudioModelDef modelDef;
+  modelDef.common = options.common;
+  modelDef.until = options.until;
+  modelDef.frames = options.frames;
+  modelDef.work = work / "model";
+  studio::StudioModel model(std::move(modelDef));
+
+  studio::GalleryDef galleryDef;
+  galleryDef.common = options.common;
+  galleryDef.until = options.until;
+  galleryDef.seed = options.gallerySeed;
+  galleryDef.constants = options.varyConstants;
+  galleryDef.work = work / "gallery";
+  galleryDef.saveTo = options.save.empty() ? std::filesystem::absolute(options.common.file).parent_path()
+                                           : std::filesystem::path(options.save);
+  studio::Gallery gallery(std::move(galleryDef));
+  studio::StudioServer server(model, gallery);
+
+  std::unique_ptr<studio::HttpServer> http;
+  try {
+    http = std::make_unique<studio::HttpServer>(options.port);
+  } catch (const std::runtime_error& error) {
+    std::cerr << "ontogen: error: " << error.what() << " (--port N picks another; 0 a free one)\n";
+    return kExitUsage;
+  }
+  model.regrow();
+  if (studio::studioAssets().empty())
+    std::cerr << "ontogen: warning: this build has no studio page (esbuild and three.js were missing at build "
+                 "time; bash .ci/setup installs them); the page's routes answer all the same\n";
+  std::cout << "ontogen studio: " << options.common.file << " at http://127.0.0.1:" << http->port()
+            << "/ (Ctrl-C stops)" << std::endl;
+
+  struct sigaction action {};
+  action.sa_handler = requestStop;
+  sigemptyset(&action.sa_mask);
+  ::sigaction(SIGINT, &action, nullptr);
+  ::sigaction(SIGTERM, &action, nullptr);
+  http->serve([&server](const studio::HttpRequest& request) { return server.handle(request); },
+              [&server] { server.idle(); }, [] { return stopRequested != 0; });
+  std::cerr << "ontogen studio: stopped\n";
+  return kExitOk;
+}
+
+}  // namespace ontogen::app

@@ -1,0 +1,159 @@
+#include "apps/studio/gallery.h"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "interpreters/output_file.h"
+#include "interpreters/run.h"
+#include "interpreters/set_registry.h"
+#include "lang/compiler.h"
+#include "lang/random.h"
+
+namespace ontogen::studio {
+
+namespace {
+// Salts that keep a generation's mutations and crossovers apart.
+constexpr uint64_t kMutationSalt = 0x6d75746174696f6eull;   // "mutation"
+constexpr uint64_t kCrossoverSalt = 0x63726f73736f7665ull;  // "crossove"
+
+std::string readBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+}  // namespace
+
+Gallery::Gallery(GalleryDef def) : def_(std::move(def)) {
+  if (def_.size < 1 || def_.size > 64) throw std::invalid_argument("a gallery holds 1 to 64 variants");
+}
+
+uint64_t Gallery::seedOf(int index, uint64_t salt) const {
+  return mixKey(mixKey(def_.seed, salt), mixKey(static_cast<uint64_t>(generation_), static_cast<uint64_t>(index)));
+}
+
+void Gallery::reset(const std::string& text, const std::string& stem) {
+  VariationOptions options;
+  options.constants = def_.constants;
+  space_ = std::make_unique<VariationSpace>(text, options);
+  stem_ = stem;
+  generation_ = 1;
+  variants_.assign(static_cast<std::size_t>(def_.size), {});
+  const Genome original = space_->original();
+  for (int i = 0; i < def_.size; ++i) {
+    GalleryVariant& variant = variants_[static_cast<std::size_t>(i)];
+    // The first stays the program as written, so every gallery shows where it started.
+    variant.genome = i == 0 || space_->genes().empty() ? original : space_->mutate(original, seedOf(i, kMutationSalt));
+    render(variant, i);
+  }
+}
+
+void Gallery::breed(const std::vector<int>& picked) {
+  if (!space_) throw std::invalid_argument("the gallery has no program yet");
+  if (picked.empty()) throw std::invalid_argument("pick at least one variant to breed from");
+  for (int index : picked)
+    if (index < 0 || index >= static_cast<int>(variants_.size()))
+      throw std::invalid_argument("no variant " + std::to_string(index));
+  const std::vector<GalleryVariant> parents = variants_;
+  ++generation_;
+  variants_.assign(static_cast<std::size_t>(def_.size), {});
+  const int kept = std::min(static_cast<int>(picked.size()), def_.size);
+  for (int i = 0; i < def_.size; ++i) {
+    GalleryVariant& child = variants_[static_cast<std::size_t>(i)];
+    if (i < kept) {
+      child.genome = parents[static_cast<std::size_t>(picked[static_cast<std::size_t>(i)])].genome;
+      child.parents = {picked[static_cast<std::size_t>(i)]};
+    } else {
+      const int k = i - kept;
+      const int a = picked[static_cast<std::size_t>(k) % picked.size()];
+      const int b = picked[static_cast<std::size_t>(k + 1 + k / static_cast<int>(picked.size())) % picked.size()];
+      const Genome mixed = space_->crossover(parents[static_cast<std::size_t>(a)].genome,
+                                             parents[static_cast<std::size_t>(b)].genome, seedOf(i, kCrossoverSalt));
+      child.genome = space_->genes().empty() ? mixed : space_->mutate(mixed, seedOf(i, kMutationSalt));
+      child.parents = a == b ? std::vector<int>{a} : std::vector<int>{a, b};
+    }
+    render(child, i);
+  }
+}
+
+void Gallery::render(GalleryVariant& variant, int index) const {
+  variant.text = space_->programText(variant.genome);
+  variant.png.clear();
+  variant.error.clear();
+  DiagnosticSink sink(1);
+  CompileOptions options;
+  options.commandSets = commandSets();
+  options.rootSystem = def_.common.system;
+  options.maxSourceBytes = def_.common.maxSourceBytes;
+  const std::string name = (def_.saveTo / (stem_ + ".cell")).string();
+  std::shared_ptr<const Program> program;
+  try {
+    program = compileSource(name, variant.text, sink, options);
+  } catch (const std::exception& error) {
+    variant.error = error.what();
+    return;
+  }
+  if (!program) {
+    variant.error = sink.diagnostics().empty() ? "the variant does not compile" : sink.diagnostics().front().message;
+    return;
+  }
+  RunDef run;
+  run.program = program;
+  run.stem = "variant";
+  run.world = app::worldDefOf(def_.common, *program);
+  run.until = def_.until;
+  run.step = def_.common.step;
+  run.frames = 1;
+  run.sets = {"geometry"};
+  for (const std::string& set : program->interpretSets)
+    if (set == "image" || set == "creature" || set == "physics") run.sets = {set};
+  run.setOptions.formats = "png";
+  run.setOptions.render.width = def_.thumbnailSide;
+  run.setOptions.render.height = def_.thumbnailSide;
+  run.out = def_.work / ("variant" + std::to_string(index));
+  std::filesystem::remove_all(run.out);
+  Run grown(std::move(run));
+  const RunReport report = grown.execute();
+  if (!report.ok()) {
+    variant.error = report.diagnostics.empty() ? "the variant failed" : report.diagnostics.front().message;
+    return;
+  }
+  for (const std::filesystem::path& file : report.files)
+    if (file.extension() == ".png") variant.png = readBytes(file);
+  if (variant.png.empty()) variant.error = "the variant draws nothing to picture";
+}
+
+std::filesystem::path Gallery::save(int index) const {
+  if (!space_ || index < 0 || index >= static_cast<int>(variants_.size()))
+    throw std::invalid_argument("no variant " + std::to_string(index));
+  const std::filesystem::path path =
+      def_.saveTo / (stem_ + "_g" + std::to_string(generation_) + "_v" + std::to_string(index) + ".cell");
+  const std::string& text = variants_[static_cast<std::size_t>(index)].text;
+  writeFileAtomically(path, [&text](std::ostream& out) { out << text; });
+  return path;
+}
+
+nlohmann::json Gallery::state() const {
+  nlohmann::json state = {{"generation", generation_}, {"seed", def_.seed}};
+  nlohmann::json genes = nlohmann::json::array();
+  if (space_)
+    for (const Gene& gene : space_->genes())
+      genes.push_back({{"name", gene.name}, {"value", gene.value}, {"low", gene.low}, {"high", gene.high},
+                       {"integer", gene.integer}, {"line", gene.line}});
+  state["genes"] = genes;
+  nlohmann::json variants = nlohmann::json::array();
+  for (std::size_t i = 0; i < variants_.size(); ++i) {
+    const GalleryVariant& variant = variants_[i];
+    variants.push_back({{"index", i},
+                        {"values", variant.genome.values},
+                        {"parents", variant.parents},
+                        {"picture", !variant.png.empty()},
+                        {"error", variant.error}});
+  }
+  state["variants"] = variants;
+  return state;
+}
+
+}  // namespace ontogen::studio

@@ -1,0 +1,43 @@
+#pragma once
+// What the studio's page can ask of it, over HTTP (apps/studio/http_server.h):
+//
+//   GET  /, /studio.js, /studio.css   the page (apps/studio/studio_assets.h)
+//   GET  /api/state                   versions, diagnostics, defines, times, source (JSON)
+//   GET  /model.glb                   the last model that grew, as `ontogen run --format glb` writes it
+//   GET  /api/notes                   the music set's notes, in seconds (JSON)
+//   POST /api/define                  {"name": N, "value": V}: move a slider; answers the state
+//   GET  /api/gallery                 the evolution gallery (JSON), made at the first ask
+//   GET  /gallery/K.png               the picture of variant K
+//   POST /api/breed                   {"picked": [K, ...]}: the next generation
+//   POST /api/save                    {"index": K}: write variant K as a program; answers its path
+//   POST /api/gallery/restart         a new gallery from the program with the sliders' values
+//
+// Errors are JSON {"error": message} with status 400 (a bad request) or 422 (a request the
+// model cannot follow).
+
+#include <string>
+
+#include "apps/studio/gallery.h"
+#include "apps/studio/http_server.h"
+#include "apps/studio/studio_model.h"
+
+namespace ontogen::studio {
+
+class StudioServer {
+ public:
+  StudioServer(StudioModel& model, Gallery& gallery) : model_(model), gallery_(gallery) {}
+
+  HttpResponse handle(const HttpRequest& request);
+  /// Called between requests: re-grows the model when its file changed.
+  void idle();
+
+ private:
+  HttpResponse galleryState();
+  void restartGallery();
+
+  StudioModel& model_;
+  Gallery& gallery_;
+  std::string galleryText_;  // the model text the gallery started from
+};
+
+}  // namespace ontogen::studio

@@ -1,0 +1,363 @@
+// The studio's page: shows the model the executable grows (the same .glb `ontogen run`
+// writes), follows it as the file is saved, scrubs and plays its time, moves its
+// #defines, plays its music set with the animation, and breeds variants in a gallery.
+// Everything it knows comes from the studio's HTTP routes (apps/studio/studio_server.h);
+// the variants and their operators are the executable's, not the page's.
+
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+const pollMilliseconds = 200;
+const $ = (id) => document.getElementById(id);
+
+// What a test (or a curious user in the console) can read of the page.
+const studio = {
+  version: 0,          // of the state last shown
+  modelVersion: 0,     // of the model last loaded
+  time: 0,             // developmental seconds shown
+  playing: false,
+  notesPlayed: 0,
+  generation: 0,
+  picked: new Set(),
+  lastError: '',
+};
+window.studio = studio;
+
+// ---- the 3-D view ----------------------------------------------------------------------
+const canvas = $('canvas');
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio || 1);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0x2a2d33);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x50505a, 1.6));
+const key = new THREE.DirectionalLight(0xffffff, 2.2);
+key.position.set(1, 2, 1.5);
+scene.add(key);
+const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
+camera.position.set(0, 0, 10);
+const controls = new OrbitControls(camera, canvas);
+controls.enableDamping = true;
+let model = null;        // the loaded glTF scene
+let mixer = null;        // plays its animation by setTime
+let clipStart = 0, clipEnd = 0;
+let framed = false;      // the camera is framed on the first model only, then kept
+
+function resize() {
+  const { clientWidth: w, clientHeight: h } = canvas;
+  if (canvas.width !== Math.floor(w * renderer.getPixelRatio()) || canvas.height !== Math.floor(h * renderer.getPixelRatio())) {
+    renderer.setSize(w, h, false);
+    camera.aspect = w / Math.max(h, 1);
+    camera.updateProjectionMatrix();
+  }
+}
+
+// The union of every frame's geometry: frames are nodes scaled to 0 while not shown, so
+// the box is taken from the geometry itself (the nodes have no other transform).
+function boundsOfAllFrames(root) {
+  const box = new THREE.Box3();
+  root.traverse((object) => {
+    if (!object.geometry) return;
+    object.geometry.computeBoundingBox();
+    box.union(object.geometry.boundingBox);
+  });
+  return box;
+}
+
+function frameCamera(root) {
+  const box = boundsOfAllFrames(root);
+  if (box.isEmpty()) return;
+  const centre = box.getCenter(new THREE.Vector3());
+  const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-6);
+  const distance = radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.1;
+  camera.near = distance / 1000;
+  camera.far = distance * 100;
+  camera.position.copy(centre).add(new THREE.Vector3(0.35, 0.45, 1).normalize().multiplyScalar(distance));
+  camera.updateProjectionMatrix();
+  controls.target.copy(centre);
+  controls.update();
+}
+
+function showModel(gltf) {
+  if (model) {
+    scene.remove(model);
+    model.traverse((o) => { if (o.geometry) o.geometry.dispose(); });
+  }
+  model = gltf.scene;
+  scene.add(model);
+  mixer = null;
+  clipStart = clipEnd = 0;
+  const clip = gltf.animations[0];
+  if (clip) {
+    mixer = new THREE.AnimationMixer(model);
+    const action = mixer.clipAction(clip);
+    action.setLoop(THREE.LoopOnce, 1);
+    action.clampWhenFinished = true;
+    action.play();
+    clipStart = Math.min(...clip.tracks.map((t) => t.times[0]));
+    clipEnd = clip.duration;
+  }
+  if (!framed) { frameCamera(model); framed = true; }
+  setTime(studio.time);
+}
+
+function setTime(t) {
+  const lo = timeSlider.min === '' ? 0 : Number(timeSlider.min);
+  const hi = Number(timeSlider.max);
+  studio.time = Math.min(Math.max(t, lo), hi);
+  timeSlider.value = String(studio.time);
+  $('time-value').textContent = studio.time.toFixed(2) + ' s';
+  // The animation's keys are the frames' developmental times; before the first key the
+  // first frame shows.
+  if (mixer) mixer.setTime(Math.min(Math.max(studio.time, clipStart), clipEnd));
+}
+
+// ---- time and music --------------------------------------------------------------------
+const timeSlider = $('time');
+timeSlider.addEventListener('input', () => { stopPlaying(); setTime(Number(timeSlider.value)); });
+let audio = null;
+let notes = [];
+let lastTick = 0;
+
+function startPlaying() {
+  if (!audio && window.AudioContext) audio = new AudioContext();
+  if (audio && audio.state === 'suspended') audio.resume();
+  if (studio.time >= Number(timeSlider.max)) setTime(Number(timeSlider.min));
+  studio.playing = true;
+  lastTick = performance.now();
+  $('play').textContent = 'Pause';
+}
+function stopPlaying() {
+  studio.playing = false;
+  $('play').textContent = 'Play';
+}
+$('play').addEventListener('click', () => (studio.playing ? stopPlaying() : startPlaying()));
+
+// A plain voice per note: a triangle wave with a short attack and release, louder with
+// velocity, General MIDI's channel 10 (percussion) as a noise-like click.
+function playNote(note, when) {
+  if (!audio || !$('music').checked) return;
+  const gain = audio.createGain();
+  const oscillator = audio.createOscillator();
+  oscillator.type = note.channel === 9 ? 'square' : 'triangle';
+  oscillator.frequency.value = 440 * Math.pow(2, (note.pitch - 69) / 12);
+  const level = 0.15 * (note.velocity / 127);
+  const length = Math.max(note.duration, 0.05);
+  gain.gain.setValueAtTime(0, when);
+  gain.gain.linearRampToValueAtTime(level, when + 0.01);
+  gain.gain.setValueAtTime(level, when + length * 0.8);
+  gain.gain.linearRampToValueAtTime(0, when + length);
+  oscillator.connect(gain).connect(audio.destination);
+  oscillator.start(when);
+  oscillator.stop(when + length + 0.02);
+}
+
+function tick(now) {
+  requestAnimationFrame(tick);
+  resize();
+  if (studio.playing) {
+    const before = studio.time;
+    const after = before + (now - lastTick) / 1000;
+    lastTick = now;
+    for (const note of notes) {
+      if (note.start >= before && note.start < after) {
+        playNote(note, audio ? audio.currentTime : 0);
+        studio.notesPlayed += 1;
+      }
+    }
+    setTime(after);
+    if (after >= Number(timeSlider.max)) stopPlaying();
+  }
+  controls.update();
+  renderer.render(scene, camera);
+}
+requestAnimationFrame(tick);
+
+// ---- the state: diagnostics, defines, the source ---------------------------------------
+function text(tag, content, className) {
+  const element = document.createElement(tag);
+  if (content !== undefined) element.textContent = content;
+  if (className) element.className = className;
+  return element;
+}
+
+function showDiagnostics(state) {
+  const box = $('diagnostics');
+  box.replaceChildren();
+  if (state.diagnostics.length === 0) box.append(text('p', 'None.', 'quiet'));
+  for (const d of state.diagnostics) box.append(text('pre', d.text, 'diagnostic ' + d.severity));
+  // The program with each diagnostic at its line.
+  const byLine = new Map();
+  for (const d of state.diagnostics) if (d.line > 0) byLine.set(d.line, [...(byLine.get(d.line) || []), d]);
+  const source = $('source');
+  source.replaceChildren();
+  state.source.split('\n').forEach((line, i) => {
+    const found = byLine.get(i + 1);
+    source.append(text('span', line, 'line' + (found ? ' ' + found[0].severity : '')));
+    if (found) for (const d of found) source.append(text('span', ' '.repeat(Math.max(d.column - 1, 0)) + '^ ' + d.message, 'note'));
+  });
+  const status = $('status');
+  const errors = state.diagnostics.filter((d) => d.severity === 'error').length;
+  status.dataset.state = state.ok ? 'ok' : 'error';
+  status.textContent = state.ok
+    ? `grown in ${state.seconds.toFixed(2)} s: ${state.cells} cells at ${state.until} s`
+    : `${errors} error${errors === 1 ? '' : 's'}; showing the last model that grew`;
+}
+
+let defineNames = '';
+const defineSending = { busy: false, pending: null };
+
+async function sendDefine(name, value) {
+  if (defineSending.busy) { defineSending.pending = { name, value }; return; }
+  defineSending.busy = true;
+  try {
+    const response = await fetch('/api/define', { method: 'POST', body: JSON.stringify({ name, value }) });
+    const answer = await response.json();
+    if (!response.ok) studio.lastError = answer.error;
+    else await showState(answer);
+  } finally {
+    defineSending.busy = false;
+    const next = defineSending.pending;
+    defineSending.pending = null;
+    if (next) sendDefine(next.name, next.value);
+  }
+}
+
+function showDefines(state) {
+  const names = state.defines.map((d) => `${d.name}:${d.low}:${d.high}`).join(',');
+  const box = $('defines');
+  if (names !== defineNames) {
+    defineNames = names;
+    box.replaceChildren();
+    if (state.defines.length === 0) box.append(text('p', 'The program has no #define.', 'quiet'));
+    for (const d of state.defines) {
+      const row = text('div', undefined, 'define');
+      const slider = document.createElement('input');
+      slider.type = 'range';
+      slider.min = String(d.low);
+      slider.max = String(d.high);
+      slider.step = d.integer ? '1' : String((d.high - d.low) / 200);
+      slider.dataset.define = d.name;
+      const value = text('output', '');
+      value.dataset.defineValue = d.name;
+      slider.addEventListener('input', () => {
+        value.textContent = slider.value;
+        sendDefine(d.name, Number(slider.value));
+      });
+      row.append(text('label', d.name), slider, value);
+      box.append(row);
+    }
+  }
+  for (const d of state.defines) {
+    const slider = box.querySelector(`input[data-define="${d.name}"]`);
+    const value = box.querySelector(`output[data-define-value="${d.name}"]`);
+    if (slider && document.activeElement !== slider) slider.value = String(d.value);
+    if (value) value.textContent = String(Number(d.value.toPrecision(6)));
+  }
+}
+
+let loadingModel = 0;
+async function loadModel(version) {
+  loadingModel = version;
+  const response = await fetch('/model.glb?v=' + version);
+  if (!response.ok) {
+    $('no-model').hidden = false;
+    return;
+  }
+  const bytes = await response.arrayBuffer();
+  const gltf = await new GLTFLoader().parseAsync(bytes, '');
+  if (loadingModel !== version) return;  // a newer model is on its way
+  $('no-model').hidden = true;
+  const grown = studio.time >= Number(timeSlider.max) || studio.modelVersion === 0;
+  timeSlider.min = String(stateShown.from);
+  timeSlider.max = String(Math.max(stateShown.until, stateShown.from));
+  timeSlider.step = String(Math.max((stateShown.until - stateShown.from) / 1000, 1e-6));
+  if (grown) studio.time = Number(timeSlider.max);  // a new model shows grown, unless scrubbed
+  showModel(gltf);
+  const notesAnswer = await (await fetch('/api/notes')).json();
+  notes = notesAnswer.notes;
+  $('note-count').textContent = notes.length ? `(${notes.length} notes)` : '(no music set)';
+  studio.modelVersion = version;
+  document.body.dataset.modelVersion = String(version);
+}
+
+let stateShown = { from: 0, until: 1 };
+async function showState(state) {
+  if (state.version === studio.version) return;
+  studio.version = state.version;
+  stateShown = state;
+  $('file').textContent = state.file;
+  showDiagnostics(state);
+  showDefines(state);
+  document.body.dataset.version = String(state.version);
+  if (!state.hasModel && state.modelVersion > 0) $('no-model').hidden = false;
+  if (state.hasModel && state.modelVersion !== studio.modelVersion && state.modelVersion !== loadingModel)
+    await loadModel(state.modelVersion);
+}
+
+async function poll() {
+  try {
+    const response = await fetch('/api/state');
+    await showState(await response.json());
+  } catch (error) {
+    studio.lastError = String(error);
+    $('status').dataset.state = 'error';
+    $('status').textContent = 'the studio does not answer (was it stopped?)';
+  }
+  setTimeout(poll, pollMilliseconds);
+}
+poll();
+
+// ---- evolution -------------------------------------------------------------------------
+function showGallery(gallery) {
+  studio.generation = gallery.generation;
+  studio.picked.clear();
+  $('generation').textContent = `generation ${gallery.generation}`;
+  $('breed').disabled = true;
+  $('gallery-restart').disabled = false;
+  document.body.dataset.generation = String(gallery.generation);
+  const box = $('gallery');
+  box.replaceChildren();
+  for (const variant of gallery.variants) {
+    const card = text('div', undefined, 'variant');
+    card.dataset.index = String(variant.index);
+    if (variant.picture) {
+      const image = document.createElement('img');
+      image.src = `/gallery/${variant.index}.png?g=${gallery.generation}`;
+      image.alt = `variant ${variant.index}`;
+      card.append(image);
+    } else {
+      card.append(text('div', variant.error, 'failed'));
+    }
+    const caption = text('div', undefined, 'caption');
+    const values = gallery.genes.map((g, i) => `${g.name}=${Number(variant.values[i].toPrecision(4))}`).join(' ');
+    caption.append(text('span', values));
+    const save = text('button', 'save');
+    save.type = 'button';
+    save.addEventListener('click', async (event) => {
+      event.stopPropagation();
+      const answer = await (await fetch('/api/save', { method: 'POST', body: JSON.stringify({ index: variant.index }) })).json();
+      $('saved').textContent = answer.path ? 'saved ' + answer.path : answer.error;
+    });
+    caption.append(save);
+    card.append(caption);
+    card.addEventListener('click', () => {
+      if (studio.picked.has(variant.index)) studio.picked.delete(variant.index);
+      else studio.picked.add(variant.index);
+      card.classList.toggle('picked', studio.picked.has(variant.index));
+      $('breed').disabled = studio.picked.size === 0;
+    });
+    box.append(card);
+  }
+}
+
+async function galleryRequest(path, body) {
+  $('generation').textContent = 'growing the variants…';
+  const response = await fetch(path, body === undefined ? {} : { method: 'POST', body: JSON.stringify(body) });
+  const answer = await response.json();
+  if (!response.ok) { $('generation').textContent = answer.error; return; }
+  showGallery(answer);
+}
+$('gallery-open').addEventListener('click', () => galleryRequest('/api/gallery'));
+$('gallery-restart').addEventListener('click', () => galleryRequest('/api/gallery/restart', {}));
+$('breed').addEventListener('click', () => galleryRequest('/api/breed', { picked: [...studio.picked].sort((a, b) => a - b) }));

@@ -1,0 +1,212 @@
+// The studio end to end: `ontogen studio` on a free port, its page in headless Chromium
+// (Debian's, driven by playwright-core). Checks that the page shows the model, follows a
+// saved change within two seconds, that the time slider and a #define slider change the
+// picture, that diagnostics appear at their line while the last model stays, that the
+// music set's notes reach the page and play with the animation, and that the gallery
+// breeds a generation whose variants can be saved as programs that grow.
+//
+//   node studio_page_test.mjs ONTOGEN_EXECUTABLE OUTPUT_DIR
+// Exit 0: passed; 1: failed; 77: a checker is missing (a failure when CI=true).
+
+import { spawn, spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { createRequire } from 'node:module';
+
+const [executable, outputDir] = process.argv.slice(2);
+const ci = process.env.CI === 'true';
+const chromiumPath = '/usr/bin/chromium';
+
+function missing(what) {
+  console.error(`studio page test: ${what} is missing (bash .ci/setup --checkers installs it)`);
+  process.exit(ci ? 1 : 77);
+}
+if (!fs.existsSync(chromiumPath)) missing('Chromium (/usr/bin/chromium)');
+let chromium;
+try {
+  chromium = createRequire(import.meta.url)('playwright-core').chromium;
+} catch {
+  missing('playwright-core (NODE_PATH=.tools/node_modules)');
+}
+
+let failures = 0;
+function check(condition, message) {
+  console.log(`${condition ? 'ok  ' : 'FAIL'} ${message}`);
+  if (!condition) failures += 1;
+  return condition;
+}
+
+const program = (angle, len, extra = '') => `// a tree for the studio's test
+#define ANGLE ${angle}
+#define LEN ${len}
+#interpret geometry
+#interpret music
+#music developmental
+lsystem tree {
+  #until 5
+  axiom !(0.08) (A, 0)
+  (A, 1) -> F(LEN) [ +(ANGLE) (A, 0) ] [ -(ANGLE) (A, 0) ]
+  interpret music A { pitch(60) note(0.25, 90) }
+${extra}}
+`;
+
+const work = fs.mkdtempSync(path.join(os.tmpdir(), 'ontogen-studio-test-'));
+const file = path.join(work, 'tree.cell');
+fs.writeFileSync(file, program(30, 1.5));
+fs.mkdirSync(outputDir, { recursive: true });
+
+const server = spawn(executable, ['studio', file, '--port', '0', '--frames', '21', '--save', work], {
+  stdio: ['ignore', 'pipe', 'pipe'],
+});
+let serverErrors = '';
+server.stderr.on('data', (chunk) => { serverErrors += chunk; });
+const url = await new Promise((resolve, reject) => {
+  let out = '';
+  const timer = setTimeout(() => reject(new Error('the studio printed no address within 30 s: ' + serverErrors)), 30000);
+  server.stdout.on('data', (chunk) => {
+    out += chunk;
+    const match = out.match(/http:\/\/127\.0\.0\.1:(\d+)\//);
+    if (match) { clearTimeout(timer); resolve(match[0]); }
+  });
+  server.on('exit', (code) => reject(new Error(`the studio ended (${code}): ${serverErrors}`)));
+});
+console.log('studio at', url);
+
+const browser = await chromium.launch({
+  executablePath: chromiumPath,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+    '--disable-component-update', '--disable-sync', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
+    '--autoplay-policy=no-user-gesture-required'],
+});
+
+// The canvas as 48 x 48 grey levels, and how many of its pixels are not background.
+async function picture(page) {
+  return page.evaluate(() => {
+    const source = document.getElementById('canvas');
+    const side = 48;
+    const small = document.createElement('canvas');
+    small.width = small.height = side;
+    const context = small.getContext('2d');
+    context.drawImage(source, 0, 0, side, side);
+    const { data } = context.getImageData(0, 0, side, side);
+    const full = document.createElement('canvas');
+    full.width = source.width;
+    full.height = source.height;
+    const fullContext = full.getContext('2d');
+    fullContext.drawImage(source, 0, 0);
+    const pixels = fullContext.getImageData(0, 0, full.width, full.height).data;
+    let drawn = 0;
+    for (let i = 0; i < pixels.length; i += 4)   // the background is (42, 45, 51)
+      if (Math.abs(pixels[i] - 42) + Math.abs(pixels[i + 1] - 45) + Math.abs(pixels[i + 2] - 51) > 24) drawn += 1;
+    const grey = [];
+    for (let i = 0; i < data.length; i += 4) grey.push((data[i] + data[i + 1] + data[i + 2]) / 3);
+    return { grey, drawn, total: pixels.length / 4 };
+  });
+}
+const difference = (a, b) => a.grey.reduce((sum, v, i) => sum + Math.abs(v - b.grey[i]), 0) / a.grey.length;
+// Two renders after a change: the page draws every animation frame.
+const settle = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+
+try {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
+  const pageErrors = [];
+  page.on('pageerror', (error) => pageErrors.push(String(error)));
+  await page.goto(url);
+  await page.waitForSelector('body[data-model-version="1"]', { timeout: 20000 });
+  await settle(page);
+  await page.screenshot({ path: path.join(outputDir, 'studio_first.png') });
+  const first = await picture(page);
+  check(first.drawn > first.total * 0.002, `the first screenshot shows the model (${first.drawn} of ${first.total} pixels drawn)`);
+  const defines = await page.$$eval('#defines input[type=range]', (inputs) => inputs.map((i) => i.dataset.define));
+  check(defines.join(',') === 'ANGLE,LEN', `a slider per #define (${defines})`);
+
+  // Saving the file re-grows the model; the page follows within two seconds.
+  const saved = Date.now();
+  fs.writeFileSync(file, program(70, 1.5));
+  await page.waitForSelector('body[data-model-version="2"]', { timeout: 2000 });
+  const followed = Date.now() - saved;
+  await settle(page);
+  await page.screenshot({ path: path.join(outputDir, 'studio_saved.png') });
+  const afterSave = await picture(page);
+  check(followed <= 2000, `the saved change is shown after ${followed} ms`);
+  check(difference(first, afterSave) > 1, `the saved change changes the picture (mean difference ${difference(first, afterSave).toFixed(2)})`);
+
+  // The time slider: at the start the tree is one young stem.
+  await page.locator('#time').fill('0');
+  await settle(page);
+  const early = await picture(page);
+  check(difference(afterSave, early) > 1 && early.drawn < afterSave.drawn,
+    `the time slider shows an earlier frame (${early.drawn} pixels drawn at time 0, ${afterSave.drawn} at the end)`);
+  await page.locator('#time').fill('5');
+
+  // A #define slider re-grows the model with the new value.
+  await page.locator('#defines input[data-define="LEN"]').fill('2.4');
+  await page.waitForSelector('body[data-model-version="3"]', { timeout: 5000 });
+  await settle(page);
+  const longer = await picture(page);
+  const state = await (await fetch(url + 'api/state')).json();
+  const len = state.defines.find((d) => d.name === 'LEN');
+  check(Math.abs(len.value - 2.4) < 1e-9, `the LEN slider set LEN to ${len.value}`);
+  check(difference(afterSave, longer) > 1, `the LEN slider changes the picture (mean difference ${difference(afterSave, longer).toFixed(2)})`);
+
+  // Music: the notes of the music set reach the page and play as the animation plays.
+  const notes = await (await fetch(url + 'api/notes')).json();
+  // A note at the birth of every A (1 + 2 + ... + 32 by 5 s) and of every F (the music
+  // set's F plays a note too: 1 + 2 + ... + 16).
+  check(notes.notes.length === 63 + 31, `the music set's notes reach the page (${notes.notes.length}, 63 of A and 31 of F)`);
+  await page.locator('#time').fill('0');
+  await page.click('#play');
+  await page.waitForFunction(() => !window.studio.playing, null, { timeout: 15000 });
+  const played = await page.evaluate(() => window.studio.notesPlayed);
+  check(played === notes.notes.length, `playing from the start played ${played} notes with the animation`);
+
+  // A broken program: the diagnostic at its line, the last model kept.
+  fs.writeFileSync(file, program(70, 1, '  (B, 1) -> F(LEN +)\n'));
+  await page.waitForFunction(() => document.getElementById('status').dataset.state === 'error', null, { timeout: 3000 });
+  const marked = await page.$$eval('#source .line.error', (lines) => lines.length);
+  const diagnostic = await page.textContent('#diagnostics');
+  check(marked === 1 && /tree\.cell:12:/.test(diagnostic), `the error is shown at its line (${diagnostic.split('\n')[0]})`);
+  check(await page.evaluate(() => window.studio.modelVersion) === 3, 'the last model that grew stays shown');
+  fs.writeFileSync(file, program(70, 1.5));
+  await page.waitForFunction(() => document.getElementById('status').dataset.state === 'ok', null, { timeout: 3000 });
+
+  // Evolution: a gallery of twelve, two picked, one generation bred.
+  await page.click('#gallery-open');
+  await page.waitForSelector('body[data-generation="1"]', { timeout: 60000 });
+  await page.waitForFunction(() => [...document.querySelectorAll('#gallery img')].every((i) => i.complete && i.naturalWidth > 0), null, { timeout: 20000 });
+  const firstGeneration = await (await fetch(url + 'api/gallery')).json();
+  check(firstGeneration.variants.length === 12 && firstGeneration.variants.every((v) => v.picture),
+    `a gallery of ${firstGeneration.variants.length} pictured variants`);
+  await page.click('#gallery .variant[data-index="3"]');
+  await page.click('#gallery .variant[data-index="7"]');
+  await page.click('#breed');
+  await page.waitForSelector('body[data-generation="2"]', { timeout: 60000 });
+  await page.screenshot({ path: path.join(outputDir, 'studio_gallery.png'), fullPage: true });
+  const second = await (await fetch(url + 'api/gallery')).json();
+  const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+  check(second.generation === 2 && same(second.variants[0].values, firstGeneration.variants[3].values) &&
+    same(second.variants[1].values, firstGeneration.variants[7].values),
+    'the next generation keeps the picked variants');
+  const children = second.variants.slice(2);
+  check(children.every((v) => v.parents.length >= 1 && v.parents.every((p) => p === 3 || p === 7)),
+    'every child descends from the picked');
+  const distinct = new Set(second.variants.map((v) => JSON.stringify(v.values))).size;
+  check(distinct >= 10, `the variants differ from one another (${distinct} distinct of 12)`);
+  const answer = await (await fetch(url + 'api/save', { method: 'POST', body: JSON.stringify({ index: 5 }) })).json();
+  check(typeof answer.path === 'string' && fs.existsSync(answer.path), `a variant saved as ${answer.path}`);
+  // 32 A, 31 F, 6 brackets and turns around each of the 31 branchings, and !: 250.
+  const grown = spawnSync(executable, ['run', answer.path, '--format', 'none', '--stats'], { encoding: 'utf8' });
+  check(grown.status === 0 && /cells 250,/.test(grown.stdout), `the saved variant grows alone (${grown.stdout.trim()})`);
+  check(pageErrors.length === 0, `no script errors in the page (${pageErrors.join('; ')})`);
+} catch (error) {
+  check(false, String(error && error.stack || error));
+} finally {
+  await browser.close();
+  server.kill('SIGINT');
+  await new Promise((r) => server.on('exit', r));
+  fs.rmSync(work, { recursive: true, force: true });
+}
+check(serverErrors === '' || !/internal error/.test(serverErrors), 'the studio reported no internal error');
+console.log(failures === 0 ? 'studio page test: passed' : `studio page test: ${failures} failed`);
+process.exit(failures === 0 ? 0 : 1);

@@ -1,0 +1,268 @@
+// The studio without a browser: requests parsed and answered over a real socket, the
+// model re-grown as its file and defines change, the routes the page uses, the gallery.
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "apps/studio/gallery.h"
+#include "apps/studio/http_server.h"
+#include "apps/studio/studio_model.h"
+#include "apps/studio/studio_server.h"
+#include "lang/compiler.h"
+
+namespace ontogen::studio {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(HttpRequest, ParsesAGetWithItsQuery) {
+  HttpRequest request;
+  ASSERT_TRUE(parseHttpRequest("GET /gallery/3.png?g=2&name=a%20b+c HTTP/1.1\r\nHost: x\r\n\r\n", request));
+  EXPECT_EQ(request.method, "GET");
+  EXPECT_EQ(request.path, "/gallery/3.png");
+  EXPECT_EQ(request.query.at("g"), "2");
+  EXPECT_EQ(request.query.at("name"), "a b c");
+  EXPECT_EQ(request.body, "");
+}
+
+TEST(HttpRequest, ParsesAPostBodyOfItsContentLength) {
+  HttpRequest request;
+  ASSERT_TRUE(parseHttpRequest("POST /api/define HTTP/1.1\r\ncontent-LENGTH: 5\r\n\r\n{\"a\"}tail", request));
+  EXPECT_EQ(request.method, "POST");
+  EXPECT_EQ(request.body, "{\"a\"}");
+}
+
+TEST(HttpRequest, RefusesMalformedRequests) {
+  HttpRequest request;
+  EXPECT_FALSE(parseHttpRequest("GET / HTTP/1.1\r\n", request));                       // no end of head
+  EXPECT_FALSE(parseHttpRequest("get / HTTP/1.1\r\n\r\n", request));                   // method case
+  EXPECT_FALSE(parseHttpRequest("GET nothing HTTP/1.1\r\n\r\n", request));             // not a path
+  EXPECT_FALSE(parseHttpRequest("GET / SPDY/3\r\n\r\n", request));                     // not HTTP/1.x
+  EXPECT_FALSE(parseHttpRequest("GET /%zz HTTP/1.1\r\n\r\n", request));                // bad escape
+  EXPECT_FALSE(parseHttpRequest("GET /%4 HTTP/1.1\r\n\r\n", request));                 // cut escape
+  EXPECT_FALSE(parseHttpRequest("POST / HTTP/1.1\r\nContent-Length: 9\r\n\r\nshort", request));
+  EXPECT_FALSE(parseHttpRequest("POST / HTTP/1.1\r\nContent-Length: -1\r\n\r\n", request));
+  std::string decoded;
+  EXPECT_TRUE(decodeUrlComponent("%41%62", decoded));
+  EXPECT_EQ(decoded, "Ab");
+}
+
+// Sends raw bytes to 127.0.0.1:port and returns the whole answer.
+std::string exchange(uint16_t port, const std::string& bytes) {
+  const int client = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  address.sin_port = htons(port);
+  if (::connect(client, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
+    ::close(client);
+    return "connect failed";
+  }
+  ::send(client, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+  ::shutdown(client, SHUT_WR);
+  std::string answer;
+  char buffer[4096];
+  for (ssize_t n; (n = ::recv(client, buffer, sizeof buffer, 0)) > 0;) answer.append(buffer, static_cast<size_t>(n));
+  ::close(client);
+  return answer;
+}
+
+TEST(HttpServer, AnswersOverASocketAndRefusesBadRequests) {
+  HttpServer server(0);
+  ASSERT_GT(server.port(), 0);
+  std::atomic<bool> stop{false};
+  std::atomic<int> idles{0};
+  std::thread serving([&] {
+    server.serve([](const HttpRequest& request) { return HttpResponse{200, "text/plain", "path " + request.path}; },
+                 [&] { ++idles; }, [&] { return stop.load(); }, 10);
+  });
+  const std::string ok = exchange(server.port(), "GET /hello HTTP/1.1\r\n\r\n");
+  EXPECT_TRUE(ok.starts_with("HTTP/1.1 200 OK\r\n")) << ok;
+  EXPECT_NE(ok.find("Content-Length: 11\r\n"), std::string::npos) << ok;
+  EXPECT_TRUE(ok.ends_with("\r\n\r\npath /hello")) << ok;
+  EXPECT_TRUE(exchange(server.port(), "NONSENSE\r\n\r\n").starts_with("HTTP/1.1 400 ")) ;
+  EXPECT_TRUE(exchange(server.port(), "GET / HTTP/1.1\r\n" + std::string(20000, 'x')).starts_with("HTTP/1.1 413 "));
+  EXPECT_TRUE(exchange(server.port(), "POST / HTTP/1.1\r\nContent-Length: 99999999\r\n\r\n").starts_with("HTTP/1.1 413 "));
+  // A request cut short is never answered from half of it.
+  EXPECT_EQ(exchange(server.port(), "GET /cut HTTP/1.1\r\n"), "");
+  stop = true;
+  serving.join();
+  EXPECT_GT(idles.load(), 0);
+}
+
+const char* kTree = R"(#define ANGLE 30
+#define LEN 1
+lsystem tree {
+  #until 3
+  axiom !(0.1) (A, 0)
+  (A, 1) -> F(LEN) [ +(ANGLE) (A, 0) ] [ -(ANGLE) (A, 0) ]
+}
+)";
+
+struct StudioFixture : ::testing::Test {
+  fs::path folder;
+  fs::path file;
+  void SetUp() override {
+    folder = fs::temp_directory_path() / ("ontogen_studio_test_" + std::to_string(::getpid()) + "_" +
+                                          ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(folder);
+    fs::create_directories(folder);
+    file = folder / "tree.cell";
+    write(kTree);
+  }
+  void TearDown() override { fs::remove_all(folder); }
+  void write(const std::string& text) {
+    std::ofstream(file, std::ios::binary) << text;
+    // File times may be coarse: a rewrite must look different to refresh().
+    fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(++rewrites));
+  }
+  StudioModelDef modelDef() {
+    StudioModelDef def;
+    def.common.file = file.string();
+    def.frames = 4;
+    def.work = folder / "work";
+    return def;
+  }
+  GalleryDef galleryDef(uint64_t seed = 7) {
+    GalleryDef def;
+    def.common.file = file.string();
+    def.seed = seed;
+    def.thumbnailSide = 64;
+    def.work = folder / "gallery";
+    def.saveTo = folder;
+    return def;
+  }
+  int rewrites = 0;
+};
+
+TEST_F(StudioFixture, ModelGrowsFollowsItsFileAndKeepsTheLastGoodModel) {
+  StudioModel model(modelDef());
+  model.regrow();
+  ASSERT_EQ(model.modelVersion(), 1u) << model.state().dump(2);
+  EXPECT_TRUE(model.glb().starts_with("glTF"));
+  const nlohmann::json state = model.state();
+  EXPECT_TRUE(state["ok"].get<bool>());
+  // At 3 s: 8 apices A, 7 F, 6 brackets and turns around each of the 7 branchings, and !.
+  EXPECT_EQ(state["cells"], 8 + 7 + 7 * 6 + 1);
+  ASSERT_EQ(state["defines"].size(), 2u);
+  EXPECT_EQ(state["defines"][0]["name"], "ANGLE");
+  EXPECT_EQ(state["defines"][0]["low"], 1.0);  // a whole number of 1 or more stays at least 1
+  EXPECT_EQ(state["defines"][0]["high"], 60.0);
+  EXPECT_EQ(state["defines"][1]["line"], 2);
+  EXPECT_FALSE(model.refresh());  // nothing changed
+
+  const std::string firstGlb = model.glb();
+  EXPECT_FALSE(model.setDefine("NOPE", 1));
+  EXPECT_EQ(model.version(), 1u);
+  ASSERT_TRUE(model.setDefine("LEN", 2));
+  EXPECT_EQ(model.modelVersion(), 2u);
+  EXPECT_NE(model.glb(), firstGlb);
+  EXPECT_EQ(model.defineValues().at("LEN"), 2.0);
+
+  write(std::string(kTree) + "oops ->\n");
+  EXPECT_TRUE(model.refresh());
+  EXPECT_EQ(model.version(), 3u);
+  EXPECT_EQ(model.modelVersion(), 2u);  // the last model that grew stays
+  const nlohmann::json broken = model.state();
+  EXPECT_FALSE(broken["ok"].get<bool>());
+  ASSERT_FALSE(broken["diagnostics"].empty());
+  EXPECT_EQ(broken["diagnostics"][0]["line"], 8);
+  EXPECT_NE(broken["diagnostics"][0]["text"].get<std::string>().find("tree.cell:8:"), std::string::npos);
+  EXPECT_EQ(broken["defines"][1]["value"], 2.0);  // the slider keeps its value
+
+  write(kTree);
+  EXPECT_TRUE(model.refresh());
+  EXPECT_EQ(model.modelVersion(), 3u);
+}
+
+TEST_F(StudioFixture, RoutesAnswerThePage) {
+  StudioModel model(modelDef());
+  model.regrow();
+  Gallery gallery(galleryDef());
+  StudioServer server(model, gallery);
+  auto ask = [&](std::string method, std::string path, std::string body = "") {
+    HttpRequest request;
+    request.method = std::move(method);
+    request.path = std::move(path);
+    request.body = std::move(body);
+    return server.handle(request);
+  };
+  const HttpResponse state = ask("GET", "/api/state");
+  EXPECT_EQ(state.status, 200);
+  EXPECT_EQ(nlohmann::json::parse(state.body)["modelVersion"], 1);
+  const HttpResponse glb = ask("GET", "/model.glb");
+  EXPECT_EQ(glb.contentType, "model/gltf-binary");
+  EXPECT_EQ(glb.body, model.glb());
+  EXPECT_EQ(ask("GET", "/nowhere").status, 404);
+  EXPECT_EQ(ask("DELETE", "/api/state").status, 405);
+  EXPECT_EQ(ask("POST", "/api/define", "not json").status, 400);
+  EXPECT_EQ(ask("POST", "/api/define", R"({"name": "LEN"})").status, 400);
+  EXPECT_EQ(ask("POST", "/api/define", R"({"name": "NOPE", "value": 1})").status, 422);
+  const HttpResponse moved = ask("POST", "/api/define", R"({"name": "ANGLE", "value": 45})");
+  EXPECT_EQ(moved.status, 200);
+  EXPECT_EQ(nlohmann::json::parse(moved.body)["modelVersion"], 2);
+  EXPECT_EQ(nlohmann::json::parse(ask("GET", "/api/notes").body)["notes"].size(), 0u);  // no music set
+
+  const nlohmann::json first = nlohmann::json::parse(ask("GET", "/api/gallery").body);
+  ASSERT_EQ(first["variants"].size(), 12u);
+  EXPECT_EQ(first["generation"], 1);
+  // The gallery starts from the sliders: variant 0 is the program as the page shows it.
+  EXPECT_EQ(first["variants"][0]["values"], nlohmann::json::array({45.0, 1.0}));
+  EXPECT_EQ(ask("GET", "/gallery/0.png").contentType, "image/png");
+  EXPECT_TRUE(ask("GET", "/gallery/0.png").body.starts_with("\x89PNG"));
+  EXPECT_EQ(ask("GET", "/gallery/12.png").status, 404);
+  EXPECT_EQ(ask("GET", "/gallery/x.png").status, 404);
+  EXPECT_EQ(ask("POST", "/api/breed", R"({"picked": []})").status, 422);
+  EXPECT_EQ(ask("POST", "/api/breed", R"({"picked": [40]})").status, 422);
+  const nlohmann::json second = nlohmann::json::parse(ask("POST", "/api/breed", R"({"picked": [2, 5]})").body);
+  EXPECT_EQ(second["generation"], 2);
+  EXPECT_EQ(second["variants"][0]["values"], first["variants"][2]["values"]);
+  EXPECT_EQ(second["variants"][1]["values"], first["variants"][5]["values"]);
+  const nlohmann::json saved = nlohmann::json::parse(ask("POST", "/api/save", R"({"index": 4})").body);
+  const fs::path path = saved["path"].get<std::string>();
+  EXPECT_EQ(path, folder / "tree_g2_v4.cell");
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  DiagnosticSink sink;
+  const auto program = compileSource(path.string(), text, sink);
+  ASSERT_TRUE(program) << text;
+  EXPECT_EQ(program->defines[0].value, second["variants"][4]["values"][0].get<double>());
+  EXPECT_EQ(program->defines[1].value, second["variants"][4]["values"][1].get<double>());
+}
+
+TEST_F(StudioFixture, GalleryIsTheSameForTheSameSeedAndPicks) {
+  Gallery a(galleryDef(7)), b(galleryDef(7)), c(galleryDef(8));
+  a.reset(kTree, "tree");
+  b.reset(kTree, "tree");
+  c.reset(kTree, "tree");
+  std::vector<Genome> genomesA, genomesC;
+  for (std::size_t i = 0; i < a.variants().size(); ++i) {
+    EXPECT_EQ(a.variants()[i].genome, b.variants()[i].genome);
+    EXPECT_EQ(a.variants()[i].png, b.variants()[i].png);
+    EXPECT_TRUE(a.variants()[i].error.empty()) << a.variants()[i].error;
+  }
+  EXPECT_EQ(a.variants()[0].genome, a.space().original());
+  bool differs = false;
+  for (std::size_t i = 1; i < a.variants().size(); ++i) differs = differs || a.variants()[i].genome != c.variants()[i].genome;
+  EXPECT_TRUE(differs);
+  a.breed({1, 4, 9});
+  b.breed({1, 4, 9});
+  for (std::size_t i = 0; i < a.variants().size(); ++i) EXPECT_EQ(a.variants()[i].genome, b.variants()[i].genome);
+  EXPECT_THROW(a.breed({}), std::invalid_argument);
+  EXPECT_THROW(a.save(12), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ontogen::studio
