@@ -46,6 +46,15 @@ uint32_t stressMaterial(double stress) {
   return kUserColors + static_cast<uint32_t>(std::lround(s * (kStressColors - 1)));
 }
 
+double linearFromSrgb(double channel) {
+  const double c = std::clamp(channel, 0.0, 1.0);
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+Color linearColor(const Color& color) {
+  return {linearFromSrgb(color.r), linearFromSrgb(color.g), linearFromSrgb(color.b)};
+}
+
 std::string materialName(uint32_t index) {
   return "ontogen_" + std::to_string(index % kPaletteSize);
 }

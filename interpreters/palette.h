@@ -8,7 +8,9 @@
 
 namespace ontogen {
 
-/// A linear RGB colour, each channel in [0, 1].
+/// An RGB colour as displayed (sRGB-encoded, as a PNG or a colour picker holds it), each
+/// channel in [0, 1]. Formats whose colours are linear light (glTF's baseColorFactor)
+/// convert it with linearFromSrgb.
 struct Color {
   double r = 0;
   double g = 0;
@@ -32,6 +34,11 @@ Color paletteColor(uint32_t index);
 /// The palette index of stress s in [0, 1] (clamped): kUserColors (blue, unperturbed)
 /// to kPaletteSize - 1 (red, most stretched), rising with s.
 uint32_t stressMaterial(double stress);
+
+/// The linear-light value of an sRGB-encoded channel value in [0, 1] (IEC 61966-2-1).
+double linearFromSrgb(double channel);
+/// The colour with each channel in linear light.
+Color linearColor(const Color& color);
 
 /// The material name writers give palette index i: "ontogen_<i mod kPaletteSize>".
 std::string materialName(uint32_t index);

@@ -7,7 +7,7 @@
 // a time: a STEP-interpolated scale channel per node is 1 while its frame is current and 0
 // otherwise, keyed at the frames' developmental times (seconds; frame index / 25 when the
 // times do not increase). Without animation playback the last frame shows. Materials are
-// the palette colours (metallic 0, rough, double-sided, since discs and lines have one
+// the palette colours in linear light (metallic 0, rough, double-sided, since discs and lines have one
 // side).
 
 #include <ostream>

@@ -81,7 +81,9 @@ int Builder::addAccessor(const nlohmann::json& accessor) {
 int Builder::materialOf(uint32_t palette) {
   auto [it, inserted] = materials_.try_emplace(palette, static_cast<int>(materials_.size()));
   if (inserted) {
-    Color c = paletteColor(palette);
+    // glTF's colour factors are linear light; the palette holds display (sRGB) values,
+    // which written as they are look pale in every viewer.
+    const Color c = linearColor(paletteColor(palette));
     gltf["materials"].push_back({{"name", materialName(palette)},
                                  {"doubleSided", true},
                                  {"pbrMetallicRoughness",

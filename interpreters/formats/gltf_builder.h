@@ -39,8 +39,8 @@ class Builder {
   /// An accessor of count elements of `type` ("VEC4", "MAT4") of floats, no bounds.
   int addFloats(const std::vector<float>& values, const char* type, std::size_t count, int target);
   int addAccessor(const nlohmann::json& accessor);
-  /// The material of a palette colour (made at its first use): metallic 0, rough,
-  /// double-sided, since discs and lines have one side.
+  /// The material of a palette colour (made at its first use): the colour in linear
+  /// light, metallic 0, rough, double-sided, since discs and lines have one side.
   int materialOf(uint32_t palette);
 
  private:
