@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "tests/interpreters/midi_checkers.h"
+#include "tests/checkers.h"
 
 extern char** environ;
 
@@ -77,8 +78,8 @@ class JackPeer : public ::testing::Test {
   void SetUp() override {
     int code = -1;
     runCommand("command -v jackd && command -v jack_midi_dump && command -v jack_wait && command -v jack_lsp", &code);
-    if (code != 0) GTEST_SKIP() << "jackd2 is not installed (bash .ci/setup installs it)";
-    if (!haveMido()) GTEST_SKIP() << "python3-mido is not installed (bash .ci/setup installs it)";
+    ONTOGEN_REQUIRE_CHECKER(code == 0, "jackd2 is not installed (bash .ci/setup installs it)");
+    ONTOGEN_REQUIRE_CHECKER(haveMido(), "python3-mido is not installed (bash .ci/setup installs it)");
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     dir_ = scratch(info->name());
     server_ = "ontogen_test_" + std::to_string(getpid());

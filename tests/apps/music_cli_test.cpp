@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "tests/interpreters/midi_checkers.h"
+#include "tests/checkers.h"
 
 namespace {
 
@@ -54,7 +55,7 @@ std::string model(const std::string& name) { return std::string(ONTOGEN_SOURCE_D
 class MusicCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!haveMido()) GTEST_SKIP() << "python3-mido is not installed (bash .ci/setup installs it)";
+    ONTOGEN_REQUIRE_CHECKER(haveMido(), "python3-mido is not installed (bash .ci/setup installs it)");
   }
   /// Runs a model with the music set and returns what mido reads in its file.
   json play(const std::string& file, const std::string& directory, const std::string& extra = "") {
@@ -181,7 +182,7 @@ TEST_F(MusicCli, ThePistonPlaysItsOwnDevelopment) {
 }
 
 TEST_F(MusicCli, EveryMusicModelRendersToSound) {
-  if (!haveFluidsynth()) GTEST_SKIP() << "fluidsynth or fluid-soundfont-gm is missing (bash .ci/setup installs them)";
+  ONTOGEN_REQUIRE_CHECKER(haveFluidsynth(), "fluidsynth or fluid-soundfont-gm is missing (bash .ci/setup installs them)");
   for (const char* name : {"koch_melody", "markov_melody", "chords", "swell", "piston"}) {
     play(model(std::string(name) + ".cell"), name);  // each at its own #until
     double rms = renderRms(out_, out_.parent_path() / "render.wav");

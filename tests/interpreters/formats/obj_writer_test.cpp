@@ -21,6 +21,7 @@
 #include "interpreters/geometry.h"
 #include "interpreters/geometry/turtle.h"
 #include "tests/interpreters/external_tools.h"
+#include "tests/checkers.h"
 
 namespace ontogen {
 namespace {
@@ -217,7 +218,7 @@ TEST(ObjWriterTest, EmptyGeometryIsOnePointThatAssimpReads) {
   EXPECT_EQ(objOf(Geometry{}),
             "# ontogen geometry\n# 0 vertices, 0 normals, 0 triangles, 0 line segments\n"
             "# nothing to draw in this frame: one point at the origin\nv 0 0 0\np 1\n");
-  if (!haveTool("assimp")) GTEST_SKIP() << "assimp not found (Debian package assimp-utils)";
+  ONTOGEN_REQUIRE_CHECKER(haveTool("assimp"), "assimp not found (Debian package assimp-utils)");
   const std::filesystem::path path =
       std::filesystem::temp_directory_path() / ("ontogen_empty_" + std::to_string(::getpid()) + ".obj");
   std::ofstream(path) << objOf(Geometry{});
@@ -228,9 +229,8 @@ TEST(ObjWriterTest, EmptyGeometryIsOnePointThatAssimpReads) {
 }
 
 TEST(ObjWriterTest, AssimpReadsTheFile) {
-  if (runCommand("command -v assimp >/dev/null 2>&1").first != 0) {
-    GTEST_SKIP() << "assimp not found (Debian package assimp-utils)";
-  }
+  ONTOGEN_REQUIRE_CHECKER(runCommand("command -v assimp >/dev/null 2>&1").first == 0,
+                          "assimp not found (Debian package assimp-utils)");
   // Primitives apart from each other, so assimp's vertex joining merges nothing across them.
   Geometry geometry = draw({{"!", {1}}, {"cC", {4, 1}}, {"f", {10}}, {"sphere", {2}}, {"f", {10}},
                             {"disc", {1, 3}}, {"f", {10}}, {"!", {0}}, {"F", {}}, {"F", {}},

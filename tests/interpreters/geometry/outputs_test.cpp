@@ -20,6 +20,7 @@
 #include "interpreters/geometry/surface.h"
 #include "tests/interpreters/external_tools.h"
 #include "tests/interpreters/png_decode.h"
+#include "tests/checkers.h"
 
 namespace ontogen {
 namespace {
@@ -113,7 +114,7 @@ TEST_F(OutputsTest, AnimatedGlbPassesTheKhronosValidator) {
   std::vector<fs::path> written = runFrames("glb", 4);
   ASSERT_EQ(written.size(), 1u);
   EXPECT_EQ(written[0], directory_ / "plant.glb");
-  if (validatorModules().empty()) GTEST_SKIP() << "gltf-validator not installed (bash .ci/setup installs it)";
+  ONTOGEN_REQUIRE_CHECKER(!validatorModules().empty(), "gltf-validator not installed (bash .ci/setup installs it)");
   auto [status, report] = validateGlb(written[0]);
   EXPECT_EQ(status, 0) << report;
   EXPECT_NE(report.find("errors 0"), std::string::npos) << report;
@@ -152,7 +153,7 @@ TEST_F(OutputsTest, BlendedSurfacesAndFilteredPlatesPassTheKhronosValidator) {
   }
   EXPECT_EQ(set.geometry().triangleCount(), 32u + 8u);
   ASSERT_EQ(written.size(), 1u);
-  if (validatorModules().empty()) GTEST_SKIP() << "gltf-validator not installed (bash .ci/setup installs it)";
+  ONTOGEN_REQUIRE_CHECKER(!validatorModules().empty(), "gltf-validator not installed (bash .ci/setup installs it)");
   auto [status, report] = validateGlb(written[0]);
   EXPECT_EQ(status, 0) << report;
   EXPECT_NE(report.find("errors 0"), std::string::npos) << report;
@@ -166,7 +167,7 @@ TEST_F(OutputsTest, EmptyAndSingleFrameGlbsAreValid) {
   std::vector<fs::path> written = set.endFrame();
   ASSERT_EQ(written.size(), 1u);
   std::vector<fs::path> single = runFrames("glb", 1);
-  if (validatorModules().empty()) GTEST_SKIP() << "gltf-validator not installed";
+  ONTOGEN_REQUIRE_CHECKER(!validatorModules().empty(), "gltf-validator not installed");
   EXPECT_EQ(validateGlb(written[0]).first, 0) << validateGlb(written[0]).second;
   EXPECT_EQ(validateGlb(single[0]).first, 0) << validateGlb(single[0]).second;
 }
@@ -179,7 +180,7 @@ TEST_F(OutputsTest, ObjWithMtlLoadsInAssimpWithTheRightCounts) {
   std::string text((std::istreambuf_iterator<char>(mtl)), {});
   EXPECT_NE(text.find("newmtl ontogen_0\nKd 0.62 0.55 0.45"), std::string::npos) << text;
   EXPECT_NE(text.find("newmtl ontogen_3"), std::string::npos);
-  if (runCommand("command -v assimp >/dev/null 2>&1").first != 0) GTEST_SKIP() << "assimp not found";
+  ONTOGEN_REQUIRE_CHECKER(runCommand("command -v assimp >/dev/null 2>&1").first == 0, "assimp not found");
   auto [status, info] = runCommand("assimp info '" + written[0].string() + "' 2>&1");
   ASSERT_EQ(status, 0) << info;
   // Compare with the geometry drawn again: faces are triangles plus lines.
@@ -195,7 +196,7 @@ TEST_F(OutputsTest, ObjWithMtlLoadsInAssimpWithTheRightCounts) {
 TEST_F(OutputsTest, PlyLoadsInAssimp) {
   std::vector<fs::path> written = runFrames("ply", 1);
   ASSERT_EQ(written.size(), 1u);
-  if (runCommand("command -v assimp >/dev/null 2>&1").first != 0) GTEST_SKIP() << "assimp not found";
+  ONTOGEN_REQUIRE_CHECKER(runCommand("command -v assimp >/dev/null 2>&1").first == 0, "assimp not found");
   auto [status, info] = runCommand("assimp info '" + written[0].string() + "' 2>&1");
   ASSERT_EQ(status, 0) << info;
   GeometrySet set;
@@ -249,7 +250,7 @@ TEST_F(OutputsTest, RendererFramesAFlatDrawingFromTheFront) {
 }
 
 TEST_F(OutputsTest, Mp4HasOneFramePerRunFrame) {
-  if (!ffmpegAvailable()) GTEST_SKIP() << "ffmpeg not installed (Debian package ffmpeg)";
+  ONTOGEN_REQUIRE_CHECKER(ffmpegAvailable(), "ffmpeg not installed (Debian package ffmpeg)");
   std::vector<fs::path> written = runFrames("mp4", 5);
   ASSERT_EQ(written.size(), 1u);
   EXPECT_EQ(written[0], directory_ / "plant.mp4");

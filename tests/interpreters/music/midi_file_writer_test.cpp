@@ -13,6 +13,7 @@
 
 #include "interpreters/music/midi_sequence.h"
 #include "tests/interpreters/midi_checkers.h"
+#include "tests/checkers.h"
 
 namespace ontogen {
 namespace {
@@ -111,7 +112,7 @@ TEST(MidiSequence, SecondsFollowTheTempoMap) {
 class MidiRoundTrip : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!haveMido()) GTEST_SKIP() << "python3-mido is not installed (bash .ci/setup installs it)";
+    ONTOGEN_REQUIRE_CHECKER(haveMido(), "python3-mido is not installed (bash .ci/setup installs it)");
     directory_ = fs::temp_directory_path() / ("ontogen_midi_" + std::to_string(::getpid()));
     fs::create_directories(directory_);
   }
@@ -216,7 +217,7 @@ TEST_F(MidiRoundTrip, ThousandsOfRandomNotesSurviveByValue) {
 }
 
 TEST_F(MidiRoundTrip, RendersToAudibleSound) {
-  if (!haveFluidsynth()) GTEST_SKIP() << "fluidsynth or fluid-soundfont-gm is missing (bash .ci/setup installs them)";
+  ONTOGEN_REQUIRE_CHECKER(haveFluidsynth(), "fluidsynth or fluid-soundfont-gm is missing (bash .ci/setup installs them)");
   Score score;
   for (int i = 0; i < 4; ++i) score.notes.push_back({i * 0.5, 0.5, 0, static_cast<uint8_t>(60 + 2 * i), 100});
   fs::path midi = write(score, MidiFileDef{}, "audible.mid");
