@@ -119,8 +119,8 @@ Image renderGeometry(const Geometry& geometry, const RenderDef& def) {
     for (int k = 0; k < 3; ++k) canvas.rgb[3 * i + k] = kBackground[k] / 255.0f;
   }
 
-  const Box& box = geometry.bounds();
-  if (!box.empty) {
+  const Box& box = def.framing && !def.framing->empty ? *def.framing : geometry.bounds();
+  if (!box.empty && !geometry.empty()) {
     const glm::dvec3 size = box.max - box.min;
     const double extent = std::max({size.x, size.y, size.z});
     const bool flat = size.z <= kFlatRatio * std::max(extent, 1e-300);

@@ -1,6 +1,7 @@
 #pragma once
 // A software renderer for pictures of a frame on machines with no display and no GPU:
-// orthographic camera that frames the model's bounding box automatically, z-buffer,
+// orthographic camera that frames the model's bounding box automatically (or a box it is
+// given, RenderDef::framing), z-buffer,
 // flat Lambert shading of each triangle by a light beside the viewer (two-sided, since
 // discs have one side), segments as lines, 2 x 2 supersampling for smooth edges.
 //
@@ -23,6 +24,10 @@ struct RenderDef {
   std::optional<double> azimuth;     ///< degrees about +y from +z towards +x; default: see above
   std::optional<double> elevation;   ///< degrees above the horizontal, -90..90
   double margin = 0.05;              ///< fraction of the picture left around the model
+  /// The box the camera frames (and whose shape picks the default view) instead of the
+  /// geometry's own bounds: a movie frames every frame on the union of all, so that the
+  /// camera stays put and a model that grows is seen to grow.
+  std::optional<Box> framing;
 };
 
 /// 8-bit RGB pixels, row by row from the top.

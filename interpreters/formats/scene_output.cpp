@@ -20,6 +20,18 @@ extern char** environ;
 
 namespace ontogen {
 
+namespace {
+// What a kept copy of a frame's geometry holds, near enough for the memory limit.
+uint64_t geometryBytes(const Geometry& geometry) {
+  const Mesh& mesh = geometry.mesh();
+  return mesh.positions.size() * sizeof(glm::dvec3) + mesh.normals.size() * sizeof(glm::dvec3) +
+         mesh.texcoords.size() * sizeof(glm::dvec2) + mesh.triangles.size() * sizeof(Triangle) +
+         geometry.segments().size() * sizeof(Segment) +
+         geometry.cylinders().size() * sizeof(CylinderPrimitive) + geometry.discs().size() * sizeof(DiscPrimitive) +
+         geometry.spheres().size() * sizeof(SpherePrimitive);
+}
+}  // namespace
+
 std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
   def.writeSvg = def.writeObj = def.writeMtl = def.writePly = false;
   def.writePng = def.writePngFrames = def.writeGlb = def.writeMp4 = def.writeJoints = false;
@@ -94,6 +106,26 @@ std::filesystem::path SceneOutput::mp4FramesDirectory(const FrameTarget& target)
   return target.directory / ("." + stem + ".mp4-frames");
 }
 
+void SceneOutput::renderMovieFrames(const FrameTarget& target) {
+  RenderDef render = def_.render;
+  render.framing = movieBounds_;
+  std::error_code error;
+  mp4FramesRegistered_ =
+      std::make_unique<RegisteredTemporary>(mp4FramesDirectory(target), RegisteredTemporary::Kind::Folder);
+  std::filesystem::create_directories(mp4FramesDirectory(target), error);
+  if (error) throw OutputError("cannot create " + mp4FramesDirectory(target).string() + ": " + error.message());
+  for (const Geometry& frame : movieFrames_) {
+    const Image image = renderGeometry(frame, render);
+    std::string number = std::to_string(mp4Frames_++);
+    number.insert(0, number.size() < 6 ? 6 - number.size() : 0, '0');
+    writeFileAtomically(mp4FramesDirectory(target) / ("frame_" + number + ".png"),
+                        [&](std::ostream& out) { writePng(image, out); });
+  }
+  movieFrames_.clear();
+  movieBounds_ = Box{};
+  movieBytes_ = 0;
+}
+
 void SceneOutput::writeMp4(const FrameTarget& target, std::vector<std::filesystem::path>& written) {
   FrameTarget whole = target;
   whole.frameCount = 1;
@@ -139,6 +171,8 @@ std::vector<SetWarning> SceneOutput::takeWarnings() {
   };
   emptyObj_.takeInto(out, frames(emptyObj_) + " had nothing to draw: " + (emptyObj_.count == 1 ? "its" : "their") +
                               " .obj holds one point at the origin, as readers refuse one without a mesh");
+  shortMovie_.takeInto(out, "the movie has one frame, " + std::to_string(1.0 / def_.framesPerSecond).substr(0, 4) +
+                                " s long: give the run --frames N, or the program #fps, for an animation");
   emptyPly_.takeInto(out, frames(emptyPly_) + " had no surface: no .ply was written for " +
                               (emptyPly_.count == 1 ? "it" : "them") + ", as readers refuse one without a face");
   return out;
@@ -186,25 +220,21 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
     writeFileAtomically(path, [&](std::ostream& out) { writePly(geometry_, out); });
     written.push_back(std::move(path));
   }
-  const bool picture = def_.writePngFrames || (def_.writePng && last) || def_.writeMp4;
+  if (def_.writeMp4) {
+    movieFrames_.push_back(geometry_);
+    movieBytes_ += geometryBytes(geometry_);
+    if (!geometry_.empty()) {
+      movieBounds_.add(geometry_.bounds().min);
+      movieBounds_.add(geometry_.bounds().max);
+    }
+  }
+  const bool picture = def_.writePngFrames || (def_.writePng && last);
   if (picture) {
     const Image image = renderGeometry(geometry_, def_.render);
     if (def_.writePngFrames || (def_.writePng && last)) {
       std::filesystem::path path = outputPath(def_.writePngFrames ? target_ : whole, "png");
       writeFileAtomically(path, [&](std::ostream& out) { writePng(image, out); });
       written.push_back(std::move(path));
-    }
-    if (def_.writeMp4) {
-      std::error_code error;
-      if (!mp4FramesRegistered_)
-        mp4FramesRegistered_ =
-            std::make_unique<RegisteredTemporary>(mp4FramesDirectory(target_), RegisteredTemporary::Kind::Folder);
-      std::filesystem::create_directories(mp4FramesDirectory(target_), error);
-      if (error) throw OutputError("cannot create " + mp4FramesDirectory(target_).string() + ": " + error.message());
-      std::string number = std::to_string(mp4Frames_++);
-      number.insert(0, number.size() < 6 ? 6 - number.size() : 0, '0');
-      writeFileAtomically(mp4FramesDirectory(target_) / ("frame_" + number + ".png"),
-                          [&](std::ostream& out) { writePng(image, out); });
     }
   }
   // A run whose frames hold a skeleton is written as one skin, from the first frame that
@@ -237,7 +267,11 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
       joints_.clear();
       written.push_back(std::move(path));
     }
-    if (def_.writeMp4) writeMp4(target_, written);
+    if (def_.writeMp4) {
+      if (movieFrames_.size() == 1) shortMovie_.add(1, InstructionSite{SourceSpan{}, "", target_.time});
+      renderMovieFrames(target_);
+      writeMp4(target_, written);
+    }
   }
   return written;
 }

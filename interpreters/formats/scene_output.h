@@ -61,8 +61,9 @@ class SceneOutput {
   /// run); returns the paths written, SVG first. Throws OutputError on failure.
   std::vector<std::filesystem::path> write(const Scene& scene, const FrameTarget& target);
   const SceneOutputDef& def() const { return def_; }
-  /// Bytes this stage holds between frames (the .glb's frames, all written at the end).
-  uint64_t heldBytes() const { return glb_.heldBytes(); }
+  /// Bytes this stage holds between frames (the .glb's frames and the movie's, all
+  /// written at the end).
+  uint64_t heldBytes() const { return glb_.heldBytes() + movieBytes_; }
   /// Bytes the write() of `target` needs for a while to render a picture (0: none).
   uint64_t pictureBytes(const FrameTarget& target) const;
   /// Frames the .glb holds so far.
@@ -74,12 +75,19 @@ class SceneOutput {
  private:
   std::filesystem::path mp4FramesDirectory(const FrameTarget& target) const;
   void writeMp4(const FrameTarget& target, std::vector<std::filesystem::path>& written);
+  void renderMovieFrames(const FrameTarget& target);
 
   SceneOutputDef def_;
   GlbAnimationWriter glb_;
   SkinnedGlbWriter skinnedGlb_;  // the run's frames when they hold a skeleton
   JointTrackWriter joints_;
   int mp4Frames_ = 0;
+  /// The movie's frames, kept until the last so that one camera frames them all (on the
+  /// union of their bounds): a growing model grows on screen instead of zooming.
+  std::vector<Geometry> movieFrames_;
+  Box movieBounds_;
+  uint64_t movieBytes_ = 0;
+  WarningCounter shortMovie_;  // a movie of one frame
   /// The folder of the .mp4's frames while it exists, removed on SIGINT and SIGTERM too.
   std::unique_ptr<RegisteredTemporary> mp4FramesRegistered_;
   WarningCounter emptyObj_;  // frames with nothing to draw: no .obj

@@ -1,0 +1,97 @@
+// A movie keeps one camera for the whole run: a model that grows is seen to grow (its
+// size in pixels rises frame by frame) instead of being re-framed into a zoom.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "interpreters/formats/renderer.h"
+#include "interpreters/formats/scene_output.h"
+#include "interpreters/run.h"
+#include "tests/checkers.h"
+#include "tests/core/test_support.h"
+#include "tests/interpreters/external_tools.h"
+#include "tests/interpreters/png_decode.h"
+
+namespace ontogen {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_support::runCommand;
+
+// The height in pixels of what a picture shows: the rows holding a pixel that is not the
+// renderer's background (the movie's compression moves colours a little, hence the margin).
+long drawnHeight(const testing_support::DecodedPng& png) {
+  int top = png.height, bottom = -1;
+  for (int y = 0; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x) {
+      const uint8_t* p = &png.rgb[(static_cast<std::size_t>(y) * png.width + x) * 3];
+      if (std::abs(p[0] - kBackground[0]) + std::abs(p[1] - kBackground[1]) + std::abs(p[2] - kBackground[2]) > 60) {
+        top = std::min(top, y);
+        bottom = std::max(bottom, y);
+      }
+    }
+  return bottom < 0 ? 0 : bottom - top + 1;
+}
+
+TEST(Movie, TheFlowerGrowsUnderOneCamera) {
+  ONTOGEN_REQUIRE_CHECKER(ffmpegAvailable(), "ffmpeg not installed (Debian package ffmpeg)");
+  const fs::path out = fs::temp_directory_path() / ("ontogen_movie_test_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  RunDef def;
+  // Named by its absolute path: its #surface files are read beside it.
+  def.program = testing_support::compileOrFail(testing_support::readModel("flower.cell"),
+                                               std::string(ONTOGEN_SOURCE_DIR) + "/models/flower.cell");
+  def.stem = "flower";
+  def.frames = 6;
+  def.setOptions.formats = "mp4";
+  def.setOptions.render.width = 160;
+  def.setOptions.render.height = 160;
+  def.out = out;
+  const RunReport report = ontogen::Run(std::move(def)).execute();
+  ASSERT_TRUE(report.ok()) << (report.diagnostics.empty() ? "" : report.diagnostics.front().message);
+  ASSERT_TRUE(fs::exists(out / "flower.mp4"));
+  // ffmpeg, an independent decoder, takes the movie apart into its frames.
+  const auto [status, log] = runCommand("ffmpeg -v error -i '" + (out / "flower.mp4").string() + "' '" +
+                                        (out / "frame_%02d.png").string() + "' 2>&1");
+  ASSERT_EQ(status, 0) << log;
+  std::vector<long> drawn;
+  for (int f = 1; fs::exists(out / ("frame_0" + std::to_string(f) + ".png")); ++f)
+    drawn.push_back(drawnHeight(testing_support::decodePng(out / ("frame_0" + std::to_string(f) + ".png"))));
+  ASSERT_EQ(drawn.size(), 6u);
+  // At t = 0 nothing is drawn yet; from t = 2 the stem grows and the heads open (and close
+  // a little at the end). Framed on the union of every frame, the early flower is a
+  // fraction of the grown one's height and the heights rise; re-framed each frame, every
+  // frame fills the picture's height alike (here 125 to 135 pixels of 160).
+  std::string sizes;
+  for (long d : drawn) sizes += std::to_string(d) + " ";
+  EXPECT_EQ(drawn[0], 0) << sizes;
+  EXPECT_LT(drawn[1] * 2, drawn[4]) << sizes;
+  for (std::size_t f = 2; f < 5; ++f) EXPECT_GT(drawn[f], drawn[f - 1]) << sizes;
+  fs::remove_all(out);
+}
+
+TEST(Movie, AOneFrameMovieIsWarnedOf) {
+  ONTOGEN_REQUIRE_CHECKER(ffmpegAvailable(), "ffmpeg not installed (Debian package ffmpeg)");
+  const fs::path out = fs::temp_directory_path() / ("ontogen_movie_short_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  RunDef def;
+  def.program = testing_support::compileModel("koch.cell");
+  def.stem = "koch";
+  def.setOptions.formats = "mp4";
+  def.setOptions.render.width = 64;
+  def.setOptions.render.height = 64;
+  def.out = out;
+  const RunReport report = ontogen::Run(std::move(def)).execute();
+  ASSERT_TRUE(report.ok());
+  bool warned = false;
+  for (const RunDiagnostic& d : report.diagnostics)
+    warned = warned || (d.severity == Severity::Warning && d.message.find("the movie has one frame") != std::string::npos);
+  EXPECT_TRUE(warned);
+  fs::remove_all(out);
+}
+
+}  // namespace
+}  // namespace ontogen
