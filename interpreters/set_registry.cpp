@@ -64,7 +64,17 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
   }
   if (name == "music") return std::make_unique<MusicSet>(MusicSet::defFrom(settings.music));
   if (name == "trace") return std::make_unique<TraceSet>();
-  if (name == "image") return std::make_unique<ImageSet>();
+  if (name == "image") {
+    SceneOutputDef formats;
+    if (std::string error = applyGeometryFormats(options.formats, formats); !error.empty())
+      throw std::invalid_argument(error);
+    ImageSetDef def;
+    def.movie = formats.writeMp4;
+    // Pictures unless the movie is all that was asked for.
+    def.pictures = formats.writePng || formats.writePngFrames || !formats.writeMp4;
+    def.framesPerSecond = formats.framesPerSecond;
+    return std::make_unique<ImageSet>(def);
+  }
   return nullptr;
 }
 

@@ -2,21 +2,16 @@
 
 #include "interpreters/temporary_files.h"
 
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <system_error>
 
+#include "interpreters/formats/movie_writer.h"
 #include "interpreters/formats/obj_writer.h"
 #include "interpreters/formats/ply_writer.h"
 #include "interpreters/formats/png_writer.h"
 #include "interpreters/output_file.h"
-
-extern char** environ;
 
 namespace ontogen {
 
@@ -66,20 +61,6 @@ std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
   return "";
 }
 
-bool ffmpegAvailable() {
-  const char* path = std::getenv("PATH");
-  if (path == nullptr) return false;
-  std::string_view rest(path);
-  while (!rest.empty()) {
-    std::size_t colon = rest.find(':');
-    std::filesystem::path candidate = std::filesystem::path(rest.substr(0, colon)) / "ffmpeg";
-    if (::access(candidate.c_str(), X_OK) == 0) return true;
-    if (colon == std::string_view::npos) break;
-    rest.remove_prefix(colon + 1);
-  }
-  return false;
-}
-
 SceneOutput::SceneOutput(const SceneOutputDef& def) : def_(def) {
   checkSvgOptions(def.svg);
   if (def.writePng || def.writePngFrames || def.writeMp4) checkRenderDef(def.render);
@@ -101,64 +82,18 @@ std::filesystem::path outputPath(const FrameTarget& target, std::string_view ext
   return target.directory / name;
 }
 
-std::filesystem::path SceneOutput::mp4FramesDirectory(const FrameTarget& target) const {
-  std::string stem = target.stem.empty() ? std::string("geometry") : target.stem;
-  return target.directory / ("." + stem + ".mp4-frames");
-}
-
-void SceneOutput::renderMovieFrames(const FrameTarget& target) {
+void SceneOutput::renderMovieFrames(const FrameTarget& target, std::vector<std::filesystem::path>& written) {
+  FrameTarget whole = target;
+  whole.frameCount = 1;
   RenderDef render = def_.render;
   render.framing = movieBounds_;
-  std::error_code error;
-  mp4FramesRegistered_ =
-      std::make_unique<RegisteredTemporary>(mp4FramesDirectory(target), RegisteredTemporary::Kind::Folder);
-  std::filesystem::create_directories(mp4FramesDirectory(target), error);
-  if (error) throw OutputError("cannot create " + mp4FramesDirectory(target).string() + ": " + error.message());
-  for (const Geometry& frame : movieFrames_) {
-    const Image image = renderGeometry(frame, render);
-    std::string number = std::to_string(mp4Frames_++);
-    number.insert(0, number.size() < 6 ? 6 - number.size() : 0, '0');
-    writeFileAtomically(mp4FramesDirectory(target) / ("frame_" + number + ".png"),
-                        [&](std::ostream& out) { writePng(image, out); });
-  }
+  MovieWriter movie(outputPath(whole, "mp4"), def_.framesPerSecond);
+  for (const Geometry& frame : movieFrames_) movie.addFrame(renderGeometry(frame, render));
   movieFrames_.clear();
   movieBounds_ = Box{};
   movieBytes_ = 0;
-}
-
-void SceneOutput::writeMp4(const FrameTarget& target, std::vector<std::filesystem::path>& written) {
-  FrameTarget whole = target;
-  whole.frameCount = 1;
-  const std::filesystem::path path = outputPath(whole, "mp4");
-  const std::filesystem::path frames = mp4FramesDirectory(target);
-  const std::filesystem::path temporary = path.string() + ".partial.mp4";
-  const std::string rate = std::to_string(def_.framesPerSecond);
-  const std::string input = (frames / "frame_%06d.png").string();
-  const std::string output = temporary.string();
-  // Even sizes: H.264 in yuv420p needs them.
-  std::vector<std::string> args = {"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i", input,
-                                   "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p",
-                                   "-f", "mp4", output};
-  std::vector<char*> argv;
-  for (std::string& arg : args) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  const RegisteredTemporary registered(temporary);  // removed on SIGINT and SIGTERM too
-  pid_t pid = 0;
-  int status = 0;
-  bool ok = ::posix_spawnp(&pid, "ffmpeg", nullptr, nullptr, argv.data(), environ) == 0 &&
-            ::waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  std::error_code ignored;
-  std::filesystem::remove_all(frames, ignored);
-  mp4FramesRegistered_.reset();
-  mp4Frames_ = 0;
-  if (!ok) {
-    std::filesystem::remove(temporary, ignored);
-    throw OutputError("ffmpeg could not make " + path.string());
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) throw OutputError("cannot rename " + temporary.string() + " to " + path.string() + ": " + error.message());
-  written.push_back(path);
+  movie.finish();
+  written.push_back(outputPath(whole, "mp4"));
 }
 
 std::vector<SetWarning> SceneOutput::takeWarnings() {
@@ -269,8 +204,7 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
     }
     if (def_.writeMp4) {
       if (movieFrames_.size() == 1) shortMovie_.add(1, InstructionSite{SourceSpan{}, "", target_.time});
-      renderMovieFrames(target_);
-      writeMp4(target_, written);
+      renderMovieFrames(target_, written);
     }
   }
   return written;

@@ -13,6 +13,7 @@
 
 #include "interpreters/formats/glb_writer.h"
 #include "interpreters/formats/joints_writer.h"
+#include "interpreters/formats/movie_writer.h"
 #include "interpreters/formats/skinned_glb_writer.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/formats/svg_writer.h"
@@ -45,8 +46,6 @@ inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj,
 /// clearing the others. Returns an error message naming the bad entry, or "" on success.
 std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def);
 
-/// True when an executable named ffmpeg is on PATH.
-bool ffmpegAvailable();
 
 /// DIR/<stem>.<extension>, or DIR/<stem>_<frame, 4 digits at least>.<extension> when
 /// target.frameCount > 1.
@@ -73,23 +72,18 @@ class SceneOutput {
   std::vector<SetWarning> takeWarnings();
 
  private:
-  std::filesystem::path mp4FramesDirectory(const FrameTarget& target) const;
-  void writeMp4(const FrameTarget& target, std::vector<std::filesystem::path>& written);
-  void renderMovieFrames(const FrameTarget& target);
+  void renderMovieFrames(const FrameTarget& target, std::vector<std::filesystem::path>& written);
 
   SceneOutputDef def_;
   GlbAnimationWriter glb_;
   SkinnedGlbWriter skinnedGlb_;  // the run's frames when they hold a skeleton
   JointTrackWriter joints_;
-  int mp4Frames_ = 0;
   /// The movie's frames, kept until the last so that one camera frames them all (on the
   /// union of their bounds): a growing model grows on screen instead of zooming.
   std::vector<Geometry> movieFrames_;
   Box movieBounds_;
   uint64_t movieBytes_ = 0;
   WarningCounter shortMovie_;  // a movie of one frame
-  /// The folder of the .mp4's frames while it exists, removed on SIGINT and SIGTERM too.
-  std::unique_ptr<RegisteredTemporary> mp4FramesRegistered_;
   WarningCounter emptyObj_;  // frames with nothing to draw: no .obj
   WarningCounter emptyPly_;  // frames without a surface: no .ply
 };

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
+#include "interpreters/formats/movie_writer.h"
 #include "interpreters/formats/picture_output.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/output_file.h"
@@ -33,6 +35,14 @@ std::string formatCoordinate(double value) {
 }
 }  // namespace
 
+ImageSet::ImageSet(const ImageSetDef& def) : def_(def) {
+  if (def_.movie && !ffmpegAvailable())
+    throw std::invalid_argument("the mp4 format needs ffmpeg, which is not installed (Debian: apt-get install ffmpeg)");
+  if (!(def_.framesPerSecond > 0)) throw std::invalid_argument("framesPerSecond must be > 0");
+}
+
+ImageSet::~ImageSet() = default;
+
 void ImageSet::beginFrame(const FrameTarget& target) {
   target_ = target;
   sites_.clear();
@@ -56,7 +66,22 @@ void ImageSet::execute(std::string_view command, std::span<const double> args) {
   sites_.push_back({static_cast<int>(x), static_cast<int>(y), t});
 }
 
-std::vector<std::filesystem::path> ImageSet::endFrame() { return {writePicture(picture(), target_)}; }
+std::vector<std::filesystem::path> ImageSet::endFrame() {
+  std::vector<std::filesystem::path> written;
+  const Image image = picture();
+  if (def_.pictures) written.push_back(writePicture(image, target_));
+  if (def_.movie) {
+    const std::filesystem::path path = target_.directory / ((target_.stem.empty() ? "image" : target_.stem) + ".mp4");
+    if (!movie_) movie_ = std::make_unique<MovieWriter>(path, def_.framesPerSecond);
+    movie_->addFrame(image);
+    if (target_.frame + 1 >= target_.frameCount) {
+      movie_->finish();
+      movie_.reset();
+      written.push_back(path);
+    }
+  }
+  return written;
+}
 
 Image ImageSet::picture() const {
   int columns = 1, rows = 1;

@@ -4,10 +4,14 @@
 // paints its site with `pixel(x, y, value)`; `range(lo, hi)` sets the values that map to
 // the ends of the colour map (default 0 and 1; outside, the end colours). Sites no cell
 // paints stay black. The frame is written as DIR/<stem>[_NNNN].png, each site scaled up
-// to a square of whole pixels so that the picture is at least 512 pixels wide.
+// to a square of whole pixels so that the picture is at least 512 pixels wide; with
+// `--format mp4`, every frame also goes into the movie DIR/<stem>.mp4 (and with mp4
+// alone, only there). The image set has no 3-D formats: glb, obj, ply and svg ask it
+// for nothing, and it writes its pictures as before.
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "interpreters/formats/renderer.h"
@@ -25,8 +29,19 @@ struct PaintedSite {
 /// t in [0, 1]; t outside is clamped, NaN is black.
 std::array<uint8_t, 3> colourMap(double t);
 
+struct ImageSetDef {
+  bool pictures = true;        ///< a PNG a frame
+  bool movie = false;          ///< every frame into DIR/<stem>.mp4 (needs ffmpeg)
+  double framesPerSecond = 25; ///< of the movie
+};
+
+class MovieWriter;
+
 class ImageSet final : public InterpretationSet {
  public:
+  /// Throws std::invalid_argument when def asks for a movie and ffmpeg is missing.
+  explicit ImageSet(const ImageSetDef& def = {});
+  ~ImageSet() override;
   std::string_view name() const override { return "image"; }
   bool knows(std::string_view command) const override { return command == "pixel" || command == "range"; }
   void beginFrame(const FrameTarget& target) override;
@@ -40,6 +55,8 @@ class ImageSet final : public InterpretationSet {
   const std::vector<PaintedSite>& sites() const { return sites_; }
 
  private:
+  ImageSetDef def_;
+  std::unique_ptr<MovieWriter> movie_;
   FrameTarget target_;
   std::vector<PaintedSite> sites_;
   double low_ = 0, high_ = 1;

@@ -13,6 +13,9 @@
 #include "interpreters/interpret.h"
 #include "lang/compiler.h"
 #include "tests/interpreters/png_decode.h"
+#include "interpreters/formats/movie_writer.h"
+#include "tests/checkers.h"
+#include "tests/interpreters/external_tools.h"
 
 namespace ontogen {
 namespace {
@@ -92,6 +95,51 @@ TEST(ImageSet, ATallGridMakesAPictureNoTallerThanAWideOneIsWide) {
   const Image image = set.picture();
   EXPECT_EQ(image.width, 1);
   EXPECT_EQ(image.height, 1001);
+}
+
+}  // namespace
+}  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+// With mp4 the frames go into one movie, which ffmpeg, an independent decoder, reads back
+// frame by frame with the pictures' colours: a grid whose colour moves with time.
+TEST(ImageSet, Mp4MakesOneMovieOfEveryFrame) {
+  ONTOGEN_REQUIRE_CHECKER(ffmpegAvailable(), "ffmpeg not installed (Debian package ffmpeg)");
+  DiagnosticSink sink;
+  auto program = compileSource("movie.cell",
+                               "cell C { interpret image { range(0, 3) pixel(me.x, me.y, age) } }\n"
+                               "system g { pool grid(4, 4); fill C; }\n",
+                               sink);
+  ASSERT_NE(program, nullptr) << formatDiagnostics(sink);
+  World world(std::shared_ptr<const Program>(std::move(program)));
+  const fs::path dir = fs::temp_directory_path() / ("ontogen_image_movie_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ImageSet set(ImageSetDef{.pictures = false, .movie = true, .framesPerSecond = 25});
+  std::vector<fs::path> written;
+  for (int frame = 0; frame < 4; ++frame) {
+    world.advanceTo(frame, 1);
+    for (const fs::path& path : interpretFrame(world, set, FrameTarget{dir, "movie", frame, 4, double(frame)}))
+      written.push_back(path);
+  }
+  ASSERT_EQ(written.size(), 1u);
+  EXPECT_EQ(written[0], dir / "movie.mp4");
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 1);  // no pictures, no frames left behind
+  const auto [status, log] = testing_support::runCommand("ffmpeg -v error -i '" + written[0].string() + "' '" +
+                                                         (dir / "f%d.png").string() + "' 2>&1");
+  ASSERT_EQ(status, 0) << log;
+  for (int frame = 0; frame < 4; ++frame) {
+    auto png = decodePng(dir / ("f" + std::to_string(frame + 1) + ".png"));
+    ASSERT_TRUE(png.ok) << frame;
+    const std::array<uint8_t, 3> expected = colourMap(frame / 3.0);
+    const size_t centre = (static_cast<size_t>(png.height / 2) * png.width + png.width / 2) * 3;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(png.rgb[centre + c], expected[c], 12) << "frame " << frame << " channel " << c;
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace
