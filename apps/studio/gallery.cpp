@@ -1,9 +1,8 @@
 #include "apps/studio/gallery.h"
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
+#include "apps/studio/file_bytes.h"
 #include "interpreters/output_file.h"
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
@@ -17,13 +16,6 @@ namespace {
 constexpr uint64_t kMutationSalt = 0x6d75746174696f6eull;   // "mutation"
 constexpr uint64_t kCrossoverSalt = 0x63726f73736f7665ull;  // "crossove"
 
-std::string readBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
 }  // namespace
 
 Gallery::Gallery(GalleryDef def) : def_(std::move(def)) {
@@ -121,7 +113,7 @@ void Gallery::render(GalleryVariant& variant, int index) const {
     return;
   }
   for (const std::filesystem::path& file : report.files)
-    if (file.extension() == ".png") variant.png = readBytes(file);
+    if (file.extension() == ".png") variant.png = readFileBytes(file);
   if (variant.png.empty()) variant.error = "the variant draws nothing to picture";
 }
 

@@ -2,12 +2,11 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 #include <stdexcept>
 
 #include "apps/program_loader.h"
+#include "apps/studio/file_bytes.h"
 #include "interpreters/music/music_set.h"
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
@@ -26,13 +25,6 @@ const char* severityName(Severity severity) {
   return "error";
 }
 
-std::string readBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
 }  // namespace
 
 StudioModel::StudioModel(StudioModelDef def) : def_(std::move(def)) {
@@ -60,7 +52,8 @@ std::optional<StudioModel::FileStamp> StudioModel::stampOf() const {
 bool StudioModel::refresh() {
   const std::optional<FileStamp> stamp = stampOf();
   if (stamp == stamp_) return false;
-  // An editor may write the file in pieces: what changed is read once it has settled.
+  // An editor that writes the file in pieces changes its stamp again: the next look
+  // grows the whole text.
   regrow();
   return true;
 }
@@ -169,7 +162,7 @@ void StudioModel::grow() {
                        note.velocity});
   }
   notes_ = std::move(notes);
-  glb_ = readBytes(def_.work / "model" / (stem_ + ".glb"));
+  glb_ = readFileBytes(def_.work / "model" / (stem_ + ".glb"));
   from_ = program->from;
   until_ = def_.until.value_or(program->until);
   cells_ = report.cells;

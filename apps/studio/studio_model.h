@@ -69,6 +69,8 @@ class StudioModel {
   const std::string& glb() const { return glb_; }
   /// The program text read at the last growth.
   const std::string& text() const { return text_; }
+  /// The file's name without folder and extension: names the outputs.
+  const std::string& stem() const { return stem_; }
   /// The values in effect for the defines the text writes.
   std::map<std::string, double> defineValues() const;
   const std::vector<StudioDefine>& defines() const { return defines_; }

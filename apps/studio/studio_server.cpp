@@ -35,13 +35,8 @@ void StudioServer::restartGallery() {
     if (gene.kind != Gene::Kind::Define) continue;
     if (auto value = values.find(gene.name); value != values.end()) genome.values[i] = value->second;
   }
-  gallery_.reset(space.programText(genome), model_.state()["stem"].get<std::string>());
+  gallery_.reset(space.programText(genome), model_.stem());
   galleryText_ = model_.text();
-}
-
-HttpResponse StudioServer::galleryState() {
-  nlohmann::json state = gallery_.state();
-  return json(state);
 }
 
 HttpResponse StudioServer::handle(const HttpRequest& request) {
@@ -74,7 +69,7 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
       }
       if (path == "/api/gallery") {
         if (!gallery_.ready() || galleryText_ != model_.text()) restartGallery();
-        return galleryState();
+        return json(gallery_.state());
       }
       if (path.starts_with("/gallery/") && path.ends_with(".png")) {
         const std::string number = path.substr(9, path.size() - 13);
@@ -108,7 +103,7 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
         }
         if (!gallery_.ready()) restartGallery();
         gallery_.breed(picked);
-        return galleryState();
+        return json(gallery_.state());
       }
       if (path == "/api/save") {
         if (!body.contains("index") || !body["index"].is_number_integer()) return error(400, "save takes {\"index\": K}");
@@ -116,7 +111,7 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
       }
       if (path == "/api/gallery/restart") {
         restartGallery();
-        return galleryState();
+        return json(gallery_.state());
       }
       return error(404, "no such action: " + path);
     }

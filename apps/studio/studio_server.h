@@ -32,7 +32,6 @@ class StudioServer {
   void idle();
 
  private:
-  HttpResponse galleryState();
   void restartGallery();
 
   StudioModel& model_;
