@@ -54,6 +54,7 @@ struct RunOptions {
   std::string size = "800x800";     ///< picture size, WIDTHxHEIGHT pixels
   std::string midiPort;        ///< play the music set live on this port (name or index)
   bool virtualPort = false;    ///< or on a virtual port named "ontogen"
+  bool midiClock = false;      ///< send MIDI clock with the live playback
 };
 
 struct WordOptions {

@@ -142,6 +142,8 @@ int dispatch(int argc, char** argv) {
   runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
   runCommand->add_option("--midi-port", run.midiPort, "Play the music set live on this MIDI port (name or index)");
   runCommand->add_flag("--virtual-port", run.virtualPort, "Play the music set live on a new MIDI port 'ontogen'");
+  runCommand->add_flag("--midi-clock", run.midiClock,
+                       "With live playback, send MIDI clock (start, 24 clocks a quarter note, stop) so a DAW follows");
 
   WordOptions word;
   auto* wordCommand = app.add_subcommand("word", "Print the derivation word at given times");
