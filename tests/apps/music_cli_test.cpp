@@ -264,6 +264,60 @@ TEST_F(MusicCli, EveryMusicModelRendersToSound) {
   }
 }
 
+// The README's **Listen** paragraph: its commands, run as written (ontogen, models/ and
+// the linked file's path pointed at this build and a scratch folder), make the audio it
+// links: the same length and loudness, decoded by sox, and normalised to a peak near
+// -1 dBFS.
+TEST_F(MusicCli, TheReadmesRenderCommandsMakeTheLinkedAudio) {
+  int code = -1;
+  runCommand("command -v sox >/dev/null && command -v oggenc >/dev/null", &code);
+  ONTOGEN_REQUIRE_CHECKER(code == 0 && haveFluidsynth(), "fluidsynth, sox or oggenc is missing (bash .ci/setup installs them)");
+  std::ifstream in(std::string(ONTOGEN_SOURCE_DIR) + "/README.md");
+  std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t listen = readme.find("**Listen:**");
+  ASSERT_NE(listen, std::string::npos);
+  const size_t open = readme.find("```\n", listen), close = readme.find("```\n", open + 4);
+  ASSERT_NE(close, std::string::npos);
+  std::istringstream lines(readme.substr(open + 4, close - open - 4));
+  fs::path dir = scratch("readme_render");
+  std::string script = "set -e\ncd '" + dir.string() + "'\n";
+  std::string line;
+  int commands = 0;
+  while (std::getline(lines, line)) {
+    auto replace = [&](const std::string& from, const std::string& to) {
+      for (size_t at = line.find(from); at != std::string::npos; at = line.find(from, at + to.size()))
+        line.replace(at, from.size(), to);
+    };
+    if (line.rfind("ontogen ", 0) == 0) line.replace(0, 7, ONTOGEN_EXECUTABLE);
+    replace(" models/", std::string(" ") + ONTOGEN_SOURCE_DIR + "/models/");
+    replace("docs/media/piston.ogg", "piston.ogg");
+    script += line + " 2>/dev/null\n";
+    ++commands;
+  }
+  EXPECT_EQ(commands, 4);
+  std::ofstream(dir / "render.sh") << script;
+  std::string log = runCommand("sh '" + (dir / "render.sh").string() + "' 2>&1", &code);
+  ASSERT_EQ(code, 0) << script << log;
+  auto stat = [](const fs::path& file) {
+    std::string text = runCommand("sox '" + file.string() + "' -n stat 2>&1");
+    auto value = [&](const std::string& name) {
+      size_t at = text.find(name);
+      return at == std::string::npos ? -1.0 : std::stod(text.substr(text.find(':', at) + 1));
+    };
+    return std::array<double, 3>{value("Length (seconds)"), value("RMS     amplitude"), value("Maximum amplitude")};
+  };
+  const auto made = stat(dir / "piston.ogg");
+  const auto linked = stat(fs::path(ONTOGEN_SOURCE_DIR) / "docs/media/piston.ogg");
+  EXPECT_NEAR(made[0], linked[0], 0.01);
+  EXPECT_NEAR(made[1], linked[1], linked[1] * 0.005);
+  EXPECT_NEAR(made[2], linked[2], 0.02);
+  // Normalised: the loudest sample of the render is 1 dB below full scale (10^(-1/20)),
+  // give or take what the lossy encoding moves.
+  const auto normalised = stat(dir / "out" / "piston_norm.wav");
+  EXPECT_NEAR(normalised[2], std::pow(10.0, -1.0 / 20), 0.001);
+  EXPECT_GT(linked[2], 0.8);
+}
+
 TEST_F(MusicCli, MarkovMelodyIsAWalkThatTheSeedChooses) {
   json first = play(model("markov_melody.cell"), "markov_first");
   json again = play(model("markov_melody.cell"), "markov_again");
