@@ -183,7 +183,7 @@ TEST_F(MusicCli, ThePistonPlaysItsOwnDevelopment) {
 }
 
 TEST_F(MusicCli, RhythmTakesLengthsRestsAndDynamicsFromTheNotesParameters) {
-  json read = play(model("rhythm.cell"), "rhythm");
+  json read = play(model("rhythm.cell"), "rhythm_notes");
   // The expectation, from the word: N(d, g, k) sounds d beats (staccato below half a
   // beat) at 112 - 16 k on degree g of A minor; R(d) rests d beats.
   const int minor[] = {0, 2, 3, 5, 7, 8, 10};
