@@ -201,7 +201,10 @@ int dispatch(int argc, char** argv) {
   convertCommand->add_option("file", convert.file, "The cpfg or L-Py file")->required()->check(CLI::ExistingFile);
 
   auto* midiPortsCommand = app.add_subcommand("midi-ports", "List the MIDI output ports --midi-port can play on");
-  app.add_subcommand("help", "List commands, turtle commands and functions");
+  HelpOptions help;
+  auto* helpCommand = app.add_subcommand("help", "List commands, keywords, directives, set commands and functions");
+  helpCommand->add_flag("--grammar", help.grammar,
+                        "Print the cell language's TextMate grammar (JSON) for editors, made from the same tables");
 
   try {
     app.parse(argc, argv);
@@ -223,7 +226,7 @@ int dispatch(int argc, char** argv) {
   if (midiPortsCommand->parsed()) return runMidiPorts();
   if (convertCommand->parsed()) return runConvert(convert);
   if (studioCommand->parsed()) return runStudio(studio);
-  return runHelp();
+  return runHelp(help);
 }
 
 }  // namespace
