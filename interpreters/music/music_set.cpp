@@ -32,6 +32,7 @@ MusicSetDef MusicSet::defFrom(const MusicSettings& settings) {
   def.file.format = settings.format;
   def.file.timeSignatureNumerator = settings.timeSignatureNumerator;
   def.file.timeSignatureDenominator = settings.timeSignatureDenominator;
+  def.trackNames = settings.trackNames;
   return def;
 }
 
@@ -146,6 +147,10 @@ void MusicSet::nameTracks() {
   // A DAW shows a few words; past this many cells the name says how many more there are.
   constexpr size_t kNamedCells = 4;
   for (size_t channel = 0; channel < trackCells_.size(); ++channel) {
+    if (!def_.trackNames[channel].empty()) {
+      score_.trackNames[channel] = def_.trackNames[channel];
+      continue;
+    }
     const std::vector<std::string_view>& cells = trackCells_[channel];
     std::string name;
     for (size_t i = 0; i < cells.size() && i < kNamedCells; ++i) name += (i ? ", " : "") + std::string(cells[i]);

@@ -12,9 +12,9 @@
 //    controllers, tempo and programs are re-read at every step and sent when their value
 //    changes, so a `rate` variable can drive a swell. One file for the run.
 //
-// Each channel's track is named after the cells whose instructions put notes or
-// controller messages on it, in the order they first did ("Drone", "mov, turn"): a
-// program names its tracks by naming its cells.
+// Each channel's track is named by the program's `#track C "NAME"`, else after the cells
+// whose instructions put notes or controller messages on it, in the order they first
+// did ("Drone", "bend, turn").
 
 #include <array>
 #include <functional>
@@ -38,6 +38,8 @@ struct MusicSetDef {
   MidiFileDef file{};
   MusicTime time = MusicTime::Sequential;
   bool writeFile = true;  ///< write DIR/<stem>.mid at the end of each frame
+  /// Names of the channels' tracks (#track); empty: the cells that play on the channel.
+  std::array<std::string, 16> trackNames{};
 };
 
 
@@ -46,7 +48,8 @@ class MusicSet final : public InterpretationSet {
   /// Throws std::invalid_argument when def is out of range.
   explicit MusicSet(const MusicSetDef& def = {});
 
-  /// The set's settings from a system's #music, #tempo, #ppq, #midiformat and #timesig.
+  /// The set's settings from a system's #music, #tempo, #ppq, #midiformat, #timesig and
+  /// #track.
   static MusicSetDef defFrom(const MusicSettings& settings);
 
   std::string_view name() const override { return "music"; }

@@ -215,7 +215,7 @@ TEST_F(MusicCli, RhythmTakesLengthsRestsAndDynamicsFromTheNotesParameters) {
   EXPECT_GT(rests, 0);
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(read["notes"], expected);
-  EXPECT_EQ(read["track_names"], (json{"rhythm", "Setup, N"}));
+  EXPECT_EQ(read["track_names"], (json{"rhythm", "Marimba"}));  // #track
 }
 
 TEST_F(MusicCli, DevelopmentalNotesTakeTheirLengthAndLoudnessFromTheCell) {
@@ -239,6 +239,13 @@ TEST_F(MusicCli, EachChannelsTrackIsNamedAfterTheCellsThatPlayOnIt) {
   EXPECT_EQ(piston["channels_per_track"], (json{json::array(), {0}, {1}}));
   json swell = play(model("swell.cell"), "swell_tracks", "--until 3");
   EXPECT_EQ(swell["track_names"], (json{"swell", "Drone", "Pulse"}));
+  // #track names a channel's track; the others keep their cells' names.
+  fs::path named = scratch("named_tracks");
+  std::ofstream(named / "duo.cell") << "#track 1 \"Bass line\"\nlsystem duo {\n  axiom Lead Low\n"
+                                       "  interpret music Lead { note(1) }\n"
+                                       "  interpret music Low { channel(1) pitch(36) note(2) }\n}\n";
+  json duo = play((named / "duo.cell").string(), "named_tracks_out");
+  EXPECT_EQ(duo["track_names"], (json{"duo", "Lead", "Bass line"}));
   // Format 0 has one track, named after the model.
   fs::path dir = scratch("one_track");
   std::ofstream(dir / "one.cell") << "#midiformat 0\nlsystem one { axiom A\n interpret music A { note(1) } }\n";
