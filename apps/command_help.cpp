@@ -5,6 +5,7 @@
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "apps/text_mate_grammar.h"
 #include "interpreters/creature/creature_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/music/music_commands.h"
@@ -12,6 +13,7 @@
 #include "interpreters/set_registry.h"
 #include "lang/builtins.h"
 #include "lang/directives.h"
+#include "lang/keywords.h"
 
 namespace ontogen::app {
 
@@ -52,9 +54,22 @@ void printDirectives() {
   }
 }
 
+void printKeywords() {
+  std::cout << "\nKeywords (contextual: elsewhere they are names) and the values every cell reads:\n";
+  for (KeywordKind kind : {KeywordKind::Declaration, KeywordKind::Statement, KeywordKind::Reference}) {
+    std::cout << "  " << keywordKindName(kind) << "\n";
+    for (const Keyword& keyword : keywords())
+      if (keyword.kind == kind) std::cout << "  " << padded(keyword.name, kSignatureColumn + 2) << keyword.doc << "\n";
+  }
+}
+
 }  // namespace
 
-int runHelp() {
+int runHelp(const HelpOptions& options) {
+  if (options.grammar) {
+    std::cout << textMateGrammar();
+    return kExitOk;
+  }
   std::cout << "ontogen: grows cell-language programs and realises them as geometry, music and text.\n\n"
                "Commands:\n";
   constexpr std::pair<std::string_view, std::string_view> kUsage[] = {
@@ -67,6 +82,7 @@ int runHelp() {
       {"ontogen midi-ports", "list the MIDI output ports for --midi-port"},
       {"ontogen convert FILE.l|FILE.lpy", "print a cpfg or L-Py L-system as a cell-language program"},
       {"ontogen help", "this text"},
+      {"ontogen help --grammar", "the cell language's TextMate grammar (JSON) for editors"},
       {"ontogen --version", "the version"},
       {"ontogen COMMAND --help", "the options of a command"},
   };
@@ -92,6 +108,7 @@ int runHelp() {
   printRow("if(c, a, b)", "a if c is not 0, else b (only one is evaluated)", kSignatureColumn);
   std::cout << "\nConstants:\n";
   for (const BuiltinConstant& constant : builtinConstants()) printRow(constant.name, constant.doc, kSignatureColumn);
+  printKeywords();
   printDirectives();
   return kExitOk;
 }

@@ -37,9 +37,9 @@ int runRun(const RunOptions& options) {
   // `--format none` grows the model and interprets and writes nothing, whatever the
   // program's #interpret says: a run for measuring and for scripts (with --stats).
   const bool growOnly = options.format == "none";
-  if (growOnly && (!options.sets.empty() || !options.midiPort.empty() || options.virtualPort)) {
-    std::cerr << "ontogen: error: --format none grows without interpreting; it takes no --interpret, --midi-port "
-                 "or --virtual-port\n";
+  if (growOnly && (!options.sets.empty() || !options.midiPort.empty() || options.virtualPort || options.midiClock)) {
+    std::cerr << "ontogen: error: --format none grows without interpreting; it takes no --interpret, --midi-port, "
+                 "--virtual-port or --midi-clock\n";
     return kExitUsage;
   }
 
@@ -87,6 +87,7 @@ int runRun(const RunOptions& options) {
       std::cerr << formatRunDiagnostic(diagnostic);
   }
   if (!report.ok()) return exitCodeOf(report.status);
+  if (int code = finishLivePlayback(playback); code != kExitOk) return code;
   if (options.stats) {
     const WorldStats& stats = report.stats;
     std::cout << "time " << report.time << ", cells " << report.cells << ", steps " << stats.steps << ", events "

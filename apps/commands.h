@@ -54,6 +54,7 @@ struct RunOptions {
   std::string size = "800x800";     ///< picture size, WIDTHxHEIGHT pixels
   std::string midiPort;        ///< play the music set live on this port (name or index)
   bool virtualPort = false;    ///< or on a virtual port named "ontogen"
+  bool midiClock = false;      ///< send MIDI clock with the live playback
 };
 
 struct WordOptions {
@@ -88,6 +89,10 @@ struct StudioOptions {
   std::string save;             ///< where saved variants go; empty: the program's folder
 };
 
+struct HelpOptions {
+  bool grammar = false;  ///< print the editors' TextMate grammar instead (apps/text_mate_grammar.h)
+};
+
 struct ConvertOptions {
   std::string file;  ///< a cpfg (.l) or L-Py (.lpy) file
 };
@@ -113,7 +118,7 @@ int runTimeline(const TimelineOptions& options);
 int runRun(const RunOptions& options);
 int runWord(const WordOptions& options);
 int runStatics(const StaticsOptions& options);
-int runHelp();
+int runHelp(const HelpOptions& options);
 int runConvert(const ConvertOptions& options);
 int runStudio(const StudioOptions& options);
 int runMidiPorts();

@@ -3,6 +3,11 @@
 #include <atomic>
 #include <csignal>
 #include <iostream>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <thread>
 
 #include "apps/program_loader.h"
 #include "interpreters/music/music_set.h"
@@ -43,33 +48,108 @@ class InterruptGuard {
 class LivePlayback {
  public:
   LivePlayback(const LiveMidiDef& def, bool stats) : output_(def), stats_(stats) {}
+  ~LivePlayback() {
+    // A run that failed: stop the music at once rather than play what was made.
+    gStop.store(true);
+    join();
+  }
+  LivePlayback(const LivePlayback&) = delete;
+  LivePlayback& operator=(const LivePlayback&) = delete;
 
-  void perform(const Score& score, const MidiFileDef& file) {
-    MidiSequence sequence = makeMidiSequence(score, file.ppq, file.tempo);
-    std::cerr << "playing " << sequence.messages.size() << " MIDI messages ("
-              << sequence.secondsAt(sequence.endTick()) << " s) on '" << output_.portName() << "'\n";
-    PerformanceReport report;
-    {
-      InterruptGuard guard;
-      report = output_.perform(sequence, gStop);
+  /// The music set's streamer: encodes what is final and hands it to the performer.
+  void stream(const Score& score, double horizon, bool finished, const MidiFileDef& file) {
+    if (gStop.load()) {
+      join();  // its notes are stopped before the run ends
+      throw PlaybackInterrupted("interrupted: every note stopped");
     }
+    if (std::string failed = error(); !failed.empty()) throw OutputError(failed);
+    if (!performer_.joinable()) start();
+    if (!encoder_) {
+      encoder_.emplace(file.ppq, file.tempo);
+      sequence_ = MidiSequence{};
+      forwarded_ = 0;
+      stream_.begin(file.ppq);
+    }
+    try {
+      if (finished)
+        encoder_->finish(score, sequence_);
+      else
+        encoder_->advance(score, horizon, sequence_);
+    } catch (const std::invalid_argument& bad) {
+      throw OutputError(std::string("live MIDI: ") + bad.what());
+    }
+    stream_.add(std::span(sequence_.messages).subspan(forwarded_), sequence_.tempos, encoder_->released(), finished);
+    forwarded_ = sequence_.messages.size();
+    if (finished) encoder_.reset();
+  }
+
+  /// Lets the performance end, then reports it.
+  int finish() {
+    if (performer_.joinable()) std::cerr << "grown; the music plays to its end (Ctrl-C stops it)\n";
+    stream_.close();
+    join();
+    guard_.reset();
     if (stats_) {
-      TimingSummary timing = summarizeTiming(report.lateness);
-      std::cerr << "live: " << report.sent << " messages sent, lateness against the schedule: median "
+      TimingSummary timing = summarizeTiming(report_.lateness);
+      std::cerr << "live: " << report_.sent << " messages sent, lateness against the schedule: median "
                 << timing.median * 1e3 << " ms, p99 " << timing.p99 * 1e3 << " ms, max " << timing.max * 1e3
-                << " ms\n";
+                << " ms; " << report_.clocks << " clocks; " << report_.stalls << " stalls waiting "
+                << report_.stalledSeconds << " s for the development\n";
     }
-    if (report.stopped) throw PlaybackInterrupted("interrupted: every note stopped");
+    if (std::string failed = error(); !failed.empty()) {
+      std::cerr << "ontogen: error: " << failed << "\n";
+      return kExitOutputError;
+    }
+    if (report_.stopped) {
+      std::cerr << "\nontogen: interrupted: every note stopped\n";
+      return kExitInterrupted;
+    }
+    return kExitOk;
   }
 
  private:
+  void start() {
+    guard_.emplace();
+    std::cerr << "playing on '" << output_.portName() << "' as the model develops\n";
+    performer_ = std::thread([this] {
+      try {
+        report_ = output_.perform(stream_, gStop);
+      } catch (const LiveMidiError& failure) {
+        std::lock_guard lock(errorMutex_);
+        error_ = failure.what();
+      }
+    });
+  }
+  void join() {
+    stream_.close();
+    if (performer_.joinable()) performer_.join();
+  }
+  std::string error() {
+    std::lock_guard lock(errorMutex_);
+    return error_;
+  }
+
   LiveMidiOutput output_;
   bool stats_;
+  LiveMidiStream stream_;
+  std::thread performer_;
+  std::optional<InterruptGuard> guard_;
+  PerformanceReport report_;  // written by the performer, read after join
+  std::mutex errorMutex_;
+  std::string error_;
+  // The piece being streamed: its encoder and the messages made so far.
+  std::optional<MidiStreamEncoder> encoder_;
+  MidiSequence sequence_;
+  size_t forwarded_ = 0;
 };
 
 int attachLivePlayback(const RunOptions& options, std::vector<std::unique_ptr<InterpretationSet>>& sets,
                        std::shared_ptr<LivePlayback>& playback) {
-  if (options.midiPort.empty() && !options.virtualPort) return kExitOk;
+  if (options.midiPort.empty() && !options.virtualPort) {
+    if (!options.midiClock) return kExitOk;
+    std::cerr << "ontogen: error: --midi-clock is sent with live playback: add --midi-port or --virtual-port\n";
+    return kExitUsage;
+  }
   MusicSet* music = nullptr;
   for (auto& set : sets)
     if (auto* candidate = dynamic_cast<MusicSet*>(set.get())) music = candidate;
@@ -80,21 +160,22 @@ int attachLivePlayback(const RunOptions& options, std::vector<std::unique_ptr<In
   LiveMidiDef def;
   def.port = options.midiPort;
   def.virtualPort = options.virtualPort;
+  def.clock = options.midiClock;
   try {
     playback = std::make_shared<LivePlayback>(def, options.stats);
   } catch (const LiveMidiError& error) {
     std::cerr << "ontogen: error: " << error.what() << "\n";
     return kExitMidiError;
   }
-  music->setPerformer([playback](const Score& score, const MidiFileDef& file) {
-    try {
-      playback->perform(score, file);
-    } catch (const LiveMidiError& error) {
-      throw OutputError(error.what());
-    }
+  // The set holds the playback weakly: the run's owner decides when it ends.
+  std::weak_ptr<LivePlayback> weak = playback;
+  music->setStreamer([weak](const Score& score, double horizon, bool finished, const MidiFileDef& file) {
+    if (auto live = weak.lock()) live->stream(score, horizon, finished, file);
   });
   return kExitOk;
 }
+
+int finishLivePlayback(const std::shared_ptr<LivePlayback>& playback) { return playback ? playback->finish() : kExitOk; }
 
 int runMidiPorts() {
   try {
@@ -114,7 +195,7 @@ class LivePlayback {};
 
 int attachLivePlayback(const RunOptions& options, std::vector<std::unique_ptr<InterpretationSet>>&,
                        std::shared_ptr<LivePlayback>&) {
-  if (options.midiPort.empty() && !options.virtualPort) return kExitOk;
+  if (options.midiPort.empty() && !options.virtualPort && !options.midiClock) return kExitOk;
   std::cerr << "ontogen: error: this ontogen was built without live MIDI (ONTOGEN_LIVE_MIDI=OFF)\n";
   return kExitMidiError;
 }
@@ -123,6 +204,8 @@ int runMidiPorts() {
   std::cerr << "ontogen: error: this ontogen was built without live MIDI (ONTOGEN_LIVE_MIDI=OFF)\n";
   return kExitMidiError;
 }
+
+int finishLivePlayback(const std::shared_ptr<LivePlayback>&) { return kExitOk; }
 
 #endif
 

@@ -142,6 +142,8 @@ int dispatch(int argc, char** argv) {
   runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
   runCommand->add_option("--midi-port", run.midiPort, "Play the music set live on this MIDI port (name or index)");
   runCommand->add_flag("--virtual-port", run.virtualPort, "Play the music set live on a new MIDI port 'ontogen'");
+  runCommand->add_flag("--midi-clock", run.midiClock,
+                       "With live playback, send MIDI clock (start, 24 clocks a quarter note, stop) so a DAW follows");
 
   WordOptions word;
   auto* wordCommand = app.add_subcommand("word", "Print the derivation word at given times");
@@ -199,7 +201,10 @@ int dispatch(int argc, char** argv) {
   convertCommand->add_option("file", convert.file, "The cpfg or L-Py file")->required()->check(CLI::ExistingFile);
 
   auto* midiPortsCommand = app.add_subcommand("midi-ports", "List the MIDI output ports --midi-port can play on");
-  app.add_subcommand("help", "List commands, turtle commands and functions");
+  HelpOptions help;
+  auto* helpCommand = app.add_subcommand("help", "List commands, keywords, directives, set commands and functions");
+  helpCommand->add_flag("--grammar", help.grammar,
+                        "Print the cell language's TextMate grammar (JSON) for editors, made from the same tables");
 
   try {
     app.parse(argc, argv);
@@ -221,7 +226,7 @@ int dispatch(int argc, char** argv) {
   if (midiPortsCommand->parsed()) return runMidiPorts();
   if (convertCommand->parsed()) return runConvert(convert);
   if (studioCommand->parsed()) return runStudio(studio);
-  return runHelp();
+  return runHelp(help);
 }
 
 }  // namespace

@@ -113,8 +113,8 @@ struct Equiv {
 struct Setting {
   SourceSpan span;
   const Directive* directive = nullptr;  ///< never null in a parsed program
-  ExprPtr value = nullptr;               ///< Number, Integer, NumberedFile: the value's expression
-  std::string word = {};                 ///< Word: the word; NumberedFile: the file path as written
+  ExprPtr value = nullptr;               ///< Number, Integer, NumberedFile, NumberedName: the value's expression
+  std::string word = {};                 ///< Word: the word; NumberedFile: the file path; NumberedName: the name
   int numerator = 0;                     ///< TimeSignature N/D
   int denominator = 0;
 };

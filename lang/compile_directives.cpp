@@ -15,7 +15,8 @@ namespace ontogen::detail {
 namespace {
 
 bool takesExpression(DirectiveKind kind) {
-  return kind == DirectiveKind::Number || kind == DirectiveKind::Integer || kind == DirectiveKind::NumberedFile;
+  return kind == DirectiveKind::Number || kind == DirectiveKind::Integer || kind == DirectiveKind::NumberedFile ||
+         kind == DirectiveKind::NumberedName;
 }
 
 // A file is read relative to the directory of the program that names it; its location
@@ -47,6 +48,7 @@ void compileDirectives(CompileContext& ctx, const std::vector<ast::Setting>& lis
     value.word = setting.word;
     value.numerator = setting.numerator;
     value.denominator = setting.denominator;
+    if (directive.kind == DirectiveKind::NumberedName) value.name = setting.word;
     if (takesExpression(directive.kind)) {
       auto number =
           evaluateConstant(*setting.value, ctx.constantLookup(scope), ctx.sink, "#" + std::string(directive.name));

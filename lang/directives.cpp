@@ -177,6 +177,17 @@ const std::array kDirectives{
                     t.settings.music.timeSignatureNumerator = v.numerator;
                     t.settings.music.timeSignatureDenominator = v.denominator;
                   }},
+    Directive{.name = "track",
+              .kind = Kind::NumberedName,
+              .owner = Owner::Music,
+              .range = {.min = 0, .max = 15},
+              .rangeError = "#track takes a channel 0 to 15 before the name, as in #track 1 \"Bass\"",
+              .syntax = "#track C \"NAME\"",
+              .doc = "name of channel C's track in the MIDI file (default: the cells that play on it)",
+              .apply =
+                  [](const Value& v, Target& t) {
+                    t.settings.music.trackNames[static_cast<size_t>(v.number)] = v.name;
+                  }},
     Directive{.name = "surface",
               .kind = Kind::NumberedFile,
               .owner = Owner::Geometry,
@@ -298,6 +309,8 @@ std::string_view directiveKindName(DirectiveKind kind) {
       return "time signature";
     case DirectiveKind::NumberedFile:
       return "integer, file";
+    case DirectiveKind::NumberedName:
+      return "integer, name";
   }
   return "?";
 }

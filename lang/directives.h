@@ -28,6 +28,7 @@ enum class DirectiveKind : uint8_t {
   Word,           ///< one word of the directive's list (`#music developmental`)
   TimeSignature,  ///< two whole numbers as musicians write them, `6/8`: not a division
   NumberedFile,   ///< a whole number, then a file path in double quotes (`#surface 1 "bud.obj"`)
+  NumberedName,   ///< a whole number, then a name in double quotes (`#track 1 "Bass"`)
 };
 
 /// Whose setting a directive is; the owner also decides where its value holds.
@@ -55,12 +56,13 @@ struct DirectiveRange {
 
 /// A directive's value as the program wrote it, checked against its range.
 struct DirectiveValue {
-  double number = 0;      ///< Number, Integer, NumberedFile: the value
+  double number = 0;      ///< Number, Integer, NumberedFile, NumberedName: the value
   std::string_view word;  ///< Word: the word written, one of Directive::words
   int numerator = 0;      ///< TimeSignature: beats per bar
   int denominator = 0;    ///< TimeSignature: the note value of a beat
   std::string path;       ///< NumberedFile: the file, resolved against the program file's folder
   std::string location;   ///< NumberedFile: "file:line:col" of the directive, for load errors
+  std::string name;       ///< NumberedName: the name as written
 };
 
 /// What applying a directive writes into: its block's interpretation settings, or the
@@ -109,7 +111,8 @@ bool isNoteValue(int value);
 /// "1, 2, 4, 8, 16, 32 or 64".
 std::string noteValueChoices();
 
-/// "constant", "number", "integer", "flag", "word", "time signature", "integer, file".
+/// "constant", "number", "integer", "flag", "word", "time signature", "integer, file",
+/// "integer, name".
 std::string_view directiveKindName(DirectiveKind kind);
 /// "constants", "world", "geometry", "music", "notation".
 std::string_view directiveOwnerName(DirectiveOwner owner);

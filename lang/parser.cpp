@@ -256,6 +256,7 @@ class Parser {
         case DirectiveKind::Word: settings.push_back(wordSetting(hash, *directive)); break;
         case DirectiveKind::TimeSignature: settings.push_back(timeSignature(hash, *directive)); break;
         case DirectiveKind::NumberedFile: settings.push_back(numberedFile(hash, *directive)); break;
+        case DirectiveKind::NumberedName: settings.push_back(numberedName(hash, *directive)); break;
       }
       if (match(TokenKind::Semicolon)) return;
       if (!atStatementEnd()) failHere("the end of the line after the directive");
@@ -308,6 +309,20 @@ class Parser {
     if (!isNoteValue(d)) failHere("a note value " + noteValueChoices() + " below the '/' of #" + hash.text);
     advance();
     return Setting{hash.span.to(bottom.span), &directive, nullptr, "", static_cast<int>(top.number), d};
+  }
+
+  // `#track 1 "Bass"`: a number, then a name on the same line.
+  Setting numberedName(const Token& hash, const Directive& directive) {
+    Setting setting{hash.span, &directive};
+    const std::string example = "as in " + std::string(directive.syntax);
+    if (atStatementEnd()) fail(hash.span, "expected a number and a name after '#" + hash.text + "', " + example);
+    setting.value = expression();
+    if (!check(TokenKind::String) || peek().line != hash.line)
+      fail(hash.span.to(previous().span), "expected the name in double quotes after the number, " + example);
+    const Token& name = advance();
+    setting.word = name.text;
+    setting.span = hash.span.to(name.span);
+    return setting;
   }
 
   // #surface, the one directive of this kind, names its number and file in its messages.

@@ -234,6 +234,8 @@ struct MusicSettings {
   int format = 1;      ///< MIDI file format 0 or 1
   int timeSignatureNumerator = 4;
   int timeSignatureDenominator = 4;
+  /// #track C "NAME": the names of the channels' tracks; empty: the cells that play on it.
+  std::array<std::string, 16> trackNames{};
 };
 
 /// `#surface ID "file.obj"`: a predefined surface the geometry set loads before the run.

@@ -157,9 +157,13 @@ void StudioModel::grow() {
     const bool developmental = music->def().time == MusicTime::Developmental;
     const double secondsPerBeat = developmental || score.tempos.empty() ? (developmental ? 1.0 : 0.5)
                                                                          : 60.0 / score.tempos.front().bpm;
-    for (const ScoreNote& note : score.notes)
+    for (const ScoreNote& note : score.notes) {
+      // A held note whose cell was gone before it sounded stays in the score with no
+      // length; the MIDI file leaves it out, and so does the page.
+      if (!(note.duration > 0)) continue;
       notes.push_back({note.start * secondsPerBeat, note.duration * secondsPerBeat, note.channel, note.pitch,
                        note.velocity});
+    }
   }
   notes_ = std::move(notes);
   glb_ = readFileBytes(def_.work / "model" / (stem_ + ".glb"));

@@ -4,9 +4,10 @@
 #include <jack/jack.h>
 
 #include <algorithm>
-#include <charconv>
 #include <array>
 #include <charconv>
+#include <limits>
+#include <optional>
 #include <cmath>
 #include <filesystem>
 #include <thread>
@@ -154,50 +155,158 @@ void LiveMidiOutput::send(uint8_t status, uint8_t data1, uint8_t data2, int size
   }
 }
 
+void LiveMidiStream::begin(int ppq) {
+  std::lock_guard lock(mutex_);
+  Piece piece;
+  piece.sequence.ppq = ppq;
+  pieces_.push_back(std::move(piece));
+  changed_.notify_all();
+}
+
+void LiveMidiStream::add(std::span<const MidiMessage> messages, std::span<const MidiTempo> tempos, uint64_t released,
+                         bool complete) {
+  std::lock_guard lock(mutex_);
+  if (pieces_.empty()) return;
+  Piece& piece = pieces_.back();
+  piece.sequence.messages.insert(piece.sequence.messages.end(), messages.begin(), messages.end());
+  piece.sequence.tempos.assign(tempos.begin(), tempos.end());
+  piece.released = std::max(piece.released, released);
+  piece.complete = piece.complete || complete;
+  changed_.notify_all();
+}
+
+void LiveMidiStream::close() {
+  std::lock_guard lock(mutex_);
+  closed_ = true;
+  changed_.notify_all();
+}
+
+bool LiveMidiOutput::waitUntil(Clock::time_point deadline, const std::atomic<bool>& stop) {
+  while (!stop.load(std::memory_order_relaxed)) {
+    Clock::time_point now = Clock::now();
+    if (now >= deadline - kSpin) break;
+    std::this_thread::sleep_until(std::min(deadline - kSpin, now + kStopPoll));
+  }
+  if (stop.load(std::memory_order_relaxed)) return false;
+  while (Clock::now() < deadline) std::this_thread::yield();
+  return true;
+}
+
 PerformanceReport LiveMidiOutput::perform(const MidiSequence& sequence, const std::atomic<bool>& stop) {
+  LiveMidiStream stream;
+  stream.begin(sequence.ppq);
+  stream.add(sequence.messages, sequence.tempos, std::numeric_limits<uint64_t>::max(), true);
+  stream.close();
+  return perform(stream, stop);
+}
+
+PerformanceReport LiveMidiOutput::perform(LiveMidiStream& stream, const std::atomic<bool>& stop) {
   PerformanceReport report;
-  report.lateness.reserve(sequence.messages.size());
   std::array<std::array<uint16_t, 128>, 16> sounding{};
   std::array<bool, 16> used{};
-  // Seconds of each tempo segment are computed once, walking the tempo map along.
-  size_t tempoIndex = 0;
-  uint64_t segmentTick = 0;
-  double segmentSeconds = 0;
-  uint32_t tempo = sequence.tempos.empty() ? 500000 : sequence.tempos[0].microsecondsPerQuarter;
-  auto secondsAt = [&](uint64_t tick) {
-    while (tempoIndex + 1 < sequence.tempos.size() && sequence.tempos[tempoIndex + 1].tick <= tick) {
-      const MidiTempo& next = sequence.tempos[tempoIndex + 1];
-      segmentSeconds += static_cast<double>(next.tick - segmentTick) * tempo / (1e6 * sequence.ppq);
-      segmentTick = next.tick;
-      tempo = next.microsecondsPerQuarter;
-      ++tempoIndex;
-    }
-    return segmentSeconds + static_cast<double>(tick - segmentTick) * tempo / (1e6 * sequence.ppq);
-  };
-
-  const Clock::time_point start = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                                     std::chrono::duration<double>(def_.lead));
-  for (const MidiMessage& message : sequence.messages) {
-    const Clock::time_point deadline =
-        start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(secondsAt(message.tick)));
-    // Sleep towards the absolute deadline, waking to notice a stop, then spin.
-    while (!stop.load(std::memory_order_relaxed)) {
-      Clock::time_point now = Clock::now();
-      if (now >= deadline - kSpin) break;
-      std::this_thread::sleep_until(std::min(deadline - kSpin, now + kStopPoll));
-    }
+  auto seconds = [](double s) { return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s)); };
+  Clock::time_point pieceStart{};  // of the piece playing; the next starts where it ended
+  bool first = true;
+  for (size_t index = 0;; ++index) {
+    std::unique_lock lock(stream.mutex_);
+    // Wait for the next piece, or the end.
+    while (index >= stream.pieces_.size() && !stream.closed_ && !stop.load(std::memory_order_relaxed))
+      stream.changed_.wait_for(lock, kStopPoll);
     if (stop.load(std::memory_order_relaxed)) {
       report.stopped = true;
       break;
     }
-    while (Clock::now() < deadline) std::this_thread::yield();
-    send(message.status, message.data1, message.data2, message.size());
-    report.lateness.push_back(std::chrono::duration<double>(Clock::now() - deadline).count());
-    ++report.sent;
-    uint16_t& count = sounding[message.channel()][message.data1];
-    used[message.channel()] = true;
-    if (message.kind() == 0x90) ++count;
-    if (message.kind() == 0x80 && count > 0) --count;
+    if (index >= stream.pieces_.size()) break;  // closed
+    LiveMidiStream::Piece& piece = stream.pieces_[index];
+    const double ppq = piece.sequence.ppq;
+    const double clockTicks = ppq / 24;  // 24 MIDI clocks a quarter note
+    pieceStart = first ? Clock::now() + seconds(def_.lead) : std::max(pieceStart, Clock::now());
+    first = false;
+    Clock::duration stalled{};  // the piece's deadlines move on by its stalls
+    size_t next = 0;            // the next message of the piece
+    size_t clock = 0;           // the next clock's number
+    bool started = false;       // 0xFA sent
+    double endTick = 0;
+    // The next event that is final: a message before the released tick (any of a whole
+    // piece); a clock likewise, up to the piece's last message. Clocks go first at a tick.
+    struct Next {
+      double tick;
+      bool clock;
+    };
+    auto nextEvent = [&]() -> std::optional<Next> {
+      const MidiSequence& sequence = piece.sequence;
+      std::optional<Next> event;
+      if (next < sequence.messages.size() && (piece.complete || sequence.messages[next].tick < piece.released))
+        event = Next{static_cast<double>(sequence.messages[next].tick), false};
+      const double clockTick = static_cast<double>(clock) * clockTicks;
+      const bool clockFinal =
+          piece.complete ? !sequence.messages.empty() && clockTick <= static_cast<double>(sequence.messages.back().tick)
+                         : clockTick < static_cast<double>(piece.released);
+      if (def_.clock && clockFinal && (!event || clockTick <= event->tick)) event = Next{clockTick, true};
+      return event;
+    };
+    for (;;) {
+      std::optional<Next> event = nextEvent();
+      if (!event && !piece.complete) {
+        // Ahead of the development: wait for it. If what comes next was due while
+        // waiting, the piece pauses by the delay instead of rushing to catch up.
+        while (!(event = nextEvent()) && !piece.complete && !stop.load(std::memory_order_relaxed))
+          stream.changed_.wait_for(lock, kStopPoll);
+        if (stop.load(std::memory_order_relaxed)) break;
+        if (event) {
+          const Clock::time_point due = pieceStart + stalled + seconds(piece.sequence.secondsAt(event->tick));
+          const Clock::time_point now = Clock::now();
+          if (now > due) {
+            stalled += now - due;
+            ++report.stalls;
+            report.stalledSeconds += std::chrono::duration<double>(now - due).count();
+          }
+        }
+      }
+      if (!event) {
+        if (!piece.complete) continue;
+        // The piece ends with its last message, or its last clock if the development
+        // ran on past the music.
+        endTick = piece.sequence.messages.empty() ? 0 : static_cast<double>(piece.sequence.messages.back().tick);
+        if (clock > 0) endTick = std::max(endTick, static_cast<double>(clock - 1) * clockTicks);
+        break;
+      }
+      const Clock::time_point deadline = pieceStart + stalled + seconds(piece.sequence.secondsAt(event->tick));
+      const MidiMessage message = event->clock ? MidiMessage{} : piece.sequence.messages[next];
+      lock.unlock();
+      if (!waitUntil(deadline, stop)) {
+        lock.lock();
+        break;
+      }
+      if (event->clock) {
+        if (!started) {
+          send(0xFA, 0, 0, 1);
+          started = true;
+        }
+        send(0xF8, 0, 0, 1);
+        ++report.clocks;
+        ++clock;
+      } else {
+        send(message.status, message.data1, message.data2, message.size());
+        report.lateness.push_back(std::chrono::duration<double>(Clock::now() - deadline).count());
+        ++report.sent;
+        ++next;
+        uint16_t& count = sounding[message.channel()][message.data1];
+        used[message.channel()] = true;
+        if (message.kind() == 0x90) ++count;
+        if (message.kind() == 0x80 && count > 0) --count;
+      }
+      lock.lock();
+    }
+    const Clock::time_point end = pieceStart + stalled + seconds(piece.sequence.secondsAt(endTick));
+    lock.unlock();
+    if (stop.load(std::memory_order_relaxed)) {
+      report.stopped = true;
+      if (started) send(0xFC, 0, 0, 1);
+      break;
+    }
+    if (started) send(0xFC, 0, 0, 1);
+    pieceStart = end;
   }
   // Stop everything that was started.
   for (uint8_t channel = 0; channel < 16; ++channel) {

@@ -11,6 +11,8 @@ namespace ontogen {
 namespace {
 
 constexpr uint32_t kMaxDelta = 0x0FFFFFFF;  // four bytes of variable-length quantity
+// Names longer than this are no names a DAW shows; the meta event itself would take more.
+constexpr size_t kMaxName = 65535;
 
 void appendBig(std::vector<uint8_t>& bytes, uint32_t value, int size) {
   for (int i = size - 1; i >= 0; --i) bytes.push_back(static_cast<uint8_t>(value >> (8 * i)));
@@ -91,11 +93,13 @@ void checkMidiFileDef(const MidiFileDef& def) {
   int d = def.timeSignatureDenominator;
   if (d < 1 || d > 64 || (d & (d - 1)) != 0)
     throw std::invalid_argument("the time signature's denominator must be 1, 2, 4, 8, 16, 32 or 64");
-  if (def.name.size() > 65535) throw std::invalid_argument("the sequence name is too long");
+  if (def.name.size() > kMaxName) throw std::invalid_argument("the sequence name is too long");
 }
 
 std::vector<uint8_t> encodeMidiFile(const Score& score, const MidiFileDef& def) {
   checkMidiFileDef(def);
+  for (const std::string& name : score.trackNames)
+    if (name.size() > kMaxName) throw std::invalid_argument("a track name is too long");
   MidiSequence sequence = makeMidiSequence(score, def.ppq, def.tempo);
   uint64_t end = sequence.endTick();
   if (!sequence.tempos.empty() && sequence.tempos.back().tick > end) end = sequence.tempos.back().tick;
@@ -129,6 +133,10 @@ std::vector<uint8_t> encodeMidiFile(const Score& score, const MidiFileDef& def) 
     // One pass deals the messages out to their channels' tracks.
     std::array<TrackBuilder, 16> channels;
     std::array<bool, 16> used{};
+    for (size_t channel = 0; channel < 16; ++channel) {
+      const std::string& name = score.trackNames[channel];
+      if (!name.empty()) channels[channel].meta(0, 0x03, std::vector<uint8_t>(name.begin(), name.end()));
+    }
     for (const MidiMessage& message : sequence.messages) {
       channels[message.channel()].channel(message);
       used[message.channel()] = true;

@@ -1,7 +1,8 @@
 #pragma once
 // Standard MIDI File writer (SMF 1.0, formats 0 and 1). Format 1 puts the tempo map and
 // time signature in a conductor track and each channel in a track of its own, in channel
-// order; format 0 puts everything in one track. Channel messages use running status;
+// order, named by the score's track name for it (meta event 0x03); format 0 puts
+// everything in one track, named after the sequence only. Channel messages use running status;
 // every track ends with an end-of-track event; delta times are variable-length
 // quantities. Values are validated before a byte is written, so a bad value gives an
 // exception and no file, never a corrupt one.

@@ -4,9 +4,17 @@
 // note-off; when two notes of the same pitch and channel overlap, the later one retriggers
 // (note-off, note-on) and one note-off ends the pair, so no sounding note is cut short by
 // the other's note-off and none is left hanging. At one tick, note-offs go first, then
-// controllers and program changes, then note-ons.
+// controllers and program changes, then note-ons; within each, notes and controls in the
+// order the score holds them.
+//
+// MidiStreamEncoder encodes a score while it is still being played (developmental time
+// streamed live): what lies before a horizon is final, so it is sent; a note still
+// sounding (its duration infinite, `hold` of a living cell) sends its note-on now and its
+// note-off when the score gives it an end. makeMidiSequence is the same encoder run over a
+// finished score at once, so a file and a streamed performance hold the same messages.
 
 #include <cstdint>
+#include <queue>
 #include <vector>
 
 #include "interpreters/music/score.h"
@@ -37,15 +45,57 @@ struct MidiSequence {
   std::vector<MidiMessage> messages;  ///< in sending order, ticks ascending
   std::vector<MidiTempo> tempos;      ///< ascending, the first at tick 0
 
-  /// Seconds from the start to a tick, through the tempo map.
-  double secondsAt(uint64_t tick) const;
+  /// Seconds from the start to a tick (fractions of a tick too), through the tempo map.
+  double secondsAt(double tick) const;
   /// The tick of the last message (0 when there is none).
   uint64_t endTick() const { return messages.empty() ? 0 : messages.back().tick; }
 };
 
-/// Encodes a score at ppq ticks per quarter note (1..32767), starting at `tempo` quarter
-/// notes per minute. Times round to the nearest tick; a note lasts at least one tick.
-/// Throws std::invalid_argument for a ppq or tempo out of range.
+/// Encodes a growing score into a sequence, a horizon at a time. The score may only grow:
+/// notes, controls and tempos appended, and notes of infinite duration (still sounding)
+/// given a finite one. Times round to the nearest tick; a note lasts at least one tick.
+class MidiStreamEncoder {
+ public:
+  /// ppq ticks per quarter note (1..32767), starting at `tempo` quarter notes per minute.
+  /// Throws std::invalid_argument for a ppq or tempo out of range.
+  MidiStreamEncoder(int ppq, double tempo);
+
+  /// Appends to `out` the messages and tempo changes of `score` before `horizon` beats
+  /// that were not yet appended; nothing the score may still add lies before it. Returns
+  /// how many messages it appended. Throws std::invalid_argument for a time too far
+  /// from the start.
+  size_t advance(const Score& score, double horizon, MidiSequence& out);
+  /// Appends everything left: the score is finished. Throws std::invalid_argument when a
+  /// note still has no end.
+  size_t finish(const Score& score, MidiSequence& out);
+  /// The tick before which everything is appended (the last horizon's; all, once finished).
+  uint64_t released() const { return released_; }
+
+ private:
+  struct Pending {
+    uint64_t tick;
+    int priority;  // 0 note-off, 1 other, 2 note-on
+    int group;     // 0 notes, 1 controls
+    size_t index;  // within its group
+    MidiMessage message;
+    bool operator>(const Pending& other) const;
+  };
+  void take(const Score& score);
+  void release(uint64_t beforeTick, MidiSequence& out, size_t& appended);
+
+  int ppq_;
+  uint32_t initialTempo_;
+  uint64_t released_ = 0;
+  size_t nextNote_ = 0, nextControl_ = 0, nextTempo_ = 0;
+  std::vector<size_t> open_;  // notes whose note-on is queued and whose end is not yet known
+  std::priority_queue<Pending, std::vector<Pending>, std::greater<Pending>> pending_;
+  std::vector<ScoreTempo> tempos_;  // changes given but not yet on the grid, by time
+  std::vector<std::vector<uint32_t>> sounding_;  // [channel][pitch]: note-ons sent without their note-off
+};
+
+/// Encodes a finished score at ppq ticks per quarter note (1..32767), starting at
+/// `tempo` quarter notes per minute. Throws std::invalid_argument for a ppq or tempo out
+/// of range, or a time too far from the start.
 MidiSequence makeMidiSequence(const Score& score, int ppq, double tempo);
 
 /// Microseconds per quarter note for a tempo in quarter notes per minute, clamped to the

@@ -39,6 +39,10 @@ constexpr std::array kCommands = {
                  "default 100)"},
     MusicCommand{"duration", MusicOp::Duration, 1, 1, "duration(d)",
                  "set the default length of note and rest, beats > 0 (default 1)"},
+    MusicCommand{"gate", MusicOp::Gate, 1, 1, "gate(g)",
+                 "articulation: following notes sound for the fraction g of their length, "
+                 "0 < g <= 1 (1: legato, the default; 0.5: staccato); the time still moves "
+                 "on by the whole length"},
     MusicCommand{"channel", MusicOp::Channel, 1, 1, "channel(c)",
                  "send following messages on MIDI channel c, 0..15 (9: General MIDI drums)"},
     MusicCommand{"program", MusicOp::Program, 1, 1, "program(p)",
@@ -58,8 +62,8 @@ constexpr std::array kCommands = {
                  "pitch bend of the current channel by s semitones, -2..2 (clamped; the "
                  "General MIDI bend range)"},
     MusicCommand{"[", MusicOp::Push, 0, 0, "[",
-                 "push the player state (pitch, time, velocity, duration, channel, "
-                 "scale): the branch becomes a voice that starts at the same time"},
+                 "push the player state (pitch, time, velocity, duration, gate, "
+                 "channel, scale, key): the branch becomes a voice that starts at the same time"},
     MusicCommand{"]", MusicOp::Pop, 0, 0, "]",
                  "pop the player state; an unmatched ] is ignored and counted in a warning"},
     MusicCommand{"F", MusicOp::TurtleNote, 0, 1, "F(l)",

@@ -30,6 +30,7 @@ enum class MusicOp {
   Key,         ///< key(k)
   Velocity,    ///< velocity(v)
   Duration,    ///< duration(d)
+  Gate,        ///< gate(g)
   Channel,     ///< channel(c)
   Program,     ///< program(p)
   Tempo,       ///< tempo(bpm)

@@ -25,6 +25,7 @@ MusicPlayer::MusicPlayer(const MusicPlayerDef& def) : def_(def) {
   if (!(def.tempo > 0) || !std::isfinite(def.tempo)) throw std::invalid_argument("the tempo must be > 0");
   const MusicState& s = def.initial;
   if (!(s.duration > 0) || !std::isfinite(s.duration)) throw std::invalid_argument("the duration must be > 0");
+  if (!(s.gate > 0 && s.gate <= 1)) throw std::invalid_argument("the gate must be > 0 and <= 1");
   if (s.velocity < 1 || s.velocity > 127) throw std::invalid_argument("the velocity must be 1..127");
   if (s.channel < 0 || s.channel > 15) throw std::invalid_argument("the channel must be 0..15");
   if (s.scale < 0 || s.scale >= static_cast<int>(musicScales().size()))
@@ -181,6 +182,13 @@ void MusicPlayer::execute(const MusicCommand& command, std::span<const double> a
       }
       state_.duration = args[0];
       break;
+    case MusicOp::Gate:
+      if (!(args[0] > 0 && args[0] <= 1)) {
+        ++warnings_.badArguments;
+        break;
+      }
+      state_.gate = args[0];
+      break;
     case MusicOp::Channel:
       if (args[0] < -0.5 || args[0] >= 15.5) {
         ++warnings_.badArguments;
@@ -244,7 +252,7 @@ void MusicPlayer::playNote(double duration, double velocity, Score& score) {
     if (state_.pitch < 0 || state_.pitch > 127) {
       ++warnings_.droppedNotes;
     } else {
-      score.notes.push_back(ScoreNote{state_.time, duration, static_cast<uint8_t>(state_.channel),
+      score.notes.push_back(ScoreNote{state_.time, duration * state_.gate, static_cast<uint8_t>(state_.channel),
                                       static_cast<uint8_t>(state_.pitch),
                                       static_cast<uint8_t>(clampToInt(velocity, 1, 127))});
     }

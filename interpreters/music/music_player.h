@@ -1,6 +1,6 @@
 #pragma once
 // The music player: the musical counterpart of the turtle (paper 002, section 4.2). It
-// keeps a state - pitch, time position, velocity, duration, channel, scale and key - that
+// keeps a state - pitch, time position, velocity, duration, gate, channel, scale and key - that
 // the commands of music_commands.h change, and writes the notes and controller messages
 // they make into a Score. `[` and `]` save and restore the whole state, time included, so
 // a branch is a voice that starts where the branch opens, as a turtle's branch starts
@@ -29,6 +29,9 @@ struct MusicState {
   double pitch = 60;    ///< MIDI note number, whole; may leave 0..127 (such notes are dropped)
   int velocity = 100;   ///< 0..127; 0 silences notes
   double duration = 1;  ///< beats > 0, the default length of note and rest
+  /// The fraction of a note's length that sounds, 0 < gate <= 1 (articulation: 1 legato,
+  /// 0.5 staccato); the time moves on by the whole length.
+  double gate = 1;
   int channel = 0;      ///< 0..15
   int scale = 0;        ///< index into musicScales()
   int key = 0;          ///< tonic pitch class 0..11
@@ -85,6 +88,8 @@ class MusicPlayer {
   /// The notes `hold` started since the last call (developmental time); their duration
   /// is left to the caller, which knows when the cell dies.
   std::vector<ScoreNote> takeHeldNotes();
+  /// How many notes `hold` started that takeHeldNotes() has not yet taken.
+  std::size_t heldCount() const { return held_.size(); }
 
   /// Moves the time position, beats (negative values are taken as 0).
   void setTime(double beats) { state_.time = beats > 0 ? beats : 0; }

@@ -32,6 +32,7 @@ MusicSetDef MusicSet::defFrom(const MusicSettings& settings) {
   def.file.format = settings.format;
   def.file.timeSignatureNumerator = settings.timeSignatureNumerator;
   def.file.timeSignatureDenominator = settings.timeSignatureDenominator;
+  def.trackNames = settings.trackNames;
   return def;
 }
 
@@ -44,6 +45,7 @@ void MusicSet::beginFrame(const FrameTarget& target) {
   played_.clear();
   seen_.clear();
   held_.clear();
+  trackCells_ = {};
   wordTime_ = lastWordTime_ = 0;
 }
 
@@ -61,10 +63,15 @@ void MusicSet::executeCommand(int id, std::string_view command, std::span<const 
 
 void MusicSet::run(const MusicCommand& command, std::span<const double> args) {
   const MusicWarnings before = player_.warnings();
+  const size_t sounds = score_.notes.size() + score_.controls.size() + player_.heldCount();
   try {
     player_.execute(command, args, score_);
   } catch (const MusicTimeError& late) {
     refuse(late.what());
+  }
+  if (score_.notes.size() + score_.controls.size() + player_.heldCount() != sounds && !site_.cell.empty()) {
+    std::vector<std::string_view>& cells = trackCells_[static_cast<size_t>(player_.state().channel)];
+    if (std::find(cells.begin(), cells.end(), site_.cell) == cells.end()) cells.push_back(site_.cell);
   }
   const MusicWarnings& after = player_.warnings();
   droppedNotes_.add(static_cast<uint64_t>(after.droppedNotes - before.droppedNotes), site_);
@@ -106,7 +113,10 @@ void MusicSet::beginCell(const CellContext& cell) {
 void MusicSet::collectHeld() {
   for (ScoreNote& note : player_.takeHeldNotes()) {
     double end = current_.second + currentLifetime_;
-    held_.emplace(current_, Held{note, std::isfinite(end) ? end : INFINITY});
+    // In the score at once, still sounding: a streamed performance sends its note-on now.
+    note.duration = INFINITY;
+    score_.notes.push_back(note);
+    held_.emplace(current_, Held{score_.notes.size() - 1, std::isfinite(end) ? end : INFINITY});
   }
 }
 
@@ -119,9 +129,9 @@ void MusicSet::closeHeld(double beats, bool all) {
     // A cell that died of age ended exactly then; one removed otherwise is noticed at
     // the first word without it.
     double end = std::min(it->second.end, beats);
-    ScoreNote note = it->second.note;
-    note.duration = end - note.start;
-    if (note.duration > 0) score_.notes.push_back(note);
+    ScoreNote& note = score_.notes[it->second.note];
+    // A note that ended before it began has no length, and the writer leaves it out.
+    note.duration = std::max(end - note.start, 0.0);
     it = held_.erase(it);
   }
 }
@@ -130,11 +140,31 @@ void MusicSet::endWord() {
   if (!followsDevelopment()) return;
   collectHeld();
   closeHeld(wordTime_, false);
+  if (streamer_) streamer_(score_, wordTime_, false, def_.file);
+}
+
+void MusicSet::nameTracks() {
+  // A DAW shows a few words; past this many cells the name says how many more there are.
+  constexpr size_t kNamedCells = 4;
+  for (size_t channel = 0; channel < trackCells_.size(); ++channel) {
+    if (!def_.trackNames[channel].empty()) {
+      score_.trackNames[channel] = def_.trackNames[channel];
+      continue;
+    }
+    const std::vector<std::string_view>& cells = trackCells_[channel];
+    std::string name;
+    for (size_t i = 0; i < cells.size() && i < kNamedCells; ++i) name += (i ? ", " : "") + std::string(cells[i]);
+    if (cells.size() > kNamedCells) name += " and " + std::to_string(cells.size() - kNamedCells) + " more";
+    score_.trackNames[channel] = std::move(name);
+  }
 }
 
 std::vector<std::filesystem::path> MusicSet::endFrame() {
   if (followsDevelopment()) closeHeld(wordTime_, true);
-  return output_.write(score_, target_);
+  nameTracks();
+  std::vector<std::filesystem::path> written = output_.write(score_, target_);
+  if (streamer_) streamer_(score_, INFINITY, true, def_.file);
+  return written;
 }
 
 }  // namespace ontogen

@@ -11,11 +11,18 @@
 //    (cells are told apart by id and birth), `hold` sounds while the cell lives, and
 //    controllers, tempo and programs are re-read at every step and sent when their value
 //    changes, so a `rate` variable can drive a swell. One file for the run.
+//
+// Each channel's track is named by the program's `#track C "NAME"`, else after the cells
+// whose instructions put notes or controller messages on it, in the order they first
+// did ("Drone", "bend, turn").
 
+#include <array>
 #include <functional>
 #include <map>
 #include <set>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 #include "interpreters/interpretation_set.h"
 #include "interpreters/music/midi_file_writer.h"
@@ -31,6 +38,8 @@ struct MusicSetDef {
   MidiFileDef file{};
   MusicTime time = MusicTime::Sequential;
   bool writeFile = true;  ///< write DIR/<stem>.mid at the end of each frame
+  /// Names of the channels' tracks (#track); empty: the cells that play on the channel.
+  std::array<std::string, 16> trackNames{};
 };
 
 
@@ -39,7 +48,8 @@ class MusicSet final : public InterpretationSet {
   /// Throws std::invalid_argument when def is out of range.
   explicit MusicSet(const MusicSetDef& def = {});
 
-  /// The set's settings from a system's #music, #tempo, #ppq, #midiformat and #timesig.
+  /// The set's settings from a system's #music, #tempo, #ppq, #midiformat, #timesig and
+  /// #track.
   static MusicSetDef defFrom(const MusicSettings& settings);
 
   std::string_view name() const override { return "music"; }
@@ -59,8 +69,14 @@ class MusicSet final : public InterpretationSet {
 
   /// Plays each finished score, e.g. on a MIDI port.
   void setPerformer(ScorePerformer performer) { output_.setPerformer(std::move(performer)); }
+  /// Hands the score to `streamer` as the development makes it: in developmental time
+  /// after every word (what lies before the word's time is final), and each finished
+  /// frame's score, so live playback can start before the development ends.
+  void setStreamer(ScoreStreamer streamer) { streamer_ = std::move(streamer); }
 
-  /// The score of the frame being played, or of the last one after endFrame.
+  /// The score of the frame being played, or of the last one after endFrame. While a
+  /// frame plays in developmental time, a note `hold` sounds has an infinite duration
+  /// until its cell is gone.
   const Score& score() const { return score_; }
   const MusicWarnings& warnings() const { return player_.warnings(); }
   /// Dropped notes, bad arguments and unmatched ] since the last call, located.
@@ -70,12 +86,14 @@ class MusicSet final : public InterpretationSet {
  private:
   using CellKey = std::pair<uint64_t, double>;  // id and birth: one life of one cell
   struct Held {
-    ScoreNote note;
-    double end;  // beats; infinite until the cell is gone
+    size_t note;  // index in score_.notes, where it sounds with an infinite duration until closed
+    double end;   // beats; infinite until the cell is gone
   };
   void run(const MusicCommand& command, std::span<const double> args);
   void collectHeld();
   void closeHeld(double beats, bool all);
+  /// Score::trackNames from the cells that played on each channel.
+  void nameTracks();
 
   MusicSetDef def_;
   WarningCounter droppedNotes_;
@@ -85,6 +103,8 @@ class MusicSet final : public InterpretationSet {
   Score score_;
   FrameTarget target_;
   ScoreOutput output_;  // writes and performs each finished score
+  ScoreStreamer streamer_;
+  std::array<std::vector<std::string_view>, 16> trackCells_;  // per channel, in order of first sound
   // Developmental time:
   std::set<CellKey> played_;           // cells whose notes have sounded
   std::set<CellKey> seen_;             // cells of the current word

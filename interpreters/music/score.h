@@ -3,7 +3,9 @@
 // piece, before any MIDI encoding. The file writer and the live player both read it, so
 // a file and a performance of the same run hold the same notes.
 
+#include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace ontogen {
@@ -41,12 +43,16 @@ struct Score {
   std::vector<ScoreNote> notes;
   std::vector<ScoreControl> controls;
   std::vector<ScoreTempo> tempos;  ///< in the order they were given; the writer sorts
+  /// The name of each channel's track (a track-name meta event in a format 1 file, what
+  /// a DAW shows); empty: none.
+  std::array<std::string, 16> trackNames;
 
   bool empty() const { return notes.empty() && controls.empty() && tempos.empty(); }
   void clear() {
     notes.clear();
     controls.clear();
     tempos.clear();
+    trackNames = {};
   }
 };
 

@@ -16,6 +16,11 @@ namespace ontogen {
 /// Called with each finished score (live playback); may throw OutputError.
 using ScorePerformer = std::function<void(const Score& score, const MidiFileDef& file)>;
 
+/// Called with the score while it grows: everything before `horizon` beats is final (the
+/// score only grows after it; notes of infinite duration still sound); `finished`: the
+/// score is whole (horizon is then infinite). May throw RunInterrupted or OutputError.
+using ScoreStreamer = std::function<void(const Score& score, double horizon, bool finished, const MidiFileDef& file)>;
+
 struct ScoreOutputDef {
   MidiFileDef file{};
   bool writeFile = true;  ///< write the MIDI file (else only perform)

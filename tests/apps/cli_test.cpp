@@ -219,6 +219,12 @@ TEST(Cli, HelpListsTheTables) {
   EXPECT_NE(result.out.find("besselj(n, x)"), std::string::npos);
   EXPECT_NE(result.out.find("--define NAME=VALUE"), std::string::npos);
   EXPECT_NE(result.out.find("cC(l, capped)"), std::string::npos);
+  // The keyword table (lang/keywords.h), before the directives.
+  const size_t keywords = result.out.find("\nKeywords");
+  ASSERT_NE(keywords, std::string::npos);
+  EXPECT_LT(keywords, result.out.find("\nDirectives"));
+  EXPECT_NE(result.out.find("  lsystem", keywords), std::string::npos);
+  EXPECT_NE(result.out.find("  τ", keywords), std::string::npos);
 }
 
 TEST(Cli, TimelineWritesTheTimeStateDiagram) {

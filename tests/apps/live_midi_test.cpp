@@ -18,6 +18,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -254,6 +255,120 @@ TEST_F(JackPeer, PortsAreListedAndEveryMessageArrivesByValueOnTime) {
   // periods). It is printed above and recorded; bench/live_midi_timing.sh measures it
   // on its own (docs/LIVE_MIDI.md).
   RecordProperty("jitter_p99_ms", std::to_string(percentile(jitter, 0.99) * 1e3));
+}
+
+// A developmental model whose growth takes seconds: a pulse renewed every quarter beat
+// plays a note, beside a crowd of oscillators that the development integrates at small
+// steps. The music streams: the first note arrives while the model is still growing.
+const char* kSlowGrowth =
+    "#music developmental\n"
+    "#tempo 240\n"
+    "#until 16\n"
+    "#dt 0.005\n"
+    "cell Pulse(n = 0) {\n"
+    "  lifetime 0.25;\n"
+    "  rules { terminal: -> Pulse(n + 1) }\n"
+    "  interpret music { pitch(60 + n % 12) note(0.2, 90) }\n"
+    "}\n"
+    "cell Crowd(k = 0) {\n"
+    "  lifetime 0.005;\n"
+    "  rules { terminal: -> Crowd(k + 1) Mass(k, 1) }\n"
+    "}\n"
+    "cell Mass(x = 0, v = 1) { rules { rate(x) = v; rate(v) = -x - 0.1 * v; } }\n"
+    "system slow { pool linear; axiom Pulse Crowd; }\n";
+
+TEST_F(JackPeer, DevelopmentalMusicStreamsWhileTheModelGrows) {
+  fs::path program = writeProgram(kSlowGrowth);
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point begin = Clock::now();
+  pid_t run = spawnShell(ontogenCommand("run '" + program.string() + "' --interpret music --midi-port 0 --stats --out '" +
+                                            (dir_ / "out").string() + "'",
+                                        dir_ / "run.txt"));
+  ASSERT_GT(run, 0);
+  // The test's own clock: when the first note arrives, and when ontogen says it has grown.
+  std::optional<double> firstNote, grown;
+  int status = 0;
+  auto since = [&] { return std::chrono::duration<double>(Clock::now() - begin).count(); };
+  while (waitpid(run, &status, WNOHANG) == 0) {
+    if (!firstNote && readFile(dir_ / "dump.txt").find("note on") != std::string::npos) firstNote = since();
+    if (!grown && readFile(dir_ / "run.txt").find("grown;") != std::string::npos) grown = since();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << readFile(dir_ / "run.txt");
+  ASSERT_TRUE(firstNote.has_value()) << readFile(dir_ / "dump.txt");
+  ASSERT_TRUE(grown.has_value()) << readFile(dir_ / "run.txt");
+  std::cout << "first note at " << *firstNote << " s, grown at " << *grown << " s, ended at " << since() << " s\n"
+            << readFile(dir_ / "run.txt");
+  RecordProperty("first_note_s", std::to_string(*firstNote));
+  RecordProperty("grown_s", std::to_string(*grown));
+  EXPECT_LT(*firstNote, *grown) << "the first note did not sound while the model was growing";
+
+  // Everything the file holds arrived, per channel by value and in order.
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::vector<Arrival> received = arrivals();
+  json file = dumpMidi(dir_ / "out" / "live.mid");
+  std::vector<std::vector<int>> sent, got;
+  for (const json& event : file["timeline"]) sent.push_back(event[1].get<std::vector<int>>());
+  for (const Arrival& arrival : received) got.push_back(arrival.bytes);
+  EXPECT_GT(sent.size(), 100u);
+  if (xruns() == 0) {
+    EXPECT_EQ(got, sent);
+  } else {
+    EXPECT_LE(got.size(), sent.size());  // a recorder that missed cycles may have lost some
+  }
+}
+
+TEST_F(JackPeer, MidiClockIsSentTwentyFourTimesABeatBetweenStartAndStop) {
+  fs::path program = writeProgram(kPiece);
+  pid_t run = spawnShell(ontogenCommand("run '" + program.string() +
+                                            "' --interpret music --midi-port 0 --midi-clock --out '" +
+                                            (dir_ / "out").string() + "'",
+                                        dir_ / "run.txt"));
+  ASSERT_EQ(waitExit(run), 0) << readFile(dir_ / "run.txt");
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::vector<Arrival> received = arrivals();
+  json file = dumpMidi(dir_ / "out" / "live.mid");
+  long lastTick = 0;
+  for (const json& note : file["notes"]) lastTick = std::max(lastTick, note[1].get<long>());
+  const long expectedClocks = lastTick * 24 / 480 + 1;  // one at beat 0, then every 20 ticks
+  std::vector<double> clocks;
+  int starts = 0, stops = 0;
+  size_t firstClock = received.size(), startAt = received.size(), stopAt = 0;
+  for (size_t i = 0; i < received.size(); ++i) {
+    const int status = received[i].bytes.at(0);
+    if (status == 0xF8) {
+      clocks.push_back(received[i].seconds);
+      firstClock = std::min(firstClock, i);
+    }
+    if (status == 0xFA) ++starts, startAt = i;
+    if (status == 0xFC) ++stops, stopAt = i;
+  }
+  if (xruns() == 0) {
+    EXPECT_EQ(static_cast<long>(clocks.size()), expectedClocks);
+  } else {
+    EXPECT_NEAR(static_cast<double>(clocks.size()), static_cast<double>(expectedClocks), 3);
+  }
+  EXPECT_EQ(starts, 1);
+  EXPECT_EQ(stops, 1);
+  EXPECT_LT(startAt, firstClock);
+  EXPECT_EQ(stopAt, received.size() - 1) << "stop comes after the last note-off";
+  // 150 bpm: a clock every 60 / (150 * 24) s.
+  ASSERT_GT(clocks.size(), 20u);
+  const double spacing = (clocks.back() - clocks.front()) / static_cast<double>(clocks.size() - 1);
+  std::cout << clocks.size() << " clocks, mean spacing " << spacing * 1e3 << " ms (scheduled " << 60e3 / (150 * 24)
+            << " ms)\n";
+  EXPECT_NEAR(spacing / (60.0 / (150 * 24)), 1, 0.02);
+  // The notes arrived as without the clock.
+  std::vector<std::vector<int>> sent, got;
+  for (const json& event : file["timeline"]) sent.push_back(event[1].get<std::vector<int>>());
+  for (const Arrival& arrival : received)
+    if (arrival.bytes.at(0) < 0xF0) got.push_back(arrival.bytes);
+  if (xruns() == 0) {
+    std::map<int, std::vector<std::vector<int>>> sentBy, gotBy;
+    for (auto& b : sent) sentBy[b[0] & 0x0F].push_back(b);
+    for (auto& b : got) gotBy[b[0] & 0x0F].push_back(b);
+    EXPECT_EQ(gotBy, sentBy);
+  }
 }
 
 TEST_F(JackPeer, CtrlCStopsEveryNoteThatStartedAndExits130) {

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "tests/interpreters/midi_checkers.h"
@@ -181,13 +182,147 @@ TEST_F(MusicCli, ThePistonPlaysItsOwnDevelopment) {
   EXPECT_EQ(read["programs"], (json{{19, 0, 116}, {19, 1, 89}}));
 }
 
+TEST_F(MusicCli, RhythmTakesLengthsRestsAndDynamicsFromTheNotesParameters) {
+  json read = play(model("rhythm.cell"), "rhythm_notes");
+  // The expectation, from the word: N(d, g, k) sounds d beats (staccato below half a
+  // beat) at 112 - 16 k on degree g of A minor; R(d) rests d beats.
+  const int minor[] = {0, 2, 3, 5, 7, 8, 10};
+  json expected = json::array();
+  double beat = 0, rests = 0;
+  std::set<double> lengths;
+  std::set<int> velocities;
+  for (const json& cell : word(model("rhythm.cell"), 4)) {
+    const std::string label = cell["label"];
+    if (label == "R") {
+      beat += cell["params"][0].get<double>();
+      rests += cell["params"][0].get<double>();
+    }
+    if (label != "N") continue;
+    const double d = cell["params"][0];
+    const int g = cell["params"][1], k = cell["params"][2];
+    const int octave = g >= 0 ? g / 7 : -((-g + 6) / 7);
+    const int pitch = 57 + 12 * octave + minor[g - 7 * octave];
+    const double sounding = d * (d < 0.5 ? 0.6 : 0.95);
+    expected.push_back({std::lround(beat * 480), std::lround((beat + sounding) * 480), 0, pitch, 112 - 16 * k});
+    lengths.insert(d);
+    velocities.insert(112 - 16 * k);
+    beat += d;
+  }
+  EXPECT_EQ(beat, 16);  // four bars of 4/4, rests included
+  // The seed makes a rhythm of several lengths and accents, with rests.
+  EXPECT_GE(lengths.size(), 4u);
+  EXPECT_GE(velocities.size(), 3u);
+  EXPECT_GT(rests, 0);
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(read["notes"], expected);
+  EXPECT_EQ(read["track_names"], (json{"rhythm", "Marimba"}));  // #track
+}
+
+TEST_F(MusicCli, DevelopmentalNotesTakeTheirLengthAndLoudnessFromTheCell) {
+  fs::path dir = scratch("developmental_lengths");
+  fs::path program = dir / "lives.cell";
+  std::ofstream(program) << "#music developmental\n#until 5.5\n"
+                            "cell A(n = 0) {\n  lifetime 1.5;\n  rules { terminal: -> A(n + 1) }\n"
+                            "  interpret music { pitch(60 + n) rest(n / 4) note(lifetime - n / 4, 40 + 20 * n) }\n}\n"
+                            "system s { pool linear; axiom A(0); }\n";
+  json read = play(program.string(), "lives", "--step 0.5");
+  // A(n) is born at 1.5 n, rests n/4 beats, then sounds to the end of its life, louder
+  // each generation.
+  EXPECT_EQ(read["notes"], (json{{0, 720, 0, 60, 40}, {840, 1440, 0, 61, 60}, {1680, 2160, 0, 62, 80},
+                                 {2520, 2880, 0, 63, 100}}));
+  EXPECT_EQ(read["track_names"], (json{"lives", "A"}));
+}
+
+TEST_F(MusicCli, EachChannelsTrackIsNamedAfterTheCellsThatPlayOnIt) {
+  json piston = play(model("piston.cell"), "piston_tracks", "--until 5");
+  EXPECT_EQ(piston["track_names"], (json{"piston", "mov", "bend, turn"}));
+  EXPECT_EQ(piston["channels_per_track"], (json{json::array(), {0}, {1}}));
+  json swell = play(model("swell.cell"), "swell_tracks", "--until 3");
+  EXPECT_EQ(swell["track_names"], (json{"swell", "Drone", "Pulse"}));
+  // #track names a channel's track; the others keep their cells' names.
+  fs::path named = scratch("named_tracks");
+  std::ofstream(named / "duo.cell") << "#track 1 \"Bass line\"\nlsystem duo {\n  axiom Lead Low\n"
+                                       "  interpret music Lead { note(1) }\n"
+                                       "  interpret music Low { channel(1) pitch(36) note(2) }\n}\n";
+  json duo = play((named / "duo.cell").string(), "named_tracks_out");
+  EXPECT_EQ(duo["track_names"], (json{"duo", "Lead", "Bass line"}));
+  // Format 0 has one track, named after the model.
+  fs::path dir = scratch("one_track");
+  std::ofstream(dir / "one.cell") << "#midiformat 0\nlsystem one { axiom A\n interpret music A { note(1) } }\n";
+  json one = play((dir / "one.cell").string(), "one_track_out");
+  EXPECT_EQ(one["track_names"], (json{"one"}));
+}
+
+TEST(MusicCliFlags, MidiClockWithoutLivePlaybackIsAUsageError) {
+  fs::path out = scratch("clock_alone");
+  Result result = ontogen("run " + model("koch_melody.cell") + " --interpret music --midi-clock --out " + out.string());
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.err,
+            "ontogen: error: --midi-clock is sent with live playback: add --midi-port or --virtual-port\n");
+  EXPECT_FALSE(fs::exists(out / "koch_melody.mid"));
+}
+
 TEST_F(MusicCli, EveryMusicModelRendersToSound) {
   ONTOGEN_REQUIRE_CHECKER(haveFluidsynth(), "fluidsynth or fluid-soundfont-gm is missing (bash .ci/setup installs them)");
-  for (const char* name : {"koch_melody", "markov_melody", "chords", "swell", "piston"}) {
+  for (const char* name : {"koch_melody", "markov_melody", "rhythm", "chords", "swell", "piston"}) {
     play(model(std::string(name) + ".cell"), name);  // each at its own #until
     double rms = renderRms(out_, out_.parent_path() / "render.wav");
     EXPECT_GT(rms, 0.005) << name;
   }
+}
+
+// The README's **Listen** paragraph: its commands, run as written (ontogen, models/ and
+// the linked file's path pointed at this build and a scratch folder), make the audio it
+// links: the same length and loudness, decoded by sox, and normalised to a peak near
+// -1 dBFS.
+TEST_F(MusicCli, TheReadmesRenderCommandsMakeTheLinkedAudio) {
+  int code = -1;
+  runCommand("command -v sox >/dev/null && command -v oggenc >/dev/null", &code);
+  ONTOGEN_REQUIRE_CHECKER(code == 0 && haveFluidsynth(), "fluidsynth, sox or oggenc is missing (bash .ci/setup installs them)");
+  std::ifstream in(std::string(ONTOGEN_SOURCE_DIR) + "/README.md");
+  std::string readme((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t listen = readme.find("**Listen:**");
+  ASSERT_NE(listen, std::string::npos);
+  const size_t open = readme.find("```\n", listen), close = readme.find("```\n", open + 4);
+  ASSERT_NE(close, std::string::npos);
+  std::istringstream lines(readme.substr(open + 4, close - open - 4));
+  fs::path dir = scratch("readme_render");
+  std::string script = "set -e\ncd '" + dir.string() + "'\n";
+  std::string line;
+  int commands = 0;
+  while (std::getline(lines, line)) {
+    auto replace = [&](const std::string& from, const std::string& to) {
+      for (size_t at = line.find(from); at != std::string::npos; at = line.find(from, at + to.size()))
+        line.replace(at, from.size(), to);
+    };
+    if (line.rfind("ontogen ", 0) == 0) line.replace(0, 7, ONTOGEN_EXECUTABLE);
+    replace(" models/", std::string(" ") + ONTOGEN_SOURCE_DIR + "/models/");
+    replace("docs/media/piston.ogg", "piston.ogg");
+    script += line + " 2>/dev/null\n";
+    ++commands;
+  }
+  EXPECT_EQ(commands, 4);
+  std::ofstream(dir / "render.sh") << script;
+  std::string log = runCommand("sh '" + (dir / "render.sh").string() + "' 2>&1", &code);
+  ASSERT_EQ(code, 0) << script << log;
+  auto stat = [](const fs::path& file) {
+    std::string text = runCommand("sox '" + file.string() + "' -n stat 2>&1");
+    auto value = [&](const std::string& name) {
+      size_t at = text.find(name);
+      return at == std::string::npos ? -1.0 : std::stod(text.substr(text.find(':', at) + 1));
+    };
+    return std::array<double, 3>{value("Length (seconds)"), value("RMS     amplitude"), value("Maximum amplitude")};
+  };
+  const auto made = stat(dir / "piston.ogg");
+  const auto linked = stat(fs::path(ONTOGEN_SOURCE_DIR) / "docs/media/piston.ogg");
+  EXPECT_NEAR(made[0], linked[0], 0.01);
+  EXPECT_NEAR(made[1], linked[1], linked[1] * 0.005);
+  EXPECT_NEAR(made[2], linked[2], 0.02);
+  // Normalised: the loudest sample of the render is 1 dB below full scale (10^(-1/20)),
+  // give or take what the lossy encoding moves.
+  const auto normalised = stat(dir / "out" / "piston_norm.wav");
+  EXPECT_NEAR(normalised[2], std::pow(10.0, -1.0 / 20), 0.001);
+  EXPECT_GT(linked[2], 0.8);
 }
 
 TEST_F(MusicCli, MarkovMelodyIsAWalkThatTheSeedChooses) {

@@ -78,6 +78,8 @@ std::string sample(const Directive& directive) {
       return head + " 3/8";
     case DirectiveKind::NumberedFile:
       return head + " " + number(inside(directive)) + " \"leaf.obj\"";
+    case DirectiveKind::NumberedName:
+      return head + " " + number(inside(directive)) + " \"Lead\"";
   }
   return head;
 }
@@ -97,6 +99,7 @@ std::string settingsOf(const Program& program, int system) {
   out << s.angle << ' ' << s.yawAngle << ' ' << s.step << ' ' << s.radius << ' ' << s.radians << ' '
       << static_cast<int>(s.music.time) << ' ' << s.music.tempo << ' ' << s.music.ppq << ' ' << s.music.format << ' '
       << s.music.timeSignatureNumerator << '/' << s.music.timeSignatureDenominator << ' ' << s.surfaces.size();
+  for (const std::string& name : s.music.trackNames) out << " '" << name << "'";
   return out.str();
 }
 
@@ -121,7 +124,8 @@ TEST(Directives, NamesAreUniqueAndFound) {
     // Every value the compiler checks has a message for when it is out of range: none
     // takes every number, as none takes NaN or an infinity.
     const bool compilerChecks = directive.kind == DirectiveKind::Number || directive.kind == DirectiveKind::Integer ||
-                                directive.kind == DirectiveKind::NumberedFile;
+                                directive.kind == DirectiveKind::NumberedFile ||
+                                directive.kind == DirectiveKind::NumberedName;
     if (compilerChecks) {
       EXPECT_FALSE(directive.rangeError.empty()) << directive.name;
       EXPECT_FALSE(directive.accepts(std::numeric_limits<double>::infinity())) << directive.name;
@@ -189,7 +193,7 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   EXPECT_EQ(error.message,
             "unknown directive '#defne' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, "
             "#seed, #until, #from, #fps, #interpret, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, "
-            "#surface, #letters)");
+            "#track, #surface, #letters)");
   for (const Directive& directive : directives()) {
     EXPECT_NE(error.message.find("#" + std::string(directive.name)), std::string::npos) << directive.name;
     const std::string misspelt = std::string(directive.name) + "s";
@@ -244,7 +248,9 @@ TEST(Directives, RangesAreEnforcedWithTheRowsMessage) {
       (range.maxOpen ? refused : taken).push_back(range.max);
     }
     if (directive.kind != DirectiveKind::Number) refused.push_back(inside(directive) + 0.5);
-    const std::string file = directive.kind == DirectiveKind::NumberedFile ? " \"leaf.obj\"" : "";
+    const std::string file = directive.kind == DirectiveKind::NumberedFile   ? " \"leaf.obj\""
+                             : directive.kind == DirectiveKind::NumberedName ? " \"Lead\""
+                                                                             : "";
     for (double value : refused) {
       auto c =
           compileText("#" + std::string(directive.name) + " " + number(value) + file + "\nlsystem a { axiom A }\n");
@@ -261,10 +267,29 @@ TEST(Directives, RangesAreEnforcedWithTheRowsMessage) {
       EXPECT_FALSE(c->sink.hasErrors()) << value << "\n" << formatDiagnostics(c->sink);
     }
   }
-  EXPECT_GE(checked, 16);  // seed, until, dt, tolerance, tempo, ppq, midiformat, surface
+  EXPECT_GE(checked, 18);  // seed, until, dt, tolerance, tempo, ppq, midiformat, track, surface
 }
 
 // The kinds the parser checks itself: a word from the row's list, a time signature.
+// #track: a channel, then the name in double quotes on the same line.
+TEST(Directives, ATrackIsAChannelThenANameInQuotes) {
+  auto named = compileText("#track 9 \"Drums\"\nlsystem a {\n  #track 2 \"Pad\"\n  axiom A\n}\n");
+  ASSERT_NE(named->program, nullptr) << formatDiagnostics(named->sink);
+  const auto& tracks = named->program->rootSystem().settings.music.trackNames;
+  EXPECT_EQ(tracks[9], "Drums");  // the top level's, for every block
+  EXPECT_EQ(tracks[2], "Pad");
+  EXPECT_EQ(tracks[0], "");
+  auto nameless = compileText("#track 1\nlsystem a { axiom A }\n");
+  ASSERT_EQ(nameless->sink.diagnostics().size(), 1u) << formatDiagnostics(nameless->sink);
+  EXPECT_EQ(nameless->sink.diagnostics()[0].message,
+            "expected the name in double quotes after the number, as in #track C \"NAME\"");
+  EXPECT_EQ(nameless->sink.diagnostics()[0].span.line(), 1);
+  EXPECT_EQ(nameless->sink.diagnostics()[0].span.column(), 1);
+  auto empty = compileText("#track\nlsystem a { axiom A }\n");
+  ASSERT_EQ(empty->sink.diagnostics().size(), 1u) << formatDiagnostics(empty->sink);
+  EXPECT_EQ(empty->sink.diagnostics()[0].message, "expected a number and a name after '#track', as in #track C \"NAME\"");
+}
+
 TEST(Directives, WordsAndTimeSignaturesAreCheckedAsTheyAreRead) {
   const Directive& music = *findDirective("music");
   auto word = compileText("#music backwards\nlsystem a { axiom A }\n");

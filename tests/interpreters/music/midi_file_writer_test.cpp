@@ -64,6 +64,24 @@ TEST(MidiFileWriter, AChordInFormatZeroIsExactlyTheseBytes) {
   EXPECT_EQ(encodeMidiFile(score, def), expected);
 }
 
+TEST(MidiFileWriter, EachChannelsTrackStartsWithItsName) {
+  Score score;
+  score.notes.push_back({0, 1, 2, 40, 100});
+  score.trackNames[2] = "Bass";
+  score.trackNames[5] = "unused";  // a channel without messages has no track
+  MidiFileDef def;
+  def.ppq = 96;
+  std::vector<uint8_t> bytes = encodeMidiFile(score, def);
+  EXPECT_EQ(bytes[11], 2);  // two tracks: the conductor and channel 2's
+  const std::vector<uint8_t> track = {'M', 'T', 'r', 'k', 0, 0, 0, 20,           // 20 bytes follow
+                                      0x00, 0xFF, 0x03, 4, 'B', 'a', 's', 's',  // its name first
+                                      0x00, 0x92, 40, 100, 0x60, 0x82, 40, 64, 0x00, 0xFF, 0x2F, 0};
+  ASSERT_GE(bytes.size(), track.size());
+  EXPECT_EQ(std::vector<uint8_t>(bytes.end() - static_cast<long>(track.size()), bytes.end()), track);
+  score.trackNames[2] = std::string(70000, 'x');
+  EXPECT_THROW(encodeMidiFile(score, def), std::invalid_argument);
+}
+
 TEST(MidiFileWriter, OverlappingNotesOfOnePitchRetriggerAndEveryNoteOnEnds) {
   Score score;
   score.notes.push_back({0, 2, 0, 50, 100});

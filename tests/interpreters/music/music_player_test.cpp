@@ -209,3 +209,41 @@ TEST(MusicCommands, EveryCommandHasADocAndAUniqueName) {
 
 }  // namespace
 }  // namespace ontogen
+
+namespace ontogen {
+namespace {
+
+TEST(MusicPlayer, TheGateShortensWhatSoundsButNotTheBeat) {
+  MusicPlayer player;
+  Score score;
+  auto run = [&](std::string_view command, std::vector<double> args = {}) { player.execute(command, args, score); };
+  run("gate", {0.5});
+  run("note", {1});
+  run("note", {0.25, 60});
+  run("[");
+  run("gate", {1});
+  run("note", {2});
+  run("]");
+  run("F");  // the turtle reading: duration 1 at the gate the ] restored
+  ASSERT_EQ(score.notes.size(), 4u);
+  EXPECT_EQ(score.notes[0].start, 0);
+  EXPECT_EQ(score.notes[0].duration, 0.5);
+  EXPECT_EQ(score.notes[1].start, 1);
+  EXPECT_EQ(score.notes[1].duration, 0.125);
+  EXPECT_EQ(score.notes[1].velocity, 60);
+  EXPECT_EQ(score.notes[2].start, 1.25);
+  EXPECT_EQ(score.notes[2].duration, 2);
+  EXPECT_EQ(score.notes[3].start, 1.25);
+  EXPECT_EQ(score.notes[3].duration, 0.5);
+  EXPECT_EQ(player.state().time, 2.25);
+  // Outside 0 < g <= 1 the gate is left as it was and the command counted.
+  for (double bad : {0.0, -0.5, 1.5, std::numeric_limits<double>::quiet_NaN()}) run("gate", {bad});
+  EXPECT_EQ(player.warnings().badArguments, 4);
+  EXPECT_EQ(player.state().gate, 0.5);
+  MusicPlayerDef def;
+  def.initial.gate = 0;
+  EXPECT_THROW(MusicPlayer{def}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ontogen
