@@ -55,6 +55,7 @@ StepContext World::stepContext(const WorldHeld& elsewhere) {
   context.elsewhere = elsewhere;
   context.lineage = def_.recordLineage ? &lineage_ : nullptr;
   context.rewriteBySlices = def_.rewriteBySlices;
+  context.rateStencils = def_.rateStencils;
   context.idSalt = idSalt();
   context.systemCellId = parent_ ? idValue(cellId_) : -1;
   return context;
@@ -306,6 +307,7 @@ void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tre
         stats_.cellsBorn += child->stats_.cellsBorn - before.cellsBorn;
         stats_.crowded += child->stats_.crowded - before.crowded;
         stats_.rewritesBySlices += child->stats_.rewritesBySlices - before.rewritesBySlices;
+        stats_.stencilSteps += child->stats_.stencilSteps - before.stencilSteps;
       }
     } else {
       child = std::make_unique<World>(*this, cell, pool.stateOf(cell), &tree);
