@@ -152,7 +152,6 @@ void RateStencil::stage(const double* in, double* x, double dt, const EvalContex
   // odeint's runge_kutta4 coefficients (a, b) times dt, as its generic_rk_scale_sum makes them.
   const double half = 0.5 * dt, zero = 0.0 * dt, whole = 1.0 * dt, sixth = (1.0 / 6.0) * dt, third = (1.0 / 3.0) * dt;
   double* a = stageA_.data();
-  double* b = stageB_.data();
   double* zeros = zeroSum_.data();
   double* result = result_.data();
   const size_t width = size_[0];
@@ -177,8 +176,8 @@ void RateStencil::stage(const double* in, double* x, double dt, const EvalContex
           a[i] = 1.0 * x[i] + half * k;
           zeros[i] = 1.0 * x[i] + zero * k;
           result[i] = 1.0 * x[i] + sixth * k;
-        } else if constexpr (which == Stage::Second) {  // x + 0 dt k1 + a2 dt k2
-          b[i] = zeros[i] + half * k;
+        } else if constexpr (which == Stage::Second) {  // x + 0 dt k1 + a2 dt k2, into x
+          x[i] = zeros[i] + half * k;
           zeros[i] = zeros[i] + zero * k;
           result[i] = result[i] + third * k;
         } else if constexpr (which == Stage::Third) {  // x + 0 dt k1 + 0 dt k2 + dt k3
@@ -194,9 +193,8 @@ void RateStencil::stage(const double* in, double* x, double dt, const EvalContex
 }
 
 void RateStencil::step(StateArray& x, double dt, const EvalContext& context, unsigned threads) {
-  // Every element is written by the first two passes before any is read.
+  // Every element is written by the first pass before any is read.
   resizeForOverwrite(stageA_, x.size());
-  resizeForOverwrite(stageB_, x.size());
   resizeForOverwrite(zeroSum_, x.size());
   resizeForOverwrite(result_, x.size());
   double* state = x.data();
@@ -207,7 +205,7 @@ void RateStencil::step(StateArray& x, double dt, const EvalContext& context, uns
     stage<Stage::Second>(stageA_.data(), state, dt, context, begin, end);
   });
   parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
-    stage<Stage::Third>(stageB_.data(), state, dt, context, begin, end);
+    stage<Stage::Third>(state, state, dt, context, begin, end);
   });
   parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
     stage<Stage::Fourth>(stageA_.data(), state, dt, context, begin, end);

@@ -8,9 +8,9 @@
 //
 // RK4's stages are fused with the evaluation of the rates: each pass over the cells
 // evaluates the derivative at one stage and, in the same pass, writes the next stage's
-// input and adds the stage to the step's result. No derivative array is kept, and the
-// four stage arrays are kept from step to step (and, through the large block cache, from
-// world to world): a step allocates nothing.
+// input and adds the stage to the step's result. No derivative array is kept; three
+// arrays the size of the state are, from step to step (and, through the large block
+// cache, from world to world): a step allocates nothing.
 //
 // The arithmetic is Boost.Odeint's runge_kutta4, operation for operation, zero
 // coefficients included (1.0 * x + 0.0 * k is not x when x is -0 or k is not finite),
@@ -79,9 +79,10 @@ class RateStencil {
   std::vector<int64_t> deltas_;                // per neighbourhood offset: cells away
   std::array<uint32_t, 3> size_{1, 1, 1};
   int dimensions_ = 1;
-  // The stage inputs (two, alternating), the running zero-coefficient sum odeint's
-  // stages 2 and 3 start from, and the step's result being summed.
-  StateArray stageA_, stageB_, zeroSum_, result_;
+  // The input of stages 2 and 4 (the state itself holds stage 3's: after the first pass
+  // the step needs x only through the two sums), the running zero-coefficient sum
+  // odeint's stages 2 and 3 start from, and the step's result being summed.
+  StateArray stageA_, zeroSum_, result_;
 };
 
 }  // namespace ontogen
