@@ -347,6 +347,8 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
   const auto& masters = program_.masters;
   double last = t;  // the instant processed last
   std::optional<double> known;  // the earliest terminal age of the word, when the rewrite found it
+  // The last step's rewrite found it for the word it wrote, if nothing rewrote it since.
+  if (pool_.structureVersion() == writtenVersion_) known = writtenEarliest_;
   for (;;) {
     double earliest = kForever;
     if (known) {
@@ -370,6 +372,8 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
                                    nextState_)) {
       finishWord();
       known = parallel_.earliestDeath();
+      writtenEarliest_ = *known;
+      writtenVersion_ = pool_.structureVersion();
       continue;
     }
     beginWord();

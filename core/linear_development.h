@@ -91,6 +91,10 @@ class LinearDevelopment final : public Development {
   std::vector<int64_t> parentIndex_;   // of the word at the start of the pass
   std::vector<double> parentValues_;   // me.parent of each cell of that word
   ParallelRewrite parallel_;  // the context-free pass of a large word on every core
+  // The earliest terminal age of the word the pass of one instant wrote last, and the
+  // pool's structure version just after, so that the next step need not look for it.
+  double writtenEarliest_ = kForever;
+  uint64_t writtenVersion_ = UINT64_MAX;
   LinearPoolView view_;
   RuleEvaluator<LinearPoolView> evaluator_;  // per-step rules; count(), sum(x) ... for terminal rules too
   std::unique_ptr<RateIntegrator<LinearPoolView>> rates_;  // made on the first step that needs it; not copied
