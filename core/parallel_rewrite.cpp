@@ -162,6 +162,10 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
     if (labelsOnly_[cell.master]) {
       rule = chooseByLabels(pass, step, i, worker);
       chosen_[i] = rule ? static_cast<uint16_t>(rule - master.terminalRules.data() + 1) : 0;
+    } else if (pass == Pass::ContextFree) {
+      // No choice to make (at most one rule, of group 0, without condition, chance or
+      // context): what it writes is counted without loading the cell's frame.
+      rule = master.terminalRules.empty() ? nullptr : &master.terminalRules.front();
     } else {
       RandomStream random(mixKey(mixKey(step.context.seed, cell.id), keyOf(death)));
       EvalContext evaluation{worker.frame.data(), EvalEnvironment{&random, step.context.seed}, &functions_, nullptr};
