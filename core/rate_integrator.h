@@ -9,6 +9,9 @@
 // state right after the step's discrete changes (at t+); while integrating, `e` reads
 // the cell's and its neighbours' values at the integrator's own stage times, so
 // coupled cells (diffusion) are integrated together, not one after the other.
+//
+// A full grid of one master with unconditional, batchable equations is integrated by
+// core/rate_stencil.h instead: the same RK4, to the same bits, over the grid's arrays.
 
 #include <memory>
 #include <vector>
