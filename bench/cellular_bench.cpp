@@ -49,8 +49,9 @@ void BM_GridDiffusionThroughRate(benchmark::State& state) {
   }
   WorldDef def = kBenchWorld;
   def.threads = static_cast<unsigned>(state.range(0));
-  // The first world of the process finds no memory to reuse (pools/large_block_cache.h):
-  // its time against the fastest later one of the same run says what cold memory costs.
+  // The first world of the process (when this benchmark runs first) finds no memory to
+  // reuse (pools/large_block_cache.h): its time against the fastest later one of the
+  // same run says what cold memory costs.
   // Processor time (user and system, where the kernel zeroes fresh pages) of the whole
   // process: on a machine shared with other work, wall time mostly measures the others.
   static bool processFirst = true;
