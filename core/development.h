@@ -36,6 +36,7 @@ struct WorldStats {
   uint64_t crowded = 0;        ///< grid successors that found no free site and were not born
   uint64_t rateEquations = 0;  ///< rate equations integrated in the last step
   uint64_t rewritesBySlices = 0;  ///< linear words rewritten by slices (core/parallel_rewrite.h)
+  uint64_t stencilSteps = 0;      ///< rate steps of full grids taken as stencils (core/rate_stencil.h)
 };
 
 /// Cells and bytes held: by a pool, by a world and its nested systems, or by everything
@@ -63,6 +64,7 @@ struct StepContext {
   /// frames). checkGrowth counts it with the pool's own.
   WorldHeld elsewhere{};
   bool rewriteBySlices = true;  ///< WorldDef::rewriteBySlices
+  bool rateStencils = true;     ///< WorldDef::rateStencils
 };
 
 /// Throws LimitError when a pool that holds `cells` cells and `bytes` bytes (its pool and

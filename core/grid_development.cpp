@@ -55,7 +55,9 @@ void GridDevelopment::seed(StepContext& context) {
   checkGridMemory(sites, sizeof(CellRecord) + 2 * sizeof(uint32_t), context.limits, context.elsewhere.bytes);
   // Which source decides each site: 0 .. axiom-1 are axiom cells, then placements.
   const int64_t axiomCount = static_cast<int64_t>(system.axiom.size());
-  std::vector<int64_t> source(sites, -1);
+  // In the pools' large blocks: at a million sites its memory goes on to serve the first
+  // step's arrays (the rates' stages) instead of going back to the system.
+  LargeVector<int64_t> source(sites, -1);
   for (int64_t a = 0; a < axiomCount && a < static_cast<int64_t>(sites); ++a) source[a] = a;
   int64_t lastFill = -1;
   for (size_t p = 0; p < system.placements.size(); ++p) {

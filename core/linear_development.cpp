@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 #include "core/branch_cut.h"
 #include "core/cell_frame.h"
@@ -52,6 +51,32 @@ void LinearDevelopment::findParents() {
     parentValues_[i] = parentIndex_[i] < 0 ? context_->systemCellId : idValue(cells[parentIndex_[i]].id);
 }
 
+double LinearDevelopment::earliestDeath() {
+  if (earliestVersion_ != pool_.structureVersion()) {
+    double earliest = kForever;
+    for (const CellRecord& cell : pool_.cells())
+      earliest = std::min(earliest, cell.birth + program_.masters[cell.master].lifetime);
+    earliestDeath_ = earliest;
+    earliestVersion_ = pool_.structureVersion();
+  }
+  return earliestDeath_;
+}
+
+// Stops at the first cell that expires (in a growing word, the first one): a word
+// rewritten every step is not scanned twice.
+bool LinearDevelopment::anyExpires(double horizon) {
+  if (earliestVersion_ == pool_.structureVersion()) return earliestDeath_ <= horizon;
+  double earliest = kForever;
+  for (const CellRecord& cell : pool_.cells()) {
+    const double death = cell.birth + program_.masters[cell.master].lifetime;
+    if (death <= horizon) return true;
+    earliest = std::min(earliest, death);
+  }
+  earliestDeath_ = earliest;
+  earliestVersion_ = pool_.structureVersion();
+  return false;
+}
+
 void LinearDevelopment::seed(StepContext& context) { seedFromAxiom(pool_, context); }
 
 void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
@@ -80,11 +105,9 @@ void LinearDevelopment::expireUntil(double t, double t1) {
 // integration goes on with the new word: a cell's successors start from its values at
 // the instant it expired.
 void LinearDevelopment::integrateAndExpire(double t, double t1) {
-  const auto& masters = program_.masters;
   double now = t;
   while (now < t1 - timeTolerance(t1)) {
-    double next = kForever;
-    for (const CellRecord& cell : pool_.cells()) next = std::min(next, cell.birth + masters[cell.master].lifetime);
+    const double next = earliestDeath();
     const double until = next < t1 ? std::max(next, now) : t1;
     pool_.indexBranches(system_.symbolClass);
     integrateRates(rates_, program_, *context_, pool_, view_, now, until);
@@ -252,18 +275,14 @@ void LinearDevelopment::expireContextFree(double t1) {
   const auto& masters = program_.masters;
   auto cells = pool_.cells();
   // Nothing expires in most animation steps: keep the word as it is.
-  bool any = false;
-  for (const CellRecord& cell : cells)
-    if (cell.birth + masters[cell.master].lifetime <= horizon) {
-      any = true;
-      break;
-    }
-  if (!any) return;
+  if (!anyExpires(horizon)) return;
   findParents();
   if (parallel_.appliesContextFree() &&
       parallel_.rewriteContextFree(pool_, horizon, *context_, readsParents_ ? parentValues_.data() : nullptr,
                                    eventsThisStep_, nextCells_, nextState_)) {
     finishWord();
+    earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
+    earliestVersion_ = pool_.structureVersion();
     return;
   }
   beginWord();
@@ -346,16 +365,8 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
   const double horizon = t1 + timeTolerance(t1);
   const auto& masters = program_.masters;
   double last = t;  // the instant processed last
-  std::optional<double> known;  // the earliest terminal age of the word, when the rewrite found it
   for (;;) {
-    double earliest = kForever;
-    if (known) {
-      earliest = *known;
-      known.reset();
-    } else {
-      for (const CellRecord& cell : pool_.cells())
-        earliest = std::min(earliest, cell.birth + masters[cell.master].lifetime);
-    }
+    double earliest = earliestDeath();
     if (system_.decomposes) earliest = std::min(earliest, std::floor(last + timeTolerance(last)) + 1);
     if (earliest > horizon) return;
     last = earliest;
@@ -369,7 +380,8 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
                                    readsParents_ ? parentValues_.data() : nullptr, eventsThisStep_, nextCells_,
                                    nextState_)) {
       finishWord();
-      known = parallel_.earliestDeath();
+      earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
+      earliestVersion_ = pool_.structureVersion();
       continue;
     }
     beginWord();

@@ -87,10 +87,18 @@ class LinearDevelopment final : public Development {
   int activeGroup_ = 0;  // the rule group of the step under way (`use group:`)
   std::vector<uint8_t> dropped_;  // a backward pass: the cells a cut leaves out
   void findParents();
+  /// The earliest birth + lifetime of the word's cells (kForever for an empty word).
+  double earliestDeath();
+  /// Whether a cell of the word reaches its terminal age by `horizon`.
+  bool anyExpires(double horizon);
   bool readsParents_ = false;          // some rule reads me.parent
   std::vector<int64_t> parentIndex_;   // of the word at the start of the pass
   std::vector<double> parentValues_;   // me.parent of each cell of that word
   ParallelRewrite parallel_;  // the context-free pass of a large word on every core
+  // The earliest terminal age in the word, for the pool's structure version it was found
+  // at: only a new word changes it, so most steps of an animation ask without a scan.
+  double earliestDeath_ = kForever;
+  uint64_t earliestVersion_ = UINT64_MAX;
   LinearPoolView view_;
   RuleEvaluator<LinearPoolView> evaluator_;  // per-step rules; count(), sum(x) ... for terminal rules too
   std::unique_ptr<RateIntegrator<LinearPoolView>> rates_;  // made on the first step that needs it; not copied

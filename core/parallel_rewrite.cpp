@@ -47,11 +47,18 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
   for (uint8_t symbolClass : system.symbolClass)
     if (symbolClass & kSymbolCut) contextFree_ = atInstants_ = false;
   if (system.backward || system.decomposes) atInstants_ = false;
+  auto plain = [](const std::vector<uint8_t>& classes) {
+    return std::all_of(classes.begin(), classes.end(), [](uint8_t c) { return c == kSymbolModule; });
+  };
+  plain_ = plain(system.symbolClass) && std::all_of(system.ruleClasses.begin(), system.ruleClasses.end(), plain);
   labelsOnly_.resize(program.masters.size());
   shortestLife_.resize(program.masters.size());
   for (size_t m = 0; m < program.masters.size(); ++m) {
     const MasterCell& master = program.masters[m];
     labelsOnly_[m] = comparesLabelsOnly(program, master) && master.terminalRules.size() < UINT16_MAX;
+    std::vector<LabelRule>& choices = labelRules_.emplace_back();
+    if (labelsOnly_[m])
+      for (const CompiledRule& rule : master.terminalRules) choices.push_back({&rule, rule.group, rule.hasContext()});
     allLabelsOnly_ = allLabelsOnly_ && labelsOnly_[m];
     double shortest = master.lifetime;  // a renewal
     for (const CompiledRule& rule : master.terminalRules) {
@@ -71,6 +78,26 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
 }
 
 bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const {
+  if (plain_) {
+    // No bracket and nothing ignored: the k-th context item is the k-th cell away, and a
+    // match compares labels, as LinearPool::matchLeft and matchRight find it there.
+    const auto cells = step.pool.cells();
+    for (size_t k = 0; k < rule.leftItems.size(); ++k) {
+      const ContextItem& item = rule.leftItems[k];
+      if (i < k + 1) return item.kind == ContextItem::Kind::End;  // the start of the word
+      if (item.kind != ContextItem::Kind::Any &&
+          (item.kind != ContextItem::Kind::Module || cells[i - 1 - k].master != item.master))
+        return false;
+    }
+    for (size_t k = 0; k < rule.rightItems.size(); ++k) {
+      const ContextItem& item = rule.rightItems[k];
+      if (i + 1 + k >= cells.size()) return item.kind == ContextItem::Kind::End;  // the end of the word
+      if (item.kind != ContextItem::Kind::Any &&
+          (item.kind != ContextItem::Kind::Module || cells[i + 1 + k].master != item.master))
+        return false;
+    }
+    return true;
+  }
   const auto& classOf = rule.symbolClasses < 0 ? system_.symbolClass : system_.ruleClasses[rule.symbolClasses];
   if (!rule.leftItems.empty() && !step.pool.matchLeft(i, rule.leftItems, classOf, worker.matched)) return false;
   if (!rule.rightItems.empty() && !step.pool.matchRight(i, rule.rightItems, classOf, worker.matched)) return false;
@@ -79,9 +106,10 @@ bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, 
 
 const CompiledRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const {
   const CellRecord& cell = step.pool.cells()[i];
-  for (const CompiledRule& rule : program_.masters[cell.master].terminalRules) {
-    if (rule.group != 0 && rule.group != step.group) continue;
-    if (!rule.hasContext() || (pass == Pass::AtInstant && matchesLabels(step, rule, i, worker))) return &rule;
+  for (const LabelRule& choice : labelRules_[cell.master]) {
+    if (choice.group != 0 && choice.group != step.group) continue;
+    if (!choice.context || (pass == Pass::AtInstant && matchesLabels(step, *choice.rule, i, worker)))
+      return choice.rule;
   }
   return nullptr;
 }
@@ -134,6 +162,10 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
     if (labelsOnly_[cell.master]) {
       rule = chooseByLabels(pass, step, i, worker);
       chosen_[i] = rule ? static_cast<uint16_t>(rule - master.terminalRules.data() + 1) : 0;
+    } else if (pass == Pass::ContextFree) {
+      // No choice to make (at most one rule, of group 0, without condition, chance or
+      // context): what it writes is counted without loading the cell's frame.
+      rule = master.terminalRules.empty() ? nullptr : &master.terminalRules.front();
     } else {
       RandomStream random(mixKey(mixKey(step.context.seed, cell.id), keyOf(death)));
       EvalContext evaluation{worker.frame.data(), EvalEnvironment{&random, step.context.seed}, &functions_, nullptr};

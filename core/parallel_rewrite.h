@@ -101,6 +101,15 @@ class ParallelRewrite {
   bool contextFree_ = true;
   bool atInstants_ = true;
   std::vector<uint8_t> labelsOnly_;  // per master: its rules compare labels only
+  bool plain_ = false;               // no symbol is a bracket, a cut or ignored
+  // Per master whose rules compare labels only: its terminal rules in order, with what
+  // the choice reads of them side by side.
+  struct LabelRule {
+    const CompiledRule* rule;
+    int group;
+    bool context;
+  };
+  std::vector<std::vector<LabelRule>> labelRules_;
   bool allLabelsOnly_ = true;
   // Per cell of the word, for a master whose rules compare labels only: the rule the
   // counting pass chose (1 + its index; 0: none), which the writing pass takes as it is.

@@ -1,6 +1,7 @@
 #include "core/rate_integrator.h"
 
 #include <algorithm>
+#include <type_traits>
 #include <boost/numeric/odeint.hpp>
 
 #include "core/parallel_for.h"
@@ -175,7 +176,22 @@ void RateIntegrator<View>::derivative(const Pool& pool, const StateArray& x, Sta
 
 template <typename View>
 void RateIntegrator<View>::integrate(Pool& pool, const View& view, double t0, double t1) {
+  tookStencils_ = false;
   if (!(t1 > t0)) return;
+  if constexpr (std::is_same_v<View, GridPoolView>) {
+    if (stencils_ && !conditional_ && program_.rateTolerance <= 0) {
+      if (!stencil_) stencil_ = std::make_unique<RateStencil>();
+      if (stencil_->prepare(program_, static_cast<const GridPool&>(pool))) {
+        RandomStream random;  // never drawn from: the stencil's equations draw nothing
+        EvalContext context{nullptr, EvalEnvironment{&random, seed_}, &functions_, nullptr};
+        context.ancestors = ancestors_;
+        stencil_->step(pool.stateValues(), t1 - t0, context, threads_);
+        active_ = stencil_->equations();
+        tookStencils_ = true;
+        return;
+      }
+    }
+  }
   while (evaluators_.size() < threads_) evaluators_.push_back(std::make_unique<RuleEvaluator<View>>(program_, view));
   if (view_ != &view) {
     // Evaluators hold the view they were made with.
@@ -188,6 +204,7 @@ void RateIntegrator<View>::integrate(Pool& pool, const View& view, double t0, do
     equationsPool_ = &pool;
     equationsVersion_ = pool.structureVersion();
   }
+  active_ = equations_.size();
   if (equations_.empty()) return;
   // The structure is fixed while integrating: find every cell's neighbours once, not
   // once per stage and equation, and keep them until it changes.

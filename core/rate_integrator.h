@@ -9,12 +9,16 @@
 // state right after the step's discrete changes (at t+); while integrating, `e` reads
 // the cell's and its neighbours' values at the integrator's own stage times, so
 // coupled cells (diffusion) are integrated together, not one after the other.
+//
+// A full grid of one master with unconditional, batchable equations is integrated by
+// core/rate_stencil.h instead: the same RK4, to the same bits, over the grid's arrays.
 
 #include <memory>
 #include <vector>
 
 #include "core/development.h"
 #include "core/pool_view.h"
+#include "core/rate_stencil.h"
 #include "core/rule_evaluator.h"
 #include "lang/program.h"
 #include "pools/large_page_allocator.h"
@@ -36,7 +40,12 @@ class RateIntegrator {
   /// The enclosing systems' values the equations read (World::ancestorValues).
   void setAncestors(const double* values) { ancestors_ = values; }
   /// Equations switched on in the last integration.
-  size_t activeEquations() const { return equations_.size(); }
+  size_t activeEquations() const { return active_; }
+  /// Whether the last integration took the stencils of a full grid.
+  bool tookStencils() const { return tookStencils_; }
+  /// Whether a full grid may be integrated as stencils (core/rate_stencil.h); off, every
+  /// pool takes the general path, to the same bits (WorldDef::rateStencils).
+  void useStencils(bool on) { stencils_ = on; }
 
  private:
   struct Equation {
@@ -74,6 +83,10 @@ class RateIntegrator {
   // step, it took and zeroed the pool's state size four times over every step.
   struct Rk4;
   std::unique_ptr<Rk4> rk4_;
+  bool stencils_ = true;
+  std::unique_ptr<RateStencil> stencil_;  // grids only, made on the first step it may serve
+  size_t active_ = 0;
+  bool tookStencils_ = false;
 };
 
 /// One step of a pool's rates from t0 to t1: the development's integrator, made on the
@@ -83,8 +96,10 @@ void integrateRates(std::unique_ptr<RateIntegrator<View>>& rates, const Program&
                     Pool& pool, const View& view, double t0, double t1) {
   if (!rates) rates = std::make_unique<RateIntegrator<View>>(program, context.seed, context.threads);
   rates->setAncestors(context.ancestors);
+  rates->useStencils(context.rateStencils);
   rates->integrate(pool, view, t0, t1);
   context.stats.rateEquations = rates->activeEquations();
+  if (rates->tookStencils()) ++context.stats.stencilSteps;
 }
 
 }  // namespace ontogen

@@ -51,6 +51,10 @@ struct WorldDef {
   /// every word takes the one-pass serial rewriting; the result is the same bits, which is
   /// what tests compare.
   bool rewriteBySlices = true;
+  /// Integrate the rates of a full grid of one master as stencils over its arrays
+  /// (core/rate_stencil.h) where it applies. Off, every pool takes the general path; the
+  /// result is the same bits, which is what tests compare.
+  bool rateStencils = true;
   /// Answers the query modules (`?P(x, y, z)` ...) after seeding and after every step
   /// (core/environment_process.h); null: they keep their values. Shared by copies.
   std::shared_ptr<const EnvironmentProcess> environment = nullptr;

@@ -1,8 +1,17 @@
 #include "pools/linear_pool.h"
 
+#include <algorithm>
+
 namespace ontogen {
 
 void LinearPool::indexBranches(std::span<const uint8_t> classOf) {
+  // A word whose symbols include no bracket has no branch to index (a signal, Koch):
+  // nothing is read from the index there, so no pass over the word is made for it.
+  if (std::none_of(classOf.begin(), classOf.end(),
+                   [](uint8_t symbol) { return symbol & (kSymbolBranchOpen | kSymbolBranchClose); })) {
+    partner_.clear();
+    return;
+  }
   partner_.assign(cells_.size(), kNoPartner);
   std::vector<uint32_t> open;
   for (uint32_t i = 0; i < cells_.size(); ++i) {

@@ -60,7 +60,7 @@ class LinearPool final : public Pool {
                                    std::span<const uint8_t> classOf, uint32_t* matched);
 
   /// Matching bracket of cell i, or kNoPartner (an unmatched bracket or not a bracket).
-  uint32_t partnerOf(size_t i) const { return partner_[i]; }
+  uint32_t partnerOf(size_t i) const { return i < partner_.size() ? partner_[i] : kNoPartner; }
   static constexpr uint32_t kNoPartner = UINT32_MAX;
 
  private:

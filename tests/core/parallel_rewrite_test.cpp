@@ -116,6 +116,31 @@ TEST(ParallelRewrite, ALabelOnlyContextIsWrittenAsTheSerialPassWritesIt) {
   }
 }
 
+// Labels only, with two modules of left context, right context and the word's ends: in
+// a word of plain modules (matched by position) and in one with branches and an ignored
+// module (matched through the bracket index).
+std::string labelContextProgram(bool branches) {
+  std::string axiom;
+  for (int i = 0; i < 12'000; ++i) axiom += branches ? (i % 3 ? " a b c" : " a [ b c ] d") : (i % 3 ? " a b c" : " a b d");
+  return "lsystem l {\n  axiom" + axiom + "\n" + (branches ? "  ignore: d\n" : "") +
+         "  a b < c -> a\n  c > a -> b\n  a < b > c -> c\n  d < a -> d\n  b -> a\n  d -> c\n}\n";
+}
+
+TEST(ParallelRewrite, LabelContextsInPlainAndBranchedWordsAreWrittenAsTheSerialPassWritesThem) {
+  for (bool branches : {false, true}) {
+    auto program = testing_support::compileOrFail(labelContextProgram(branches));
+    ASSERT_NE(program, nullptr);
+    const Grown serial = grow(program, 12, 1, false);
+    ASSERT_GE(serial.world->rootPool().size(), ParallelRewrite::kMinimumCells);
+    for (unsigned threads : {1u, 2u, 3u}) {
+      const Grown parallel = grow(program, 12, threads);
+      EXPECT_EQ(parallel.stats.rewritesBySlices, 12u) << threads << " threads";
+      expectSameWords(*serial.world, *parallel.world,
+                      std::string(branches ? "branched" : "plain") + " word on " + std::to_string(threads) + " threads");
+    }
+  }
+}
+
 // Context with bound values, conditions, chance and draws in the successors.
 const char* kContextWithChoices = R"(lsystem g {
   axiom A(1) B(1)
