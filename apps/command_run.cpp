@@ -57,6 +57,7 @@ int runRun(const RunOptions& options) {
                                                       : std::vector<std::string>{"geometry"};
   def.out = options.out;
   if (!growOnly) def.setOptions.formats = options.format;
+  def.setOptions.up = options.up;
   if (options.view.size() == 2) {
     def.setOptions.render.azimuth = options.view[0];
     def.setOptions.render.elevation = options.view[1];

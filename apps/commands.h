@@ -52,6 +52,7 @@ struct RunOptions {
   std::string format = "glb,png";   ///< geometry outputs, comma-separated
   std::vector<double> view;         ///< azimuth, elevation in degrees; empty: automatic
   std::string size = "800x800";     ///< picture size, WIDTHxHEIGHT pixels
+  UpAxis up = UpAxis::Y;            ///< up axis of the OBJ and PLY files
   std::string midiPort;        ///< play the music set live on this port (name or index)
   bool virtualPort = false;    ///< or on a virtual port named "ontogen"
 };

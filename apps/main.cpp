@@ -122,7 +122,7 @@ int dispatch(int argc, char** argv) {
       ->delimiter(',');
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
   runCommand->add_option("--format", run.format,
-                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, svg, joints; none: grow only, "
+                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, ply-ascii, svg, joints; none: grow only, "
                          "interpret and write nothing (with --stats, for measuring)")
       ->capture_default_str();
   addRealListOption(*runCommand, "--view", run.view, {RealRange::between(-360, 360), RealRange::between(-90, 90)},
@@ -139,6 +139,16 @@ int dispatch(int argc, char** argv) {
           },
           "Picture size WIDTHxHEIGHT in pixels (default 800x800)")
       ->type_name("WxH");
+  runCommand
+      ->add_option_function<std::string>(
+          "--up",
+          [&run](const std::string& text) {
+            if (text != "y" && text != "z")
+              throw CLI::ValidationError("--up", "'" + text + "' is no up axis: y (ontogen's own) or z (Blender, most PLY viewers)");
+            run.up = text == "z" ? ontogen::UpAxis::Z : ontogen::UpAxis::Y;
+          },
+          "Up axis of the OBJ and PLY files: y (default, as the model grows) or z (turned a quarter about x)")
+      ->type_name("y|z");
   runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
   runCommand->add_option("--midi-port", run.midiPort, "Play the music set live on this MIDI port (name or index)");
   runCommand->add_flag("--virtual-port", run.virtualPort, "Play the music set live on a new MIDI port 'ontogen'");

@@ -24,6 +24,7 @@ SceneOutputDef sceneOutputDefOf(const SetOptions& options) {
   std::string error = applyGeometryFormats(options.formats, def);
   if (!error.empty()) throw std::invalid_argument(error);
   def.render = options.render;
+  def.up = options.up;
   return def;
 }
 

@@ -51,6 +51,7 @@ TEST(BadInput, EveryNumericFlagRejectsWhatIsNotItsNumberWithOneShortLine) {
       {"run", {"--threads -1", "--threads: '-1' is not a whole number 0 to 4096"}},
       {"run", {"--frames 0", "--frames: '0' is not a whole number 1 to 1000000"}},
       {"run", {"--size 800x800junk", "--size: '800x800junk' is not WIDTHxHEIGHT in pixels, each 1 to 8192, as in 800x600"}},
+      {"run", {"--up x", "--up: 'x' is no up axis: y (ontogen's own) or z (Blender, most PLY viewers)"}},
       {"run", {"--size 0x10", "--size: '0x10' is not WIDTHxHEIGHT in pixels, each 1 to 8192, as in 800x600"}},
       {"word", {"--at 1 --precision 18", "--precision: '18' is not a whole number 1 to 17"}},
       {"timeline", {"--out x.svg --max-rows 0", "--max-rows: '0' is not a whole number 1 to 10000000"}},

@@ -279,6 +279,38 @@ TEST(Cli, RunWritesGlbAndPngByDefaultAndRejectsUnknownFormats) {
   EXPECT_NE(size.err.find("WIDTHxHEIGHT"), std::string::npos) << size.err;
 }
 
+// --up z turns the OBJ and the PLY (binary by default) into z-up files: every vertex
+// of the OBJ is the y-up one turned a quarter about x.
+TEST(Cli, UpZWritesZUpObjAndBinaryPly) {
+  fs::path out = scratch("up_z");
+  Result result = ontogen("run " + model("cube.cell") + " --format obj,ply --up z --out " + out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const std::string ply = readFile(out / "cube.ply");
+  EXPECT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\ncomment ontogen geometry, z up\n", 0), 0u) << ply.substr(0, 80);
+  const std::string obj = readFile(out / "cube.obj");
+  EXPECT_EQ(obj.rfind("# ontogen geometry, z up\n", 0), 0u) << obj.substr(0, 80);
+  Result plain = ontogen("run " + model("cube.cell") + " --format obj --out " + (out / "y").string());
+  ASSERT_EQ(plain.exitCode, 0) << plain.err;
+  // The same vertices, turned: (x, y, z) -> (x, -z, y).
+  auto vertices = [](const std::string& text) {
+    std::vector<std::array<double, 3>> list;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      std::array<double, 3> v{};
+      if (std::sscanf(line.c_str(), "v %lf %lf %lf", &v[0], &v[1], &v[2]) == 3) list.push_back(v);
+    }
+    return list;
+  };
+  const auto z = vertices(obj), y = vertices(readFile(out / "y" / "cube.obj"));
+  ASSERT_EQ(z.size(), y.size());
+  ASSERT_FALSE(z.empty());
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    EXPECT_EQ(z[i][0], y[i][0]);
+    EXPECT_EQ(z[i][1], y[i][2] == 0 ? 0 : -y[i][2]);
+    EXPECT_EQ(z[i][2], y[i][1]);
+  }
+}
+
 TEST(Cli, GeometryModelsRunAndWriteValidOutputs) {
   const fs::path modules = fs::path(ONTOGEN_SOURCE_DIR) / ".tools" / "node_modules";
   const bool validator = fs::exists(modules / "gltf-validator" / "package.json");
