@@ -14,6 +14,7 @@
 #include "apps/commands.h"
 #include "apps/program_loader.h"
 #include "core/limits.h"
+#include "interpreters/formats/look.h"
 #include "interpreters/temporary_files.h"
 
 namespace {
@@ -115,7 +116,24 @@ int dispatch(int argc, char** argv) {
   addRealOption(*runCommand, "--from", run.from, RealRange::atLeast(0),
                 "Time of the first frame, seconds (default: #from, else 0)");
   addWholeOption(*runCommand, "--frames", run.frames, WholeRange::between(1, kMaxFrames),
-                 "Frames spread over [from, until]; 1: the end only (default: #fps frames a second, else 1)");
+                 "Frames spread over [from, until]; 1: the end only (default: from --speed or #speed, else #fps "
+                 "frames a second, else a 4 s movie when mp4 is written, else 1)");
+  addRealOption(*runCommand, "--speed", run.speed, RealRange::above(0),
+                "Seconds of developmental time a second of the movie shows: frames S/fps apart (default: #speed)")
+      ->type_name("S");
+  addRealOption(*runCommand, "--fps", run.fps, RealRange::between(1, kMaxMovieFps),
+                "Frames per second of the movie (default 25); #fps is another thing, frames per second of growth")
+      ->type_name("F");
+  runCommand
+      ->add_option_function<std::string>(
+          "--look",
+          [&run](const std::string& text) {
+            if (!ontogen::findLook(text))
+              throw CLI::ValidationError("--look", "'" + text + "' is no look (known: " + ontogen::lookList() + ")");
+            run.look = text;
+          },
+          "Background, light and palette of pictures and movies: " + ontogen::lookList() + " (default: #look, else light)")
+      ->type_name("NAME");
   runCommand->add_option("--interpret", run.sets,
                          "Interpretation sets, comma-separated: geometry, creature, physics, image, music, trace (default: the "
                          "program's #interpret, else geometry)")

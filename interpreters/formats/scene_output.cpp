@@ -112,8 +112,11 @@ std::vector<SetWarning> SceneOutput::takeWarnings() {
   };
   emptyObj_.takeInto(out, frames(emptyObj_) + " had nothing to draw: " + (emptyObj_.count == 1 ? "its" : "their") +
                               " .obj holds one point at the origin, as readers refuse one without a mesh");
-  shortMovie_.takeInto(out, "the movie has one frame, " + std::to_string(1.0 / def_.framesPerSecond).substr(0, 4) +
-                                " s long: give the run --frames N, or the program #fps, for an animation");
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%g", 1.0 / def_.framesPerSecond);
+  shortMovie_.takeInto(out, std::string("the movie has one frame, ") + seconds +
+                                " s long: give the run --frames N or --speed S (or the program #speed), and a "
+                                "span to grow over (--from before --until), for an animation");
   emptyPly_.takeInto(out, frames(emptyPly_) + " had no surface: no .ply was written for " +
                               (emptyPly_.count == 1 ? "it" : "them") + ", as readers refuse one without a face");
   return out;
