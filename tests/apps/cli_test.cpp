@@ -279,6 +279,29 @@ TEST(Cli, RunWritesGlbAndPngByDefaultAndRejectsUnknownFormats) {
   EXPECT_NE(size.err.find("WIDTHxHEIGHT"), std::string::npos) << size.err;
 }
 
+// --speed and --fps time the movie, --look colours the pictures: Koch's 4 s of growth at
+// 2 s a second and 10 frames a second are 21 frames (ffprobe), and the dark look's
+// background is the picture's corner (ffmpeg decodes it).
+TEST(Cli, SpeedFpsAndLookReachTheMovieAndThePicture) {
+  ONTOGEN_REQUIRE_CHECKER(std::system("command -v ffprobe >/dev/null 2>&1") == 0, "ffmpeg not installed");
+  fs::path out = scratch("speed_fps_look");
+  Result result = ontogen("run " + model("koch.cell") + " --format mp4,png --speed 2 --fps 10 --size 32x32 --look dark --out " +
+                          out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+                            "-of csv=p=0 '" + (out / "koch.mp4").string() + "' > '" + (out / "frames.txt").string() + "'";
+  ASSERT_EQ(std::system(probe.c_str()), 0);
+  EXPECT_EQ(std::stoi(readFile(out / "frames.txt")), 21);
+  const std::string decode = "ffmpeg -v error -i '" + (out / "koch.png").string() + "' -f rawvideo -pix_fmt rgb24 '" +
+                             (out / "koch.rgb").string() + "'";
+  ASSERT_EQ(std::system(decode.c_str()), 0);
+  const std::string rgb = readFile(out / "koch.rgb");
+  ASSERT_EQ(rgb.size(), 32u * 32 * 3);
+  EXPECT_EQ(static_cast<uint8_t>(rgb[0]), 28);
+  EXPECT_EQ(static_cast<uint8_t>(rgb[1]), 30);
+  EXPECT_EQ(static_cast<uint8_t>(rgb[2]), 34);
+}
+
 // --up z turns the OBJ and the PLY (binary by default) into z-up files: every vertex
 // of the OBJ is the y-up one turned a quarter about x.
 TEST(Cli, UpZWritesZUpObjAndBinaryPly) {
