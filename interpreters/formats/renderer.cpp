@@ -92,7 +92,7 @@ struct CanvasCamera {
   }
 };
 
-// Screen-space barycentric weights of (px, py) in a, b, c; false when outside or degenerate.
+// Screen-space barycentric weights of a point in a triangle.
 struct Weights {
   double w0, w1, w2;
 };
@@ -442,7 +442,7 @@ Image renderGeometry(const Geometry& geometry, const RenderDef& def) {
   // The shadow map, when anything casts a shadow on something that shows it.
   const glm::dvec3 size = box.max - box.min;
   const double extent = std::max({size.x, size.y, size.z});
-  const bool floor = look.floorShadow > 0 && !view.flat && view.towardsEye.y > kMinFloorSine;
+  const bool floorShown = look.floorShadow > 0 && !view.flat && view.towardsEye.y > kMinFloorSine;
   std::optional<ShadowMap> shadows;
   if (!mesh.triangles.empty() && look.key > 0) {
     const int side = std::clamp(std::max(def.width, def.height), kMinShadowMap, kMaxShadowMap);
@@ -455,7 +455,7 @@ Image renderGeometry(const Geometry& geometry, const RenderDef& def) {
   const glm::dvec3 key = view.keyLight;
   const double floorY = box.min.y;
   auto empty = [&](double sx, double sy) -> glm::dvec3 {
-    if (!floor || !shadows) return background;
+    if (!floorShown || !shadows) return background;
     const auto [origin, direction] = camera.ray(sx, sy);
     if (!(direction.y < 0)) return background;
     const double along = (floorY - origin.y) / direction.y;
