@@ -51,12 +51,20 @@ int runRun(const RunOptions& options) {
   def.step = options.common.step;
   def.from = options.from;
   def.frames = options.frames;
+  def.speed = options.speed;
+  def.look = options.look;
+  if (options.frames && options.speed) {
+    std::cerr << "ontogen: error: --frames and --speed both say how many frames the run has; give one\n";
+    return kExitUsage;
+  }
+  def.setOptions.framesPerSecond = options.fps.value_or(kDefaultMovieFps);
   def.sets = growOnly                                    ? std::vector<std::string>{}
              : !options.sets.empty()                     ? options.sets
              : !loaded.program->interpretSets.empty() ? loaded.program->interpretSets
                                                       : std::vector<std::string>{"geometry"};
   def.out = options.out;
   if (!growOnly) def.setOptions.formats = options.format;
+  def.setOptions.up = options.up;
   if (options.view.size() == 2) {
     def.setOptions.render.azimuth = options.view[0];
     def.setOptions.render.elevation = options.view[1];

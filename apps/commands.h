@@ -26,6 +26,10 @@ inline constexpr uint64_t kMaxMemoryMiB = (uint64_t{1} << 44) - 1;
 inline constexpr uint64_t kMaxThreads = 4096;
 /// --frames: a million frames is eleven hours of film at 25 per second.
 inline constexpr uint64_t kMaxFrames = 1'000'000;
+/// --fps: 240 frames a second is the fastest displays show; 1 the slowest a movie is.
+inline constexpr double kMaxMovieFps = 240;
+/// --fps when not given: PAL's 25, smooth enough for growth and what ffmpeg assumes.
+inline constexpr double kDefaultMovieFps = 25;
 /// --max-rows: a diagram taller than ten million rows is no picture.
 inline constexpr uint64_t kMaxTimelineRows = 10'000'000;
 
@@ -45,13 +49,17 @@ struct RunOptions {
   CommonOptions common;
   std::optional<double> until;      ///< empty: the program's #until
   std::optional<double> from;       ///< empty: the program's #from
-  std::optional<int> frames;        ///< empty: the program's #fps, else 1
+  std::optional<int> frames;        ///< empty: from the speed, the program's #fps, a default movie, else 1
+  std::optional<double> speed;      ///< seconds of developmental time a second of movie shows; empty: #speed
+  std::optional<double> fps;        ///< frames per second of the movie; empty: kDefaultMovieFps
+  std::optional<std::string> look;  ///< look of pictures and movies; empty: the program's #look, else light
   std::vector<std::string> sets;    ///< empty: the program's #interpret, else geometry
   std::string out = "out";
   bool stats = false;
   std::string format = "glb,png";   ///< geometry outputs, comma-separated
   std::vector<double> view;         ///< azimuth, elevation in degrees; empty: automatic
   std::string size = "800x800";     ///< picture size, WIDTHxHEIGHT pixels
+  UpAxis up = UpAxis::Y;            ///< up axis of the OBJ and PLY files
   std::string midiPort;        ///< play the music set live on this port (name or index)
   bool virtualPort = false;    ///< or on a virtual port named "ontogen"
   bool midiClock = false;      ///< send MIDI clock with the live playback

@@ -14,6 +14,7 @@
 #include "apps/commands.h"
 #include "apps/program_loader.h"
 #include "core/limits.h"
+#include "interpreters/formats/look.h"
 #include "interpreters/temporary_files.h"
 
 namespace {
@@ -115,14 +116,31 @@ int dispatch(int argc, char** argv) {
   addRealOption(*runCommand, "--from", run.from, RealRange::atLeast(0),
                 "Time of the first frame, seconds (default: #from, else 0)");
   addWholeOption(*runCommand, "--frames", run.frames, WholeRange::between(1, kMaxFrames),
-                 "Frames spread over [from, until]; 1: the end only (default: #fps frames a second, else 1)");
+                 "Frames spread over [from, until]; 1: the end only (default: from --speed or #speed, else #fps "
+                 "frames a second, else a 4 s movie when mp4 is written, else 1)");
+  addRealOption(*runCommand, "--speed", run.speed, RealRange::above(0),
+                "Seconds of developmental time a second of the movie shows: frames S/fps apart (default: #speed)")
+      ->type_name("S");
+  addRealOption(*runCommand, "--fps", run.fps, RealRange::between(1, kMaxMovieFps),
+                "Frames per second of the movie (default 25); #fps is another thing, frames per second of growth")
+      ->type_name("F");
+  runCommand
+      ->add_option_function<std::string>(
+          "--look",
+          [&run](const std::string& text) {
+            if (!ontogen::findLook(text))
+              throw CLI::ValidationError("--look", "'" + text + "' is no look (known: " + ontogen::lookList() + ")");
+            run.look = text;
+          },
+          "Background, light and palette of pictures and movies: " + ontogen::lookList() + " (default: #look, else light)")
+      ->type_name("NAME");
   runCommand->add_option("--interpret", run.sets,
                          "Interpretation sets, comma-separated: geometry, creature, physics, image, music, trace (default: the "
                          "program's #interpret, else geometry)")
       ->delimiter(',');
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
   runCommand->add_option("--format", run.format,
-                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, svg, joints; none: grow only, "
+                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, ply-ascii, svg, joints; none: grow only, "
                          "interpret and write nothing (with --stats, for measuring)")
       ->capture_default_str();
   addRealListOption(*runCommand, "--view", run.view, {RealRange::between(-360, 360), RealRange::between(-90, 90)},
@@ -139,6 +157,16 @@ int dispatch(int argc, char** argv) {
           },
           "Picture size WIDTHxHEIGHT in pixels (default 800x800)")
       ->type_name("WxH");
+  runCommand
+      ->add_option_function<std::string>(
+          "--up",
+          [&run](const std::string& text) {
+            if (text != "y" && text != "z")
+              throw CLI::ValidationError("--up", "'" + text + "' is no up axis: y (ontogen's own) or z (Blender, most PLY viewers)");
+            run.up = text == "z" ? ontogen::UpAxis::Z : ontogen::UpAxis::Y;
+          },
+          "Up axis of the OBJ and PLY files: y (default, as the model grows) or z (turned a quarter about x)")
+      ->type_name("y|z");
   runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
   runCommand->add_option("--midi-port", run.midiPort, "Play the music set live on this MIDI port (name or index)");
   runCommand->add_flag("--virtual-port", run.virtualPort, "Play the music set live on a new MIDI port 'ontogen'");

@@ -8,10 +8,16 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "interpreters/formats/look.h"
 #include "interpreters/geometry/surface.h"
 #include "interpreters/interpret.h"
 
 namespace ontogen {
+
+namespace {
+// Frames a run may have: a million frames is eleven hours of film at 25 a second.
+constexpr double kMaxFrames = 1e6;
+}  // namespace
 
 std::string formatRunDiagnostic(const RunDiagnostic& diagnostic) {
   if (diagnostic.span.valid()) return formatDiagnostic(Diagnostic{diagnostic.severity, diagnostic.span, diagnostic.message});
@@ -46,6 +52,28 @@ Run::Run(RunDef def) : def_(std::move(def)) {
   if (!(def_.from.value_or(def_.program->from) <= def_.until.value_or(def_.program->until)))
     setupErrors_.push_back(
         unlocated(Severity::Error, "the first frame's time (#from, --from) is after the end of the run (#until, --until)"));
+  if (!(def_.setOptions.framesPerSecond > 0 && std::isfinite(def_.setOptions.framesPerSecond)))
+    setupErrors_.push_back(unlocated(Severity::Error, "the movie's frames per second (--fps) must be a number above 0"));
+  if (def_.speed && !(*def_.speed > 0 && std::isfinite(*def_.speed)))
+    setupErrors_.push_back(unlocated(Severity::Error, "the speed (--speed) must be a number of seconds above 0"));
+  if (const double speed = def_.speed.value_or(def_.program->speed); speed > 0 && !def_.frames && setupErrors_.empty()) {
+    const double span = def_.until.value_or(def_.program->until) - def_.from.value_or(def_.program->from);
+    const double frames = std::round(span / speed * def_.setOptions.framesPerSecond) + 1;
+    if (frames > kMaxFrames) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "a speed of %g s a second over %g s at %g frames a second makes %.0f frames, more than %.0f: a "
+                    "larger --speed or a lower --fps",
+                    speed, span, def_.setOptions.framesPerSecond, frames, kMaxFrames);
+      setupErrors_.push_back(unlocated(Severity::Error, text));
+    }
+  }
+  if (const std::string look = def_.look.value_or(def_.program->look); !look.empty()) {
+    if (const std::optional<Look> found = findLook(look))
+      def_.setOptions.render.look = *found;
+    else
+      setupErrors_.push_back(unlocated(Severity::Error, "unknown look '" + look + "' (known: " + lookList() + ")"));
+  }
   for (const std::string& name : def_.sets) {
     std::unique_ptr<InterpretationSet> set;
     try {
@@ -131,14 +159,31 @@ RunReport Run::execute() {
 }
 
 namespace {
-// Frames at #fps over [from, until]: a whole number of frame intervals, rounded, so that
-// `#fps 30` over 2 s gives 61 frames 1/30 s apart. At most kMaxFrames.
-constexpr double kMaxFrames = 1e6;
-int framesOf(const RunDef& def, const Program& program, double from, double until) {
+// Frames over [from, until]: --frames; else at a speed, a whole number of the movie's
+// frame intervals, so that a speed of 2 over 4 s at 25 frames a second gives 51 frames;
+// else at #fps, so that `#fps 30` over 2 s gives 61 frames 1/30 s apart; else, when the
+// run writes a movie of a model that has time to grow, kDefaultMovieSeconds of it; else
+// one. At most kMaxFrames (a larger count from a speed is refused when the run is made).
+int framesOf(const RunDef& def, const Program& program, double from, double until, bool writesMovie) {
   if (def.frames) return *def.frames;
-  if (!(program.framesPerSecond > 0)) return 1;
-  const double intervals = std::round((until - from) * program.framesPerSecond);
-  return static_cast<int>(std::clamp(intervals, 0.0, kMaxFrames)) + 1;
+  const double fps = def.setOptions.framesPerSecond;
+  double intervals = 0;
+  if (const double speed = def.speed.value_or(program.speed); speed > 0)
+    intervals = std::round((until - from) / speed * fps);
+  else if (program.framesPerSecond > 0)
+    intervals = std::round((until - from) * program.framesPerSecond);
+  else if (writesMovie && until > from)
+    intervals = std::round(kDefaultMovieSeconds * fps);
+  return static_cast<int>(std::clamp(intervals, 0.0, kMaxFrames - 1)) + 1;
+}
+
+// Whether the run makes a movie: mp4 is asked for and a set draws pictures of its frames.
+bool writesMovie(const RunDef& def, const std::vector<std::unique_ptr<InterpretationSet>>& sets) {
+  SceneOutputDef formats;
+  if (!applyGeometryFormats(def.setOptions.formats, formats).empty() || !formats.writeMp4) return false;
+  for (const auto& set : sets)
+    if (set->drawsScene() || set->name() == "image") return true;
+  return false;
 }
 }  // namespace
 
@@ -150,7 +195,7 @@ void Run::develop(RunReport& report) {
   const double dt = def_.step.value_or(program.dt);
   const double until = def_.until.value_or(program.until);
   const double from = def_.from.value_or(program.from);
-  const int frames = framesOf(def_, program, from, until);
+  const int frames = framesOf(def_, program, from, until, writesMovie(def_, sets_));
   world_ = std::make_unique<World>(def_.program, def_.world);
   World& world = *world_;
   if (sets_.empty()) {

@@ -27,6 +27,11 @@
 
 namespace ontogen {
 
+/// Seconds of movie a run writes when nothing says how many frames it has (no --frames,
+/// speed or #fps): long enough to watch a model grow, short enough to loop and share;
+/// 101 frames at 25 a second.
+inline constexpr double kDefaultMovieSeconds = 4;
+
 /// What to run; validated when the run starts.
 struct RunDef {
   std::shared_ptr<const Program> program;
@@ -35,9 +40,16 @@ struct RunDef {
   std::optional<double> until;  ///< seconds of developmental time; empty: the program's #until
   std::optional<double> step;   ///< seconds; empty: the program's #dt
   std::optional<double> from;   ///< time of the first frame, seconds; empty: the program's #from
-  /// Spread evenly over [from, until]; one frame: the state at until. Empty: the
-  /// program's #fps (round((until - from) * fps) + 1 frames), else one.
+  /// Spread evenly over [from, until]; one frame: the state at until. Empty: from the
+  /// speed (below), else the program's #fps (round((until - from) * fps) + 1 frames), else
+  /// a kDefaultMovieSeconds movie when the run writes one, else one frame.
   std::optional<int> frames;
+  /// Seconds of developmental time a second of the movie shows: round((until - from) /
+  /// speed * setOptions.framesPerSecond) + 1 frames. Empty: the program's #speed, if any.
+  std::optional<double> speed;
+  /// The look of pictures and movies by name (formats/look.h); empty: the program's
+  /// #look, else setOptions.render.look as it is.
+  std::optional<std::string> look;
   /// Interpretation sets by name. None: the run grows the world to `until` and writes
   /// nothing (not even the output directory); the report has its statistics.
   std::vector<std::string> sets{"geometry"};

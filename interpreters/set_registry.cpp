@@ -24,6 +24,8 @@ SceneOutputDef sceneOutputDefOf(const SetOptions& options) {
   std::string error = applyGeometryFormats(options.formats, def);
   if (!error.empty()) throw std::invalid_argument(error);
   def.render = options.render;
+  def.up = options.up;
+  def.framesPerSecond = options.framesPerSecond;
   return def;
 }
 
@@ -72,7 +74,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     def.movie = formats.writeMp4;
     // Pictures unless the movie is all that was asked for.
     def.pictures = formats.writePng || formats.writePngFrames || !formats.writeMp4;
-    def.framesPerSecond = formats.framesPerSecond;
+    def.framesPerSecond = options.framesPerSecond;
     return std::make_unique<ImageSet>(def);
   }
   return nullptr;

@@ -26,6 +26,8 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
 struct SetOptions {
   std::string formats = "glb,png";  ///< geometry: comma-separated formats (geometry_set.h)
   RenderDef render{};               ///< geometry: picture size and view
+  UpAxis up = UpAxis::Y;            ///< geometry: the up axis of OBJ and PLY files
+  double framesPerSecond = 25;      ///< geometry and image: of the movie (mp4), > 0
   bool sceneNodes = false;          ///< geometry: record the scene's nodes (GeometrySetDef::sceneNodes)
 };
 

@@ -23,6 +23,9 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kMaxSeed = 9007199254740991.0;
 
 constexpr std::array<std::string_view, 2> kMusicTimes{"sequential", "developmental"};
+// The looks of pictures (interpreters/formats/look.h, lookNames(); a test keeps the two
+// lists equal).
+constexpr std::array<std::string_view, 3> kLookNames{"light", "dark", "paper"};
 // The interpretation sets (interpreters/set_registry.h, interpretationSetNames(); a test
 // keeps the two lists equal).
 constexpr std::array<std::string_view, 6> kSetNames{"geometry", "creature", "physics", "image", "music", "trace"};
@@ -107,6 +110,23 @@ const std::array kDirectives{
               .syntax = "#fps F",
               .doc = "frames of ontogen run per second of developmental time when --frames is not given",
               .apply = [](const Value& v, Target& t) { t.program.framesPerSecond = v.number; }},
+    // Its upper end: a second of movie showing more than 10^9 s of growth (thirty years)
+    // has no use a model of development needs.
+    Directive{.name = "speed",
+              .owner = Owner::World,
+              .range = {.min = 0, .max = 1e9, .minOpen = true},
+              .rangeError = "#speed is in seconds of developmental time a second of the movie shows, above 0 and at most 1e9",
+              .syntax = "#speed S",
+              .doc = "seconds of developmental time each second of ontogen run's movie shows: frames S / --fps apart "
+                     "(--speed overrides; before #fps, after --frames)",
+              .apply = [](const Value& v, Target& t) { t.program.speed = v.number; }},
+    Directive{.name = "look",
+              .kind = Kind::Word,
+              .owner = Owner::World,
+              .words = kLookNames,
+              .syntax = "#look WORD",
+              .doc = "background, light and palette of ontogen run's pictures and movies (--look overrides)",
+              .apply = [](const Value& v, Target& t) { t.program.look = std::string(v.word); }},
     Directive{.name = "interpret",
               .kind = Kind::Word,
               .owner = Owner::World,

@@ -342,6 +342,10 @@ struct Program {
   double dt = 1;         ///< default step (#dt); rules without a terminal age fire once per step
   double from = 0;       ///< time of a run's first frame (#from), seconds
   double framesPerSecond = 0;  ///< frames of a run per second (#fps); 0: one frame unless asked
+  /// Seconds of developmental time a second of a run's movie shows (#speed); 0: not given.
+  double speed = 0;
+  /// The look of a run's pictures and movies (#look: light, dark, paper); empty: light.
+  std::string look;
   std::vector<std::string> interpretSets;  ///< sets a run uses unless told (#interpret); empty: geometry
   /// #tolerance: integrate `rate` adaptively (Dormand-Prince) to this absolute and
   /// relative error; 0: classic Runge-Kutta 4, one step per world step.

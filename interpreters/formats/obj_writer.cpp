@@ -37,7 +37,7 @@ bool continues(const std::vector<Segment>& segments, std::size_t i) {
   return i > 0 && segments[i].start == segments[i - 1].end;
 }
 
-void writeObjWith(const Geometry& geometry, std::ostream& out, std::string_view mtlName);
+void writeObjWith(const Geometry& geometry, std::ostream& out, std::string_view mtlName, UpAxis up);
 
 std::set<uint32_t> usedMaterials(const Geometry& geometry) {
   std::set<uint32_t> used;
@@ -48,10 +48,10 @@ std::set<uint32_t> usedMaterials(const Geometry& geometry) {
 
 }  // namespace
 
-void writeObj(const Geometry& geometry, std::ostream& out) { writeObjWith(geometry, out, {}); }
+void writeObj(const Geometry& geometry, std::ostream& out, UpAxis up) { writeObjWith(geometry, out, {}, up); }
 
-void writeObj(const Geometry& geometry, std::ostream& out, std::string_view mtlName) {
-  writeObjWith(geometry, out, mtlName.empty() ? std::string_view("ontogen.mtl") : mtlName);
+void writeObj(const Geometry& geometry, std::ostream& out, std::string_view mtlName, UpAxis up) {
+  writeObjWith(geometry, out, mtlName.empty() ? std::string_view("ontogen.mtl") : mtlName, up);
 }
 
 void writeMtl(const Geometry& geometry, std::ostream& out) {
@@ -70,14 +70,14 @@ void writeMtl(const Geometry& geometry, std::ostream& out) {
 
 namespace {
 
-void writeObjWith(const Geometry& geometry, std::ostream& out, std::string_view mtlName) {
+void writeObjWith(const Geometry& geometry, std::ostream& out, std::string_view mtlName, UpAxis up) {
   const bool materials = !mtlName.empty();
   const Mesh& mesh = geometry.mesh();
   const std::vector<Segment>& segments = geometry.segments();
   std::size_t lineVertices = 0;
   for (std::size_t i = 0; i < segments.size(); ++i) lineVertices += continues(segments, i) ? 1 : 2;
 
-  out << "# ontogen geometry\n"
+  out << "# ontogen geometry" << (up == UpAxis::Z ? ", z up" : "") << "\n"
       << "# " << mesh.positions.size() + lineVertices << " vertices, " << mesh.normals.size()
       << " normals, " << mesh.triangles.size() << " triangles, " << segments.size()
       << " line segments\n";
@@ -88,12 +88,12 @@ void writeObjWith(const Geometry& geometry, std::ostream& out, std::string_view 
     out << "# nothing to draw in this frame: one point at the origin\nv 0 0 0\np 1\n";
     return;
   }
-  for (const glm::dvec3& p : mesh.positions) writeVector(out, "v", p);
+  for (const glm::dvec3& p : mesh.positions) writeVector(out, "v", toUpAxis(p, up));
   for (std::size_t i = 0; i < segments.size(); ++i) {
-    if (!continues(segments, i)) writeVector(out, "v", segments[i].start);
-    writeVector(out, "v", segments[i].end);
+    if (!continues(segments, i)) writeVector(out, "v", toUpAxis(segments[i].start, up));
+    writeVector(out, "v", toUpAxis(segments[i].end, up));
   }
-  for (const glm::dvec3& n : mesh.normals) writeVector(out, "vn", n);
+  for (const glm::dvec3& n : mesh.normals) writeVector(out, "vn", toUpAxis(n, up));
   if (!materials) {
     for (const Triangle& t : mesh.triangles) {
       out << 'f';

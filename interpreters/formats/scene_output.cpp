@@ -30,6 +30,7 @@ uint64_t geometryBytes(const Geometry& geometry) {
 std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
   def.writeSvg = def.writeObj = def.writeMtl = def.writePly = false;
   def.writePng = def.writePngFrames = def.writeGlb = def.writeMp4 = def.writeJoints = false;
+  bool binaryPly = false, asciiPly = false;
   std::size_t start = 0;
   while (start <= list.size()) {
     std::size_t end = list.find(',', start);
@@ -40,7 +41,11 @@ std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
     } else if (name == "obj") {
       def.writeObj = def.writeMtl = true;
     } else if (name == "ply") {
-      def.writePly = true;
+      def.writePly = binaryPly = true;
+      def.plyBinary = true;
+    } else if (name == "ply-ascii") {
+      def.writePly = asciiPly = true;
+      def.plyBinary = false;
     } else if (name == "png") {
       def.writePng = true;
     } else if (name == "png-frames") {
@@ -58,6 +63,7 @@ std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
     }
     start = end + 1;
   }
+  if (binaryPly && asciiPly) return "the formats 'ply' and 'ply-ascii' write the same file (<model>.ply); choose one";
   return "";
 }
 
@@ -106,8 +112,11 @@ std::vector<SetWarning> SceneOutput::takeWarnings() {
   };
   emptyObj_.takeInto(out, frames(emptyObj_) + " had nothing to draw: " + (emptyObj_.count == 1 ? "its" : "their") +
                               " .obj holds one point at the origin, as readers refuse one without a mesh");
-  shortMovie_.takeInto(out, "the movie has one frame, " + std::to_string(1.0 / def_.framesPerSecond).substr(0, 4) +
-                                " s long: give the run --frames N, or the program #fps, for an animation");
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%g", 1.0 / def_.framesPerSecond);
+  shortMovie_.takeInto(out, std::string("the movie has one frame, ") + seconds +
+                                " s long: give the run --frames N or --speed S (or the program #speed), and a "
+                                "span to grow over (--from before --until), for an animation");
   emptyPly_.takeInto(out, frames(emptyPly_) + " had no surface: no .ply was written for " +
                               (emptyPly_.count == 1 ? "it" : "them") + ", as readers refuse one without a face");
   return out;
@@ -140,9 +149,9 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
     std::filesystem::path path = outputPath(target_, "obj");
     std::filesystem::path mtl = outputPath(target_, "mtl");
     if (def_.writeMtl) {
-      writeFileAtomically(path, [&](std::ostream& out) { writeObj(geometry_, out, mtl.filename().string()); });
+      writeFileAtomically(path, [&](std::ostream& out) { writeObj(geometry_, out, mtl.filename().string(), def_.up); });
     } else {
-      writeFileAtomically(path, [&](std::ostream& out) { writeObj(geometry_, out); });
+      writeFileAtomically(path, [&](std::ostream& out) { writeObj(geometry_, out, def_.up); });
     }
     written.push_back(std::move(path));
     if (def_.writeMtl) {
@@ -152,7 +161,9 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
   }
   if (def_.writePly && geometry_.triangleCount() > 0) {
     std::filesystem::path path = outputPath(target_, "ply");
-    writeFileAtomically(path, [&](std::ostream& out) { writePly(geometry_, out); });
+    writeFileAtomically(path, [&](std::ostream& out) {
+      writePly(geometry_, out, PlyOptions{.binary = def_.plyBinary, .up = def_.up});
+    });
     written.push_back(std::move(path));
   }
   if (def_.writeMp4) {

@@ -17,6 +17,7 @@
 #include "interpreters/formats/skinned_glb_writer.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/formats/svg_writer.h"
+#include "interpreters/formats/up_axis.h"
 #include "interpreters/interpretation_set.h"
 #include "interpreters/scene.h"
 #include "interpreters/temporary_files.h"
@@ -29,18 +30,20 @@ struct SceneOutputDef {
   bool writeObj = true;        ///< write <stem>.obj each frame
   bool writeMtl = false;       ///< with the OBJ, its materials as <stem>.mtl
   bool writePly = false;       ///< write <stem>.ply each frame
+  bool plyBinary = true;       ///< the .ply binary little-endian; false: ASCII
   bool writePngFrames = false; ///< render <stem>.png each frame
   bool writePng = false;       ///< render <stem>.png of the last frame
   bool writeGlb = false;       ///< write <stem>.glb of every frame after the last
   bool writeMp4 = false;       ///< write <stem>.mp4 of every frame after the last (ffmpeg)
   bool writeJoints = false;    ///< write <stem>.joints.json, the skeleton's tracks, after the last
   double framesPerSecond = 25; ///< of the MP4
+  UpAxis up = UpAxis::Y;       ///< the up axis of the OBJ and PLY files (glTF is y-up by its specification)
   SvgOptions svg{};            ///< picture size and number format of the SVG
   RenderDef render{};          ///< size and view of PNG pictures and MP4 frames
 };
 
 /// The formats `--format` accepts, in the order `ontogen help` lists them.
-inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj, ply, svg, joints";
+inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj, ply, ply-ascii, svg, joints";
 
 /// Sets def's write flags from a comma-separated list of formats (kGeometryFormats),
 /// clearing the others. Returns an error message naming the bad entry, or "" on success.

@@ -285,6 +285,61 @@ TEST(Cli, RunWritesGlbAndPngByDefaultAndRejectsUnknownFormats) {
   EXPECT_NE(size.err.find("WIDTHxHEIGHT"), std::string::npos) << size.err;
 }
 
+// --speed and --fps time the movie, --look colours the pictures: Koch's 4 s of growth at
+// 2 s a second and 10 frames a second are 21 frames (ffprobe), and the dark look's
+// background is the picture's corner (ffmpeg decodes it).
+TEST(Cli, SpeedFpsAndLookReachTheMovieAndThePicture) {
+  ONTOGEN_REQUIRE_CHECKER(std::system("command -v ffprobe >/dev/null 2>&1") == 0, "ffmpeg not installed");
+  fs::path out = scratch("speed_fps_look");
+  Result result = ontogen("run " + model("koch.cell") + " --format mp4,png --speed 2 --fps 10 --size 32x32 --look dark --out " +
+                          out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+                            "-of csv=p=0 '" + (out / "koch.mp4").string() + "' > '" + (out / "frames.txt").string() + "'";
+  ASSERT_EQ(std::system(probe.c_str()), 0);
+  EXPECT_EQ(std::stoi(readFile(out / "frames.txt")), 21);
+  const std::string decode = "ffmpeg -v error -i '" + (out / "koch.png").string() + "' -f rawvideo -pix_fmt rgb24 '" +
+                             (out / "koch.rgb").string() + "'";
+  ASSERT_EQ(std::system(decode.c_str()), 0);
+  const std::string rgb = readFile(out / "koch.rgb");
+  ASSERT_EQ(rgb.size(), 32u * 32 * 3);
+  EXPECT_EQ(static_cast<uint8_t>(rgb[0]), 28);
+  EXPECT_EQ(static_cast<uint8_t>(rgb[1]), 30);
+  EXPECT_EQ(static_cast<uint8_t>(rgb[2]), 34);
+}
+
+// --up z turns the OBJ and the PLY (binary by default) into z-up files: every vertex
+// of the OBJ is the y-up one turned a quarter about x.
+TEST(Cli, UpZWritesZUpObjAndBinaryPly) {
+  fs::path out = scratch("up_z");
+  Result result = ontogen("run " + model("cube.cell") + " --format obj,ply --up z --out " + out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const std::string ply = readFile(out / "cube.ply");
+  EXPECT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\ncomment ontogen geometry, z up\n", 0), 0u) << ply.substr(0, 80);
+  const std::string obj = readFile(out / "cube.obj");
+  EXPECT_EQ(obj.rfind("# ontogen geometry, z up\n", 0), 0u) << obj.substr(0, 80);
+  Result plain = ontogen("run " + model("cube.cell") + " --format obj --out " + (out / "y").string());
+  ASSERT_EQ(plain.exitCode, 0) << plain.err;
+  // The same vertices, turned: (x, y, z) -> (x, -z, y).
+  auto vertices = [](const std::string& text) {
+    std::vector<std::array<double, 3>> list;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      std::array<double, 3> v{};
+      if (std::sscanf(line.c_str(), "v %lf %lf %lf", &v[0], &v[1], &v[2]) == 3) list.push_back(v);
+    }
+    return list;
+  };
+  const auto z = vertices(obj), y = vertices(readFile(out / "y" / "cube.obj"));
+  ASSERT_EQ(z.size(), y.size());
+  ASSERT_FALSE(z.empty());
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    EXPECT_EQ(z[i][0], y[i][0]);
+    EXPECT_EQ(z[i][1], y[i][2] == 0 ? 0 : -y[i][2]);
+    EXPECT_EQ(z[i][2], y[i][1]);
+  }
+}
+
 TEST(Cli, GeometryModelsRunAndWriteValidOutputs) {
   const fs::path modules = fs::path(ONTOGEN_SOURCE_DIR) / ".tools" / "node_modules";
   const bool validator = fs::exists(modules / "gltf-validator" / "package.json");

@@ -2,6 +2,8 @@
 // size in pixels rises frame by frame) instead of being re-framed into a zoom.
 
 #include <filesystem>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -80,6 +82,7 @@ TEST(Movie, AOneFrameMovieIsWarnedOf) {
   RunDef def;
   def.program = testing_support::compileModel("koch.cell");
   def.stem = "koch";
+  def.frames = 1;
   def.setOptions.formats = "mp4";
   def.setOptions.render.width = 64;
   def.setOptions.render.height = 64;
@@ -91,6 +94,97 @@ TEST(Movie, AOneFrameMovieIsWarnedOf) {
     warned = warned || (d.severity == Severity::Warning && d.message.find("the movie has one frame") != std::string::npos);
   EXPECT_TRUE(warned);
   fs::remove_all(out);
+}
+
+// What ffprobe, an independent reader, says of a movie: frames decoded, and seconds.
+struct Probed {
+  int frames = -1;
+  double seconds = -1;
+  std::string log;
+};
+Probed probe(const fs::path& movie) {
+  Probed probed;
+  auto [status, text] = runCommand("ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                                   "stream=nb_read_frames,avg_frame_rate:format=duration -of default=nw=1 '" +
+                                   movie.string() + "' 2>&1");
+  probed.log = text;
+  if (status != 0) return probed;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("nb_read_frames=", 0) == 0) probed.frames = std::stoi(line.substr(15));
+    if (line.rfind("duration=", 0) == 0) probed.seconds = std::stod(line.substr(9));
+  }
+  return probed;
+}
+
+// Koch's curve grows for 4 s (#until 4). A run that writes a movie.
+RunReport kochMovie(const fs::path& out, std::optional<double> speed, double fps, std::optional<int> frames = {}) {
+  fs::remove_all(out);
+  RunDef def;
+  def.program = testing_support::compileModel("koch.cell");
+  def.stem = "koch";
+  def.speed = speed;
+  def.frames = frames;
+  def.setOptions.formats = "mp4";
+  def.setOptions.framesPerSecond = fps;
+  def.setOptions.render.width = 32;
+  def.setOptions.render.height = 32;
+  def.out = out;
+  return ontogen::Run(std::move(def)).execute();
+}
+
+// A second of movie shows `speed` seconds of growth: 4 s at 2 s a second is a 2-second
+// movie, at 10 frames a second 21 frames (20 intervals and the last), 2.1 s as ffprobe
+// counts a frame's display time.
+TEST(Movie, FramesFollowTheSpeedAndTheFrameRate) {
+  ONTOGEN_REQUIRE_CHECKER(ffmpegAvailable(), "ffmpeg not installed (Debian package ffmpeg)");
+  const fs::path out = fs::temp_directory_path() / ("ontogen_movie_speed_" + std::to_string(::getpid()));
+  const RunReport report = kochMovie(out, 2.0, 10);
+  ASSERT_TRUE(report.ok()) << (report.diagnostics.empty() ? "" : report.diagnostics.front().message);
+  const Probed probed = probe(out / "koch.mp4");
+  EXPECT_EQ(probed.frames, 21) << probed.log;
+  EXPECT_NEAR(probed.seconds, 2.1, 0.01) << probed.log;
+  // Twice the speed, half the movie; 20 frames a second, twice the frames a second.
+  ASSERT_TRUE(kochMovie(out, 4.0, 20).ok());
+  const Probed fast = probe(out / "koch.mp4");
+  EXPECT_EQ(fast.frames, 21) << fast.log;
+  EXPECT_NEAR(fast.seconds, 1.05, 0.01) << fast.log;
+  fs::remove_all(out);
+}
+
+// Nothing says how many frames: a movie of a model that grows is kDefaultMovieSeconds
+// long (101 frames at 25 a second), not one frame; #speed in the program is the speed.
+TEST(Movie, ADefaultRunWritesAMovieLongEnoughToSee) {
+  ONTOGEN_REQUIRE_CHECKER(ffmpegAvailable(), "ffmpeg not installed (Debian package ffmpeg)");
+  const fs::path out = fs::temp_directory_path() / ("ontogen_movie_default_" + std::to_string(::getpid()));
+  const RunReport report = kochMovie(out, std::nullopt, 25);
+  ASSERT_TRUE(report.ok());
+  for (const RunDiagnostic& d : report.diagnostics) EXPECT_NE(d.severity, Severity::Warning) << d.message;
+  const Probed probed = probe(out / "koch.mp4");
+  EXPECT_EQ(probed.frames, static_cast<int>(kDefaultMovieSeconds * 25) + 1) << probed.log;
+  EXPECT_NEAR(probed.seconds, kDefaultMovieSeconds + 0.04, 0.01) << probed.log;
+
+  fs::remove_all(out);
+  RunDef def;
+  def.program = testing_support::compileOrFail("#speed 10\nlsystem k {\n  #until 4\n  axiom F\n  F -> F + F\n}\n");
+  def.setOptions.formats = "mp4";
+  def.setOptions.render.width = def.setOptions.render.height = 16;
+  def.out = out;
+  def.stem = "k";
+  ASSERT_TRUE(ontogen::Run(std::move(def)).execute().ok());
+  EXPECT_EQ(probe(out / "k.mp4").frames, 11);  // 4 s at 10 s a second: 0.4 s at 25 frames a second, and the last
+  fs::remove_all(out);
+}
+
+TEST(Movie, ASpeedThatMakesTooManyFramesIsRefused) {
+  const fs::path out = fs::temp_directory_path() / ("ontogen_movie_many_" + std::to_string(::getpid()));
+  const RunReport report = kochMovie(out, 1e-6, 25);
+  EXPECT_EQ(report.status, RunStatus::BadDefinition);
+  ASSERT_FALSE(report.diagnostics.empty());
+  EXPECT_EQ(report.diagnostics.front().message,
+            "a speed of 1e-06 s a second over 4 s at 25 frames a second makes 100000001 frames, more than 1000000: "
+            "a larger --speed or a lower --fps");
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

@@ -107,7 +107,7 @@ std::string worldOf(const Program& program) {
   std::ostringstream out;
   out << program.seed << ' ' << program.hasSeed << ' ' << program.until << ' ' << program.dt << ' '
       << program.rateTolerance << ' ' << program.defines.size() << ' ' << program.from << ' '
-      << program.framesPerSecond;
+      << program.framesPerSecond << ' ' << program.speed << ' ' << program.look;
   for (const std::string& set : program.interpretSets) out << ' ' << set;
   return out.str();
 }
@@ -192,8 +192,8 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   // docs/LANGUAGE.md section 6 quotes it.
   EXPECT_EQ(error.message,
             "unknown directive '#defne' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, "
-            "#seed, #until, #from, #fps, #interpret, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, #timesig, "
-            "#track, #surface, #letters)");
+            "#seed, #until, #from, #fps, #speed, #look, #interpret, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, "
+            "#timesig, #track, #surface, #letters)");
   for (const Directive& directive : directives()) {
     EXPECT_NE(error.message.find("#" + std::string(directive.name)), std::string::npos) << directive.name;
     const std::string misspelt = std::string(directive.name) + "s";

@@ -202,6 +202,33 @@ TEST(ObjWriterTest, ReadsBackToTheGeometry) {
   }
 }
 
+// Z-up: every position and normal turned a quarter about +x, (x, y, z) -> (x, -z, y);
+// the faces are the same (a rotation keeps their winding).
+TEST(ObjWriterTest, ZUpTurnsPositionsAndNormals) {
+  Geometry geometry = draw({{"+", {37}}, {"&", {11}}, {"!", {0.3}}, {"F", {2}}, {"!", {0}}, {"F", {1}}});
+  std::ostringstream zUp;
+  writeObj(geometry, zUp, UpAxis::Z);
+  ObjFile y = parseObj(objOf(geometry)), z = parseObj(zUp.str());
+  ASSERT_EQ(checkObj(z), "");
+  ASSERT_EQ(z.vertices.size(), y.vertices.size());
+  ASSERT_EQ(z.normals.size(), y.normals.size());
+  ASSERT_FALSE(z.vertices.empty());
+  for (std::size_t i = 0; i < y.vertices.size(); ++i) {
+    EXPECT_EQ(z.vertices[i], glm::dvec3(y.vertices[i].x, -y.vertices[i].z, y.vertices[i].y)) << i;
+  }
+  for (std::size_t i = 0; i < y.normals.size(); ++i) {
+    EXPECT_EQ(z.normals[i], glm::dvec3(y.normals[i].x, -y.normals[i].z, y.normals[i].y)) << i;
+  }
+  EXPECT_EQ(z.faces, y.faces);
+  EXPECT_EQ(z.lines, y.lines);
+  EXPECT_EQ(z.comments.front(), "# ontogen geometry, z up");
+  // The line's end, 3 units up the tilted turtle, rises along +y in the world and +z in
+  // the z-up file.
+  EXPECT_GT(geometry.segments().back().end.y, 2);
+  EXPECT_NEAR(z.vertices.back().z, geometry.segments().back().end.y, 1e-9);
+  EXPECT_NEAR(z.vertices.back().y, -geometry.segments().back().end.z, 1e-9);
+}
+
 using testing_support::reported;
 using testing_support::runCommand;
 
