@@ -28,6 +28,7 @@ enum class DirectiveKind : uint8_t {
   Word,           ///< one word of the directive's list (`#music developmental`)
   TimeSignature,  ///< two whole numbers as musicians write them, `6/8`: not a division
   NumberedFile,   ///< a whole number, then a file path in double quotes (`#surface 1 "bud.obj"`)
+  Range,          ///< a #define's name and two numbers, optionally signed (`#range WR 10 100`)
 };
 
 /// Whose setting a directive is; the owner also decides where its value holds.
@@ -84,7 +85,7 @@ struct Directive {
   std::span<const std::string_view> words = {};  ///< Word: the words it takes, in the order help lists them
   std::string_view syntax = {};                  ///< as docs/LANGUAGE.md writes it: "#tempo BPM"
   std::string_view doc = {};                     ///< one line
-  DirectiveApply apply = nullptr;                ///< null for #define, which the compiler keeps as a constant
+  DirectiveApply apply = nullptr;                ///< null for #define and #range, which apply to no setting
 
   /// Whether `value` may follow the name: finite, in the range, and whole unless the kind
   /// is Number.
@@ -109,7 +110,7 @@ bool isNoteValue(int value);
 /// "1, 2, 4, 8, 16, 32 or 64".
 std::string noteValueChoices();
 
-/// "constant", "number", "integer", "flag", "word", "time signature", "integer, file".
+/// "constant", "number", "integer", "flag", "word", "time signature", "integer, file", "name, range".
 std::string_view directiveKindName(DirectiveKind kind);
 /// "constants", "world", "geometry", "music", "notation".
 std::string_view directiveOwnerName(DirectiveOwner owner);
