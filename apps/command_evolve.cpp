@@ -61,13 +61,8 @@ std::string generationName(int generation, int digits) {
 }  // namespace
 
 int runEvolve(const EvolveOptions& options) {
-  std::unique_ptr<Cluster> cluster;
-  try {
-    cluster = std::make_unique<Cluster>();
-  } catch (const std::runtime_error& error) {
-    std::cerr << "ontogen: error: " << error.what() << "\n";
-    return kExitUsage;
-  }
+  const std::unique_ptr<Cluster> cluster = joinCluster();
+  if (!cluster) return kExitUsage;
   QuietFollowers quiet(cluster->leader());
 
   if (options.sweep.measures.empty()) {

@@ -84,13 +84,8 @@ std::optional<std::pair<uint64_t, uint64_t>> parseSeeds(const std::string& text)
 }  // namespace
 
 int runSweep(const SweepOptions& options) {
-  std::unique_ptr<Cluster> cluster;
-  try {
-    cluster = std::make_unique<Cluster>();
-  } catch (const std::runtime_error& error) {
-    std::cerr << "ontogen: error: " << error.what() << "\n";
-    return kExitUsage;
-  }
+  const std::unique_ptr<Cluster> cluster = joinCluster();
+  if (!cluster) return kExitUsage;
   QuietFollowers quiet(cluster->leader());
 
   std::vector<SweptDefine> defines;

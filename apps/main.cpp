@@ -70,6 +70,21 @@ void addDevelopment(CLI::App& command, CommonOptions& options) {
                  "Threads for rules and rates (0, the default: all cores; same result)");
 }
 
+// `--size WxH`, a picture's size in pixels, kept as written.
+void addSizeOption(CLI::App& command, std::string& into, const std::string& doc) {
+  command
+      .add_option_function<std::string>(
+          "--size",
+          [&into](const std::string& text) {
+            if (!parsePictureSize(text))
+              throw CLI::ValidationError("--size", "'" + text + "' is not WIDTHxHEIGHT in pixels, each 1 to " +
+                                                       std::to_string(kMaxPictureSide) + ", as in 800x600");
+            into = text;
+          },
+          doc)
+      ->type_name("WxH");
+}
+
 // What `sweep` and `evolve` share: each variant's run, its measures, the output folder.
 void addSweepCommon(CLI::App& command, SweepCommonOptions& options, const std::string& defineDoc,
                     const std::string& defineType) {
@@ -90,17 +105,7 @@ void addSweepCommon(CLI::App& command, SweepCommonOptions& options, const std::s
   command.add_flag("--resume", options.resume, "Continue the sweep in --out, skipping the variants it finished");
   addWholeOption(command, "--workers", options.workers, WholeRange::between(0, kMaxThreads),
                  "Variants run at once on this machine, one thread each (0, the default: all cores; same result)");
-  command
-      .add_option_function<std::string>(
-          "--size",
-          [&options](const std::string& text) {
-            if (!parsePictureSize(text))
-              throw CLI::ValidationError("--size", "'" + text + "' is not WIDTHxHEIGHT in pixels, each 1 to " +
-                                                       std::to_string(kMaxPictureSide) + ", as in 128x128");
-            options.size = text;
-          },
-          "Thumbnail size WIDTHxHEIGHT in pixels (default 128x128)")
-      ->type_name("WxH");
+  addSizeOption(command, options.size, "Thumbnail size WIDTHxHEIGHT in pixels (default 128x128)");
   addRealListOption(command, "--view", options.view, {RealRange::between(-360, 360), RealRange::between(-90, 90)},
                     "Camera azimuth,elevation in degrees (default: automatic)")
       ->type_name("AZ,EL");
@@ -172,17 +177,7 @@ int dispatch(int argc, char** argv) {
   addRealListOption(*runCommand, "--view", run.view, {RealRange::between(-360, 360), RealRange::between(-90, 90)},
                     "Camera azimuth,elevation in degrees (default: automatic)")
       ->type_name("AZ,EL");
-  runCommand
-      ->add_option_function<std::string>(
-          "--size",
-          [&run](const std::string& text) {
-            if (!parsePictureSize(text))
-              throw CLI::ValidationError("--size", "'" + text + "' is not WIDTHxHEIGHT in pixels, each 1 to " +
-                                                       std::to_string(kMaxPictureSide) + ", as in 800x600");
-            run.size = text;
-          },
-          "Picture size WIDTHxHEIGHT in pixels (default 800x800)")
-      ->type_name("WxH");
+  addSizeOption(*runCommand, run.size, "Picture size WIDTHxHEIGHT in pixels (default 800x800)");
   runCommand->add_flag("--stats", run.stats, "Print cell count, steps and time taken");
   runCommand->add_option("--midi-port", run.midiPort, "Play the music set live on this MIDI port (name or index)");
   runCommand->add_flag("--virtual-port", run.virtualPort, "Play the music set live on a new MIDI port 'ontogen'");

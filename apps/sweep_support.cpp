@@ -25,17 +25,16 @@ std::string missingSet(const Measure& measure, const std::vector<std::string>& s
     const bool present = source == QuantitySource::World || (source == QuantitySource::Scene && drawing) ||
                          (source != QuantitySource::Scene && hasSet(sets, quantitySourceSet(source)));
     if (present) continue;
+    if (source == QuantitySource::Scene)
+      return "--measure " + measure.name() +
+             " reads the bounding box of what the sets draw, and the variants run no set that draws (add "
+             "--interpret geometry, or #interpret in the program)";
     const std::string set(quantitySourceSet(source));
-    return "--measure " + measure.name() + " reads what " + set +
-           (source == QuantitySource::Scene ? "" : " set") + " reports, and the variants run no " +
-           (source == QuantitySource::Scene ? std::string("such set") : set + " set") +
-           " (add --interpret " + (source == QuantitySource::Scene ? std::string("geometry") : set) +
-           ", or #interpret in the program)";
+    return "--measure " + measure.name() + " reads what the " + set + " set reports, and the variants run no " + set +
+           " set (add --interpret " + set + ", or #interpret in the program)";
   }
   return {};
 }
-
-std::string formatFlagValue(double value) { return formatValue(value); }
 
 }  // namespace
 
@@ -48,6 +47,15 @@ std::string textDigest(const std::string& text) {
   char buffer[20];
   std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(hash));
   return buffer;
+}
+
+std::unique_ptr<Cluster> joinCluster() {
+  try {
+    return std::make_unique<Cluster>();
+  } catch (const std::runtime_error& error) {
+    std::cerr << "ontogen: error: " << error.what() << "\n";
+    return nullptr;
+  }
 }
 
 QuietFollowers::QuietFollowers(bool leader) {
@@ -152,8 +160,8 @@ int prepareSweep(const SweepCommonOptions& options, VariationOptions variation,
     run.setOptions.render.azimuth = options.view[0];
     run.setOptions.render.elevation = options.view[1];
   }
-  if (options.until) setup.rerunFlags += " --until " + formatFlagValue(*options.until);
-  if (common.step) setup.rerunFlags += " --step " + formatFlagValue(*common.step);
+  if (options.until) setup.rerunFlags += " --until " + formatValue(*options.until);
+  if (common.step) setup.rerunFlags += " --step " + formatValue(*common.step);
   if (options.frames) setup.rerunFlags += " --frames " + std::to_string(*options.frames);
   if (!common.system.empty()) setup.rerunFlags += " --system " + common.system;
   if (!options.sets.empty()) {

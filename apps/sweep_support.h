@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/cluster.h"
 #include "apps/commands.h"
 #include "interpreters/sweep/measure.h"
 #include "interpreters/sweep/sweep_table.h"
@@ -53,6 +54,10 @@ SweepRow runSweepVariant(const SweepSetup& setup, const std::filesystem::path& d
 
 /// FNV-1a, 64 bits, in hexadecimal: names a program's text in a journal's header.
 std::string textDigest(const std::string& text);
+
+/// Joins the MPI job when an MPI launcher started this process (apps/cluster.h); prints
+/// why not and returns null when it cannot.
+std::unique_ptr<Cluster> joinCluster();
 
 /// Keeps std::cerr quiet on every rank but the first (each rank would print the same
 /// diagnostics), for as long as it lives.

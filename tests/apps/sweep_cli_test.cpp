@@ -211,6 +211,57 @@ TEST(SweepCli, AVariantPastMaxCellsIsAnErrorRow) {
   EXPECT_TRUE(fs::exists(dir / "out" / "thumbnails" / "v0000.png"));
 }
 
+std::vector<std::string> fieldsOf(const std::string& row) {
+  std::vector<std::string> fields;
+  std::istringstream in(row);
+  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+  return fields;
+}
+
+// The physics and creature sets' quantities against closed forms: models/cantilever.cell
+// is weightless with a tip load P on an arm of L = 1 m, so its root carries |F| = P and
+// |M| = P L (a hair less: the arm bends), and its tip sinks P L^3 / (3 EI) = P / 3000 m;
+// models/creature.cell walks STRIDE / (DUTY PERIOD) = 0.55 / 0.6 units a second with its
+// stance feet planted (the creature tests: they do not move at all).
+TEST(SweepCli, PhysicsAndCreatureMeasuresByTheirClosedForms) {
+  const fs::path dir = scratchDir("sweep_sets");
+  CliResult rods = runOntogen("sweep " + modelPath("cantilever.cell") +
+                              " --define P=1,2 --size 16x16 --measure m=root_moment --measure f=root_force"
+                              " --measure d=deflection --measure r=rods --out " + (dir / "rods").string());
+  ASSERT_EQ(rods.exitCode, 0) << rods.err;
+  const std::vector<std::string> table = lines(readWholeFile(dir / "rods" / "results.csv"));
+  ASSERT_EQ(table.size(), 3u);
+  for (int p = 1; p <= 2; ++p) {
+    const std::vector<std::string> row = fieldsOf(table[p]);
+    ASSERT_EQ(row.size(), 7u) << table[p];
+    EXPECT_NEAR(std::stod(row[3]), p * 1.0, 1e-6 * p) << table[p];
+    EXPECT_LT(std::stod(row[3]), p * 1.0);
+    EXPECT_EQ(std::stod(row[4]), p * 1.0);
+    EXPECT_NEAR(std::stod(row[5]), p / 3000.0, 1e-3 * p / 3000.0) << table[p];
+    EXPECT_EQ(row[6], "10");
+  }
+
+  CliResult walk = runOntogen("sweep " + modelPath("creature.cell") +
+                              " --define SEGMENTS=2 --define NOISE=0,0.15 --size 16x16 --measure d=distance"
+                              " --measure s=slip --measure t=time --out " + (dir / "walk").string());
+  ASSERT_EQ(walk.exitCode, 0) << walk.err;
+  const std::vector<std::string> walked = lines(readWholeFile(dir / "walk" / "results.csv"));
+  ASSERT_EQ(walked.size(), 3u);
+  for (int v = 1; v <= 2; ++v) {
+    const std::vector<std::string> row = fieldsOf(walked[v]);
+    ASSERT_EQ(row.size(), 7u) << walked[v];
+    EXPECT_NEAR(std::stod(row[4]), 0.55 / 0.6 * std::stod(row[6]), 1e-9) << walked[v];
+    EXPECT_LT(std::stod(row[5]), 1e-9) << walked[v];
+  }
+  // A measure of a set the variants do not run is refused before anything runs.
+  CliResult noSet = runOntogen("sweep " + modelPath("cantilever.cell") + " --interpret geometry --measure s=slip --out " +
+                               (dir / "none").string());
+  EXPECT_EQ(noSet.exitCode, 2);
+  EXPECT_EQ(noSet.err, "ontogen: error: --measure s reads what the creature set reports, and the variants run no "
+                       "creature set (add --interpret creature, or #interpret in the program)\n");
+  EXPECT_FALSE(fs::exists(dir / "none"));
+}
+
 TEST(SweepCli, BadFlagsAreUsageErrors) {
   const fs::path dir = scratchDir("sweep_bad");
   const fs::path tree = treeFile(dir);
@@ -226,7 +277,8 @@ TEST(SweepCli, BadFlagsAreUsageErrors) {
       {" --seeds 4:1", "--seeds takes S1:S2"},
       {" --measure h=hieght", "--measure h: unknown quantity 'hieght'"},
       {" --measure h=height+", "expected a number, a quantity or '(' at column 8 of 'height+'"},
-      {" --measure m=root_moment", "--measure m reads what physics set reports"},
+      {" --measure m=root_moment", "--measure m reads what the physics set reports"},
+      {" --interpret music --measure h=height", "--measure h reads the bounding box of what the sets draw"},
       {" --measure seed=cells", "the name of another column"},
   };
   for (const Case& c : cases) {
