@@ -209,6 +209,16 @@ TEST(SweepCli, AVariantPastMaxCellsIsAnErrorRow) {
   EXPECT_TRUE(fs::exists(dir / "out" / "programs" / "v0001.cell"));
   EXPECT_FALSE(fs::exists(dir / "out" / "thumbnails" / "v0001.png"));
   EXPECT_TRUE(fs::exists(dir / "out" / "thumbnails" / "v0000.png"));
+
+  // A value the program does not take is an error row too, located in its lines.
+  const fs::path step = writeFile(dir / "step.cell", "lsystem a {\n  #define D 1\n  #dt D\n  #until 3\n  axiom A\n"
+                                                      "  A -> A F\n}\n");
+  CliResult steps = runOntogen("sweep " + step.string() + " --define D=0,1 --size 16x16 --measure n=cells --out " +
+                               (dir / "steps").string());
+  ASSERT_EQ(steps.exitCode, 0) << steps.err;
+  EXPECT_EQ(readWholeFile(dir / "steps" / "results.csv"),
+            "variant,D,seed,n,error\n0,0,1,," + step.string() +
+                ":3:3: #dt must be a finite number greater than 0\n1,1,1,4,\n");
 }
 
 std::vector<std::string> fieldsOf(const std::string& row) {
@@ -334,6 +344,37 @@ TEST(EvolveCli, ReproducibleAndRewardingHeightGrowsTallerTrees) {
   // The best program grows as tall alone as its row says.
   EXPECT_TRUE(fs::exists(dir / "a" / "gallery.png"));
   EXPECT_TRUE(fs::exists(dir / "a" / "best" / "generation_009.cell"));
+}
+
+// An evolution stopped in its third generation (a journal cut mid-line, the fourth never
+// begun) resumes to the same generations, best program and summary.
+TEST(EvolveCli, ResumedGivesTheSameGenerations) {
+  const fs::path dir = scratchDir("evolve_resume");
+  const fs::path tree = treeFile(dir);
+  const std::string flags = " --generations 4 --population 6 --evolve-seed 9 --size 16x16 --measure tall=height";
+  CliResult whole = runOntogen("evolve " + tree.string() + flags + " --out " + (dir / "whole").string());
+  ASSERT_EQ(whole.exitCode, 0) << whole.err;
+  fs::copy(dir / "whole", dir / "cut", fs::copy_options::recursive);
+  const fs::path journal = dir / "cut" / "generation_002" / "journal.jsonl";
+  const std::vector<std::string> rows = lines(readWholeFile(journal));
+  ASSERT_EQ(rows.size(), 7u);
+  writeFile(journal, rows[0] + "\n" + rows[1] + "\n" + rows[2] + "\n" + rows[3].substr(0, 10));
+  for (const char* gone : {"generation_003", "best", "best.cell", "evolution.csv", "gallery.png"})
+    fs::remove_all(dir / "cut" / gone);
+  for (const char* gone : {"results.csv", "results.json", "gallery.png"})
+    fs::remove(dir / "cut" / "generation_002" / gone);
+
+  CliResult refused = runOntogen("evolve " + tree.string() + flags + " --out " + (dir / "cut").string());
+  EXPECT_EQ(refused.exitCode, 2) << refused.err;
+  CliResult resumed = runOntogen("evolve " + tree.string() + flags + " --resume --out " + (dir / "cut").string());
+  ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+  for (int g = 0; g < 4; ++g) {
+    const std::string name = "generation_00" + std::to_string(g);
+    EXPECT_EQ(outputsOf(dir / "whole" / name), outputsOf(dir / "cut" / name)) << name;
+  }
+  EXPECT_EQ(lines(readWholeFile(journal)).size(), 7u);
+  for (const char* file : {"best.cell", "evolution.csv", "gallery.png", "best/generation_003.cell"})
+    EXPECT_EQ(readWholeFile(dir / "whole" / file), readWholeFile(dir / "cut" / file)) << file;
 }
 
 }  // namespace
