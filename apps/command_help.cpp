@@ -65,7 +65,7 @@ int runHelp() {
       {"ontogen statics FILE [--at T] [--json]", "solve the rods' statics (physics set) at a time"},
       {"ontogen timeline FILE --out F.svg", "draw the time-state diagram of the development"},
       {"ontogen sweep FILE --out DIR [options]", "every combination of --define lists and --seeds, measured"},
-      {"ontogen evolve FILE --out DIR [options]", "evolve #define values for the first --measure"},
+      {"ontogen evolve FILE --out DIR [opts]", "evolve #define values for the first --measure"},
       {"ontogen studio FILE [--port N]", "a live page at 127.0.0.1: the model re-grown as it is saved"},
       {"ontogen midi-ports", "list the MIDI output ports for --midi-port"},
       {"ontogen convert FILE.l|FILE.lpy", "print a cpfg or L-Py L-system as a cell-language program"},

@@ -59,6 +59,23 @@ std::string outputsOf(const fs::path& dir) {
   return all;
 }
 
+// Skips (fails in CI) where ontogen has no MPI or mpirun is missing; skips under the
+// sanitizers, where Open MPI's own allocations read as leaks (the gcc pass runs mpirun).
+#define ONTOGEN_REQUIRE_MPI()                                                                                   \
+  do {                                                                                                          \
+    if (*ONTOGEN_SANITIZED) GTEST_SKIP() << "mpirun is left to the pass without sanitizers";                  \
+    ONTOGEN_REQUIRE_CHECKER(ONTOGEN_TEST_MPI && std::system("command -v mpirun >/dev/null 2>&1") == 0,          \
+                            "ontogen is built without MPI or mpirun is missing (openmpi-bin, libopenmpi-dev)"); \
+  } while (false)
+
+// `ontogen ARGS` as 3 MPI ranks on this machine; its exit code, its output in `log`.
+int runOnThreeRanks(const std::string& args, const fs::path& log) {
+  const std::string command = "timeout 120 mpirun --oversubscribe --allow-run-as-root -n 3 " +
+                              std::string(ONTOGEN_EXECUTABLE) + " " + args + " >" + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 const std::string kSweepFlags =
     " --define LEN=1,2 --define SHRINK=0.5:0.9:2 --define BRANCH=0.3,0.7 --seeds 1:4 --size 48x48"
     " --measure h=height --measure 'apices=count(A)' --measure n=cells";
@@ -106,15 +123,12 @@ TEST(SweepCli, TheTableIsTheSameOnOneWorkerAllWorkersAndThreeRanks) {
   ASSERT_EQ(aloneTable.size(), 2u);
   EXPECT_EQ(aloneTable[1], "0,2," + row5);
 
-  const char* sanitized = ONTOGEN_SANITIZED;
-  if (*sanitized) GTEST_SKIP() << "under the sanitizers Open MPI's own allocations read as leaks; the gcc pass runs mpirun";
-  ONTOGEN_REQUIRE_CHECKER(ONTOGEN_TEST_MPI && std::system("command -v mpirun >/dev/null 2>&1") == 0,
-                          "ontogen is built without MPI or mpirun is missing (openmpi-bin, libopenmpi-dev)");
+  ONTOGEN_REQUIRE_MPI();
   const fs::path ranks = dir / "ranks";
-  const std::string command = "mpirun --oversubscribe --allow-run-as-root -n 3 " + std::string(ONTOGEN_EXECUTABLE) +
-                              " sweep " + tree.string() + kSweepFlags + " --workers 1 --out " + ranks.string() +
-                              " >" + (dir / "mpi_out.txt").string() + " 2>&1";
-  ASSERT_EQ(std::system(("timeout 120 " + command).c_str()), 0) << readWholeFile(dir / "mpi_out.txt");
+  ASSERT_EQ(runOnThreeRanks("sweep " + tree.string() + kSweepFlags + " --workers 1 --out " + ranks.string(),
+                            dir / "mpi_out.txt"),
+            0)
+      << readWholeFile(dir / "mpi_out.txt");
   EXPECT_EQ(outputsOf(dir / "one"), outputsOf(ranks));
 }
 
@@ -347,8 +361,9 @@ TEST(EvolveCli, ReproducibleAndRewardingHeightGrowsTallerTrees) {
 }
 
 // An evolution stopped in its third generation (a journal cut mid-line, the fourth never
-// begun) resumes to the same generations, best program and summary.
-TEST(EvolveCli, ResumedGivesTheSameGenerations) {
+// begun) resumes to the same generations, best program and summary; so does one on three
+// MPI ranks.
+TEST(EvolveCli, ResumedOrOnThreeRanksGivesTheSameGenerations) {
   const fs::path dir = scratchDir("evolve_resume");
   const fs::path tree = treeFile(dir);
   const std::string flags = " --generations 4 --population 6 --evolve-seed 9 --size 16x16 --measure tall=height";
@@ -375,6 +390,19 @@ TEST(EvolveCli, ResumedGivesTheSameGenerations) {
   EXPECT_EQ(lines(readWholeFile(journal)).size(), 7u);
   for (const char* file : {"best.cell", "evolution.csv", "gallery.png", "best/generation_003.cell"})
     EXPECT_EQ(readWholeFile(dir / "whole" / file), readWholeFile(dir / "cut" / file)) << file;
+
+  // Three ranks breed the same generations: each chooses from the table rank 0 sends.
+  ONTOGEN_REQUIRE_MPI();
+  ASSERT_EQ(runOnThreeRanks("evolve " + tree.string() + flags + " --workers 1 --out " + (dir / "ranks").string(),
+                            dir / "mpi_out.txt"),
+            0)
+      << readWholeFile(dir / "mpi_out.txt");
+  for (int g = 0; g < 4; ++g) {
+    const std::string name = "generation_00" + std::to_string(g);
+    EXPECT_EQ(outputsOf(dir / "whole" / name), outputsOf(dir / "ranks" / name)) << name;
+  }
+  for (const char* file : {"best.cell", "evolution.csv", "gallery.png"})
+    EXPECT_EQ(readWholeFile(dir / "whole" / file), readWholeFile(dir / "ranks" / file)) << file;
 }
 
 }  // namespace
