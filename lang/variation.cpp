@@ -236,9 +236,9 @@ double perturbed(const Gene& gene, double value, double strength, RandomStream& 
   return moved;
 }
 
-// The shortest text that reads back as the same double. Integral values below 2^53 are
-// written in fixed notation, so 1000000 stays "1000000" rather than "1e+06".
-std::string formatNumber(double value) {
+}  // namespace
+
+std::string shortestNumber(double value) {
   constexpr double kExactIntegers = 9007199254740992.0;  // 2^53
   value += 0.0;                                          // -0 is written "0"
   char buffer[32];
@@ -248,14 +248,12 @@ std::string formatNumber(double value) {
   return std::string(buffer, result.ptr);
 }
 
-}  // namespace
-
 VariationSpace::VariationSpace(std::string text, VariationOptions options) : text_(std::move(text)), options_(options) {
   if (!(options_.rate >= 0 && options_.rate <= 1))
-    throw std::invalid_argument("the mutation rate must be from 0 to 1, not " + formatNumber(options_.rate));
+    throw std::invalid_argument("the mutation rate must be from 0 to 1, not " + shortestNumber(options_.rate));
   if (!(options_.strength > 0) || !std::isfinite(options_.strength))
     throw std::invalid_argument("the mutation strength must be a finite number above 0, not " +
-                                formatNumber(options_.strength));
+                                shortestNumber(options_.strength));
   // The lexer reads the text without its byte-order mark: offsets into ours are shifted.
   const uint32_t shift = text_.starts_with(kUtf8ByteOrderMark) ? static_cast<uint32_t>(kUtf8ByteOrderMark.size()) : 0;
   const SourceFile file("<variation>", text_);
@@ -354,9 +352,9 @@ std::string VariationSpace::programText(const Genome& genome) const {
     if (value == gene.value)
       result.append(text_, gene.offset, gene.length);
     else if (gene.kind == Gene::Kind::Constant && value < 0)
-      result += "(" + formatNumber(value) + ")";
+      result += "(" + shortestNumber(value) + ")";
     else
-      result += formatNumber(value);
+      result += shortestNumber(value);
     copied = gene.offset + gene.length;
   }
   result.append(text_, copied);

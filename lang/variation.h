@@ -34,6 +34,10 @@
 
 namespace ontogen {
 
+/// The shortest text that reads back as the same double, as a variant writes its numbers:
+/// integral values below 2^53 in fixed notation (1000000, not 1e+06), -0 as "0".
+std::string shortestNumber(double value);
+
 /// One number of a program text that a variant may change.
 struct Gene {
   enum class Kind { Define, Constant };

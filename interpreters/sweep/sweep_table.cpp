@@ -2,24 +2,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
 
+#include "lang/variation.h"
+
 namespace ontogen {
 
-std::string formatValue(double value) {
-  if (!std::isfinite(value)) return {};
-  constexpr double kExactIntegers = 9007199254740992.0;  // 2^53
-  value += 0.0;                                          // -0 is written "0"
-  char buffer[32];
-  const bool integral = std::abs(value) < kExactIntegers && value == std::trunc(value);
-  const auto result = integral ? std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed)
-                               : std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
+std::string formatValue(double value) { return std::isfinite(value) ? shortestNumber(value) : std::string(); }
 
 namespace {
 
