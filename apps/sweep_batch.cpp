@@ -1,5 +1,6 @@
 #include "apps/sweep_batch.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -66,6 +67,30 @@ struct JournalSetup {
   std::vector<SweepRow> rows;
 };
 
+// A kill that no handler sees (SIGKILL, a node lost) can leave the temporary of a file
+// being written, `.NAME.tmpPID_N` (interpreters/output_file.h); a resumed sweep removes
+// them from its folder and the two below it, where its files go.
+void removeStaleTemporaries(const std::filesystem::path& dir) {
+  auto temporary = [](const std::string& name) {
+    const size_t tmp = name.rfind(".tmp");
+    if (name.empty() || name[0] != '.' || tmp == std::string::npos || tmp == 0) return false;
+    const std::string tail = name.substr(tmp + 4);
+    const size_t underscore = tail.find('_');
+    auto digits = [](std::string_view text) {
+      return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    return underscore != std::string::npos && digits(std::string_view(tail).substr(0, underscore)) &&
+           digits(std::string_view(tail).substr(underscore + 1));
+  };
+  for (const std::filesystem::path& folder : {dir, dir / "thumbnails", dir / "programs"}) {
+    std::error_code error;
+    std::vector<std::filesystem::path> stale;
+    for (std::filesystem::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+      if (temporary(it->path().filename().string())) stale.push_back(it->path());
+    for (const std::filesystem::path& file : stale) std::filesystem::remove(file, error);
+  }
+}
+
 JournalSetup openJournal(const BatchDef& def, const std::filesystem::path& path) {
   JournalSetup setup;
   std::error_code error;
@@ -93,6 +118,7 @@ JournalSetup openJournal(const BatchDef& def, const std::filesystem::path& path)
   // (also a header cut short: a journal of nothing).
   if (contents.exists && contents.header.empty()) contents.exists = false;
   if (contents.exists) {
+    removeStaleTemporaries(def.dir);
     std::filesystem::resize_file(path, contents.goodBytes, error);
   } else {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);

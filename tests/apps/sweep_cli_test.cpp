@@ -164,6 +164,8 @@ TEST(SweepCli, KilledMidwayAndResumedGivesTheIdenticalTable) {
   ASSERT_TRUE(WIFSIGNALED(status)) << "the sweep finished before it was killed";
   ASSERT_LT(lines(readWholeFile(cut / "journal.jsonl")).size(), 1u + 18) << "killed after the last row";
   EXPECT_FALSE(fs::exists(cut / "results.csv"));
+  // What a kill leaves of a file being written: a temporary, which the resume removes.
+  writeFile(cut / "thumbnails" / ".v0003.png.tmp999_1", "half a picture");
 
   // Without --resume the folder is refused; with it the rest runs.
   CliResult refused = runOntogen("sweep " + tree.string() + flags + " --out " + cut.string());
