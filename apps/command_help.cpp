@@ -11,6 +11,7 @@
 #include "interpreters/music/music_commands.h"
 #include "interpreters/physics/physics_commands.h"
 #include "interpreters/set_registry.h"
+#include "interpreters/sweep/measure.h"
 #include "lang/builtins.h"
 #include "lang/directives.h"
 #include "lang/keywords.h"
@@ -78,6 +79,8 @@ int runHelp(const HelpOptions& options) {
       {"ontogen word FILE --at T1,T2 [--json]", "print the derivation word at those times"},
       {"ontogen statics FILE [--at T] [--json]", "solve the rods' statics (physics set) at a time"},
       {"ontogen timeline FILE --out F.svg", "draw the time-state diagram of the development"},
+      {"ontogen sweep FILE --out DIR [options]", "every combination of --define lists and --seeds, measured"},
+      {"ontogen evolve FILE --out DIR [opts]", "evolve #define values for the first --measure"},
       {"ontogen studio FILE [--port N]", "a live page at 127.0.0.1: the model re-grown as it is saved"},
       {"ontogen midi-ports", "list the MIDI output ports for --midi-port"},
       {"ontogen convert FILE.l|FILE.lpy", "print a cpfg or L-Py L-system as a cell-language program"},
@@ -92,7 +95,10 @@ int runHelp(const HelpOptions& options) {
                "runs as if its #define NAME said the number VALUE; --max-errors N (default 20,\n"
                "0: all) and --max-source MIB (default 16) bound the check. They also read cpfg (.l)\n"
                "and L-Py (.lpy) files, converted first as ontogen convert prints them.\n\n"
-               "Interpretation sets:";
+               "sweep and evolve measure each variant with --measure NAME=EXPR over these quantities\n"
+               "and count(LABEL), with + - * / ^ ( ) abs sqrt exp log min max (docs/SWEEPS.md):\n";
+  for (const QuantityInfo& quantity : quantities()) printRow(quantity.name, quantity.doc, kSignatureColumn);
+  std::cout << "\nInterpretation sets:";
   for (const auto& name : interpretationSetNames()) std::cout << " " << name;
   std::cout << "\n\nTurtle commands (set 'geometry'):\n";
   for (const TurtleCommand& command : turtleCommands()) printRow(command.signature, command.doc, kSignatureColumn);

@@ -8,7 +8,8 @@
 namespace ontogen::app {
 
 namespace {
-constexpr std::array<std::string_view, 9> kCommands{"check", "run", "word", "statics", "timeline", "studio", "midi-ports", "convert", "help"};
+constexpr std::array<std::string_view, 11> kCommands{"check",  "run",        "word",    "statics", "timeline", "sweep",
+                                                    "evolve", "studio", "midi-ports", "convert", "help"};
 }  // namespace
 
 std::span<const std::string_view> commandNames() { return kCommands; }

@@ -30,6 +30,13 @@ inline constexpr uint64_t kMaxFrames = 1'000'000;
 inline constexpr double kMaxMovieFps = 240;
 /// --fps when not given: PAL's 25, smooth enough for growth and what ffmpeg assumes.
 inline constexpr double kDefaultMovieFps = 25;
+/// --generations, --population: ten thousand of each is a million runs, days of work for
+/// a small model on a cluster; a larger evolution is a mistyped number.
+inline constexpr uint64_t kMaxGenerations = 10'000;
+inline constexpr uint64_t kMaxPopulation = 10'000;
+/// Variants of one sweep: the journal and the tables hold every row in memory, about
+/// 200 bytes each; ten million is 2 GB.
+inline constexpr uint64_t kMaxVariants = 10'000'000;
 /// --max-rows: a diagram taller than ten million rows is no picture.
 inline constexpr uint64_t kMaxTimelineRows = 10'000'000;
 
@@ -101,6 +108,38 @@ struct HelpOptions {
   bool grammar = false;  ///< print the editors' TextMate grammar instead (apps/text_mate_grammar.h)
 };
 
+/// What `sweep` and `evolve` share.
+struct SweepCommonOptions {
+  CommonOptions common;              ///< common.defines: sweep's NAME=A:B:N or lists, evolve's fixed values
+  std::optional<double> until;       ///< empty: the program's #until
+  std::optional<int> frames;         ///< empty: the program's #fps, else 1
+  std::vector<std::string> measures; ///< `NAME=EXPR`, as given
+  std::vector<std::string> sets;     ///< empty: the program's #interpret, else geometry
+  std::string out;                   ///< the output folder
+  bool resume = false;
+  unsigned workers = 0;              ///< 0: all cores
+  std::string size = "128x128";      ///< thumbnails, WIDTHxHEIGHT pixels
+  std::vector<double> view;          ///< azimuth, elevation in degrees; empty: automatic
+};
+
+struct SweepOptions {
+  SweepCommonOptions sweep;
+  std::string seeds;  ///< "S1:S2" or "S"; empty: --seed, else the program's #seed
+};
+
+struct EvolveOptions {
+  SweepCommonOptions sweep;
+  int generations = 10;
+  int population = 12;
+  int elite = 2;
+  double crossover = 0.7;          ///< chance a child is bred from two parents rather than one
+  double mutationRate = 0.3;       ///< VariationOptions::rate
+  double mutationStrength = 0.15;  ///< VariationOptions::strength
+  uint64_t evolveSeed = 1;         ///< of selection, crossover and mutation
+  bool varyConstants = false;
+  std::vector<std::string> ranges;  ///< `NAME=LOW:HIGH`, as given
+};
+
 struct ConvertOptions {
   std::string file;  ///< a cpfg (.l) or L-Py (.lpy) file
 };
@@ -130,5 +169,7 @@ int runHelp(const HelpOptions& options);
 int runConvert(const ConvertOptions& options);
 int runStudio(const StudioOptions& options);
 int runMidiPorts();
+int runSweep(const SweepOptions& options);
+int runEvolve(const EvolveOptions& options);
 
 }  // namespace ontogen::app

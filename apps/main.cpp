@@ -21,12 +21,14 @@ namespace {
 
 using namespace ontogen::app;
 
-void addCommon(CLI::App& command, CommonOptions& options) {
+void addCommon(CLI::App& command, CommonOptions& options,
+               const std::string& defineDoc = "Set the program's #define NAME to a number (repeatable)",
+               const std::string& defineType = "NAME=VALUE") {
   command.add_option("file", options.file, "The program (.cell, or cpfg's .l and L-Py's .lpy, converted first)")->required()->check(CLI::ExistingFile);
   command.add_option("--system", options.system, "The root system (default: the first in the file)");
   // One NAME=VALUE per flag, so a --define before the file does not swallow it.
-  command.add_option("--define", options.defines, "Set the program's #define NAME to a number (repeatable)")
-      ->type_name("NAME=VALUE")
+  command.add_option("--define", options.defines, defineDoc)
+      ->type_name(defineType)
       ->allow_extra_args(false);
   addWholeOption(command, "--max-errors", options.maxErrors, WholeRange::between(0, kMaxErrorsLimit),
                  "Stop after N errors in the program (default 20; 0: report every one)");
@@ -40,8 +42,8 @@ void addCommon(CLI::App& command, CommonOptions& options) {
       ->type_name("MIB");
 }
 
-void addDevelopment(CLI::App& command, CommonOptions& options) {
-  addWholeOption(command, "--seed", options.seed, WholeRange::any(), "Seed of every stochastic choice (default: #seed, else 1)");
+// The step and the growth limits.
+void addLimits(CLI::App& command, CommonOptions& options) {
   addRealOption(command, "--step", options.step, RealRange::above(0),
                 "Step of the development, seconds (default: #dt, else 1)");
   addWholeOption(command, "--max-cells", options.limits.maxCells, WholeRange::atLeast(1),
@@ -60,8 +62,54 @@ void addDevelopment(CLI::App& command, CommonOptions& options) {
                  "Stop after N terminal events in one step (default 200000000)");
   addWholeOption(command, "--max-steps", options.limits.maxSteps, WholeRange::atLeast(1),
                  "Stop if the development would take more than N steps");
+}
+
+void addDevelopment(CLI::App& command, CommonOptions& options) {
+  addWholeOption(command, "--seed", options.seed, WholeRange::any(), "Seed of every stochastic choice (default: #seed, else 1)");
+  addLimits(command, options);
   addWholeOption(command, "--threads", options.threads, WholeRange::between(0, kMaxThreads),
                  "Threads for rules and rates (0, the default: all cores; same result)");
+}
+
+// `--size WxH`, a picture's size in pixels, kept as written.
+void addSizeOption(CLI::App& command, std::string& into, const std::string& doc) {
+  command
+      .add_option_function<std::string>(
+          "--size",
+          [&into](const std::string& text) {
+            if (!parsePictureSize(text))
+              throw CLI::ValidationError("--size", "'" + text + "' is not WIDTHxHEIGHT in pixels, each 1 to " +
+                                                       std::to_string(kMaxPictureSide) + ", as in 800x600");
+            into = text;
+          },
+          doc)
+      ->type_name("WxH");
+}
+
+// What `sweep` and `evolve` share: each variant's run, its measures, the output folder.
+void addSweepCommon(CLI::App& command, SweepCommonOptions& options, const std::string& defineDoc,
+                    const std::string& defineType) {
+  addCommon(command, options.common, defineDoc, defineType);
+  addLimits(command, options.common);
+  addRealOption(command, "--until", options.until, RealRange::atLeast(0),
+                "End of each variant's development, seconds (default: #until)");
+  addWholeOption(command, "--frames", options.frames, WholeRange::between(1, kMaxFrames),
+                 "Frames of each variant's run over [from, until] (default: #fps, else one); the measures "
+                 "of the creature set follow them");
+  command.add_option("--measure", options.measures, "A column of the table: NAME=EXPR over what the run reports (repeatable)")
+      ->type_name("NAME=EXPR")
+      ->allow_extra_args(false);
+  command.add_option("--interpret", options.sets, "Interpretation sets of each variant (default: #interpret, else geometry)")
+      ->delimiter(',');
+  command.add_option("--out", options.out, "The output folder: results.csv, results.json, gallery.png, thumbnails/, programs/")
+      ->required();
+  command.add_flag("--resume", options.resume, "Continue the sweep in --out, skipping the variants it finished");
+  addWholeOption(command, "--workers", options.workers, WholeRange::between(0, kMaxThreads),
+                 "Variants run at once on this machine, one thread each (0, the default: all cores; same result)");
+  addSizeOption(command, options.size, "Thumbnail size WIDTHxHEIGHT in pixels (default 128x128)");
+  addRealListOption(command, "--view", options.view, {RealRange::between(-360, 360), RealRange::between(-90, 90)},
+                    "Camera azimuth,elevation in degrees (default: automatic)")
+      ->type_name("AZ,EL");
 }
 
 // A flag the command does not have, with the nearest one it does; empty when every
@@ -94,7 +142,8 @@ int dispatch(int argc, char** argv) {
     std::cerr << "ontogen: error: " << message << "\n";
     return kExitUsage;
   }
-  if (std::string message = emptyListItem(argc, argv, {"--at", "--view", "--format", "--interpret"}); !message.empty()) {
+  if (std::string message = emptyListItem(argc, argv, {"--at", "--view", "--format", "--interpret"});
+      !message.empty()) {
     std::cerr << "ontogen: error: " << message << "\n";
     return kExitUsage;
   }
@@ -146,17 +195,7 @@ int dispatch(int argc, char** argv) {
   addRealListOption(*runCommand, "--view", run.view, {RealRange::between(-360, 360), RealRange::between(-90, 90)},
                     "Camera azimuth,elevation in degrees (default: automatic)")
       ->type_name("AZ,EL");
-  runCommand
-      ->add_option_function<std::string>(
-          "--size",
-          [&run](const std::string& text) {
-            if (!parsePictureSize(text))
-              throw CLI::ValidationError("--size", "'" + text + "' is not WIDTHxHEIGHT in pixels, each 1 to " +
-                                                       std::to_string(kMaxPictureSide) + ", as in 800x600");
-            run.size = text;
-          },
-          "Picture size WIDTHxHEIGHT in pixels (default 800x800)")
-      ->type_name("WxH");
+  addSizeOption(*runCommand, run.size, "Picture size WIDTHxHEIGHT in pixels (default 800x800)");
   runCommand
       ->add_option_function<std::string>(
           "--up",
@@ -228,6 +267,45 @@ int dispatch(int argc, char** argv) {
       app.add_subcommand("convert", "Print a cpfg (.l) or L-Py (.lpy) L-system as a cell-language program");
   convertCommand->add_option("file", convert.file, "The cpfg or L-Py file")->required()->check(CLI::ExistingFile);
 
+  SweepOptions sweep;
+  auto* sweepCommand = app.add_subcommand(
+      "sweep", "Run every combination of defines and seeds on all cores (and MPI ranks) into a table of measures");
+  addSweepCommon(*sweepCommand, sweep.sweep,
+                 "Values of the program's #define NAME: A:B:N, N values from A to B, or a list (repeatable)",
+                 "NAME=A:B:N|v1,v2");
+  addWholeOption(*sweepCommand, "--seed", sweep.sweep.common.seed, WholeRange::any(),
+                 "The one seed of every variant (default: #seed, else 1)");
+  sweepCommand->add_option("--seeds", sweep.seeds, "Seeds S1 to S2, each variant with each (default: --seed)")
+      ->type_name("S1:S2");
+
+  EvolveOptions evolve;
+  auto* evolveCommand = app.add_subcommand(
+      "evolve", "Evolve a program's #define values (and constants) for the first --measure, a generation at a time");
+  addSweepCommon(*evolveCommand, evolve.sweep, "Hold the program's #define NAME at a number: no gene (repeatable)",
+                 "NAME=VALUE");
+  addWholeOption(*evolveCommand, "--seed", evolve.sweep.common.seed, WholeRange::any(),
+                 "Seed of every variant's world (default: #seed, else 1)");
+  addWholeOption(*evolveCommand, "--generations", evolve.generations, WholeRange::between(1, kMaxGenerations),
+                 "Generations (default 10)");
+  addWholeOption(*evolveCommand, "--population", evolve.population, WholeRange::between(2, kMaxPopulation),
+                 "Variants a generation (default 12)");
+  addWholeOption(*evolveCommand, "--elite", evolve.elite, WholeRange::between(0, kMaxPopulation - 1),
+                 "The fittest kept unchanged into the next generation (default 2)");
+  std::optional<double> crossover, mutationRate, mutationStrength;
+  addRealOption(*evolveCommand, "--crossover", crossover, RealRange::between(0, 1),
+                "Chance a child has two parents (uniform crossover) rather than one (default 0.7)");
+  addRealOption(*evolveCommand, "--mutation-rate", mutationRate, RealRange::between(0, 1),
+                "Chance each gene of a child is mutated; at least one always is (default 0.3)");
+  addRealOption(*evolveCommand, "--mutation-strength", mutationStrength, RealRange::between(1e-9, 1),
+                "A mutation's standard deviation, a fraction of the gene's range (default 0.15)");
+  addWholeOption(*evolveCommand, "--evolve-seed", evolve.evolveSeed, WholeRange::any(),
+                 "Seed of selection, crossover and mutation (default 1)");
+  evolveCommand->add_flag("--vary-constants", evolve.varyConstants,
+                          "Also evolve the numeric constants of the program's rules and expressions");
+  evolveCommand->add_option("--range", evolve.ranges, "A gene's range, over the program's #range (repeatable)")
+      ->type_name("NAME=LOW:HIGH")
+      ->allow_extra_args(false);
+
   auto* midiPortsCommand = app.add_subcommand("midi-ports", "List the MIDI output ports --midi-port can play on");
   HelpOptions help;
   auto* helpCommand = app.add_subcommand("help", "List commands, keywords, directives, set commands and functions");
@@ -254,6 +332,13 @@ int dispatch(int argc, char** argv) {
   if (midiPortsCommand->parsed()) return runMidiPorts();
   if (convertCommand->parsed()) return runConvert(convert);
   if (studioCommand->parsed()) return runStudio(studio);
+  if (sweepCommand->parsed()) return runSweep(sweep);
+  if (evolveCommand->parsed()) {
+    if (crossover) evolve.crossover = *crossover;
+    if (mutationRate) evolve.mutationRate = *mutationRate;
+    if (mutationStrength) evolve.mutationStrength = *mutationStrength;
+    return runEvolve(evolve);
+  }
   return runHelp(help);
 }
 

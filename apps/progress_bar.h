@@ -12,6 +12,10 @@ class ProgressBar {
   ~ProgressBar();
   /// done of total units; redraws at most every 100 ms.
   void update(long done, long total);
+  /// The same with a note after the count ("2 failed, 40 s left").
+  void update(long done, long total, const std::string& note);
+  /// Stops drawing (a rank other than the first of a sweep across machines).
+  void disable() { enabled_ = false; }
   void finish();
 
  private:

@@ -243,6 +243,7 @@ void Run::develop(RunReport& report) {
     if (drawn) {
       if (!output_) output_ = std::make_unique<SceneOutput>(sceneOutputDefOf(def_.setOptions));
       writeScene(target, report);
+      if (def_.frameDrawn) def_.frameDrawn(scene_);
     }
     if (def_.progress) def_.progress(frame + 1, frames);
   }

@@ -57,6 +57,9 @@ struct RunDef {
   std::filesystem::path out = "out";          ///< the directory outputs go to (made if missing)
   /// Called after each frame with the frames done and the frames in all (a progress bar).
   std::function<void(int, int)> progress = {};
+  /// Called after each frame that the sets drew into a scene, with that scene (valid
+  /// during the call): what a sweep measures over the frames.
+  std::function<void(const Scene&)> frameDrawn = {};
 };
 
 enum class RunStatus {

@@ -117,6 +117,8 @@ struct Setting {
   std::string word = {};                 ///< Word: the word; NumberedFile: the file path; NumberedName: the name
   int numerator = 0;                     ///< TimeSignature N/D
   int denominator = 0;
+  double low = 0;                        ///< Range: the lowest and highest value (word: the #define's name)
+  double high = 0;
 };
 
 struct Parameter {

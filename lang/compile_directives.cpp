@@ -3,6 +3,7 @@
 // range, and applied by its row to the block's interpretation settings or to the
 // program. #define is a constant (lang/compile_functions.cpp).
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -37,6 +38,16 @@ std::string checkFile(const CompileContext& ctx, const Directive& directive, con
   return {};
 }
 
+// `#range NAME LOW HIGH` names a #define of its block (or, in a block, a top-level one it
+// sees) and a range with room in it; it sets nothing, the variation operators read it.
+void checkRange(CompileContext& ctx, const ast::Setting& setting, const Scope& scope) {
+  const std::string& name = setting.word;
+  if (!std::isfinite(setting.low) || !std::isfinite(setting.high) || !(setting.low < setting.high))
+    ctx.sink.error(setting.span, "#range " + name + " needs finite numbers LOW < HIGH");
+  if (!scope.constants.values.count(name) && !ctx.global.constants.values.count(name))
+    ctx.sink.error(setting.span, "#range names '" + name + "', which is no #define of its block or of the top level");
+}
+
 }  // namespace
 
 void compileDirectives(CompileContext& ctx, const std::vector<ast::Setting>& list, InterpretSettings& target,
@@ -44,6 +55,10 @@ void compileDirectives(CompileContext& ctx, const std::vector<ast::Setting>& lis
   DirectiveTarget into{target, *ctx.program};
   for (const auto& setting : list) {
     const Directive& directive = *setting.directive;
+    if (directive.kind == DirectiveKind::Range) {
+      checkRange(ctx, setting, scope);
+      continue;
+    }
     DirectiveValue value;
     value.word = setting.word;
     value.numerator = setting.numerator;

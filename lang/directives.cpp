@@ -40,6 +40,11 @@ const std::array kDirectives{
               .owner = Owner::Constants,
               .syntax = "#define NAME EXPR",
               .doc = "a named constant; its value may use the constants defined before it"},
+    Directive{.name = "range",
+              .kind = Kind::Range,
+              .owner = Owner::Constants,
+              .syntax = "#range NAME LOW HIGH",
+              .doc = "the values `ontogen evolve` may give the block's #define NAME, LOW < HIGH (signed numbers)"},
     Directive{.name = "angle",
               .owner = Owner::Geometry,
               .rangeError = "#angle must be a finite number",
@@ -274,8 +279,9 @@ bool Directive::accepts(double value) const {
   // No setting means anything infinite or undefined: the turtle, the world and the
   // writers all take finite numbers only.
   if (!std::isfinite(value)) return false;
-  if (kind == DirectiveKind::Number && range.any()) return true;
-  if (kind != DirectiveKind::Number && value != std::floor(value)) return false;
+  const bool real = kind == DirectiveKind::Number || kind == DirectiveKind::Range;
+  if (real && range.any()) return true;
+  if (!real && value != std::floor(value)) return false;
   return range.contains(value);
 }
 
@@ -331,6 +337,8 @@ std::string_view directiveKindName(DirectiveKind kind) {
       return "integer, file";
     case DirectiveKind::NumberedName:
       return "integer, name";
+    case DirectiveKind::Range:
+      return "name, range";
   }
   return "?";
 }
@@ -366,6 +374,8 @@ std::string describeValues(const Directive& directive) {
   switch (directive.kind) {
     case DirectiveKind::Define:
       return "any";
+    case DirectiveKind::Range:
+      return "LOW < HIGH";
     case DirectiveKind::Flag:
       return "-";
     case DirectiveKind::Word:

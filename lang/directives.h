@@ -29,6 +29,7 @@ enum class DirectiveKind : uint8_t {
   TimeSignature,  ///< two whole numbers as musicians write them, `6/8`: not a division
   NumberedFile,   ///< a whole number, then a file path in double quotes (`#surface 1 "bud.obj"`)
   NumberedName,   ///< a whole number, then a name in double quotes (`#track 1 "Bass"`)
+  Range,          ///< a #define's name and two numbers, optionally signed (`#range WR 10 100`)
 };
 
 /// Whose setting a directive is; the owner also decides where its value holds.
@@ -86,7 +87,7 @@ struct Directive {
   std::span<const std::string_view> words = {};  ///< Word: the words it takes, in the order help lists them
   std::string_view syntax = {};                  ///< as docs/LANGUAGE.md writes it: "#tempo BPM"
   std::string_view doc = {};                     ///< one line
-  DirectiveApply apply = nullptr;                ///< null for #define, which the compiler keeps as a constant
+  DirectiveApply apply = nullptr;                ///< null for #define and #range, which apply to no setting
 
   /// Whether `value` may follow the name: finite, in the range, and whole unless the kind
   /// is Number.
@@ -112,7 +113,7 @@ bool isNoteValue(int value);
 std::string noteValueChoices();
 
 /// "constant", "number", "integer", "flag", "word", "time signature", "integer, file",
-/// "integer, name".
+/// "integer, name", "name, range".
 std::string_view directiveKindName(DirectiveKind kind);
 /// "constants", "world", "geometry", "music", "notation".
 std::string_view directiveOwnerName(DirectiveOwner owner);

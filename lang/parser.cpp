@@ -257,6 +257,7 @@ class Parser {
         case DirectiveKind::TimeSignature: settings.push_back(timeSignature(hash, *directive)); break;
         case DirectiveKind::NumberedFile: settings.push_back(numberedFile(hash, *directive)); break;
         case DirectiveKind::NumberedName: settings.push_back(numberedName(hash, *directive)); break;
+        case DirectiveKind::Range: settings.push_back(rangeSetting(hash, *directive)); break;
       }
       if (match(TokenKind::Semicolon)) return;
       if (!atStatementEnd()) failHere("the end of the line after the directive");
@@ -279,6 +280,27 @@ class Parser {
     Setting setting{hash.span, &directive};
     if (atStatementEnd()) fail(hash.span, "expected a value after '#" + hash.text + "'");
     setting.value = expression();
+    setting.span = hash.span.to(previous().span);
+    return setting;
+  }
+
+  // `#range NAME LOW HIGH`: numbers as written, each optionally signed, so that the
+  // variation operators (lang/variation.h) read them from the tokens as the parser does.
+  Setting rangeSetting(const Token& hash, const Directive& directive) {
+    const Token& name = peek();
+    if (name.kind != TokenKind::Identifier) failHere("the name of a #define after #" + hash.text);
+    advance();
+    Setting setting{hash.span, &directive, nullptr, name.text};
+    auto bound = [&](const char* which) {
+      const bool negative = match(TokenKind::Minus);
+      if (!check(TokenKind::Number) || peek().line != hash.line)
+        failHere(std::string("the ") + which + " value of " + name.text + " after '#" + hash.text + " " + name.text +
+                 "', a number as in #range " + name.text + " 1 10");
+      const double value = advance().number;
+      return negative ? -value : value;
+    };
+    setting.low = bound("lowest");
+    setting.high = bound("highest");
     setting.span = hash.span.to(previous().span);
     return setting;
   }

@@ -158,6 +158,43 @@ class LiteralCollector {
   std::set<ByteRange> ranges_;
 };
 
+// `#range NAME LOW HIGH` at tokens[i] (each bound optionally signed), else nothing.
+std::optional<GeneRange> declaredRange(const std::vector<Token>& tokens, size_t i) {
+  const Token& hash = tokens[i];
+  if (hash.kind != TokenKind::Directive) return {};
+  const Directive* directive = findDirective(hash.text);
+  if (!directive || directive->kind != DirectiveKind::Range) return {};
+  if (i + 1 >= tokens.size() || tokens[i + 1].kind != TokenKind::Identifier) return {};
+  GeneRange range{tokens[i + 1].text, 0, 0};
+  size_t at = i + 2;
+  auto bound = [&](double& into) {
+    const bool negative = at < tokens.size() && tokens[at].kind == TokenKind::Minus;
+    if (negative) ++at;
+    if (at >= tokens.size() || tokens[at].kind != TokenKind::Number) return false;
+    into = negative ? -tokens[at].number : tokens[at].number;
+    ++at;
+    return true;
+  };
+  if (!bound(range.low) || !bound(range.high)) return {};
+  return range;
+}
+
+// A range for a gene: an integer gene keeps to the whole numbers inside it.
+void applyRange(Gene& gene, const GeneRange& range, const char* origin) {
+  double low = range.low, high = range.high;
+  if (!std::isfinite(low) || !std::isfinite(high) || !(low < high))
+    throw std::invalid_argument(std::string(origin) + " of " + range.name + " needs finite numbers low < high");
+  if (gene.integer) {
+    low = std::ceil(low);
+    high = std::floor(high);
+    if (!(low < high))
+      throw std::invalid_argument(std::string(origin) + " of " + range.name +
+                                  " holds fewer than two whole numbers, and the gene is written as a whole number");
+  }
+  gene.low = low;
+  gene.high = high;
+}
+
 Gene constantGene(const Token& number, uint32_t shift) {
   Gene gene;
   gene.kind = Gene::Kind::Constant;
@@ -199,9 +236,9 @@ double perturbed(const Gene& gene, double value, double strength, RandomStream& 
   return moved;
 }
 
-// The shortest text that reads back as the same double. Integral values below 2^53 are
-// written in fixed notation, so 1000000 stays "1000000" rather than "1e+06".
-std::string formatNumber(double value) {
+}  // namespace
+
+std::string shortestNumber(double value) {
   constexpr double kExactIntegers = 9007199254740992.0;  // 2^53
   value += 0.0;                                          // -0 is written "0"
   char buffer[32];
@@ -211,14 +248,12 @@ std::string formatNumber(double value) {
   return std::string(buffer, result.ptr);
 }
 
-}  // namespace
-
 VariationSpace::VariationSpace(std::string text, VariationOptions options) : text_(std::move(text)), options_(options) {
   if (!(options_.rate >= 0 && options_.rate <= 1))
-    throw std::invalid_argument("the mutation rate must be from 0 to 1, not " + formatNumber(options_.rate));
+    throw std::invalid_argument("the mutation rate must be from 0 to 1, not " + shortestNumber(options_.rate));
   if (!(options_.strength > 0) || !std::isfinite(options_.strength))
     throw std::invalid_argument("the mutation strength must be a finite number above 0, not " +
-                                formatNumber(options_.strength));
+                                shortestNumber(options_.strength));
   // The lexer reads the text without its byte-order mark: offsets into ours are shifted.
   const uint32_t shift = text_.starts_with(kUtf8ByteOrderMark) ? static_cast<uint32_t>(kUtf8ByteOrderMark.size()) : 0;
   const SourceFile file("<variation>", text_);
@@ -231,10 +266,13 @@ VariationSpace::VariationSpace(std::string text, VariationOptions options) : tex
     if (sink.hasErrors()) throwFirstError(sink, "parse");
     literals = LiteralCollector().run(program);
   }
+  std::vector<GeneRange> declared;
   for (size_t i = 0; i < tokens.size(); ++i) {
+    if (auto range = declaredRange(tokens, i)) declared.push_back(std::move(*range));
     size_t end = i;
     if (auto gene = defineGene(tokens, i, shift, end)) {
-      genes_.push_back(std::move(*gene));
+      const bool fixed = std::find(options_.fixed.begin(), options_.fixed.end(), gene->name) != options_.fixed.end();
+      if (!fixed) genes_.push_back(std::move(*gene));
       i = end - 1;
       continue;
     }
@@ -242,6 +280,21 @@ VariationSpace::VariationSpace(std::string text, VariationOptions options) : tex
     if (token.kind == TokenKind::Number && token.number != 0 && std::isfinite(token.number) &&
         literals.count({token.span.begin, token.span.end}))
       genes_.push_back(constantGene(token, shift));
+  }
+  // The program's ranges, then the caller's, which win. A declared range of a define that
+  // is no gene (an expression, a fixed one) has nothing to apply to; a given one is a
+  // mistake worth a message.
+  for (const GeneRange& range : declared)
+    for (Gene& gene : genes_)
+      if (gene.kind == Gene::Kind::Define && gene.name == range.name) applyRange(gene, range, "#range");
+  for (const GeneRange& range : options_.ranges) {
+    bool found = false;
+    for (Gene& gene : genes_)
+      if (gene.name == range.name) {
+        applyRange(gene, range, "the range");
+        found = true;
+      }
+    if (!found) throw std::invalid_argument("a range for '" + range.name + "', which is no gene of the program");
   }
 }
 
@@ -299,9 +352,9 @@ std::string VariationSpace::programText(const Genome& genome) const {
     if (value == gene.value)
       result.append(text_, gene.offset, gene.length);
     else if (gene.kind == Gene::Kind::Constant && value < 0)
-      result += "(" + formatNumber(value) + ")";
+      result += "(" + shortestNumber(value) + ")";
     else
-      result += formatNumber(value);
+      result += shortestNumber(value);
     copied = gene.offset + gene.length;
   }
   result.append(text_, copied);

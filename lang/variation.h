@@ -18,7 +18,10 @@
 // Ranges: a gene of value v > 0 lives in [0, 2v], of v < 0 in [2v, 0], of 0 in [-1, 1]:
 // a mutation may halve or double a value but never flips its sign, which would change
 // what the number means (a length, a rate) rather than how big it is. An integer gene
-// with v >= 1 has low 1, so counts such as SEGMENTS stay at least one.
+// with v >= 1 has low 1, so counts such as SEGMENTS stay at least one. A program may
+// declare a define's range itself, `#range NAME LOW HIGH` (in the define's block), and a
+// caller may give one (VariationOptions::ranges, which win); an integer gene's declared
+// range is narrowed to the whole numbers inside it.
 //
 // Randomness comes from RandomStream keyed by mixKey of the seed and the parents' values
 // (lang/random.h), so a variant depends on nothing but its inputs, on every platform.
@@ -30,6 +33,10 @@
 #include "lang/compiler.h"
 
 namespace ontogen {
+
+/// The shortest text that reads back as the same double, as a variant writes its numbers:
+/// integral values below 2^53 in fixed notation (1000000, not 1e+06), -0 as "0".
+std::string shortestNumber(double value);
 
 /// One number of a program text that a variant may change.
 struct Gene {
@@ -52,8 +59,18 @@ struct Genome {
   friend bool operator==(const Genome&, const Genome&) = default;
 };
 
+/// A range given from outside for the genes named `name` (a define's name, or a
+/// constant's "line:column").
+struct GeneRange {
+  std::string name;
+  double low = 0;
+  double high = 0;
+};
+
 struct VariationOptions {
   bool constants = false;  ///< also vary the numeric literals of rules and expressions
+  std::vector<GeneRange> ranges = {};   ///< override the defaults and the program's #range; low < high, finite
+  std::vector<std::string> fixed = {};  ///< define names that are no genes (held at a value from outside)
   double rate = 0.3;       ///< chance that mutate changes a gene, in [0, 1] (at least one always changes)
   double strength = 0.15;  ///< a mutation's standard deviation as a fraction of high - low; > 0
 };
@@ -65,7 +82,9 @@ class VariationSpace {
  public:
   /// Finds the genes of a program's main text, in text order. Throws
   /// std::invalid_argument when the text does not lex (with options.constants: does not
-  /// parse), naming line:column and the error, or when the options are out of range.
+  /// parse), naming line:column and the error, when the options are out of range, or
+  /// when a range (given or declared) names no gene or holds no whole number for an
+  /// integer gene.
   explicit VariationSpace(std::string text, VariationOptions options = {});
 
   const std::vector<Gene>& genes() const { return genes_; }

@@ -84,6 +84,8 @@ class CreatureSet : public InterpretationSet {
   /// The scene of the frame being drawn, or of the last one.
   const Scene& scene() const { return scene_; }
   const CreatureFrameStats& stats() const { return stats_; }
+  /// The ground's height (world y), model units.
+  double ground() const { return def_.ground; }
 
  private:
   struct Range {

@@ -158,11 +158,11 @@ TEST(BadInput, AnUnknownCommandSuggestsTheNearestOne) {
   CliResult result = runOntogen("chek x.cell");
   EXPECT_EQ(result.exitCode, 2);
   EXPECT_EQ(result.err, "ontogen: error: unknown command 'chek'; did you mean 'check'? "
-                        "(commands: check, run, word, statics, timeline, studio, midi-ports, convert, help)\n");
+                        "(commands: check, run, word, statics, timeline, sweep, evolve, studio, midi-ports, convert, help)\n");
   EXPECT_NE(runOntogen("timelin").err.find("did you mean 'timeline'?"), std::string::npos);
   // Nothing near: no suggestion.
   EXPECT_EQ(runOntogen("frobnicate").err, "ontogen: error: unknown command 'frobnicate' "
-                                          "(commands: check, run, word, statics, timeline, studio, midi-ports, convert, help)\n");
+                                          "(commands: check, run, word, statics, timeline, sweep, evolve, studio, midi-ports, convert, help)\n");
 }
 
 TEST(BadInput, AnUnknownFlagSuggestsTheNearestFlagOfItsCommand) {

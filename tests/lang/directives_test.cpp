@@ -80,6 +80,8 @@ std::string sample(const Directive& directive) {
       return head + " " + number(inside(directive)) + " \"leaf.obj\"";
     case DirectiveKind::NumberedName:
       return head + " " + number(inside(directive)) + " \"Lead\"";
+    case DirectiveKind::Range:
+      return head + " K -1 2.5";
   }
   return head;
 }
@@ -119,7 +121,9 @@ TEST(Directives, NamesAreUniqueAndFound) {
     EXPECT_EQ(findDirective(directive.name), &directive);
     EXPECT_FALSE(directive.doc.empty()) << directive.name;
     EXPECT_EQ(directive.syntax.rfind("#" + std::string(directive.name), 0), 0u) << directive.syntax;
-    EXPECT_EQ(directive.apply == nullptr, directive.kind == DirectiveKind::Define) << directive.name;
+    EXPECT_EQ(directive.apply == nullptr,
+              directive.kind == DirectiveKind::Define || directive.kind == DirectiveKind::Range)
+        << directive.name;
     EXPECT_EQ(directive.kind == DirectiveKind::Word, !directive.words.empty()) << directive.name;
     // Every value the compiler checks has a message for when it is out of range: none
     // takes every number, as none takes NaN or an infinity.
@@ -140,6 +144,7 @@ TEST(Directives, NamesAreUniqueAndFound) {
 TEST(Directives, EveryRowParsesAndAppliesAtTheTopLevelAndInABlock) {
   for (const Directive& directive : directives()) {
     if (directive.owner == DirectiveOwner::Notation) continue;  // read by the parser: NotationRowsChangeHowTheTextReads
+    if (directive.kind == DirectiveKind::Range) continue;       // sets nothing: ARangeNamesADefineOfItsBlock
     SCOPED_TRACE("#" + std::string(directive.name));
     const std::string first = before(directive);
     auto baseline = compileText(first + "\nlsystem a { axiom A }\n");
@@ -159,7 +164,9 @@ TEST(Directives, EveryRowParsesAndAppliesAtTheTopLevelAndInABlock) {
 // A set's settings written in a block are that block's; the world's hold for the program.
 TEST(Directives, TheOwnerDecidesWhereABlocksValueHolds) {
   for (const Directive& directive : directives()) {
-    if (directive.kind == DirectiveKind::Define || directive.owner == DirectiveOwner::Notation) continue;
+    if (directive.kind == DirectiveKind::Define || directive.kind == DirectiveKind::Range ||
+        directive.owner == DirectiveOwner::Notation)
+      continue;
     SCOPED_TRACE("#" + std::string(directive.name));
     const std::string first = before(directive);
     auto baseline =
@@ -181,6 +188,29 @@ TEST(Directives, TheOwnerDecidesWhereABlocksValueHolds) {
   }
 }
 
+// `#range NAME LOW HIGH` sets nothing; it must name a #define its block sees and hold
+// a range, with the messages pinned at the directive.
+TEST(Directives, ARangeNamesADefineOfItsBlock) {
+  auto good = compileText("#define K 2\n#range K -1 2.5\nlsystem a {\n  #define J 1\n  #range J 0 4\n  #range K 1 3\n  axiom A\n}\n");
+  EXPECT_NE(good->program, nullptr) << formatDiagnostics(good->sink);
+  auto unknown = compileText("#define K 2\n#range L 0 1\nlsystem a { axiom A }\n");
+  ASSERT_EQ(unknown->program, nullptr);
+  EXPECT_NE(formatDiagnostics(unknown->sink).find("test.cell:2:1: error: #range names 'L', which is no #define of its "
+                                                  "block or of the top level"),
+            std::string::npos)
+      << formatDiagnostics(unknown->sink);
+  auto empty = compileText("#define K 2\n#range K 3 3\nlsystem a { axiom A }\n");
+  ASSERT_EQ(empty->program, nullptr);
+  EXPECT_NE(formatDiagnostics(empty->sink).find("test.cell:2:1: error: #range K needs finite numbers LOW < HIGH"),
+            std::string::npos)
+      << formatDiagnostics(empty->sink);
+  auto notNumber = compileText("#define K 2\n#range K 0 K\nlsystem a { axiom A }\n");
+  ASSERT_EQ(notNumber->program, nullptr);
+  EXPECT_NE(formatDiagnostics(notNumber->sink).find("test.cell:2:12: error: expected the highest value of K"),
+            std::string::npos)
+      << formatDiagnostics(notNumber->sink);
+}
+
 TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   auto c = compileText("#defne K 1\nlsystem a { axiom A }\n");
   ASSERT_EQ(c->sink.diagnostics().size(), 1u) << formatDiagnostics(c->sink);
@@ -191,9 +221,9 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   // The list is the table, in its order; the text is pinned as the error table of
   // docs/LANGUAGE.md section 6 quotes it.
   EXPECT_EQ(error.message,
-            "unknown directive '#defne' (known: #define, #angle, #yawangle, #length, #radius, #radians, #degrees, "
-            "#seed, #until, #from, #fps, #speed, #look, #interpret, #dt, #tolerance, #music, #tempo, #ppq, #midiformat, "
-            "#timesig, #track, #surface, #letters)");
+            "unknown directive '#defne' (known: #define, #range, #angle, #yawangle, #length, #radius, #radians, "
+            "#degrees, #seed, #until, #from, #fps, #speed, #look, #interpret, #dt, #tolerance, #music, #tempo, #ppq, "
+            "#midiformat, #timesig, #track, #surface, #letters)");
   for (const Directive& directive : directives()) {
     EXPECT_NE(error.message.find("#" + std::string(directive.name)), std::string::npos) << directive.name;
     const std::string misspelt = std::string(directive.name) + "s";

@@ -284,6 +284,35 @@ TEST(VariationMutate, AnIntegerAtItsBoundStillMoves) {
   for (uint64_t seed = 0; seed < 50; ++seed) EXPECT_EQ(space.mutate({{1}}, seed), (Genome{{2}}));
 }
 
+// A program's `#range` and a caller's range replace the default [0, 2v]; an integer
+// gene keeps to the whole numbers inside; a fixed define is no gene.
+TEST(VariationRanges, DeclaredGivenAndFixed) {
+  const std::string text = "#define N 3\n#range N 1.5 9.5\n#define R 0.25\n#range R -1 1\n#define S 4\n";
+  VariationSpace declared(text);
+  ASSERT_EQ(declared.genes().size(), 3u);
+  EXPECT_EQ(declared.genes()[0].low, 2);  // whole numbers of [1.5, 9.5]
+  EXPECT_EQ(declared.genes()[0].high, 9);
+  EXPECT_EQ(declared.genes()[1].low, -1);
+  EXPECT_EQ(declared.genes()[1].high, 1);
+  EXPECT_EQ(declared.genes()[2].low, 1);  // the default for a whole number 4: [1, 8]
+  EXPECT_EQ(declared.genes()[2].high, 8);
+  for (uint64_t seed = 0; seed < 200; ++seed) {
+    const Genome child = declared.mutate(declared.original(), seed);
+    EXPECT_GE(child.values[1], -1);  // a declared range may cross zero
+    EXPECT_LE(child.values[0], 9);
+  }
+
+  VariationSpace given(text, {.ranges = {{"R", 0.1, 0.2}}, .fixed = {"S"}});
+  ASSERT_EQ(given.genes().size(), 2u);
+  EXPECT_EQ(given.genes()[1].name, "R");
+  EXPECT_EQ(given.genes()[1].low, 0.1);
+  EXPECT_EQ(given.genes()[1].high, 0.2);
+
+  EXPECT_THROW(VariationSpace(text, {.ranges = {{"Q", 0, 1}}}), std::invalid_argument);
+  EXPECT_THROW(VariationSpace(text, {.ranges = {{"N", 2, 1}}}), std::invalid_argument);
+  EXPECT_THROW(VariationSpace(text, {.ranges = {{"N", 2.2, 2.8}}}), std::invalid_argument);
+}
+
 TEST(VariationCrossover, TakesEachGeneFromAParentDeterministically) {
   std::string text;
   for (int i = 0; i < 32; ++i) text += "#define G" + std::to_string(i) + " " + std::to_string(i + 1) + "\n";

@@ -1,0 +1,280 @@
+#include "apps/sweep_batch.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "apps/program_loader.h"
+#include "apps/progress_bar.h"
+#include "interpreters/formats/png_writer.h"
+#include "interpreters/interpretation_set.h"
+#include "interpreters/output_file.h"
+#include "interpreters/sweep/variant_pool.h"
+
+namespace ontogen::app {
+
+namespace {
+
+// Set by the SIGINT handler, read by the loop below between messages; a lock-free atomic
+// is safe to store from a handler.
+std::atomic<bool> gInterrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+struct sigaction gPrevious {};
+
+// The first Ctrl-C asks for a clean stop; the handler then gives the signal back to the
+// one before it (which removes temporaries and ends the process), so a second Ctrl-C
+// ends at once.
+extern "C" void onBatchInterrupt(int) {
+  gInterrupted.store(true);
+  ::sigaction(SIGINT, &gPrevious, nullptr);
+}
+
+class InterruptGuard {
+ public:
+  InterruptGuard() {
+    gInterrupted.store(false);
+    struct sigaction action {};
+    action.sa_handler = onBatchInterrupt;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(SIGINT, &action, &gPrevious);
+  }
+  ~InterruptGuard() { ::sigaction(SIGINT, &gPrevious, nullptr); }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+};
+
+std::string formatSeconds(double seconds) {
+  char text[32];
+  if (seconds < 100)
+    std::snprintf(text, sizeof text, "%.0f s", seconds);
+  else if (seconds < 6000)
+    std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
+  else
+    std::snprintf(text, sizeof text, "%.1f h", seconds / 3600);
+  return text;
+}
+
+// Rank 0's side of the journal: checks a resumed one, drops a line cut short, appends.
+struct JournalSetup {
+  int exitCode = kExitOk;
+  std::string message;
+  std::vector<SweepRow> rows;
+};
+
+// A kill that no handler sees (SIGKILL, a node lost) can leave the temporary of a file
+// being written, `.NAME.tmpPID_N` (interpreters/output_file.h); a resumed sweep removes
+// them from its folder and the two below it, where its files go.
+void removeStaleTemporaries(const std::filesystem::path& dir) {
+  auto temporary = [](const std::string& name) {
+    const size_t tmp = name.rfind(".tmp");
+    if (name.empty() || name[0] != '.' || tmp == std::string::npos || tmp == 0) return false;
+    const std::string tail = name.substr(tmp + 4);
+    const size_t underscore = tail.find('_');
+    auto digits = [](std::string_view text) {
+      return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    return underscore != std::string::npos && digits(std::string_view(tail).substr(0, underscore)) &&
+           digits(std::string_view(tail).substr(underscore + 1));
+  };
+  for (const std::filesystem::path& folder : {dir, dir / "thumbnails", dir / "programs"}) {
+    std::error_code error;
+    std::vector<std::filesystem::path> stale;
+    for (std::filesystem::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+      if (temporary(it->path().filename().string())) stale.push_back(it->path());
+    for (const std::filesystem::path& file : stale) std::filesystem::remove(file, error);
+  }
+}
+
+JournalSetup openJournal(const BatchDef& def, const std::filesystem::path& path) {
+  JournalSetup setup;
+  std::error_code error;
+  std::filesystem::create_directories(def.dir, error);
+  if (error) {
+    setup.exitCode = kExitOutputError;
+    setup.message = "cannot create the folder '" + def.dir.string() + "': " + error.message();
+    return setup;
+  }
+  JournalContents contents = readJournal(path, def.columns.size());
+  if (contents.exists && !def.resume) {
+    setup.exitCode = kExitUsage;
+    setup.message = "'" + def.dir.string() +
+                    "' holds a sweep already (journal.jsonl); --resume continues it, or choose another --out";
+    return setup;
+  }
+  if (contents.exists && contents.header != def.header) {
+    setup.exitCode = kExitUsage;
+    setup.message = "'" + def.dir.string() +
+                    "' holds a sweep of other settings (another program, defines, seeds, measures or run settings); "
+                    "--resume continues a sweep only with the command that began it";
+    return setup;
+  }
+  // A journal whose last line was cut short by a kill is truncated to its whole lines
+  // (also a header cut short: a journal of nothing).
+  if (contents.exists && contents.header.empty()) contents.exists = false;
+  if (contents.exists) {
+    removeStaleTemporaries(def.dir);
+    std::filesystem::resize_file(path, contents.goodBytes, error);
+  } else {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << def.header << '\n';
+    if (!out) error = std::make_error_code(std::errc::io_error);
+  }
+  if (error) {
+    setup.exitCode = kExitOutputError;
+    setup.message = "cannot write '" + path.string() + "': " + error.message();
+    return setup;
+  }
+  for (SweepRow& row : contents.rows)
+    if (row.variant < def.count) setup.rows.push_back(std::move(row));
+  return setup;
+}
+
+std::string encodeRows(const std::vector<SweepRow>& rows) {
+  std::string text;
+  for (const SweepRow& row : rows) text += journalLine(row) + "\n";
+  return text;
+}
+
+std::vector<SweepRow> decodeRows(const std::string& text, size_t columns) {
+  std::vector<SweepRow> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (auto row = parseJournalLine(line, columns)) rows.push_back(std::move(*row));
+  return rows;
+}
+
+void writeOutputs(const BatchDef& def, const SweepTable& table) {
+  writeFileAtomically(def.dir / "results.csv", [&](std::ostream& out) { writeTableCsv(table, out); });
+  writeFileAtomically(def.dir / "results.json", [&](std::ostream& out) { writeTableJson(table, out); });
+  std::vector<ContactTile> tiles;
+  for (const SweepRow& row : table.rows) {
+    const std::filesystem::path picture = def.thumbnail(row.variant);
+    std::error_code error;
+    const bool exists = std::filesystem::is_regular_file(picture, error);
+    tiles.push_back({exists ? picture : std::filesystem::path(), !row.error.empty() && !exists});
+  }
+  const Image sheet = contactSheet(tiles, def.sheet);
+  writeFileAtomically(def.dir / "gallery.png", [&](std::ostream& out) { writePng(sheet, out); });
+}
+
+}  // namespace
+
+bool batchInterrupted() { return gInterrupted.load(); }
+
+BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
+  BatchResult result;
+  result.table.columns = def.columns;
+  const std::filesystem::path journalPath = def.dir / "journal.jsonl";
+
+  // Rank 0 opens the journal and tells the others which rows are done (or why none run).
+  JournalSetup setup;
+  if (cluster.leader()) setup = openJournal(def, journalPath);
+  const std::string status = cluster.broadcast(std::to_string(setup.exitCode) + "\n" + encodeRows(setup.rows));
+  const int code = std::stoi(status.substr(0, status.find('\n')));
+  if (code != kExitOk) {
+    if (cluster.leader()) std::cerr << "ontogen: error: " << setup.message << "\n";
+    result.exitCode = code;
+    return result;
+  }
+  std::vector<SweepRow> rows = decodeRows(status.substr(status.find('\n') + 1), def.columns.size());
+  std::set<uint64_t> finished;
+  for (const SweepRow& row : rows) finished.insert(row.variant);
+  std::vector<uint64_t> mine;
+  uint64_t pending = 0;
+  for (uint64_t i = 0; i < def.count; ++i) {
+    if (finished.count(i)) continue;
+    if (static_cast<int>(pending % static_cast<uint64_t>(cluster.size())) == cluster.rank()) mine.push_back(i);
+    ++pending;
+  }
+
+  std::ofstream journal;
+  if (cluster.leader()) journal.open(journalPath, std::ios::binary | std::ios::app);
+  ProgressBar progress(def.label);
+  if (!cluster.leader()) progress.disable();
+  uint64_t failedNow = 0, doneNow = 0;
+  for (const SweepRow& row : rows) failedNow += !row.error.empty();
+  const auto started = std::chrono::steady_clock::now();
+  auto record = [&](const std::string& line) {
+    std::optional<SweepRow> row = parseJournalLine(line, def.columns.size());
+    if (!row || finished.count(row->variant)) return;
+    journal << line << '\n' << std::flush;
+    finished.insert(row->variant);
+    failedNow += !row->error.empty();
+    ++doneNow;
+    rows.push_back(std::move(*row));
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const double left = elapsed / static_cast<double>(doneNow) * static_cast<double>(pending - doneNow);
+    progress.update(static_cast<long>(finished.size()), static_cast<long>(def.count),
+                    std::to_string(failedNow) + " failed, " + formatSeconds(left) + " left");
+  };
+
+  {
+    InterruptGuard guard;
+    VariantPool pool(def.workers, mine, [&def](uint64_t i) { return journalLine(def.run(i)); });
+    bool stopping = false;
+    int ranksDone = cluster.leader() ? 1 : 0;  // rank 0 counts itself when its pool is done
+    bool sentDone = false;
+    for (;;) {
+      if (batchInterrupted() && !stopping) {
+        stopping = true;
+        pool.stop();
+        if (cluster.leader())
+          for (int r = 1; r < cluster.size(); ++r) cluster.send(r, ClusterTag::Stop, "");
+      }
+      for (auto& [index, line] : pool.take(std::chrono::milliseconds(20))) {
+        if (cluster.leader())
+          record(line);
+        else
+          cluster.send(0, ClusterTag::Row, line);
+      }
+      while (std::optional<ClusterMessage> message = cluster.poll()) {
+        if (message->tag == ClusterTag::Row && cluster.leader()) record(message->text);
+        if (message->tag == ClusterTag::Done && cluster.leader()) ++ranksDone;
+        if (message->tag == ClusterTag::Stop && !stopping) {
+          stopping = true;
+          pool.stop();
+        }
+      }
+      if (!pool.done()) continue;
+      if (!cluster.leader()) {
+        if (!sentDone) cluster.send(0, ClusterTag::Done, "");
+        sentDone = true;
+        break;
+      }
+      if (ranksDone == cluster.size()) break;
+    }
+    if (cluster.leader() && !journal) {
+      std::cerr << "\nontogen: error: cannot write '" << journalPath.string() << "'\n";
+      result.exitCode = kExitOutputError;
+    }
+    stopping = stopping || batchInterrupted();
+    if (stopping && result.exitCode == kExitOk) result.exitCode = kExitInterrupted;
+  }
+  if (finished.size() == def.count || result.exitCode == kExitInterrupted) progress.finish();
+
+  // Rank 0 writes the table and sends it to all (an evolution chooses its next
+  // generation from it on every rank).
+  std::sort(rows.begin(), rows.end(), [](const SweepRow& a, const SweepRow& b) { return a.variant < b.variant; });
+  if (cluster.leader()) {
+    result.table.rows = rows;
+    try {
+      writeOutputs(def, result.table);
+    } catch (const OutputError& error) {
+      std::cerr << "ontogen: error: " << error.what() << "\n";
+      result.exitCode = kExitOutputError;
+    }
+  }
+  const std::string table = cluster.broadcast(std::to_string(result.exitCode) + "\n" + encodeRows(rows));
+  result.exitCode = std::stoi(table.substr(0, table.find('\n')));
+  result.table.rows = decodeRows(table.substr(table.find('\n') + 1), def.columns.size());
+  for (const SweepRow& row : result.table.rows) result.failed += !row.error.empty();
+  return result;
+}
+
+}  // namespace ontogen::app
