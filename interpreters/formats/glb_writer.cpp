@@ -157,9 +157,11 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
     const std::size_t last = t.translations.size() - 1;
     nlohmann::json node = {{"name", jointName(joints[j])}, {"extras", jointExtras(joints[j])}};
     const glm::vec3 translation = t.translations[last], scale = t.scales[last];
-    node["translation"] = {translation.x, translation.y, translation.z};
-    node["rotation"] = {t.rotations[4 * last], t.rotations[4 * last + 1], t.rotations[4 * last + 2], t.rotations[4 * last + 3]};
-    if (scale != glm::vec3(1.0f)) node["scale"] = {scale.x, scale.y, scale.z};
+    using gltf::shortFloat;
+    node["translation"] = {shortFloat(translation.x), shortFloat(translation.y), shortFloat(translation.z)};
+    node["rotation"] = {shortFloat(t.rotations[4 * last]), shortFloat(t.rotations[4 * last + 1]),
+                        shortFloat(t.rotations[4 * last + 2]), shortFloat(t.rotations[4 * last + 3])};
+    if (scale != glm::vec3(1.0f)) node["scale"] = {shortFloat(scale.x), shortFloat(scale.y), shortFloat(scale.z)};
     b.gltf["nodes"].push_back(node);
     children.push_back(j);
   }

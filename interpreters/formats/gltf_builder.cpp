@@ -1,8 +1,11 @@
 #include "interpreters/formats/gltf_builder.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
+#include <string>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -80,8 +83,8 @@ int Builder::addVec3(const std::vector<glm::vec3>& values, int target, bool boun
       lo = glm::min(lo, v);
       hi = glm::max(hi, v);
     }
-    accessor["min"] = {lo.x, lo.y, lo.z};
-    accessor["max"] = {hi.x, hi.y, hi.z};
+    accessor["min"] = {shortFloat(lo.x), shortFloat(lo.y), shortFloat(lo.z)};
+    accessor["max"] = {shortFloat(hi.x), shortFloat(hi.y), shortFloat(hi.z)};
   }
   return addAccessor(accessor);
 }
@@ -169,6 +172,14 @@ nlohmann::json rotationOf(const glm::dvec3& x, const glm::dvec3& y, const glm::d
   return {q.x, q.y, q.z, q.w};
 }
 }  // namespace
+
+double shortFloat(float value) {
+  if (!std::isfinite(value)) return value;
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text - 1, value).ptr;
+  *end = '\0';
+  return std::strtod(text, nullptr);
+}
 
 void addCameraAndKeyLight(Builder& b, const Box& bounds, nlohmann::json& sceneNodes) {
   if (bounds.empty) return;

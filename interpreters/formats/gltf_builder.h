@@ -73,6 +73,11 @@ class Builder {
   std::map<int, PoolData> pools_;
 };
 
+/// A 32-bit float as the double of its shortest decimal form, so that the JSON shows
+/// "0.70710677", not the float's exact value "0.7071067690849304" (which reads back to
+/// the same float): a third shorter where there are thousands of nodes.
+double shortFloat(float value);
+
 /// The vertical field of view of the camera written with a run, radians (40 degrees,
 /// a normal lens).
 inline constexpr double kCameraFov = 0.6981317007977318;
