@@ -372,7 +372,9 @@ void GlbAnimationWriter::write(std::ostream& out) const {
   const Box& box = parts_.bounds();
   if (!box.empty) extras["ontogen_bounds"] = {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z};
   if (!extras.empty()) scene["extras"] = extras;
-  b.gltf["scenes"] = {scene};
+  // Pushed, not braced: `{scene}` is the object itself to some compilers (clang).
+  b.gltf["scenes"] = nlohmann::json::array();
+  b.gltf["scenes"].push_back(scene);
   b.gltf["scene"] = 0;
   gltf::writeGlb(b, out);
 }
