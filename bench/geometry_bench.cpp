@@ -58,6 +58,7 @@ void BM_PistonAnimationFrame(benchmark::State& state) {
   GeometrySetDef def;
   def.output.writeSvg = def.output.writeObj = false;
   def.turtle.radians = true;
+  def.sceneNodes = true;  // as a run writing a .glb records them
   GeometrySet set(def);
   GlbAnimationWriter glb;
   RenderDef render;
@@ -67,12 +68,14 @@ void BM_PistonAnimationFrame(benchmark::State& state) {
   for (auto _ : state) {
     t += 0.04;
     world.advanceTo(t, 0.04);
-    set.beginFrame(FrameTarget{});
+    FrameTarget target;
+    target.time = t;
+    set.beginFrame(target);
     interpretWord(world, set);
     // An animation of 200 frames is what a run makes; without a bound, repetitions of
     // this loop held every frame (20 GB at --benchmark_repetitions=3).
     if (glb.frameCount() == 200) glb.clear();
-    glb.addFrame(set.geometry(), t);
+    glb.addFrame(set.scene());
     if (picture) benchmark::DoNotOptimize(renderGeometry(set.geometry(), render).rgb.data());
   }
   std::ostringstream out;

@@ -42,7 +42,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
       frame.resize(master.stateCount() + FrameSlot::kCount);
       loadCellFrame(frame.data(), master, cell, stateOf(cell), world.time(), world.positionOf(i),
                     parent == kNoParent ? -1 : idValue(parent));
-      set.beginCell({cell.id, parent, cell.birth, master.lifetime, world.time()});
+      set.beginCell({cell.id, parent, cell.birth, master.lifetime, world.time(), master.label});
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
       EvalContext context{frame.data(), EvalEnvironment{&random, world.seed()}, &functions};
       context.ancestors = world.ancestorValues();
@@ -66,7 +66,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
       }
       if (id != -1) {
         world.developedValues(cell, stateOf(cell), developed);
-        set.beginCell({cell.id, parent, cell.birth, master.lifetime, world.time()});
+        set.beginCell({cell.id, parent, cell.birth, master.lifetime, world.time(), master.label});
         set.locate({master.span, master.label, world.time()});
         if (id >= 0)
           set.executeCommand(id, master.command, developed);

@@ -44,6 +44,7 @@ struct CellContext {
   double birth = 0;    ///< global time at which the cell had age 0, seconds
   double lifetime = 0; ///< terminal age, seconds (infinite: lives until an action removes it)
   double time = 0;     ///< global time of the word being interpreted, seconds
+  std::string_view label;  ///< the master's label (the program outlives every run)
 };
 
 /// Where the instructions a set executes next come from: the instruction's source (or

@@ -39,6 +39,8 @@ struct SceneNode {
   /// The turtle's frame then, columns H, L, U (unit, right-handed): the node's orientation.
   glm::dmat3 orientation{1.0};
   GeometryRange range;               ///< what it drew
+  std::string label;                 ///< its master's label ("" for a node no cell drew)
+  double birth = 0;                  ///< global time at which the cell had age 0, seconds
 };
 
 /// Which side of its body a limb is on.

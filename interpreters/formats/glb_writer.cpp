@@ -1,59 +1,331 @@
 #include "interpreters/formats/glb_writer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <map>
 #include <string>
 
-#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <nlohmann/json.hpp>
 
 #include "interpreters/formats/gltf_builder.h"
-#include "interpreters/palette.h"
 
 namespace ontogen {
 
 namespace {
 using gltf::Builder;
 using gltf::kArrayBuffer;
-using gltf::kLines;
 using gltf::kTriangles;
+// The pools of accessors there are many of: a joint's tracks, a cell's joint indices and
+// its (cell number, birth) per vertex.
+constexpr gltf::Pool kTrackPool{0};
+constexpr gltf::Pool kJointPool{1};
+constexpr gltf::Pool kCellPool{2};
+// Frame times that do not increase are replaced by the frame's index at this rate.
 constexpr double kFallbackFramesPerSecond = 25;
-}  // namespace
 
-void GlbAnimationWriter::addFrame(const Geometry& geometry, double time) {
-  frames_.push_back({batchByMaterial(geometry), time});
-  for (const MeshBatch& batch : frames_.back().batches)
-    heldBytes_ += batch.positions.size() * sizeof(glm::vec3) + batch.normals.size() * sizeof(glm::vec3) +
-                  batch.texcoords.size() * sizeof(glm::vec2) + batch.indices.size() * sizeof(uint32_t) +
-                  batch.lines.size() * sizeof(glm::vec3);
+// The keys of the animation: each frame's time less the first's, played faster when the
+// run is longer than kMaxAnimationSeconds (glb_writer.h).
+struct Timing {
+  std::vector<float> keys;
+  double start = 0;  // developmental seconds at the first key
+  double scale = 1;  // animation seconds per developmental second
+};
+
+Timing timingOf(const std::vector<PartFrame>& frames) {
+  Timing timing;
+  const std::size_t count = frames.size();
+  timing.keys.resize(count);
+  bool increasing = true;
+  for (std::size_t f = 1; f < count; ++f)
+    if (!(frames[f].time > frames[f - 1].time)) increasing = false;
+  if (!increasing) {
+    for (std::size_t f = 0; f < count; ++f) timing.keys[f] = static_cast<float>(f / kFallbackFramesPerSecond);
+    timing.scale = 0;  // no developmental time to tell
+    return timing;
+  }
+  timing.start = count > 0 ? frames.front().time : 0;
+  const double span = count > 0 ? frames.back().time - timing.start : 0;
+  if (span > kMaxAnimationSeconds) timing.scale = kMaxAnimationSeconds / span;
+  for (std::size_t f = 0; f < count; ++f) timing.keys[f] = static_cast<float>((frames[f].time - timing.start) * timing.scale);
+  return timing;
 }
 
-void GlbAnimationWriter::write(std::ostream& out) const {
-  Builder b;
-  b.gltf["asset"] = {{"version", "2.0"}, {"generator", "ontogen"}};
-  auto materialOf = [&](uint32_t palette) { return b.materialOf(palette); };
-  nlohmann::json sceneNodes = nlohmann::json::array();
-  const std::size_t count = frames_.size();
-  for (std::size_t f = 0; f < count; ++f) {
-    nlohmann::json primitives = nlohmann::json::array();
-    for (const MeshBatch& batch : frames_[f].batches) {
-      if (!batch.indices.empty()) {
-        nlohmann::json attributes = {{"POSITION", b.addVec3(batch.positions, kArrayBuffer, true)},
-                                     {"NORMAL", b.addVec3(batch.normals, kArrayBuffer, false)},
-                                     {"TEXCOORD_0", b.addVec2(batch.texcoords)}};
-        primitives.push_back({{"attributes", attributes},
-                              {"indices", b.addIndices(batch.indices)},
-                              {"material", materialOf(batch.material)},
-                              {"mode", kTriangles}});
+std::string jointName(const PartJoint& joint) {
+  if (joint.cell == kRestPart) return joint.variant == 0 ? "rest" : "rest ~" + std::to_string(joint.variant);
+  std::string name = (joint.label.empty() ? std::string("cell") : joint.label) + " " + std::to_string(joint.cell);
+  if (joint.variant > 0) name += " ~" + std::to_string(joint.variant);
+  return name;
+}
+
+nlohmann::json jointExtras(const PartJoint& joint) {
+  nlohmann::json extras = {{"label", joint.label}, {"birth", joint.birth}, {"shape", joint.shape}};
+  if (joint.cell != kRestPart) extras["id"] = std::to_string(joint.cell);
+  if (joint.parent != kNoParentNode) extras["parent"] = std::to_string(joint.parent);
+  return extras;
+}
+
+// The shapes as written: their lines made tubes of one width in the model's units.
+std::vector<std::vector<MeshBatch>> finalShapes(const SceneParts& parts) {
+  const Box& bounds = parts.bounds();
+  const double diagonal = bounds.empty ? 0 : glm::length(bounds.max - bounds.min);
+  const double radius = diagonal > 0 ? diagonal * kLineRadiusFraction : 1e-3;
+  std::vector<std::vector<MeshBatch>> out;
+  out.reserve(parts.shapes().size());
+  for (const PartShape& shape : parts.shapes()) out.push_back(shapeWithTubes(shape, radius / shape.meanScale(), kTubeSides));
+  return out;
+}
+
+// A joint's transform in every frame: where it is placed, or (hidden, scale 0) where it
+// was placed last, or will be first.
+struct Track {
+  std::vector<glm::vec3> translations;
+  std::vector<float> rotations;  // x, y, z, w per frame
+  std::vector<glm::vec3> scales;
+  bool hidden = false;           // absent from some frame
+};
+
+std::vector<Track> tracksOf(const SceneParts& parts) {
+  const auto& frames = parts.frames();
+  const std::size_t count = frames.size();
+  std::vector<std::vector<const PartPlacement*>> at(parts.joints().size(), std::vector<const PartPlacement*>(count, nullptr));
+  for (std::size_t f = 0; f < count; ++f)
+    for (const PartPlacement& p : frames[f].placements) at[p.joint][f] = &p;
+  std::vector<Track> tracks(parts.joints().size());
+  for (std::size_t j = 0; j < tracks.size(); ++j) {
+    Track& track = tracks[j];
+    const PartPlacement* held = nullptr;
+    for (std::size_t f = 0; f < count && held == nullptr; ++f) held = at[j][f];
+    glm::dquat previous{1, 0, 0, 0};
+    for (std::size_t f = 0; f < count; ++f) {
+      const PartPlacement* p = at[j][f];
+      if (p != nullptr) held = p;
+      track.hidden = track.hidden || p == nullptr;
+      glm::dquat q = held->rotation;
+      // Each track in one hemisphere, so that linear interpolation takes the short way.
+      if (f > 0 && glm::dot(q, previous) < 0) q = -q;
+      previous = q;
+      track.translations.emplace_back(held->translation);
+      track.rotations.insert(track.rotations.end(), {static_cast<float>(q.x), static_cast<float>(q.y),
+                                                     static_cast<float>(q.z), static_cast<float>(q.w)});
+      track.scales.emplace_back(p != nullptr ? static_cast<float>(p->scale) : 0.0f);
+    }
+  }
+  return tracks;
+}
+
+template <typename T>
+bool changes(const std::vector<T>& values, std::size_t stride = 1) {
+  for (std::size_t k = stride; k < values.size(); ++k)
+    if (values[k] != values[k % stride]) return true;
+  return false;
+}
+
+nlohmann::json meshAttributes(Builder& b, const MeshBatch& batch) {
+  return {{"POSITION", b.addVec3(batch.positions, kArrayBuffer, true)},
+          {"NORMAL", b.addVec3(batch.normals, kArrayBuffer, false)},
+          {"TEXCOORD_0", b.addVec2(batch.texcoords)}};
+}
+
+// Weights (1, 0, 0, 0) for `vertices` vertices: the first joint slot carries each whole.
+int unitWeights(Builder& b, std::size_t vertices) {
+  std::vector<uint16_t> weights(4 * vertices, 0);
+  for (std::size_t v = 0; v < vertices; ++v) weights[4 * v] = 255;
+  return b.addVec4Integers(weights, gltf::kUnsignedByte, true);
+}
+
+// One colour's vertices of every shape a single joint draws, each with its joint.
+struct SkinnedBatch {
+  MeshBatch mesh;
+  std::vector<uint16_t> joints;   // 4 per vertex
+  std::vector<glm::vec2> cells;   // (cell number, birth) per vertex
+};
+
+void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNodes) {
+  const auto& joints = parts.joints();
+  const std::size_t count = joints.size();
+  if (count == 0) return;
+  const std::vector<std::vector<MeshBatch>> shapes = finalShapes(parts);
+  const std::vector<Track> tracks = tracksOf(parts);
+
+  // The joints under one root; their rest transform is their last frame's.
+  nlohmann::json children = nlohmann::json::array();
+  for (std::size_t j = 0; j < count; ++j) {
+    const Track& t = tracks[j];
+    const std::size_t last = t.translations.size() - 1;
+    nlohmann::json node = {{"name", jointName(joints[j])}, {"extras", jointExtras(joints[j])}};
+    const glm::vec3 translation = t.translations[last], scale = t.scales[last];
+    using gltf::shortFloat;
+    node["translation"] = {shortFloat(translation.x), shortFloat(translation.y), shortFloat(translation.z)};
+    node["rotation"] = {shortFloat(t.rotations[4 * last]), shortFloat(t.rotations[4 * last + 1]),
+                        shortFloat(t.rotations[4 * last + 2]), shortFloat(t.rotations[4 * last + 3])};
+    if (scale != glm::vec3(1.0f)) node["scale"] = {shortFloat(scale.x), shortFloat(scale.y), shortFloat(scale.z)};
+    b.gltf["nodes"].push_back(node);
+    children.push_back(j);
+  }
+  b.gltf["nodes"].push_back({{"name", "cells"}, {"children", children}});
+  const std::size_t root = b.gltf["nodes"].size() - 1;
+  sceneNodes.push_back(root);
+
+  // The meshes: one per kJointsPerSkin joints, each with a skin of those joints.
+  const std::size_t skins = (count + kJointsPerSkin - 1) / kJointsPerSkin;
+  std::vector<nlohmann::json> primitives(skins, nlohmann::json::array());
+  const std::vector<std::vector<uint32_t>> instances = parts.jointsByShape();
+  std::vector<std::map<uint32_t, SkinnedBatch>> single(skins);  // by skin, then colour
+  auto perVertex = [&](uint32_t joint, std::size_t vertices, std::vector<uint16_t>& jointsOut,
+                       std::vector<glm::vec2>& cellsOut) {
+    const PartJoint& pj = joints[joint];
+    for (std::size_t v = 0; v < vertices; ++v) {
+      jointsOut.insert(jointsOut.end(), {static_cast<uint16_t>(joint % kJointsPerSkin), 0, 0, 0});
+      cellsOut.emplace_back(static_cast<float>(pj.cellNumber), static_cast<float>(pj.birth));
+    }
+  };
+  for (std::size_t s = 0; s < shapes.size(); ++s) {
+    if (instances[s].empty()) continue;
+    if (instances[s].size() == 1) {
+      const uint32_t joint = instances[s][0];
+      for (const MeshBatch& batch : shapes[s]) {
+        if (batch.indices.empty()) continue;
+        SkinnedBatch& into = single[joint / kJointsPerSkin][batch.material];
+        const auto base = static_cast<uint32_t>(into.mesh.positions.size());
+        into.mesh.positions.insert(into.mesh.positions.end(), batch.positions.begin(), batch.positions.end());
+        into.mesh.normals.insert(into.mesh.normals.end(), batch.normals.begin(), batch.normals.end());
+        into.mesh.texcoords.insert(into.mesh.texcoords.end(), batch.texcoords.begin(), batch.texcoords.end());
+        for (uint32_t index : batch.indices) into.mesh.indices.push_back(base + index);
+        perVertex(joint, batch.positions.size(), into.joints, into.cells);
       }
-      if (!batch.lines.empty()) {
-        primitives.push_back({{"attributes", {{"POSITION", b.addVec3(batch.lines, kArrayBuffer, true)}}},
-                              {"material", materialOf(batch.material)},
-                              {"mode", kLines}});
+      continue;
+    }
+    // Written once, drawn by every joint of the shape.
+    for (const MeshBatch& batch : shapes[s]) {
+      if (batch.indices.empty()) continue;
+      const nlohmann::json shared = meshAttributes(b, batch);
+      const int indices = b.addIndices(batch.indices);
+      const int weights = unitWeights(b, batch.positions.size());
+      for (uint32_t joint : instances[s]) {
+        std::vector<uint16_t> jointValues;
+        std::vector<glm::vec2> cells;
+        perVertex(joint, batch.positions.size(), jointValues, cells);
+        nlohmann::json attributes = shared;
+        attributes["JOINTS_0"] = b.addVec4Integers(jointValues, gltf::kUnsignedByte, false, kJointPool);
+        attributes["WEIGHTS_0"] = weights;
+        attributes["TEXCOORD_1"] = b.addVec2(cells, kCellPool);
+        primitives[joint / kJointsPerSkin].push_back({{"attributes", attributes},
+                                                       {"indices", indices},
+                                                       {"material", b.materialOf(batch.material)},
+                                                       {"mode", kTriangles}});
       }
     }
+  }
+  // Identity inverse bind matrices, as the shapes lie in their joints' frames: glTF lets
+  // a skin leave them out, but assimp 5.2 crashes on such a skin.
+  std::vector<float> identity;
+  for (std::size_t j = 0; j < std::min(count, kJointsPerSkin); ++j)
+    for (int k = 0; k < 16; ++k) identity.push_back(k % 5 == 0 ? 1.0f : 0.0f);
+  const int identityView = b.addView(identity.data(), identity.size() * sizeof(float), 0);
+  for (std::size_t k = 0; k < skins; ++k) {
+    for (auto& [material, batch] : single[k]) {
+      nlohmann::json attributes = meshAttributes(b, batch.mesh);
+      attributes["JOINTS_0"] = b.addVec4Integers(batch.joints, gltf::kUnsignedByte, false);
+      attributes["WEIGHTS_0"] = unitWeights(b, batch.mesh.positions.size());
+      attributes["TEXCOORD_1"] = b.addVec2(batch.cells);
+      primitives[k].push_back({{"attributes", attributes},
+                               {"indices", b.addIndices(batch.mesh.indices)},
+                               {"material", b.materialOf(material)},
+                               {"mode", kTriangles}});
+    }
+    if (primitives[k].empty()) continue;
+    const std::string name = skins == 1 ? std::string("parts") : "parts " + std::to_string(k);
+    nlohmann::json skinJoints = nlohmann::json::array();
+    for (std::size_t j = k * kJointsPerSkin; j < std::min(count, (k + 1) * kJointsPerSkin); ++j) skinJoints.push_back(j);
+    b.gltf["meshes"].push_back({{"name", name}, {"primitives", primitives[k]}});
+    const int inverseBind = b.addAccessor(
+        {{"bufferView", identityView}, {"componentType", gltf::kFloat}, {"count", skinJoints.size()}, {"type", "MAT4"}});
+    b.gltf["skins"].push_back(
+        {{"name", name}, {"joints", skinJoints}, {"skeleton", root}, {"inverseBindMatrices", inverseBind}});
+    b.gltf["nodes"].push_back(
+        {{"name", name}, {"mesh", b.gltf["meshes"].size() - 1}, {"skin", b.gltf["skins"].size() - 1}});
+    sceneNodes.push_back(b.gltf["nodes"].size() - 1);
+  }
+
+  // The animation: each joint keyed from its first frame to its last (and, for the
+  // scale of a joint that appears or vanishes, the frames either side, where it is 0);
+  // before and after its keys a channel holds its first and last value.
+  const std::size_t frames = parts.frames().size();
+  if (frames < 2) return;
+  const Timing timing = timingOf(parts.frames());
+  std::map<std::pair<std::size_t, std::size_t>, int> inputs;  // keys lo..hi -> accessor
+  auto inputOf = [&](std::size_t lo, std::size_t hi) {
+    auto [it, added] = inputs.try_emplace({lo, hi}, 0);
+    if (added) it->second = b.addScalars(std::vector<float>(timing.keys.begin() + lo, timing.keys.begin() + hi + 1));
+    return it->second;
+  };
+  nlohmann::json samplers = nlohmann::json::array();
+  nlohmann::json channels = nlohmann::json::array();
+  auto channel = [&](int input, int output, std::size_t node, const char* path, const char* interpolation) {
+    samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolation}});
+    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", path}}}});
+  };
+  for (std::size_t j = 0; j < count; ++j) {
+    const Track& t = tracks[j];
+    std::size_t first = 0, last = frames - 1;
+    while (first < last && t.scales[first] == glm::vec3(0.0f)) ++first;
+    while (last > first && t.scales[last] == glm::vec3(0.0f)) --last;
+    auto slice = [&](const auto& values, std::size_t lo, std::size_t hi, std::size_t stride) {
+      using Values = std::decay_t<decltype(values)>;
+      return Values(values.begin() + lo * stride, values.begin() + (hi + 1) * stride);
+    };
+    const auto translations = slice(t.translations, first, last, 1);
+    const auto rotations = slice(t.rotations, first, last, 4);
+    if (changes(translations))
+      channel(inputOf(first, last), b.addVec3(translations, 0, false, kTrackPool), j, "translation", "LINEAR");
+    if (changes(rotations, 4))
+      channel(inputOf(first, last), b.addFloats(rotations, "VEC4", last - first + 1, 0, kTrackPool), j, "rotation",
+              "LINEAR");
+    const std::size_t lo = first > 0 ? first - 1 : 0, hi = last + 1 < frames ? last + 1 : last;
+    const auto scales = slice(t.scales, lo, hi, 1);
+    if (changes(scales))
+      channel(inputOf(lo, hi), b.addVec3(scales, 0, false, kTrackPool), j, "scale", t.hidden ? "STEP" : "LINEAR");
+  }
+  // The root's scale, 1 at the first and the last key: the action Blender makes spans
+  // the whole run even where the first or last frames move nothing.
+  const int ends = b.addScalars({timing.keys.front(), timing.keys.back()});
+  samplers.push_back({{"input", ends},
+                      {"output", b.addVec3({glm::vec3(1.0f), glm::vec3(1.0f)}, 0, false)},
+                      {"interpolation", "LINEAR"}});
+  channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", root}, {"path", "scale"}}}});
+  b.gltf["animations"].push_back({{"name", "development"}, {"samplers", samplers}, {"channels", channels}});
+}
+
+// Beyond kMaxJoints: a node per frame, its parts in world coordinates.
+void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& sceneNodes) {
+  const std::vector<std::vector<MeshBatch>> shapes = finalShapes(parts);
+  const auto& frames = parts.frames();
+  const std::size_t count = frames.size();
+  const std::size_t first = b.gltf["nodes"].is_array() ? b.gltf["nodes"].size() : 0;
+  for (std::size_t f = 0; f < count; ++f) {
+    std::map<uint32_t, MeshBatch> world;
+    for (const PartPlacement& p : frames[f].placements) {
+      const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
+      for (const MeshBatch& batch : shapes[parts.joints()[p.joint].shape]) {
+        if (batch.indices.empty()) continue;
+        MeshBatch& into = world[batch.material];
+        const auto base = static_cast<uint32_t>(into.positions.size());
+        for (const glm::vec3& v : batch.positions)
+          into.positions.emplace_back(p.translation + rotation * (glm::dvec3(v) * p.scale));
+        for (const glm::vec3& n : batch.normals) into.normals.emplace_back(rotation * glm::dvec3(n));
+        into.texcoords.insert(into.texcoords.end(), batch.texcoords.begin(), batch.texcoords.end());
+        for (uint32_t index : batch.indices) into.indices.push_back(base + index);
+      }
+    }
+    nlohmann::json primitives = nlohmann::json::array();
+    for (auto& [material, batch] : world)
+      primitives.push_back({{"attributes", meshAttributes(b, batch)},
+                            {"indices", b.addIndices(batch.indices)},
+                            {"material", b.materialOf(material)},
+                            {"mode", kTriangles}});
     nlohmann::json node = {{"name", "frame " + std::to_string(f)}};
     if (!primitives.empty()) {
       b.gltf["meshes"].push_back({{"name", "frame " + std::to_string(f)}, {"primitives", primitives}});
@@ -61,31 +333,48 @@ void GlbAnimationWriter::write(std::ostream& out) const {
     }
     if (count > 1 && f + 1 != count) node["scale"] = {0.0, 0.0, 0.0};
     b.gltf["nodes"].push_back(node);
-    sceneNodes.push_back(f);
+    sceneNodes.push_back(first + f);
   }
-  if (count > 1) {
-    std::vector<float> times(count);
-    bool increasing = true;
-    for (std::size_t f = 0; f < count; ++f) {
-      times[f] = static_cast<float>(frames_[f].time);
-      if (f > 0 && !(times[f] > times[f - 1])) increasing = false;
-    }
-    if (!increasing) {
-      for (std::size_t f = 0; f < count; ++f) times[f] = static_cast<float>(f / kFallbackFramesPerSecond);
-    }
-    int input = b.addScalars(times);
-    nlohmann::json samplers = nlohmann::json::array();
-    nlohmann::json channels = nlohmann::json::array();
-    std::vector<glm::vec3> scales(count);
-    for (std::size_t f = 0; f < count; ++f) {
-      for (std::size_t k = 0; k < count; ++k) scales[k] = glm::vec3(k == f ? 1.0f : 0.0f);
-      int output = b.addVec3(scales, 0, false);
-      samplers.push_back({{"input", input}, {"output", output}, {"interpolation", "STEP"}});
-      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", f}, {"path", "scale"}}}});
-    }
-    b.gltf["animations"].push_back({{"name", "development"}, {"samplers", samplers}, {"channels", channels}});
+  if (count < 2) return;
+  const Timing timing = timingOf(frames);
+  const int input = b.addScalars(timing.keys);
+  nlohmann::json samplers = nlohmann::json::array();
+  nlohmann::json channels = nlohmann::json::array();
+  std::vector<glm::vec3> scales(count);
+  for (std::size_t f = 0; f < count; ++f) {
+    for (std::size_t k = 0; k < count; ++k) scales[k] = glm::vec3(k == f ? 1.0f : 0.0f);
+    samplers.push_back({{"input", input}, {"output", b.addVec3(scales, 0, false)}, {"interpolation", "STEP"}});
+    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", first + f}, {"path", "scale"}}}});
   }
-  b.gltf["scenes"] = {{{"name", "ontogen"}, {"nodes", sceneNodes}}};
+  b.gltf["animations"].push_back({{"name", "development"}, {"samplers", samplers}, {"channels", channels}});
+}
+
+}  // namespace
+
+void GlbAnimationWriter::addFrame(const Scene& scene) { parts_.addFrame(scene); }
+
+void GlbAnimationWriter::write(std::ostream& out) const {
+  Builder b;
+  b.gltf["asset"] = {{"version", "2.0"}, {"generator", "ontogen"}};
+  nlohmann::json sceneNodes = nlohmann::json::array();
+  if (parts_.joints().size() <= kMaxJoints)
+    writeSkinned(parts_, b, sceneNodes);
+  else
+    writeFramePerNode(parts_, b, sceneNodes);
+  gltf::addCameraAndKeyLight(b, parts_.bounds(), sceneNodes);
+  nlohmann::json scene = {{"name", "ontogen"}};
+  if (!sceneNodes.empty()) scene["nodes"] = sceneNodes;  // glTF allows no empty list
+  nlohmann::json extras = nlohmann::json::object();
+  if (const Timing timing = timingOf(parts_.frames()); parts_.frames().size() > 1 && timing.scale > 0) {
+    extras["ontogen_time_start"] = timing.start;
+    extras["ontogen_time_scale"] = timing.scale;
+  }
+  const Box& box = parts_.bounds();
+  if (!box.empty) extras["ontogen_bounds"] = {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z};
+  if (!extras.empty()) scene["extras"] = extras;
+  // Pushed, not braced: `{scene}` is the object itself to some compilers (clang).
+  b.gltf["scenes"] = nlohmann::json::array();
+  b.gltf["scenes"].push_back(scene);
   b.gltf["scene"] = 0;
   gltf::writeGlb(b, out);
 }

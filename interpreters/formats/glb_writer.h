@@ -1,48 +1,88 @@
 #pragma once
-// glTF 2.0 binary (.glb) of a whole run in one file.
+// glTF 2.0 binary (.glb) of a whole run in one file, made of persistent parts
+// (formats/scene_parts.h): each cell's shape written once, moved over the frames.
 //
-// Each frame is a node holding that frame's mesh (one primitive per palette colour for
-// its triangles, with POSITION, NORMAL and TEXCOORD_0, and one LINES primitive per colour
-// for its zero-radius segments). With more than one frame an animation shows one frame at
-// a time: a STEP-interpolated scale channel per node is 1 while its frame is current and 0
-// otherwise, keyed at the frames' developmental times (seconds; frame index / 25 when the
-// times do not increase). Without animation playback the last frame shows. Materials are
-// the palette colours in linear light (metallic 0, rough, double-sided, since discs and lines have one
-// side).
+// The layout is skinned meshes whose joints are the cells (a joint per cell and shape it
+// drew), so that Blender imports a run as an armature, a mesh per kJointsPerSkin joints,
+// a camera and a light, with one action, however many frames it has; three.js and other
+// viewers play it as skeletons. (A node per cell would make Blender import an object and
+// an action per cell.)
+// - Joints: nodes under one root, "cells", named "<label> <id>" (a cell's second shape:
+//   "<label> <id> ~1"), with extras id, parent (64-bit ids as decimal strings), label,
+//   birth (seconds) and shape, which Blender keeps as the bones' custom properties.
+//   Their rest transform is where the cell stood in the last frame that has it.
+// - The meshes: the first kJointsPerSkin joints' parts in the first, with a skin of those
+//   joints, and so on. Shapes lie in their cell's frame, so skins' inverse bind matrices
+//   are identities. A shape one joint draws goes into one primitive per colour with
+//   every such shape; a shape several joints draw (the same sphere in a thousand cells)
+//   is written once and each joint gets a primitive that reuses its positions, normals,
+//   texture coordinates and indices, with only its own JOINTS_0 and TEXCOORD_1. Every
+//   vertex carries TEXCOORD_1 = (cell number, birth in seconds): Blender imports it as the
+//   UV map "UVMap.001" (its v flipped: 1 - birth), which Geometry Nodes and shaders read
+//   per cell. Colours are the palette's materials in linear light.
+// - Lines (zero-radius segments) are written as open tubes of radius kLineRadiusFraction
+//   of the run's bounding diagonal (kTubeSides sides), so that they render everywhere.
+//   A shape drawn at several scales takes the radius of its mean scale.
+// - One animation, "development": per joint, a translation, rotation and scale channel
+//   where they change (linear; scale STEP for a joint that is absent from some frame,
+//   where its scale is 0: parts appear, vanish and switch shape), keyed at the frames'
+//   developmental times less the first's; and a constant scale of the root keyed at the
+//   first and last time, so that the action an importer makes spans the whole run. A run longer than kMaxAnimationSeconds is
+//   played faster to last that long: Blender 3.4's importer keys at 24 frames a second
+//   and sets no scene range, and its default range (frames 1 to 250) then shows the whole
+//   run. The scene's extras say how: ontogen_time_start (developmental seconds at the
+//   first key), ontogen_time_scale (animation seconds per developmental second) and
+//   ontogen_bounds (min and max of every frame, model units).
+// - A perspective camera framing every frame and a directional key light
+//   (gltf::addCameraAndKeyLight).
+// With more than kMaxJoints joints each frame is instead
+// a node of its own, its parts placed in world coordinates, shown by a STEP scale
+// channel (1 in its frame, 0 otherwise); without animation the last frame shows.
 
-#include <ostream>
 #include <cstdint>
+#include <ostream>
 #include <vector>
 
-#include "interpreters/formats/mesh_batches.h"
-#include "interpreters/geometry.h"
+#include "interpreters/formats/scene_parts.h"
+#include "interpreters/scene.h"
 
 namespace ontogen {
+
+/// The radius of the tubes lines are written as, a fraction of the diagonal of the box
+/// every frame fills: 1/500 makes a line 1/250 of the model wide, a few pixels in a
+/// picture of the whole model, like a drawn line.
+inline constexpr double kLineRadiusFraction = 1.0 / 500;
+/// Sides of those tubes: 8 reads as round at a line's width.
+inline constexpr int kTubeSides = 8;
+/// The joints of one skin and its mesh: JOINTS_0 then holds bytes, and Blender 3.4's
+/// importer, whose time grows as a mesh's vertices times its skin's joints, imports a
+/// colony of 4,700 joints and 290,000 vertices in seconds (in one skin: six minutes).
+inline constexpr std::size_t kJointsPerSkin = 256;
+/// The most joints written as skins; beyond, a mesh per frame. A run with so many parts
+/// (Koch's curve at n = 7) is a picture more than an animation of parts.
+inline constexpr std::size_t kMaxJoints = 65536;
+/// The longest animation written, seconds: Blender's default range, 250 frames at 24
+/// per second, is 10.4 s.
+inline constexpr double kMaxAnimationSeconds = 10;
 
 /// Collects frames and writes them as one .glb.
 class GlbAnimationWriter {
  public:
-  /// Adds geometry as the next frame, shown from time (seconds).
-  void addFrame(const Geometry& geometry, double time);
+  /// Adds a frame's scene (its geometry and nodes), shown from scene.time.
+  void addFrame(const Scene& scene);
   /// Frames added so far.
-  std::size_t frameCount() const { return frames_.size(); }
+  std::size_t frameCount() const { return parts_.frames().size(); }
   /// Removes every frame.
-  void clear() {
-    frames_.clear();
-    heldBytes_ = 0;
-  }
+  void clear() { parts_.clear(); }
   /// Bytes the frames added so far hold (they are all written at the end).
-  uint64_t heldBytes() const { return heldBytes_; }
+  uint64_t heldBytes() const { return parts_.heldBytes(); }
+  /// The parts the frames were taken into.
+  const SceneParts& parts() const { return parts_; }
   /// Writes the file. Stream errors are left in out's state.
   void write(std::ostream& out) const;
 
  private:
-  struct Frame {
-    std::vector<MeshBatch> batches;
-    double time = 0;
-  };
-  std::vector<Frame> frames_;
-  uint64_t heldBytes_ = 0;
+  SceneParts parts_;
 };
 
 }  // namespace ontogen

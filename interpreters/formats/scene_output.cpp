@@ -185,13 +185,13 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
   }
   // A run whose frames hold a skeleton is written as one skin, from the first frame that
   // holds one (it fixes the skeleton; the frames before it, where the body had not grown
-  // yet, are left out); any other run as a node per frame.
+  // yet, are left out); any other as persistent parts (glb_writer.h).
   const bool skinned = skinnedGlb_.frameCount() > 0 || !scene.skeleton.empty();
   if (def_.writeGlb) {
     if (skinned)
       skinnedGlb_.addFrame(scene);
     else
-      glb_.addFrame(geometry_, target_.time);
+      glb_.addFrame(scene);
   }
   if (def_.writeJoints) joints_.addFrame(scene);
   if (last) {

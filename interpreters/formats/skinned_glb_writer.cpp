@@ -265,6 +265,18 @@ void SkinnedGlbWriter::write(std::ostream& out) const {
     }
     b.gltf["animations"].push_back({{"name", "walk"}, {"samplers", samplers}, {"channels", channels}});
   }
+  // The camera frames the body as bound, carried along by its root in every frame.
+  Box framed;
+  const Box& bound = bind_.geometry.bounds();
+  if (!bound.empty && count > 0) {
+    for (const Frame& frame : frames_) {
+      const auto root = frame.joints.find(joints.front().id);
+      const glm::dvec3 shift = root != frame.joints.end() ? root->second.position - joints.front().position : glm::dvec3(0.0);
+      framed.add(bound.min + shift);
+      framed.add(bound.max + shift);
+    }
+  }
+  gltf::addCameraAndKeyLight(b, framed, sceneNodes);
   b.gltf["scenes"] = {{{"name", "ontogen"}, {"nodes", sceneNodes}}};
   b.gltf["scene"] = 0;
   gltf::writeGlb(b, out);

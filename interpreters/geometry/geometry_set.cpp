@@ -7,7 +7,11 @@
 namespace ontogen {
 
 GeometrySet::GeometrySet(const GeometrySetDef& def)
-    : def_(def), output_(def.output), turtle_(def.turtle), scene_{0, Geometry(def.mesh), {}, {}} {}
+    : def_(def),
+      recordsNodes_(def.sceneNodes || def.output.writeGlb),
+      output_(def.output),
+      turtle_(def.turtle),
+      scene_{0, Geometry(def.mesh), {}, {}} {}
 
 bool GeometrySet::knows(std::string_view command) const {
   return findTurtleCommand(command) != nullptr;
@@ -27,11 +31,13 @@ void GeometrySet::beginFrame(const FrameTarget& target) {
 // nothing (turns, brackets), so a cell is only noted as it begins, and becomes a node
 // when the next one begins if it drew.
 void GeometrySet::beginCell(const CellContext& cell) {
-  if (!def_.sceneNodes) return;
+  if (!recordsNodes_) return;
   closeNode();
   const TurtleState& state = turtle_.state();
   pending_.id = cell.id;
   pending_.parent = cell.parent;
+  pending_.label = cell.label;
+  pending_.birth = cell.birth;
   pending_.position = state.position;
   pending_.orientation = glm::dmat3(state.heading, state.left, state.up);
   pending_.range.firstTriangle = static_cast<uint32_t>(scene_.geometry.triangleCount());

@@ -25,8 +25,9 @@ struct GeometrySetDef {
   SceneOutputDef output{};  ///< what endFrame() writes when the set is used on its own
   MeshDef mesh{};           ///< tessellation of cylinders, discs and spheres
   /// Record the scene's nodes (a node per drawing cell, with its parent and frame). They
-  /// cost about a third of the interpretation of a large word, and no file format reads
-  /// them yet, so a host that needs them (skeletons, physics, a viewer) asks.
+  /// cost about a third of the interpretation of a large word, so only a host that needs
+  /// them (skeletons, physics, a viewer) asks; output.writeGlb asks too, as the .glb
+  /// follows each cell's part over the frames (formats/glb_writer.h).
   bool sceneNodes = false;
 };
 
@@ -42,7 +43,7 @@ class GeometrySet : public InterpretationSet {
   bool knows(std::string_view command) const override;
   void beginFrame(const FrameTarget& target) override;
   void beginCell(const CellContext& cell) override;
-  bool wantsParents() const override { return def_.sceneNodes; }
+  bool wantsParents() const override { return recordsNodes_; }
   void execute(std::string_view command, std::span<const double> args) override;
   /// `id` indexes turtleCommands().
   void executeCommand(int id, std::string_view command, std::span<const double> args) override;
@@ -75,6 +76,7 @@ class GeometrySet : public InterpretationSet {
   void finishScene();
 
   GeometrySetDef def_;
+  bool recordsNodes_ = false;  // def_.sceneNodes or the .glb is written
   SceneOutput output_;
   WarningCounter unmatchedPops_;
   WarningCounter badArguments_;

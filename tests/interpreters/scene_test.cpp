@@ -47,6 +47,10 @@ TEST(Scene, ANodePerDrawingCellWithItsIdParentAndPlace) {
   for (const SceneNode& node : scene.nodes) EXPECT_EQ(node.range.segmentCount, 1u);
   EXPECT_EQ(scene.geometry.segments()[branch.range.firstSegment].end.x, -2.0);
   EXPECT_EQ(scene.find(cells[5].id), &trunk);
+  for (const SceneNode& node : scene.nodes) {
+    EXPECT_EQ(node.label, "F") << "the master's label";
+    EXPECT_EQ(node.birth, 0.0) << "the axiom's cells are born at 0";
+  }
 }
 
 // A set of the test's own that draws a marker line under every cell beside the turtle.

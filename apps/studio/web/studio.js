@@ -52,9 +52,14 @@ function resize() {
   }
 }
 
-// The union of every frame's geometry: frames are nodes scaled to 0 while not shown, so
-// the box is taken from the geometry itself (the nodes have no other transform).
+// The union of every frame's geometry: the .glb says it in its scene's extras
+// (ontogen_bounds, formats/glb_writer.h), as its parts move and scale over the frames;
+// a file without them is measured from its meshes.
 function boundsOfAllFrames(root) {
+  const b = root.userData.ontogen_bounds;
+  if (Array.isArray(b) && b.length === 6) {
+    return new THREE.Box3(new THREE.Vector3(b[0], b[1], b[2]), new THREE.Vector3(b[3], b[4], b[5]));
+  }
   const box = new THREE.Box3();
   root.traverse((object) => {
     if (!object.geometry) return;
@@ -84,6 +89,10 @@ function showModel(gltf) {
     model.traverse((o) => { if (o.geometry) o.geometry.dispose(); });
   }
   model = gltf.scene;
+  // The file's key light is in lux for Blender (thousands); the page has its own lights.
+  const lights = [];
+  model.traverse((o) => { if (o.isLight) lights.push(o); });
+  for (const light of lights) light.removeFromParent();
   scene.add(model);
   mixer = null;
   clipStart = clipEnd = 0;
@@ -107,9 +116,16 @@ function setTime(t) {
   studio.time = Math.min(Math.max(t, lo), hi);
   timeSlider.value = String(studio.time);
   $('time-value').textContent = studio.time.toFixed(2) + ' s';
-  // The animation's keys are the frames' developmental times; before the first key the
-  // first frame shows.
-  if (mixer) mixer.setTime(Math.min(Math.max(studio.time, clipStart), clipEnd));
+  // The animation's keys are the frames' developmental times less the first's, played
+  // faster for a long run (the scene's extras say how); before the first key the first
+  // frame shows.
+  if (mixer) {
+    const extras = model.userData;
+    const clipTime = typeof extras.ontogen_time_scale === 'number'
+      ? (studio.time - extras.ontogen_time_start) * extras.ontogen_time_scale
+      : studio.time;
+    mixer.setTime(Math.min(Math.max(clipTime, clipStart), clipEnd));
+  }
 }
 
 // ---- time and music --------------------------------------------------------------------

@@ -289,6 +289,8 @@ TEST(CreatureModel, ABodyThatGrowsIsWrittenGrown) {
   int scales = 0;
   for (const auto& channel : gltf["animations"][0]["channels"]) scales += channel["target"]["path"] == "scale";
   EXPECT_EQ(scales, 7 * 3) << "every joint but the root appears after the first frame";
+  ASSERT_EQ(gltf["cameras"].size(), 1u) << "a camera framing the walk";
+  EXPECT_EQ(gltf["extensions"]["KHR_lights_punctual"]["lights"][0]["type"], "directional");
 }
 
 TEST(CreatureModel, TheSkinPassesTheKhronosValidatorAtThreeAndSixSegments) {

@@ -27,7 +27,7 @@ void draw(CreatureSet& set, double time, const std::vector<std::vector<Command>>
   set.beginWord(time);
   uint64_t id = 100;
   for (const auto& cell : cells) {
-    set.beginCell(CellContext{id++, ~uint64_t{0}, 0, 1, time});
+    set.beginCell(CellContext{id++, ~uint64_t{0}, 0, 1, time, ""});
     for (const Command& command : cell) set.execute(command.name, command.args);
   }
   set.endWord();
