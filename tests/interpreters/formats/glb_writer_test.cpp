@@ -394,9 +394,12 @@ TEST(GlbWriter, ACameraFramesEveryFrameAndAKeyLightShines) {
 namespace fs = std::filesystem;
 using testing_support::runCommand;
 
-// Runs a model into its own folder and returns the .glb's path.
+// Runs a model into its own folder and returns the .glb's path. The folder is named by the
+// test too: ctest runs each test in its own process, two at a time, and a folder shared by
+// two tests would be removed by one while the other writes into it.
 fs::path runModel(const std::string& model, std::optional<int> frames, std::optional<double> until = {}) {
-  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "glb_writer_test" / model;
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "glb_writer_test" /
+                       ::testing::UnitTest::GetInstance()->current_test_info()->name() / model;
   fs::remove_all(dir);
   DiagnosticSink sink;
   CompileOptions options;
