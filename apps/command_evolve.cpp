@@ -151,6 +151,7 @@ int runEvolve(const EvolveOptions& options) {
     batch.columns = columns;
     batch.count = population;
     batch.resume = options.sweep.resume;
+    batch.progress = options.sweep.progress;
     batch.workers = setup.workers;
     batch.label = "evolving " + setup.stem + ", generation " + std::to_string(generation + 1) + "/" +
                   std::to_string(options.generations);

@@ -156,6 +156,7 @@ int runSweep(const SweepOptions& options) {
   batch.dir = options.sweep.out;
   batch.count = count;
   batch.resume = options.sweep.resume;
+  batch.progress = options.sweep.progress;
   batch.workers = setup.workers;
   batch.label = "sweeping " + setup.stem;
   for (const SweptDefine& define : defines) batch.columns.push_back(define.name);

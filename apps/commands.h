@@ -117,6 +117,7 @@ struct SweepCommonOptions {
   std::vector<std::string> sets;     ///< empty: the program's #interpret, else geometry
   std::string out;                   ///< the output folder
   bool resume = false;
+  std::optional<bool> progress;      ///< --progress / --no-progress; empty: when stderr is a terminal
   unsigned workers = 0;              ///< 0: all cores
   std::string size = "128x128";      ///< thumbnails, WIDTHxHEIGHT pixels
   std::vector<double> view;          ///< azimuth, elevation in degrees; empty: automatic

@@ -104,6 +104,12 @@ void addSweepCommon(CLI::App& command, SweepCommonOptions& options, const std::s
   command.add_option("--out", options.out, "The output folder: results.csv, results.json, gallery.png, thumbnails/, programs/")
       ->required();
   command.add_flag("--resume", options.resume, "Continue the sweep in --out, skipping the variants it finished");
+  // Flag functions: CLI11 gives an std::optional<bool> flag a value even when absent.
+  command.add_flag_function("--progress", [&options](std::int64_t) { options.progress = true; },
+                            "Draw the progress bar on stderr, on rank 0 only (default: when stderr is a terminal; "
+                            "under mpirun it is not, so ask)");
+  command.add_flag_function("--no-progress", [&options](std::int64_t) { options.progress = false; },
+                            "Draw no progress bar");
   addWholeOption(command, "--workers", options.workers, WholeRange::between(0, kMaxThreads),
                  "Variants run at once on this machine, one thread each (0, the default: all cores; same result)");
   addSizeOption(command, options.size, "Thumbnail size WIDTHxHEIGHT in pixels (default 128x128)");

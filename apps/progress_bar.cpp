@@ -6,7 +6,8 @@
 
 namespace ontogen::app {
 
-ProgressBar::ProgressBar(std::string label) : label_(std::move(label)), enabled_(isatty(STDERR_FILENO) == 1) {}
+ProgressBar::ProgressBar(std::string label, std::optional<bool> show)
+    : label_(std::move(label)), enabled_(show.value_or(isatty(STDERR_FILENO) == 1)) {}
 
 ProgressBar::~ProgressBar() { finish(); }
 

@@ -1,14 +1,18 @@
 #pragma once
 
 #include <chrono>
+#include <optional>
 #include <string>
 
 namespace ontogen::app {
 
-/// A one-line progress bar on stderr, drawn only when stderr is a terminal.
+/// A one-line progress bar on stderr, redrawn in place with a carriage return.
 class ProgressBar {
  public:
-  explicit ProgressBar(std::string label);
+  /// Drawn when `show` says so, else (empty) only when stderr is a terminal: under
+  /// mpirun stderr is a pipe to the launcher even when the user watches it, so a sweep
+  /// across ranks asks for its bar with --progress.
+  explicit ProgressBar(std::string label, std::optional<bool> show = {});
   ~ProgressBar();
   /// done of total units; redraws at most every 100 ms.
   void update(long done, long total);

@@ -195,7 +195,7 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
 
   std::ofstream journal;
   if (cluster.leader()) journal.open(journalPath, std::ios::binary | std::ios::app);
-  ProgressBar progress(def.label);
+  ProgressBar progress(def.label, def.progress);
   if (!cluster.leader()) progress.disable();
   uint64_t failedNow = 0, doneNow = 0;
   for (const SweepRow& row : rows) failedNow += !row.error.empty();

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct BatchDef {
   bool resume = false;                ///< continue the journal in dir (else dir must hold none)
   unsigned workers = 1;               ///< threads on each rank
   std::string label = "sweep";        ///< the progress bar's
+  std::optional<bool> progress;       ///< draw the bar on rank 0; empty: when stderr is a terminal
   /// Runs variant i (on any rank, on a worker thread) and writes its own files; must
   /// not throw.
   std::function<SweepRow(uint64_t)> run;

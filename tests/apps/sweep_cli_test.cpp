@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -235,6 +236,82 @@ TEST(SweepCli, AVariantPastMaxCellsIsAnErrorRow) {
   EXPECT_EQ(readWholeFile(dir / "steps" / "results.csv"),
             "variant,D,seed,n,error\n0,0,1,," + step.string() +
                 ":3:3: #dt must be a finite number greater than 0\n1,1,1,4,\n");
+}
+
+// `ontogen ARGS` in a pseudo-terminal (util-linux's script), as a user at a terminal runs
+// it: everything it printed to stdout and stderr, as the terminal received it.
+std::string inATerminal(const std::string& args) {
+  const std::string command = "timeout 60 script -qec \"" + std::string(ONTOGEN_EXECUTABLE) + " " + args +
+                              "\" /dev/null </dev/null 2>&1";
+  std::string output;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return output;
+  char buffer[4096];
+  for (size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
+  pclose(pipe);
+  return output;
+}
+
+// The bar's drawings in `text` (each begins with a carriage return and the label): the
+// count done of each, in order.
+std::vector<std::pair<long, long>> barCounts(const std::string& text, const std::string& label) {
+  std::vector<std::pair<long, long>> counts;
+  for (size_t at = text.find("\r" + label + " ["); at != std::string::npos;
+       at = text.find("\r" + label + " [", at + 1)) {
+    const size_t count = text.find("] ", at) + 2;
+    long done = 0, total = 0;
+    if (std::sscanf(text.c_str() + count, "%ld/%ld", &done, &total) == 2) counts.emplace_back(done, total);
+  }
+  return counts;
+}
+
+// The bar counts variants done, failures and time left; it is drawn at a terminal, not
+// into a file unless asked (--progress), never when told not to (--no-progress), and
+// across MPI ranks once, by rank 0, when asked.
+TEST(SweepCli, TheProgressBarCountsVariantsFailuresAndTimeLeft) {
+  const fs::path dir = scratchDir("sweep_progress");
+  const fs::path tree = treeFile(dir);
+  const std::string flags = " --define BRANCH=0,1 --define SHRINK=0.5,0.6 --size 16x16 --max-cells 100";
+
+  const std::string terminal = inATerminal("sweep " + tree.string() + flags + " --out " + (dir / "tty").string());
+  const auto drawn = barCounts(terminal, "sweeping tree");
+  ASSERT_FALSE(drawn.empty()) << terminal;
+  EXPECT_EQ(drawn.back(), std::make_pair(4L, 4L)) << terminal;
+  EXPECT_NE(terminal.find("4/4, 2 failed, 0 s left"), std::string::npos) << terminal;
+  for (size_t i = 1; i < drawn.size(); ++i) EXPECT_GE(drawn[i].first, drawn[i - 1].first) << terminal;
+  EXPECT_NE(terminal.find("swept 4 variants (2 failed)"), std::string::npos) << terminal;
+
+  const std::string told = inATerminal("sweep " + tree.string() + flags + " --no-progress --out " +
+                                       (dir / "quiet").string());
+  EXPECT_TRUE(barCounts(told, "sweeping tree").empty()) << told;
+  EXPECT_NE(told.find("swept 4 variants (2 failed)"), std::string::npos) << told;
+
+  CliResult file = runOntogen("sweep " + tree.string() + flags + " --out " + (dir / "file").string());
+  ASSERT_EQ(file.exitCode, 0) << file.err;
+  EXPECT_TRUE(barCounts(file.err, "sweeping tree").empty()) << file.err;
+  CliResult asked = runOntogen("sweep " + tree.string() + flags + " --progress --out " + (dir / "asked").string());
+  ASSERT_EQ(asked.exitCode, 0) << asked.err;
+  EXPECT_EQ(barCounts(asked.err, "sweeping tree").back(), std::make_pair(4L, 4L)) << asked.err;
+
+  CliResult evolve = runOntogen("evolve " + tree.string() + " --range LEN=1:2 --population 4 --generations 2 "
+                                "--measure h=height --size 16x16 --progress --out " +
+                                (dir / "evolve").string());
+  ASSERT_EQ(evolve.exitCode, 0) << evolve.err;
+  EXPECT_EQ(barCounts(evolve.err, "evolving tree, generation 2/2").back(), std::make_pair(4L, 4L)) << evolve.err;
+
+  ONTOGEN_REQUIRE_MPI();
+  const fs::path log = dir / "mpi_out.txt";
+  ASSERT_EQ(runOnThreeRanks("sweep " + tree.string() + flags + " --workers 1 --progress --out " +
+                                (dir / "ranks").string(),
+                            log),
+            0)
+      << readWholeFile(log);
+  const std::string ranks = readWholeFile(log);
+  const auto counts = barCounts(ranks, "sweeping tree");
+  ASSERT_FALSE(counts.empty()) << ranks;
+  EXPECT_EQ(counts.back(), std::make_pair(4L, 4L)) << ranks;
+  // One bar: a bar per rank would count its own variants from 1 again.
+  for (size_t i = 1; i < counts.size(); ++i) EXPECT_GT(counts[i].first, counts[i - 1].first) << ranks;
 }
 
 std::vector<std::string> fieldsOf(const std::string& row) {
