@@ -91,8 +91,9 @@ std::vector<Case> cases() {
   };
 }
 
+// `withParents`: each cell's parent id (core/parents.h) is hashed after the world.
 uint64_t developAndHash(const std::shared_ptr<const Program>& program, double until, double step, unsigned threads,
-                        int frames) {
+                        int frames, bool withParents) {
   WorldDef def;
   def.seed = 7;
   def.threads = threads;
@@ -101,21 +102,27 @@ uint64_t developAndHash(const std::shared_ptr<const Program>& program, double un
   Hash hash;
   hash.add(world.time());
   hashWorld(world, hash);
+  if (withParents)
+    for (uint64_t parent : parentIds(world)) hash.add(parent);
   return hash.value;
 }
 
-TEST(Determinism, OneHashPerModelWhateverTheThreadsAndFrames) {
-  for (const Case& test : cases()) {
+void expectOneHashEach(const std::vector<Case>& tests, bool withParents) {
+  for (const Case& test : tests) {
     auto program = testing_support::compileOrFail(test.text, test.name);
     ASSERT_NE(program, nullptr) << test.name;
-    const uint64_t reference = developAndHash(program, test.until, test.step, 1, 1);
+    const uint64_t reference = developAndHash(program, test.until, test.step, 1, 1, withParents);
     for (unsigned threads : {1u, 2u, 7u})
       for (int frames : {1, 7})
-        EXPECT_EQ(developAndHash(program, test.until, test.step, threads, frames), reference)
+        EXPECT_EQ(developAndHash(program, test.until, test.step, threads, frames, withParents), reference)
             << test.name << " on " << threads << " threads, " << frames << " frames";
     EXPECT_EQ(reference, test.expected) << test.name << ": the development changed (hash 0x" << std::hex
                                         << reference << ")";
   }
+}
+
+TEST(Determinism, OneHashPerModelWhateverTheThreadsAndFrames) {
+  expectOneHashEach(cases(), false);
 }
 
 // ---- Every kind of successor, pinned by value before the linear pool's storage moves
@@ -176,20 +183,6 @@ const char* kNewRightContext = R"(lsystem back {
   B(x) -> A
 })";
 
-// The benchmarks' Thue-Morse and parametric words, large enough (2^16 modules) for the
-// rewriting by slices: labels only on every thread count, state on 2 and 7 threads.
-const char* kThueMorse = R"(lsystem thueMorse {
-  axiom a
-  a -> a b
-  b -> b a
-})";
-
-const char* kParametric = R"(lsystem parametric {
-  axiom A(1)
-  A(x) -> A(x + 1) B(x * 0.5)
-  B(y) -> B(y + 1) B(y * 0.5)
-})";
-
 std::vector<Case> everyKindOfSuccessor() {
   return {
       {"cells: me, =X, birth ages, renewals, 300 successors", cellsWithEveryKindOfSuccessor(), 12, 0.1,
@@ -197,37 +190,15 @@ std::vector<Case> everyKindOfSuccessor() {
       {"lsystem: <<, =X, birth ages, a renewal, 300 successors", lsystemWithEveryKindOfSuccessor(), 9.5, 0.25,
        0xc837e298712c69b5ull},
       {"lsystem: >>", kNewRightContext, 5, 1, 0xf267d64fe8592bbdull},
-      {"thue-morse: labels only, by slices", kThueMorse, 16, 1, 0xf68faf44005972b4ull},
-      {"parametric: state, by slices", kParametric, 16, 1, 0xa5a69aa5a1c4ae85ull},
+      // The benchmarks' words, large enough (2^16 modules) for the rewriting by slices:
+      // labels only on every thread count, state on 2 and 7 threads.
+      {"thue-morse: labels only, by slices", testing_support::kThueMorse, 16, 1, 0xf68faf44005972b4ull},
+      {"parametric: state, by slices", testing_support::kParametric, 16, 1, 0xa5a69aa5a1c4ae85ull},
   };
 }
 
-uint64_t developAndHashWithParents(const std::shared_ptr<const Program>& program, double until, double step,
-                                   unsigned threads, int frames) {
-  WorldDef def;
-  def.seed = 7;
-  def.threads = threads;
-  World world(program, def);
-  for (int frame = 1; frame <= frames; ++frame) world.advanceTo(until * frame / frames, step);
-  Hash hash;
-  hash.add(world.time());
-  hashWorld(world, hash);
-  for (uint64_t parent : parentIds(world)) hash.add(parent);
-  return hash.value;
-}
-
 TEST(Determinism, EveryKindOfSuccessorHasOneHashWithItsParents) {
-  for (const Case& test : everyKindOfSuccessor()) {
-    auto program = testing_support::compileOrFail(test.text, test.name);
-    ASSERT_NE(program, nullptr) << test.name;
-    const uint64_t reference = developAndHashWithParents(program, test.until, test.step, 1, 1);
-    for (unsigned threads : {1u, 2u, 7u})
-      for (int frames : {1, 7})
-        EXPECT_EQ(developAndHashWithParents(program, test.until, test.step, threads, frames), reference)
-            << test.name << " on " << threads << " threads, " << frames << " frames";
-    EXPECT_EQ(reference, test.expected) << test.name << ": the development changed (hash 0x" << std::hex
-                                        << reference << ")";
-  }
+  expectOneHashEach(everyKindOfSuccessor(), true);
 }
 
 }  // namespace

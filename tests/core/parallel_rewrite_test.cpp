@@ -97,25 +97,14 @@ TEST(ParallelRewrite, KochOnTwoThreadsIsKochOnOne) {
 
 // The benchmarks' Thue-Morse (labels only) and parametric (a value per module) words at
 // 2^16 modules: by slices, as the serial pass writes them, id for id.
-const char* kThueMorse = R"(lsystem thueMorse {
-  axiom a
-  a -> a b
-  b -> b a
-})";
-
-const char* kParametric = R"(lsystem parametric {
-  axiom A(1)
-  A(x) -> A(x + 1) B(x * 0.5)
-  B(y) -> B(y + 1) B(y * 0.5)
-})";
-
 TEST(ParallelRewrite, ThueMorseAndParametricWordsAreWrittenAsTheSerialPassWritesThem) {
   struct Model {
     const char* name;
     const char* text;
     std::vector<unsigned> threads;  // a word with state keeps the serial pass on one thread
   };
-  for (const Model& model : {Model{"Thue-Morse", kThueMorse, {1, 2, 7}}, Model{"parametric", kParametric, {2, 7}}}) {
+  for (const Model& model : {Model{"Thue-Morse", testing_support::kThueMorse, {1, 2, 7}},
+                             Model{"parametric", testing_support::kParametric, {2, 7}}}) {
     auto program = testing_support::compileOrFail(model.text, model.name);
     ASSERT_NE(program, nullptr);
     const Grown serial = grow(program, 16, 1, false);
