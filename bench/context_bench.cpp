@@ -28,12 +28,12 @@ std::string signalText(int modules) {
 std::string checkSignal(const Program& program, const World& world, int steps) {
   auto b = masterOf(program, "b");
   if (!b) return "no module b";
-  auto cells = world.rootPool().cells();
-  if (cells.size() != kSignalModules)
-    return "signal: word of " + std::to_string(cells.size()) + " modules, expected " + std::to_string(kSignalModules);
+  const Pool& pool = world.rootPool();
+  if (pool.size() != kSignalModules)
+    return "signal: word of " + std::to_string(pool.size()) + " modules, expected " + std::to_string(kSignalModules);
   uint64_t count = 0;
-  for (const CellRecord& cell : cells) count += cell.master == *b;
-  if (count != 1 || cells[static_cast<size_t>(steps)].master != *b)
+  for (CellCursor cell = pool.cursor(); !cell.done(); cell.next()) count += cell.master() == *b;
+  if (count != 1 || pool.cellAt(static_cast<size_t>(steps)).master != *b)
     return "signal: expected one b at position " + std::to_string(steps);
   return {};
 }

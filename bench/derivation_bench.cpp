@@ -72,7 +72,7 @@ std::string checkKoch(const Program& program, const World& world, int n) {
   auto f = masterOf(program, "F");
   if (!f) return "no module F";
   uint64_t count = 0;
-  for (const CellRecord& cell : world.rootPool().cells()) count += cell.master == *f;
+  for (CellCursor cell = world.rootPool().cursor(); !cell.done(); cell.next()) count += cell.master() == *f;
   if (count != power(5, n)) return "Koch: " + std::to_string(count) + " F, expected 5^n";
   return {};
 }
@@ -97,9 +97,9 @@ std::string checkThueMorse(const Program& program, const World& world, int) {
   auto a = masterOf(program, "a");
   auto b = masterOf(program, "b");
   if (!a || !b) return "no module a or b";
-  auto cells = world.rootPool().cells();
-  for (size_t i = 0; i < cells.size(); ++i)
-    if (cells[i].master != (std::popcount(i) % 2 ? *b : *a)) return "Thue-Morse: wrong symbol at " + std::to_string(i);
+  for (CellCursor cell = world.rootPool().cursor(); !cell.done(); cell.next())
+    if (cell.master() != (std::popcount(cell.index()) % 2 ? *b : *a))
+      return "Thue-Morse: wrong symbol at " + std::to_string(cell.index());
   return {};
 }
 
@@ -124,11 +124,11 @@ std::string checkParametric(const Program& program, const World& world, int n) {
   auto b = masterOf(program, "B");
   if (!a || !b) return "no module A or B";
   const Pool& pool = world.rootPool();
-  auto cells = pool.cells();
-  if (cells[0].master != *a || *pool.stateOf(cells[0]) != 1.0 + n)
-    return "parametric: the first module is not A(1 + n)";
-  for (size_t i = 1; i < cells.size(); ++i)
-    if (cells[i].master != *b) return "parametric: module " + std::to_string(i) + " is not B";
+  const CellView first = pool.cellAt(0);
+  if (first.master != *a || *first.state != 1.0 + n) return "parametric: the first module is not A(1 + n)";
+  CellCursor cell = pool.cursor();
+  for (cell.next(); !cell.done(); cell.next())
+    if (cell.master() != *b) return "parametric: module " + std::to_string(cell.index()) + " is not B";
   return {};
 }
 

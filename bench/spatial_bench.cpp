@@ -22,7 +22,7 @@ SpatialPool makePool(size_t n) {
   std::uniform_real_distribution<double> coordinate(0, side);
   for (size_t i = 0; i < n; ++i) {
     const double p[2] = {coordinate(random), coordinate(random)};
-    pool.append(CellRecord{0, 0, 0, i}, p, 2);
+    pool.append({.master = 0, .birth = 0, .id = i}, p, 2);
   }
   return pool;
 }

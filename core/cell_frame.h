@@ -10,6 +10,7 @@
 
 #include "core/salts.h"
 #include "lang/program.h"
+#include "pools/cell_cursor.h"
 #include "pools/cell_record.h"
 
 namespace ontogen {
@@ -17,11 +18,14 @@ namespace ontogen {
 /// The slots every frame has: age, terminal age, time, id. The hot loops (rules and rates
 /// over large pools) write only these, and the place (loadPlace) for the masters whose
 /// expressions read it (MasterCell::readsPosition, readsParent).
-inline void loadAgeAndId(double* internal, const CellRecord& cell, double lifetime, double when) {
-  internal[FrameSlot::kAge] = when - cell.birth;
+inline void loadAgeAndId(double* internal, double birth, uint64_t id, double lifetime, double when) {
+  internal[FrameSlot::kAge] = when - birth;
   internal[FrameSlot::kTerminalAge] = lifetime;
   internal[FrameSlot::kTime] = when;
-  internal[FrameSlot::kId] = idValue(cell.id);
+  internal[FrameSlot::kId] = idValue(id);
+}
+inline void loadAgeAndId(double* internal, const CellRecord& cell, double lifetime, double when) {
+  loadAgeAndId(internal, cell.birth, cell.id, lifetime, when);
 }
 
 /// The place slots: position (me.x, me.y, me.z) and parent (me.parent).
@@ -49,6 +53,16 @@ inline double* loadCellFrame(double* frame, const MasterCell& master, const Cell
   const uint32_t n = master.stateCount();
   std::copy(state, state + n, frame);
   loadInternalState(frame + n, cell, master.lifetime, when, position, parent);
+  return frame;
+}
+
+/// The same for a cell as a cursor gives it (pools/cell_cursor.h), state included.
+inline double* loadCellFrame(double* frame, const MasterCell& master, const CellView& cell, double when,
+                             const std::array<double, 3>& position, double parent = -1) {
+  const uint32_t n = master.stateCount();
+  std::copy(cell.state, cell.state + n, frame);
+  loadAgeAndId(frame + n, cell.birth, cell.id, master.lifetime, when);
+  loadPlace(frame + n, position, parent);
   return frame;
 }
 

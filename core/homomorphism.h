@@ -27,6 +27,8 @@ class HomomorphismImage {
   explicit HomomorphismImage(const World& world);
 
   std::span<const CellRecord> cells() const { return cells_; }
+  /// A cursor at the image's first cell (pools/cell_cursor.h).
+  CellCursor cursor() const { return CellCursor(cells_, state_.data()); }
   const double* stateOf(const CellRecord& cell) const { return state_.data() + cell.state; }
   /// Index in the world's word of the module the i-th cell of the image comes from.
   size_t sourceOf(size_t i) const { return sources_[i]; }

@@ -151,9 +151,9 @@ const SpatialPool& World::spatialPool() const {
 
 std::array<double, 3> World::positionOf(size_t i) const { return development_->positionOf(i); }
 
-const World* World::childOf(const CellRecord& cell) const {
+const World* World::childOf(uint64_t id) const {
   if (children_.empty()) return nullptr;
-  auto it = children_.find(cell.id);
+  auto it = children_.find(id);
   return it == children_.end() ? nullptr : it->second.get();
 }
 
@@ -333,12 +333,17 @@ void World::developedValues(const CellRecord& cell, std::vector<double>& out) co
 }
 
 void World::developedValues(const CellRecord& cell, const double* state, std::vector<double>& out) const {
+  developedValues(CellView{cell.master, state, cell.birth, cell.id, 0}, out);
+}
+
+void World::developedValues(const CellView& cell, std::vector<double>& out) const {
+  const double* state = cell.state;
   const MasterCell& master = program_->masters[cell.master];
   out.assign(state, state + master.stateCount());
   if (master.developmentFunction < 0) return;
   const DevelopmentFunction& function = program_->functions[master.developmentFunction];
   double frame[CompiledExpression::kMaxStack];
-  double age = ageOf(cell);
+  double age = time_ - cell.birth;
   for (size_t i = 0; i < function.sources.size() && i < CompiledExpression::kMaxStack; ++i) {
     int source = function.sources[i];
     frame[i] = source == DevelopmentFunction::kFromAge           ? age

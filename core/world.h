@@ -83,7 +83,9 @@ class World {
   /// This world's pool (the root system's for the world made from a program), whatever its kind.
   const Pool& rootPool() const { return *pool_; }
   /// The world of the system cell `cell` of this world's pool, or null (an ordinary cell).
-  const World* childOf(const CellRecord& cell) const;
+  const World* childOf(const CellRecord& cell) const { return childOf(cell.id); }
+  /// The same, by the cell's id.
+  const World* childOf(uint64_t id) const;
   /// The enclosing system's world, null for the root.
   const World* parent() const { return parent_; }
   /// Cells in this world's pool and in all nested pools.
@@ -130,6 +132,8 @@ class World {
   void developedValues(const CellRecord& cell, std::vector<double>& out) const;
   /// The same for a cell whose state is not in the pool (a homomorphism's image).
   void developedValues(const CellRecord& cell, const double* state, std::vector<double>& out) const;
+  /// The same for a cell as a cursor gives it (its state wherever it is).
+  void developedValues(const CellView& cell, std::vector<double>& out) const;
 
  private:
   void seedPool(WorldHeld& tree);

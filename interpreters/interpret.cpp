@@ -27,20 +27,18 @@ void interpretPool(const World& world, InterpretationSet& set) {
   // itself does not change); parents, positions and nested pools are the source's.
   std::optional<HomomorphismImage> image;
   if (world.rootSystem().homomorphism) image.emplace(world);
-  const auto cells = image ? image->cells() : pool.cells();
-  auto stateOf = [&](const CellRecord& cell) { return image ? image->stateOf(cell) : pool.stateOf(cell); };
   // Parents cost a pass over the word: found when the set or an interpretation block reads them.
   bool readsParent = set.wantsParents();
   for (const MasterCell& master : program.masters) readsParent = readsParent || master.readsParent;
   const std::vector<uint64_t> parents = readsParent ? parentIds(world) : std::vector<uint64_t>{};
-  for (size_t k = 0; k < cells.size(); ++k) {
-    const CellRecord& cell = cells[k];
-    const size_t i = image ? image->sourceOf(k) : k;  // in the word
+  for (CellCursor cursor = image ? image->cursor() : pool.cursor(); !cursor.done(); cursor.next()) {
+    const CellView cell = cursor.view();
+    const size_t i = image ? image->sourceOf(cell.index) : cell.index;  // in the word
     const uint64_t parent = parents.empty() ? kNoParent : parents[i];
     const MasterCell& master = program.masters[cell.master];
     if (const InterpretationBlock* block = master.interpretation(set.name())) {
       frame.resize(master.stateCount() + FrameSlot::kCount);
-      loadCellFrame(frame.data(), master, cell, stateOf(cell), world.time(), world.positionOf(i),
+      loadCellFrame(frame.data(), master, cell, world.time(), world.positionOf(i),
                     parent == kNoParent ? -1 : idValue(parent));
       set.beginCell({cell.id, parent, cell.birth, master.lifetime, world.time(), master.label});
       RandomStream random(mixKey(mixKey(world.seed() ^ kInterpretSalt, cell.id), keyOf(world.time())));
@@ -65,7 +63,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
         id = knows ? -2 : -1;
       }
       if (id != -1) {
-        world.developedValues(cell, stateOf(cell), developed);
+        world.developedValues(cell, developed);
         set.beginCell({cell.id, parent, cell.birth, master.lifetime, world.time(), master.label});
         set.locate({master.span, master.label, world.time()});
         if (id >= 0)
@@ -76,7 +74,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
     }
     // A system cell's pool is realised where the cell stands, as a branch: what it
     // draws or plays starts from the state here and leaves it unchanged.
-    if (const World* child = world.childOf(cell)) {
+    if (const World* child = world.childOf(cell.id)) {
       set.execute("[", {});
       interpretPool(*child, set);
       set.execute("]", {});

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pools/cell_cursor.h"
 #include "pools/cell_record.h"
 #include "pools/large_page_allocator.h"
 
@@ -34,7 +35,18 @@ class Pool {
   /// A deep copy (worlds are cheap to copy for evolution and sweeps).
   virtual std::unique_ptr<Pool> clone() const = 0;
 
-  /// Cells in pool order (the order interpretation walks them).
+  /// A cursor at the first cell, walking them in pool order (the order interpretation
+  /// walks them). Readers outside pools/ and core/ read cells this way or with cellAt(),
+  /// never through the records (pools/cell_cursor.h).
+  CellCursor cursor() const { return CellCursor(cells_, state_.data()); }
+  /// Cell i (below size()).
+  CellView cellAt(size_t i) const {
+    const CellRecord& cell = cells_[i];
+    return {cell.master, stateOf(cell), cell.birth, cell.id, i};
+  }
+
+  /// The records themselves, in pool order: for pools/ and core/ only, which write and
+  /// scan them until the linear pool stores its words compactly (docs/COMPACT_WORDS.md).
   std::span<const CellRecord> cells() const { return cells_; }
   std::span<CellRecord> cells() { return cells_; }
   size_t size() const { return cells_.size(); }

@@ -77,12 +77,11 @@ void TurtleQueries::respond(const World& world, std::vector<QueryAnswer>& answer
   turtle.beginFrame({});
   interpretWord(world, turtle);
   const Program& program = world.program();
-  const auto cells = world.rootPool().cells();
-  for (size_t i = 0; i < cells.size(); ++i) {
-    if (program.masters[cells[i].master].query == 0) continue;
-    auto it = turtle.noted().find(cells[i].id);
+  for (CellCursor cell = world.rootPool().cursor(); !cell.done(); cell.next()) {
+    if (program.masters[cell.master()].query == 0) continue;
+    auto it = turtle.noted().find(cell.id());
     if (it == turtle.noted().end()) continue;
-    answers.push_back({static_cast<uint32_t>(i), {it->second.x, it->second.y, it->second.z}});
+    answers.push_back({static_cast<uint32_t>(cell.index()), {it->second.x, it->second.y, it->second.z}});
   }
 }
 

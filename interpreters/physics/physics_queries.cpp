@@ -24,13 +24,12 @@ void PhysicsQueries::respond(const World& world, std::vector<QueryAnswer>& answe
   const auto& solved = set.queryAnswers();
   if (solved.empty()) return;
   const Program& program = world.program();
-  const auto cells = world.rootPool().cells();
-  for (size_t i = 0; i < cells.size(); ++i) {
-    const char kind = program.masters[cells[i].master].query;
+  for (CellCursor cell = world.rootPool().cursor(); !cell.done(); cell.next()) {
+    const char kind = program.masters[cell.master()].query;
     if (kind != 'F' && kind != 'M' && kind != 'D') continue;
-    const auto it = solved.find(cells[i].id);
+    const auto it = solved.find(cell.id());
     if (it == solved.end()) continue;
-    answers.push_back({static_cast<uint32_t>(i), {it->second.x(), it->second.y(), it->second.z()}});
+    answers.push_back({static_cast<uint32_t>(cell.index()), {it->second.x(), it->second.y(), it->second.z()}});
   }
 }
 

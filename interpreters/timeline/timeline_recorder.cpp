@@ -26,29 +26,30 @@ void TimelineRecorder::sample(const World& world) {
 
 void TimelineRecorder::walk(const World& world, int depth, std::list<Entry>::iterator& previous) {
   const Program& program = world.program();
-  for (const CellRecord& cell : world.rootPool().cells()) {
-    const MasterCell& master = program.masters[cell.master];
+  for (CellCursor cursor = world.rootPool().cursor(); !cursor.done(); cursor.next()) {
+    const MasterCell& master = program.masters[cursor.master()];
     if (!develops(master)) continue;
-    auto found = byId_.find(cell.id);
+    const uint64_t id = cursor.id();
+    auto found = byId_.find(id);
     if (found == byId_.end()) {
       if (rows_.size() >= maxRows_) {
-        if (omittedIds_.insert(cell.id).second) ++omitted_;
+        if (omittedIds_.insert(id).second) ++omitted_;
         continue;
       }
       Entry entry;
       entry.row.label = master.label;
       entry.row.depth = depth;
-      entry.row.born = cell.birth;
+      entry.row.born = cursor.birth();
       entry.row.system = master.system >= 0;
       // After the cell before it in the walk; a first cell with none (its pool's
       // earlier cells are gone) goes below everything, so generations read downwards.
       auto at = previous == rows_.end() ? rows_.end() : std::next(previous);
-      found = byId_.emplace(cell.id, rows_.insert(at, entry)).first;
+      found = byId_.emplace(id, rows_.insert(at, entry)).first;
     }
     Entry& entry = *found->second;
     entry.lastSample = samples_;
     previous = found->second;
-    if (const World* child = world.childOf(cell)) walk(*child, depth + 1, previous);
+    if (const World* child = world.childOf(id)) walk(*child, depth + 1, previous);
   }
 }
 

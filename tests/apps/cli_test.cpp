@@ -108,6 +108,32 @@ TEST(Cli, WordJsonReproducesTable1OfPaper000) {
   EXPECT_EQ(cells[1]["developed"], nlohmann::json::parse("[10]"));
 }
 
+// The piston's word at t = 4.04, pinned by value: every id, parent, age and parameter as
+// `word --json` prints them. mov, bend and turn were just replaced (age 0, new ids); the
+// rest keep the ids and births they got at t = 0.04. Nothing here may move when the
+// linear pool's storage changes (docs/COMPACT_WORDS.md, section 7, slice 0).
+TEST(Cli, WordJsonOfThePistonAt4_04IsPinned) {
+  Result result = ontogen("word " + model("piston.cell") + " --at 4.04 --json");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, R"JSON({"times": [
+  {"t": 4.04, "cells": [
+    {"label": "mov", "params": [50], "developed": [0], "age": 0, "id": 8719005630369449, "parent": -1},
+    {"label": "!", "params": [10], "developed": [10], "age": 4, "id": 1412667277046589, "parent": 8719005630369449},
+    {"label": "cC", "params": [60, 1], "developed": [60, 1], "age": 4, "id": 3955507135847856, "parent": 8719005630369449},
+    {"label": "bend", "params": [2], "developed": [0], "age": 0, "id": 3008876155874388, "parent": 3955507135847856},
+    {"label": "!", "params": [2], "developed": [2], "age": 4, "id": 7439240056358614, "parent": 3008876155874388},
+    {"label": "cC", "params": [200, 1], "developed": [200, 1], "age": 4, "id": 3173683470804916, "parent": 3008876155874388},
+    {"label": "turn", "params": [1], "developed": [0], "age": 0, "id": 3439578793272120, "parent": 3173683470804916},
+    {"label": "f", "params": [50], "developed": [50], "age": 4, "id": 3106933542404335, "parent": 3439578793272120},
+    {"label": "+", "params": [1.5707963267948966], "developed": [1.5707963267948966], "age": 4, "id": 7263828583646127, "parent": 3106933542404335},
+    {"label": "[", "params": [], "developed": [], "age": 4, "id": 444317092373405, "parent": 3106933542404335},
+    {"label": "disc", "params": [0, 50], "developed": [0, 50], "age": 4, "id": 608078555481270, "parent": 3106933542404335},
+    {"label": "]", "params": [], "developed": [], "age": 4, "id": 1575216515794220, "parent": 3106933542404335}
+  ]}
+]}
+)JSON");
+}
+
 TEST(Cli, WordTextInTheStyleOfTable1) {
   Result result = ontogen("word " + model("piston.cell") + " --at 1.04 --precision 3");
   ASSERT_EQ(result.exitCode, 0) << result.err;

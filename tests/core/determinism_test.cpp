@@ -8,8 +8,11 @@
 
 #include <bit>
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "core/parents.h"
 #include "core/world.h"
 #include "test_support.h"
 
@@ -88,8 +91,9 @@ std::vector<Case> cases() {
   };
 }
 
+// `withParents`: each cell's parent id (core/parents.h) is hashed after the world.
 uint64_t developAndHash(const std::shared_ptr<const Program>& program, double until, double step, unsigned threads,
-                        int frames) {
+                        int frames, bool withParents) {
   WorldDef def;
   def.seed = 7;
   def.threads = threads;
@@ -98,21 +102,103 @@ uint64_t developAndHash(const std::shared_ptr<const Program>& program, double un
   Hash hash;
   hash.add(world.time());
   hashWorld(world, hash);
+  if (withParents)
+    for (uint64_t parent : parentIds(world)) hash.add(parent);
   return hash.value;
 }
 
-TEST(Determinism, OneHashPerModelWhateverTheThreadsAndFrames) {
-  for (const Case& test : cases()) {
+void expectOneHashEach(const std::vector<Case>& tests, bool withParents) {
+  for (const Case& test : tests) {
     auto program = testing_support::compileOrFail(test.text, test.name);
     ASSERT_NE(program, nullptr) << test.name;
-    const uint64_t reference = developAndHash(program, test.until, test.step, 1, 1);
+    const uint64_t reference = developAndHash(program, test.until, test.step, 1, 1, withParents);
     for (unsigned threads : {1u, 2u, 7u})
       for (int frames : {1, 7})
-        EXPECT_EQ(developAndHash(program, test.until, test.step, threads, frames), reference)
+        EXPECT_EQ(developAndHash(program, test.until, test.step, threads, frames, withParents), reference)
             << test.name << " on " << threads << " threads, " << frames << " frames";
     EXPECT_EQ(reference, test.expected) << test.name << ": the development changed (hash 0x" << std::hex
                                         << reference << ")";
   }
+}
+
+TEST(Determinism, OneHashPerModelWhateverTheThreadsAndFrames) {
+  expectOneHashEach(cases(), false);
+}
+
+// ---- Every kind of successor, pinned by value before the linear pool's storage moves
+// (docs/COMPACT_WORDS.md, section 7, slice 0). The seven cases above leave some of what a
+// compact word must reproduce unpinned: parents, `me` in per-step rules, birth ages, `<<`,
+// rules of more than 254 successors, and the words the rewriting by slices writes with
+// state. These hash each cell's parent id as well.
+
+// Repeats `label` `count` times, separated by spaces.
+std::string repeated(const std::string& label, int count) {
+  std::string text;
+  for (int i = 0; i < count; ++i) text += (i ? " " : "") + label;
+  return text;
+}
+
+// Cells: `me` in a terminal rule (new birth) and in a per-step rule (same birth), `=X`
+// with a draw keyed by the kept id, birth ages in the axiom and in successors, renewals
+// (C has no rules) and a rule of 300 successors, whose k passes 254.
+std::string cellsWithEveryKindOfSuccessor() {
+  return "cell A(x = 1) { lifetime 2; rules { terminal: x += 1, -> (B(x), 0.5) me; } }\n"
+         "cell B(y = 0) { lifetime 1.5; rules {\n"
+         "  age > 0.5 && y < 5 : y += 1, -> me C(y);\n"
+         "  terminal: -> =D(y + uniform(0, 1)) (C(-y), 0.25);\n"
+         "} }\n"
+         "cell C(c = 0) { lifetime 1; }\n"
+         "cell D(d = 0) { lifetime 3; rules { terminal: -> W; } }\n"
+         "cell W { lifetime 1; rules { terminal: -> " +
+         repeated("w", 300) +
+         "; } }\n"
+         "cell w { }\n"
+         "system s { pool linear; axiom A (C(2), 0.5); }\n";
+}
+
+// An L-system: timed predecessors, birth ages, branches, `=X` with a draw, a renewal (C's
+// only production never holds), the new left context `<<` (E takes the value of the C
+// produced before it) and a production of 300 successors whose last keeps growing.
+std::string lsystemWithEveryKindOfSuccessor() {
+  return "lsystem pin {\n"
+         "  axiom A(1) [ (B(0), 0.5) ] S (W, 0.25)\n"
+         "  (A(x), 2) -> A(x + 1) [ (B(x / 2), 0.25) ] A(x)\n"
+         "  B(y) -> =C(y + uniform(0, 1)) D\n"
+         "  (C(z), 1.5) : z > 100 -> C(0)\n"
+         "  C(z) << D -> E(z)\n"
+         "  D -> D\n"
+         "  (E(v), 0.75) -> E(v + uniform(0, 1))\n"
+         "  W -> " +
+         repeated("w", 299) +
+         " W\n"
+         "}\n";
+}
+
+// A backward derivation (`>>`): a signal runs left through the successors in one step,
+// passing over the branch, and falls back into A B where it has counted past 4.
+const char* kNewRightContext = R"(lsystem back {
+  axiom A A B A A A A S(1) A A [ A A ] A A S(2)
+  A >> S(x) -> S(x + 1)
+  S(x) : x > 4 -> A B(x)
+  B(x) -> A
+})";
+
+std::vector<Case> everyKindOfSuccessor() {
+  return {
+      {"cells: me, =X, birth ages, renewals, 300 successors", cellsWithEveryKindOfSuccessor(), 12, 0.1,
+       0x1dc04f3b5ff179aeull},
+      {"lsystem: <<, =X, birth ages, a renewal, 300 successors", lsystemWithEveryKindOfSuccessor(), 9.5, 0.25,
+       0xc837e298712c69b5ull},
+      {"lsystem: >>", kNewRightContext, 5, 1, 0xf267d64fe8592bbdull},
+      // The benchmarks' words, large enough (2^16 modules) for the rewriting by slices:
+      // labels only on every thread count, state on 2 and 7 threads.
+      {"thue-morse: labels only, by slices", testing_support::kThueMorse, 16, 1, 0xf68faf44005972b4ull},
+      {"parametric: state, by slices", testing_support::kParametric, 16, 1, 0xa5a69aa5a1c4ae85ull},
+  };
+}
+
+TEST(Determinism, EveryKindOfSuccessorHasOneHashWithItsParents) {
+  expectOneHashEach(everyKindOfSuccessor(), true);
 }
 
 }  // namespace

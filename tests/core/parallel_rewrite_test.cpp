@@ -6,6 +6,7 @@
 
 #include <bit>
 #include <string>
+#include <vector>
 
 #include "core/parallel_rewrite.h"
 #include "core/world.h"
@@ -91,6 +92,53 @@ TEST(ParallelRewrite, KochOnTwoThreadsIsKochOnOne) {
     const Grown sliced = grow(program, 8, threads);
     EXPECT_GT(sliced.stats.rewritesBySlices, 0u) << threads << " threads";
     expectSameWords(*serial.world, *sliced.world, "Koch on " + std::to_string(threads) + " threads");
+  }
+}
+
+// The benchmarks' Thue-Morse (labels only) and parametric (a value per module) words at
+// 2^16 modules: by slices, as the serial pass writes them, id for id.
+TEST(ParallelRewrite, ThueMorseAndParametricWordsAreWrittenAsTheSerialPassWritesThem) {
+  struct Model {
+    const char* name;
+    const char* text;
+    std::vector<unsigned> threads;  // a word with state keeps the serial pass on one thread
+  };
+  for (const Model& model : {Model{"Thue-Morse", testing_support::kThueMorse, {1, 2, 7}},
+                             Model{"parametric", testing_support::kParametric, {2, 7}}}) {
+    auto program = testing_support::compileOrFail(model.text, model.name);
+    ASSERT_NE(program, nullptr);
+    const Grown serial = grow(program, 16, 1, false);
+    ASSERT_EQ(serial.world->rootPool().size(), 65536u) << model.name;
+    for (unsigned threads : model.threads) {
+      const Grown sliced = grow(program, 16, threads);
+      // 2^15 modules at t = 15: the last step is the first large enough for slices.
+      EXPECT_EQ(sliced.stats.rewritesBySlices, 1u) << model.name << " on " << threads << " threads";
+      expectSameWords(*serial.world, *sliced.world,
+                      std::string(model.name) + " on " + std::to_string(threads) + " threads");
+      EXPECT_EQ(sliced.stats.cellsBorn, serial.stats.cellsBorn) << model.name;
+    }
+  }
+}
+
+// A production of 301 successors, whose k run past 254, applied by slices: 120 W make a
+// word of 36,120 modules at t = 1, and every W rewrites again at t = 2 and 3.
+std::string wideProgram() {
+  std::string text = "lsystem wide {\n  axiom";
+  for (int i = 0; i < 120; ++i) text += " W";
+  text += "\n  W -> W";
+  for (int i = 0; i < 300; ++i) text += " x";
+  return text + "\n}\n";
+}
+
+TEST(ParallelRewrite, ARuleOfMoreThan254SuccessorsIsWrittenAsTheSerialPassWritesIt) {
+  auto program = testing_support::compileOrFail(wideProgram());
+  ASSERT_NE(program, nullptr);
+  const Grown serial = grow(program, 3, 1, false);
+  ASSERT_EQ(serial.world->rootPool().size(), 120u * (1 + 3 * 300)) << "W, then 300 x a step";
+  for (unsigned threads : {1u, 2u, 3u}) {
+    const Grown sliced = grow(program, 3, threads);
+    EXPECT_EQ(sliced.stats.rewritesBySlices, 2u) << threads << " threads";
+    expectSameWords(*serial.world, *sliced.world, "301 successors on " + std::to_string(threads) + " threads");
   }
 }
 

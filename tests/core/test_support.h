@@ -22,6 +22,20 @@ inline std::shared_ptr<const Program> compileOrFail(const std::string& text, con
   return program;
 }
 
+// The benchmarks' Thue-Morse and parametric L-systems (bench/derivation_bench.cpp):
+// |w_n| = 2^n for both.
+inline constexpr const char* kThueMorse = R"(lsystem thueMorse {
+  axiom a
+  a -> a b
+  b -> b a
+})";
+
+inline constexpr const char* kParametric = R"(lsystem parametric {
+  axiom A(1)
+  A(x) -> A(x + 1) B(x * 0.5)
+  B(y) -> B(y + 1) B(y * 0.5)
+})";
+
 inline std::string readModel(const std::string& name) {
   std::ifstream in(std::string(ONTOGEN_SOURCE_DIR) + "/models/" + name, std::ios::binary);
   EXPECT_TRUE(in.good()) << name;

@@ -1,0 +1,60 @@
+#pragma once
+// Reading a pool's cells without seeing how the pool stores them. A CellCursor walks the
+// cells in pool order and gives each one's master (its label), state values, birth time,
+// id and index; Pool::cellAt(i) gives the same for one cell, as a CellView. Readers
+// outside pools/ and core/ (interpreters/, apps/, bench/) read cells only this way, so a
+// pool can change how it stores them (docs/COMPACT_WORDS.md: the linear pool's compact
+// words) without touching those readers. Today every pool keeps 24-byte records
+// (pools/cell_record.h), and the cursor walks them.
+//
+// The cursor answers with accessors rather than a record so that a value a store derives
+// (the id of a compact word is a hash of its run's key) is computed only when asked.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "pools/cell_record.h"
+
+namespace ontogen {
+
+/// One cell as readers see it. `state` points into the pool's storage: valid until the
+/// pool changes, like the cursor that made it.
+struct CellView {
+  uint32_t master = 0;            ///< index of the master cell in the program (its label)
+  const double* state = nullptr;  ///< the cell's state values, as many as its master has
+  double birth = 0;               ///< global time at which the cell had age 0 (seconds)
+  uint64_t id = 0;                ///< stable id (core/successors.h)
+  size_t index = 0;               ///< position in pool order
+};
+
+/// Walks cells in pool order:
+/// `for (CellCursor cell = pool.cursor(); !cell.done(); cell.next()) use(cell.master());`
+/// It borrows the storage it walks and is invalid once that changes.
+class CellCursor {
+ public:
+  /// A cursor at the first of `cells`, whose state offsets index `state`.
+  CellCursor(std::span<const CellRecord> cells, const double* state) : cells_(cells), state_(state) {}
+
+  /// Whether the cursor has passed the last cell.
+  bool done() const { return index_ >= cells_.size(); }
+  /// Moves to the next cell in pool order.
+  void next() { ++index_; }
+  /// Cells the cursor walks, in all.
+  size_t size() const { return cells_.size(); }
+
+  // The cell under the cursor (not done()).
+  size_t index() const { return index_; }
+  uint32_t master() const { return cells_[index_].master; }
+  const double* state() const { return state_ + cells_[index_].state; }
+  double birth() const { return cells_[index_].birth; }
+  uint64_t id() const { return cells_[index_].id; }
+  CellView view() const { return {master(), state(), birth(), id(), index_}; }
+
+ private:
+  std::span<const CellRecord> cells_;
+  const double* state_;
+  size_t index_ = 0;
+};
+
+}  // namespace ontogen

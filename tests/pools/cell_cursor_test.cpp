@@ -1,0 +1,112 @@
+// The cursor (pools/cell_cursor.h) gives each cell as it was appended, in pool order, and
+// agrees with Pool::cellAt; and no reader outside pools/ and core/ sees the record type,
+// so the linear pool can change how it stores its words (docs/COMPACT_WORDS.md).
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pools/linear_pool.h"
+#include "pools/spatial_pool.h"
+
+namespace ontogen {
+namespace {
+
+struct Appended {
+  uint32_t master;
+  double birth;
+  uint64_t id;
+  std::vector<double> state;
+};
+
+// Cells with no, one and three values, births that are not whole seconds and ids that
+// use all 64 bits.
+const std::vector<Appended> kCells = {
+    {2, 0.0, 0x8000000000000001ull, {}},
+    {0, 0.04, 42, {1.5}},
+    {1, -0.25, 0xfedcba9876543210ull, {-0.0, 3e-300, 7}},
+    {2, 4.04, 7, {}},
+    {0, 1e9, 0, {0.1}},
+};
+
+void fill(Pool& pool) {
+  for (const Appended& cell : kCells)
+    pool.append({.master = cell.master, .birth = cell.birth, .id = cell.id}, cell.state.data(),
+                static_cast<uint32_t>(cell.state.size()));
+}
+
+void expectCell(const CellView& view, const Appended& cell, size_t index) {
+  EXPECT_EQ(view.index, index);
+  EXPECT_EQ(view.master, cell.master) << "cell " << index;
+  EXPECT_EQ(std::bit_cast<uint64_t>(view.birth), std::bit_cast<uint64_t>(cell.birth)) << "cell " << index;
+  EXPECT_EQ(view.id, cell.id) << "cell " << index;
+  for (size_t k = 0; k < cell.state.size(); ++k)
+    EXPECT_EQ(std::bit_cast<uint64_t>(view.state[k]), std::bit_cast<uint64_t>(cell.state[k]))
+        << "cell " << index << ", value " << k;
+}
+
+void expectWalk(const Pool& pool) {
+  ASSERT_EQ(pool.size(), kCells.size());
+  size_t index = 0;
+  CellCursor cursor = pool.cursor();
+  EXPECT_EQ(cursor.size(), kCells.size());
+  for (; !cursor.done(); cursor.next(), ++index) {
+    ASSERT_LT(index, kCells.size());
+    EXPECT_EQ(cursor.index(), index);
+    EXPECT_EQ(cursor.master(), kCells[index].master);
+    EXPECT_EQ(cursor.id(), kCells[index].id);
+    EXPECT_EQ(std::bit_cast<uint64_t>(cursor.birth()), std::bit_cast<uint64_t>(kCells[index].birth));
+    expectCell(cursor.view(), kCells[index], index);
+    expectCell(pool.cellAt(index), kCells[index], index);
+  }
+  EXPECT_EQ(index, kCells.size());
+}
+
+TEST(CellCursor, WalksALinearPoolInOrder) {
+  LinearPool pool;
+  fill(pool);
+  expectWalk(pool);
+}
+
+TEST(CellCursor, WalksASpatialPoolInOrder) {
+  SpatialPool pool;
+  fill(pool);
+  expectWalk(pool);
+}
+
+TEST(CellCursor, AnEmptyPoolIsDoneAtOnce) {
+  LinearPool pool;
+  EXPECT_TRUE(pool.cursor().done());
+  EXPECT_EQ(pool.cursor().size(), 0u);
+}
+
+// interpreters/, apps/ and bench/ read cells through the cursor and cellAt only: none
+// of their sources names the record, the record array or a record's state offset.
+TEST(CellCursor, NoReaderOutsidePoolsAndCoreSeesTheRecord) {
+  namespace fs = std::filesystem;
+  const fs::path root = ONTOGEN_SOURCE_DIR;
+  size_t files = 0;
+  for (const char* folder : {"interpreters", "apps", "bench"}) {
+    for (const auto& entry : fs::recursive_directory_iterator(root / folder)) {
+      const std::string extension = entry.path().extension().string();
+      if (!entry.is_regular_file() || (extension != ".h" && extension != ".cpp")) continue;
+      ++files;
+      std::ifstream in(entry.path(), std::ios::binary);
+      std::ostringstream text;
+      text << in.rdbuf();
+      for (const char* name : {"CellRecord", ".cells()", "stateOf("})
+        EXPECT_EQ(text.str().find(name), std::string::npos)
+            << fs::relative(entry.path(), root).string() << " uses " << name << "; read cells with Pool::cursor()";
+    }
+  }
+  EXPECT_GT(files, 100u) << "the sources were not found under " << root;
+}
+
+}  // namespace
+}  // namespace ontogen
