@@ -59,6 +59,11 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     std::vector<LabelRule>& choices = labelRules_.emplace_back();
     if (labelsOnly_[m])
       for (const CompiledRule& rule : master.terminalRules) choices.push_back({&rule, rule.group, rule.hasContext()});
+    const bool fixed = master.terminalRules.empty() || (master.terminalRules.size() == 1 &&
+                                                        master.terminalRules.front().group == 0 &&
+                                                        !master.terminalRules.front().hasContext());
+    fixedChoice_.push_back(labelsOnly_[m] && fixed);
+    anyChoiceVaries_ = anyChoiceVaries_ || (labelsOnly_[m] && !fixed);
     allLabelsOnly_ = allLabelsOnly_ && labelsOnly_[m];
     double shortest = master.lifetime;  // a renewal
     for (const CompiledRule& rule : master.terminalRules) {
@@ -159,7 +164,9 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
     // As the serial pass finds it: a successor born at `death` that expires by the horizon.
     if (pass == Pass::ContextFree && death + shortestLife_[cell.master] <= step.horizon) slice.chained = true;
     const CompiledRule* rule = nullptr;
-    if (labelsOnly_[cell.master]) {
+    if (fixedChoice_[cell.master]) {
+      rule = master.terminalRules.empty() ? nullptr : &master.terminalRules.front();
+    } else if (labelsOnly_[cell.master]) {
       rule = chooseByLabels(pass, step, i, worker);
       chosen_[i] = rule ? static_cast<uint16_t>(rule - master.terminalRules.data() + 1) : 0;
     } else if (pass == Pass::ContextFree) {
@@ -215,7 +222,9 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
     }
     if (labelsOnly_[cell.master]) {
       // Nothing to evaluate: no frame, no random stream.
-      const CompiledRule* rule = chosen_[i] ? &master.terminalRules[chosen_[i] - 1u] : nullptr;
+      const CompiledRule* rule = fixedChoice_[cell.master]
+                                     ? (master.terminalRules.empty() ? nullptr : &master.terminalRules.front())
+                                     : (chosen_[i] ? &master.terminalRules[chosen_[i] - 1u] : nullptr);
       if (rule && rule->hasAction) {
         const EvalContext none{};
         worker.successors.write(*rule, cell, nullptr, death, BirthCause::Terminal, none, put);
@@ -275,7 +284,7 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
   if (!context.rewriteBySlices || (threads < 2 && !allLabelsOnly_) || size < kMinimumCells || context.lineage)
     return false;
   while (workers_.size() < threads) workers_.push_back(std::make_unique<Worker>(program_));
-  if (chosen_.size() < size) chosen_.resize(size);
+  if (anyChoiceVaries_ && chosen_.size() < size) chosen_.resize(size);
   const size_t sliceCount = std::min<size_t>(size, size_t{threads} * kSlicesPerThread);
   slices_.assign(sliceCount, Slice{});
   for (size_t s = 0; s < sliceCount; ++s) {

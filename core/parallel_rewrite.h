@@ -111,8 +111,13 @@ class ParallelRewrite {
   };
   std::vector<std::vector<LabelRule>> labelRules_;
   bool allLabelsOnly_ = true;
-  // Per cell of the word, for a master whose rules compare labels only: the rule the
-  // counting pass chose (1 + its index; 0: none), which the writing pass takes as it is.
+  // Per master whose rules compare labels only and whose choice is the same for every
+  // cell (one rule of group 0 without context, or none): that rule, or null.
+  std::vector<uint8_t> fixedChoice_;
+  bool anyChoiceVaries_ = false;
+  // Per cell of the word, for a master whose rules compare labels only and whose choice
+  // varies: the rule the counting pass chose (1 + its index; 0: none), which the writing
+  // pass takes as it is. Left empty when no master's choice varies (Koch, Thue-Morse).
   std::vector<uint16_t> chosen_;
   std::vector<double> shortestLife_;  // per master: the shortest lifetime of what its rule writes
   FunctionTable functions_;
