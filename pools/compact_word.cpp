@@ -151,6 +151,8 @@ void CompactWord::beginSlices(std::span<Slice> slices) {
     slice.tail_ = RunTail{};
     slice.sharedWords_.clear();
     slice.bitsWord_ = SIZE_MAX;
+    slice.out_ = {wide_ ? nullptr : labels8_.data(), wide_ ? labels16_.data() : nullptr, keys_.data(),
+                  birthIndex_.data(), firstK_.data(), values_.data()};
   }
 }
 
@@ -162,48 +164,14 @@ void CompactWord::endSlices(std::span<Slice> slices) {
     for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] |= bits;
 }
 
-void CompactWord::Slice::append(uint32_t label, IdKey key, double birth, const double* values) {
-  // Both passes make the same list of new births, so the indices agree.
-  const size_t local = birthIndexIn(births_, birth);
-  put(label, key, firstBirth_ + static_cast<uint32_t>(local), birth, values);
-}
-
-void CompactWord::Slice::appendCopy(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
-  put(label, key, birthIndex, from_->births_[birthIndex], values);
-}
-
-void CompactWord::Slice::put(uint32_t label, IdKey key, uint32_t birthIndex, double birth, const double* values) {
-  key = RunTail::normalised(key, kLargestRunK);
-  const bool startsRun = !tail_.continues(key, birth);
-  const uint32_t count = from_->stateCounts_[label];
-  if (word_) {
-    CompactWord& word = *word_;
-    const size_t i = firstModule_ + modules_;
-    if (i % kBlock == 0) {
-      word.blockRuns_[i / kBlock] = static_cast<uint32_t>(firstRun_ + runs_);
-      if (!word.stateless_) word.blockValues_[i / kBlock] = static_cast<uint32_t>(firstValue_ + values_);
-    }
-    if (i / kBlock != bitsWord_) {
-      flushBits();
-      bitsWord_ = i / kBlock;
-      bits_ = 0;
-    }
-    if (startsRun) {
-      bits_ |= uint64_t{1} << (i % kBlock);
-      const size_t run = firstRun_ + runs_;
-      word.keys_[run] = key.key;
-      word.birthIndex_[run] = birthIndex;
-      word.firstK_[run] = key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k);
-    }
-    if (word.wide_)
-      word.labels16_[i] = static_cast<uint16_t>(label);
-    else
-      word.labels8_[i] = static_cast<uint8_t>(label);
-    std::copy(values, values + count, word.values_.data() + firstValue_ + values_);
+void CompactWord::Slice::startBlock(size_t i) {
+  if (i % kBlock == 0) {
+    word_->blockRuns_[i / kBlock] = static_cast<uint32_t>(firstRun_ + runs_);
+    if (!word_->stateless_) word_->blockValues_[i / kBlock] = static_cast<uint32_t>(firstValue_ + values_);
   }
-  ++modules_;
-  runs_ += startsRun ? 1 : 0;
-  values_ += count;
+  flushBits();
+  bitsWord_ = i / kBlock;
+  bits_ = 0;
 }
 
 void CompactWord::Slice::flushBits() {

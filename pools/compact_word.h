@@ -16,6 +16,7 @@
 // encoding of a word written serially is canonical. An id whose k is 255 or more, or one
 // that cannot be written as (key, k) at all, is kept whole in a run of its own.
 
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -195,9 +196,16 @@ class CompactWord::Slice {
   explicit Slice(const CompactWord& from) : from_(&from) {}
 
   /// A module born at `birth` (a birth the slice may have to add to the table).
-  void append(uint32_t label, IdKey key, double birth, const double* values);
+  void append(uint32_t label, IdKey key, double birth, const double* values) {
+    // Both passes make the same list of new births, so the indices agree.
+    if (births_.empty() || std::bit_cast<uint64_t>(births_.back()) != std::bit_cast<uint64_t>(birth)) [[unlikely]]
+      lastBorn_ = static_cast<uint32_t>(birthIndexIn(births_, birth));
+    put(label, key, firstBirth_ + lastBorn_, birth, values);
+  }
   /// A module copied from `from` with its birth index there.
-  void appendCopy(uint32_t label, IdKey key, uint32_t birthIndex, const double* values);
+  void appendCopy(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
+    put(label, key, birthIndex, from_->births_[birthIndex], values);
+  }
   /// After the slice's last append, in either pass.
   void finish();
 
@@ -207,7 +215,35 @@ class CompactWord::Slice {
 
  private:
   friend class CompactWord;
-  void put(uint32_t label, IdKey key, uint32_t birthIndex, double birth, const double* values);
+  void put(uint32_t label, IdKey key, uint32_t birthIndex, double birth, const double* values) {
+    key = RunTail::normalised(key, kLargestRunK);
+    const bool startsRun = !tail_.continues(key, birth);
+    const uint32_t count = from_->stateCounts_[label];
+    if (word_) write(label, key, birthIndex, values, count, startsRun);
+    ++modules_;
+    runs_ += startsRun ? 1 : 0;
+    values_ += count;
+  }
+  void write(uint32_t label, IdKey key, uint32_t birthIndex, const double* values, uint32_t count, bool startsRun) {
+    const size_t i = firstModule_ + modules_;
+    if (i % kBlock == 0 || bitsWord_ == SIZE_MAX) [[unlikely]]
+      startBlock(i);
+    if (startsRun) {
+      bits_ |= uint64_t{1} << (i % kBlock);
+      const size_t run = firstRun_ + runs_;
+      out_.keys[run] = key.key;
+      out_.birthIndex[run] = birthIndex;
+      out_.firstK[run] = key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k);
+    }
+    if (out_.labels8)
+      out_.labels8[i] = static_cast<uint8_t>(label);
+    else
+      out_.labels16[i] = static_cast<uint16_t>(label);
+    double* to = out_.values + firstValue_ + values_;
+    for (uint32_t v = 0; v < count; ++v) to[v] = values[v];
+  }
+  /// At module i: the block index entry of a block starting there, and a new bitmap word.
+  void startBlock(size_t i);
   void flushBits();
 
   const CompactWord* from_;
@@ -215,6 +251,15 @@ class CompactWord::Slice {
   size_t modules_ = 0, runs_ = 0, values_ = 0;
   RunTail tail_;
   std::vector<double> births_;  // new births, in order of first use
+  uint32_t lastBorn_ = 0;       // index in births_ of the last new birth appended
+  struct {
+    uint8_t* labels8 = nullptr;
+    uint16_t* labels16 = nullptr;
+    uint64_t* keys = nullptr;
+    uint32_t* birthIndex = nullptr;
+    uint8_t* firstK = nullptr;
+    double* values = nullptr;
+  } out_;  // the word's arrays, while writing
   // Where the slice writes: its first module, run, value and new birth in the word.
   size_t firstModule_ = 0, firstRun_ = 0, firstValue_ = 0;
   uint32_t firstBirth_ = 0;
@@ -232,24 +277,38 @@ class CompactWord::Slice {
 /// only when asked. Invalid once the word changes.
 class CompactWordCursor {
  public:
-  explicit CompactWordCursor(const CompactWord& word) : word_(&word) {}
+  explicit CompactWordCursor(const CompactWord& word, size_t first = 0)
+      : word_(&word),
+        labels8_(word.wide_ ? nullptr : word.labels8_.data()),
+        labels16_(word.wide_ ? word.labels16_.data() : nullptr),
+        runStarts_(word.runStarts_.data()),
+        stateCounts_(word.stateCounts_.data()),
+        size_(word.size_),
+        stateless_(word.stateless_),
+        index_(first) {
+    if (first == 0 || first >= size_) return;
+    const CompactWord::Place place = word.locate(first);
+    run_ = place.run;
+    j_ = place.j;
+    value_ = place.value;
+  }
 
-  bool done() const { return index_ >= word_->size_; }
+  bool done() const { return index_ >= size_; }
   void next() {
-    value_ += word_->stateCounts_[word_->label(index_)];
-    if (++index_ >= word_->size_) return;
-    if (word_->startsRun(index_)) {
+    if (!stateless_) value_ += stateCounts_[master()];
+    if (++index_ >= size_) return;
+    if ((runStarts_[index_ / CompactWord::kBlock] >> (index_ % CompactWord::kBlock)) & 1u) {
       ++run_;
       j_ = 0;
     } else {
       ++j_;
     }
   }
-  size_t size() const { return word_->size_; }
+  size_t size() const { return size_; }
 
   // The module under the cursor (not done()).
   size_t index() const { return index_; }
-  uint32_t master() const { return word_->label(index_); }
+  uint32_t master() const { return labels8_ ? labels8_[index_] : labels16_[index_]; }
   const double* state() const { return word_->values_.data() + value_; }
   double birth() const { return word_->birthOf(run_); }
   uint32_t birthIndex() const { return word_->birthIndex_[run_]; }
@@ -259,6 +318,12 @@ class CompactWordCursor {
 
  private:
   const CompactWord* word_;
+  const uint8_t* labels8_;    // null for a word of two-byte labels
+  const uint16_t* labels16_;
+  const uint64_t* runStarts_;
+  const uint32_t* stateCounts_;
+  size_t size_;
+  bool stateless_;
   size_t index_ = 0, run_ = 0, value_ = 0;
   uint32_t j_ = 0;
 };

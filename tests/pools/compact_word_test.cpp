@@ -35,6 +35,11 @@ void expectWordReadsAs(const CompactWord& word, const std::vector<Expected>& exp
     expectSameModule(word.cellAt(i), expected[i], i);
   }
   EXPECT_EQ(i, expected.size());
+  // A cursor may also start anywhere, as a thread starts its slice.
+  for (size_t first = 0; first < expected.size(); first += 1 + first / 3) {
+    CompactWordCursor cell(word, first);
+    for (size_t k = 0; k < 70 && !cell.done(); ++k, cell.next()) expectSameModule(cell.view(), expected[first + k], first + k);
+  }
 }
 
 TEST(CompactWord, ASuccessorsEventIsOneRunAndTheIdsAreTheLineages) {
