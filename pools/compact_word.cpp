@@ -65,7 +65,7 @@ size_t CompactWord::birthIndexIn(std::vector<double>& births, double birth) {
   return births.size() - 1;
 }
 
-uint32_t CompactWord::birthIndexOf(double birth) {
+uint32_t CompactWord::addBirth(double birth) {
   const size_t index = birthIndexIn(births_, birth);
   if (index >= UINT32_MAX) throw std::length_error("ontogen: a linear word with 2^32 distinct birth times");
   return static_cast<uint32_t>(index);

@@ -102,7 +102,11 @@ class CompactWord {
   void reserve(size_t modules, size_t runs, size_t values);
   /// The index of `birth` in the table: one of the last few entries when its bits match,
   /// else a new entry.
-  uint32_t birthIndexOf(double birth);
+  uint32_t birthIndexOf(double birth) {
+    if (!births_.empty() && std::bit_cast<uint64_t>(births_.back()) == std::bit_cast<uint64_t>(birth)) [[likely]]
+      return static_cast<uint32_t>(births_.size() - 1);
+    return addBirth(birth);
+  }
   /// Appends a module with label `label` (below the label count), id `key`, birth
   /// births()[birthIndex], and the label's state count of values from `values`.
   void append(uint32_t label, IdKey key, uint32_t birthIndex, const double* values);
@@ -166,6 +170,7 @@ class CompactWord {
   /// Where the next new birth of a writer goes: one of the last few of `births` whose bits
   /// match, or a new entry.
   static size_t birthIndexIn(std::vector<double>& births, double birth);
+  uint32_t addBirth(double birth);
 
   std::vector<uint32_t> stateCounts_;
   bool wide_ = false;
