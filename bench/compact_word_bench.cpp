@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "bench/bench_support.h"
 #include "core/parallel_for.h"
 #include "pools/compact_word.h"
 
@@ -51,7 +52,9 @@ void BM_KochCompactWord(benchmark::State& state) {
   for (int i = 0; i < n; ++i) fives *= 5;
   const uint64_t expected = 2 * fives - 1;
   double bytesPerModule = 0;
+  FirstAndWarm firstAndWarm;
   for (auto _ : state) {
+    const double start = processSeconds();
     CompactWord word({0, 0, 0}), next({0, 0, 0});
     word.append(kF, IdKey{mixKey(1, 0), 0}, 0.0, nullptr);
     for (int generation = 1; generation <= n; ++generation) {
@@ -78,6 +81,7 @@ void BM_KochCompactWord(benchmark::State& state) {
       next.finish();
       std::swap(word, next);
     }
+    firstAndWarm.add(processSeconds() - start);
     benchmark::DoNotOptimize(word.labels8().data());
     if (word.size() != expected || word.label(0) != kF || word.label(1) != 1) {
       state.SkipWithError("compact Koch: wrong word");
@@ -88,6 +92,7 @@ void BM_KochCompactWord(benchmark::State& state) {
   state.counters["modules/s"] = benchmark::Counter(static_cast<double>(expected) * static_cast<double>(state.iterations()),
                                                    benchmark::Counter::kIsRate);
   state.counters["bytes/module"] = bytesPerModule;
+  firstAndWarm.report(state);
 }
 BENCHMARK(BM_KochCompactWord)
     ->Args({10, 0})
