@@ -42,6 +42,33 @@ bool comparesLabelsOnly(const Program& program, const MasterCell& master) {
 }
 }  // namespace
 
+ParallelRewrite::LabelRule ParallelRewrite::labelRule(const Program& program, const CompiledRule& rule) const {
+  LabelRule choice{&rule, rule.group, rule.hasContext()};
+  if (rule.hasAction)
+    for (const SuccessorTemplate& successor : rule.successors) {
+      ++choice.cells;
+      choice.values += successor.isMe ? 0 : program.masters[successor.master].stateCount();
+      choice.born += successor.isMe ? 0 : 1;
+    }
+  auto code = [](const ContextItem& item) {
+    switch (item.kind) {
+      case ContextItem::Kind::Module: return static_cast<int32_t>(item.master);
+      case ContextItem::Kind::Any: return kAnyLabel;
+      case ContextItem::Kind::End: return kEndLabel;
+      default: return kNoMatch;  // a bracket, in a word that has none
+    }
+  };
+  if (plain_ && rule.leftItems.size() <= kPositionItems && rule.rightItems.size() <= kPositionItems &&
+      rule.symbolClasses < 0) {
+    choice.byPosition = true;
+    choice.leftCount = static_cast<uint8_t>(rule.leftItems.size());
+    choice.rightCount = static_cast<uint8_t>(rule.rightItems.size());
+    for (size_t k = 0; k < rule.leftItems.size(); ++k) choice.left[k] = code(rule.leftItems[k]);
+    for (size_t k = 0; k < rule.rightItems.size(); ++k) choice.right[k] = code(rule.rightItems[k]);
+  }
+  return choice;
+}
+
 ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition& system)
     : program_(program), system_(system), functions_(program.functionTable()), frameSize_(ruleFrameSize(program)) {
   for (uint8_t symbolClass : system.symbolClass)
@@ -58,7 +85,7 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     labelsOnly_[m] = comparesLabelsOnly(program, master) && master.terminalRules.size() < UINT16_MAX;
     std::vector<LabelRule>& choices = labelRules_.emplace_back();
     if (labelsOnly_[m])
-      for (const CompiledRule& rule : master.terminalRules) choices.push_back({&rule, rule.group, rule.hasContext()});
+      for (const CompiledRule& rule : master.terminalRules) choices.push_back(labelRule(program, rule));
     const bool fixed = master.terminalRules.empty() || (master.terminalRules.size() == 1 &&
                                                         master.terminalRules.front().group == 0 &&
                                                         !master.terminalRules.front().hasContext());
@@ -109,12 +136,32 @@ bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, 
   return true;
 }
 
-const CompiledRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const {
+// As matchesLabels in a plain word, from the codes labelRule made.
+inline bool ParallelRewrite::matchesByPosition(const Step& step, const LabelRule& choice, size_t i) const {
+  const auto cells = step.pool.cells();
+  for (size_t k = 0; k < choice.leftCount; ++k) {
+    const int32_t expected = choice.left[k];
+    if (i < k + 1) return expected == kEndLabel;  // the start of the word
+    if (expected != kAnyLabel && (expected < 0 || cells[i - 1 - k].master != static_cast<uint32_t>(expected)))
+      return false;
+  }
+  for (size_t k = 0; k < choice.rightCount; ++k) {
+    const int32_t expected = choice.right[k];
+    if (i + 1 + k >= cells.size()) return expected == kEndLabel;  // the end of the word
+    if (expected != kAnyLabel && (expected < 0 || cells[i + 1 + k].master != static_cast<uint32_t>(expected)))
+      return false;
+  }
+  return true;
+}
+
+inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const {
   const CellRecord& cell = step.pool.cells()[i];
   for (const LabelRule& choice : labelRules_[cell.master]) {
     if (choice.group != 0 && choice.group != step.group) continue;
-    if (!choice.context || (pass == Pass::AtInstant && matchesLabels(step, *choice.rule, i, worker)))
-      return choice.rule;
+    if (!choice.context) return &choice;
+    if (pass != Pass::AtInstant) continue;
+    if (choice.byPosition ? matchesByPosition(step, choice, i) : matchesLabels(step, *choice.rule, i, worker))
+      return &choice;
   }
   return nullptr;
 }
@@ -163,13 +210,23 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
     ++slice.events;
     // As the serial pass finds it: a successor born at `death` that expires by the horizon.
     if (pass == Pass::ContextFree && death + shortestLife_[cell.master] <= step.horizon) slice.chained = true;
+    if (labelsOnly_[cell.master]) {
+      const std::vector<LabelRule>& rules = labelRules_[cell.master];
+      const LabelRule* choice = fixedChoice_[cell.master] ? (rules.empty() ? nullptr : &rules.front())
+                                                           : chooseByLabels(pass, step, i, worker);
+      if (!fixedChoice_[cell.master])
+        chosen_[i] = choice ? static_cast<uint16_t>(choice->rule - master.terminalRules.data() + 1) : 0;
+      if (choice && choice->rule->hasAction) {
+        slice.cells += choice->cells;
+        slice.values += choice->values;
+        slice.born += choice->born;
+      } else {
+        ++slice.cells;  // renewed, without state
+      }
+      continue;
+    }
     const CompiledRule* rule = nullptr;
-    if (fixedChoice_[cell.master]) {
-      rule = master.terminalRules.empty() ? nullptr : &master.terminalRules.front();
-    } else if (labelsOnly_[cell.master]) {
-      rule = chooseByLabels(pass, step, i, worker);
-      chosen_[i] = rule ? static_cast<uint16_t>(rule - master.terminalRules.data() + 1) : 0;
-    } else if (pass == Pass::ContextFree) {
+    if (pass == Pass::ContextFree) {
       // No choice to make (at most one rule, of group 0, without condition, chance or
       // context): what it writes is counted without loading the cell's frame.
       rule = master.terminalRules.empty() ? nullptr : &master.terminalRules.front();

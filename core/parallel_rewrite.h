@@ -92,8 +92,7 @@ class ParallelRewrite {
   /// context's values bound; as LinearDevelopment::expire chooses.
   const CompiledRule* choose(Pass pass, const Step& step, size_t i, double death, Worker& worker,
                              RandomStream& random, const EvalContext& evaluation) const;
-  /// The same for a master whose rules compare labels only: no frame, no random stream.
-  const CompiledRule* chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const;
+
   bool matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const;
 
   const Program& program_;
@@ -108,7 +107,21 @@ class ParallelRewrite {
     const CompiledRule* rule;
     int group;
     bool context;
+    // What the rule writes when it fires: cells, state values and cells born.
+    uint32_t cells = 0, values = 0, born = 0;
+    // In a plain word, a context of at most kPositionItems modules a side compared by
+    // position: per item the master expected there, or kAnyLabel, kEndLabel, kNoMatch.
+    bool byPosition = false;
+    uint8_t leftCount = 0, rightCount = 0;
+    int32_t left[4] = {}, right[4] = {};
   };
+  static constexpr size_t kPositionItems = 4;
+  static constexpr int32_t kAnyLabel = -1, kEndLabel = -2, kNoMatch = -3;
+  LabelRule labelRule(const Program& program, const CompiledRule& rule) const;
+  bool matchesByPosition(const Step& step, const LabelRule& choice, size_t i) const;
+  /// The rule a master whose rules compare labels only chooses for cell i (null: it renews
+  /// itself): no frame, no random stream.
+  const LabelRule* chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const;
   std::vector<std::vector<LabelRule>> labelRules_;
   bool allLabelsOnly_ = true;
   // Per master whose rules compare labels only and whose choice is the same for every

@@ -164,13 +164,14 @@ TEST(ParallelRewrite, ALabelOnlyContextIsWrittenAsTheSerialPassWritesIt) {
   }
 }
 
-// Labels only, with two modules of left context, right context and the word's ends: in
-// a word of plain modules (matched by position) and in one with branches and an ignored
-// module (matched through the bracket index).
+// Labels only, with two modules of left context, right context, the wildcard and the
+// word's ends: in a word of plain modules (matched by position) and in one with branches
+// and an ignored module (matched through the bracket index).
 std::string labelContextProgram(bool branches) {
   std::string axiom;
   for (int i = 0; i < 12'000; ++i) axiom += branches ? (i % 3 ? " a b c" : " a [ b c ] d") : (i % 3 ? " a b c" : " a b d");
   return "lsystem l {\n  axiom" + axiom + "\n" + (branches ? "  ignore: d\n" : "") +
+         "  ∅ < a -> d\n  c > * ∅ -> a\n  b * < c -> d\n"
          "  a b < c -> a\n  c > a -> b\n  a < b > c -> c\n  d < a -> d\n  b -> a\n  d -> c\n}\n";
 }
 
