@@ -133,7 +133,8 @@ void GridDevelopment::applyStepRules(StepContext& context) {
                  const size_t logged = out.lineage.size();
                  out.born += successors.write(
                      *action, cell, frame, t, BirthCause::StepRule, evaluation,
-                     [&](CellRecord born, const double* values, uint32_t count) {
+                     [&](const ModuleValue& module, const double* values, uint32_t count) {
+                       CellRecord born = recordOf(module);
                        if (first) {
                          born.state = static_cast<uint32_t>(out.state.size());
                          out.state.insert(out.state.end(), values, values + count);

@@ -76,8 +76,8 @@ void HomomorphismImage::rewrite(const CellRecord& cell, const double* state, siz
   salted.id = cell.id ^ kHomomorphismSalt;
   // Keyed by the birth, not the time, so the image's ids stay the same from frame to frame.
   successors_.write(*rule, salted, frame, cell.birth, BirthCause::Terminal, context,
-                    [&](const CellRecord& made, const double* values, uint32_t) {
-                      CellRecord image = made;
+                    [&](const ModuleValue& made, const double* values, uint32_t) {
+                      CellRecord image = recordOf(made);
                       image.birth = cell.birth;
                       rewrite(image, values, source, depth + 1);
                     });

@@ -265,7 +265,7 @@ void LinearDevelopment::emitSuccessors(const CompiledRule& rule, const CellRecor
                                        double when, BirthCause cause, const EvalContext& context) {
   context_->stats.cellsBorn += successors_.write(
       rule, cell, frame, when, cause, context,
-      [this](const CellRecord& born, const double* values, uint32_t count) { emit(born, values, count); });
+      [this](const ModuleValue& born, const double* values, uint32_t count) { emit(recordOf(born), values, count); });
 }
 
 // Without context in terminal rules, each cell develops on its own: expand it, and its
@@ -502,7 +502,9 @@ void LinearDevelopment::decompose(const CellRecord& cell, const double* state, d
   checkEventLimit(++eventsThisStep_, when, context_->limits);
   context_->stats.cellsBorn += successors_.write(
       *rule, cell, frame, when, BirthCause::Terminal, context,
-      [&](const CellRecord& born, const double* values, uint32_t) { decompose(born, values, when, position, depth + 1); });
+      [&](const ModuleValue& born, const double* values, uint32_t) {
+        decompose(recordOf(born), values, when, position, depth + 1);
+      });
 }
 
 }  // namespace ontogen

@@ -82,7 +82,10 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
                  if (!action)
                    emit(cell, frame, program.masters[cell.master].stateCount());
                  else
-                   out.born += successors.write(*action, cell, frame, t, BirthCause::StepRule, evaluation, emit);
+                   out.born += successors.write(*action, cell, frame, t, BirthCause::StepRule, evaluation,
+                                                [&](const ModuleValue& module, const double* values, uint32_t count) {
+                                                  emit(recordOf(module), values, count);
+                                                });
                  meter.update(out.metered, out.cells.size(),
                               out.cells.size() * sizeof(CellRecord) + out.state.size() * sizeof(double));
                },
