@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "lang/random.h"
+#include "pools/cell_cursor.h"
 #include "pools/cell_record.h"
 
 namespace ontogen {
@@ -34,6 +35,9 @@ struct ModuleValue {
 
 /// The module a stored record holds (its id as its key).
 inline ModuleValue moduleOf(const CellRecord& cell) { return {cell.master, ModuleValue::kOwnId, cell.birth, cell.id}; }
+
+/// The module of a cell as a cursor gives it (its id as its key).
+inline ModuleValue moduleOf(const CellView& cell) { return {cell.master, ModuleValue::kOwnId, cell.birth, cell.id}; }
 
 /// The record a pool stores for `module`; its `state` offset is left for the pool to set.
 inline CellRecord recordOf(const ModuleValue& module) { return {module.master, 0, module.birth, module.id()}; }
