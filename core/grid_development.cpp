@@ -117,7 +117,7 @@ void GridDevelopment::applyStepRules(StepContext& context) {
   std::vector<ChunkResult> results;
   GrowthMeter meter(context, WorldHeld{grid_.size(), grid_.bytes()});
   runStepRules(program, context, view_, results,
-               [&](ChunkResult& out, size_t i, const CellRecord& cell, double* frame, const CompiledRule* action,
+               [&](ChunkResult& out, size_t i, const CellView& cell, double* frame, const CompiledRule* action,
                    const EvalContext& evaluation, SuccessorWriter& successors) {
                  const uint32_t n = program.masters[cell.master].stateCount();
                  const uint32_t site = grid_.siteOf(i);
@@ -132,8 +132,9 @@ void GridDevelopment::applyStepRules(StepContext& context) {
                  bool first = true;
                  const size_t logged = out.lineage.size();
                  out.born += successors.write(
-                     *action, cell, frame, t, BirthCause::StepRule, evaluation,
-                     [&](CellRecord born, const double* values, uint32_t count) {
+                     *action, moduleOf(cell), frame, t, BirthCause::StepRule, evaluation,
+                     [&](const ModuleValue& module, const double* values, uint32_t count) {
+                       CellRecord born = recordOf(module);
                        if (first) {
                          born.state = static_cast<uint32_t>(out.state.size());
                          out.state.insert(out.state.end(), values, values + count);

@@ -21,21 +21,21 @@ HomomorphismImage::HomomorphismImage(const World& world)
           word_ = std::make_unique<LinearPool>(static_cast<const LinearPool&>(pool));
           word_->indexBranches(world.rootSystem().symbolClass);
         }
-  const auto cells = pool.cells();
-  cells_.reserve(cells.size());
-  for (size_t i = 0; i < cells.size(); ++i) rewrite(cells[i], pool.stateOf(cells[i]), i, 1);
+  cells_.reserve(pool.size());
+  for (CellCursor cell = pool.cursor(); !cell.done(); cell.next())
+    rewrite(moduleOf(cell.view()), cell.state(), cell.index(), 1);
 }
 
-void HomomorphismImage::push(const CellRecord& cell, const double* state, size_t source) {
+void HomomorphismImage::push(const ModuleValue& cell, const double* state, size_t source) {
   const uint32_t n = world_.program().masters[cell.master].stateCount();
-  CellRecord copy = cell;
+  CellRecord copy = recordOf(cell);
   copy.state = static_cast<uint32_t>(state_.size());
   state_.insert(state_.end(), state, state + n);
   cells_.push_back(copy);
   sources_.push_back(source);
 }
 
-void HomomorphismImage::rewrite(const CellRecord& cell, const double* state, size_t source, int depth) {
+void HomomorphismImage::rewrite(const ModuleValue& cell, const double* state, size_t source, int depth) {
   const Program& program = world_.program();
   const MasterCell& master = program.masters[cell.master];
   if (master.homomorphismRules.empty() || depth > world_.rootSystem().homomorphismDepth) {
@@ -46,8 +46,10 @@ void HomomorphismImage::rewrite(const CellRecord& cell, const double* state, siz
   frameAtDepth.resize(ruleFrameSize(program));
   double* frame = frameAtDepth.data();
   const double time = world_.time();
-  loadCellFrame(frame, master, cell, state, time, world_.positionOf(source), -1);
-  RandomStream random(mixKey(mixKey(world_.seed() ^ kHomomorphismSalt, cell.id), keyOf(time)));
+  const uint64_t id = cell.id();
+  loadCellFrame(frame, master, CellView{cell.master, state, cell.birth, id, source}, time, world_.positionOf(source),
+                -1);
+  RandomStream random(mixKey(mixKey(world_.seed() ^ kHomomorphismSalt, id), keyOf(time)));
   const FunctionTable functions = program.functionTable();
   EvalContext context{frame, EvalEnvironment{&random, world_.seed()}, &functions};
   context.ancestors = world_.ancestorValues();
@@ -72,12 +74,11 @@ void HomomorphismImage::rewrite(const CellRecord& cell, const double* state, siz
   if (!rule->probability.empty()) contextHolds(*rule);  // rebind its values
   // The image's modules stand for the module they come from: its birth, ids of its own
   // (salted apart from the ids of its real successors).
-  CellRecord salted = cell;
-  salted.id = cell.id ^ kHomomorphismSalt;
+  const ModuleValue salted{cell.master, ModuleValue::kOwnId, cell.birth, id ^ kHomomorphismSalt};
   // Keyed by the birth, not the time, so the image's ids stay the same from frame to frame.
   successors_.write(*rule, salted, frame, cell.birth, BirthCause::Terminal, context,
-                    [&](const CellRecord& made, const double* values, uint32_t) {
-                      CellRecord image = made;
+                    [&](const ModuleValue& made, const double* values, uint32_t) {
+                      ModuleValue image = made;
                       image.birth = cell.birth;
                       rewrite(image, values, source, depth + 1);
                     });

@@ -26,16 +26,14 @@ class HomomorphismImage {
   /// homomorphism rules is its own image.
   explicit HomomorphismImage(const World& world);
 
-  std::span<const CellRecord> cells() const { return cells_; }
   /// A cursor at the image's first cell (pools/cell_cursor.h).
   CellCursor cursor() const { return CellCursor(cells_, state_.data()); }
-  const double* stateOf(const CellRecord& cell) const { return state_.data() + cell.state; }
   /// Index in the world's word of the module the i-th cell of the image comes from.
   size_t sourceOf(size_t i) const { return sources_[i]; }
 
  private:
-  void rewrite(const CellRecord& cell, const double* state, size_t source, int depth);
-  void push(const CellRecord& cell, const double* state, size_t source);
+  void rewrite(const ModuleValue& cell, const double* state, size_t source, int depth);
+  void push(const ModuleValue& cell, const double* state, size_t source);
 
   const World& world_;
   SuccessorWriter successors_;

@@ -44,18 +44,18 @@ LinearDevelopment::LinearDevelopment(const LinearDevelopment& other)
 // me.parent of every cell of the word as it is now (core/parents.h).
 void LinearDevelopment::findParents() {
   if (!readsParents_) return;
-  const auto cells = pool_.cells();
-  axialParents(cells, program_.masters, parentIndex_);
-  parentValues_.resize(cells.size());
-  for (size_t i = 0; i < cells.size(); ++i)
-    parentValues_[i] = parentIndex_[i] < 0 ? context_->systemCellId : idValue(cells[parentIndex_[i]].id);
+  axialParents(pool_.cursor(), program_.masters, parentIndex_);
+  parentValues_.resize(pool_.size());
+  for (size_t i = 0; i < parentValues_.size(); ++i)
+    parentValues_[i] = parentIndex_[i] < 0 ? context_->systemCellId
+                                           : idValue(pool_.cellAt(static_cast<size_t>(parentIndex_[i])).id);
 }
 
 double LinearDevelopment::earliestDeath() {
   if (earliestVersion_ != pool_.structureVersion()) {
     double earliest = kForever;
-    for (const CellRecord& cell : pool_.cells())
-      earliest = std::min(earliest, cell.birth + program_.masters[cell.master].lifetime);
+    for (CellCursor cell = pool_.cursor(); !cell.done(); cell.next())
+      earliest = std::min(earliest, cell.birth() + program_.masters[cell.master()].lifetime);
     earliestDeath_ = earliest;
     earliestVersion_ = pool_.structureVersion();
   }
@@ -67,8 +67,8 @@ double LinearDevelopment::earliestDeath() {
 bool LinearDevelopment::anyExpires(double horizon) {
   if (earliestVersion_ == pool_.structureVersion()) return earliestDeath_ <= horizon;
   double earliest = kForever;
-  for (const CellRecord& cell : pool_.cells()) {
-    const double death = cell.birth + program_.masters[cell.master].lifetime;
+  for (CellCursor cell = pool_.cursor(); !cell.done(); cell.next()) {
+    const double death = cell.birth() + program_.masters[cell.master()].lifetime;
     if (death <= horizon) return true;
     earliest = std::min(earliest, death);
   }
@@ -265,7 +265,7 @@ void LinearDevelopment::emitSuccessors(const CompiledRule& rule, const CellRecor
                                        double when, BirthCause cause, const EvalContext& context) {
   context_->stats.cellsBorn += successors_.write(
       rule, cell, frame, when, cause, context,
-      [this](const CellRecord& born, const double* values, uint32_t count) { emit(born, values, count); });
+      [this](const ModuleValue& born, const double* values, uint32_t count) { emit(recordOf(born), values, count); });
 }
 
 // Without context in terminal rules, each cell develops on its own: expand it, and its
@@ -502,7 +502,9 @@ void LinearDevelopment::decompose(const CellRecord& cell, const double* state, d
   checkEventLimit(++eventsThisStep_, when, context_->limits);
   context_->stats.cellsBorn += successors_.write(
       *rule, cell, frame, when, BirthCause::Terminal, context,
-      [&](const CellRecord& born, const double* values, uint32_t) { decompose(born, values, when, position, depth + 1); });
+      [&](const ModuleValue& born, const double* values, uint32_t) {
+        decompose(recordOf(born), values, when, position, depth + 1);
+      });
 }
 
 }  // namespace ontogen

@@ -266,6 +266,9 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
     std::copy(values, values + count, outValues + valueAt);
     valueAt += count;
   };
+  auto putModule = [&](const ModuleValue& module, const double* values, uint32_t count) {
+    put(recordOf(module), values, count);
+  };
   worker.frame.resize(frameSize_);
   double* frame = worker.frame.data();
   for (size_t i = slice.begin; i < slice.end; ++i) {
@@ -284,7 +287,7 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
                                      : (chosen_[i] ? &master.terminalRules[chosen_[i] - 1u] : nullptr);
       if (rule && rule->hasAction) {
         const EvalContext none{};
-        worker.successors.write(*rule, cell, nullptr, death, BirthCause::Terminal, none, put);
+        worker.successors.write(*rule, cell, nullptr, death, BirthCause::Terminal, none, putModule);
       } else {
         CellRecord renewed = cell;
         renewed.birth = death;
@@ -305,7 +308,7 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
       put(renewed, frame, n);
       continue;
     }
-    worker.successors.write(*rule, cell, frame, death, BirthCause::Terminal, evaluation, put);
+    worker.successors.write(*rule, cell, frame, death, BirthCause::Terminal, evaluation, putModule);
   }
   slice.earliestDeath = earliest;
   // Counting and writing choose alike by construction; a slice that wrote other than it

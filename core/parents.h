@@ -25,9 +25,9 @@ inline constexpr uint64_t kNoParent = ~uint64_t{0};
 /// For each cell of the world's pool (in pool order), the index of the cell it hangs
 /// from in the same pool, or -1 when it hangs from the pool's system cell (or nothing).
 std::vector<int64_t> parentIndices(const World& world);
-/// The same for the cells of a linear pool, into `out`.
-void axialParents(std::span<const CellRecord> cells, const std::vector<MasterCell>& masters,
-                  std::vector<int64_t>& out);
+/// The same for the cells of a linear pool, from `cells` (at its first) to the end, into
+/// `out`.
+void axialParents(CellCursor cells, const std::vector<MasterCell>& masters, std::vector<int64_t>& out);
 
 /// For each cell of the world's pool, its parent's stable id, or kNoParent.
 std::vector<uint64_t> parentIds(const World& world);
@@ -42,8 +42,9 @@ class AxialWalk {
  public:
   /// `above`: what the pool's first cells hang from (the system cell, or kNoParent).
   explicit AxialWalk(uint64_t above) : current_(above) {}
-  /// The parent id of the next cell, in pool order.
-  uint64_t next(const CellRecord& cell, const MasterCell& master) {
+  /// The parent id of the next cell, in pool order: the one under `cell`, whose id is
+  /// read only for nodes of the tree.
+  uint64_t next(const CellCursor& cell, const MasterCell& master) {
     const uint64_t parent = current_;
     if (master.symbolClass & kSymbolBranchOpen) {
       push(current_);
@@ -51,7 +52,7 @@ class AxialWalk {
       if (depth_ > 0) current_ = pop();  // an unbalanced `]` closes nothing
       return current_;
     } else if (isTreeNode(master)) {
-      current_ = cell.id;
+      current_ = cell.id();
     }
     return parent;
   }

@@ -77,21 +77,21 @@ RateIntegrator<View>::~RateIntegrator() = default;
 
 template <typename View>
 void RateIntegrator<View>::activate(const Pool& pool, double t0) {
-  const auto cells = pool.cells();
   const double* arena = pool.stateArena().data();
   chunkEquations_.resize(threads_);
   for (auto& chunk : chunkEquations_) chunk.clear();
-  parallelFor(cells.size(), threads_, [&](size_t begin, size_t end, unsigned worker) {
+  parallelFor(pool.size(), threads_, [&](size_t begin, size_t end, unsigned worker) {
     RuleEvaluator<View>& evaluator = *evaluators_[worker];
     LargeVector<Equation>& out = chunkEquations_[worker];
-    for (size_t i = begin; i < end; ++i) {
-      const MasterCell& master = program_.masters[cells[i].master];
+    for (CellCursor cell = pool.cursor(begin); cell.index() < end; cell.next()) {
+      const size_t i = cell.index();
+      const MasterCell& master = program_.masters[cell.master()];
       const size_t first = out.size();
       for (const CompiledRule& rule : master.rules) {
         if (!rule.hasRate) continue;
         double* frame = evaluator.load(i, arena, t0);
         if (!evaluator.bind(rule)) continue;
-        RandomStream random(mixKey(mixKey(seed_ ^ kRateSalt, cells[i].id), keyOf(t0)));
+        RandomStream random(mixKey(mixKey(seed_ ^ kRateSalt, cell.id()), keyOf(t0)));
         EvalContext context{frame, EvalEnvironment{&random, seed_}, &functions_, &evaluator};
         context.ancestors = ancestors_;
         if (!rule.predicate.empty() && rule.predicate.evaluate(context) == 0.0) continue;
@@ -117,8 +117,8 @@ void RateIntegrator<View>::activate(const Pool& pool, double t0) {
   stateOf_.resize(equations_.size());
   for (size_t e = 0; e < equations_.size(); ++e) {
     const Equation& equation = equations_[e];
-    const MasterCell& master = program_.masters[cells[equation.cell].master];
-    stateOf_[e] = cells[equation.cell].state;
+    const MasterCell& master = program_.masters[pool.cellAt(equation.cell).master];
+    stateOf_[e] = static_cast<uint32_t>(pool.stateOffset(equation.cell));
     batchable_[e] = !equation.draws &&
                     equation.calculation->value.batchable(static_cast<int>(master.stateCount()));
   }
@@ -127,7 +127,6 @@ void RateIntegrator<View>::activate(const Pool& pool, double t0) {
 template <typename View>
 void RateIntegrator<View>::derivative(const Pool& pool, const StateArray& x, StateArray& dxdt, double t) {
   std::fill(dxdt.begin(), dxdt.end(), 0.0);
-  const auto cells = pool.cells();
   parallelFor(equations_.size(), threads_, [&](size_t begin, size_t end, unsigned worker) {
     RuleEvaluator<View>& evaluator = *evaluators_[worker];
     RandomStream random;
@@ -165,11 +164,12 @@ void RateIntegrator<View>::derivative(const Pool& pool, const StateArray& x, Sta
       if (equation.cell != loadedCell || equation.rule != loadedRule) {
         context.frame = evaluator.load(equation.cell, x.data(), t);
         evaluator.bind(*equation.rule);  // the structure does not change while integrating
-        if (equation.draws) random = RandomStream(mixKey(mixKey(seed_ ^ kRateSalt, cells[equation.cell].id), keyOf(t)));
+        if (equation.draws)
+          random = RandomStream(mixKey(mixKey(seed_ ^ kRateSalt, pool.cellAt(equation.cell).id), keyOf(t)));
         loadedCell = equation.cell;
         loadedRule = equation.rule;
       }
-      dxdt[cells[equation.cell].state + equation.calculation->slot] = equation.calculation->value.evaluate(context);
+      dxdt[stateOf_[e] + equation.calculation->slot] = equation.calculation->value.evaluate(context);
     }
   });
 }
@@ -232,10 +232,10 @@ void RateIntegrator<View>::integrate(Pool& pool, const View& view, double t0, do
       }
     }
     // What the batches read of each neighbour, side by side rather than through its record.
-    const auto all = pool.cells();
     neighbourRefs_.resize(neighbourCells_.size());
     for (size_t k = 0; k < neighbourCells_.size(); ++k)
-      neighbourRefs_[k] = NeighbourRef{all[neighbourCells_[k]].master, all[neighbourCells_[k]].state};
+      neighbourRefs_[k] = NeighbourRef{pool.cellAt(neighbourCells_[k]).master,
+                                       static_cast<uint32_t>(pool.stateOffset(neighbourCells_[k]))};
   }
   for (auto& evaluator : evaluators_)
     evaluator->useNeighbourTable(aggregates ? neighbourOffsets_.data() : nullptr,

@@ -34,12 +34,13 @@ class RuleEvaluator final : public NeighbourAggregates {
     arena_ = arena;
     neighbourCount_ = -1;
     rule_ = nullptr;
-    const CellRecord& cell = pool_.cells()[i];
+    const CellView cell = pool_.cellAt(i);
     const MasterCell& master = program_.masters[cell.master];
     const uint32_t n = master.stateCount();
     double* frame = frame_.data();
-    std::copy(arena + cell.state, arena + cell.state + n, frame);
-    loadAgeAndId(frame + n, cell, master.lifetime, time);
+    const double* state = arena + pool_.stateOffset(i);
+    std::copy(state, state + n, frame);
+    loadAgeAndId(frame + n, cell.birth, cell.id, master.lifetime, time);
     // Positions cost a lookup in grids and spatial pools: only for masters that read them.
     if (master.readsPosition || master.readsParent)
       loadPlace(frame + n, master.readsPosition ? view_.position(i) : std::array<double, 3>{},
@@ -100,12 +101,11 @@ bool RuleEvaluator<View>::bind(const CompiledRule& rule) {
   rule_ = &rule;
   if (!rule.hasContext()) return true;
   if (!view_.matchContext(rule, cell_, left_, right_)) return false;
-  const auto cells = pool_.cells();
   auto copy = [&](const std::vector<ContextBinding>& bindings, const uint32_t* matched) {
     for (size_t k = 0; k < bindings.size(); ++k) {
       const ContextBinding& binding = bindings[k];
       if (binding.count == 0) continue;
-      const double* values = arena_ + cells[matched[k]].state;
+      const double* values = arena_ + pool_.stateOffset(matched[k]);
       std::copy(values, values + binding.count, frame_.data() + binding.firstSlot);
     }
   };

@@ -71,7 +71,7 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
   std::vector<ChunkResult> results;
   GrowthMeter meter(context, WorldHeld{pool_.size(), pool_.bytes()});
   runStepRules(program, context, view_, results,
-               [&](ChunkResult& out, size_t, const CellRecord& cell, double* frame, const CompiledRule* action,
+               [&](ChunkResult& out, size_t, const CellView& cell, double* frame, const CompiledRule* action,
                    const EvalContext& evaluation, SuccessorWriter& successors) {
                  // Successors take the cell's place in pool order, as in a linear pool.
                  auto emit = [&](CellRecord record, const double* values, uint32_t count) {
@@ -80,9 +80,12 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
                    out.cells.push_back(record);
                  };
                  if (!action)
-                   emit(cell, frame, program.masters[cell.master].stateCount());
+                   emit(CellRecord{cell.master, 0, cell.birth, cell.id}, frame, program.masters[cell.master].stateCount());
                  else
-                   out.born += successors.write(*action, cell, frame, t, BirthCause::StepRule, evaluation, emit);
+                   out.born += successors.write(*action, moduleOf(cell), frame, t, BirthCause::StepRule, evaluation,
+                                                [&](const ModuleValue& module, const double* values, uint32_t count) {
+                                                  emit(recordOf(module), values, count);
+                                                });
                  meter.update(out.metered, out.cells.size(),
                               out.cells.size() * sizeof(CellRecord) + out.state.size() * sizeof(double));
                },

@@ -21,7 +21,7 @@ namespace ontogen {
 /// Runs the pass over `view`'s pool at context.time. `Chunk` is what one chunk of cells
 /// produces, with at least `uint64_t firings` and `std::vector<LineageRecord> lineage`;
 /// `results` gets one per worker. For each cell calls
-/// `place(Chunk&, size_t i, const CellRecord&, double* frame, const CompiledRule* action,
+/// `place(Chunk&, size_t i, const CellView&, double* frame, const CompiledRule* action,
 ///        const EvalContext&, SuccessorWriter&)`, `action` null when no rule with an action fired.
 /// `table`, when given, holds every cell's neighbours as compressed rows (offsets, cells),
 /// found once for the pass (RuleEvaluator::useNeighbourTable).
@@ -30,20 +30,20 @@ void runStepRules(const Program& program, const StepContext& context, const View
                   Place&& place, const std::pair<const uint32_t*, const uint32_t*>& table = {nullptr, nullptr}) {
   const double t = context.time;
   const Pool& pool = view.pool();
-  const auto cells = pool.cells();
   const double* arena = pool.stateArena().data();
   const uint64_t seed = context.seed;
   const FunctionTable functions = program.functionTable();
   results.assign(context.threads, Chunk{});
-  parallelFor(cells.size(), context.threads, [&](size_t begin, size_t end, unsigned worker) {
+  parallelFor(pool.size(), context.threads, [&](size_t begin, size_t end, unsigned worker) {
     Chunk& out = results[worker];
     RuleEvaluator<View> evaluator(program, view);
     evaluator.useParent(context.systemCellId);
     evaluator.useNeighbourTable(table.first, table.second);
     SuccessorWriter successors(program);
     if (context.lineage) successors.recordLineage(&out.lineage);
-    for (size_t i = begin; i < end; ++i) {
-      const CellRecord& cell = cells[i];
+    for (CellCursor cursor = pool.cursor(begin); cursor.index() < end; cursor.next()) {
+      const size_t i = cursor.index();
+      const CellView cell = cursor.view();
       double* frame = evaluator.load(i, arena, t);
       RandomStream random(mixKey(mixKey(seed ^ kStepRuleSalt, cell.id), keyOf(t)));
       EvalContext evaluation{frame, EvalEnvironment{&random, seed}, &functions, &evaluator};

@@ -26,10 +26,10 @@ ModelError::ModelError(Diagnostic diagnostic_, std::string cell_, double time_)
       cell(std::move(cell_)),
       time(time_) {}
 
-void SuccessorWriter::badBirthAge(const SuccessorTemplate& successor, const CellRecord& cell, double age,
+void SuccessorWriter::badBirthAge(const SuccessorTemplate& successor, uint32_t master, double age,
                                   double when) const {
   const MasterCell& target = program_.masters[successor.master];
-  const std::string& label = program_.masters[cell.master].label;
+  const std::string& label = program_.masters[master].label;
   throw ModelError(Diagnostic{Severity::Error, successor.span,
                               "'" + target.label + "' would be born with age " + formatNumber(age) +
                                   (age >= target.lifetime ? ", not below its terminal age " + formatNumber(target.lifetime)

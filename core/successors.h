@@ -3,7 +3,9 @@
 // cell, it evaluates each successor's arguments and birth age (checking the age against
 // the successor's terminal age), gives it its id (a new one from the cell's lineage, or
 // the cell's own for `me` and `=X`), records the birth in the lineage log when asked, and
-// hands the cell to the pool's own placement. What differs between pools (where a
+// hands the cell to the pool's own placement. The id goes out as its coordinates, a
+// ModuleValue (core/module_value.h): the event's lineage key, computed once for all its
+// successors, and the successor's number k. What differs between pools (where a
 // successor goes) stays in the pool's development; everything else is here.
 
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include "lang/diagnostics.h"
 #include "lang/expression.h"
 #include "lang/program.h"
+#include "core/module_value.h"
 #include "pools/cell_record.h"
 
 namespace ontogen {
@@ -42,10 +45,14 @@ struct ModelError : std::runtime_error {
   double time = 0;   ///< global time of the failure, seconds
 };
 
+/// The key all the new successors of `cell` share when it develops at `when`.
+inline uint64_t lineageKey(uint64_t cellId, double when, BirthCause cause) {
+  return mixKey(cellId, keyOf(when)) ^ (cause == BirthCause::StepRule ? kStepRuleSalt : 0);
+}
+
 /// The id of the k-th successor (k from 1) of `cell` when it develops at `when`.
 inline uint64_t successorId(uint64_t cellId, double when, BirthCause cause, uint64_t k) {
-  const uint64_t lineage = mixKey(cellId, keyOf(when)) ^ (cause == BirthCause::StepRule ? kStepRuleSalt : 0);
-  return mixKey(lineage, k);
+  return mixKey(lineageKey(cellId, when, cause), k);
 }
 
 class SuccessorWriter {
@@ -59,14 +66,21 @@ class SuccessorWriter {
   /// Writes the successors of `rule`, fired for `cell` at `when`. `frame` holds the cell's
   /// state after the rule's calculations (what `me` keeps); `context` evaluates the
   /// successors' arguments. For each successor, in order, calls
-  /// `emit(const CellRecord&, const double* values, uint32_t count)`; the record's `state`
-  /// field is left for the pool to set. Returns the number of new cells (not `me`).
+  /// `emit(const ModuleValue&, const double* values, uint32_t count)`: a new cell has the
+  /// event's lineage key and its number k, `me` and `=X` the coordinates of `cell`.
+  /// Returns the number of new cells (not `me`).
+  template <typename Emit>
+  uint64_t write(const CompiledRule& rule, const ModuleValue& cell, const double* frame, double when,
+                 BirthCause cause, const EvalContext& context, Emit&& emit);
+  /// The same for a cell a pool keeps as a record.
   template <typename Emit>
   uint64_t write(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
-                 BirthCause cause, const EvalContext& context, Emit&& emit);
+                 BirthCause cause, const EvalContext& context, Emit&& emit) {
+    return write(rule, moduleOf(cell), frame, when, cause, context, static_cast<Emit&&>(emit));
+  }
 
  private:
-  [[noreturn]] void badBirthAge(const SuccessorTemplate& successor, const CellRecord& cell, double age,
+  [[noreturn]] void badBirthAge(const SuccessorTemplate& successor, uint32_t master, double age,
                                 double when) const;
 
   const Program& program_;
@@ -75,24 +89,31 @@ class SuccessorWriter {
 };
 
 template <typename Emit>
-uint64_t SuccessorWriter::write(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
+uint64_t SuccessorWriter::write(const CompiledRule& rule, const ModuleValue& cell, const double* frame, double when,
                                 BirthCause cause, const EvalContext& context, Emit&& emit) {
-  uint64_t k = 0;
+  // Copied: `emit` may write into the storage `cell` was read from.
+  const ModuleValue parent = cell;
+  const uint64_t lineage = lineageKey(parent.id(), when, cause);
+  uint32_t k = 0;
   uint64_t born = 0;
   for (const SuccessorTemplate& successor : rule.successors) {
     ++k;
     if (successor.isMe) {
-      CellRecord me = cell;
+      ModuleValue me = parent;
       if (cause == BirthCause::Terminal) me.birth = when;
-      emit(me, frame, program_.masters[cell.master].stateCount());
+      emit(me, frame, program_.masters[parent.master].stateCount());
       continue;
     }
-    const uint64_t id = successor.keepsIdentity ? cell.id : successorId(cell.id, when, cause, k);
+    ModuleValue made{successor.master, k, when, lineage};
+    if (successor.keepsIdentity) {
+      made.k = parent.k;
+      made.key = parent.key;
+    }
     ++born;
-    if (lineage_) lineage_->push_back(LineageRecord{id, cell.id, when});
+    if (lineage_) lineage_->push_back(LineageRecord{made.id(), parent.id(), when});
     if (successor.stateless) {
       // The common case of a bare symbol born at age 0: nothing to evaluate or check.
-      emit(CellRecord{successor.master, 0, when, id}, values_.data(), 0u);
+      emit(made, values_.data(), 0u);
       continue;
     }
     const MasterCell& target = program_.masters[successor.master];
@@ -100,8 +121,9 @@ uint64_t SuccessorWriter::write(const CompiledRule& rule, const CellRecord& cell
     for (uint32_t j = 0; j < count; ++j) values_[j] = successor.args[j].evaluate(context);
     const double age = successor.birthAge.empty() ? 0.0 : successor.birthAge.evaluate(context);
     if (!(age >= 0) || age >= target.lifetime) [[unlikely]]
-      badBirthAge(successor, cell, age, when);
-    emit(CellRecord{successor.master, 0, when - age, id}, values_.data(), count);
+      badBirthAge(successor, parent.master, age, when);
+    made.birth = when - age;
+    emit(made, values_.data(), count);
   }
   return born;
 }

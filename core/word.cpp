@@ -9,11 +9,10 @@ namespace ontogen {
 
 namespace {
 
-// Streams the word of `cells` (the pool's, or a homomorphism's image whose i-th cell comes
-// from the pool's cell sourceOf(i)), with state from `stateOf`.
-template <typename StateOf, typename SourceOf>
-void stream(const World& world, std::span<const CellRecord> cells, StateOf&& stateOf, SourceOf&& sourceOf,
-            bool interpreted, WordVisitor& visitor) {
+// Streams the word under `cell` (the pool's, or a homomorphism's image whose i-th cell
+// comes from the pool's cell sourceOf(i)).
+template <typename SourceOf>
+void stream(const World& world, CellCursor cell, SourceOf&& sourceOf, bool interpreted, WordVisitor& visitor) {
   const Program& program = world.program();
   const bool grid = world.rootSystem().poolKind == PoolKind::Grid;
   const bool spatial = world.rootSystem().poolKind == PoolKind::Spatial;
@@ -25,32 +24,31 @@ void stream(const World& world, std::span<const CellRecord> cells, StateOf&& sta
   std::array<double, 3> position{};
   // One view, refilled for each cell (a fresh one per cell costs more than the cell).
   WordCellView view;
-  for (size_t i = 0; i < cells.size(); ++i) {
-    const CellRecord& cell = cells[i];
-    const MasterCell& master = program.masters[cell.master];
+  for (; !cell.done(); cell.next()) {
+    const MasterCell& master = program.masters[cell.master()];
     if (grid || spatial) {
-      position = world.positionOf(sourceOf(i));
+      position = world.positionOf(sourceOf(cell.index()));
       view.position = std::span<const double>(position.data(), static_cast<size_t>(dimensions));
     }
     view.label = master.label;
-    const double* state = stateOf(cell);
+    const double* state = cell.state();
     const size_t count = master.stateCount();
     view.params = std::span<const double>(state, count);
     if (master.developmentFunction < 0) {
       view.developed = std::span<const double>(state, count);
     } else {
-      world.developedValues(cell, state, developed);
+      world.developedValues(cell.view(), developed);
       view.developed = developed;
     }
-    view.age = world.ageOf(cell);
+    view.age = world.time() - cell.birth();
     view.timed = master.timedNotation;
-    view.id = cell.id;
+    view.id = cell.id();
     view.parent = linear ? walk.next(cell, master) : above;
     view.system = master.system >= 0;
     visitor.cell(view);
     if (!view.system) continue;
     visitor.enterPool();
-    if (const World* child = world.childOf(cell)) {
+    if (const World* child = world.childOf(view.id)) {
       if (interpreted)
         visitInterpretedWord(*child, visitor);
       else
@@ -89,24 +87,16 @@ class WordCollector final : public WordVisitor {
 }  // namespace
 
 void visitWord(const World& world, WordVisitor& visitor) {
-  const Pool& pool = world.rootPool();
-  stream(
-      world, pool.cells(), [&pool](const CellRecord& cell) { return pool.stateOf(cell); }, [](size_t i) { return i; },
-      false, visitor);
+  stream(world, world.rootPool().cursor(), [](size_t i) { return i; }, false, visitor);
 }
 
 void visitInterpretedWord(const World& world, WordVisitor& visitor) {
   if (!world.rootSystem().homomorphism) {
-    const Pool& pool = world.rootPool();
-    stream(
-        world, pool.cells(), [&pool](const CellRecord& cell) { return pool.stateOf(cell); },
-        [](size_t i) { return i; }, true, visitor);
+    stream(world, world.rootPool().cursor(), [](size_t i) { return i; }, true, visitor);
     return;
   }
   const HomomorphismImage image(world);
-  stream(
-      world, image.cells(), [&image](const CellRecord& cell) { return image.stateOf(cell); },
-      [&image](size_t i) { return image.sourceOf(i); }, true, visitor);
+  stream(world, image.cursor(), [&image](size_t i) { return image.sourceOf(i); }, true, visitor);
 }
 
 void visitWord(const std::vector<WordCell>& word, WordVisitor& visitor) {

@@ -20,14 +20,14 @@ World::World(std::shared_ptr<const Program> program, WorldDef def)
   seedPool(tree);
 }
 
-World::World(const World& parent, const CellRecord& cell, const double* cellState, WorldHeld* tree)
+World::World(const World& parent, const CellView& cell, WorldHeld* tree)
     : program_(parent.program_),
       def_(parent.def_),
       system_(program_->masters[cell.master].system),
       parent_(&parent),
       cellId_(cell.id),
       cellBirth_(cell.birth),
-      cellState_(cellState, cellState + program_->masters[cell.master].stateCount()),
+      cellState_(cell.state, cell.state + program_->masters[cell.master].stateCount()),
       time_(parent.time_) {
   WorldHeld alone;
   seedPool(tree ? *tree : alone);
@@ -45,7 +45,8 @@ void World::seedPool(WorldHeld& tree) {
   tree.bytes += own.bytes;
   answerQueries();
   if (def_.recordLineage && parent_)
-    for (const CellRecord& cell : development_->pool().cells()) lineage_.push_back({cell.id, cellId_, time_});
+    for (CellCursor cell = development_->pool().cursor(); !cell.done(); cell.next())
+      lineage_.push_back({cell.id(), cellId_, time_});
   developChildren(time_, false, /*step=*/false, tree);
 }
 
@@ -279,12 +280,11 @@ void World::answerQueries() {
   std::vector<QueryAnswer> answers;
   def_.environment->respond(*this, answers);
   Pool& pool = development_->pool();
-  const auto cells = pool.cells();
   for (const QueryAnswer& answer : answers) {
-    if (answer.cell >= cells.size()) continue;
-    const CellRecord& cell = cells[answer.cell];
-    const uint32_t n = std::min<uint32_t>(program_->masters[cell.master].stateCount(), 3);
-    std::copy(answer.values.begin(), answer.values.begin() + n, pool.stateOf(cell));
+    if (answer.cell >= pool.size()) continue;
+    const uint32_t n = std::min<uint32_t>(program_->masters[pool.cellAt(answer.cell).master].stateCount(), 3);
+    std::copy(answer.values.begin(), answer.values.begin() + n,
+              pool.stateValues().data() + pool.stateOffset(answer.cell));
   }
 }
 
@@ -294,12 +294,12 @@ void World::answerQueries() {
 void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tree) {
   if (!program_->hasSystemCells) return;
   const Pool& pool = rootPool();
-  const auto cells = pool.cells();
   std::unordered_map<uint64_t, std::unique_ptr<World>> next;
-  for (const CellRecord& cell : cells) {
-    if (program_->masters[cell.master].system < 0) continue;
+  for (CellCursor cell = pool.cursor(); !cell.done(); cell.next()) {
+    if (program_->masters[cell.master()].system < 0) continue;
+    const uint64_t id = cell.id();
     std::unique_ptr<World> child;
-    if (auto it = children_.find(cell.id); it != children_.end()) {
+    if (auto it = children_.find(id); it != children_.end()) {
       child = std::move(it->second);
       if (step) {
         const WorldStats before = child->stats_;
@@ -312,10 +312,10 @@ void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tre
         stats_.stencilSteps += child->stats_.stencilSteps - before.stencilSteps;
       }
     } else {
-      child = std::make_unique<World>(*this, cell, pool.stateOf(cell), &tree);
+      child = std::make_unique<World>(*this, cell.view(), &tree);
       stats_.cellsBorn += child->stats_.cellsBorn;
     }
-    next.emplace(cell.id, std::move(child));
+    next.emplace(id, std::move(child));
   }
   // The children whose cells are gone go, and what they held with them.
   for (const auto& [id, child] : children_) {

@@ -63,11 +63,10 @@ struct WorldDef {
 class World {
  public:
   World(std::shared_ptr<const Program> program, WorldDef def = {});
-  /// The world of a system cell `cell` (whose state is `cellState`) in `parent`'s pool,
-  /// seeded from its system's axiom at the parent's current time. `tree`, when given, is
-  /// what the whole world holds so far; the new world's pools are checked with it and
-  /// added to it.
-  World(const World& parent, const CellRecord& cell, const double* cellState, WorldHeld* tree = nullptr);
+  /// The world of a system cell `cell` (state included) in `parent`'s pool, seeded from
+  /// its system's axiom at the parent's current time. `tree`, when given, is what the
+  /// whole world holds so far; the new world's pools are checked with it and added to it.
+  World(const World& parent, const CellView& cell, WorldHeld* tree = nullptr);
   /// A deep copy that develops on its own.
   World(const World& other);
   World& operator=(const World&) = delete;

@@ -33,8 +33,10 @@ struct CellView {
 /// It borrows the storage it walks and is invalid once that changes.
 class CellCursor {
  public:
-  /// A cursor at the first of `cells`, whose state offsets index `state`.
-  CellCursor(std::span<const CellRecord> cells, const double* state) : cells_(cells), state_(state) {}
+  /// A cursor at cell `first` of `cells` (done() when it is past the last), whose state
+  /// offsets index `state`.
+  CellCursor(std::span<const CellRecord> cells, const double* state, size_t first = 0)
+      : cells_(cells), state_(state), index_(first) {}
 
   /// Whether the cursor has passed the last cell.
   bool done() const { return index_ >= cells_.size(); }
@@ -49,6 +51,9 @@ class CellCursor {
   const double* state() const { return state_ + cells_[index_].state; }
   double birth() const { return cells_[index_].birth; }
   uint64_t id() const { return cells_[index_].id; }
+  /// Where the cell's values start in the state array (and in any array laid out like
+  /// it, as an integrator's stages are).
+  size_t stateOffset() const { return cells_[index_].state; }
   CellView view() const { return {master(), state(), birth(), id(), index_}; }
 
  private:

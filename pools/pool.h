@@ -39,11 +39,16 @@ class Pool {
   /// walks them). Readers outside pools/ and core/ read cells this way or with cellAt(),
   /// never through the records (pools/cell_cursor.h).
   CellCursor cursor() const { return CellCursor(cells_, state_.data()); }
+  /// A cursor at cell `first`, for a pass over a chunk of the cells.
+  CellCursor cursor(size_t first) const { return CellCursor(cells_, state_.data(), first); }
   /// Cell i (below size()).
   CellView cellAt(size_t i) const {
     const CellRecord& cell = cells_[i];
     return {cell.master, stateOf(cell), cell.birth, cell.id, i};
   }
+  /// Where cell i's values start in stateArena() (and in any array laid out like it, as
+  /// an integrator's stages are).
+  size_t stateOffset(size_t i) const { return cells_[i].state; }
 
   /// The records themselves, in pool order: for pools/ and core/ only, which write and
   /// scan them until the linear pool stores its words compactly (docs/COMPACT_WORDS.md).

@@ -64,8 +64,23 @@ void expectWalk(const Pool& pool) {
     EXPECT_EQ(std::bit_cast<uint64_t>(cursor.birth()), std::bit_cast<uint64_t>(kCells[index].birth));
     expectCell(cursor.view(), kCells[index], index);
     expectCell(pool.cellAt(index), kCells[index], index);
+    // The offset reads the cell's values out of the state array, as integrators do.
+    EXPECT_EQ(cursor.stateOffset(), pool.stateOffset(index));
+    EXPECT_EQ(pool.stateArena().data() + pool.stateOffset(index), cursor.state());
   }
   EXPECT_EQ(index, kCells.size());
+  // Offsets are those of the values appended before: 0, 0, 1, 4, 4.
+  const std::vector<size_t> offsets = {0, 0, 1, 4, 4};
+  for (size_t i = 0; i < offsets.size(); ++i) EXPECT_EQ(pool.stateOffset(i), offsets[i]) << "cell " << i;
+  // A cursor for a chunk starts at its first cell and walks to the end.
+  for (size_t first = 0; first <= kCells.size(); ++first) {
+    CellCursor chunk = pool.cursor(first);
+    for (size_t i = first; i < kCells.size(); ++i, chunk.next()) {
+      ASSERT_FALSE(chunk.done()) << "from " << first;
+      expectCell(chunk.view(), kCells[i], i);
+    }
+    EXPECT_TRUE(chunk.done()) << "from " << first;
+  }
 }
 
 TEST(CellCursor, WalksALinearPoolInOrder) {
