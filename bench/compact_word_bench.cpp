@@ -12,6 +12,8 @@
 
 #include "bench/bench_support.h"
 #include "core/parallel_for.h"
+#include "core/parallel_rewrite.h"
+#include "core/world.h"
 #include "pools/compact_word.h"
 
 namespace ontogen::bench {
@@ -101,6 +103,46 @@ BENCHMARK(BM_KochCompactWord)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3)
     ->UseRealTime();
+
+// The same growth through the engine's pass on compact words (ParallelRewrite::
+// rewriteCompact): the rule chosen from the program, lifetimes, lineage keys and ids as
+// the engine computes them, from the engine's axiom. Argument: n, then T threads.
+void BM_KochCompactRewrite(benchmark::State& state) {
+  static const Compiled compiled = compileText("koch.cell", "lsystem koch {\n  axiom F\n  F -> F + F - F - F + F\n}\n");
+  if (!compiled.program) {
+    state.SkipWithError(compiled.error.c_str());
+    return;
+  }
+  const Program& program = *compiled.program;
+  const int n = static_cast<int>(state.range(0));
+  const unsigned threads = static_cast<unsigned>(state.range(1));
+  uint64_t fives = 1;
+  for (int i = 0; i < n; ++i) fives *= 5;
+  std::vector<uint32_t> stateCounts;
+  for (const MasterCell& master : program.masters) stateCounts.push_back(master.stateCount());
+  ParallelRewrite rewrite(program, program.systems[program.root]);
+  const World axiom(compiled.program, kBenchWorld);
+  FirstAndWarm firstAndWarm;
+  for (auto _ : state) {
+    const double start = processSeconds();
+    CompactWord word(stateCounts), next(stateCounts);
+    for (CellCursor cell = axiom.rootPool().cursor(); !cell.done(); cell.next())
+      word.append(cell.master(), IdKey::whole(cell.id()), cell.birth(), nullptr);
+    for (int generation = 1; generation <= n; ++generation) {
+      rewrite.rewriteCompact(word, generation, 0, threads, next);
+      std::swap(word, next);
+    }
+    firstAndWarm.add(processSeconds() - start);
+    if (word.size() != 2 * fives - 1) {
+      state.SkipWithError("compact Koch through the engine: wrong word");
+      return;
+    }
+  }
+  state.counters["modules/s"] = benchmark::Counter(static_cast<double>(2 * fives - 1) * static_cast<double>(state.iterations()),
+                                                   benchmark::Counter::kIsRate);
+  firstAndWarm.report(state);
+}
+BENCHMARK(BM_KochCompactRewrite)->Args({10, 1})->Args({10, 2})->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 }  // namespace
 }  // namespace ontogen::bench

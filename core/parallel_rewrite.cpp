@@ -42,13 +42,20 @@ bool comparesLabelsOnly(const Program& program, const MasterCell& master) {
 }
 }  // namespace
 
-ParallelRewrite::LabelRule ParallelRewrite::labelRule(const Program& program, const CompiledRule& rule) const {
-  LabelRule choice{&rule, rule.group, rule.hasContext()};
+ParallelRewrite::LabelRule ParallelRewrite::labelRule(const Program& program, uint32_t master,
+                                                     const CompiledRule& rule) const {
+  LabelRule choice;
+  choice.rule = &rule;
+  choice.group = rule.group;
+  choice.context = rule.hasContext();
   if (rule.hasAction)
     for (const SuccessorTemplate& successor : rule.successors) {
       ++choice.cells;
       choice.values += successor.isMe ? 0 : program.masters[successor.master].stateCount();
       choice.born += successor.isMe ? 0 : 1;
+      const uint32_t label = successor.isMe ? master : successor.master;
+      choice.written.push_back({label, successor.isMe || successor.keepsIdentity});
+      choice.shortestLife = std::min(choice.shortestLife, program.masters[label].lifetime);
     }
   auto code = [](const ContextItem& item) {
     switch (item.kind) {
@@ -85,13 +92,15 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     labelsOnly_[m] = comparesLabelsOnly(program, master) && master.terminalRules.size() < UINT16_MAX;
     std::vector<LabelRule>& choices = labelRules_.emplace_back();
     if (labelsOnly_[m])
-      for (const CompiledRule& rule : master.terminalRules) choices.push_back(labelRule(program, rule));
+      for (const CompiledRule& rule : master.terminalRules)
+        choices.push_back(labelRule(program, static_cast<uint32_t>(m), rule));
     const bool fixed = master.terminalRules.empty() || (master.terminalRules.size() == 1 &&
                                                         master.terminalRules.front().group == 0 &&
                                                         !master.terminalRules.front().hasContext());
     fixedChoice_.push_back(labelsOnly_[m] && fixed);
     anyChoiceVaries_ = anyChoiceVaries_ || (labelsOnly_[m] && !fixed);
     allLabelsOnly_ = allLabelsOnly_ && labelsOnly_[m];
+    for (const LabelRule& choice : choices) allByPosition_ = allByPosition_ && (!choice.context || choice.byPosition);
     double shortest = master.lifetime;  // a renewal
     for (const CompiledRule& rule : master.terminalRules) {
       if (!rule.newLeft.empty() || !rule.newRight.empty() || !rule.aggregates.empty() || rule.contextDimensions != 1)
@@ -137,22 +146,32 @@ bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, 
 }
 
 // As matchesLabels in a plain word, from the codes labelRule made.
-inline bool ParallelRewrite::matchesByPosition(const Step& step, const LabelRule& choice, size_t i) const {
-  const auto cells = step.pool.cells();
+template <class Labels>
+bool ParallelRewrite::matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice, size_t i) {
   for (size_t k = 0; k < choice.leftCount; ++k) {
     const int32_t expected = choice.left[k];
     if (i < k + 1) return expected == kEndLabel;  // the start of the word
-    if (expected != kAnyLabel && (expected < 0 || cells[i - 1 - k].master != static_cast<uint32_t>(expected)))
-      return false;
+    if (expected != kAnyLabel && (expected < 0 || labels[i - 1 - k] != static_cast<uint32_t>(expected))) return false;
   }
   for (size_t k = 0; k < choice.rightCount; ++k) {
     const int32_t expected = choice.right[k];
-    if (i + 1 + k >= cells.size()) return expected == kEndLabel;  // the end of the word
-    if (expected != kAnyLabel && (expected < 0 || cells[i + 1 + k].master != static_cast<uint32_t>(expected)))
-      return false;
+    if (i + 1 + k >= size) return expected == kEndLabel;  // the end of the word
+    if (expected != kAnyLabel && (expected < 0 || labels[i + 1 + k] != static_cast<uint32_t>(expected))) return false;
   }
   return true;
 }
+
+namespace {
+// The labels of a word of records, and of a compact word, as matchesByPosition reads them.
+struct RecordLabels {
+  std::span<const CellRecord> cells;
+  uint32_t operator[](size_t i) const { return cells[i].master; }
+};
+struct CompactLabels {
+  const CompactWord& word;
+  uint32_t operator[](size_t i) const { return word.label(i); }
+};
+}  // namespace
 
 inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const {
   const CellRecord& cell = step.pool.cells()[i];
@@ -160,7 +179,9 @@ inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByLabels(Pass pa
     if (choice.group != 0 && choice.group != step.group) continue;
     if (!choice.context) return &choice;
     if (pass != Pass::AtInstant) continue;
-    if (choice.byPosition ? matchesByPosition(step, choice, i) : matchesLabels(step, *choice.rule, i, worker))
+    const auto cells = step.pool.cells();
+    if (choice.byPosition ? matchesByPosition(RecordLabels{cells}, cells.size(), choice, i)
+                          : matchesLabels(step, *choice.rule, i, worker))
       return &choice;
   }
   return nullptr;
@@ -395,6 +416,83 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
   context.stats.cellsBorn += totalBorn;
   ++context.stats.rewritesBySlices;
   return true;
+}
+
+template <class Labels>
+const ParallelRewrite::LabelRule* ParallelRewrite::chooseByPosition(const Labels& labels, size_t size, uint32_t master,
+                                                                   int group, size_t i) const {
+  for (const LabelRule& choice : labelRules_[master]) {
+    if (choice.group != 0 && choice.group != group) continue;
+    if (!choice.context || matchesByPosition(labels, size, choice, i)) return &choice;
+  }
+  return nullptr;
+}
+
+uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon, int group, unsigned threads,
+                                         CompactWord& next) {
+  if (!appliesToCompactWords())
+    throw std::logic_error("ontogen: internal error: a compact rewrite of a word whose rules are not label-only");
+  const auto& masters = program_.masters;
+  const size_t size = word.size();
+  threads = std::max(threads, 1u);
+  const size_t sliceCount = std::max<size_t>(1, std::min<size_t>(size, size_t{threads} * kSlicesPerThread));
+  std::vector<CompactWord::Slice> slices(sliceCount, CompactWord::Slice(word));
+  std::vector<uint64_t> events(sliceCount, 0);
+  std::vector<double> earliest(sliceCount, kForever);
+  // Counting and writing make the same calls (CompactWord::Slice); the second pass writes.
+  auto pass = [&](size_t s) {
+    CompactWord::Slice& out = slices[s];
+    const CompactLabels labels{word};
+    uint64_t fired = 0;
+    double soonest = kForever;
+    const size_t end = size * (s + 1) / sliceCount;
+    for (CompactWordCursor cell(word, size * s / sliceCount); !cell.done() && cell.index() < end; cell.next()) {
+      const uint32_t label = cell.master();
+      const double lifetime = masters[label].lifetime;
+      const double death = cell.birth() + lifetime;
+      if (death > horizon) {
+        out.appendCopy(label, cell.key(), cell.birthIndex(), nullptr);
+        soonest = std::min(soonest, death);
+        continue;
+      }
+      ++fired;
+      const LabelRule* choice = chooseByPosition(labels, size, label, group, cell.index());
+      if (!choice || !choice->rule->hasAction) {  // renewed: the same id, born again
+        out.append(label, cell.key(), death, nullptr);
+        soonest = std::min(soonest, death + lifetime);
+        continue;
+      }
+      // As SuccessorWriter::write: `me` and `=X` keep the cell's id, the others take the
+      // event's lineage and their number.
+      const IdKey own = cell.key();
+      const uint64_t lineage = lineageKey(own.id(), death, BirthCause::Terminal);
+      uint32_t k = 0;
+      for (const LabelRule::Written& successor : choice->written) {
+        ++k;
+        out.append(successor.label, successor.keepsId ? own : IdKey{lineage, k}, death, nullptr);
+      }
+      soonest = std::min(soonest, death + choice->shortestLife);
+    }
+    out.finish();
+    events[s] = fired;
+    earliest[s] = soonest;
+  };
+  auto allSlices = [&](size_t begin, size_t end, unsigned) {
+    for (size_t s = begin; s < end; ++s) pass(s);
+  };
+  next.clearWithBirthsOf(word);
+  parallelFor(sliceCount, threads, allSlices, 1);
+  next.beginSlices(slices);
+  parallelFor(sliceCount, threads, allSlices, 1);
+  next.endSlices(slices);
+  next.finish();
+  uint64_t total = 0;
+  earliestDeath_ = kForever;
+  for (size_t s = 0; s < sliceCount; ++s) {
+    total += events[s];
+    earliestDeath_ = std::min(earliestDeath_, earliest[s]);
+  }
+  return total;
 }
 
 }  // namespace ontogen
