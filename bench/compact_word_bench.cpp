@@ -15,6 +15,7 @@
 #include "core/parallel_rewrite.h"
 #include "core/world.h"
 #include "pools/compact_word.h"
+#include "pools/large_block_cache.h"
 
 namespace ontogen::bench {
 namespace {
@@ -54,6 +55,7 @@ void BM_KochCompactWord(benchmark::State& state) {
   for (int i = 0; i < n; ++i) fives *= 5;
   const uint64_t expected = 2 * fives - 1;
   double bytesPerModule = 0;
+  std::vector<CompactWord::Slice> slices;  // kept: their buffers of runs are reused
   FirstAndWarm firstAndWarm;
   for (auto _ : state) {
     const double start = processSeconds();
@@ -67,7 +69,8 @@ void BM_KochCompactWord(benchmark::State& state) {
         rewriteKoch(word, 0, word.size(), when, writer);
       } else {
         const size_t count = size_t{threads} * 4;
-        std::vector<CompactWord::Slice> slices(count, CompactWord::Slice(word));
+        slices.resize(count, CompactWord::Slice(word));
+        for (CompactWord::Slice& slice : slices) slice.restart(word);
         auto pass = [&](size_t begin, size_t end, unsigned) {
           for (size_t s = begin; s < end; ++s) {
             SliceWriter writer{slices[s]};
@@ -123,8 +126,10 @@ void BM_KochCompactRewrite(benchmark::State& state) {
   ParallelRewrite rewrite(program, program.systems[program.root]);
   const World axiom(compiled.program, kBenchWorld);
   FirstAndWarm firstAndWarm;
+  uint64_t freshBlocks = 0;
   for (auto _ : state) {
     const double start = processSeconds();
+    const uint64_t freshBefore = largeBlockCacheStats().fresh;
     CompactWord word(stateCounts), next(stateCounts);
     for (CellCursor cell = axiom.rootPool().cursor(); !cell.done(); cell.next())
       word.append(cell.master(), IdKey::whole(cell.id()), cell.birth(), nullptr);
@@ -133,6 +138,7 @@ void BM_KochCompactRewrite(benchmark::State& state) {
       std::swap(word, next);
     }
     firstAndWarm.add(processSeconds() - start);
+    freshBlocks = largeBlockCacheStats().fresh - freshBefore;  // the last world's
     if (word.size() != 2 * fives - 1) {
       state.SkipWithError("compact Koch through the engine: wrong word");
       return;
@@ -141,6 +147,7 @@ void BM_KochCompactRewrite(benchmark::State& state) {
   state.counters["modules/s"] = benchmark::Counter(static_cast<double>(2 * fives - 1) * static_cast<double>(state.iterations()),
                                                    benchmark::Counter::kIsRate);
   firstAndWarm.report(state);
+  state.counters["fresh blocks"] = static_cast<double>(freshBlocks);
 }
 BENCHMARK(BM_KochCompactRewrite)->Args({10, 1})->Args({10, 2})->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 

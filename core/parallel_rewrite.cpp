@@ -436,10 +436,29 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
   const size_t size = word.size();
   threads = std::max(threads, 1u);
   const size_t sliceCount = std::max<size_t>(1, std::min<size_t>(size, size_t{threads} * kSlicesPerThread));
-  std::vector<CompactWord::Slice> slices(sliceCount, CompactWord::Slice(word));
+  // Kept from step to step: their buffers of runs are reused.
+  std::vector<CompactWord::Slice>& slices = compactSlices_;
+  slices.resize(sliceCount, CompactWord::Slice(word));
+  for (CompactWord::Slice& slice : slices) slice.restart(word);
   std::vector<uint64_t> events(sliceCount, 0);
   std::vector<double> earliest(sliceCount, kForever);
-  // Counting and writing make the same calls (CompactWord::Slice); the second pass writes.
+  // The counting pass chooses without writing or hashing anything: what each chosen rule
+  // writes is in its LabelRule. Cells the writing pass copies or renews count one each.
+  auto count = [&](size_t s) {
+    CompactWord::Slice& out = slices[s];
+    const CompactLabels labels{word};
+    const uint8_t* labelBytes = word.wideLabels() ? nullptr : word.labels8().data();
+    const size_t end = size * (s + 1) / sliceCount;
+    for (CompactWordCursor cell(word, size * s / sliceCount); !cell.done() && cell.index() < end; cell.next()) {
+      const uint32_t label = labelBytes ? labelBytes[cell.index()] : cell.master();
+      if (cell.birth() + masters[label].lifetime > horizon) {
+        out.expect(1, 0);
+        continue;
+      }
+      const LabelRule* choice = chooseByPosition(labels, size, label, group, cell.index());
+      out.expect(choice && choice->rule->hasAction ? choice->cells : 1, 0);
+    }
+  };
   auto pass = [&](size_t s) {
     CompactWord::Slice& out = slices[s];
     const CompactLabels labels{word};
@@ -477,13 +496,20 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
     events[s] = fired;
     earliest[s] = soonest;
   };
-  auto allSlices = [&](size_t begin, size_t end, unsigned) {
-    for (size_t s = begin; s < end; ++s) pass(s);
-  };
   next.clearWithBirthsOf(word);
-  parallelFor(sliceCount, threads, allSlices, 1);
+  parallelFor(
+      sliceCount, threads,
+      [&](size_t begin, size_t end, unsigned) {
+        for (size_t s = begin; s < end; ++s) count(s);
+      },
+      1);
   next.beginSlices(slices);
-  parallelFor(sliceCount, threads, allSlices, 1);
+  parallelFor(
+      sliceCount, threads,
+      [&](size_t begin, size_t end, unsigned) {
+        for (size_t s = begin; s < end; ++s) pass(s);
+      },
+      1);
   next.endSlices(slices);
   next.finish();
   uint64_t total = 0;

@@ -168,6 +168,7 @@ class ParallelRewrite {
   std::vector<double> shortestLife_;  // per master: the shortest lifetime of what its rule writes
   FunctionTable functions_;
   std::vector<Slice> slices_;
+  std::vector<CompactWord::Slice> compactSlices_;
   std::vector<std::unique_ptr<Worker>> workers_;
   size_t frameSize_ = 0;
   double earliestDeath_ = kForever;

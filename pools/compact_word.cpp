@@ -111,52 +111,59 @@ void CompactWord::finish() {
 }
 
 void CompactWord::beginSlices(std::span<Slice> slices) {
-  size_t modules = 0, runs = 0, values = 0, births = births_.size();
+  size_t modules = 0, values = 0;
   for (const Slice& slice : slices) {
     if (slice.from_->stateCounts_ != stateCounts_)
       throw std::logic_error("ontogen: internal error: a slice copies from a word of other labels");
     modules += slice.modules_;
-    runs += slice.runs_;
     values += slice.values_;
-    births += slice.births_.size();
   }
-  if (runs > UINT32_MAX || values > UINT32_MAX || births > UINT32_MAX)
-    throw std::length_error("ontogen: a linear word with 2^32 runs, state values or birth times");
+  // Birth indices carry kNewBirth while a slice writes.
+  if (values > UINT32_MAX || births_.size() >= Slice::kNewBirth)
+    throw std::length_error("ontogen: a linear word with 2^32 state values or 2^31 birth times");
+  std::vector<double> births = std::move(births_);
   clear();
+  births_ = std::move(births);
   size_ = modules;
   (wide_ ? resizeForOverwrite(labels16_, modules) : resizeForOverwrite(labels8_, modules));
   const size_t blocks = (modules + kBlock - 1) / kBlock;
   resizeForOverwrite(runStarts_, blocks);
   resizeForOverwrite(blockRuns_, blocks);
   if (!stateless_) resizeForOverwrite(blockValues_, blocks);
-  resizeForOverwrite(keys_, runs);
-  resizeForOverwrite(birthIndex_, runs);
-  resizeForOverwrite(firstK_, runs);
   resizeForOverwrite(values_, values);
-  size_t module = 0, run = 0, value = 0;
+  size_t module = 0, value = 0;
   for (Slice& slice : slices) {
     slice.word_ = this;
     slice.firstModule_ = module;
-    slice.firstRun_ = run;
     slice.firstValue_ = value;
-    slice.firstBirth_ = static_cast<uint32_t>(births_.size());
-    slice.counted_ = {slice.modules_, slice.runs_, slice.values_};
     module += slice.modules_;
-    run += slice.runs_;
     value += slice.values_;
-    births_.insert(births_.end(), slice.births_.begin(), slice.births_.end());
-    // The writing pass makes the same calls again from the start.
-    slice.modules_ = slice.runs_ = slice.values_ = 0;
-    slice.births_.clear();
+    slice.written_ = slice.writtenValues_ = 0;
     slice.tail_ = RunTail{};
+    slice.births_.clear();
+    slice.keys_.clear();
+    slice.birthIndex_.clear();
+    slice.firstK_.clear();
     slice.sharedWords_.clear();
     slice.bitsWord_ = SIZE_MAX;
-    slice.out_ = {wide_ ? nullptr : labels8_.data(), wide_ ? labels16_.data() : nullptr, keys_.data(),
-                  birthIndex_.data(), firstK_.data(), values_.data()};
+    slice.out_ = {wide_ ? nullptr : labels8_.data(), wide_ ? labels16_.data() : nullptr, values_.data()};
   }
 }
 
 void CompactWord::endSlices(std::span<Slice> slices) {
+  size_t runs = 0;
+  for (Slice& slice : slices) {
+    slice.firstRun_ = runs;
+    runs += slice.keys_.size();
+    slice.firstBirth_ = static_cast<uint32_t>(births_.size());
+    births_.insert(births_.end(), slice.births_.begin(), slice.births_.end());
+  }
+  if (runs > UINT32_MAX || births_.size() >= Slice::kNewBirth)
+    throw std::length_error("ontogen: a linear word with 2^32 runs or 2^31 birth times");
+  resizeForOverwrite(keys_, runs);
+  resizeForOverwrite(birthIndex_, runs);
+  resizeForOverwrite(firstK_, runs);
+  for (Slice& slice : slices) slice.place();
   // A word two slices share holds the run starts of both: cleared, then joined.
   for (const Slice& slice : slices)
     for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] = 0;
@@ -164,10 +171,25 @@ void CompactWord::endSlices(std::span<Slice> slices) {
     for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] |= bits;
 }
 
+void CompactWord::Slice::place() {
+  CompactWord& word = *word_;
+  std::copy(keys_.begin(), keys_.end(), word.keys_.begin() + static_cast<std::ptrdiff_t>(firstRun_));
+  std::copy(firstK_.begin(), firstK_.end(), word.firstK_.begin() + static_cast<std::ptrdiff_t>(firstRun_));
+  uint32_t* birthIndex = word.birthIndex_.data() + firstRun_;
+  for (size_t r = 0; r < birthIndex_.size(); ++r) {
+    const uint32_t index = birthIndex_[r];
+    birthIndex[r] = index & kNewBirth ? firstBirth_ + (index & ~kNewBirth) : index;
+  }
+  // The block index counted the slice's own runs.
+  const size_t end = firstModule_ + written_;
+  for (size_t block = (firstModule_ + kBlock - 1) / kBlock; block * kBlock < end; ++block)
+    word.blockRuns_[block] += static_cast<uint32_t>(firstRun_);
+}
+
 void CompactWord::Slice::startBlock(size_t i) {
   if (i % kBlock == 0) {
-    word_->blockRuns_[i / kBlock] = static_cast<uint32_t>(firstRun_ + runs_);
-    if (!word_->stateless_) word_->blockValues_[i / kBlock] = static_cast<uint32_t>(firstValue_ + values_);
+    word_->blockRuns_[i / kBlock] = static_cast<uint32_t>(keys_.size());
+    if (!word_->stateless_) word_->blockValues_[i / kBlock] = static_cast<uint32_t>(firstValue_ + writtenValues_);
   }
   flushBits();
   bitsWord_ = i / kBlock;
@@ -177,7 +199,7 @@ void CompactWord::Slice::startBlock(size_t i) {
 void CompactWord::Slice::flushBits() {
   if (bitsWord_ == SIZE_MAX) return;
   const size_t first = bitsWord_ * kBlock;
-  if (first >= firstModule_ && first + kBlock <= firstModule_ + counted_.modules)
+  if (first >= firstModule_ && first + kBlock <= firstModule_ + modules_)
     word_->runStarts_[bitsWord_] = bits_;
   else
     sharedWords_.emplace_back(bitsWord_, bits_);
@@ -187,9 +209,9 @@ void CompactWord::Slice::finish() {
   if (!word_) return;
   flushBits();
   bitsWord_ = SIZE_MAX;
-  // Counting and writing make the same calls by contract; a slice that wrote other than
-  // it counted would leave unwritten memory in the word, so it stops here.
-  if (modules_ != counted_.modules || runs_ != counted_.runs || values_ != counted_.values)
+  // Counting and writing agree by contract; a slice that wrote other than it counted
+  // would leave unwritten memory in the word, so it stops here.
+  if (written_ != modules_ || writtenValues_ != values_)
     throw std::logic_error("ontogen: internal error: a slice of a compact word wrote other than it counted");
 }
 

@@ -122,12 +122,13 @@ class CompactWord {
   // the slices by prefix sums, each slice writes in place, and endSlices joins the seams.
 
   class Slice;
-  /// Sizes the word for `slices`, which have counted, and places them one after the
-  /// other; appends each slice's new births to the table, in slice order. The word was
-  /// cleared with the births of the word the slices copy from (clearWithBirthsOf).
+  /// Sizes the word's labels and values for `slices`, which have counted, and places them
+  /// one after the other. The word was cleared with the births of the word the slices copy
+  /// from (clearWithBirthsOf).
   void beginSlices(std::span<Slice> slices);
-  /// After every slice has written: joins the run-start bits of the bitmap words two
-  /// slices share. Then finish() as after serial appends.
+  /// After every slice has written: moves the slices' runs into the word, appends their new
+  /// births to the table in slice order, and joins the run-start bits of the bitmap words
+  /// two slices share. Then finish() as after serial appends.
   void endSlices(std::span<Slice> slices);
 
   // --- Reading ---
@@ -189,80 +190,97 @@ class CompactWord {
   RunTail tail_;                       // the last module appended serially
 };
 
-/// One slice of a word written by slices. The same calls, in the same order, first count
-/// (after construction) and then write (after CompactWord::beginSlices), so a slice writes
-/// exactly what it counted. The slice's first module always starts a run: a word written
-/// by slices may have one run more a seam than the same word written serially, and reads
-/// the same, module for module.
+/// One slice of a word written by slices. Before CompactWord::beginSlices the slice
+/// counts: append and appendCopy only count modules and values (or the caller says what
+/// it will write with expect, without making the calls). After it they write: labels,
+/// run starts and values in place, runs and new births into the slice's own buffers,
+/// which CompactWord::endSlices moves into the word once every slice has written and the
+/// slices' runs are known. The slice's first module always starts a run: a word written by
+/// slices may have one run more a seam than the same word written serially, and reads the
+/// same, module for module.
 class CompactWord::Slice {
  public:
   /// A slice of the word that starts with the birth table of `from`, the word it copies
   /// modules from (their birth indices stay valid).
   explicit Slice(const CompactWord& from) : from_(&from) {}
+  /// Starts the slice again, for a word copying from `from`, keeping its buffers.
+  void restart(const CompactWord& from) {
+    from_ = &from;
+    word_ = nullptr;
+    modules_ = values_ = 0;
+  }
 
+  /// While counting: the slice will write `modules` more modules and `values` more values.
+  void expect(size_t modules, size_t values) {
+    modules_ += modules;
+    values_ += values;
+  }
   /// A module born at `birth` (a birth the slice may have to add to the table).
   void append(uint32_t label, IdKey key, double birth, const double* values) {
-    // Both passes make the same list of new births, so the indices agree.
+    if (!word_) return expect(1, from_->stateCounts_[label]);
     if (births_.empty() || std::bit_cast<uint64_t>(births_.back()) != std::bit_cast<uint64_t>(birth)) [[unlikely]]
       lastBorn_ = static_cast<uint32_t>(birthIndexIn(births_, birth));
-    put(label, key, firstBirth_ + lastBorn_, birth, values);
+    put(label, key, kNewBirth | lastBorn_, birth, values);
   }
   /// A module copied from `from` with its birth index there.
   void appendCopy(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
+    if (!word_) return expect(1, from_->stateCounts_[label]);
     put(label, key, birthIndex, from_->births_[birthIndex], values);
   }
-  /// After the slice's last append, in either pass.
+  /// After the slice's last append of a pass.
   void finish();
 
   size_t modules() const { return modules_; }
-  size_t runs() const { return runs_; }
   size_t values() const { return values_; }
+  /// Runs written (after the writing pass).
+  size_t runs() const { return keys_.size(); }
 
  private:
   friend class CompactWord;
+  // Marks a birth index as one of the slice's new births, renumbered by endSlices.
+  static constexpr uint32_t kNewBirth = uint32_t{1} << 31;
+
   void put(uint32_t label, IdKey key, uint32_t birthIndex, double birth, const double* values) {
     key = RunTail::normalised(key, kLargestRunK);
-    const bool startsRun = !tail_.continues(key, birth);
-    const uint32_t count = from_->stateCounts_[label];
-    if (word_) write(label, key, birthIndex, values, count, startsRun);
-    ++modules_;
-    runs_ += startsRun ? 1 : 0;
-    values_ += count;
-  }
-  void write(uint32_t label, IdKey key, uint32_t birthIndex, const double* values, uint32_t count, bool startsRun) {
-    const size_t i = firstModule_ + modules_;
+    const size_t i = firstModule_ + written_;
     if (i % kBlock == 0 || bitsWord_ == SIZE_MAX) [[unlikely]]
       startBlock(i);
-    if (startsRun) {
+    if (!tail_.continues(key, birth)) {
       bits_ |= uint64_t{1} << (i % kBlock);
-      const size_t run = firstRun_ + runs_;
-      out_.keys[run] = key.key;
-      out_.birthIndex[run] = birthIndex;
-      out_.firstK[run] = key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k);
+      keys_.push_back(key.key);
+      birthIndex_.push_back(birthIndex);
+      firstK_.push_back(key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k));
     }
     if (out_.labels8)
       out_.labels8[i] = static_cast<uint8_t>(label);
     else
       out_.labels16[i] = static_cast<uint16_t>(label);
-    double* to = out_.values + firstValue_ + values_;
+    const uint32_t count = from_->stateCounts_[label];
+    double* to = out_.values + firstValue_ + writtenValues_;
     for (uint32_t v = 0; v < count; ++v) to[v] = values[v];
+    ++written_;
+    writtenValues_ += count;
   }
   /// At module i: the block index entry of a block starting there, and a new bitmap word.
   void startBlock(size_t i);
   void flushBits();
+  /// Moves the slice's runs into the word and renumbers what referred to them.
+  void place();
 
   const CompactWord* from_;
   CompactWord* word_ = nullptr;  // null while counting
-  size_t modules_ = 0, runs_ = 0, values_ = 0;
+  size_t modules_ = 0, values_ = 0;        // counted
+  size_t written_ = 0, writtenValues_ = 0;  // written
   RunTail tail_;
   std::vector<double> births_;  // new births, in order of first use
   uint32_t lastBorn_ = 0;       // index in births_ of the last new birth appended
+  // The slice's runs, until endSlices moves them.
+  LargeVector<uint64_t> keys_;
+  LargeVector<uint32_t> birthIndex_;
+  LargeVector<uint8_t> firstK_;
   struct {
     uint8_t* labels8 = nullptr;
     uint16_t* labels16 = nullptr;
-    uint64_t* keys = nullptr;
-    uint32_t* birthIndex = nullptr;
-    uint8_t* firstK = nullptr;
     double* values = nullptr;
   } out_;  // the word's arrays, while writing
   // Where the slice writes: its first module, run, value and new birth in the word.
@@ -272,9 +290,6 @@ class CompactWord::Slice {
   size_t bitsWord_ = SIZE_MAX;
   uint64_t bits_ = 0;
   std::vector<std::pair<size_t, uint64_t>> sharedWords_;
-  struct {
-    size_t modules = 0, runs = 0, values = 0;
-  } counted_;  // by the counting pass
 };
 
 /// Walks a compact word in order with the accessors of CellCursor (pools/cell_cursor.h),
