@@ -510,7 +510,13 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
         for (size_t s = begin; s < end; ++s) pass(s);
       },
       1);
-  next.endSlices(slices);
+  next.joinSlices(slices);
+  parallelFor(
+      sliceCount, threads,
+      [&](size_t begin, size_t end, unsigned) {
+        for (size_t s = begin; s < end; ++s) slices[s].place();
+      },
+      1);
   next.finish();
   uint64_t total = 0;
   earliestDeath_ = kForever;

@@ -151,6 +151,11 @@ void CompactWord::beginSlices(std::span<Slice> slices) {
 }
 
 void CompactWord::endSlices(std::span<Slice> slices) {
+  joinSlices(slices);
+  for (Slice& slice : slices) slice.place();
+}
+
+void CompactWord::joinSlices(std::span<Slice> slices) {
   size_t runs = 0;
   for (Slice& slice : slices) {
     slice.firstRun_ = runs;
@@ -163,7 +168,6 @@ void CompactWord::endSlices(std::span<Slice> slices) {
   resizeForOverwrite(keys_, runs);
   resizeForOverwrite(birthIndex_, runs);
   resizeForOverwrite(firstK_, runs);
-  for (Slice& slice : slices) slice.place();
   // A word two slices share holds the run starts of both: cleared, then joined.
   for (const Slice& slice : slices)
     for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] = 0;

@@ -130,6 +130,9 @@ class CompactWord {
   /// births to the table in slice order, and joins the run-start bits of the bitmap words
   /// two slices share. Then finish() as after serial appends.
   void endSlices(std::span<Slice> slices);
+  /// endSlices in two parts, for a caller that moves the runs on several threads:
+  /// joinSlices (one thread), then Slice::place for every slice (any thread each).
+  void joinSlices(std::span<Slice> slices);
 
   // --- Reading ---
 
@@ -234,6 +237,9 @@ class CompactWord::Slice {
   size_t values() const { return values_; }
   /// Runs written (after the writing pass).
   size_t runs() const { return keys_.size(); }
+  /// After CompactWord::joinSlices: moves the slice's runs into the word and renumbers what
+  /// referred to them. Slices place in any order, on any threads.
+  void place();
 
  private:
   friend class CompactWord;
@@ -264,8 +270,6 @@ class CompactWord::Slice {
   /// At module i: the block index entry of a block starting there, and a new bitmap word.
   void startBlock(size_t i);
   void flushBits();
-  /// Moves the slice's runs into the word and renumbers what referred to them.
-  void place();
 
   const CompactWord* from_;
   CompactWord* word_ = nullptr;  // null while counting
