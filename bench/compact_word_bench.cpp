@@ -107,11 +107,11 @@ BENCHMARK(BM_KochCompactWord)
     ->Iterations(3)
     ->UseRealTime();
 
-// The same growth through the engine's pass on compact words (ParallelRewrite::
-// rewriteCompact): the rule chosen from the program, lifetimes, lineage keys and ids as
-// the engine computes them, from the engine's axiom. Argument: n, then T threads.
-void BM_KochCompactRewrite(benchmark::State& state) {
-  static const Compiled compiled = compileText("koch.cell", "lsystem koch {\n  axiom F\n  F -> F + F - F - F + F\n}\n");
+// Growth through the engine's pass on compact words (ParallelRewrite::rewriteCompact):
+// the rule chosen from the program, lifetimes, lineage keys and ids as the engine computes
+// them, from the engine's axiom to generation n (the first argument) on T threads (the
+// second).
+void compactRewriteFromAxiom(benchmark::State& state, const Compiled& compiled, uint64_t expectedSize) {
   if (!compiled.program) {
     state.SkipWithError(compiled.error.c_str());
     return;
@@ -119,14 +119,13 @@ void BM_KochCompactRewrite(benchmark::State& state) {
   const Program& program = *compiled.program;
   const int n = static_cast<int>(state.range(0));
   const unsigned threads = static_cast<unsigned>(state.range(1));
-  uint64_t fives = 1;
-  for (int i = 0; i < n; ++i) fives *= 5;
   std::vector<uint32_t> stateCounts;
   for (const MasterCell& master : program.masters) stateCounts.push_back(master.stateCount());
   ParallelRewrite rewrite(program, program.systems[program.root]);
   const World axiom(compiled.program, kBenchWorld);
   FirstAndWarm firstAndWarm;
   uint64_t freshBlocks = 0;
+  double bytesPerModule = 0;
   for (auto _ : state) {
     const double start = processSeconds();
     const uint64_t freshBefore = largeBlockCacheStats().fresh;
@@ -139,17 +138,32 @@ void BM_KochCompactRewrite(benchmark::State& state) {
     }
     firstAndWarm.add(processSeconds() - start);
     freshBlocks = largeBlockCacheStats().fresh - freshBefore;  // the last world's
-    if (word.size() != 2 * fives - 1) {
-      state.SkipWithError("compact Koch through the engine: wrong word");
+    if (word.size() != expectedSize) {
+      state.SkipWithError("compact rewrite: a word of the wrong size");
       return;
     }
+    bytesPerModule = static_cast<double>(word.bytes()) / static_cast<double>(word.size());
   }
-  state.counters["modules/s"] = benchmark::Counter(static_cast<double>(2 * fives - 1) * static_cast<double>(state.iterations()),
+  state.counters["modules/s"] = benchmark::Counter(static_cast<double>(expectedSize) * static_cast<double>(state.iterations()),
                                                    benchmark::Counter::kIsRate);
-  firstAndWarm.report(state);
+  state.counters["bytes/module"] = bytesPerModule;
   state.counters["fresh blocks"] = static_cast<double>(freshBlocks);
+  firstAndWarm.report(state);
+}
+
+void BM_KochCompactRewrite(benchmark::State& state) {
+  static const Compiled compiled = compileText("koch.cell", "lsystem koch {\n  axiom F\n  F -> F + F - F - F + F\n}\n");
+  uint64_t fives = 1;
+  for (int i = 0; i < state.range(0); ++i) fives *= 5;
+  compactRewriteFromAxiom(state, compiled, 2 * fives - 1);
 }
 BENCHMARK(BM_KochCompactRewrite)->Args({10, 1})->Args({10, 2})->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
+void BM_ThueMorseCompactRewrite(benchmark::State& state) {
+  static const Compiled compiled = compileText("thue_morse.cell", "lsystem t {\n  axiom a\n  a -> a b\n  b -> b a\n}\n");
+  compactRewriteFromAxiom(state, compiled, uint64_t{1} << state.range(0));
+}
+BENCHMARK(BM_ThueMorseCompactRewrite)->Args({24, 1})->Args({24, 2})->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 }  // namespace
 }  // namespace ontogen::bench

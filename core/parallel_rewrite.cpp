@@ -455,7 +455,7 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
         out.expect(1, 0);
         continue;
       }
-      const LabelRule* choice = chooseByPosition(labels, size, label, group, cell.index());
+      const LabelRule* choice = fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index());
       out.expect(choice && choice->rule->hasAction ? choice->cells : 1, 0);
     }
   };
@@ -475,7 +475,7 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
         continue;
       }
       ++fired;
-      const LabelRule* choice = chooseByPosition(labels, size, label, group, cell.index());
+      const LabelRule* choice = fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index());
       if (!choice || !choice->rule->hasAction) {  // renewed: the same id, born again
         out.append(label, cell.key(), death, nullptr);
         soonest = std::min(soonest, death + lifetime);

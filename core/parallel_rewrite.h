@@ -151,6 +151,10 @@ class ParallelRewrite {
   /// contexts compare by position (null: it renews itself).
   template <class Labels>
   const LabelRule* chooseByPosition(const Labels& labels, size_t size, uint32_t master, int group, size_t i) const;
+  /// The rule of a master whose choice is fixed (fixedChoice_), or null.
+  const LabelRule* fixedRule(uint32_t master) const {
+    return labelRules_[master].empty() ? nullptr : &labelRules_[master].front();
+  }
   /// The rule a master whose rules compare labels only chooses for cell i (null: it renews
   /// itself): no frame, no random stream.
   const LabelRule* chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const;

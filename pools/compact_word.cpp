@@ -138,15 +138,17 @@ void CompactWord::beginSlices(std::span<Slice> slices) {
     slice.firstValue_ = value;
     module += slice.modules_;
     value += slice.values_;
-    slice.written_ = slice.writtenValues_ = 0;
+    slice.written_ = slice.writtenValues_ = slice.runs_ = 0;
     slice.tail_ = RunTail{};
     slice.births_.clear();
-    slice.keys_.clear();
-    slice.birthIndex_.clear();
-    slice.firstK_.clear();
+    // At most a run a module; pages never written are never mapped.
+    resizeForOverwrite(slice.keys_, slice.modules_);
+    resizeForOverwrite(slice.birthIndex_, slice.modules_);
+    resizeForOverwrite(slice.firstK_, slice.modules_);
     slice.sharedWords_.clear();
     slice.bitsWord_ = SIZE_MAX;
-    slice.out_ = {wide_ ? nullptr : labels8_.data(), wide_ ? labels16_.data() : nullptr, values_.data()};
+    slice.out_ = {wide_ ? nullptr : labels8_.data(), wide_ ? labels16_.data() : nullptr, values_.data(),
+                  slice.keys_.data(), slice.birthIndex_.data(), slice.firstK_.data()};
   }
 }
 
@@ -159,7 +161,7 @@ void CompactWord::joinSlices(std::span<Slice> slices) {
   size_t runs = 0;
   for (Slice& slice : slices) {
     slice.firstRun_ = runs;
-    runs += slice.keys_.size();
+    runs += slice.runs_;
     slice.firstBirth_ = static_cast<uint32_t>(births_.size());
     births_.insert(births_.end(), slice.births_.begin(), slice.births_.end());
   }
@@ -177,10 +179,10 @@ void CompactWord::joinSlices(std::span<Slice> slices) {
 
 void CompactWord::Slice::place() {
   CompactWord& word = *word_;
-  std::copy(keys_.begin(), keys_.end(), word.keys_.begin() + static_cast<std::ptrdiff_t>(firstRun_));
-  std::copy(firstK_.begin(), firstK_.end(), word.firstK_.begin() + static_cast<std::ptrdiff_t>(firstRun_));
+  std::copy(keys_.data(), keys_.data() + runs_, word.keys_.data() + firstRun_);
+  std::copy(firstK_.data(), firstK_.data() + runs_, word.firstK_.data() + firstRun_);
   uint32_t* birthIndex = word.birthIndex_.data() + firstRun_;
-  for (size_t r = 0; r < birthIndex_.size(); ++r) {
+  for (size_t r = 0; r < runs_; ++r) {
     const uint32_t index = birthIndex_[r];
     birthIndex[r] = index & kNewBirth ? firstBirth_ + (index & ~kNewBirth) : index;
   }
@@ -192,7 +194,7 @@ void CompactWord::Slice::place() {
 
 void CompactWord::Slice::startBlock(size_t i) {
   if (i % kBlock == 0) {
-    word_->blockRuns_[i / kBlock] = static_cast<uint32_t>(keys_.size());
+    word_->blockRuns_[i / kBlock] = static_cast<uint32_t>(runs_);
     if (!word_->stateless_) word_->blockValues_[i / kBlock] = static_cast<uint32_t>(firstValue_ + writtenValues_);
   }
   flushBits();
