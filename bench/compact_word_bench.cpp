@@ -35,6 +35,14 @@ void rewriteKoch(const CompactWord& word, size_t begin, size_t end, double when,
   }
 }
 
+// The counters of a growth to a word of `modules` modules.
+void reportGrowth(benchmark::State& state, uint64_t modules, double bytesPerModule, const FirstAndWarm& firstAndWarm) {
+  state.counters["modules/s"] = benchmark::Counter(static_cast<double>(modules) * static_cast<double>(state.iterations()),
+                                                   benchmark::Counter::kIsRate);
+  state.counters["bytes/module"] = bytesPerModule;
+  firstAndWarm.report(state);
+}
+
 // The two writers under one interface: the serial one, and a slice.
 struct SerialWriter {
   CompactWord& word;
@@ -94,10 +102,7 @@ void BM_KochCompactWord(benchmark::State& state) {
     }
     bytesPerModule = static_cast<double>(word.bytes()) / static_cast<double>(word.size());
   }
-  state.counters["modules/s"] = benchmark::Counter(static_cast<double>(expected) * static_cast<double>(state.iterations()),
-                                                   benchmark::Counter::kIsRate);
-  state.counters["bytes/module"] = bytesPerModule;
-  firstAndWarm.report(state);
+  reportGrowth(state, expected, bytesPerModule, firstAndWarm);
 }
 BENCHMARK(BM_KochCompactWord)
     ->Args({10, 0})
@@ -144,11 +149,8 @@ void compactRewriteFromAxiom(benchmark::State& state, const Compiled& compiled, 
     }
     bytesPerModule = static_cast<double>(word.bytes()) / static_cast<double>(word.size());
   }
-  state.counters["modules/s"] = benchmark::Counter(static_cast<double>(expectedSize) * static_cast<double>(state.iterations()),
-                                                   benchmark::Counter::kIsRate);
-  state.counters["bytes/module"] = bytesPerModule;
+  reportGrowth(state, expectedSize, bytesPerModule, firstAndWarm);
   state.counters["fresh blocks"] = static_cast<double>(freshBlocks);
-  firstAndWarm.report(state);
 }
 
 void BM_KochCompactRewrite(benchmark::State& state) {

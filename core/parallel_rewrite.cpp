@@ -496,27 +496,20 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
     events[s] = fired;
     earliest[s] = soonest;
   };
+  auto everySlice = [&](const auto& work) {
+    parallelFor(
+        sliceCount, threads,
+        [&](size_t begin, size_t end, unsigned) {
+          for (size_t s = begin; s < end; ++s) work(s);
+        },
+        1);
+  };
   next.clearWithBirthsOf(word);
-  parallelFor(
-      sliceCount, threads,
-      [&](size_t begin, size_t end, unsigned) {
-        for (size_t s = begin; s < end; ++s) count(s);
-      },
-      1);
+  everySlice(count);
   next.beginSlices(slices);
-  parallelFor(
-      sliceCount, threads,
-      [&](size_t begin, size_t end, unsigned) {
-        for (size_t s = begin; s < end; ++s) pass(s);
-      },
-      1);
+  everySlice(pass);
   next.joinSlices(slices);
-  parallelFor(
-      sliceCount, threads,
-      [&](size_t begin, size_t end, unsigned) {
-        for (size_t s = begin; s < end; ++s) slices[s].place();
-      },
-      1);
+  everySlice([&](size_t s) { slices[s].place(); });
   next.finish();
   uint64_t total = 0;
   earliestDeath_ = kForever;
