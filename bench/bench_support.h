@@ -3,11 +3,17 @@
 // finding a module's master. Failures come back as messages for state.SkipWithError, so
 // a benchmark whose program does not compile reports an error instead of a time.
 
+#include <sys/resource.h>
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
 #include <fstream>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "core/world.h"
 #include "interpreters/set_registry.h"
@@ -44,6 +50,42 @@ inline Compiled compileModel(const std::string& name) {
   text << in.rdbuf();
   return compileText("models/" + name, text.str());
 }
+
+/// Processor time of the whole process so far, user and system (where the kernel zeroes
+/// fresh pages), in seconds: on a machine shared with other work, wall time mostly
+/// measures the others.
+inline double processSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+/// What cold memory costs: the processor time of the process's first world against the
+/// fastest later one of the same benchmark, reported as `first/warm` by the benchmark
+/// that runs first in the process (run one alone with --benchmark_filter). Its first
+/// world finds no memory to reuse (pools/large_block_cache.h); later ones do.
+class FirstAndWarm {
+ public:
+  FirstAndWarm() : cold_(takeProcessFirst()) {}
+  void add(double seconds) {
+    if (first_ == 0)
+      first_ = seconds;
+    else
+      warm_ = warm_ == 0 ? seconds : std::min(warm_, seconds);
+  }
+  void report(benchmark::State& state) const {
+    if (cold_ && warm_ > 0) state.counters["first/warm"] = first_ / warm_;
+  }
+
+ private:
+  static bool takeProcessFirst() {
+    static bool first = true;
+    return std::exchange(first, false);
+  }
+  bool cold_;
+  double first_ = 0, warm_ = 0;
+};
 
 /// The master of a module of the root system, by label.
 inline std::optional<uint32_t> masterOf(const Program& program, std::string_view label) {

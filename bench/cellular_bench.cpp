@@ -28,13 +28,6 @@ cell U(u = 0) { rules { rate(u) = D * (sum(u) - count() * u); } }
 system plate { pool grid(1000, 1000) wrap vonneumann; fill U(sin(me.x * 0.01) + cos(me.y * 0.02)); }
 )";
 
-double processSeconds() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
-}
-
 double totalOf(std::span<const double> values) {
   double total = 0;
   for (double v : values) total += v;
@@ -49,15 +42,7 @@ void BM_GridDiffusionThroughRate(benchmark::State& state) {
   }
   WorldDef def = kBenchWorld;
   def.threads = static_cast<unsigned>(state.range(0));
-  // The first world of the process (when this benchmark runs first) finds no memory to
-  // reuse (pools/large_block_cache.h): its time against the fastest later one of the
-  // same run says what cold memory costs.
-  // Processor time (user and system, where the kernel zeroes fresh pages) of the whole
-  // process: on a machine shared with other work, wall time mostly measures the others.
-  static bool processFirst = true;
-  const bool coldRun = processFirst;
-  processFirst = false;
-  double first = 0, warm = 0;
+  FirstAndWarm firstAndWarm;
   for (auto _ : state) {
     state.PauseTiming();
     World world(compiled.program, def);
@@ -67,10 +52,7 @@ void BM_GridDiffusionThroughRate(benchmark::State& state) {
     world.advanceTo(kSteps * kStep, kStep);
     const double seconds = processSeconds() - start;
     state.PauseTiming();
-    if (first == 0)
-      first = seconds;
-    else
-      warm = warm == 0 ? seconds : std::min(warm, seconds);
+    firstAndWarm.add(seconds);
     // Diffusion on a torus conserves the total: a wrong engine would not.
     if (std::abs(totalOf(world.rootPool().stateArena()) - before) > 1e-6 * kSide * kSide) {
       state.SkipWithError("the total changed: diffusion is wrong");
@@ -80,7 +62,7 @@ void BM_GridDiffusionThroughRate(benchmark::State& state) {
   }
   state.counters["updates/s"] =
       benchmark::Counter(static_cast<double>(kSide) * kSide * kSteps, benchmark::Counter::kIsIterationInvariantRate);
-  if (coldRun && warm > 0) state.counters["first/warm"] = first / warm;
+  firstAndWarm.report(state);
 }
 BENCHMARK(BM_GridDiffusionThroughRate)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 

@@ -36,9 +36,12 @@ void deriveFromAxiom(benchmark::State& state, const Compiled& compiled, uint64_t
   const int n = static_cast<int>(state.range(0));
   WorldDef def = kBenchWorld;
   def.threads = static_cast<unsigned>(state.range(1));
+  FirstAndWarm firstAndWarm;
   for (auto _ : state) {
+    const double start = processSeconds();
     World world(compiled.program, def);
     world.advanceTo(n, 1.0);
+    firstAndWarm.add(processSeconds() - start);
     if (world.rootPool().size() != expectedSize) {
       state.SkipWithError(
           ("word of " + std::to_string(world.rootPool().size()) + " modules, expected " + std::to_string(expectedSize))
@@ -54,6 +57,7 @@ void deriveFromAxiom(benchmark::State& state, const Compiled& compiled, uint64_t
     }
     state.ResumeTiming();  // the world's destruction is part of the run, as for the hand-written one
   }
+  firstAndWarm.report(state);
   state.counters["modules"] = static_cast<double>(expectedSize);
   state.counters["modules/s"] = benchmark::Counter(
       static_cast<double>(expectedSize) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);

@@ -42,6 +42,40 @@ bool comparesLabelsOnly(const Program& program, const MasterCell& master) {
 }
 }  // namespace
 
+ParallelRewrite::LabelRule ParallelRewrite::labelRule(const Program& program, uint32_t master,
+                                                     const CompiledRule& rule) const {
+  LabelRule choice;
+  choice.rule = &rule;
+  choice.group = rule.group;
+  choice.context = rule.hasContext();
+  if (rule.hasAction)
+    for (const SuccessorTemplate& successor : rule.successors) {
+      ++choice.cells;
+      choice.values += successor.isMe ? 0 : program.masters[successor.master].stateCount();
+      choice.born += successor.isMe ? 0 : 1;
+      const uint32_t label = successor.isMe ? master : successor.master;
+      choice.written.push_back({label, successor.isMe || successor.keepsIdentity});
+      choice.shortestLife = std::min(choice.shortestLife, program.masters[label].lifetime);
+    }
+  auto code = [](const ContextItem& item) {
+    switch (item.kind) {
+      case ContextItem::Kind::Module: return static_cast<int32_t>(item.master);
+      case ContextItem::Kind::Any: return kAnyLabel;
+      case ContextItem::Kind::End: return kEndLabel;
+      default: return kNoMatch;  // a bracket, in a word that has none
+    }
+  };
+  if (plain_ && rule.leftItems.size() <= kPositionItems && rule.rightItems.size() <= kPositionItems &&
+      rule.symbolClasses < 0) {
+    choice.byPosition = true;
+    choice.leftCount = static_cast<uint8_t>(rule.leftItems.size());
+    choice.rightCount = static_cast<uint8_t>(rule.rightItems.size());
+    for (size_t k = 0; k < rule.leftItems.size(); ++k) choice.left[k] = code(rule.leftItems[k]);
+    for (size_t k = 0; k < rule.rightItems.size(); ++k) choice.right[k] = code(rule.rightItems[k]);
+  }
+  return choice;
+}
+
 ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition& system)
     : program_(program), system_(system), functions_(program.functionTable()), frameSize_(ruleFrameSize(program)) {
   for (uint8_t symbolClass : system.symbolClass)
@@ -58,8 +92,15 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     labelsOnly_[m] = comparesLabelsOnly(program, master) && master.terminalRules.size() < UINT16_MAX;
     std::vector<LabelRule>& choices = labelRules_.emplace_back();
     if (labelsOnly_[m])
-      for (const CompiledRule& rule : master.terminalRules) choices.push_back({&rule, rule.group, rule.hasContext()});
+      for (const CompiledRule& rule : master.terminalRules)
+        choices.push_back(labelRule(program, static_cast<uint32_t>(m), rule));
+    const bool fixed = master.terminalRules.empty() || (master.terminalRules.size() == 1 &&
+                                                        master.terminalRules.front().group == 0 &&
+                                                        !master.terminalRules.front().hasContext());
+    fixedChoice_.push_back(labelsOnly_[m] && fixed);
+    anyChoiceVaries_ = anyChoiceVaries_ || (labelsOnly_[m] && !fixed);
     allLabelsOnly_ = allLabelsOnly_ && labelsOnly_[m];
+    for (const LabelRule& choice : choices) allByPosition_ = allByPosition_ && (!choice.context || choice.byPosition);
     double shortest = master.lifetime;  // a renewal
     for (const CompiledRule& rule : master.terminalRules) {
       if (!rule.newLeft.empty() || !rule.newRight.empty() || !rule.aggregates.empty() || rule.contextDimensions != 1)
@@ -104,12 +145,44 @@ bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, 
   return true;
 }
 
-const CompiledRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const {
+// As matchesLabels in a plain word, from the codes labelRule made.
+template <class Labels>
+bool ParallelRewrite::matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice, size_t i) {
+  for (size_t k = 0; k < choice.leftCount; ++k) {
+    const int32_t expected = choice.left[k];
+    if (i < k + 1) return expected == kEndLabel;  // the start of the word
+    if (expected != kAnyLabel && (expected < 0 || labels[i - 1 - k] != static_cast<uint32_t>(expected))) return false;
+  }
+  for (size_t k = 0; k < choice.rightCount; ++k) {
+    const int32_t expected = choice.right[k];
+    if (i + 1 + k >= size) return expected == kEndLabel;  // the end of the word
+    if (expected != kAnyLabel && (expected < 0 || labels[i + 1 + k] != static_cast<uint32_t>(expected))) return false;
+  }
+  return true;
+}
+
+namespace {
+// The labels of a word of records, and of a compact word, as matchesByPosition reads them.
+struct RecordLabels {
+  std::span<const CellRecord> cells;
+  uint32_t operator[](size_t i) const { return cells[i].master; }
+};
+struct CompactLabels {
+  const CompactWord& word;
+  uint32_t operator[](size_t i) const { return word.label(i); }
+};
+}  // namespace
+
+inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const {
   const CellRecord& cell = step.pool.cells()[i];
   for (const LabelRule& choice : labelRules_[cell.master]) {
     if (choice.group != 0 && choice.group != step.group) continue;
-    if (!choice.context || (pass == Pass::AtInstant && matchesLabels(step, *choice.rule, i, worker)))
-      return choice.rule;
+    if (!choice.context) return &choice;
+    if (pass != Pass::AtInstant) continue;
+    const auto cells = step.pool.cells();
+    if (choice.byPosition ? matchesByPosition(RecordLabels{cells}, cells.size(), choice, i)
+                          : matchesLabels(step, *choice.rule, i, worker))
+      return &choice;
   }
   return nullptr;
 }
@@ -161,11 +234,23 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
     ++slice.events;
     // As the serial pass finds it: a successor born at `death` that expires by the horizon.
     if (pass == Pass::ContextFree && death + shortestLife_[cell.master] <= step.horizon) slice.chained = true;
-    const CompiledRule* rule = nullptr;
     if (labelsOnly_[cell.master]) {
-      rule = chooseByLabels(pass, step, i, worker);
-      chosen_[i] = rule ? static_cast<uint16_t>(rule - master.terminalRules.data() + 1) : 0;
-    } else if (pass == Pass::ContextFree) {
+      const std::vector<LabelRule>& rules = labelRules_[cell.master];
+      const LabelRule* choice = fixedChoice_[cell.master] ? (rules.empty() ? nullptr : &rules.front())
+                                                           : chooseByLabels(pass, step, i, worker);
+      if (!fixedChoice_[cell.master])
+        chosen_[i] = choice ? static_cast<uint16_t>(choice->rule - master.terminalRules.data() + 1) : 0;
+      if (choice && choice->rule->hasAction) {
+        slice.cells += choice->cells;
+        slice.values += choice->values;
+        slice.born += choice->born;
+      } else {
+        ++slice.cells;  // renewed, without state
+      }
+      continue;
+    }
+    const CompiledRule* rule = nullptr;
+    if (pass == Pass::ContextFree) {
       // No choice to make (at most one rule, of group 0, without condition, chance or
       // context): what it writes is counted without loading the cell's frame.
       rule = master.terminalRules.empty() ? nullptr : &master.terminalRules.front();
@@ -222,7 +307,9 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
     }
     if (labelsOnly_[cell.master]) {
       // Nothing to evaluate: no frame, no random stream.
-      const CompiledRule* rule = chosen_[i] ? &master.terminalRules[chosen_[i] - 1u] : nullptr;
+      const CompiledRule* rule = fixedChoice_[cell.master]
+                                     ? (master.terminalRules.empty() ? nullptr : &master.terminalRules.front())
+                                     : (chosen_[i] ? &master.terminalRules[chosen_[i] - 1u] : nullptr);
       if (rule && rule->hasAction) {
         const EvalContext none{};
         worker.successors.write(*rule, cell, nullptr, death, BirthCause::Terminal, none, putModule);
@@ -282,7 +369,7 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
   if (!context.rewriteBySlices || (threads < 2 && !allLabelsOnly_) || size < kMinimumCells || context.lineage)
     return false;
   while (workers_.size() < threads) workers_.push_back(std::make_unique<Worker>(program_));
-  if (chosen_.size() < size) chosen_.resize(size);
+  if (anyChoiceVaries_ && chosen_.size() < size) chosen_.resize(size);
   const size_t sliceCount = std::min<size_t>(size, size_t{threads} * kSlicesPerThread);
   slices_.assign(sliceCount, Slice{});
   for (size_t s = 0; s < sliceCount; ++s) {
@@ -333,6 +420,115 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
   context.stats.cellsBorn += totalBorn;
   ++context.stats.rewritesBySlices;
   return true;
+}
+
+template <class Labels>
+const ParallelRewrite::LabelRule* ParallelRewrite::chooseByPosition(const Labels& labels, size_t size, uint32_t master,
+                                                                   int group, size_t i) const {
+  for (const LabelRule& choice : labelRules_[master]) {
+    if (choice.group != 0 && choice.group != group) continue;
+    if (!choice.context || matchesByPosition(labels, size, choice, i)) return &choice;
+  }
+  return nullptr;
+}
+
+uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon, int group, unsigned threads,
+                                         CompactWord& next) {
+  if (!appliesToCompactWords())
+    throw std::logic_error("ontogen: internal error: a compact rewrite of a word whose rules are not label-only");
+  const auto& masters = program_.masters;
+  const size_t size = word.size();
+  threads = std::max(threads, 1u);
+  const size_t sliceCount = std::max<size_t>(1, std::min<size_t>(size, size_t{threads} * kSlicesPerThread));
+  // Kept from step to step: their buffers of runs are reused.
+  std::vector<CompactWord::Slice>& slices = compactSlices_;
+  slices.resize(sliceCount, CompactWord::Slice(word));
+  for (CompactWord::Slice& slice : slices) slice.restart(word);
+  std::vector<uint64_t> events(sliceCount, 0);
+  std::vector<double> earliest(sliceCount, kForever);
+  // The counting pass chooses without writing or hashing anything: what each chosen rule
+  // writes is in its LabelRule. Cells the writing pass copies or renews count one each.
+  auto count = [&](size_t s) {
+    CompactWord::Slice& out = slices[s];
+    const CompactLabels labels{word};
+    const uint8_t* labelBytes = word.wideLabels() ? nullptr : word.labels8().data();
+    const size_t end = size * (s + 1) / sliceCount;
+    for (CompactWordCursor cell(word, size * s / sliceCount); !cell.done() && cell.index() < end; cell.next()) {
+      const uint32_t label = labelBytes ? labelBytes[cell.index()] : cell.master();
+      if (cell.birth() + masters[label].lifetime > horizon) {
+        out.expect(1, 0);
+        continue;
+      }
+      const LabelRule* choice = chooseByPosition(labels, size, label, group, cell.index());
+      out.expect(choice && choice->rule->hasAction ? choice->cells : 1, 0);
+    }
+  };
+  auto pass = [&](size_t s) {
+    CompactWord::Slice& out = slices[s];
+    const CompactLabels labels{word};
+    uint64_t fired = 0;
+    double soonest = kForever;
+    const size_t end = size * (s + 1) / sliceCount;
+    for (CompactWordCursor cell(word, size * s / sliceCount); !cell.done() && cell.index() < end; cell.next()) {
+      const uint32_t label = cell.master();
+      const double lifetime = masters[label].lifetime;
+      const double death = cell.birth() + lifetime;
+      if (death > horizon) {
+        out.appendCopy(label, cell.key(), cell.birthIndex(), nullptr);
+        soonest = std::min(soonest, death);
+        continue;
+      }
+      ++fired;
+      const LabelRule* choice = chooseByPosition(labels, size, label, group, cell.index());
+      if (!choice || !choice->rule->hasAction) {  // renewed: the same id, born again
+        out.append(label, cell.key(), death, nullptr);
+        soonest = std::min(soonest, death + lifetime);
+        continue;
+      }
+      // As SuccessorWriter::write: `me` and `=X` keep the cell's id, the others take the
+      // event's lineage and their number.
+      const IdKey own = cell.key();
+      const uint64_t lineage = lineageKey(own.id(), death, BirthCause::Terminal);
+      uint32_t k = 0;
+      for (const LabelRule::Written& successor : choice->written) {
+        ++k;
+        out.append(successor.label, successor.keepsId ? own : IdKey{lineage, k}, death, nullptr);
+      }
+      soonest = std::min(soonest, death + choice->shortestLife);
+    }
+    out.finish();
+    events[s] = fired;
+    earliest[s] = soonest;
+  };
+  next.clearWithBirthsOf(word);
+  parallelFor(
+      sliceCount, threads,
+      [&](size_t begin, size_t end, unsigned) {
+        for (size_t s = begin; s < end; ++s) count(s);
+      },
+      1);
+  next.beginSlices(slices);
+  parallelFor(
+      sliceCount, threads,
+      [&](size_t begin, size_t end, unsigned) {
+        for (size_t s = begin; s < end; ++s) pass(s);
+      },
+      1);
+  next.joinSlices(slices);
+  parallelFor(
+      sliceCount, threads,
+      [&](size_t begin, size_t end, unsigned) {
+        for (size_t s = begin; s < end; ++s) slices[s].place();
+      },
+      1);
+  next.finish();
+  uint64_t total = 0;
+  earliestDeath_ = kForever;
+  for (size_t s = 0; s < sliceCount; ++s) {
+    total += events[s];
+    earliestDeath_ = std::min(earliestDeath_, earliest[s]);
+  }
+  return total;
 }
 
 }  // namespace ontogen

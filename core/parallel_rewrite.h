@@ -29,6 +29,7 @@
 #include "core/development.h"
 #include "core/successors.h"
 #include "lang/program.h"
+#include "pools/compact_word.h"
 #include "pools/linear_pool.h"
 
 namespace ontogen {
@@ -51,6 +52,22 @@ class ParallelRewrite {
   /// indexed), with rule group `group` active; as rewriteContextFree otherwise.
   bool rewriteAtInstant(const LinearPool& pool, double instant, int group, StepContext& context,
                         const double* parents, uint64_t& events, CellArray& cells, StateArray& state);
+
+  /// Whether rewriteCompact applies: every master's rules compare labels only, give no
+  /// birth age and, with context, compare at most kPositionItems modules a side, in a word
+  /// without brackets, cut or ignored modules, and the system neither decomposes nor
+  /// derives backward.
+  bool appliesToCompactWords() const { return allLabelsOnly_ && plain_ && atInstants_ && allByPosition_; }
+
+  /// The pass of rewriteAtInstant on a compact word (docs/COMPACT_WORDS.md), on `threads`
+  /// threads by slices (CompactWord::Slice): writes `next` from `word`. Every cell whose
+  /// terminal age is at most `horizon` fires the rule it chooses, rule group `group` active,
+  /// its context read in `word`, or renews itself; its successors are born at its terminal
+  /// age, with the ids the other passes give them. Other cells are copied. Returns the
+  /// number of events; earliestDeath() gives the earliest terminal age in `next`. Needs
+  /// appliesToCompactWords(). The linear pool does not store compact words yet (slice 4):
+  /// tests check this pass against the engine's words.
+  uint64_t rewriteCompact(const CompactWord& word, double horizon, int group, unsigned threads, CompactWord& next);
 
   /// The earliest terminal age (birth + lifetime) in the word rewriteAtInstant wrote last,
   /// found while writing it, so the development need not look for it again.
@@ -92,8 +109,7 @@ class ParallelRewrite {
   /// its frame loaded and its context's values bound; as LinearDevelopment::expire chooses.
   const CompiledRule* choose(Pass pass, const Step& step, size_t i, const double* state, double death,
                              Worker& worker, RandomStream& random, const EvalContext& evaluation) const;
-  /// The same for a master whose rules compare labels only: no frame, no random stream.
-  const CompiledRule* chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const;
+
   bool matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const;
 
   const Program& program_;
@@ -105,18 +121,54 @@ class ParallelRewrite {
   // Per master whose rules compare labels only: its terminal rules in order, with what
   // the choice reads of them side by side.
   struct LabelRule {
-    const CompiledRule* rule;
-    int group;
-    bool context;
+    const CompiledRule* rule = nullptr;
+    int group = 0;
+    bool context = false;
+    // What the rule writes when it fires: cells, state values and cells born; each
+    // successor's label and whether it keeps the cell's id (`me`, `=X`); the shortest
+    // lifetime among them.
+    uint32_t cells = 0, values = 0, born = 0;
+    struct Written {
+      uint32_t label;
+      bool keepsId;
+    };
+    std::vector<Written> written;
+    double shortestLife = kForever;
+    // In a plain word, a context of at most kPositionItems modules a side compared by
+    // position: per item the master expected there, or kAnyLabel, kEndLabel, kNoMatch.
+    bool byPosition = false;
+    uint8_t leftCount = 0, rightCount = 0;
+    int32_t left[4] = {}, right[4] = {};
   };
+  static constexpr size_t kPositionItems = 4;
+  static constexpr int32_t kAnyLabel = -1, kEndLabel = -2, kNoMatch = -3;
+  LabelRule labelRule(const Program& program, uint32_t master, const CompiledRule& rule) const;
+  /// Whether `choice`'s context matches around cell i of a plain word whose label at j
+  /// is labels[j] (j below size).
+  template <class Labels>
+  static bool matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice, size_t i);
+  /// The label-only rule cell i of master `master` chooses at an instant, all of whose
+  /// contexts compare by position (null: it renews itself).
+  template <class Labels>
+  const LabelRule* chooseByPosition(const Labels& labels, size_t size, uint32_t master, int group, size_t i) const;
+  /// The rule a master whose rules compare labels only chooses for cell i (null: it renews
+  /// itself): no frame, no random stream.
+  const LabelRule* chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const;
   std::vector<std::vector<LabelRule>> labelRules_;
   bool allLabelsOnly_ = true;
-  // Per cell of the word, for a master whose rules compare labels only: the rule the
-  // counting pass chose (1 + its index; 0: none), which the writing pass takes as it is.
+  bool allByPosition_ = true;  // every label-only rule with context compares by position
+  // Per master whose rules compare labels only and whose choice is the same for every
+  // cell (one rule of group 0 without context, or none): that rule, or null.
+  std::vector<uint8_t> fixedChoice_;
+  bool anyChoiceVaries_ = false;
+  // Per cell of the word, for a master whose rules compare labels only and whose choice
+  // varies: the rule the counting pass chose (1 + its index; 0: none), which the writing
+  // pass takes as it is. Left empty when no master's choice varies (Koch, Thue-Morse).
   std::vector<uint16_t> chosen_;
   std::vector<double> shortestLife_;  // per master: the shortest lifetime of what its rule writes
   FunctionTable functions_;
   std::vector<Slice> slices_;
+  std::vector<CompactWord::Slice> compactSlices_;
   std::vector<std::unique_ptr<Worker>> workers_;
   size_t frameSize_ = 0;
   double earliestDeath_ = kForever;

@@ -164,13 +164,14 @@ TEST(ParallelRewrite, ALabelOnlyContextIsWrittenAsTheSerialPassWritesIt) {
   }
 }
 
-// Labels only, with two modules of left context, right context and the word's ends: in
-// a word of plain modules (matched by position) and in one with branches and an ignored
-// module (matched through the bracket index).
+// Labels only, with two modules of left context, right context, the wildcard and the
+// word's ends: in a word of plain modules (matched by position) and in one with branches
+// and an ignored module (matched through the bracket index).
 std::string labelContextProgram(bool branches) {
   std::string axiom;
   for (int i = 0; i < 12'000; ++i) axiom += branches ? (i % 3 ? " a b c" : " a [ b c ] d") : (i % 3 ? " a b c" : " a b d");
   return "lsystem l {\n  axiom" + axiom + "\n" + (branches ? "  ignore: d\n" : "") +
+         "  ∅ < a -> d\n  c > * ∅ -> a\n  b * < c -> d\n"
          "  a b < c -> a\n  c > a -> b\n  a < b > c -> c\n  d < a -> d\n  b -> a\n  d -> c\n}\n";
 }
 
@@ -185,6 +186,57 @@ TEST(ParallelRewrite, LabelContextsInPlainAndBranchedWordsAreWrittenAsTheSerialP
       EXPECT_EQ(parallel.stats.rewritesBySlices, 12u) << threads << " threads";
       expectSameWords(*serial.world, *parallel.world,
                       std::string(branches ? "branched" : "plain") + " word on " + std::to_string(threads) + " threads");
+    }
+  }
+}
+
+// The pass on compact words (docs/COMPACT_WORDS.md, slice 5), which the linear pool does
+// not store yet: from the engine's axiom, a compact word rewritten generation by
+// generation reads as the engine's word, module for module (label, id, birth), on 1, 2
+// and 3 threads, and counts the engine's events.
+TEST(ParallelRewrite, LabelOnlyWordsRewrittenCompactReadAsTheEnginesWords) {
+  struct Case {
+    std::string name, text;
+    int generations;
+    size_t runs;  // at the end: an event's successors share a run; the axiom's ids are whole
+  };
+  const std::vector<Case> cases{{"Koch", kKoch, 6, 2 * 3125 - 1},
+                                {"Thue-Morse", "lsystem t {\n  axiom a\n  a -> a b\n  b -> b a\n}\n", 12, 2048},
+                                {"signal", signalProgram(3000), 30, 3000},
+                                {"label contexts", labelContextProgram(false), 8, 36000}};
+  for (const Case& model : cases) {
+    SCOPED_TRACE(model.name);
+    auto program = testing_support::compileOrFail(model.text);
+    ASSERT_NE(program, nullptr);
+    ParallelRewrite rewrite(*program, program->systems[program->root]);
+    ASSERT_TRUE(rewrite.appliesToCompactWords());
+    WorldDef def;
+    def.seed = 11;
+    std::vector<uint32_t> stateCounts;
+    for (const MasterCell& master : program->masters) stateCounts.push_back(master.stateCount());
+    for (unsigned threads : {1u, 2u, 3u}) {
+      CompactWord word(stateCounts), next(stateCounts);
+      World engine(program, def);
+      for (CellCursor cell = engine.rootPool().cursor(); !cell.done(); cell.next())
+        word.append(cell.master(), IdKey::whole(cell.id()), cell.birth(), nullptr);
+      uint64_t compactEvents = 0;
+      for (int generation = 1; generation <= model.generations; ++generation) {
+        compactEvents += rewrite.rewriteCompact(word, generation, 0, threads, next);
+        std::swap(word, next);
+        engine.advanceTo(generation, 1.0);
+        const Pool& pool = engine.rootPool();
+        ASSERT_EQ(word.size(), pool.size()) << "generation " << generation;
+        size_t i = 0;
+        for (CompactWordCursor cell = word.cursor(); !cell.done(); cell.next(), ++i) {
+          const CellView expected = pool.cellAt(i);
+          ASSERT_TRUE(cell.master() == expected.master && cell.id() == expected.id &&
+                      std::bit_cast<uint64_t>(cell.birth()) == std::bit_cast<uint64_t>(expected.birth))
+              << "generation " << generation << ", cell " << i << ", " << threads << " threads";
+        }
+      }
+      EXPECT_EQ(compactEvents, engine.stats().events) << threads << " threads";
+      EXPECT_LE(word.runCount(), model.runs + 3 * threads) << "one more run a seam at most";
+      EXPECT_GE(word.runCount(), model.runs);
     }
   }
 }

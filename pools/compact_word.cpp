@@ -1,0 +1,252 @@
+#include "pools/compact_word.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace ontogen {
+
+namespace {
+// How far back birthIndexOf looks for an equal birth before it appends one. A step's
+// events are born at few instants, and a writer copying an old word meets its births in
+// the order they were appended, so a short look finds them.
+constexpr size_t kBirthLookBack = 8;
+}  // namespace
+
+CompactWord::CompactWord(std::vector<uint32_t> stateCounts) : stateCounts_(std::move(stateCounts)) {
+  wide_ = stateCounts_.size() > 256;
+  stateless_ = std::all_of(stateCounts_.begin(), stateCounts_.end(), [](uint32_t n) { return n == 0; });
+}
+
+size_t CompactWord::bytes() const {
+  return labels8_.size() + labels16_.size() * sizeof(uint16_t) + runStarts_.size() * sizeof(uint64_t) +
+         (blockRuns_.size() + blockValues_.size()) * sizeof(uint32_t) +
+         keys_.size() * (sizeof(uint64_t) + sizeof(uint32_t) + sizeof(uint8_t)) + births_.size() * sizeof(double) +
+         values_.size() * sizeof(double);
+}
+
+void CompactWord::clear() {
+  size_ = 0;
+  labels8_.clear();
+  labels16_.clear();
+  runStarts_.clear();
+  blockRuns_.clear();
+  blockValues_.clear();
+  keys_.clear();
+  birthIndex_.clear();
+  firstK_.clear();
+  values_.clear();
+  tail_ = RunTail{};
+}
+
+void CompactWord::clearWithBirthsOf(const CompactWord& other) {
+  clear();
+  births_ = other.births_;
+}
+
+void CompactWord::reserve(size_t modules, size_t runs, size_t values) {
+  (wide_ ? labels16_.reserve(modules) : labels8_.reserve(modules));
+  const size_t blocks = (modules + kBlock - 1) / kBlock;
+  runStarts_.reserve(blocks);
+  blockRuns_.reserve(blocks);
+  if (!stateless_) blockValues_.reserve(blocks);
+  keys_.reserve(runs);
+  birthIndex_.reserve(runs);
+  firstK_.reserve(runs);
+  values_.reserve(values);
+}
+
+size_t CompactWord::birthIndexIn(std::vector<double>& births, double birth) {
+  const uint64_t bits = std::bit_cast<uint64_t>(birth);
+  const size_t lookBack = std::min(births.size(), kBirthLookBack);
+  for (size_t back = 1; back <= lookBack; ++back)
+    if (std::bit_cast<uint64_t>(births[births.size() - back]) == bits) return births.size() - back;
+  births.push_back(birth);
+  return births.size() - 1;
+}
+
+uint32_t CompactWord::addBirth(double birth) {
+  const size_t index = birthIndexIn(births_, birth);
+  if (index >= UINT32_MAX) throw std::length_error("ontogen: a linear word with 2^32 distinct birth times");
+  return static_cast<uint32_t>(index);
+}
+
+void CompactWord::append(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
+  key = RunTail::normalised(key, kLargestRunK);
+  const uint32_t count = stateCounts_[label];
+  // The block index counts runs and values in 32 bits, as a record's state offset did.
+  if (keys_.size() >= UINT32_MAX || values_.size() + count > UINT32_MAX)
+    throw std::length_error("ontogen: a linear word with 2^32 runs or state values");
+  const size_t i = size_;
+  if (i % kBlock == 0) {
+    runStarts_.push_back(0);
+    blockRuns_.push_back(static_cast<uint32_t>(keys_.size()));
+    if (!stateless_) blockValues_.push_back(static_cast<uint32_t>(values_.size()));
+  }
+  if (!tail_.continues(key, births_[birthIndex])) {
+    runStarts_.back() |= uint64_t{1} << (i % kBlock);
+    keys_.push_back(key.key);
+    birthIndex_.push_back(birthIndex);
+    firstK_.push_back(key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k));
+  }
+  if (wide_)
+    labels16_.push_back(static_cast<uint16_t>(label));
+  else
+    labels8_.push_back(static_cast<uint8_t>(label));
+  values_.insert(values_.end(), values, values + count);
+  ++size_;
+}
+
+void CompactWord::finish() {
+  if (births_.size() <= std::max<size_t>(64, 2 * keys_.size())) return;
+  std::vector<double> renumbered;
+  std::unordered_map<uint64_t, uint32_t> indexOf;
+  for (uint32_t& index : birthIndex_) {
+    const double birth = births_[index];
+    const auto [at, added] = indexOf.try_emplace(std::bit_cast<uint64_t>(birth), renumbered.size());
+    if (added) renumbered.push_back(birth);
+    index = at->second;
+  }
+  births_ = std::move(renumbered);
+}
+
+void CompactWord::beginSlices(std::span<Slice> slices) {
+  size_t modules = 0, values = 0;
+  for (const Slice& slice : slices) {
+    if (slice.from_->stateCounts_ != stateCounts_)
+      throw std::logic_error("ontogen: internal error: a slice copies from a word of other labels");
+    modules += slice.modules_;
+    values += slice.values_;
+  }
+  // Birth indices carry kNewBirth while a slice writes.
+  if (values > UINT32_MAX || births_.size() >= Slice::kNewBirth)
+    throw std::length_error("ontogen: a linear word with 2^32 state values or 2^31 birth times");
+  std::vector<double> births = std::move(births_);
+  clear();
+  births_ = std::move(births);
+  size_ = modules;
+  (wide_ ? resizeForOverwrite(labels16_, modules) : resizeForOverwrite(labels8_, modules));
+  const size_t blocks = (modules + kBlock - 1) / kBlock;
+  resizeForOverwrite(runStarts_, blocks);
+  resizeForOverwrite(blockRuns_, blocks);
+  if (!stateless_) resizeForOverwrite(blockValues_, blocks);
+  resizeForOverwrite(values_, values);
+  size_t module = 0, value = 0;
+  for (Slice& slice : slices) {
+    slice.word_ = this;
+    slice.firstModule_ = module;
+    slice.firstValue_ = value;
+    module += slice.modules_;
+    value += slice.values_;
+    slice.written_ = slice.writtenValues_ = 0;
+    slice.tail_ = RunTail{};
+    slice.births_.clear();
+    slice.keys_.clear();
+    slice.birthIndex_.clear();
+    slice.firstK_.clear();
+    slice.sharedWords_.clear();
+    slice.bitsWord_ = SIZE_MAX;
+    slice.out_ = {wide_ ? nullptr : labels8_.data(), wide_ ? labels16_.data() : nullptr, values_.data()};
+  }
+}
+
+void CompactWord::endSlices(std::span<Slice> slices) {
+  joinSlices(slices);
+  for (Slice& slice : slices) slice.place();
+}
+
+void CompactWord::joinSlices(std::span<Slice> slices) {
+  size_t runs = 0;
+  for (Slice& slice : slices) {
+    slice.firstRun_ = runs;
+    runs += slice.keys_.size();
+    slice.firstBirth_ = static_cast<uint32_t>(births_.size());
+    births_.insert(births_.end(), slice.births_.begin(), slice.births_.end());
+  }
+  if (runs > UINT32_MAX || births_.size() >= Slice::kNewBirth)
+    throw std::length_error("ontogen: a linear word with 2^32 runs or 2^31 birth times");
+  resizeForOverwrite(keys_, runs);
+  resizeForOverwrite(birthIndex_, runs);
+  resizeForOverwrite(firstK_, runs);
+  // A word two slices share holds the run starts of both: cleared, then joined.
+  for (const Slice& slice : slices)
+    for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] = 0;
+  for (const Slice& slice : slices)
+    for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] |= bits;
+}
+
+void CompactWord::Slice::place() {
+  CompactWord& word = *word_;
+  std::copy(keys_.begin(), keys_.end(), word.keys_.begin() + static_cast<std::ptrdiff_t>(firstRun_));
+  std::copy(firstK_.begin(), firstK_.end(), word.firstK_.begin() + static_cast<std::ptrdiff_t>(firstRun_));
+  uint32_t* birthIndex = word.birthIndex_.data() + firstRun_;
+  for (size_t r = 0; r < birthIndex_.size(); ++r) {
+    const uint32_t index = birthIndex_[r];
+    birthIndex[r] = index & kNewBirth ? firstBirth_ + (index & ~kNewBirth) : index;
+  }
+  // The block index counted the slice's own runs.
+  const size_t end = firstModule_ + written_;
+  for (size_t block = (firstModule_ + kBlock - 1) / kBlock; block * kBlock < end; ++block)
+    word.blockRuns_[block] += static_cast<uint32_t>(firstRun_);
+}
+
+void CompactWord::Slice::startBlock(size_t i) {
+  if (i % kBlock == 0) {
+    word_->blockRuns_[i / kBlock] = static_cast<uint32_t>(keys_.size());
+    if (!word_->stateless_) word_->blockValues_[i / kBlock] = static_cast<uint32_t>(firstValue_ + writtenValues_);
+  }
+  flushBits();
+  bitsWord_ = i / kBlock;
+  bits_ = 0;
+}
+
+void CompactWord::Slice::flushBits() {
+  if (bitsWord_ == SIZE_MAX) return;
+  const size_t first = bitsWord_ * kBlock;
+  if (first >= firstModule_ && first + kBlock <= firstModule_ + modules_)
+    word_->runStarts_[bitsWord_] = bits_;
+  else
+    sharedWords_.emplace_back(bitsWord_, bits_);
+}
+
+void CompactWord::Slice::finish() {
+  if (!word_) return;
+  flushBits();
+  bitsWord_ = SIZE_MAX;
+  // Counting and writing agree by contract; a slice that wrote other than it counted
+  // would leave unwritten memory in the word, so it stops here.
+  if (written_ != modules_ || writtenValues_ != values_)
+    throw std::logic_error("ontogen: internal error: a slice of a compact word wrote other than it counted");
+}
+
+CompactWord::Place CompactWord::locate(size_t i) const {
+  const size_t block = i / kBlock;
+  const unsigned bit = i % kBlock;
+  const uint64_t upTo = runStarts_[block] & (bit == kBlock - 1 ? ~uint64_t{0} : (uint64_t{2} << bit) - 1);
+  Place place;
+  // Module 0 starts a run, so a block with no start up to i has runs before it.
+  place.run = blockRuns_[block] + static_cast<size_t>(std::popcount(upTo)) - 1;
+  size_t start;
+  if (upTo != 0) {
+    start = block * kBlock + (kBlock - 1 - static_cast<size_t>(std::countl_zero(upTo)));
+  } else {
+    size_t word = block;
+    do --word;
+    while (runStarts_[word] == 0);
+    start = word * kBlock + (kBlock - 1 - static_cast<size_t>(std::countl_zero(runStarts_[word])));
+  }
+  place.j = static_cast<uint32_t>(i - start);
+  if (!stateless_) {
+    size_t value = blockValues_[block];
+    for (size_t p = block * kBlock; p < i; ++p) value += stateCounts_[label(p)];
+    place.value = value;
+  }
+  return place;
+}
+
+CellView CompactWord::cellAt(size_t i) const {
+  const Place place = locate(i);
+  return {label(i), values_.data() + place.value, birthOf(place.run), keyOf(place.run, place.j).id(), i};
+}
+
+}  // namespace ontogen

@@ -1,0 +1,357 @@
+#pragma once
+// A linear word in a few bytes a module (docs/COMPACT_WORDS.md, section 4). Instead of a
+// 24-byte record per module, the word keeps:
+//  - a label stream: one byte per module, two when there are more than 256 labels;
+//  - runs: stretches of consecutive modules born in one event. A run holds its lineage
+//    key, its birth (an index into a table of distinct birth times) and the successor
+//    number k of its first module; the j-th module of the run has the id
+//    mixKey(key, firstK + j), exactly the id core/successors.h gives it;
+//  - a run-start bitmap, one bit a module, and a block index (runs and state values
+//    before each block of 64 modules), so module i is found in constant time;
+//  - the state values in word order, without a per-module offset.
+// Koch's word takes 3.79 bytes a module this way, Thue-Morse's 7.69.
+//
+// A writer appends modules in word order; it extends the last run when the module has
+// the same key and birth and the next k (below 255), and starts a run otherwise, so the
+// encoding of a word written serially is canonical. An id whose k is 255 or more, or one
+// that cannot be written as (key, k) at all, is kept whole in a run of its own.
+
+#include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "pools/cell_cursor.h"
+#include "pools/large_page_allocator.h"
+#include "pools/mix_key.h"
+
+namespace ontogen {
+
+/// Where a module's id comes from: mixKey(key, k), or `key` itself when k is kWhole.
+struct IdKey {
+  static constexpr uint32_t kWhole = UINT32_MAX;
+  uint64_t key = 0;
+  uint32_t k = kWhole;
+
+  /// An id kept as it is (a module whose id is not the k-th of a lineage key).
+  static constexpr IdKey whole(uint64_t id) { return {id, kWhole}; }
+  constexpr uint64_t id() const { return k == kWhole ? key : mixKey(key, k); }
+};
+
+class CompactWordCursor;
+
+/// The canonical rule every writer and counter of a compact word applies: a module
+/// continues the run of the module before it when both have (key, k) ids with the same
+/// key and the next k, and the same birth bits.
+class RunTail {
+ public:
+  /// `key` with a k past what a run stores kept whole instead.
+  static constexpr IdKey normalised(IdKey key, uint32_t largestK) {
+    return key.k != IdKey::kWhole && key.k > largestK ? IdKey::whole(key.id()) : key;
+  }
+  /// Whether the module (`key` normalised) continues the last module's run; it becomes
+  /// the last module.
+  bool continues(IdKey key, double birth) {
+    const uint64_t bits = std::bit_cast<uint64_t>(birth);
+    const bool continues = any_ && key.k != IdKey::kWhole && last_.k != IdKey::kWhole && key.key == last_.key &&
+                           key.k == last_.k + 1 && bits == lastBirth_;
+    any_ = true;
+    last_ = key;
+    lastBirth_ = bits;
+    return continues;
+  }
+
+ private:
+  bool any_ = false;
+  IdKey last_;
+  uint64_t lastBirth_ = 0;
+};
+
+class CompactWord {
+ public:
+  /// The largest k a run stores (one byte; 255 marks a run whose one id is kept whole).
+  static constexpr uint32_t kLargestRunK = 254;
+  /// Modules per block of the index: one 64-bit word of the run-start bitmap.
+  static constexpr size_t kBlock = 64;
+
+  /// A word whose labels are 0 .. stateCounts.size() - 1; module with label m has
+  /// stateCounts[m] state values. More than 256 labels take two bytes a module.
+  explicit CompactWord(std::vector<uint32_t> stateCounts = {});
+
+  size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  size_t runCount() const { return keys_.size(); }
+  size_t birthCount() const { return births_.size(); }
+  size_t valueCount() const { return values_.size(); }
+  bool wideLabels() const { return wide_; }
+  /// Bytes the word's arrays take (their sizes, not their capacities: pages never
+  /// written are never mapped).
+  size_t bytes() const;
+
+  // --- Writing, in word order ---
+
+  /// Empties the word; keeps the arrays' storage and the birth table.
+  void clear();
+  /// Empties the word and gives it `other`'s birth table, so a module copied from `other`
+  /// keeps its birth index (the writer of the next word from this one).
+  void clearWithBirthsOf(const CompactWord& other);
+  /// Room for this many modules, runs and values without reallocation.
+  void reserve(size_t modules, size_t runs, size_t values);
+  /// The index of `birth` in the table: one of the last few entries when its bits match,
+  /// else a new entry.
+  uint32_t birthIndexOf(double birth) {
+    if (!births_.empty() && std::bit_cast<uint64_t>(births_.back()) == std::bit_cast<uint64_t>(birth)) [[likely]]
+      return static_cast<uint32_t>(births_.size() - 1);
+    return addBirth(birth);
+  }
+  /// Appends a module with label `label` (below the label count), id `key`, birth
+  /// births()[birthIndex], and the label's state count of values from `values`.
+  void append(uint32_t label, IdKey key, uint32_t birthIndex, const double* values);
+  void append(uint32_t label, IdKey key, double birth, const double* values) {
+    append(label, key, birthIndexOf(birth), values);
+  }
+  /// After the last append: renumbers the birth table in order of first use, dropping
+  /// entries no run uses and duplicates, once it holds more than max(64, 2 x runs).
+  void finish();
+
+  // --- Writing by slices (each thread a slice of the word, as core/parallel_rewrite.h
+  // writes the next word): every slice counts, then beginSlices sizes the word and places
+  // the slices by prefix sums, each slice writes in place, and endSlices joins the seams.
+
+  class Slice;
+  /// Sizes the word's labels and values for `slices`, which have counted, and places them
+  /// one after the other. The word was cleared with the births of the word the slices copy
+  /// from (clearWithBirthsOf).
+  void beginSlices(std::span<Slice> slices);
+  /// After every slice has written: moves the slices' runs into the word, appends their new
+  /// births to the table in slice order, and joins the run-start bits of the bitmap words
+  /// two slices share. Then finish() as after serial appends.
+  void endSlices(std::span<Slice> slices);
+  /// endSlices in two parts, for a caller that moves the runs on several threads:
+  /// joinSlices (one thread), then Slice::place for every slice (any thread each).
+  void joinSlices(std::span<Slice> slices);
+
+  // --- Reading ---
+
+  uint32_t label(size_t i) const { return wide_ ? labels16_[i] : labels8_[i]; }
+  /// The label stream itself: one of the two is empty, as wideLabels() says.
+  std::span<const uint8_t> labels8() const { return labels8_; }
+  std::span<const uint16_t> labels16() const { return labels16_; }
+  std::span<const double> births() const { return births_; }
+  std::span<const double> values() const { return values_; }
+  std::span<double> values() { return values_; }
+  uint32_t stateCount(uint32_t label) const { return stateCounts_[label]; }
+
+  /// Where module i sits: its run, its place j in the run and its first state value.
+  struct Place {
+    size_t run = 0;
+    uint32_t j = 0;
+    size_t value = 0;
+  };
+  /// Module i (below size()) in constant time: a popcount, at most five bitmap words
+  /// back for the run's start, at most 63 state counts for the value offset.
+  Place locate(size_t i) const;
+
+  IdKey keyOf(size_t run, uint32_t j) const {
+    return firstK_[run] == kWholeMark ? IdKey::whole(keys_[run]) : IdKey{keys_[run], firstK_[run] + j};
+  }
+  uint32_t birthIndex(size_t run) const { return birthIndex_[run]; }
+  double birthOf(size_t run) const { return births_[birthIndex_[run]]; }
+
+  /// Module i as readers see it (pools/cell_cursor.h).
+  CellView cellAt(size_t i) const;
+  /// A cursor at the first module.
+  CompactWordCursor cursor() const;
+
+ private:
+  friend class CompactWordCursor;
+  static constexpr uint8_t kWholeMark = 0xFF;
+
+  bool startsRun(size_t i) const { return (runStarts_[i / kBlock] >> (i % kBlock)) & 1u; }
+  /// Where the next new birth of a writer goes: one of the last few of `births` whose bits
+  /// match, or a new entry.
+  static size_t birthIndexIn(std::vector<double>& births, double birth);
+  uint32_t addBirth(double birth);
+
+  std::vector<uint32_t> stateCounts_;
+  bool wide_ = false;
+  bool stateless_ = true;  // no label has state: the block index keeps no value offsets
+  size_t size_ = 0;
+  LargeVector<uint8_t> labels8_;
+  LargeVector<uint16_t> labels16_;
+  LargeVector<uint64_t> runStarts_;    // bit i % 64 of word i / 64: module i starts a run
+  LargeVector<uint32_t> blockRuns_;    // runs started before each block
+  LargeVector<uint32_t> blockValues_;  // state values before each block (empty if stateless_)
+  LargeVector<uint64_t> keys_;         // per run: lineage key, or the whole id
+  LargeVector<uint32_t> birthIndex_;   // per run: index into births_
+  LargeVector<uint8_t> firstK_;        // per run: k of its first module, or kWholeMark
+  std::vector<double> births_;         // distinct birth times, exact
+  LargeVector<double> values_;
+  RunTail tail_;                       // the last module appended serially
+};
+
+/// One slice of a word written by slices. Before CompactWord::beginSlices the slice
+/// counts: append and appendCopy only count modules and values (or the caller says what
+/// it will write with expect, without making the calls). After it they write: labels,
+/// run starts and values in place, runs and new births into the slice's own buffers,
+/// which CompactWord::endSlices moves into the word once every slice has written and the
+/// slices' runs are known. The slice's first module always starts a run: a word written by
+/// slices may have one run more a seam than the same word written serially, and reads the
+/// same, module for module.
+class CompactWord::Slice {
+ public:
+  /// A slice of the word that starts with the birth table of `from`, the word it copies
+  /// modules from (their birth indices stay valid).
+  explicit Slice(const CompactWord& from) : from_(&from) {}
+  /// Starts the slice again, for a word copying from `from`, keeping its buffers.
+  void restart(const CompactWord& from) {
+    from_ = &from;
+    word_ = nullptr;
+    modules_ = values_ = 0;
+  }
+
+  /// While counting: the slice will write `modules` more modules and `values` more values.
+  void expect(size_t modules, size_t values) {
+    modules_ += modules;
+    values_ += values;
+  }
+  /// A module born at `birth` (a birth the slice may have to add to the table).
+  void append(uint32_t label, IdKey key, double birth, const double* values) {
+    if (!word_) return expect(1, from_->stateCounts_[label]);
+    if (births_.empty() || std::bit_cast<uint64_t>(births_.back()) != std::bit_cast<uint64_t>(birth)) [[unlikely]]
+      lastBorn_ = static_cast<uint32_t>(birthIndexIn(births_, birth));
+    put(label, key, kNewBirth | lastBorn_, birth, values);
+  }
+  /// A module copied from `from` with its birth index there.
+  void appendCopy(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
+    if (!word_) return expect(1, from_->stateCounts_[label]);
+    put(label, key, birthIndex, from_->births_[birthIndex], values);
+  }
+  /// After the slice's last append of a pass.
+  void finish();
+
+  size_t modules() const { return modules_; }
+  size_t values() const { return values_; }
+  /// Runs written (after the writing pass).
+  size_t runs() const { return keys_.size(); }
+  /// After CompactWord::joinSlices: moves the slice's runs into the word and renumbers what
+  /// referred to them. Slices place in any order, on any threads.
+  void place();
+
+ private:
+  friend class CompactWord;
+  // Marks a birth index as one of the slice's new births, renumbered by endSlices.
+  static constexpr uint32_t kNewBirth = uint32_t{1} << 31;
+
+  void put(uint32_t label, IdKey key, uint32_t birthIndex, double birth, const double* values) {
+    key = RunTail::normalised(key, kLargestRunK);
+    const size_t i = firstModule_ + written_;
+    if (i % kBlock == 0 || bitsWord_ == SIZE_MAX) [[unlikely]]
+      startBlock(i);
+    if (!tail_.continues(key, birth)) {
+      bits_ |= uint64_t{1} << (i % kBlock);
+      keys_.push_back(key.key);
+      birthIndex_.push_back(birthIndex);
+      firstK_.push_back(key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k));
+    }
+    if (out_.labels8)
+      out_.labels8[i] = static_cast<uint8_t>(label);
+    else
+      out_.labels16[i] = static_cast<uint16_t>(label);
+    const uint32_t count = from_->stateCounts_[label];
+    double* to = out_.values + firstValue_ + writtenValues_;
+    for (uint32_t v = 0; v < count; ++v) to[v] = values[v];
+    ++written_;
+    writtenValues_ += count;
+  }
+  /// At module i: the block index entry of a block starting there, and a new bitmap word.
+  void startBlock(size_t i);
+  void flushBits();
+
+  const CompactWord* from_;
+  CompactWord* word_ = nullptr;  // null while counting
+  size_t modules_ = 0, values_ = 0;        // counted
+  size_t written_ = 0, writtenValues_ = 0;  // written
+  RunTail tail_;
+  std::vector<double> births_;  // new births, in order of first use
+  uint32_t lastBorn_ = 0;       // index in births_ of the last new birth appended
+  // The slice's runs, until endSlices moves them.
+  LargeVector<uint64_t> keys_;
+  LargeVector<uint32_t> birthIndex_;
+  LargeVector<uint8_t> firstK_;
+  struct {
+    uint8_t* labels8 = nullptr;
+    uint16_t* labels16 = nullptr;
+    double* values = nullptr;
+  } out_;  // the word's arrays, while writing
+  // Where the slice writes: its first module, run, value and new birth in the word.
+  size_t firstModule_ = 0, firstRun_ = 0, firstValue_ = 0;
+  uint32_t firstBirth_ = 0;
+  // The bitmap word being filled, and the words shared with the neighbouring slices.
+  size_t bitsWord_ = SIZE_MAX;
+  uint64_t bits_ = 0;
+  std::vector<std::pair<size_t, uint64_t>> sharedWords_;
+};
+
+/// Walks a compact word in order with the accessors of CellCursor (pools/cell_cursor.h),
+/// so a reader templated on its cursor reads either kind of word. The id is computed
+/// only when asked. Invalid once the word changes.
+class CompactWordCursor {
+ public:
+  explicit CompactWordCursor(const CompactWord& word, size_t first = 0)
+      : word_(&word),
+        labels8_(word.wide_ ? nullptr : word.labels8_.data()),
+        labels16_(word.wide_ ? word.labels16_.data() : nullptr),
+        runStarts_(word.runStarts_.data()),
+        stateCounts_(word.stateCounts_.data()),
+        size_(word.size_),
+        stateless_(word.stateless_),
+        index_(first) {
+    if (first == 0 || first >= size_) return;
+    const CompactWord::Place place = word.locate(first);
+    run_ = place.run;
+    j_ = place.j;
+    value_ = place.value;
+  }
+
+  bool done() const { return index_ >= size_; }
+  void next() {
+    if (!stateless_) value_ += stateCounts_[master()];
+    if (++index_ >= size_) return;
+    if ((runStarts_[index_ / CompactWord::kBlock] >> (index_ % CompactWord::kBlock)) & 1u) {
+      ++run_;
+      j_ = 0;
+    } else {
+      ++j_;
+    }
+  }
+  size_t size() const { return size_; }
+
+  // The module under the cursor (not done()).
+  size_t index() const { return index_; }
+  uint32_t master() const { return labels8_ ? labels8_[index_] : labels16_[index_]; }
+  const double* state() const { return word_->values_.data() + value_; }
+  double birth() const { return word_->birthOf(run_); }
+  uint32_t birthIndex() const { return word_->birthIndex_[run_]; }
+  IdKey key() const { return word_->keyOf(run_, j_); }
+  uint64_t id() const { return key().id(); }
+  CellView view() const { return {master(), state(), birth(), id(), index_}; }
+
+ private:
+  const CompactWord* word_;
+  const uint8_t* labels8_;    // null for a word of two-byte labels
+  const uint16_t* labels16_;
+  const uint64_t* runStarts_;
+  const uint32_t* stateCounts_;
+  size_t size_;
+  bool stateless_;
+  size_t index_ = 0, run_ = 0, value_ = 0;
+  uint32_t j_ = 0;
+};
+
+inline CompactWordCursor CompactWord::cursor() const { return CompactWordCursor(*this); }
+
+}  // namespace ontogen
