@@ -23,6 +23,9 @@ LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinit
       view_(pool_, system.symbolClass),
       evaluator_(program, view_) {
   for (const MasterCell& master : program.masters) readsParents_ = readsParents_ || master.readsParent;
+  std::vector<uint32_t> values;
+  for (const MasterCell& master : program.masters) values.push_back(master.stateCount());
+  pool_.countValues(std::move(values));
 }
 
 // A copy develops on its own: its views look at its own pool.
@@ -180,11 +183,12 @@ void LinearDevelopment::applyStepRules(double t) {
   findParents();
   beginWord();
   auto cells = pool_.cells();
-  for (size_t i = 0; i < cells.size(); ++i) {
+  for (CellCursor at = pool_.cursor(); !at.done(); at.next()) {
+    const size_t i = at.index();
     const CellRecord& cell = cells[i];
     const MasterCell& master = program_.masters[cell.master];
     if (master.rules.empty())
-      emit(cell, pool_.stateOf(cell), master.stateCount());
+      emit(cell, at.state(), master.stateCount());
     else
       fireStepRules(cell, t, i);
   }
@@ -288,12 +292,13 @@ void LinearDevelopment::expireContextFree(double t1) {
   beginWord();
   const auto& classOf = system_.symbolClass;
   BranchCut cut;
-  for (size_t position = 0; position < cells.size(); ++position) {
+  for (CellCursor at = pool_.cursor(); !at.done(); at.next()) {
+    const size_t position = at.index();
     const CellRecord& cell = cells[position];
     const MasterCell& master = masters[cell.master];
     if (cut.drops(classOf[cell.master])) continue;
     if (cell.birth + master.lifetime > horizon) {
-      emit(cell, pool_.stateOf(cell), master.stateCount());
+      emit(cell, at.state(), master.stateCount());
       continue;
     }
     if (classOf[cell.master] & kSymbolCut) {
@@ -303,7 +308,7 @@ void LinearDevelopment::expireContextFree(double t1) {
     // Expire straight into the word: in most steps the successors live past the horizon
     // and stay where they are written.
     const size_t firstBorn = nextCells_.size();
-    expire(cell, pool_.stateOf(cell), cell.birth + master.lifetime, -1, static_cast<int64_t>(position));
+    expire(cell, at.state(), cell.birth + master.lifetime, -1, static_cast<int64_t>(position));
     bool chained = false;
     for (size_t i = firstBorn; i < nextCells_.size() && !chained; ++i)
       chained = nextCells_[i].birth + masters[nextCells_[i].master].lifetime <= horizon;
@@ -389,17 +394,18 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
       expireBackward(instant);
     } else {
       BranchCut cut;
-      for (size_t i = 0; i < cells.size(); ++i) {
+      for (CellCursor at = pool_.cursor(); !at.done(); at.next()) {
+        const size_t i = at.index();
         const CellRecord& cell = cells[i];
         const MasterCell& master = masters[cell.master];
         if (cut.drops(classOf[cell.master])) continue;
         double death = cell.birth + master.lifetime;
         if (death > instant)
-          emit(cell, pool_.stateOf(cell), master.stateCount());
+          emit(cell, at.state(), master.stateCount());
         else if (classOf[cell.master] & kSymbolCut)
           cut.start();
         else
-          expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
+          expire(cell, at.state(), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
       }
     }
     finishWord();
@@ -426,19 +432,34 @@ void LinearDevelopment::expireBackward(double instant) {
       cut.start();
     }
   }
+  // The values of cell i start where those of cell i + 1 start, less its own.
+  const double* arena = pool_.stateArena().data();
+  size_t offset = pool_.stateArena().size();
   for (size_t i = cells.size(); i-- > 0;) {
-    if (dropped_[i]) continue;
     const CellRecord& cell = cells[i];
     const MasterCell& master = masters[cell.master];
+    offset -= master.stateCount();
+    if (dropped_[i]) continue;
     const size_t first = nextCells_.size();
     const double death = cell.birth + master.lifetime;
     if (death > instant)
-      emit(cell, pool_.stateOf(cell), master.stateCount());
+      emit(cell, arena + offset, master.stateCount());
     else
-      expire(cell, pool_.stateOf(cell), death, static_cast<int64_t>(i), static_cast<int64_t>(i));
+      expire(cell, arena + offset, death, static_cast<int64_t>(i), static_cast<int64_t>(i));
     std::reverse(nextCells_.begin() + static_cast<std::ptrdiff_t>(first), nextCells_.end());
   }
   std::reverse(nextCells_.begin(), nextCells_.end());
+  // The values were written right to left: put them in word order, where the pool's
+  // readers find them by summing (Pool::countValues).
+  expandedState_.clear();
+  for (CellRecord& cell : nextCells_) {
+    const uint32_t n = masters[cell.master].stateCount();
+    const uint32_t at = static_cast<uint32_t>(expandedState_.size());
+    expandedState_.insert(expandedState_.end(), nextState_.begin() + cell.state, nextState_.begin() + cell.state + n);
+    cell.state = at;
+  }
+  nextState_.swap(expandedState_);
+  expandedState_.clear();
 }
 
 // ---- decomposition ----
@@ -453,14 +474,15 @@ void LinearDevelopment::decomposeWord(double when) {
   const auto cells = pool_.cells();
   const auto& classOf = system_.symbolClass;
   BranchCut cut;
-  for (size_t i = 0; i < cells.size(); ++i) {
+  for (CellCursor at = pool_.cursor(); !at.done(); at.next()) {
+    const size_t i = at.index();
     const CellRecord& cell = cells[i];
     if (cut.drops(classOf[cell.master])) continue;
     if (classOf[cell.master] & kSymbolCut) {
       cut.start();
       continue;
     }
-    decompose(cell, pool_.stateOf(cell), when, static_cast<int64_t>(i), 1);
+    decompose(cell, at.state(), when, static_cast<int64_t>(i), 1);
   }
   finishWord();
 }

@@ -187,12 +187,13 @@ inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByLabels(Pass pa
   return nullptr;
 }
 
-const CompiledRule* ParallelRewrite::choose(Pass pass, const Step& step, size_t i, double death, Worker& worker,
-                                            RandomStream& random, const EvalContext& evaluation) const {
+const CompiledRule* ParallelRewrite::choose(Pass pass, const Step& step, size_t i, const double* state, double death,
+                                            Worker& worker, RandomStream& random,
+                                            const EvalContext& evaluation) const {
   const CellRecord& cell = step.pool.cells()[i];
   const MasterCell& master = program_.masters[cell.master];
   double* frame = worker.frame.data();
-  loadCellFrame(frame, master, cell, step.pool.stateOf(cell), death, {static_cast<double>(i), 0, 0},
+  loadCellFrame(frame, master, cell, state, death, {static_cast<double>(i), 0, 0},
                 step.parents ? step.parents[i] : -1);
   auto classOf = [&](const CompiledRule& rule) -> const std::vector<uint8_t>& {
     return rule.symbolClasses < 0 ? system_.symbolClass : system_.ruleClasses[rule.symbolClasses];
@@ -219,7 +220,9 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
   const auto cells = step.pool.cells();
   const auto& masters = program_.masters;
   worker.frame.resize(frameSize_);
-  for (size_t i = slice.begin; i < slice.end; ++i) {
+  // The values of the slice's cells, in order (the pool counts them: Pool::countValues).
+  for (CellCursor at = step.pool.cursor(slice.begin); at.index() < slice.end; at.next()) {
+    const size_t i = at.index();
     const CellRecord& cell = cells[i];
     const MasterCell& master = masters[cell.master];
     const double death = cell.birth + master.lifetime;
@@ -255,7 +258,7 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
       RandomStream random(mixKey(mixKey(step.context.seed, cell.id), keyOf(death)));
       EvalContext evaluation{worker.frame.data(), EvalEnvironment{&random, step.context.seed}, &functions_, nullptr};
       evaluation.ancestors = step.context.ancestors;
-      rule = choose(pass, step, i, death, worker, random, evaluation);
+      rule = choose(pass, step, i, at.state(), death, worker, random, evaluation);
     }
     if (!rule || !rule->hasAction) {
       ++slice.cells;
@@ -292,13 +295,14 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
   };
   worker.frame.resize(frameSize_);
   double* frame = worker.frame.data();
-  for (size_t i = slice.begin; i < slice.end; ++i) {
+  for (CellCursor at = step.pool.cursor(slice.begin); at.index() < slice.end; at.next()) {
+    const size_t i = at.index();
     const CellRecord& cell = word[i];
     const MasterCell& master = masters[cell.master];
     const uint32_t n = master.stateCount();
     const double death = cell.birth + master.lifetime;
     if (death > step.horizon) {
-      put(cell, step.pool.stateOf(cell), n);
+      put(cell, at.state(), n);
       continue;
     }
     if (labelsOnly_[cell.master]) {
@@ -319,7 +323,7 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
     RandomStream random(mixKey(mixKey(step.context.seed, cell.id), keyOf(death)));
     EvalContext evaluation{frame, EvalEnvironment{&random, step.context.seed}, &functions_, nullptr};
     evaluation.ancestors = step.context.ancestors;
-    const CompiledRule* rule = choose(pass, step, i, death, worker, random, evaluation);
+    const CompiledRule* rule = choose(pass, step, i, at.state(), death, worker, random, evaluation);
     if (rule)
       for (const StateCalculation& calculation : rule->calculations)
         frame[calculation.slot] = calculation.value.evaluate(evaluation);

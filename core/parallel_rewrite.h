@@ -105,10 +105,10 @@ class ParallelRewrite {
   void count(Pass pass, const Step& step, Slice& slice, Worker& worker);
   void write(Pass pass, const Step& step, Slice& slice, uint64_t firstCell, uint64_t firstValue,
              Worker& worker, CellArray& cells, StateArray& state) const;
-  /// The rule cell i chooses (null: it renews itself), with its frame loaded and its
-  /// context's values bound; as LinearDevelopment::expire chooses.
-  const CompiledRule* choose(Pass pass, const Step& step, size_t i, double death, Worker& worker,
-                             RandomStream& random, const EvalContext& evaluation) const;
+  /// The rule cell i (whose values are `state`) chooses (null: it renews itself), with
+  /// its frame loaded and its context's values bound; as LinearDevelopment::expire chooses.
+  const CompiledRule* choose(Pass pass, const Step& step, size_t i, const double* state, double death,
+                             Worker& worker, RandomStream& random, const EvalContext& evaluation) const;
 
   bool matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const;
 

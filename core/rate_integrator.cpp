@@ -115,10 +115,14 @@ void RateIntegrator<View>::activate(const Pool& pool, double t0) {
   // the cell's own state and its neighbours' aggregates only, and draws nothing.
   batchable_.resize(equations_.size());
   stateOf_.resize(equations_.size());
+  // Equations come in cell order: one cursor finds where their cells' values start.
+  CellCursor at = pool.cursor();
   for (size_t e = 0; e < equations_.size(); ++e) {
     const Equation& equation = equations_[e];
-    const MasterCell& master = program_.masters[pool.cellAt(equation.cell).master];
-    stateOf_[e] = static_cast<uint32_t>(pool.stateOffset(equation.cell));
+    if (at.index() > equation.cell) at = pool.cursor(equation.cell);
+    while (at.index() < equation.cell) at.next();
+    const MasterCell& master = program_.masters[at.master()];
+    stateOf_[e] = static_cast<uint32_t>(at.stateOffset());
     batchable_[e] = !equation.draws &&
                     equation.calculation->value.batchable(static_cast<int>(master.stateCount()));
   }
@@ -165,7 +169,7 @@ void RateIntegrator<View>::derivative(const Pool& pool, const StateArray& x, Sta
         context.frame = evaluator.load(equation.cell, x.data(), t);
         evaluator.bind(*equation.rule);  // the structure does not change while integrating
         if (equation.draws)
-          random = RandomStream(mixKey(mixKey(seed_ ^ kRateSalt, pool.cellAt(equation.cell).id), keyOf(t)));
+          random = RandomStream(mixKey(mixKey(seed_ ^ kRateSalt, pool.cells()[equation.cell].id), keyOf(t)));
         loadedCell = equation.cell;
         loadedRule = equation.rule;
       }
@@ -232,10 +236,11 @@ void RateIntegrator<View>::integrate(Pool& pool, const View& view, double t0, do
       }
     }
     // What the batches read of each neighbour, side by side rather than through its record.
+    std::vector<NeighbourRef> refs(pool.size());
+    for (CellCursor cell = pool.cursor(); !cell.done(); cell.next())
+      refs[cell.index()] = NeighbourRef{cell.master(), static_cast<uint32_t>(cell.stateOffset())};
     neighbourRefs_.resize(neighbourCells_.size());
-    for (size_t k = 0; k < neighbourCells_.size(); ++k)
-      neighbourRefs_[k] = NeighbourRef{pool.cellAt(neighbourCells_[k]).master,
-                                       static_cast<uint32_t>(pool.stateOffset(neighbourCells_[k]))};
+    for (size_t k = 0; k < neighbourCells_.size(); ++k) neighbourRefs_[k] = refs[neighbourCells_[k]];
   }
   for (auto& evaluator : evaluators_)
     evaluator->useNeighbourTable(aggregates ? neighbourOffsets_.data() : nullptr,

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "core/cell_frame.h"
@@ -34,13 +35,13 @@ class RuleEvaluator final : public NeighbourAggregates {
     arena_ = arena;
     neighbourCount_ = -1;
     rule_ = nullptr;
-    const CellView cell = pool_.cellAt(i);
-    const MasterCell& master = program_.masters[cell.master];
+    const CellCursor& cell = cursorAt(i);
+    const MasterCell& master = program_.masters[cell.master()];
     const uint32_t n = master.stateCount();
     double* frame = frame_.data();
-    const double* state = arena + pool_.stateOffset(i);
+    const double* state = arena + cell.stateOffset();
     std::copy(state, state + n, frame);
-    loadAgeAndId(frame + n, cell.birth, cell.id, master.lifetime, time);
+    loadAgeAndId(frame + n, cell.birth(), cell.id(), master.lifetime, time);
     // Positions cost a lookup in grids and spatial pools: only for masters that read them.
     if (master.readsPosition || master.readsParent)
       loadPlace(frame + n, master.readsPosition ? view_.position(i) : std::array<double, 3>{},
@@ -78,9 +79,34 @@ class RuleEvaluator final : public NeighbourAggregates {
   size_t cell() const { return cell_; }
 
  private:
+  // A cursor on cell i: the cursor of the last load steps on to the next cell (passes
+  // load cells in index order); any other cell is found anew (in a pool that counts its
+  // values, a walk in its block).
+  const CellCursor& cursorAt(size_t i) {
+    if (cursor_ && cursorVersion_ == pool_.structureVersion()) {
+      if (cursor_->index() == i) return *cursor_;
+      if (cursor_->index() + 1 == i) {
+        cursor_->next();
+        return *cursor_;
+      }
+    }
+    cursor_.emplace(pool_.cursor(i));
+    cursorVersion_ = pool_.structureVersion();
+    return *cursor_;
+  }
+  // Where the values of cell j, a neighbour of the loaded cell, start: counted from the
+  // loaded cell where the cursor is on it.
+  size_t stateOffsetNear(size_t j) const {
+    if (pool_.countsValues() && cursor_ && cursorVersion_ == pool_.structureVersion() && cursor_->index() == cell_)
+      return pool_.stateOffsetNear(j, cell_, cursor_->stateOffset());
+    return pool_.stateOffset(j);
+  }
+
   const Program& program_;
   const View& view_;
   const Pool& pool_;  // the view's, asked once
+  std::optional<CellCursor> cursor_;  // of the last load (cursorAt)
+  uint64_t cursorVersion_ = 0;
   std::vector<double> frame_;
   const double* arena_ = nullptr;
   double parent_ = -1;
@@ -105,7 +131,7 @@ bool RuleEvaluator<View>::bind(const CompiledRule& rule) {
     for (size_t k = 0; k < bindings.size(); ++k) {
       const ContextBinding& binding = bindings[k];
       if (binding.count == 0) continue;
-      const double* values = arena_ + pool_.stateOffset(matched[k]);
+      const double* values = arena_ + stateOffsetNear(matched[k]);
       std::copy(values, values + binding.count, frame_.data() + binding.firstSlot);
     }
   };
@@ -199,7 +225,11 @@ double RuleEvaluator<View>::aggregate(int query) const {
   const auto cells = pool_.cells();
   return aggregateOver(
       rule_->aggregates[query], neighbourCount_,
-      [&](int k) -> const CellRecord& { return cells[neighbourList_[k]]; }, arena_);
+      [&](int k) {
+        const uint32_t cell = neighbourList_[k];
+        return NeighbourRef{cells[cell].master, static_cast<uint32_t>(stateOffsetNear(cell))};
+      },
+      arena_);
 }
 
 }  // namespace ontogen

@@ -37,29 +37,41 @@ class CellCursor {
   /// offsets index `state`.
   CellCursor(std::span<const CellRecord> cells, const double* state, size_t first = 0)
       : cells_(cells), state_(state), index_(first) {}
+  /// A cursor that does not read the records' state offsets: it keeps a running sum of
+  /// the values of the cells it passes, `counts[master]` each (null: none has values),
+  /// from `offset`, where cell `first`'s values start.
+  CellCursor(std::span<const CellRecord> cells, const double* state, size_t first, const uint32_t* counts,
+             size_t offset)
+      : cells_(cells), state_(state), index_(first), counts_(counts), offset_(offset), summed_(true) {}
 
   /// Whether the cursor has passed the last cell.
   bool done() const { return index_ >= cells_.size(); }
   /// Moves to the next cell in pool order.
-  void next() { ++index_; }
+  void next() {
+    if (counts_) offset_ += counts_[cells_[index_].master];
+    ++index_;
+  }
   /// Cells the cursor walks, in all.
   size_t size() const { return cells_.size(); }
 
   // The cell under the cursor (not done()).
   size_t index() const { return index_; }
   uint32_t master() const { return cells_[index_].master; }
-  const double* state() const { return state_ + cells_[index_].state; }
+  const double* state() const { return state_ + stateOffset(); }
   double birth() const { return cells_[index_].birth; }
   uint64_t id() const { return cells_[index_].id; }
   /// Where the cell's values start in the state array (and in any array laid out like
   /// it, as an integrator's stages are).
-  size_t stateOffset() const { return cells_[index_].state; }
+  size_t stateOffset() const { return summed_ ? offset_ : cells_[index_].state; }
   CellView view() const { return {master(), state(), birth(), id(), index_}; }
 
  private:
   std::span<const CellRecord> cells_;
   const double* state_;
   size_t index_ = 0;
+  const uint32_t* counts_ = nullptr;
+  size_t offset_ = 0;
+  bool summed_ = false;
 };
 
 }  // namespace ontogen

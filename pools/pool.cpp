@@ -18,6 +18,7 @@ std::string_view poolKindName(PoolKind kind) {
 
 void Pool::append(CellRecord cell, const double* values, uint32_t count) {
   cell.state = static_cast<uint32_t>(state_.size());
+  if (anyState_ && cells_.size() % kStateBlock == 0) blockOffsets_.push_back(cell.state);
   state_.insert(state_.end(), values, values + count);
   cells_.push_back(cell);
   ++version_;
@@ -26,7 +27,30 @@ void Pool::append(CellRecord cell, const double* values, uint32_t count) {
 void Pool::swapContents(CellArray& cells, StateArray& state) {
   cells_.swap(cells);
   state_.swap(state);
+  indexValues();
   ++version_;
+}
+
+void Pool::countValues(std::vector<uint32_t> perMaster) {
+  stateCounts_ = std::move(perMaster);
+  counted_ = true;
+  anyState_ = std::any_of(stateCounts_.begin(), stateCounts_.end(), [](uint32_t n) { return n > 0; });
+  indexValues();
+}
+
+// One pass over the masters, only where some master has values.
+void Pool::indexValues() {
+  if (!anyState_) return;
+  const size_t size = cells_.size();
+  blockOffsets_.resize((size + kStateBlock - 1) / kStateBlock);
+  const CellRecord* cells = cells_.data();
+  const uint32_t* counts = stateCounts_.data();
+  uint32_t offset = 0;
+  for (size_t block = 0, first = 0; first < size; ++block, first += kStateBlock) {
+    blockOffsets_[block] = offset;
+    const size_t last = std::min(size, first + kStateBlock);
+    for (size_t i = first; i < last; ++i) offset += counts[cells[i].master];
+  }
 }
 
 void Pool::reserve(size_t cells, size_t values) {
@@ -37,6 +61,7 @@ void Pool::reserve(size_t cells, size_t values) {
 void Pool::clear() {
   cells_.clear();
   state_.clear();
+  blockOffsets_.clear();
   ++version_;
 }
 

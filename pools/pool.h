@@ -38,20 +38,61 @@ class Pool {
   /// A cursor at the first cell, walking them in pool order (the order interpretation
   /// walks them). Readers outside pools/ and core/ read cells this way or with cellAt(),
   /// never through the records (pools/cell_cursor.h).
-  CellCursor cursor() const { return CellCursor(cells_, state_.data()); }
-  /// A cursor at cell `first`, for a pass over a chunk of the cells.
-  CellCursor cursor(size_t first) const { return CellCursor(cells_, state_.data(), first); }
+  CellCursor cursor() const { return cursor(0); }
+  /// A cursor at cell `first` (at most size()), for a pass over a chunk of the cells.
+  CellCursor cursor(size_t first) const {
+    if (!counted_) return CellCursor(cells_, state_.data(), first);
+    return CellCursor(cells_, state_.data(), first, anyState_ ? stateCounts_.data() : nullptr,
+                      first < cells_.size() ? stateOffset(first) : state_.size());
+  }
   /// Cell i (below size()).
   CellView cellAt(size_t i) const {
     const CellRecord& cell = cells_[i];
-    return {cell.master, stateOf(cell), cell.birth, cell.id, i};
+    return {cell.master, state_.data() + stateOffset(i), cell.birth, cell.id, i};
   }
   /// Where cell i's values start in stateArena() (and in any array laid out like it, as
-  /// an integrator's stages are).
-  size_t stateOffset(size_t i) const { return cells_[i].state; }
+  /// an integrator's stages are). In a pool that counts its values (countValues), the
+  /// offset of its block of kStateBlock cells plus the values of the cells before it in
+  /// the block.
+  size_t stateOffset(size_t i) const {
+    if (!counted_) return cells_[i].state;
+    if (!anyState_) return 0;
+    const size_t block = i / kStateBlock;
+    size_t offset = blockOffsets_[block];
+    for (size_t j = block * kStateBlock; j < i; ++j) offset += stateCounts_[cells_[j].master];
+    return offset;
+  }
+
+  /// The same, walking from cell `from` (whose values start at `offset`) when it is
+  /// nearer to i than the start of i's block: a neighbour of a cell a cursor is on.
+  size_t stateOffsetNear(size_t i, size_t from, size_t offset) const {
+    if (!counted_) return cells_[i].state;
+    if (i >= from && i - from < i % kStateBlock) {
+      for (size_t j = from; j < i; ++j) offset += stateCounts_[cells_[j].master];
+      return offset;
+    }
+    if (i < from && from - i < kStateBlock) {
+      for (size_t j = i; j < from; ++j) offset -= stateCounts_[cells_[j].master];
+      return offset;
+    }
+    return stateOffset(i);
+  }
+
+  /// From now on, readers find each cell's values by the number of values of each master
+  /// (`perMaster`, indexed by master) rather than by the offset in its record: a running
+  /// sum in cursors, a per-block offset for cellAt and stateOffset. The linear pool's
+  /// words keep their values in word order, so the record's offset is redundant there
+  /// (docs/COMPACT_WORDS.md, slice 3). Cells must keep their values in pool order.
+  void countValues(std::vector<uint32_t> perMaster);
+  /// Whether countValues was called: random access to values costs a walk in a block.
+  bool countsValues() const { return counted_; }
+  /// Cells per entry of the block offsets: one 32-bit offset per 64 cells, and at most 63
+  /// masters' counts added to reach a cell.
+  static constexpr size_t kStateBlock = 64;
 
   /// The records themselves, in pool order: for pools/ and core/ only, which write and
   /// scan them until the linear pool stores its words compactly (docs/COMPACT_WORDS.md).
+  /// In a pool that counts its values, the records' `state` is not read.
   std::span<const CellRecord> cells() const { return cells_; }
   std::span<CellRecord> cells() { return cells_; }
   size_t size() const { return cells_.size(); }
@@ -78,9 +119,16 @@ class Pool {
   void clear();
 
  protected:
+  /// The block offsets of the cells as they are now (countValues).
+  void indexValues();
+
   CellArray cells_;
   StateArray state_;
   uint64_t version_ = 0;
+  bool counted_ = false;                // countValues was called
+  bool anyState_ = false;               // some master has values
+  std::vector<uint32_t> stateCounts_;   // values per master
+  std::vector<uint32_t> blockOffsets_;  // where each block's first cell's values start
 };
 
 }  // namespace ontogen

@@ -101,6 +101,74 @@ TEST(CellCursor, AnEmptyPoolIsDoneAtOnce) {
   EXPECT_EQ(pool.cursor().size(), 0u);
 }
 
+// A pool that counts its values (Pool::countValues, the linear pool's words) finds them by
+// the masters' value counts: a running sum in cursors, a per-block offset for random
+// access. The records' offsets are overwritten here, so a reader that still used them
+// would read other values.
+TEST(CellCursor, APoolThatCountsItsValuesNeverReadsTheRecordsOffsets) {
+  // kCells' masters have 1, 3 and 0 values: 60 copies make 300 cells over five blocks
+  // of 64, appended one by one (as an axiom is) or swapped in (as a new word is).
+  const std::vector<uint32_t> counts = {1, 3, 0};
+  std::vector<Appended> cells;
+  std::vector<size_t> offsets;
+  size_t total = 0;
+  for (int copy = 0; copy < 60; ++copy)
+    for (Appended cell : kCells) {
+      for (double& value : cell.state) value += copy;
+      offsets.push_back(total);
+      total += cell.state.size();
+      cells.push_back(cell);
+    }
+  LinearPool appended;
+  appended.countValues(counts);
+  for (const Appended& cell : cells)
+    appended.append({.master = cell.master, .birth = cell.birth, .id = cell.id}, cell.state.data(),
+                    static_cast<uint32_t>(cell.state.size()));
+  LinearPool swapped;
+  swapped.countValues(counts);
+  CellArray records;
+  StateArray values;
+  for (const Appended& cell : cells) {
+    records.push_back({.master = cell.master, .state = 0, .birth = cell.birth, .id = cell.id});
+    values.insert(values.end(), cell.state.begin(), cell.state.end());
+  }
+  swapped.swapContents(records, values);
+
+  for (LinearPool* pool : {&appended, &swapped}) {
+    for (CellRecord& record : pool->cells()) record.state = 0x7fffffff;
+    size_t index = 0;
+    for (CellCursor cursor = pool->cursor(); !cursor.done(); cursor.next(), ++index) {
+      ASSERT_LT(index, cells.size());
+      EXPECT_EQ(cursor.stateOffset(), offsets[index]) << "cell " << index;
+      expectCell(cursor.view(), cells[index], index);
+      expectCell(pool->cellAt(index), cells[index], index);
+      EXPECT_EQ(pool->stateOffset(index), offsets[index]) << "cell " << index;
+    }
+    EXPECT_EQ(index, cells.size());
+    for (size_t first : {0, 1, 63, 64, 65, 127, 128, 200, 299}) {
+      CellCursor chunk = pool->cursor(first);
+      for (size_t i = first; i < cells.size(); ++i, chunk.next()) expectCell(chunk.view(), cells[i], i);
+      EXPECT_TRUE(chunk.done());
+    }
+    EXPECT_TRUE(pool->cursor(cells.size()).done());
+    // From a neighbour whose offset is known, on either side, near and far.
+    for (auto [i, from] : std::vector<std::pair<size_t, size_t>>{
+             {10, 9}, {9, 10}, {64, 63}, {63, 64}, {130, 128}, {128, 131}, {70, 5}, {5, 200}, {299, 0}})
+      EXPECT_EQ(pool->stateOffsetNear(i, from, offsets[from]), offsets[i]) << i << " from " << from;
+  }
+}
+
+TEST(CellCursor, APoolWithoutValuesHasThemAllAtZero) {
+  LinearPool pool;
+  pool.countValues({0, 0, 0});
+  for (int k = 0; k < 100; ++k) pool.append({.master = static_cast<uint32_t>(k % 3), .id = 1}, nullptr, 0);
+  for (CellRecord& record : pool.cells()) record.state = 0x7fffffff;
+  for (CellCursor cursor = pool.cursor(); !cursor.done(); cursor.next())
+    EXPECT_EQ(cursor.stateOffset(), 0u) << "cell " << cursor.index();
+  EXPECT_EQ(pool.stateOffset(99), 0u);
+  EXPECT_EQ(pool.cursor(50).stateOffset(), 0u);
+}
+
 // interpreters/, apps/ and bench/ read cells through the cursor and cellAt only: none
 // of their sources names the record, the record array or a record's state offset.
 TEST(CellCursor, NoReaderOutsidePoolsAndCoreSeesTheRecord) {
