@@ -169,7 +169,6 @@ void StudioModel::grow() {
   glb_ = readFileBytes(def_.work / "model" / (stem_ + ".glb"));
   from_ = program->from;
   until_ = def_.until.value_or(program->until);
-  speed_ = program->speed > 0 ? program->speed : 1.0;
   cells_ = report.cells;
   ++modelVersion_;
 }
@@ -182,7 +181,6 @@ nlohmann::json StudioModel::state() const {
                           {"hasModel", !glb_.empty()},
                           {"from", from_},
                           {"until", until_},
-                          {"speed", speed_},
                           {"cells", cells_},
                           {"notes", notes_.size()},
                           {"seconds", wallSeconds_},

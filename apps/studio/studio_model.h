@@ -106,7 +106,6 @@ class StudioModel {
   uint64_t version_ = 0;
   uint64_t modelVersion_ = 0;
   double from_ = 0, until_ = 0;
-  double speed_ = 1;  // developmental seconds a second of playback (#speed; 1 without it)
   uint64_t cells_ = 0;
   double wallSeconds_ = 0;
 };

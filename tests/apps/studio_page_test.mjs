@@ -2,9 +2,8 @@
 // (Debian's, driven by playwright-core). Checks that the page shows the model, follows a
 // saved change within two seconds, that the time slider and a #define slider change the
 // picture, that diagnostics appear at their line while the last model stays, that the
-// music set's notes reach the page and play with the animation at the program's #speed,
-// and that the gallery breeds a generation whose variants can be saved as programs that
-// grow.
+// music set's notes reach the page and play with the animation, and that the gallery
+// breeds a generation whose variants can be saved as programs that grow.
 //
 //   node studio_page_test.mjs ONTOGEN_EXECUTABLE OUTPUT_DIR
 // Exit 0: passed; 1: failed; 77: a checker is missing (a failure when CI=true).
@@ -44,7 +43,6 @@ const program = (angle, len, extra = '') => `// a tree for the studio's test
 #interpret geometry
 #interpret music
 #music developmental
-#speed 2.5
 lsystem tree {
   #until 5
   axiom !(0.08) (A, 0)
@@ -158,22 +156,17 @@ try {
   // set's F plays a note too: 1 + 2 + ... + 16).
   check(notes.notes.length === 63 + 31, `the music set's notes reach the page (${notes.notes.length}, 63 of A and 31 of F)`);
   await page.locator('#time').fill('0');
-  const playStarted = Date.now();
   await page.click('#play');
   await page.waitForFunction(() => !window.studio.playing, null, { timeout: 15000 });
-  const playSeconds = (Date.now() - playStarted) / 1000;
   const played = await page.evaluate(() => window.studio.notesPlayed);
   check(played === notes.notes.length, `playing from the start played ${played} notes with the animation`);
-  // #speed 2.5 plays the 5 s of development in 2 s; one second a second would take 5.
-  check(state.speed === 2.5 && playSeconds >= 1.9 && playSeconds < 4,
-    `Play shows #speed ${state.speed} seconds of development a second (5 s in ${playSeconds.toFixed(2)} s)`);
 
   // A broken program: the diagnostic at its line, the last model kept.
   fs.writeFileSync(file, program(70, 1, '  (B, 1) -> F(LEN +)\n'));
   await page.waitForFunction(() => document.getElementById('status').dataset.state === 'error', null, { timeout: 3000 });
   const marked = await page.$$eval('#source .line.error', (lines) => lines.length);
   const diagnostic = await page.textContent('#diagnostics');
-  check(marked === 1 && /tree\.cell:13:/.test(diagnostic), `the error is shown at its line (${diagnostic.split('\n')[0]})`);
+  check(marked === 1 && /tree\.cell:12:/.test(diagnostic), `the error is shown at its line (${diagnostic.split('\n')[0]})`);
   check(await page.evaluate(() => window.studio.modelVersion) === 3, 'the last model that grew stays shown');
   fs.writeFileSync(file, program(70, 1.5));
   await page.waitForFunction(() => document.getElementById('status').dataset.state === 'ok', null, { timeout: 3000 });

@@ -16,7 +16,6 @@ const studio = {
   version: 0,          // of the state last shown
   modelVersion: 0,     // of the model last loaded
   time: 0,             // developmental seconds shown
-  speed: 1,            // developmental seconds Play shows a second (#speed)
   playing: false,
   notesPlayed: 0,
   generation: 0,
@@ -159,7 +158,7 @@ function playNote(note, when) {
   oscillator.type = note.channel === 9 ? 'square' : 'triangle';
   oscillator.frequency.value = 440 * Math.pow(2, (note.pitch - 69) / 12);
   const level = 0.15 * (note.velocity / 127);
-  const length = Math.max(note.duration / studio.speed, 0.05);  // as long as the animation shows it
+  const length = Math.max(note.duration, 0.05);
   gain.gain.setValueAtTime(0, when);
   gain.gain.linearRampToValueAtTime(level, when + 0.01);
   gain.gain.setValueAtTime(level, when + length * 0.8);
@@ -174,7 +173,7 @@ function tick(now) {
   resize();
   if (studio.playing) {
     const before = studio.time;
-    const after = before + (now - lastTick) / 1000 * studio.speed;
+    const after = before + (now - lastTick) / 1000;
     lastTick = now;
     for (const note of notes) {
       if (note.start >= before && note.start < after) {
@@ -289,7 +288,6 @@ async function loadModel(version) {
   timeSlider.min = String(stateShown.from);
   timeSlider.max = String(Math.max(stateShown.until, stateShown.from));
   timeSlider.step = String(Math.max((stateShown.until - stateShown.from) / 1000, 1e-6));
-  studio.speed = stateShown.speed > 0 ? stateShown.speed : 1;
   if (grown) studio.time = Number(timeSlider.max);  // a new model shows grown, unless scrubbed
   showModel(gltf);
   const notesAnswer = await (await fetch('/api/notes')).json();
