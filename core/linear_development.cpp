@@ -26,6 +26,8 @@ LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinit
   std::vector<uint32_t> values;
   for (const MasterCell& master : program.masters) values.push_back(master.stateCount());
   pool_.countValues(std::move(values));
+  nextWord_ = pool_.emptyCompactWord();
+  compactWords_ = parallel_.appliesToCompactWords() && !system.sampledRules && !system.rates && !readsParents_;
 }
 
 // A copy develops on its own: its views look at its own pool.
@@ -41,6 +43,8 @@ LinearDevelopment::LinearDevelopment(const LinearDevelopment& other)
       lastGrowth_(other.lastGrowth_),
       readsParents_(other.readsParents_),
       parallel_(other.program_, other.system_),
+      compactWords_(other.compactWords_),
+      nextWord_(other.pool_.emptyCompactWord()),
       view_(pool_, other.system_.symbolClass),
       evaluator_(other.program_, view_) {}
 
@@ -80,7 +84,10 @@ bool LinearDevelopment::anyExpires(double horizon) {
   return false;
 }
 
-void LinearDevelopment::seed(StepContext& context) { seedFromAxiom(pool_, context); }
+void LinearDevelopment::seed(StepContext& context) {
+  pool_.storeRecords();
+  seedFromAxiom(pool_, context);
+}
 
 void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
   context_ = &context;
@@ -88,12 +95,63 @@ void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
   double t = context.time;
   eventsThisStep_ = 0;
   activeGroup_ = activeGroup(program_, system_, t, context.seed);
+  if (compactWords_ && context.rewriteBySlices && !context.lineage) {
+    expireCompact(t, t1);
+    context_ = nullptr;
+    return;
+  }
+  pool_.storeRecords();
   if (system_.sampledRules && stepRules) applyStepRules(t);
   if (system_.rates)
     integrateAndExpire(t, t1);
   else
     expireUntil(t, t1);
   context_ = nullptr;
+}
+
+// What a module of the next compact word may take at most, for the memory limit before
+// it is written: a two-byte label, a run of its own (13 bytes), its bitmap bit and its
+// share of the block index.
+constexpr uint64_t kCompactModuleBound = 16;
+
+void LinearDevelopment::expireCompact(double t, double t1) {
+  const double horizon = t1 + timeTolerance(t1);
+  for (;;) {
+    const double earliest = earliestDeath();
+    if (earliest > horizon) return;
+    const double instant = earliest + timeTolerance(earliest);
+    pool_.storeCompactWord();
+    const CompactWord& word = pool_.compactWord();
+    const size_t size = word.size();
+    const unsigned threads = size < ParallelRewrite::kMinimumCells ? 1 : std::max(1u, context_->threads);
+    // The serial pass stops where a limit is passed and says so: a word that would pass
+    // one is left to it.
+    auto fits = [&](uint64_t modules, uint64_t events, uint64_t) {
+      if (eventsThisStep_ + events > context_->limits.maxEventsPerStep) return false;
+      try {
+        checkGrowth(*context_, modules, pool_.bytes() + modules * kCompactModuleBound);
+      } catch (const LimitError&) {
+        return false;
+      }
+      return true;
+    };
+    const auto counts = parallel_.rewriteCompact(word, instant, activeGroup_, threads, nextWord_, fits);
+    if (!counts) {
+      pool_.storeRecords();
+      expireUntil(t, t1);
+      return;
+    }
+    pool_.swapCompactWord(nextWord_);
+    eventsThisStep_ += counts->events;
+    context_->stats.events += counts->events;
+    context_->stats.cellsBorn += counts->born;
+    // As the records' pass counts it: a word large enough for slices.
+    if (size >= ParallelRewrite::kMinimumCells) ++context_->stats.rewritesBySlices;
+    earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
+    earliestVersion_ = pool_.structureVersion();
+    // The old word is still held beside the new one until the next instant reuses it.
+    checkGrowth(*context_, pool_.size(), pool_.bytes() + nextWord_.bytes());
+  }
 }
 
 void LinearDevelopment::expireUntil(double t, double t1) {
@@ -277,9 +335,9 @@ void LinearDevelopment::emitSuccessors(const CompiledRule& rule, const CellRecor
 void LinearDevelopment::expireContextFree(double t1) {
   const double horizon = t1 + timeTolerance(t1);
   const auto& masters = program_.masters;
-  auto cells = pool_.cells();
   // Nothing expires in most animation steps: keep the word as it is.
   if (!anyExpires(horizon)) return;
+  auto cells = pool_.cells();
   findParents();
   if (parallel_.appliesContextFree() &&
       parallel_.rewriteContextFree(pool_, horizon, *context_, readsParents_ ? parentValues_.data() : nullptr,

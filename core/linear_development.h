@@ -38,6 +38,9 @@ class LinearDevelopment final : public Development {
   void expireContextFree(double t1);
   void expireInTimeOrder(double t, double t1);
   void expireBackward(double instant);
+  /// The step of a label-only word kept compact (docs/COMPACT_WORDS.md): instant by instant
+  /// as expireInTimeOrder, each instant rewritten by ParallelRewrite::rewriteCompact.
+  void expireCompact(double t, double t1);
 
   /// Fires the terminal rules of a cell that reached its terminal age at `when`.
   /// `index` is its position in the current word (for context), or -1 for a newborn.
@@ -95,6 +98,12 @@ class LinearDevelopment final : public Development {
   std::vector<int64_t> parentIndex_;   // of the word at the start of the pass
   std::vector<double> parentValues_;   // me.parent of each cell of that word
   ParallelRewrite parallel_;  // the context-free pass of a large word on every core
+  // Whether the word is kept compact between steps: every master's rules compare labels
+  // only (ParallelRewrite::appliesToCompactWords), and no per-step rule, rate or me.parent
+  // needs the records. Steps the compact pass cannot take (lineage logged, slices turned
+  // off, a limit about to be passed) turn the word back into records.
+  bool compactWords_ = false;
+  CompactWord nextWord_;  // the next compact word is written here, then swapped in
   // The earliest terminal age in the word, for the pool's structure version it was found
   // at: only a new word changes it, so most steps of an animation ask without a scan.
   double earliestDeath_ = kForever;

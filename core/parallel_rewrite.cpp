@@ -432,8 +432,8 @@ const ParallelRewrite::LabelRule* ParallelRewrite::chooseByPosition(const Labels
   return nullptr;
 }
 
-uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon, int group, unsigned threads,
-                                         CompactWord& next) {
+std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon, int group,
+                                                        unsigned threads, CompactWord& next, const CompactFits& fits) {
   if (!appliesToCompactWords())
     throw std::logic_error("ontogen: internal error: a compact rewrite of a word whose rules are not label-only");
   const auto& masters = program_.masters;
@@ -444,7 +444,7 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
   std::vector<CompactWord::Slice>& slices = compactSlices_;
   slices.resize(sliceCount, CompactWord::Slice(word));
   for (CompactWord::Slice& slice : slices) slice.restart(word);
-  std::vector<uint64_t> events(sliceCount, 0);
+  std::vector<uint64_t> events(sliceCount, 0), born(sliceCount, 0);
   std::vector<double> earliest(sliceCount, kForever);
   // The counting pass chooses without writing or hashing anything: what each chosen rule
   // writes is in its LabelRule. Cells the writing pass copies or renews count one each.
@@ -459,14 +459,16 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
         out.expect(1, 0);
         continue;
       }
+      ++events[s];
       const LabelRule* choice = fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index());
-      out.expect(choice && choice->rule->hasAction ? choice->cells : 1, 0);
+      const bool fires = choice && choice->rule->hasAction;
+      out.expect(fires ? choice->cells : 1, 0);
+      if (fires) born[s] += choice->born;
     }
   };
   auto pass = [&](size_t s) {
     CompactWord::Slice& out = slices[s];
     const CompactLabels labels{word};
-    uint64_t fired = 0;
     double soonest = kForever;
     const size_t end = size * (s + 1) / sliceCount;
     for (CompactWordCursor cell(word, size * s / sliceCount); !cell.done() && cell.index() < end; cell.next()) {
@@ -478,7 +480,6 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
         soonest = std::min(soonest, death);
         continue;
       }
-      ++fired;
       const LabelRule* choice = fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index());
       if (!choice || !choice->rule->hasAction) {  // renewed: the same id, born again
         out.append(label, cell.key(), death, nullptr);
@@ -497,7 +498,6 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
       soonest = std::min(soonest, death + choice->shortestLife);
     }
     out.finish();
-    events[s] = fired;
     earliest[s] = soonest;
   };
   auto everySlice = [&](const auto& work) {
@@ -510,18 +510,28 @@ uint64_t ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon
   };
   next.clearWithBirthsOf(word);
   everySlice(count);
+  if (fits) {
+    uint64_t modules = 0, totalEvents = 0, totalBorn = 0;
+    for (size_t s = 0; s < sliceCount; ++s) {
+      modules += slices[s].modules();
+      totalEvents += events[s];
+      totalBorn += born[s];
+    }
+    if (!fits(modules, totalEvents, totalBorn)) return std::nullopt;
+  }
   next.beginSlices(slices);
   everySlice(pass);
   next.joinSlices(slices);
   everySlice([&](size_t s) { slices[s].place(); });
   next.finish();
-  uint64_t total = 0;
+  CompactCounts counts;
   earliestDeath_ = kForever;
   for (size_t s = 0; s < sliceCount; ++s) {
-    total += events[s];
+    counts.events += events[s];
+    counts.born += born[s];
     earliestDeath_ = std::min(earliestDeath_, earliest[s]);
   }
-  return total;
+  return counts;
 }
 
 }  // namespace ontogen

@@ -23,6 +23,8 @@
 // general one; a word with state keeps the serial pass.
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <memory>
 #include <vector>
 
@@ -59,15 +61,24 @@ class ParallelRewrite {
   /// derives backward.
   bool appliesToCompactWords() const { return allLabelsOnly_ && plain_ && atInstants_ && allByPosition_; }
 
+  /// Says, after the counting pass of rewriteCompact, whether the next word may be
+  /// written: its modules, the events and the cells born (false: rewriteCompact writes
+  /// nothing, so the caller can take a pass that reports the limit).
+  using CompactFits = std::function<bool(uint64_t modules, uint64_t events, uint64_t born)>;
+
   /// The pass of rewriteAtInstant on a compact word (docs/COMPACT_WORDS.md), on `threads`
   /// threads by slices (CompactWord::Slice): writes `next` from `word`. Every cell whose
   /// terminal age is at most `horizon` fires the rule it chooses, rule group `group` active,
   /// its context read in `word`, or renews itself; its successors are born at its terminal
   /// age, with the ids the other passes give them. Other cells are copied. Returns the
-  /// number of events; earliestDeath() gives the earliest terminal age in `next`. Needs
-  /// appliesToCompactWords(). The linear pool does not store compact words yet (slice 4):
-  /// tests check this pass against the engine's words.
-  uint64_t rewriteCompact(const CompactWord& word, double horizon, int group, unsigned threads, CompactWord& next);
+  /// number of events and of cells born, or nothing when `fits` refused the word;
+  /// earliestDeath() gives the earliest terminal age in `next`. Needs
+  /// appliesToCompactWords().
+  struct CompactCounts {
+    uint64_t events = 0, born = 0;
+  };
+  std::optional<CompactCounts> rewriteCompact(const CompactWord& word, double horizon, int group, unsigned threads,
+                                         CompactWord& next, const CompactFits& fits = {});
 
   /// The earliest terminal age (birth + lifetime) in the word rewriteAtInstant wrote last,
   /// found while writing it, so the development need not look for it again.

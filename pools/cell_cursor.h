@@ -4,8 +4,9 @@
 // id and index; Pool::cellAt(i) gives the same for one cell, as a CellView. Readers
 // outside pools/ and core/ (interpreters/, apps/, bench/) read cells only this way, so a
 // pool can change how it stores them (docs/COMPACT_WORDS.md: the linear pool's compact
-// words) without touching those readers. Today every pool keeps 24-byte records
-// (pools/cell_record.h), and the cursor walks them.
+// words) without touching those readers. Grid and spatial pools keep 24-byte records
+// (pools/cell_record.h); a linear pool keeps records or a compact word
+// (pools/compact_word.h), and the cursor walks either.
 //
 // The cursor answers with accessors rather than a record so that a value a store derives
 // (the id of a compact word is a hash of its run's key) is computed only when asked.
@@ -15,18 +16,11 @@
 #include <span>
 
 #include "pools/cell_record.h"
+#include "pools/cell_view.h"
+#include "pools/compact_word.h"
 
 namespace ontogen {
 
-/// One cell as readers see it. `state` points into the pool's storage: valid until the
-/// pool changes, like the cursor that made it.
-struct CellView {
-  uint32_t master = 0;            ///< index of the master cell in the program (its label)
-  const double* state = nullptr;  ///< the cell's state values, as many as its master has
-  double birth = 0;               ///< global time at which the cell had age 0 (seconds)
-  uint64_t id = 0;                ///< stable id (core/successors.h)
-  size_t index = 0;               ///< position in pool order
-};
 
 /// Walks cells in pool order:
 /// `for (CellCursor cell = pool.cursor(); !cell.done(); cell.next()) use(cell.master());`
@@ -43,27 +37,34 @@ class CellCursor {
   CellCursor(std::span<const CellRecord> cells, const double* state, size_t first, const uint32_t* counts,
              size_t offset)
       : cells_(cells), state_(state), index_(first), counts_(counts), offset_(offset), summed_(true) {}
+  /// A cursor at module `first` of a compact word.
+  explicit CellCursor(const CompactWord& word, size_t first = 0)
+      : state_(nullptr), compact_(true), words_(word, first) {}
 
   /// Whether the cursor has passed the last cell.
-  bool done() const { return index_ >= cells_.size(); }
+  bool done() const { return compact_ ? words_.done() : index_ >= cells_.size(); }
   /// Moves to the next cell in pool order.
   void next() {
+    if (compact_) return words_.next();
     if (counts_) offset_ += counts_[cells_[index_].master];
     ++index_;
   }
   /// Cells the cursor walks, in all.
-  size_t size() const { return cells_.size(); }
+  size_t size() const { return compact_ ? words_.size() : cells_.size(); }
 
   // The cell under the cursor (not done()).
-  size_t index() const { return index_; }
-  uint32_t master() const { return cells_[index_].master; }
-  const double* state() const { return state_ + stateOffset(); }
-  double birth() const { return cells_[index_].birth; }
-  uint64_t id() const { return cells_[index_].id; }
+  size_t index() const { return compact_ ? words_.index() : index_; }
+  uint32_t master() const { return compact_ ? words_.master() : cells_[index_].master; }
+  const double* state() const { return compact_ ? words_.state() : state_ + stateOffset(); }
+  double birth() const { return compact_ ? words_.birth() : cells_[index_].birth; }
+  uint64_t id() const { return compact_ ? words_.id() : cells_[index_].id; }
   /// Where the cell's values start in the state array (and in any array laid out like
   /// it, as an integrator's stages are).
-  size_t stateOffset() const { return summed_ ? offset_ : cells_[index_].state; }
-  CellView view() const { return {master(), state(), birth(), id(), index_}; }
+  size_t stateOffset() const {
+    if (compact_) return words_.stateOffset();
+    return summed_ ? offset_ : cells_[index_].state;
+  }
+  CellView view() const { return {master(), state(), birth(), id(), index()}; }
 
  private:
   std::span<const CellRecord> cells_;
@@ -72,6 +73,8 @@ class CellCursor {
   const uint32_t* counts_ = nullptr;
   size_t offset_ = 0;
   bool summed_ = false;
+  bool compact_ = false;  // walks words_ instead of cells_
+  CompactWordCursor words_;
 };
 
 }  // namespace ontogen

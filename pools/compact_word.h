@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include "pools/cell_cursor.h"
+#include "pools/cell_view.h"
 #include "pools/large_page_allocator.h"
 #include "pools/mix_key.h"
 
@@ -307,6 +307,8 @@ class CompactWord::Slice {
 /// only when asked. Invalid once the word changes.
 class CompactWordCursor {
  public:
+  /// A cursor over no word, done() at once.
+  CompactWordCursor() = default;
   explicit CompactWordCursor(const CompactWord& word, size_t first = 0)
       : word_(&word),
         labels8_(word.wide_ ? nullptr : word.labels8_.data()),
@@ -344,16 +346,18 @@ class CompactWordCursor {
   uint32_t birthIndex() const { return word_->birthIndex_[run_]; }
   IdKey key() const { return word_->keyOf(run_, j_); }
   uint64_t id() const { return key().id(); }
+  /// Where the module's values start in the word's values.
+  size_t stateOffset() const { return value_; }
   CellView view() const { return {master(), state(), birth(), id(), index_}; }
 
  private:
-  const CompactWord* word_;
-  const uint8_t* labels8_;    // null for a word of two-byte labels
-  const uint16_t* labels16_;
-  const uint64_t* runStarts_;
-  const uint32_t* stateCounts_;
-  size_t size_;
-  bool stateless_;
+  const CompactWord* word_ = nullptr;
+  const uint8_t* labels8_ = nullptr;  // null for a word of two-byte labels
+  const uint16_t* labels16_ = nullptr;
+  const uint64_t* runStarts_ = nullptr;
+  const uint32_t* stateCounts_ = nullptr;
+  size_t size_ = 0;
+  bool stateless_ = true;
   size_t index_ = 0, run_ = 0, value_ = 0;
   uint32_t j_ = 0;
 };

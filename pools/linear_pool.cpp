@@ -12,10 +12,11 @@ void LinearPool::indexBranches(std::span<const uint8_t> classOf) {
     partner_.clear();
     return;
   }
-  partner_.assign(cells_.size(), kNoPartner);
+  const size_t size = this->size();
+  partner_.assign(size, kNoPartner);
   std::vector<uint32_t> open;
-  for (uint32_t i = 0; i < cells_.size(); ++i) {
-    uint8_t symbol = classOf[cells_[i].master];
+  for (uint32_t i = 0; i < size; ++i) {
+    uint8_t symbol = classOf[compact_ ? word_.label(i) : cells_[i].master];
     if (symbol & kSymbolBranchOpen) {
       open.push_back(i);
     } else if ((symbol & kSymbolBranchClose) && !open.empty()) {
@@ -24,6 +25,41 @@ void LinearPool::indexBranches(std::span<const uint8_t> classOf) {
       open.pop_back();
     }
   }
+}
+
+void LinearPool::swapCompactWord(CompactWord& next) {
+  if (!compact_) {
+    CellArray().swap(cells_);
+    StateArray().swap(state_);
+    blockOffsets_.clear();
+    compact_ = true;
+  }
+  std::swap(word_, next);
+  ++version_;
+}
+
+void LinearPool::storeCompactWord() {
+  if (compact_) return;
+  CompactWord word(stateCounts_);
+  word.reserve(size(), size(), state_.size());
+  for (CellCursor cell = cursor(); !cell.done(); cell.next())
+    word.append(cell.master(), IdKey::whole(cell.id()), cell.birth(), cell.state());
+  word.finish();
+  swapCompactWord(word);
+}
+
+void LinearPool::storeRecords() {
+  if (!compact_) return;
+  CellArray cells;
+  StateArray state;
+  cells.reserve(word_.size());
+  state.reserve(word_.valueCount());
+  for (CompactWordCursor cell(word_); !cell.done(); cell.next()) {
+    const uint32_t count = word_.stateCount(cell.master());
+    cells.push_back(CellRecord{cell.master(), static_cast<uint32_t>(state.size()), cell.birth(), cell.id()});
+    state.insert(state.end(), cell.state(), cell.state() + count);
+  }
+  swapContents(cells, state);  // drops the compact word
 }
 
 bool LinearPool::matchLeft(size_t index, std::span<const ContextItem> items, std::span<const uint8_t> classOf,

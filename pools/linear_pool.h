@@ -32,6 +32,20 @@ class LinearPool final : public Pool {
   int contextDimension() const override { return 1; }
   std::unique_ptr<Pool> clone() const override { return std::make_unique<LinearPool>(*this); }
 
+  // --- Compact words (docs/COMPACT_WORDS.md). The pool starts with records; its
+  // development moves it to a compact word while it rewrites in that form, and back. Both
+  // need countValues. Readers see the same cells either way.
+
+  /// An empty word laid out for this pool's masters, for a writer of the next word.
+  CompactWord emptyCompactWord() const { return CompactWord(stateCounts_); }
+  /// Replaces the contents with `next`, keeping the old word's storage in `next`.
+  void swapCompactWord(CompactWord& next);
+  /// Encodes the records as a compact word (each id kept whole: records do not say which
+  /// ids share a lineage key) and frees them.
+  void storeCompactWord();
+  /// Decodes the compact word into records and frees it.
+  void storeRecords();
+
   /// Computes the matching bracket of every `[` and `]` for the current cells.
   /// classOf[master] is the SymbolClass of each master. Call after the word changes and
   /// before matching.

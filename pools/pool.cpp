@@ -1,6 +1,7 @@
 #include "pools/pool.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace ontogen {
 
@@ -16,7 +17,12 @@ std::string_view poolKindName(PoolKind kind) {
   return "linear";
 }
 
+void Pool::noRecords() {
+  throw std::logic_error("ontogen: internal error: the records of a pool that holds a compact word");
+}
+
 void Pool::append(CellRecord cell, const double* values, uint32_t count) {
+  if (compact_) noRecords();
   cell.state = static_cast<uint32_t>(state_.size());
   if (anyState_ && cells_.size() % kStateBlock == 0) blockOffsets_.push_back(cell.state);
   state_.insert(state_.end(), values, values + count);
@@ -25,14 +31,22 @@ void Pool::append(CellRecord cell, const double* values, uint32_t count) {
 }
 
 void Pool::swapContents(CellArray& cells, StateArray& state) {
+  if (compact_) dropCompactWord();
   cells_.swap(cells);
   state_.swap(state);
   indexValues();
   ++version_;
 }
 
+void Pool::dropCompactWord() {
+  word_ = CompactWord(stateCounts_);
+  compact_ = false;
+}
+
 void Pool::countValues(std::vector<uint32_t> perMaster) {
+  if (compact_) noRecords();
   stateCounts_ = std::move(perMaster);
+  word_ = CompactWord(stateCounts_);
   counted_ = true;
   anyState_ = std::any_of(stateCounts_.begin(), stateCounts_.end(), [](uint32_t n) { return n > 0; });
   indexValues();
@@ -59,6 +73,7 @@ void Pool::reserve(size_t cells, size_t values) {
 }
 
 void Pool::clear() {
+  if (compact_) dropCompactWord();
   cells_.clear();
   state_.clear();
   blockOffsets_.clear();

@@ -41,12 +41,14 @@ class Pool {
   CellCursor cursor() const { return cursor(0); }
   /// A cursor at cell `first` (at most size()), for a pass over a chunk of the cells.
   CellCursor cursor(size_t first) const {
+    if (compact_) return CellCursor(word_, first);
     if (!counted_) return CellCursor(cells_, state_.data(), first);
     return CellCursor(cells_, state_.data(), first, anyState_ ? stateCounts_.data() : nullptr,
                       first < cells_.size() ? stateOffset(first) : state_.size());
   }
   /// Cell i (below size()).
   CellView cellAt(size_t i) const {
+    if (compact_) return word_.cellAt(i);
     const CellRecord& cell = cells_[i];
     return {cell.master, state_.data() + stateOffset(i), cell.birth, cell.id, i};
   }
@@ -55,6 +57,7 @@ class Pool {
   /// offset of its block of kStateBlock cells plus the values of the cells before it in
   /// the block.
   size_t stateOffset(size_t i) const {
+    if (compact_) return word_.locate(i).value;
     if (!counted_) return cells_[i].state;
     if (!anyState_) return 0;
     const size_t block = i / kStateBlock;
@@ -66,6 +69,7 @@ class Pool {
   /// The same, walking from cell `from` (whose values start at `offset`) when it is
   /// nearer to i than the start of i's block: a neighbour of a cell a cursor is on.
   size_t stateOffsetNear(size_t i, size_t from, size_t offset) const {
+    if (compact_) return stateOffset(i);
     if (!counted_) return cells_[i].state;
     if (i >= from && i - from < i % kStateBlock) {
       for (size_t j = from; j < i; ++j) offset += stateCounts_[cells_[j].master];
@@ -91,27 +95,48 @@ class Pool {
   static constexpr size_t kStateBlock = 64;
 
   /// The records themselves, in pool order: for pools/ and core/ only, which write and
-  /// scan them until the linear pool stores its words compactly (docs/COMPACT_WORDS.md).
+  /// scan them where a pool keeps records. A linear pool holding a compact word has none
+  /// (holdsCompactWord): asking for them then is an internal error.
   /// In a pool that counts its values, the records' `state` is not read.
-  std::span<const CellRecord> cells() const { return cells_; }
-  std::span<CellRecord> cells() { return cells_; }
-  size_t size() const { return cells_.size(); }
+  std::span<const CellRecord> cells() const {
+    if (compact_) [[unlikely]] noRecords();
+    return cells_;
+  }
+  std::span<CellRecord> cells() {
+    if (compact_) [[unlikely]] noRecords();
+    return cells_;
+  }
+  size_t size() const { return compact_ ? word_.size() : cells_.size(); }
   /// The state values of a cell (count given by its master).
   const double* stateOf(const CellRecord& cell) const { return state_.data() + cell.state; }
   double* stateOf(const CellRecord& cell) { return state_.data() + cell.state; }
-  std::span<const double> stateArena() const { return state_; }
-  /// The state values themselves, for an integrator that advances them in place.
-  StateArray& stateValues() { return state_; }
+  std::span<const double> stateArena() const {
+    return compact_ ? std::span<const double>(word_.values()) : std::span<const double>(state_);
+  }
+  /// The state values themselves, for an integrator that advances them in place (a pool
+  /// of records).
+  StateArray& stateValues() {
+    if (compact_) [[unlikely]] noRecords();
+    return state_;
+  }
 
   /// Bytes in use, for the memory limit. Capacity reserved beyond the size is not
   /// counted: pages never written are never mapped.
-  size_t bytes() const { return cells_.size() * sizeof(CellRecord) + state_.size() * sizeof(double); }
+  size_t bytes() const {
+    return compact_ ? word_.bytes() : cells_.size() * sizeof(CellRecord) + state_.size() * sizeof(double);
+  }
+
+  /// Whether the cells are held as a compact word (docs/COMPACT_WORDS.md) rather than as
+  /// records: a linear pool whose development rewrites its words in that form.
+  bool holdsCompactWord() const { return compact_; }
+  /// The compact word (holdsCompactWord()).
+  const CompactWord& compactWord() const { return word_; }
 
   /// Changes whenever cells are added, removed or reordered (not when state values
   /// change), so a caller can keep what it derived from the structure until then.
   uint64_t structureVersion() const { return version_; }
 
-  /// Appends a cell with `count` state values copied from `values`.
+  /// Appends a cell with `count` state values copied from `values` (a pool of records).
   void append(CellRecord cell, const double* values, uint32_t count);
   /// Replaces the contents with another pool's (same kind), reusing storage.
   void swapContents(CellArray& cells, StateArray& state);
@@ -121,6 +146,9 @@ class Pool {
  protected:
   /// The block offsets of the cells as they are now (countValues).
   void indexValues();
+  [[noreturn]] static void noRecords();
+  /// Back to records: forgets the compact word and its storage.
+  void dropCompactWord();
 
   CellArray cells_;
   StateArray state_;
@@ -129,6 +157,8 @@ class Pool {
   bool anyState_ = false;               // some master has values
   std::vector<uint32_t> stateCounts_;   // values per master
   std::vector<uint32_t> blockOffsets_;  // where each block's first cell's values start
+  bool compact_ = false;                // the cells are word_, not cells_ and state_
+  CompactWord word_;
 };
 
 }  // namespace ontogen

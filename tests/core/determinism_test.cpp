@@ -38,16 +38,16 @@ struct Hash {
 void hashWorld(const World& world, Hash& hash) {
   const Pool& pool = world.rootPool();
   hash.add(static_cast<uint64_t>(pool.size()));
-  for (size_t i = 0; i < pool.size(); ++i) {
-    const CellRecord& cell = pool.cells()[i];
-    const MasterCell& master = world.program().masters[cell.master];
-    hash.add(cell.id);
+  // Through the cursor: a linear pool may hold records or a compact word.
+  for (CellCursor cell = pool.cursor(); !cell.done(); cell.next()) {
+    const MasterCell& master = world.program().masters[cell.master()];
+    hash.add(cell.id());
     hash.add(master.label);
-    hash.add(cell.birth);
-    const double* state = pool.stateOf(cell);
+    hash.add(cell.birth());
+    const double* state = cell.state();
     for (uint32_t k = 0; k < master.stateCount(); ++k) hash.add(state[k]);
-    for (double coordinate : world.positionOf(i)) hash.add(coordinate);
-    if (const World* child = world.childOf(cell)) hashWorld(*child, hash);
+    for (double coordinate : world.positionOf(cell.index())) hash.add(coordinate);
+    if (const World* child = world.childOf(cell.id())) hashWorld(*child, hash);
   }
 }
 

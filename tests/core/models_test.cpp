@@ -134,12 +134,18 @@ TEST(Models, PistonDrawsItsParts) {
   EXPECT_NEAR(set.geometry().cylinders()[1].radius, 2, 1e-12);
 }
 
-// Every model's pools read the same through the cursor, through cellAt and in the
-// records the pool keeps (pools/cell_cursor.h), nested pools included: the layer readers
-// outside pools/ and core/ use changes nothing they see.
-size_t expectCursorAgrees(const World& world, const std::string& where) {
+// Every model's pools read the same through the cursor and through cellAt as the records
+// of the same model grown without the rewriting by slices (which keeps every word in
+// records), nested pools included: the layer readers outside pools/ and core/ use, and
+// the compact words of label-only models (docs/COMPACT_WORDS.md), change nothing they see.
+size_t expectCursorAgrees(const World& world, const World& reference, const std::string& where,
+                          size_t& compactPools) {
   const Pool& pool = world.rootPool();
-  const auto records = pool.cells();
+  const Pool& recordsPool = reference.rootPool();
+  EXPECT_FALSE(recordsPool.holdsCompactWord()) << where;
+  if (pool.holdsCompactWord()) ++compactPools;
+  const auto records = recordsPool.cells();
+  const auto& masters = world.program().masters;
   size_t cells = 0;
   size_t index = 0;
   for (CellCursor cursor = pool.cursor(); !cursor.done(); cursor.next(), ++index) {
@@ -154,12 +160,21 @@ size_t expectCursorAgrees(const World& world, const std::string& where) {
       EXPECT_EQ(cell.id, record.id) << where << ", cell " << index;
       EXPECT_EQ(std::bit_cast<uint64_t>(cell.birth), std::bit_cast<uint64_t>(record.birth))
           << where << ", cell " << index;
-      EXPECT_EQ(cell.state, pool.stateOf(record)) << where << ", cell " << index;
+      const double* expected = recordsPool.stateOf(record);
+      for (uint32_t k = 0; k < masters[record.master].stateCount(); ++k)
+        EXPECT_EQ(std::bit_cast<uint64_t>(cell.state[k]), std::bit_cast<uint64_t>(expected[k]))
+            << where << ", cell " << index << ", value " << k;
+      if (!pool.holdsCompactWord()) {
+        EXPECT_EQ(cell.state, pool.stateOf(pool.cells()[index])) << where;
+      }
     }
     EXPECT_EQ(cursor.master(), record.master);
     EXPECT_EQ(cursor.id(), record.id);
-    if (const World* child = world.childOf(cursor.id()))
-      cells += expectCursorAgrees(*child, where + " > " + world.program().masters[record.master].label);
+    const World* child = world.childOf(cursor.id());
+    const World* referenceChild = reference.childOf(cursor.id());
+    EXPECT_EQ(child == nullptr, referenceChild == nullptr) << where << ", cell " << index;
+    if (child && referenceChild)
+      cells += expectCursorAgrees(*child, *referenceChild, where + " > " + masters[record.master].label, compactPools);
   }
   EXPECT_EQ(index, records.size()) << where;
   return cells + index;
@@ -167,7 +182,7 @@ size_t expectCursorAgrees(const World& world, const std::string& where) {
 
 TEST(Models, EveryModelReadsTheSameThroughTheCursor) {
   namespace fs = std::filesystem;
-  size_t models = 0;
+  size_t models = 0, compactPools = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(ONTOGEN_SOURCE_DIR) / "models")) {
     if (entry.path().extension() != ".cell") continue;
     const std::string name = entry.path().filename().string();
@@ -175,10 +190,18 @@ TEST(Models, EveryModelReadsTheSameThroughTheCursor) {
     auto program = testing_support::compileOrFail(testing_support::readModel(name), entry.path().string());
     ASSERT_NE(program, nullptr) << name;
     ++models;
-    World world(program);
+    WorldDef recordsDef;
+    recordsDef.rewriteBySlices = false;
+    World world(program), reference(program, recordsDef);
     // A few of each model's own steps: enough for successors, state and nested pools.
-    world.advanceTo(std::min(program->until, std::max(8 * program->dt, 4.0)), program->dt);
-    EXPECT_GT(expectCursorAgrees(world, name), 0u) << name;
+    const double until = std::min(program->until, std::max(8 * program->dt, 4.0));
+    world.advanceTo(until, program->dt);
+    reference.advanceTo(until, program->dt);
+    const size_t before = compactPools;
+    EXPECT_GT(expectCursorAgrees(world, reference, name, compactPools), 0u) << name;
+    if (name == "koch.cell") {
+      EXPECT_EQ(compactPools, before + 1) << "Koch's word is kept compact";
+    }
   }
   EXPECT_GE(models, 30u);
 }
