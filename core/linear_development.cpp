@@ -54,8 +54,8 @@ void LinearDevelopment::findParents() {
   axialParents(pool_.cursor(), program_.masters, parentIndex_);
   parentValues_.resize(pool_.size());
   for (size_t i = 0; i < parentValues_.size(); ++i)
-    parentValues_[i] = parentIndex_[i] < 0 ? context_->systemCellId
-                                           : idValue(pool_.cellAt(static_cast<size_t>(parentIndex_[i])).id);
+    parentValues_[i] =
+        parentIndex_[i] < 0 ? context_->systemCellId : idValue(pool_.cellAt(static_cast<size_t>(parentIndex_[i])).id);
 }
 
 double LinearDevelopment::earliestDeath() {
@@ -438,10 +438,9 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
     findParents();
     auto cells = pool_.cells();
     const auto& classOf = system_.symbolClass;
-    if (parallel_.appliesAtInstants() &&
-        parallel_.rewriteAtInstant(pool_, instant, activeGroup_, *context_,
-                                   readsParents_ ? parentValues_.data() : nullptr, eventsThisStep_, nextCells_,
-                                   nextState_)) {
+    if (parallel_.appliesAtInstants() && parallel_.rewriteAtInstant(pool_, instant, activeGroup_, *context_,
+                                                                    readsParents_ ? parentValues_.data() : nullptr,
+                                                                    eventsThisStep_, nextCells_, nextState_)) {
       finishWord();
       earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
       earliestVersion_ = pool_.structureVersion();
@@ -580,11 +579,10 @@ void LinearDevelopment::decompose(const CellRecord& cell, const double* state, d
     if (rule->hasContext()) matchContext(*rule, static_cast<size_t>(position), frame);
   }
   checkEventLimit(++eventsThisStep_, when, context_->limits);
-  context_->stats.cellsBorn += successors_.write(
-      *rule, cell, frame, when, BirthCause::Terminal, context,
-      [&](const ModuleValue& born, const double* values, uint32_t) {
-        decompose(recordOf(born), values, when, position, depth + 1);
-      });
+  context_->stats.cellsBorn += successors_.write(*rule, cell, frame, when, BirthCause::Terminal, context,
+                                                 [&](const ModuleValue& born, const double* values, uint32_t) {
+                                                   decompose(recordOf(born), values, when, position, depth + 1);
+                                                 });
 }
 
 }  // namespace ontogen

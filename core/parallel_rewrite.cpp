@@ -43,7 +43,7 @@ bool comparesLabelsOnly(const Program& program, const MasterCell& master) {
 }  // namespace
 
 ParallelRewrite::LabelRule ParallelRewrite::labelRule(const Program& program, uint32_t master,
-                                                     const CompiledRule& rule) const {
+                                                      const CompiledRule& rule) const {
   LabelRule choice;
   choice.rule = &rule;
   choice.group = rule.group;
@@ -59,10 +59,14 @@ ParallelRewrite::LabelRule ParallelRewrite::labelRule(const Program& program, ui
     }
   auto code = [](const ContextItem& item) {
     switch (item.kind) {
-      case ContextItem::Kind::Module: return static_cast<int32_t>(item.master);
-      case ContextItem::Kind::Any: return kAnyLabel;
-      case ContextItem::Kind::End: return kEndLabel;
-      default: return kNoMatch;  // a bracket, in a word that has none
+      case ContextItem::Kind::Module:
+        return static_cast<int32_t>(item.master);
+      case ContextItem::Kind::Any:
+        return kAnyLabel;
+      case ContextItem::Kind::End:
+        return kEndLabel;
+      default:
+        return kNoMatch;  // a bracket, in a word that has none
     }
   };
   if (plain_ && rule.leftItems.size() <= kPositionItems && rule.rightItems.size() <= kPositionItems &&
@@ -94,9 +98,9 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     if (labelsOnly_[m])
       for (const CompiledRule& rule : master.terminalRules)
         choices.push_back(labelRule(program, static_cast<uint32_t>(m), rule));
-    const bool fixed = master.terminalRules.empty() || (master.terminalRules.size() == 1 &&
-                                                        master.terminalRules.front().group == 0 &&
-                                                        !master.terminalRules.front().hasContext());
+    const bool fixed =
+        master.terminalRules.empty() || (master.terminalRules.size() == 1 && master.terminalRules.front().group == 0 &&
+                                         !master.terminalRules.front().hasContext());
     fixedChoice_.push_back(labelsOnly_[m] && fixed);
     anyChoiceVaries_ = anyChoiceVaries_ || (labelsOnly_[m] && !fixed);
     allLabelsOnly_ = allLabelsOnly_ && labelsOnly_[m];
@@ -173,7 +177,8 @@ struct CompactLabels {
 };
 }  // namespace
 
-inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const {
+inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i,
+                                                                         Worker& worker) const {
   const CellRecord& cell = step.pool.cells()[i];
   for (const LabelRule& choice : labelRules_[cell.master]) {
     if (choice.group != 0 && choice.group != step.group) continue;
@@ -188,13 +193,11 @@ inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByLabels(Pass pa
 }
 
 const CompiledRule* ParallelRewrite::choose(Pass pass, const Step& step, size_t i, const double* state, double death,
-                                            Worker& worker, RandomStream& random,
-                                            const EvalContext& evaluation) const {
+                                            Worker& worker, RandomStream& random, const EvalContext& evaluation) const {
   const CellRecord& cell = step.pool.cells()[i];
   const MasterCell& master = program_.masters[cell.master];
   double* frame = worker.frame.data();
-  loadCellFrame(frame, master, cell, state, death, {static_cast<double>(i), 0, 0},
-                step.parents ? step.parents[i] : -1);
+  loadCellFrame(frame, master, cell, state, death, {static_cast<double>(i), 0, 0}, step.parents ? step.parents[i] : -1);
   auto classOf = [&](const CompiledRule& rule) -> const std::vector<uint8_t>& {
     return rule.symbolClasses < 0 ? system_.symbolClass : system_.ruleClasses[rule.symbolClasses];
   };
@@ -237,7 +240,7 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
     if (labelsOnly_[cell.master]) {
       const std::vector<LabelRule>& rules = labelRules_[cell.master];
       const LabelRule* choice = fixedChoice_[cell.master] ? (rules.empty() ? nullptr : &rules.front())
-                                                           : chooseByLabels(pass, step, i, worker);
+                                                          : chooseByLabels(pass, step, i, worker);
       if (!fixedChoice_[cell.master])
         chosen_[i] = choice ? static_cast<uint16_t>(choice->rule - master.terminalRules.data() + 1) : 0;
       if (choice && choice->rule->hasAction) {
@@ -343,8 +346,7 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
 }
 
 bool ParallelRewrite::rewriteContextFree(const LinearPool& pool, double horizon, StepContext& context,
-                                         const double* parents, uint64_t& events, CellArray& cells,
-                                         StateArray& state) {
+                                         const double* parents, uint64_t& events, CellArray& cells, StateArray& state) {
   cells.clear();
   state.clear();
   if (!contextFree_) return false;
@@ -352,8 +354,7 @@ bool ParallelRewrite::rewriteContextFree(const LinearPool& pool, double horizon,
 }
 
 bool ParallelRewrite::rewriteAtInstant(const LinearPool& pool, double instant, int group, StepContext& context,
-                                       const double* parents, uint64_t& events, CellArray& cells,
-                                       StateArray& state) {
+                                       const double* parents, uint64_t& events, CellArray& cells, StateArray& state) {
   cells.clear();
   state.clear();
   if (!atInstants_) return false;
@@ -424,7 +425,7 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
 
 template <class Labels>
 const ParallelRewrite::LabelRule* ParallelRewrite::chooseByPosition(const Labels& labels, size_t size, uint32_t master,
-                                                                   int group, size_t i) const {
+                                                                    int group, size_t i) const {
   for (const LabelRule& choice : labelRules_[master]) {
     if (choice.group != 0 && choice.group != group) continue;
     if (!choice.context || matchesByPosition(labels, size, choice, i)) return &choice;
@@ -432,8 +433,10 @@ const ParallelRewrite::LabelRule* ParallelRewrite::chooseByPosition(const Labels
   return nullptr;
 }
 
-std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon, int group,
-                                                        unsigned threads, CompactWord& next, const CompactFits& fits) {
+std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon,
+                                                                              int group, unsigned threads,
+                                                                              CompactWord& next,
+                                                                              const CompactFits& fits) {
   if (!appliesToCompactWords())
     throw std::logic_error("ontogen: internal error: a compact rewrite of a word whose rules are not label-only");
   const auto& masters = program_.masters;
@@ -446,29 +449,14 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   for (CompactWord::Slice& slice : slices) slice.restart(word);
   std::vector<uint64_t> events(sliceCount, 0), born(sliceCount, 0);
   std::vector<double> earliest(sliceCount, kForever);
-  // The counting pass chooses without writing or hashing anything: what each chosen rule
-  // writes is in its LabelRule. Cells the writing pass copies or renews count one each.
-  auto count = [&](size_t s) {
-    CompactWord::Slice& out = slices[s];
-    const CompactLabels labels{word};
-    const uint8_t* labelBytes = word.wideLabels() ? nullptr : word.labels8().data();
-    const size_t end = size * (s + 1) / sliceCount;
-    for (CompactWordCursor cell(word, size * s / sliceCount); !cell.done() && cell.index() < end; cell.next()) {
-      const uint32_t label = labelBytes ? labelBytes[cell.index()] : cell.master();
-      if (cell.birth() + masters[label].lifetime > horizon) {
-        out.expect(1, 0);
-        continue;
-      }
-      ++events[s];
-      const LabelRule* choice = fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index());
-      const bool fires = choice && choice->rule->hasAction;
-      out.expect(fires ? choice->cells : 1, 0);
-      if (fires) born[s] += choice->born;
-    }
-  };
+  // Both passes make the same calls: the slice counts before beginSlices and writes after
+  // it. The counting pass chooses but hashes nothing: new successors are named by their
+  // event (CompactWord::Slice::appendBorn) until the writing pass computes their lineage.
   auto pass = [&](size_t s) {
     CompactWord::Slice& out = slices[s];
+    const bool writing = out.writing();
     const CompactLabels labels{word};
+    uint64_t fired = 0, bornHere = 0;
     double soonest = kForever;
     const size_t end = size * (s + 1) / sliceCount;
     for (CompactWordCursor cell(word, size * s / sliceCount); !cell.done() && cell.index() < end; cell.next()) {
@@ -480,7 +468,9 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
         soonest = std::min(soonest, death);
         continue;
       }
-      const LabelRule* choice = fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index());
+      ++fired;
+      const LabelRule* choice =
+          fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index());
       if (!choice || !choice->rule->hasAction) {  // renewed: the same id, born again
         out.append(label, cell.key(), death, nullptr);
         soonest = std::min(soonest, death + lifetime);
@@ -489,15 +479,23 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
       // As SuccessorWriter::write: `me` and `=X` keep the cell's id, the others take the
       // event's lineage and their number.
       const IdKey own = cell.key();
-      const uint64_t lineage = lineageKey(own.id(), death, BirthCause::Terminal);
+      const uint64_t lineage = writing ? lineageKey(own.id(), death, BirthCause::Terminal) : 0;
       uint32_t k = 0;
       for (const LabelRule::Written& successor : choice->written) {
         ++k;
-        out.append(successor.label, successor.keepsId ? own : IdKey{lineage, k}, death, nullptr);
+        if (successor.keepsId)
+          out.append(successor.label, own, death, nullptr);
+        else
+          out.appendBorn(successor.label, fired, lineage, k, death, nullptr);
       }
+      bornHere += choice->born;
       soonest = std::min(soonest, death + choice->shortestLife);
     }
     out.finish();
+    if (!writing) {
+      events[s] = fired;
+      born[s] = bornHere;
+    }
     earliest[s] = soonest;
   };
   auto everySlice = [&](const auto& work) {
@@ -509,7 +507,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
         1);
   };
   next.clearWithBirthsOf(word);
-  everySlice(count);
+  everySlice(pass);
   if (fits) {
     uint64_t modules = 0, totalEvents = 0, totalBorn = 0;
     for (size_t s = 0; s < sliceCount; ++s) {

@@ -21,7 +21,6 @@
 
 namespace ontogen {
 
-
 /// Walks cells in pool order:
 /// `for (CellCursor cell = pool.cursor(); !cell.done(); cell.next()) use(cell.master());`
 /// It borrows the storage it walks and is invalid once that changes.

@@ -111,16 +111,17 @@ void CompactWord::finish() {
 }
 
 void CompactWord::beginSlices(std::span<Slice> slices) {
-  size_t modules = 0, values = 0;
+  size_t modules = 0, values = 0, runs = 0;
   for (const Slice& slice : slices) {
     if (slice.from_->stateCounts_ != stateCounts_)
       throw std::logic_error("ontogen: internal error: a slice copies from a word of other labels");
     modules += slice.modules_;
     values += slice.values_;
+    runs += slice.countedRuns_;
   }
   // Birth indices carry kNewBirth while a slice writes.
-  if (values > UINT32_MAX || births_.size() >= Slice::kNewBirth)
-    throw std::length_error("ontogen: a linear word with 2^32 state values or 2^31 birth times");
+  if (values > UINT32_MAX || runs > UINT32_MAX || births_.size() >= Slice::kNewBirth)
+    throw std::length_error("ontogen: a linear word with 2^32 runs or state values, or 2^31 birth times");
   std::vector<double> births = std::move(births_);
   clear();
   births_ = std::move(births);
@@ -130,25 +131,27 @@ void CompactWord::beginSlices(std::span<Slice> slices) {
   resizeForOverwrite(runStarts_, blocks);
   resizeForOverwrite(blockRuns_, blocks);
   if (!stateless_) resizeForOverwrite(blockValues_, blocks);
+  resizeForOverwrite(keys_, runs);
+  resizeForOverwrite(birthIndex_, runs);
+  resizeForOverwrite(firstK_, runs);
   resizeForOverwrite(values_, values);
-  size_t module = 0, value = 0;
+  size_t module = 0, value = 0, run = 0;
   for (Slice& slice : slices) {
     slice.word_ = this;
     slice.firstModule_ = module;
     slice.firstValue_ = value;
+    slice.firstRun_ = run;
     module += slice.modules_;
     value += slice.values_;
+    run += slice.countedRuns_;
     slice.written_ = slice.writtenValues_ = slice.runs_ = 0;
     slice.tail_ = RunTail{};
     slice.births_.clear();
-    // At most a run a module; pages never written are never mapped.
-    resizeForOverwrite(slice.keys_, slice.modules_);
-    resizeForOverwrite(slice.birthIndex_, slice.modules_);
-    resizeForOverwrite(slice.firstK_, slice.modules_);
     slice.sharedWords_.clear();
     slice.bitsWord_ = SIZE_MAX;
-    slice.out_ = {wide_ ? nullptr : labels8_.data(), wide_ ? labels16_.data() : nullptr, values_.data(),
-                  slice.keys_.data(), slice.birthIndex_.data(), slice.firstK_.data()};
+    slice.out_ = {
+        wide_ ? nullptr : labels8_.data(), wide_ ? labels16_.data() : nullptr,   values_.data(),
+        keys_.data() + slice.firstRun_,    birthIndex_.data() + slice.firstRun_, firstK_.data() + slice.firstRun_};
   }
 }
 
@@ -158,18 +161,11 @@ void CompactWord::endSlices(std::span<Slice> slices) {
 }
 
 void CompactWord::joinSlices(std::span<Slice> slices) {
-  size_t runs = 0;
   for (Slice& slice : slices) {
-    slice.firstRun_ = runs;
-    runs += slice.runs_;
     slice.firstBirth_ = static_cast<uint32_t>(births_.size());
     births_.insert(births_.end(), slice.births_.begin(), slice.births_.end());
   }
-  if (runs > UINT32_MAX || births_.size() >= Slice::kNewBirth)
-    throw std::length_error("ontogen: a linear word with 2^32 runs or 2^31 birth times");
-  resizeForOverwrite(keys_, runs);
-  resizeForOverwrite(birthIndex_, runs);
-  resizeForOverwrite(firstK_, runs);
+  if (births_.size() >= Slice::kNewBirth) throw std::length_error("ontogen: a linear word with 2^31 birth times");
   // A word two slices share holds the run starts of both: cleared, then joined.
   for (const Slice& slice : slices)
     for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] = 0;
@@ -178,23 +174,17 @@ void CompactWord::joinSlices(std::span<Slice> slices) {
 }
 
 void CompactWord::Slice::place() {
-  CompactWord& word = *word_;
-  std::copy(keys_.data(), keys_.data() + runs_, word.keys_.data() + firstRun_);
-  std::copy(firstK_.data(), firstK_.data() + runs_, word.firstK_.data() + firstRun_);
-  uint32_t* birthIndex = word.birthIndex_.data() + firstRun_;
+  if (births_.empty()) return;
+  uint32_t* birthIndex = out_.birthIndex;
   for (size_t r = 0; r < runs_; ++r) {
-    const uint32_t index = birthIndex_[r];
-    birthIndex[r] = index & kNewBirth ? firstBirth_ + (index & ~kNewBirth) : index;
+    const uint32_t index = birthIndex[r];
+    if (index & kNewBirth) birthIndex[r] = firstBirth_ + (index & ~kNewBirth);
   }
-  // The block index counted the slice's own runs.
-  const size_t end = firstModule_ + written_;
-  for (size_t block = (firstModule_ + kBlock - 1) / kBlock; block * kBlock < end; ++block)
-    word.blockRuns_[block] += static_cast<uint32_t>(firstRun_);
 }
 
 void CompactWord::Slice::startBlock(size_t i) {
   if (i % kBlock == 0) {
-    word_->blockRuns_[i / kBlock] = static_cast<uint32_t>(runs_);
+    word_->blockRuns_[i / kBlock] = static_cast<uint32_t>(firstRun_ + runs_);
     if (!word_->stateless_) word_->blockValues_[i / kBlock] = static_cast<uint32_t>(firstValue_ + writtenValues_);
   }
   flushBits();
@@ -217,7 +207,7 @@ void CompactWord::Slice::finish() {
   bitsWord_ = SIZE_MAX;
   // Counting and writing agree by contract; a slice that wrote other than it counted
   // would leave unwritten memory in the word, so it stops here.
-  if (written_ != modules_ || writtenValues_ != values_)
+  if (written_ != modules_ || writtenValues_ != values_ || runs_ != countedRuns_)
     throw std::logic_error("ontogen: internal error: a slice of a compact word wrote other than it counted");
 }
 

@@ -46,6 +46,13 @@ class CompactWordCursor;
 /// The canonical rule every writer and counter of a compact word applies: a module
 /// continues the run of the module before it when both have (key, k) ids with the same
 /// key and the next k, and the same birth bits.
+///
+/// A writer by slices names the new successors of an event by the event instead of by
+/// their lineage key (continuesFresh), so that it can count its runs before it computes
+/// any key: an event's successors continue each other, and never a module of another
+/// event or a kept key. The words read the same; the encoding differs from the canonical
+/// one only where a new lineage key equals the key of the module before it, one chance in
+/// 2^64 a module.
 class RunTail {
  public:
   /// `key` with a k past what a run stores kept whole instead.
@@ -54,19 +61,28 @@ class RunTail {
   }
   /// Whether the module (`key` normalised) continues the last module's run; it becomes
   /// the last module.
-  bool continues(IdKey key, double birth) {
+  bool continues(IdKey key, double birth) { return continuesAs(key.key, false, key.k, birth); }
+  /// The same for the k-th new successor (k below kWhole, normalised) of the event named
+  /// `event`.
+  bool continuesFresh(uint64_t event, uint32_t k, double birth) { return continuesAs(event, true, k, birth); }
+
+ private:
+  bool continuesAs(uint64_t identity, bool fresh, uint32_t k, double birth) {
     const uint64_t bits = std::bit_cast<uint64_t>(birth);
-    const bool continues = any_ && key.k != IdKey::kWhole && last_.k != IdKey::kWhole && key.key == last_.key &&
-                           key.k == last_.k + 1 && bits == lastBirth_;
+    const bool continues = any_ && k != IdKey::kWhole && lastK_ != IdKey::kWhole && identity == last_ &&
+                           fresh == lastFresh_ && k == lastK_ + 1 && bits == lastBirth_;
     any_ = true;
-    last_ = key;
+    last_ = identity;
+    lastFresh_ = fresh;
+    lastK_ = k;
     lastBirth_ = bits;
     return continues;
   }
 
- private:
   bool any_ = false;
-  IdKey last_;
+  bool lastFresh_ = false;
+  uint64_t last_ = 0;
+  uint32_t lastK_ = IdKey::kWhole;
   uint64_t lastBirth_ = 0;
 };
 
@@ -122,16 +138,16 @@ class CompactWord {
   // the slices by prefix sums, each slice writes in place, and endSlices joins the seams.
 
   class Slice;
-  /// Sizes the word's labels and values for `slices`, which have counted, and places them
-  /// one after the other. The word was cleared with the births of the word the slices copy
-  /// from (clearWithBirthsOf).
+  /// Sizes the word's labels, runs and values for `slices`, which have counted, and places
+  /// them one after the other. The word was cleared with the births of the word the slices
+  /// copy from (clearWithBirthsOf).
   void beginSlices(std::span<Slice> slices);
-  /// After every slice has written: moves the slices' runs into the word, appends their new
-  /// births to the table in slice order, and joins the run-start bits of the bitmap words
-  /// two slices share. Then finish() as after serial appends.
+  /// After every slice has written: appends the slices' new births to the table in slice
+  /// order, renumbers the runs that refer to them, and joins the run-start bits of the
+  /// bitmap words two slices share. Then finish() as after serial appends.
   void endSlices(std::span<Slice> slices);
-  /// endSlices in two parts, for a caller that moves the runs on several threads:
-  /// joinSlices (one thread), then Slice::place for every slice (any thread each).
+  /// endSlices in two parts, for a caller that renumbers on several threads: joinSlices
+  /// (one thread), then Slice::place for every slice (any thread each).
   void joinSlices(std::span<Slice> slices);
 
   // --- Reading ---
@@ -190,71 +206,89 @@ class CompactWord {
   LargeVector<uint8_t> firstK_;        // per run: k of its first module, or kWholeMark
   std::vector<double> births_;         // distinct birth times, exact
   LargeVector<double> values_;
-  RunTail tail_;                       // the last module appended serially
+  RunTail tail_;  // the last module appended serially
 };
 
 /// One slice of a word written by slices. Before CompactWord::beginSlices the slice
-/// counts: append and appendCopy only count modules and values (or the caller says what
-/// it will write with expect, without making the calls). After it they write: labels,
-/// run starts and values in place, runs and new births into the slice's own buffers,
-/// which CompactWord::endSlices moves into the word once every slice has written and the
-/// slices' runs are known. The slice's first module always starts a run: a word written by
-/// slices may have one run more a seam than the same word written serially, and reads the
-/// same, module for module.
+/// counts: append, appendCopy and appendBorn count modules, runs and values and write
+/// nothing, and appendBorn needs no lineage key, so counting hashes nothing. After it the
+/// same calls write labels, run starts, runs and values in place in the word, and new
+/// births into the slice's own table, which CompactWord::endSlices appends to the word's
+/// once every slice has written. The slice's first module always starts a run: a word
+/// written by slices may have one run more a seam than the same word written serially,
+/// and reads the same, module for module.
 class CompactWord::Slice {
  public:
   /// A slice of the word that starts with the birth table of `from`, the word it copies
   /// modules from (their birth indices stay valid).
   explicit Slice(const CompactWord& from) : from_(&from) {}
-  /// Starts the slice again, for a word copying from `from`, keeping its buffers.
+  /// Starts the slice again, counting, for a word copying from `from`.
   void restart(const CompactWord& from) {
     from_ = &from;
     word_ = nullptr;
-    modules_ = values_ = 0;
+    modules_ = values_ = countedRuns_ = 0;
+    tail_ = RunTail{};
   }
-
-  /// While counting: the slice will write `modules` more modules and `values` more values.
-  void expect(size_t modules, size_t values) {
-    modules_ += modules;
-    values_ += values;
-  }
-  /// A module born at `birth` (a birth the slice may have to add to the table).
+  /// Whether the slice writes (after beginSlices) rather than counts.
+  bool writing() const { return word_ != nullptr; }
+  /// A module with id `key`, born at `birth` (a birth the slice may have to add to the table).
   [[gnu::always_inline]] void append(uint32_t label, IdKey key, double birth, const double* values) {
-    if (!word_) return expect(1, from_->stateCounts_[label]);
-    if (births_.empty() || std::bit_cast<uint64_t>(births_.back()) != std::bit_cast<uint64_t>(birth)) [[unlikely]]
-      lastBorn_ = static_cast<uint32_t>(birthIndexIn(births_, birth));
-    put(label, key, kNewBirth | lastBorn_, birth, values);
+    key = RunTail::normalised(key, kLargestRunK);
+    const bool continues = tail_.continues(key, birth);
+    if (!word_) return count(label, continues);
+    put(label, key, continues, newBirth(birth), values);
   }
   /// A module copied from `from` with its birth index there.
   [[gnu::always_inline]] void appendCopy(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
-    if (!word_) return expect(1, from_->stateCounts_[label]);
-    put(label, key, birthIndex, from_->births_[birthIndex], values);
+    key = RunTail::normalised(key, kLargestRunK);
+    const bool continues = tail_.continues(key, from_->births_[birthIndex]);
+    if (!word_) return count(label, continues);
+    put(label, key, continues, birthIndex, values);
+  }
+  /// The k-th new successor (k from 1) of an event, whose id is mixKey(lineage, k).
+  /// `event` names the event among the slice's (a counter will do), so that the slice
+  /// counts without the lineage key: pass any while counting.
+  [[gnu::always_inline]] void appendBorn(uint32_t label, uint64_t event, uint64_t lineage, uint32_t k, double birth,
+                                         const double* values) {
+    if (k > kLargestRunK) [[unlikely]]
+      return append(label, word_ ? IdKey::whole(mixKey(lineage, k)) : IdKey::whole(0), birth, values);
+    const bool continues = tail_.continuesFresh(event, k, birth);
+    if (!word_) return count(label, continues);
+    put(label, IdKey{lineage, k}, continues, newBirth(birth), values);
   }
   /// After the slice's last append of a pass.
   void finish();
-
   size_t modules() const { return modules_; }
   size_t values() const { return values_; }
   /// Runs written (after the writing pass).
   size_t runs() const { return runs_; }
-  /// After CompactWord::joinSlices: moves the slice's runs into the word and renumbers what
-  /// referred to them. Slices place in any order, on any threads.
+  /// After CompactWord::joinSlices: gives the slice's runs born at its new births their
+  /// index in the word's table. Slices place in any order, on any threads.
   void place();
 
  private:
   friend class CompactWord;
-  // Marks a birth index as one of the slice's new births, renumbered by endSlices.
+  // Marks a birth index as one of the slice's new births, renumbered by place.
   static constexpr uint32_t kNewBirth = uint32_t{1} << 31;
-
+  void count(uint32_t label, bool continues) {
+    ++modules_;
+    values_ += from_->stateCounts_[label];
+    countedRuns_ += continues ? 0 : 1;
+  }
+  uint32_t newBirth(double birth) {
+    if (births_.empty() || std::bit_cast<uint64_t>(births_.back()) != std::bit_cast<uint64_t>(birth)) [[unlikely]]
+      lastBorn_ = static_cast<uint32_t>(birthIndexIn(births_, birth));
+    return kNewBirth | lastBorn_;
+  }
   // Inlined into every append: a call per module costs a fifth of a rewrite.
-  [[gnu::always_inline]] void put(uint32_t label, IdKey key, uint32_t birthIndex, double birth, const double* values) {
-    key = RunTail::normalised(key, kLargestRunK);
+  [[gnu::always_inline]] void put(uint32_t label, IdKey key, bool continues, uint32_t birthIndex,
+                                  const double* values) {
     const size_t i = firstModule_ + written_;
     if (i % kBlock == 0 || bitsWord_ == SIZE_MAX) [[unlikely]]
       startBlock(i);
-    if (!tail_.continues(key, birth)) {
+    if (!continues) {
       bits_ |= uint64_t{1} << (i % kBlock);
-      // The buffers hold a run a module (beginSlices): no capacity to check.
+      // The word holds the runs the slice counted (beginSlices): no capacity to check.
       out_.keys[runs_] = key.key;
       out_.birthIndex[runs_] = birthIndex;
       out_.firstK[runs_] = key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k);
@@ -275,21 +309,17 @@ class CompactWord::Slice {
   void flushBits();
 
   const CompactWord* from_;
-  CompactWord* word_ = nullptr;  // null while counting
-  size_t modules_ = 0, values_ = 0;        // counted
+  CompactWord* word_ = nullptr;                        // null while counting
+  size_t modules_ = 0, values_ = 0, countedRuns_ = 0;  // counted
   size_t written_ = 0, writtenValues_ = 0, runs_ = 0;  // written
   RunTail tail_;
   std::vector<double> births_;  // new births, in order of first use
   uint32_t lastBorn_ = 0;       // index in births_ of the last new birth appended
-  // The slice's runs, until endSlices moves them.
-  LargeVector<uint64_t> keys_;
-  LargeVector<uint32_t> birthIndex_;
-  LargeVector<uint8_t> firstK_;
   struct {
     uint8_t* labels8 = nullptr;
     uint16_t* labels16 = nullptr;
     double* values = nullptr;
-    uint64_t* keys = nullptr;  // the slice's own run buffers
+    uint64_t* keys = nullptr;  // the slice's first run in the word
     uint32_t* birthIndex = nullptr;
     uint8_t* firstK = nullptr;
   } out_;  // where the slice writes
@@ -362,6 +392,8 @@ class CompactWordCursor {
   uint32_t j_ = 0;
 };
 
-inline CompactWordCursor CompactWord::cursor() const { return CompactWordCursor(*this); }
+inline CompactWordCursor CompactWord::cursor() const {
+  return CompactWordCursor(*this);
+}
 
 }  // namespace ontogen

@@ -99,11 +99,13 @@ class Pool {
   /// (holdsCompactWord): asking for them then is an internal error.
   /// In a pool that counts its values, the records' `state` is not read.
   std::span<const CellRecord> cells() const {
-    if (compact_) [[unlikely]] noRecords();
+    if (compact_) [[unlikely]]
+      noRecords();
     return cells_;
   }
   std::span<CellRecord> cells() {
-    if (compact_) [[unlikely]] noRecords();
+    if (compact_) [[unlikely]]
+      noRecords();
     return cells_;
   }
   size_t size() const { return compact_ ? word_.size() : cells_.size(); }
@@ -116,7 +118,8 @@ class Pool {
   /// The state values themselves, for an integrator that advances them in place (a pool
   /// of records).
   StateArray& stateValues() {
-    if (compact_) [[unlikely]] noRecords();
+    if (compact_) [[unlikely]]
+      noRecords();
     return state_;
   }
 

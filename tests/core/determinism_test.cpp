@@ -83,7 +83,8 @@ std::vector<Case> cases() {
   return {
       {"piston: timed linear", readModel("piston.cell"), 12.37, 0.1, 0x4448a2d17afc9cdeull},
       {"markov_melody: stochastic linear", readModel("markov_melody.cell"), 30, 1, 0xc22114fcfc8db98eull},
-      {"heterocysts: linear with rate and stochastic division", readModel("heterocysts.cell"), 30, 0.1, 0xbd684537a782cc0eull},
+      {"heterocysts: linear with rate and stochastic division", readModel("heterocysts.cell"), 30, 0.1,
+       0xbd684537a782cc0eull},
       {"grid with rate and actions", kGridWithRatesAndActions, 20, 0.25, 0xad51dde22eefe0d0ull},
       {"colony: spatial", readModel("colony.cell"), 20, 0.1, 0xef470aea37d9c7b1ull},
       {"orchard: nested systems", readModel("orchard.cell"), 8, 0.1, 0xcb9b8bcee7ff1a6cull},
@@ -116,8 +117,8 @@ void expectOneHashEach(const std::vector<Case>& tests, bool withParents) {
       for (int frames : {1, 7})
         EXPECT_EQ(developAndHash(program, test.until, test.step, threads, frames, withParents), reference)
             << test.name << " on " << threads << " threads, " << frames << " frames";
-    EXPECT_EQ(reference, test.expected) << test.name << ": the development changed (hash 0x" << std::hex
-                                        << reference << ")";
+    EXPECT_EQ(reference, test.expected) << test.name << ": the development changed (hash 0x" << std::hex << reference
+                                        << ")";
   }
 }
 

@@ -9,10 +9,10 @@
 #include <filesystem>
 
 #include "core/word.h"
-#include "interpreters/text/word_text.h"
 #include "core/world.h"
 #include "interpreters/geometry/geometry_set.h"
 #include "interpreters/interpret.h"
+#include "interpreters/text/word_text.h"
 #include "test_support.h"
 
 namespace ontogen {
@@ -57,8 +57,7 @@ TEST(Models, ThueMorseGenerations) {
   EXPECT_EQ(world.rootPool().size(), 4096u);
   // The n-th symbol is the parity of the number of ones in n's binary form.
   auto word = captureWord(world);
-  for (size_t i = 0; i < word.size(); ++i)
-    ASSERT_EQ(word[i].label, std::popcount(i) % 2 ? "b" : "a") << i;
+  for (size_t i = 0; i < word.size(); ++i) ASSERT_EQ(word[i].label, std::popcount(i) % 2 ? "b" : "a") << i;
 }
 
 TEST(Models, DragonCurveSegmentsAndEndPoint) {
@@ -138,8 +137,7 @@ TEST(Models, PistonDrawsItsParts) {
 // of the same model grown without the rewriting by slices (which keeps every word in
 // records), nested pools included: the layer readers outside pools/ and core/ use, and
 // the compact words of label-only models (docs/COMPACT_WORDS.md), change nothing they see.
-size_t expectCursorAgrees(const World& world, const World& reference, const std::string& where,
-                          size_t& compactPools) {
+size_t expectCursorAgrees(const World& world, const World& reference, const std::string& where, size_t& compactPools) {
   const Pool& pool = world.rootPool();
   const Pool& recordsPool = reference.rootPool();
   EXPECT_FALSE(recordsPool.holdsCompactWord()) << where;

@@ -168,7 +168,8 @@ TEST(ParallelRewrite, ALabelOnlyContextIsWrittenAsTheSerialPassWritesIt) {
 // and an ignored module (matched through the bracket index).
 std::string labelContextProgram(bool branches) {
   std::string axiom;
-  for (int i = 0; i < 12'000; ++i) axiom += branches ? (i % 3 ? " a b c" : " a [ b c ] d") : (i % 3 ? " a b c" : " a b d");
+  for (int i = 0; i < 12'000; ++i)
+    axiom += branches ? (i % 3 ? " a b c" : " a [ b c ] d") : (i % 3 ? " a b c" : " a b d");
   return "lsystem l {\n  axiom" + axiom + "\n" + (branches ? "  ignore: d\n" : "") +
          "  ∅ < a -> d\n  c > * ∅ -> a\n  b * < c -> d\n"
          "  a b < c -> a\n  c > a -> b\n  a < b > c -> c\n  d < a -> d\n  b -> a\n  d -> c\n}\n";
@@ -183,8 +184,9 @@ TEST(ParallelRewrite, LabelContextsInPlainAndBranchedWordsAreWrittenAsTheSerialP
     for (unsigned threads : {1u, 2u, 3u}) {
       const Grown parallel = grow(program, 12, threads);
       EXPECT_EQ(parallel.stats.rewritesBySlices, 12u) << threads << " threads";
-      expectSameWords(*serial.world, *parallel.world,
-                      std::string(branches ? "branched" : "plain") + " word on " + std::to_string(threads) + " threads");
+      expectSameWords(
+          *serial.world, *parallel.world,
+          std::string(branches ? "branched" : "plain") + " word on " + std::to_string(threads) + " threads");
     }
   }
 }

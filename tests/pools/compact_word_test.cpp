@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstdint>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace ontogen {
@@ -38,7 +39,8 @@ void expectWordReadsAs(const CompactWord& word, const std::vector<Expected>& exp
   // A cursor may also start anywhere, as a thread starts its slice.
   for (size_t first = 0; first < expected.size(); first += 1 + first / 3) {
     CompactWordCursor cell(word, first);
-    for (size_t k = 0; k < 70 && !cell.done(); ++k, cell.next()) expectSameModule(cell.view(), expected[first + k], first + k);
+    for (size_t k = 0; k < 70 && !cell.done(); ++k, cell.next())
+      expectSameModule(cell.view(), expected[first + k], first + k);
   }
 }
 
@@ -51,10 +53,10 @@ TEST(CompactWord, ASuccessorsEventIsOneRunAndTheIdsAreTheLineages) {
     expected.push_back({label, key, birth, {}});
   };
   for (uint32_t k = 1; k <= 9; ++k) add(k % 2, {lineage, k}, 2.0);  // F+F-F-F+F: one run
-  add(0, {lineage, 11}, 2.0);                                      // k skips: a new run
-  add(0, {lineage, 12}, 3.0);                                      // another birth: a new run
-  add(0, {lineage + 1, 13}, 3.0);                                  // another key: a new run
-  add(1, {lineage + 1, 14}, 3.0);                                  // extends it
+  add(0, {lineage, 11}, 2.0);                                       // k skips: a new run
+  add(0, {lineage, 12}, 3.0);                                       // another birth: a new run
+  add(0, {lineage + 1, 13}, 3.0);                                   // another key: a new run
+  add(1, {lineage + 1, 14}, 3.0);                                   // extends it
   word.finish();
   EXPECT_EQ(word.runCount(), 4u);
   EXPECT_EQ(word.birthCount(), 2u);
@@ -97,9 +99,10 @@ TEST(CompactWord, LocateAgreesWithTheCursorOnARandomWordWithState) {
     const size_t length = whole ? 1 : 1 + random() % 300;
     const double birth = births[random() % 5];
     // The canonical rule: a run ends at k 254, and a run of whole ids holds one module.
-    runs += whole ? 1 : 1 + (firstK + length - 1 > CompactWord::kLargestRunK
-                                  ? firstK + length - 1 - CompactWord::kLargestRunK
-                                  : 0);
+    runs += whole
+                ? 1
+                : 1 + (firstK + length - 1 > CompactWord::kLargestRunK ? firstK + length - 1 - CompactWord::kLargestRunK
+                                                                       : 0);
     for (size_t j = 0; j < length; ++j) {
       const uint32_t label = static_cast<uint32_t>(random() % stateCounts.size());
       Expected module{label, whole ? IdKey::whole(key) : IdKey{key, firstK + static_cast<uint32_t>(j)}, birth, {}};
@@ -123,7 +126,8 @@ TEST(CompactWord, MoreThan256LabelsTakeTwoBytes) {
   for (uint32_t label = 0; label < 300; ++label) {
     const double values[] = {42.0};
     word.append(label, IdKey::whole(label), 0.0, values);
-    expected.push_back({label, IdKey::whole(label), 0.0, label == 299 ? std::vector<double>{42.0} : std::vector<double>{}});
+    expected.push_back(
+        {label, IdKey::whole(label), 0.0, label == 299 ? std::vector<double>{42.0} : std::vector<double>{}});
   }
   expectWordReadsAs(word, expected);
   EXPECT_EQ(word.labels16().size(), 300u);
@@ -259,30 +263,39 @@ TEST(CompactWord, AWordWrittenBySlicesReadsAsTheSerialOne) {
 
   const std::vector<std::vector<size_t>> cutsOfEachTry{
       {0, old.size()}, {0, 2500, old.size()}, {0, 1, 2, 63, 64, 65, 128, 129, 4000, 4000, old.size()}};
-  for (const std::vector<size_t>& cuts : cutsOfEachTry) {
-    std::vector<CompactWord::Slice> slices(cuts.size() - 1, CompactWord::Slice(old));
-    auto pass = [&](size_t s) {
-      CompactWord::Slice& slice = slices[s];
-      for (size_t i = cuts[s]; i < cuts[s + 1]; ++i)
-        emit(
-            i, [&](uint32_t label, IdKey key, double birth, const double* values) { slice.append(label, key, birth, values); },
-            [&](uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
-              slice.appendCopy(label, key, birthIndex, values);
-            });
-      slice.finish();
-    };
-    CompactWord bySlices(stateCounts);
-    bySlices.clearWithBirthsOf(old);
-    for (size_t s = 0; s < slices.size(); ++s) pass(s);  // count
-    bySlices.beginSlices(slices);
-    for (size_t s = slices.size(); s-- > 0;) pass(s);  // write, in another order than counted
-    bySlices.endSlices(slices);
-    bySlices.finish();
-    SCOPED_TRACE(cuts.size() - 1);
-    expectWordReadsAs(bySlices, expected);
-    EXPECT_LE(bySlices.runCount(), serial.runCount() + slices.size() - 1);
-    EXPECT_GE(bySlices.runCount(), serial.runCount());
-  }
+  // New successors appended with their key, or named by their event (the old module's
+  // index) and given their lineage only when the slice writes, as the engine's pass does.
+  for (const bool byEvent : {false, true})
+    for (const std::vector<size_t>& cuts : cutsOfEachTry) {
+      std::vector<CompactWord::Slice> slices(cuts.size() - 1, CompactWord::Slice(old));
+      auto pass = [&](size_t s) {
+        CompactWord::Slice& slice = slices[s];
+        for (size_t i = cuts[s]; i < cuts[s + 1]; ++i)
+          emit(
+              i,
+              [&](uint32_t label, IdKey key, double birth, const double* values) {
+                if (byEvent)
+                  slice.appendBorn(label, i, slice.writing() ? key.key : 0, key.k, birth, values);
+                else
+                  slice.append(label, key, birth, values);
+              },
+              [&](uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
+                slice.appendCopy(label, key, birthIndex, values);
+              });
+        slice.finish();
+      };
+      CompactWord bySlices(stateCounts);
+      bySlices.clearWithBirthsOf(old);
+      for (size_t s = 0; s < slices.size(); ++s) pass(s);  // count
+      bySlices.beginSlices(slices);
+      for (size_t s = slices.size(); s-- > 0;) pass(s);  // write, in another order than counted
+      bySlices.endSlices(slices);
+      bySlices.finish();
+      SCOPED_TRACE(std::to_string(cuts.size() - 1) + (byEvent ? " slices, new modules by event" : " slices"));
+      expectWordReadsAs(bySlices, expected);
+      EXPECT_LE(bySlices.runCount(), serial.runCount() + slices.size() - 1);
+      EXPECT_GE(bySlices.runCount(), serial.runCount());
+    }
 }
 
 }  // namespace
