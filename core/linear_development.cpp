@@ -120,7 +120,7 @@ void LinearDevelopment::expireCompact(double t, double t1) {
     const double earliest = earliestDeath();
     if (earliest > horizon) return;
     const double instant = earliest + timeTolerance(earliest);
-    pool_.storeCompactWord();
+    pool_.storeCompactWord(context_->idSalt);
     const CompactWord& word = pool_.compactWord();
     const size_t size = word.size();
     const unsigned threads = size < ParallelRewrite::kMinimumCells ? 1 : std::max(1u, context_->threads);

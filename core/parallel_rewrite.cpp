@@ -175,6 +175,11 @@ struct CompactLabels {
   const CompactWord& word;
   uint32_t operator[](size_t i) const { return word.label(i); }
 };
+// The same for a word of one-byte labels, the usual case, without a test per read.
+struct ByteLabels {
+  const uint8_t* labels;
+  uint32_t operator[](size_t i) const { return labels[i]; }
+};
 }  // namespace
 
 inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByLabels(Pass pass, const Step& step, size_t i,
@@ -452,16 +457,18 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   // Both passes make the same calls: the slice counts before beginSlices and writes after
   // it. The counting pass chooses but hashes nothing: new successors are named by their
   // event (CompactWord::Slice::appendBorn) until the writing pass computes their lineage.
-  auto pass = [&](size_t s) {
+  std::vector<double>& lifetimes = lifetimes_;
+  lifetimes.resize(masters.size());
+  for (size_t m = 0; m < masters.size(); ++m) lifetimes[m] = masters[m].lifetime;
+  auto passWith = [&](size_t s, const auto& labels) {
     CompactWord::Slice& out = slices[s];
     const bool writing = out.writing();
-    const CompactLabels labels{word};
     uint64_t fired = 0, bornHere = 0;
     double soonest = kForever;
     const size_t end = size * (s + 1) / sliceCount;
     for (CompactWordCursor cell(word, size * s / sliceCount); !cell.done() && cell.index() < end; cell.next()) {
-      const uint32_t label = cell.master();
-      const double lifetime = masters[label].lifetime;
+      const uint32_t label = labels[cell.index()];
+      const double lifetime = lifetimes[label];
       const double death = cell.birth() + lifetime;
       if (death > horizon) {
         out.appendCopy(label, cell.key(), cell.birthIndex(), nullptr);
@@ -497,6 +504,12 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
       born[s] = bornHere;
     }
     earliest[s] = soonest;
+  };
+  auto pass = [&](size_t s) {
+    if (word.wideLabels())
+      passWith(s, CompactLabels{word});
+    else
+      passWith(s, ByteLabels{word.labels8().data()});
   };
   auto everySlice = [&](const auto& work) {
     parallelFor(

@@ -221,10 +221,13 @@ class CompactWord::Slice {
  public:
   /// A slice of the word that starts with the birth table of `from`, the word it copies
   /// modules from (their birth indices stay valid).
-  explicit Slice(const CompactWord& from) : from_(&from) {}
+  explicit Slice(const CompactWord& from)
+      : from_(&from), stateCounts_(from.stateCounts_.data()), stateless_(from.stateless_) {}
   /// Starts the slice again, counting, for a word copying from `from`.
   void restart(const CompactWord& from) {
     from_ = &from;
+    stateCounts_ = from.stateCounts_.data();
+    stateless_ = from.stateless_;
     word_ = nullptr;
     modules_ = values_ = countedRuns_ = 0;
     tail_ = RunTail{};
@@ -272,7 +275,7 @@ class CompactWord::Slice {
   static constexpr uint32_t kNewBirth = uint32_t{1} << 31;
   void count(uint32_t label, bool continues) {
     ++modules_;
-    values_ += from_->stateCounts_[label];
+    if (!stateless_) values_ += stateCounts_[label];
     countedRuns_ += continues ? 0 : 1;
   }
   uint32_t newBirth(double birth) {
@@ -298,10 +301,11 @@ class CompactWord::Slice {
       out_.labels8[i] = static_cast<uint8_t>(label);
     else
       out_.labels16[i] = static_cast<uint16_t>(label);
-    const uint32_t count = from_->stateCounts_[label];
+    ++written_;
+    if (stateless_) return;
+    const uint32_t count = stateCounts_[label];
     double* to = out_.values + firstValue_ + writtenValues_;
     for (uint32_t v = 0; v < count; ++v) to[v] = values[v];
-    ++written_;
     writtenValues_ += count;
   }
   /// At module i: the block index entry of a block starting there, and a new bitmap word.
@@ -309,6 +313,8 @@ class CompactWord::Slice {
   void flushBits();
 
   const CompactWord* from_;
+  const uint32_t* stateCounts_;  // from_'s, and whether none has values
+  bool stateless_;
   CompactWord* word_ = nullptr;                        // null while counting
   size_t modules_ = 0, values_ = 0, countedRuns_ = 0;  // counted
   size_t written_ = 0, writtenValues_ = 0, runs_ = 0;  // written
@@ -345,14 +351,21 @@ class CompactWordCursor {
         labels16_(word.wide_ ? word.labels16_.data() : nullptr),
         runStarts_(word.runStarts_.data()),
         stateCounts_(word.stateCounts_.data()),
+        keys_(word.keys_.data()),
+        firstK_(word.firstK_.data()),
+        birthIndex_(word.birthIndex_.data()),
+        births_(word.births_.data()),
         size_(word.size_),
         stateless_(word.stateless_),
         index_(first) {
-    if (first == 0 || first >= size_) return;
-    const CompactWord::Place place = word.locate(first);
-    run_ = place.run;
-    j_ = place.j;
-    value_ = place.value;
+    if (first >= size_) return;
+    if (first > 0) {
+      const CompactWord::Place place = word.locate(first);
+      run_ = place.run;
+      j_ = place.j;
+      value_ = place.value;
+    }
+    loadRun();
   }
 
   bool done() const { return index_ >= size_; }
@@ -362,6 +375,7 @@ class CompactWordCursor {
     if ((runStarts_[index_ / CompactWord::kBlock] >> (index_ % CompactWord::kBlock)) & 1u) {
       ++run_;
       j_ = 0;
+      loadRun();
     } else {
       ++j_;
     }
@@ -372,9 +386,11 @@ class CompactWordCursor {
   size_t index() const { return index_; }
   uint32_t master() const { return labels8_ ? labels8_[index_] : labels16_[index_]; }
   const double* state() const { return word_->values_.data() + value_; }
-  double birth() const { return word_->birthOf(run_); }
-  uint32_t birthIndex() const { return word_->birthIndex_[run_]; }
-  IdKey key() const { return word_->keyOf(run_, j_); }
+  double birth() const { return runBirth_; }
+  uint32_t birthIndex() const { return runBirthIndex_; }
+  IdKey key() const {
+    return runFirstK_ == CompactWord::kWholeMark ? IdKey::whole(runKey_) : IdKey{runKey_, runFirstK_ + j_};
+  }
   uint64_t id() const { return key().id(); }
   /// Where the module's values start in the word's values.
   size_t stateOffset() const { return value_; }
@@ -384,10 +400,25 @@ class CompactWordCursor {
   const CompactWord* word_ = nullptr;
   const uint8_t* labels8_ = nullptr;  // null for a word of two-byte labels
   const uint16_t* labels16_ = nullptr;
+  // What a module's run says, read once a run: most runs are read module after module.
+  void loadRun() {
+    runKey_ = keys_[run_];
+    runFirstK_ = firstK_[run_];
+    runBirthIndex_ = birthIndex_[run_];
+    runBirth_ = births_[runBirthIndex_];
+  }
+
   const uint64_t* runStarts_ = nullptr;
   const uint32_t* stateCounts_ = nullptr;
+  const uint64_t* keys_ = nullptr;
+  const uint8_t* firstK_ = nullptr;
+  const uint32_t* birthIndex_ = nullptr;
+  const double* births_ = nullptr;
   size_t size_ = 0;
   bool stateless_ = true;
+  uint64_t runKey_ = 0;
+  uint32_t runFirstK_ = 0, runBirthIndex_ = 0;
+  double runBirth_ = 0;
   size_t index_ = 0, run_ = 0, value_ = 0;
   uint32_t j_ = 0;
 };

@@ -38,12 +38,15 @@ void LinearPool::swapCompactWord(CompactWord& next) {
   ++version_;
 }
 
-void LinearPool::storeCompactWord() {
+void LinearPool::storeCompactWord(uint64_t seedKey) {
   if (compact_) return;
   CompactWord word(stateCounts_);
   word.reserve(size(), size(), state_.size());
-  for (CellCursor cell = cursor(); !cell.done(); cell.next())
-    word.append(cell.master(), IdKey::whole(cell.id()), cell.birth(), cell.state());
+  for (CellCursor cell = cursor(); !cell.done(); cell.next()) {
+    const uint32_t k = static_cast<uint32_t>(cell.index());
+    const bool seeded = cell.index() < IdKey::kWhole && mixKey(seedKey, k) == cell.id();
+    word.append(cell.master(), seeded ? IdKey{seedKey, k} : IdKey::whole(cell.id()), cell.birth(), cell.state());
+  }
   word.finish();
   swapCompactWord(word);
 }

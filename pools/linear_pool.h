@@ -40,9 +40,10 @@ class LinearPool final : public Pool {
   CompactWord emptyCompactWord() const { return CompactWord(stateCounts_); }
   /// Replaces the contents with `next`, keeping the old word's storage in `next`.
   void swapCompactWord(CompactWord& next);
-  /// Encodes the records as a compact word (each id kept whole: records do not say which
-  /// ids share a lineage key) and frees them.
-  void storeCompactWord();
+  /// Encodes the records as a compact word and frees them. Records do not say which ids
+  /// share a lineage key: cell i whose id is mixKey(seedKey, i), as an axiom's cells are
+  /// (core/development.h), is written as the i-th of seedKey, any other id whole.
+  void storeCompactWord(uint64_t seedKey);
   /// Decodes the compact word into records and frees it.
   void storeRecords();
 
