@@ -156,6 +156,10 @@ class ParallelRewrite {
   LabelRule labelRule(const Program& program, uint32_t master, const CompiledRule& rule) const;
   /// Whether `choice`'s context matches around cell i of a plain word whose label at j
   /// is labels[j] (j below size).
+  /// rewriteCompact's work on cells [begin, end) of `word`, written through `out`.
+  template <class Out, class Labels, class Stop>
+  CompactCounts rewriteRange(const CompactWord& word, size_t begin, size_t end, double horizon, int group,
+                             const Labels& labels, Out& out, const Stop& stop, double& soonest) const;
   template <class Labels>
   static bool matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice, size_t i);
   /// The label-only rule cell i of master `master` chooses at an instant, all of whose

@@ -71,30 +71,17 @@ uint32_t CompactWord::addBirth(double birth) {
   return static_cast<uint32_t>(index);
 }
 
-void CompactWord::append(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
-  key = RunTail::normalised(key, kLargestRunK);
-  const uint32_t count = stateCounts_[label];
+void CompactWord::tooManyValues() {
+  throw std::length_error("ontogen: a linear word with 2^32 state values");
+}
+
+void CompactWord::startBlock() {
   // The block index counts runs and values in 32 bits, as a record's state offset did.
-  if (keys_.size() >= UINT32_MAX || values_.size() + count > UINT32_MAX)
+  if (keys_.size() >= UINT32_MAX || values_.size() >= UINT32_MAX)
     throw std::length_error("ontogen: a linear word with 2^32 runs or state values");
-  const size_t i = size_;
-  if (i % kBlock == 0) {
-    runStarts_.push_back(0);
-    blockRuns_.push_back(static_cast<uint32_t>(keys_.size()));
-    if (!stateless_) blockValues_.push_back(static_cast<uint32_t>(values_.size()));
-  }
-  if (!tail_.continues(key, births_[birthIndex])) {
-    runStarts_.back() |= uint64_t{1} << (i % kBlock);
-    keys_.push_back(key.key);
-    birthIndex_.push_back(birthIndex);
-    firstK_.push_back(key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k));
-  }
-  if (wide_)
-    labels16_.push_back(static_cast<uint16_t>(label));
-  else
-    labels8_.push_back(static_cast<uint8_t>(label));
-  values_.insert(values_.end(), values, values + count);
-  ++size_;
+  runStarts_.push_back(0);
+  blockRuns_.push_back(static_cast<uint32_t>(keys_.size()));
+  if (!stateless_) blockValues_.push_back(static_cast<uint32_t>(values_.size()));
 }
 
 void CompactWord::finish() {

@@ -125,7 +125,32 @@ class CompactWord {
   }
   /// Appends a module with label `label` (below the label count), id `key`, birth
   /// births()[birthIndex], and the label's state count of values from `values`.
-  void append(uint32_t label, IdKey key, uint32_t birthIndex, const double* values);
+  /// Inline: a single-pass rewrite calls it for every module.
+  void append(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
+    key = RunTail::normalised(key, kLargestRunK);
+    const uint32_t count = stateless_ ? 0 : stateCounts_[label];
+    const size_t i = size_;
+    if (i % kBlock == 0) [[unlikely]]
+      startBlock();
+    if (!tail_.continues(key, births_[birthIndex])) {
+      runStarts_.back() |= uint64_t{1} << (i % kBlock);
+      keys_.push_back(key.key);
+      birthIndex_.push_back(birthIndex);
+      firstK_.push_back(key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k));
+    }
+    if (wide_)
+      labels16_.push_back(static_cast<uint16_t>(label));
+    else
+      labels8_.push_back(static_cast<uint8_t>(label));
+    if (count > 0) {
+      if (values_.size() + count > UINT32_MAX) [[unlikely]]
+        tooManyValues();
+      const size_t at = values_.size();
+      values_.resize(at + count);
+      for (uint32_t v = 0; v < count; ++v) values_[at + v] = values[v];
+    }
+    ++size_;
+  }
   void append(uint32_t label, IdKey key, double birth, const double* values) {
     append(label, key, birthIndexOf(birth), values);
   }
@@ -191,6 +216,10 @@ class CompactWord {
   /// match, or a new entry.
   static size_t birthIndexIn(std::vector<double>& births, double birth);
   uint32_t addBirth(double birth);
+  /// A new block of the index at the next module; checks the 32-bit limits of the block
+  /// index, once a block.
+  void startBlock();
+  [[noreturn]] static void tooManyValues();
 
   std::vector<uint32_t> stateCounts_;
   bool wide_ = false;
