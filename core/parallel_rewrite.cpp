@@ -82,6 +82,7 @@ ParallelRewrite::LabelRule ParallelRewrite::labelRule(const Program& program, ui
 
 ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition& system)
     : program_(program), system_(system), functions_(program.functionTable()), frameSize_(ruleFrameSize(program)) {
+  for (const MasterCell& master : program.masters) lifetimes_.push_back(master.lifetime);
   for (uint8_t symbolClass : system.symbolClass)
     if (symbolClass & kSymbolCut) contextFree_ = atInstants_ = false;
   if (system.backward || system.decomposes) atInstants_ = false;
@@ -512,10 +513,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
                                                                               const CompactFits& fits) {
   if (!appliesToCompactWords())
     throw std::logic_error("ontogen: internal error: a compact rewrite of a word whose rules are not label-only");
-  const auto& masters = program_.masters;
   const size_t size = word.size();
-  lifetimes_.resize(masters.size());
-  for (size_t m = 0; m < masters.size(); ++m) lifetimes_[m] = masters[m].lifetime;
   threads = std::max(threads, 1u);
   // Calls `work(labels)` with the word's labels read the quickest way.
   auto withLabels = [&](const auto& work) {

@@ -188,7 +188,7 @@ class ParallelRewrite {
   FunctionTable functions_;
   std::vector<Slice> slices_;
   std::vector<CompactWord::Slice> compactSlices_;
-  std::vector<double> lifetimes_;  // per master, for rewriteCompact
+  std::vector<double> lifetimes_;  // per master, for rewriteCompact (MasterCell is large)
   std::vector<std::unique_ptr<Worker>> workers_;
   size_t frameSize_ = 0;
   double earliestDeath_ = kForever;
