@@ -57,6 +57,10 @@ ParallelRewrite::LabelRule ParallelRewrite::labelRule(const Program& program, ui
       choice.written.push_back({label, successor.isMe || successor.keepsIdentity});
       choice.shortestLife = std::min(choice.shortestLife, program.masters[label].lifetime);
     }
+  const bool allFresh = std::none_of(choice.written.begin(), choice.written.end(),
+                                     [](const LabelRule::Written& successor) { return successor.keepsId; });
+  if (allFresh && choice.cells <= CompactWord::kLargestRunK)
+    for (const LabelRule::Written& successor : choice.written) choice.freshLabels.push_back(successor.label);
   auto code = [](const ContextItem& item) {
     switch (item.kind) {
       case ContextItem::Kind::Module:
@@ -152,7 +156,7 @@ bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, 
 
 // As matchesLabels in a plain word, from the codes labelRule made.
 template <class Labels>
-bool ParallelRewrite::matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice, size_t i) {
+inline bool ParallelRewrite::matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice, size_t i) {
   for (size_t k = 0; k < choice.leftCount; ++k) {
     const int32_t expected = choice.left[k];
     if (i < k + 1) return expected == kEndLabel;  // the start of the word
@@ -430,8 +434,8 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
 }
 
 template <class Labels>
-const ParallelRewrite::LabelRule* ParallelRewrite::chooseByPosition(const Labels& labels, size_t size, uint32_t master,
-                                                                    int group, size_t i) const {
+inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByPosition(const Labels& labels, size_t size,
+                                                                           uint32_t master, int group, size_t i) const {
   for (const LabelRule& choice : labelRules_[master]) {
     if (choice.group != 0 && choice.group != group) continue;
     if (!choice.context || matchesByPosition(labels, size, choice, i)) return &choice;
@@ -451,6 +455,9 @@ struct SerialOut {
   void append(uint32_t label, IdKey key, double birth, const double* values) { word.append(label, key, birth, values); }
   void appendBorn(uint32_t label, uint64_t, uint64_t lineage, uint32_t k, double birth, const double* values) {
     word.append(label, IdKey{lineage, k}, birth, values);
+  }
+  void appendFreshRun(const uint32_t* labels, uint32_t n, uint64_t, uint64_t lineage, double birth) {
+    word.appendRun(labels, n, lineage, word.birthIndexOf(birth));
   }
 };
 }  // namespace
@@ -493,6 +500,12 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
     // event's lineage and their number.
     const IdKey own = cell.key();
     const uint64_t lineage = writing ? lineageKey(own.id(), death, BirthCause::Terminal) : 0;
+    counts.born += choice->born;
+    soonest = std::min(soonest, death + choice->shortestLife);
+    if (!choice->freshLabels.empty()) {  // one run, written at once
+      out.appendFreshRun(choice->freshLabels.data(), choice->cells, counts.events, lineage, death);
+      continue;
+    }
     uint32_t k = 0;
     for (const LabelRule::Written& successor : choice->written) {
       ++k;
@@ -501,8 +514,6 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
       else
         out.appendBorn(successor.label, counts.events, lineage, k, death, nullptr);
     }
-    counts.born += choice->born;
-    soonest = std::min(soonest, death + choice->shortestLife);
   }
   return counts;
 }
@@ -522,11 +533,16 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   next.clearWithBirthsOf(word);
   earliestDeath_ = kForever;
 
-  // One thread and a small word: one pass, writing the next word as it goes, and asking
-  // `fits` on the way. A large word is counted first even on one thread: its arrays are
-  // then sized once, where growing them as it goes would hold a copy more (Koch at n = 10:
-  // 144 MB against 101 MB).
-  if (threads == 1 && size < kMinimumCells) {
+  // One thread: one pass, writing the next word as it goes, and asking `fits` on the way,
+  // for a small word, and for a large one whose choices vary with the context (a signal),
+  // where counting first would choose twice. A large word's arrays are then reserved for
+  // the growth of the last rewrite, since growing them as it goes would hold a copy more
+  // (Koch at n = 10: 144 MB against 101 MB); with no growth to go by yet, the word is
+  // counted first, as by slices. Where every choice is fixed (Koch, Thue-Morse) counting
+  // is cheap, and writing in place beats appending (Koch: 72 against 81 ms).
+  if (threads == 1 && (size < kMinimumCells || (anyChoiceVaries_ && lastGrowth_.modules > 0))) {
+    if (size >= kMinimumCells)
+      next.reserve(lastGrowth_.room(size, lastGrowth_.modules), lastGrowth_.room(word.runCount(), lastGrowth_.runs), 0);
     SerialOut out{next};
     bool refused = false;
     auto stop = [&](const CompactCounts& sofar) {
@@ -541,6 +557,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
       return std::nullopt;
     }
     next.finish();
+    lastGrowth_ = Growth::of(word, next);
     return counts;
   }
 
@@ -557,8 +574,8 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     const bool writing = out.writing();
     double soonest = kForever;
     const CompactCounts counts = withLabels([&](const auto& labels) {
-      return rewriteRange(word, size * s / sliceCount, size * (s + 1) / sliceCount, horizon, group, labels, out,
-                          never, soonest);
+      return rewriteRange(word, size * s / sliceCount, size * (s + 1) / sliceCount, horizon, group, labels, out, never,
+                          soonest);
     });
     out.finish();
     if (!writing) counted[s] = counts;
@@ -587,6 +604,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   everySlice([&](size_t s) { slices[s].place(); });
   next.finish();
   for (size_t s = 0; s < sliceCount; ++s) earliestDeath_ = std::min(earliestDeath_, earliest[s]);
+  lastGrowth_ = Growth::of(word, next);
   return counts;
 }
 

@@ -22,10 +22,11 @@
 // compares labels only (Koch, Thue-Morse, a signal): there two quick passes beat the
 // general one; a word with state keeps the serial pass.
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/development.h"
@@ -52,8 +53,8 @@ class ParallelRewrite {
 
   /// The pass of the cells that expire by `instant` in a word with context (its branches
   /// indexed), with rule group `group` active; as rewriteContextFree otherwise.
-  bool rewriteAtInstant(const LinearPool& pool, double instant, int group, StepContext& context,
-                        const double* parents, uint64_t& events, CellArray& cells, StateArray& state);
+  bool rewriteAtInstant(const LinearPool& pool, double instant, int group, StepContext& context, const double* parents,
+                        uint64_t& events, CellArray& cells, StateArray& state);
 
   /// Whether rewriteCompact applies: every master's rules compare labels only, give no
   /// birth age and, with context, compare at most kPositionItems modules a side, in a word
@@ -78,7 +79,7 @@ class ParallelRewrite {
     uint64_t events = 0, born = 0;
   };
   std::optional<CompactCounts> rewriteCompact(const CompactWord& word, double horizon, int group, unsigned threads,
-                                         CompactWord& next, const CompactFits& fits = {});
+                                              CompactWord& next, const CompactFits& fits = {});
 
   /// The earliest terminal age (birth + lifetime) in the word rewriteAtInstant wrote last,
   /// found while writing it, so the development need not look for it again.
@@ -92,7 +93,7 @@ class ParallelRewrite {
   struct Slice {
     size_t begin = 0, end = 0;  // cells of the word
     uint64_t cells = 0, values = 0, events = 0, born = 0;
-    bool chained = false;       // the context-free pass: a successor expires within the step
+    bool chained = false;             // the context-free pass: a successor expires within the step
     double earliestDeath = kForever;  // of the cells it wrote
   };
   struct Worker {
@@ -114,12 +115,12 @@ class ParallelRewrite {
   bool rewrite(Pass pass, const Step& step, StepContext& context, uint64_t& events, CellArray& cells,
                StateArray& state);
   void count(Pass pass, const Step& step, Slice& slice, Worker& worker);
-  void write(Pass pass, const Step& step, Slice& slice, uint64_t firstCell, uint64_t firstValue,
-             Worker& worker, CellArray& cells, StateArray& state) const;
+  void write(Pass pass, const Step& step, Slice& slice, uint64_t firstCell, uint64_t firstValue, Worker& worker,
+             CellArray& cells, StateArray& state) const;
   /// The rule cell i (whose values are `state`) chooses (null: it renews itself), with
   /// its frame loaded and its context's values bound; as LinearDevelopment::expire chooses.
-  const CompiledRule* choose(Pass pass, const Step& step, size_t i, const double* state, double death,
-                             Worker& worker, RandomStream& random, const EvalContext& evaluation) const;
+  const CompiledRule* choose(Pass pass, const Step& step, size_t i, const double* state, double death, Worker& worker,
+                             RandomStream& random, const EvalContext& evaluation) const;
 
   bool matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const;
 
@@ -144,6 +145,9 @@ class ParallelRewrite {
       bool keepsId;
     };
     std::vector<Written> written;
+    // The successors' labels when none keeps the cell's id and they fit in one run of a
+    // compact word (CompactWord::Slice::appendFreshRun); else empty.
+    std::vector<uint32_t> freshLabels;
     double shortestLife = kForever;
     // In a plain word, a context of at most kPositionItems modules a side compared by
     // position: per item the master expected there, or kAnyLabel, kEndLabel, kNoMatch.
@@ -161,11 +165,13 @@ class ParallelRewrite {
   CompactCounts rewriteRange(const CompactWord& word, size_t begin, size_t end, double horizon, int group,
                              const Labels& labels, Out& out, const Stop& stop, double& soonest) const;
   template <class Labels>
-  static bool matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice, size_t i);
+  [[gnu::always_inline]] static bool matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice,
+                                                       size_t i);
   /// The label-only rule cell i of master `master` chooses at an instant, all of whose
   /// contexts compare by position (null: it renews itself).
   template <class Labels>
-  const LabelRule* chooseByPosition(const Labels& labels, size_t size, uint32_t master, int group, size_t i) const;
+  [[gnu::always_inline]] const LabelRule* chooseByPosition(const Labels& labels, size_t size, uint32_t master,
+                                                           int group, size_t i) const;
   /// The rule of a master whose choice is fixed (fixedChoice_), or null.
   const LabelRule* fixedRule(uint32_t master) const {
     return labelRules_[master].empty() ? nullptr : &labelRules_[master].front();
@@ -189,6 +195,22 @@ class ParallelRewrite {
   std::vector<Slice> slices_;
   std::vector<CompactWord::Slice> compactSlices_;
   std::vector<double> lifetimes_;  // per master, for rewriteCompact (MasterCell is large)
+  // How much the last compact rewrite grew its word (next / old), modules and runs; 0:
+  // none yet. The one-thread pass reserves by it.
+  struct Growth {
+    double modules = 0, runs = 0;
+    static Growth of(const CompactWord& word, const CompactWord& next) {
+      if (word.empty() || word.runCount() == 0) return {};
+      return {static_cast<double>(next.size()) / static_cast<double>(word.size()),
+              static_cast<double>(next.runCount()) / static_cast<double>(word.runCount())};
+    }
+    /// Room for `count` grown by `ratio`, a sixteenth more, at most 8 times `count`: a
+    /// word growing faster grows its arrays as it goes, at the cost of a copy.
+    static size_t room(size_t count, double ratio) {
+      return static_cast<size_t>(static_cast<double>(count) * std::min(ratio, 8.0) * (17.0 / 16.0)) + 64;
+    }
+  };
+  Growth lastGrowth_;
   std::vector<std::unique_ptr<Worker>> workers_;
   size_t frameSize_ = 0;
   double earliestDeath_ = kForever;

@@ -65,6 +65,16 @@ class RunTail {
   /// The same for the k-th new successor (k below kWhole, normalised) of the event named
   /// `event`.
   bool continuesFresh(uint64_t event, uint32_t k, double birth) { return continuesAs(event, true, k, birth); }
+  /// The tail after the successors 1 .. n of the event named `event` went by one by one
+  /// with continuesFresh: the first started a run (no module before has k = 0 and the
+  /// event's name), the others continued it.
+  void endFresh(uint64_t event, uint32_t n, double birth) {
+    any_ = true;
+    last_ = event;
+    lastFresh_ = true;
+    lastK_ = n;
+    lastBirth_ = std::bit_cast<uint64_t>(birth);
+  }
 
  private:
   bool continuesAs(uint64_t identity, bool fresh, uint32_t k, double birth) {
@@ -153,6 +163,22 @@ class CompactWord {
   }
   void append(uint32_t label, IdKey key, double birth, const double* values) {
     append(label, key, birthIndexOf(birth), values);
+  }
+  /// Modules with ids (lineage, 1) .. (lineage, n), labels `labels`, no state, n from 1 to
+  /// kLargestRunK, born at births()[birthIndex]: as n appends, the later n - 1 continuing
+  /// the first's run by the canonical rule without asking it.
+  void appendRun(const uint32_t* labels, uint32_t n, uint64_t lineage, uint32_t birthIndex) {
+    append(labels[0], IdKey{lineage, 1}, birthIndex, nullptr);
+    for (uint32_t k = 2; k <= n; ++k) {
+      if (size_ % kBlock == 0) [[unlikely]]
+        startBlock();
+      if (wide_)
+        labels16_.push_back(static_cast<uint16_t>(labels[k - 1]));
+      else
+        labels8_.push_back(static_cast<uint8_t>(labels[k - 1]));
+      ++size_;
+    }
+    tail_.continues(IdKey{lineage, n}, births_[birthIndex]);  // the last module becomes the tail
   }
   /// After the last append: renumbers the birth table in order of first use, dropping
   /// entries no run uses and duplicates, once it holds more than max(64, 2 x runs).
@@ -287,6 +313,38 @@ class CompactWord::Slice {
     const bool continues = tail_.continuesFresh(event, k, birth);
     if (!word_) return count(label, continues);
     put(label, IdKey{lineage, k}, continues, newBirth(birth), values);
+  }
+  /// The new successors 1 .. n of an event, all without state, none keeping an id, n at
+  /// most kLargestRunK: as n calls of appendBorn, in one run written at once.
+  [[gnu::always_inline]] void appendFreshRun(const uint32_t* labels, uint32_t n, uint64_t event, uint64_t lineage,
+                                             double birth) {
+    tail_.endFresh(event, n, birth);
+    if (!word_) {
+      modules_ += n;
+      ++countedRuns_;
+      return;
+    }
+    const size_t i = firstModule_ + written_;
+    if (i % kBlock == 0 || bitsWord_ == SIZE_MAX) [[unlikely]]
+      startBlock(i);
+    bits_ |= uint64_t{1} << (i % kBlock);
+    out_.keys[runs_] = lineage;
+    out_.birthIndex[runs_] = newBirth(birth);
+    out_.firstK[runs_] = 1;
+    ++runs_;
+    if (i % kBlock + n <= kBlock && out_.labels8) [[likely]] {
+      uint8_t* to = out_.labels8 + i;
+      for (uint32_t j = 0; j < n; ++j) to[j] = static_cast<uint8_t>(labels[j]);
+    } else {
+      for (uint32_t j = 0; j < n; ++j) {
+        if (j > 0 && (i + j) % kBlock == 0) startBlock(i + j);
+        if (out_.labels8)
+          out_.labels8[i + j] = static_cast<uint8_t>(labels[j]);
+        else
+          out_.labels16[i + j] = static_cast<uint16_t>(labels[j]);
+      }
+    }
+    written_ += n;
   }
   /// After the slice's last append of a pass.
   void finish();

@@ -311,5 +311,36 @@ TEST(ParallelRewrite, ALimitIsReportedAsTheSerialPassReportsIt) {
   }
 }
 
+// A word whose choice varies with its context doubles every step. On one thread, past its
+// first large word, the compact pass writes it in one pass and asks the limits on the way
+// (every 2^16 modules), so the step that passes maxCells is refused there, in the middle
+// of the word; the limit is then reported as the records' serial pass reports it, on one
+// thread and on two (by slices, refused after counting).
+TEST(ParallelRewrite, ALimitPassedInTheMiddleOfAOnePassWordIsReportedAsTheSerialPassReportsIt) {
+  auto program = testing_support::compileOrFail("lsystem g {\n  axiom a\n  ∅ < a -> b a\n  a -> a a\n  b -> b\n}\n");
+  ASSERT_NE(program, nullptr);
+  std::string reference;
+  for (const bool slices : {false, true})
+    for (unsigned threads : {1u, 2u}) {
+      WorldDef def;
+      def.threads = threads;
+      def.rewriteBySlices = slices;
+      def.limits.maxCells = 400'000;
+      World world(program, def);
+      world.advanceTo(19, 1.0);  // b a ... a: 2^(n - 1) + 1 modules at n
+      ASSERT_EQ(world.rootPool().size(), 262'145u);
+      EXPECT_EQ(world.rootPool().holdsCompactWord(), slices);
+      EXPECT_EQ(world.stats().rewritesBySlices, slices ? 3u : 0u);  // from 2^15 + 1 .. 2^17 + 1 modules
+      try {
+        world.advanceTo(20, 1.0);
+        ADD_FAILURE() << "no limit on " << threads << " threads";
+      } catch (const LimitError& error) {
+        if (reference.empty()) reference = error.what();
+        EXPECT_EQ(error.what(), reference) << threads << " threads, slices " << slices;
+        EXPECT_NE(reference.find("400000 cells"), std::string::npos) << reference;
+      }
+    }
+}
+
 }  // namespace
 }  // namespace ontogen

@@ -298,5 +298,105 @@ TEST(CompactWord, AWordWrittenBySlicesReadsAsTheSerialOne) {
     }
 }
 
+// An event's new successors written as one run at once (CompactWord::appendRun serially,
+// Slice::appendFreshRun by slices) read as the same successors written one by one, and
+// encode alike: runs of 1 to 254 modules crossing bitmap words, with one-byte and
+// two-byte labels, new runs beside copied ones.
+TEST(CompactWord, AnEventsRunWrittenAtOnceReadsAsItsModulesOneByOne) {
+  for (const size_t labelCount : {size_t{3}, size_t{300}}) {
+    SCOPED_TRACE(std::to_string(labelCount) + " labels");
+    const std::vector<uint32_t> stateCounts(labelCount, 0);
+    CompactWord old(stateCounts);
+    std::mt19937_64 random(11);
+    while (old.size() < 6000) {
+      const uint64_t key = random();
+      const size_t length = 1 + random() % 20;
+      const double birth = static_cast<double>(random() % 4);
+      for (uint32_t k = 0; k < length; ++k) old.append(random() % labelCount, {key, k}, birth, nullptr);
+    }
+    old.finish();
+    // Module i of the old word with a label of 1 modulo 3 fires: n(i) successors, labels
+    // from its index; the others are copied.
+    auto successorsOf = [&](size_t i) {
+      std::vector<uint32_t> labels(1 + (i * 37) % CompactWord::kLargestRunK);
+      for (size_t k = 0; k < labels.size(); ++k) labels[k] = static_cast<uint32_t>((i + 5 * k) % labelCount);
+      return labels;
+    };
+    auto fires = [&](size_t i) { return old.label(i) % 3 == 1; };
+    auto lineageOf = [&](size_t i) { return mixKey(old.cellAt(i).id, keyOf(4.0)); };
+    auto copy = [&](size_t i, auto& out) {
+      const CompactWord::Place place = old.locate(i);
+      out.appendCopy(old.label(i), old.keyOf(place.run, place.j), old.birthIndex(place.run), nullptr);
+    };
+    struct SerialCopy {
+      CompactWord& word;
+      void appendCopy(uint32_t label, IdKey key, uint32_t birthIndex, const double*) {
+        word.append(label, key, birthIndex, nullptr);
+      }
+    };
+
+    CompactWord oneByOne(stateCounts), atOnce(stateCounts);
+    oneByOne.clearWithBirthsOf(old);
+    atOnce.clearWithBirthsOf(old);
+    std::vector<Expected> expected;
+    SerialCopy toOneByOne{oneByOne}, toAtOnce{atOnce};
+    for (size_t i = 0; i < old.size(); ++i) {
+      if (!fires(i)) {
+        copy(i, toOneByOne);
+        copy(i, toAtOnce);
+        const CellView cell = old.cellAt(i);
+        expected.push_back({cell.master, IdKey::whole(cell.id), cell.birth, {}});
+        continue;
+      }
+      const std::vector<uint32_t> labels = successorsOf(i);
+      const uint64_t lineage = lineageOf(i);
+      for (uint32_t k = 1; k <= labels.size(); ++k) {
+        oneByOne.append(labels[k - 1], IdKey{lineage, k}, 4.0, nullptr);
+        expected.push_back({labels[k - 1], IdKey{lineage, k}, 4.0, {}});
+      }
+      atOnce.appendRun(labels.data(), static_cast<uint32_t>(labels.size()), lineage, atOnce.birthIndexOf(4.0));
+    }
+    oneByOne.finish();
+    atOnce.finish();
+    expectWordReadsAs(oneByOne, expected);
+    expectWordReadsAs(atOnce, expected);
+    EXPECT_EQ(atOnce.runCount(), oneByOne.runCount());
+    EXPECT_GT(atOnce.size(), 100 * CompactWord::kBlock);
+
+    const std::vector<size_t> cuts{0, 1, 63, 64, 65, 130, 3001, old.size()};
+    std::vector<size_t> runs;
+    for (const bool byRun : {false, true}) {
+      SCOPED_TRACE(byRun ? "slices, runs at once" : "slices, one by one");
+      std::vector<CompactWord::Slice> slices(cuts.size() - 1, CompactWord::Slice(old));
+      auto pass = [&](size_t s) {
+        CompactWord::Slice& slice = slices[s];
+        for (size_t i = cuts[s]; i < cuts[s + 1]; ++i) {
+          if (!fires(i)) {
+            copy(i, slice);
+            continue;
+          }
+          const std::vector<uint32_t> labels = successorsOf(i);
+          const uint64_t lineage = slice.writing() ? lineageOf(i) : 0;
+          if (byRun)
+            slice.appendFreshRun(labels.data(), static_cast<uint32_t>(labels.size()), i, lineage, 4.0);
+          else
+            for (uint32_t k = 1; k <= labels.size(); ++k) slice.appendBorn(labels[k - 1], i, lineage, k, 4.0, nullptr);
+        }
+        slice.finish();
+      };
+      CompactWord bySlices(stateCounts);
+      bySlices.clearWithBirthsOf(old);
+      for (size_t s = 0; s < slices.size(); ++s) pass(s);
+      bySlices.beginSlices(slices);
+      for (size_t s = slices.size(); s-- > 0;) pass(s);
+      bySlices.endSlices(slices);
+      bySlices.finish();
+      expectWordReadsAs(bySlices, expected);
+      runs.push_back(bySlices.runCount());
+    }
+    EXPECT_EQ(runs[0], runs[1]);
+  }
+}
+
 }  // namespace
 }  // namespace ontogen
