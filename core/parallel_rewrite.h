@@ -64,7 +64,8 @@ class ParallelRewrite {
 
   /// Says, after the counting pass of rewriteCompact, whether the next word may be
   /// written: its modules, the events and the cells born (false: rewriteCompact writes
-  /// nothing, so the caller can take a pass that reports the limit).
+  /// nothing, so the caller can take a pass that reports the limit). Several threads may
+  /// ask at once.
   using CompactFits = std::function<bool(uint64_t modules, uint64_t events, uint64_t born)>;
 
   /// The pass of rewriteAtInstant on a compact word (docs/COMPACT_WORDS.md), on `threads`
@@ -194,7 +195,8 @@ class ParallelRewrite {
   FunctionTable functions_;
   std::vector<Slice> slices_;
   std::vector<CompactWord::Slice> compactSlices_;
-  std::vector<double> lifetimes_;  // per master, for rewriteCompact (MasterCell is large)
+  std::vector<CompactWord> parts_;  // the slices' own words, for choices that vary
+  std::vector<double> lifetimes_;   // per master, for rewriteCompact (MasterCell is large)
   // How much the last compact rewrite grew its word (next / old), modules and runs; 0:
   // none yet. The one-thread pass reserves by it.
   struct Growth {

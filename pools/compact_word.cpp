@@ -20,8 +20,8 @@ CompactWord::CompactWord(std::vector<uint32_t> stateCounts) : stateCounts_(std::
 
 size_t CompactWord::bytes() const {
   return labels8_.size() + labels16_.size() * sizeof(uint16_t) + runStarts_.size() * sizeof(uint64_t) +
-         (blockRuns_.size() + blockValues_.size()) * sizeof(uint32_t) +
-         keys_.size() * (sizeof(uint64_t) + sizeof(uint32_t) + sizeof(uint8_t)) + births_.size() * sizeof(double) +
+         (blockRuns_.size() + blockValues_.size()) * sizeof(uint32_t) + blockJ_.size() * sizeof(uint16_t) +
+         keys_.size() * (sizeof(uint64_t) + sizeof(uint32_t) + sizeof(uint16_t)) + births_.size() * sizeof(double) +
          values_.size() * sizeof(double);
 }
 
@@ -32,11 +32,13 @@ void CompactWord::clear() {
   runStarts_.clear();
   blockRuns_.clear();
   blockValues_.clear();
+  blockJ_.clear();
   keys_.clear();
   birthIndex_.clear();
   firstK_.clear();
   values_.clear();
   tail_ = RunTail{};
+  runJ_ = 0;
 }
 
 void CompactWord::clearWithBirthsOf(const CompactWord& other) {
@@ -49,6 +51,7 @@ void CompactWord::reserve(size_t modules, size_t runs, size_t values) {
   const size_t blocks = (modules + kBlock - 1) / kBlock;
   runStarts_.reserve(blocks);
   blockRuns_.reserve(blocks);
+  blockJ_.reserve(blocks);
   if (!stateless_) blockValues_.reserve(blocks);
   keys_.reserve(runs);
   birthIndex_.reserve(runs);
@@ -81,6 +84,9 @@ void CompactWord::startBlock() {
     throw std::length_error("ontogen: a linear word with 2^32 runs or state values");
   runStarts_.push_back(0);
   blockRuns_.push_back(static_cast<uint32_t>(keys_.size()));
+  // The place of the block's first module if it continues the last run (if it starts one,
+  // its bit says so and this is not read).
+  blockJ_.push_back(static_cast<uint16_t>(size_ == 0 ? 0 : runJ_ + 1));
   if (!stateless_) blockValues_.push_back(static_cast<uint32_t>(values_.size()));
 }
 
@@ -95,6 +101,57 @@ void CompactWord::finish() {
     index = at->second;
   }
   births_ = std::move(renumbered);
+}
+
+void CompactWord::appendWord(const CompactWord& part, size_t sharedBirths) {
+  if (!values_.empty() || !part.values_.empty() || part.stateCounts_ != stateCounts_ ||
+      sharedBirths > part.births_.size())
+    throw std::logic_error("ontogen: internal error: a part of a compact word with state, other labels or births");
+  if (part.empty()) return;
+  const size_t base = size_, n = part.size_, runsBefore = keys_.size();
+  if (runsBefore + part.keys_.size() >= UINT32_MAX) throw std::length_error("ontogen: a linear word with 2^32 runs");
+  // The part's own births, where this word's table has them or added to it.
+  std::vector<uint32_t> ownBirth;
+  for (size_t b = sharedBirths; b < part.births_.size(); ++b) ownBirth.push_back(addBirth(part.births_[b]));
+  keys_.insert(keys_.end(), part.keys_.begin(), part.keys_.end());
+  firstK_.insert(firstK_.end(), part.firstK_.begin(), part.firstK_.end());
+  for (const uint32_t index : part.birthIndex_)
+    birthIndex_.push_back(index < sharedBirths ? index : ownBirth[index - sharedBirths]);
+  if (wide_)
+    labels16_.insert(labels16_.end(), part.labels16_.begin(), part.labels16_.end());
+  else
+    labels8_.insert(labels8_.end(), part.labels8_.begin(), part.labels8_.end());
+  // The part's run-start bits from its module `from` on, 64 of them (none past its end).
+  auto bitsFrom = [&](size_t from) {
+    const size_t word = from / kBlock;
+    const unsigned shift = from % kBlock;
+    uint64_t bits = part.runStarts_[word] >> shift;
+    if (shift != 0 && word + 1 < part.runStarts_.size()) bits |= part.runStarts_[word + 1] << (kBlock - shift);
+    const size_t left = n - from;
+    return left >= kBlock ? bits : bits & ((uint64_t{1} << left) - 1);
+  };
+  // The modules up to the end of this word's last block, then a block at a time.
+  size_t at = 0, starts = 0, lastStart = base;  // the part's module 0 starts a run
+  if (base % kBlock != 0) {
+    const uint64_t bits = bitsFrom(0) & (~uint64_t{0} >> (base % kBlock));
+    runStarts_.back() |= bits << (base % kBlock);
+    starts = static_cast<size_t>(std::popcount(bits));
+    lastStart = base + (kBlock - 1 - static_cast<size_t>(std::countl_zero(bits)));
+    at = kBlock - base % kBlock;
+  }
+  for (; at < n; at += kBlock) {
+    const uint64_t bits = bitsFrom(at);
+    const size_t first = base + at;
+    runStarts_.push_back(bits);
+    blockRuns_.push_back(static_cast<uint32_t>(runsBefore + starts));
+    blockJ_.push_back(static_cast<uint16_t>(bits & 1u ? 0 : first - lastStart));
+    if (!stateless_) blockValues_.push_back(0);  // neither word has values
+    starts += static_cast<size_t>(std::popcount(bits));
+    if (bits != 0) lastStart = first + (kBlock - 1 - static_cast<size_t>(std::countl_zero(bits)));
+  }
+  size_ += n;
+  tail_ = part.tail_;
+  runJ_ = part.runJ_;
 }
 
 void CompactWord::beginSlices(std::span<Slice> slices) {
@@ -117,6 +174,7 @@ void CompactWord::beginSlices(std::span<Slice> slices) {
   const size_t blocks = (modules + kBlock - 1) / kBlock;
   resizeForOverwrite(runStarts_, blocks);
   resizeForOverwrite(blockRuns_, blocks);
+  resizeForOverwrite(blockJ_, blocks);
   if (!stateless_) resizeForOverwrite(blockValues_, blocks);
   resizeForOverwrite(keys_, runs);
   resizeForOverwrite(birthIndex_, runs);
@@ -132,6 +190,7 @@ void CompactWord::beginSlices(std::span<Slice> slices) {
     value += slice.values_;
     run += slice.countedRuns_;
     slice.written_ = slice.writtenValues_ = slice.runs_ = 0;
+    slice.runJ_ = 0;
     slice.tail_ = RunTail{};
     slice.births_.clear();
     slice.sharedWords_.clear();
@@ -172,6 +231,7 @@ void CompactWord::Slice::place() {
 void CompactWord::Slice::startBlock(size_t i) {
   if (i % kBlock == 0) {
     word_->blockRuns_[i / kBlock] = static_cast<uint32_t>(firstRun_ + runs_);
+    word_->blockJ_[i / kBlock] = static_cast<uint16_t>(runJ_ + 1);  // read only if it continues a run
     if (!word_->stateless_) word_->blockValues_[i / kBlock] = static_cast<uint32_t>(firstValue_ + writtenValues_);
   }
   flushBits();
@@ -205,16 +265,10 @@ CompactWord::Place CompactWord::locate(size_t i) const {
   Place place;
   // Module 0 starts a run, so a block with no start up to i has runs before it.
   place.run = blockRuns_[block] + static_cast<size_t>(std::popcount(upTo)) - 1;
-  size_t start;
-  if (upTo != 0) {
-    start = block * kBlock + (kBlock - 1 - static_cast<size_t>(std::countl_zero(upTo)));
-  } else {
-    size_t word = block;
-    do --word;
-    while (runStarts_[word] == 0);
-    start = word * kBlock + (kBlock - 1 - static_cast<size_t>(std::countl_zero(runStarts_[word])));
-  }
-  place.j = static_cast<uint32_t>(i - start);
+  if (upTo != 0)
+    place.j = static_cast<uint32_t>(i - (block * kBlock + (kBlock - 1 - static_cast<size_t>(std::countl_zero(upTo)))));
+  else
+    place.j = blockJ_[block] + static_cast<uint32_t>(bit);
   if (!stateless_) {
     size_t value = blockValues_[block];
     for (size_t p = block * kBlock; p < i; ++p) value += stateCounts_[label(p)];

@@ -7,14 +7,15 @@
 //    number k of its first module; the j-th module of the run has the id
 //    mixKey(key, firstK + j), exactly the id core/successors.h gives it;
 //  - a run-start bitmap, one bit a module, and a block index (runs and state values
-//    before each block of 64 modules), so module i is found in constant time;
+//    before each block of 64 modules, and the place in its run of the block's first
+//    module), so module i is found in constant time;
 //  - the state values in word order, without a per-module offset.
 // Koch's word takes 3.79 bytes a module this way, Thue-Morse's 7.69.
 //
 // A writer appends modules in word order; it extends the last run when the module has
-// the same key and birth and the next k (below 255), and starts a run otherwise, so the
-// encoding of a word written serially is canonical. An id whose k is 255 or more, or one
-// that cannot be written as (key, k) at all, is kept whole in a run of its own.
+// the same key and birth and the next k (below 65535), and starts a run otherwise, so the
+// encoding of a word written serially is canonical. An id whose k is 65535 or more, or
+// one that cannot be written as (key, k) at all, is kept whole in a run of its own.
 
 #include <algorithm>
 #include <bit>
@@ -98,8 +99,11 @@ class RunTail {
 
 class CompactWord {
  public:
-  /// The largest k a run stores (one byte; 255 marks a run whose one id is kept whole).
-  static constexpr uint32_t kLargestRunK = 254;
+  /// The largest k a run stores (two bytes; 65535 marks a run whose one id is kept
+  /// whole). Two bytes rather than one keep an axiom's ids in runs (its module i has k = i)
+  /// and so a renewed axiom's modules: a signal along 100,000 modules takes 2 runs, not
+  /// 100,000. Koch pays 1 byte a run, 0.2 a module.
+  static constexpr uint32_t kLargestRunK = 65534;
   /// Modules per block of the index: one 64-bit word of the run-start bitmap.
   static constexpr size_t kBlock = 64;
 
@@ -146,7 +150,10 @@ class CompactWord {
       runStarts_.back() |= uint64_t{1} << (i % kBlock);
       keys_.push_back(key.key);
       birthIndex_.push_back(birthIndex);
-      firstK_.push_back(key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k));
+      firstK_.push_back(key.k == IdKey::kWhole ? kWholeMark : static_cast<uint16_t>(key.k));
+      runJ_ = 0;
+    } else {
+      ++runJ_;
     }
     if (wide_)
       labels16_.push_back(static_cast<uint16_t>(label));
@@ -172,6 +179,7 @@ class CompactWord {
     for (uint32_t k = 2; k <= n; ++k) {
       if (size_ % kBlock == 0) [[unlikely]]
         startBlock();
+      ++runJ_;
       if (wide_)
         labels16_.push_back(static_cast<uint16_t>(labels[k - 1]));
       else
@@ -183,6 +191,14 @@ class CompactWord {
   /// After the last append: renumbers the birth table in order of first use, dropping
   /// entries no run uses and duplicates, once it holds more than max(64, 2 x runs).
   void finish();
+
+  /// Appends the modules of `part`, a word without state values written serially from
+  /// a clearWithBirthsOf of a word whose first `sharedBirths` births this word shares
+  /// (the word both copy from): labels and runs copied, the bitmap shifted into place,
+  /// the block index made for the blocks it starts, the part's own births added to the
+  /// table. The part's first module starts a run, as at a seam between slices. Not
+  /// finished: call finish() after the last part.
+  void appendWord(const CompactWord& part, size_t sharedBirths);
 
   // --- Writing by slices (each thread a slice of the word, as core/parallel_rewrite.h
   // writes the next word): every slice counts, then beginSlices sizes the word and places
@@ -211,6 +227,7 @@ class CompactWord {
   std::span<const double> values() const { return values_; }
   std::span<double> values() { return values_; }
   uint32_t stateCount(uint32_t label) const { return stateCounts_[label]; }
+  const std::vector<uint32_t>& stateCounts() const { return stateCounts_; }
 
   /// Where module i sits: its run, its place j in the run and its first state value.
   struct Place {
@@ -218,8 +235,8 @@ class CompactWord {
     uint32_t j = 0;
     size_t value = 0;
   };
-  /// Module i (below size()) in constant time: a popcount, at most five bitmap words
-  /// back for the run's start, at most 63 state counts for the value offset.
+  /// Module i (below size()) in constant time: a popcount, the block's place in its run
+  /// when no run starts in the block up to i, at most 63 state counts for the value offset.
   Place locate(size_t i) const;
 
   IdKey keyOf(size_t run, uint32_t j) const {
@@ -235,7 +252,7 @@ class CompactWord {
 
  private:
   friend class CompactWordCursor;
-  static constexpr uint8_t kWholeMark = 0xFF;
+  static constexpr uint16_t kWholeMark = 0xFFFF;
 
   bool startsRun(size_t i) const { return (runStarts_[i / kBlock] >> (i % kBlock)) & 1u; }
   /// Where the next new birth of a writer goes: one of the last few of `births` whose bits
@@ -256,12 +273,14 @@ class CompactWord {
   LargeVector<uint64_t> runStarts_;    // bit i % 64 of word i / 64: module i starts a run
   LargeVector<uint32_t> blockRuns_;    // runs started before each block
   LargeVector<uint32_t> blockValues_;  // state values before each block (empty if stateless_)
+  LargeVector<uint16_t> blockJ_;       // the place in its run of each block's first module
   LargeVector<uint64_t> keys_;         // per run: lineage key, or the whole id
   LargeVector<uint32_t> birthIndex_;   // per run: index into births_
-  LargeVector<uint8_t> firstK_;        // per run: k of its first module, or kWholeMark
+  LargeVector<uint16_t> firstK_;       // per run: k of its first module, or kWholeMark
   std::vector<double> births_;         // distinct birth times, exact
   LargeVector<double> values_;
-  RunTail tail_;  // the last module appended serially
+  RunTail tail_;       // the last module appended serially
+  uint32_t runJ_ = 0;  // its place in its run
 };
 
 /// One slice of a word written by slices. Before CompactWord::beginSlices the slice
@@ -337,7 +356,10 @@ class CompactWord::Slice {
       for (uint32_t j = 0; j < n; ++j) to[j] = static_cast<uint8_t>(labels[j]);
     } else {
       for (uint32_t j = 0; j < n; ++j) {
-        if (j > 0 && (i + j) % kBlock == 0) startBlock(i + j);
+        if (j > 0 && (i + j) % kBlock == 0) {
+          runJ_ = j - 1;  // the module before: startBlock gives the block's j as one more
+          startBlock(i + j);
+        }
         if (out_.labels8)
           out_.labels8[i + j] = static_cast<uint8_t>(labels[j]);
         else
@@ -345,6 +367,7 @@ class CompactWord::Slice {
       }
     }
     written_ += n;
+    runJ_ = n - 1;
   }
   /// After the slice's last append of a pass.
   void finish();
@@ -381,8 +404,11 @@ class CompactWord::Slice {
       // The word holds the runs the slice counted (beginSlices): no capacity to check.
       out_.keys[runs_] = key.key;
       out_.birthIndex[runs_] = birthIndex;
-      out_.firstK[runs_] = key.k == IdKey::kWhole ? kWholeMark : static_cast<uint8_t>(key.k);
+      out_.firstK[runs_] = key.k == IdKey::kWhole ? kWholeMark : static_cast<uint16_t>(key.k);
       ++runs_;
+      runJ_ = 0;
+    } else {
+      ++runJ_;
     }
     if (out_.labels8)
       out_.labels8[i] = static_cast<uint8_t>(label);
@@ -405,6 +431,7 @@ class CompactWord::Slice {
   CompactWord* word_ = nullptr;                        // null while counting
   size_t modules_ = 0, values_ = 0, countedRuns_ = 0;  // counted
   size_t written_ = 0, writtenValues_ = 0, runs_ = 0;  // written
+  uint32_t runJ_ = 0;                                  // the last module's place in its run
   RunTail tail_;
   std::vector<double> births_;  // new births, in order of first use
   uint32_t lastBorn_ = 0;       // index in births_ of the last new birth appended
@@ -414,7 +441,7 @@ class CompactWord::Slice {
     double* values = nullptr;
     uint64_t* keys = nullptr;  // the slice's first run in the word
     uint32_t* birthIndex = nullptr;
-    uint8_t* firstK = nullptr;
+    uint16_t* firstK = nullptr;
   } out_;  // where the slice writes
   // Where the slice writes: its first module, run, value and new birth in the word.
   size_t firstModule_ = 0, firstRun_ = 0, firstValue_ = 0;
@@ -498,7 +525,7 @@ class CompactWordCursor {
   const uint64_t* runStarts_ = nullptr;
   const uint32_t* stateCounts_ = nullptr;
   const uint64_t* keys_ = nullptr;
-  const uint8_t* firstK_ = nullptr;
+  const uint16_t* firstK_ = nullptr;
   const uint32_t* birthIndex_ = nullptr;
   const double* births_ = nullptr;
   size_t size_ = 0;

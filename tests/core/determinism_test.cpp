@@ -129,8 +129,8 @@ TEST(Determinism, OneHashPerModelWhateverTheThreadsAndFrames) {
 // ---- Every kind of successor, pinned by value before the linear pool's storage moves
 // (docs/COMPACT_WORDS.md, section 7, slice 0). The seven cases above leave some of what a
 // compact word must reproduce unpinned: parents, `me` in per-step rules, birth ages, `<<`,
-// rules of more than 254 successors, and the words the rewriting by slices writes with
-// state. These hash each cell's parent id as well.
+// rules of more than 254 successors (once the largest k a compact run held), and the words the rewriting by slices
+// writes with state. These hash each cell's parent id as well.
 
 // Repeats `label` `count` times, separated by spaces.
 std::string repeated(const std::string& label, int count) {
@@ -141,7 +141,8 @@ std::string repeated(const std::string& label, int count) {
 
 // Cells: `me` in a terminal rule (new birth) and in a per-step rule (same birth), `=X`
 // with a draw keyed by the kept id, birth ages in the axiom and in successors, renewals
-// (C has no rules) and a rule of 300 successors, whose k passes 254.
+// (C has no rules) and a rule of 300 successors, whose k passes 254 (once the largest k a
+// compact run held).
 std::string cellsWithEveryKindOfSuccessor() {
   return "cell A(x = 1) { lifetime 2; rules { terminal: x += 1, -> (B(x), 0.5) me; } }\n"
          "cell B(y = 0) { lifetime 1.5; rules {\n"

@@ -119,25 +119,25 @@ TEST(ParallelRewrite, ThueMorseAndParametricWordsAreWrittenAsTheSerialPassWrites
   }
 }
 
-// A production of 301 successors, whose k run past 254, applied by slices: 120 W make a
-// word of 36,120 modules at t = 1, and every W rewrites again at t = 2 and 3.
+// A production of 65,581 successors, whose k run past the largest a run holds
+// (CompactWord::kLargestRunK), applied by slices: 2 W make a word of 131,162 modules at
+// t = 1, and both rewrite again at t = 2 and 3.
+constexpr int kWideSuccessors = static_cast<int>(CompactWord::kLargestRunK) + 46;
 std::string wideProgram() {
-  std::string text = "lsystem wide {\n  axiom";
-  for (int i = 0; i < 120; ++i) text += " W";
-  text += "\n  W -> W";
-  for (int i = 0; i < 300; ++i) text += " x";
+  std::string text = "lsystem wide {\n  axiom W W\n  W -> W";
+  for (int i = 0; i < kWideSuccessors; ++i) text += " x";
   return text + "\n}\n";
 }
 
-TEST(ParallelRewrite, ARuleOfMoreThan254SuccessorsIsWrittenAsTheSerialPassWritesIt) {
+TEST(ParallelRewrite, ARuleOfMoreSuccessorsThanARunHoldsIsWrittenAsTheSerialPassWritesIt) {
   auto program = testing_support::compileOrFail(wideProgram());
   ASSERT_NE(program, nullptr);
   const Grown serial = grow(program, 3, 1, false);
-  ASSERT_EQ(serial.world->rootPool().size(), 120u * (1 + 3 * 300)) << "W, then 300 x a step";
+  ASSERT_EQ(serial.world->rootPool().size(), 2u * (1 + 3 * kWideSuccessors)) << "W, then the x of each step";
   for (unsigned threads : {1u, 2u, 3u}) {
     const Grown sliced = grow(program, 3, threads);
     EXPECT_EQ(sliced.stats.rewritesBySlices, 2u) << threads << " threads";
-    expectSameWords(*serial.world, *sliced.world, "301 successors on " + std::to_string(threads) + " threads");
+    expectSameWords(*serial.world, *sliced.world, "wide rule on " + std::to_string(threads) + " threads");
   }
 }
 
@@ -315,7 +315,7 @@ TEST(ParallelRewrite, ALimitIsReportedAsTheSerialPassReportsIt) {
 // first large word, the compact pass writes it in one pass and asks the limits on the way
 // (every 2^16 modules), so the step that passes maxCells is refused there, in the middle
 // of the word; the limit is then reported as the records' serial pass reports it, on one
-// thread and on two (by slices, refused after counting).
+// thread and on two (where each slice writes a part of its own, and asks for its share).
 TEST(ParallelRewrite, ALimitPassedInTheMiddleOfAOnePassWordIsReportedAsTheSerialPassReportsIt) {
   auto program = testing_support::compileOrFail("lsystem g {\n  axiom a\n  ∅ < a -> b a\n  a -> a a\n  b -> b\n}\n");
   ASSERT_NE(program, nullptr);

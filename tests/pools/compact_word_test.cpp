@@ -64,27 +64,33 @@ TEST(CompactWord, ASuccessorsEventIsOneRunAndTheIdsAreTheLineages) {
   EXPECT_EQ(word.cellAt(3).id, mixKey(lineage, 4));
 }
 
-TEST(CompactWord, IdsPast254AreKeptWholeAndStillEqualTheLineages) {
-  // A production of 300 successors: k 1 to 254 make one run, 255 to 300 one run each.
-  CompactWord word({0});
+TEST(CompactWord, IdsPastTheLargestRunKAreKeptWholeAndStillEqualTheLineages) {
+  // A production of 65,580 successors: k 1 to 65,534 make one run (1,024 blocks of the
+  // index, so module i far into it is found by its block's place in the run), 65,535 to
+  // 65,580 one run each.
+  static_assert(CompactWord::kLargestRunK == 65534);
+  constexpr uint32_t kSuccessors = CompactWord::kLargestRunK + 46;
+  CompactWord word({0, 0});
   const uint64_t lineage = mixKey(99, keyOf(1.0));
   std::vector<Expected> expected;
-  for (uint32_t k = 1; k <= 300; ++k) {
-    word.append(0, {lineage, k}, 1.0, nullptr);
-    expected.push_back({0, {lineage, k}, 1.0, {}});
+  for (uint32_t k = 1; k <= kSuccessors; ++k) {
+    word.append(k % 2, {lineage, k}, 1.0, nullptr);
+    expected.push_back({k % 2, {lineage, k}, 1.0, {}});
   }
   // A module that keeps a whole id (`me` of a module whose id was kept whole).
-  word.append(0, IdKey::whole(mixKey(lineage, 300)), 1.0, nullptr);
-  expected.push_back({0, IdKey::whole(mixKey(lineage, 300)), 1.0, {}});
+  word.append(0, IdKey::whole(mixKey(lineage, kSuccessors)), 1.0, nullptr);
+  expected.push_back({0, IdKey::whole(mixKey(lineage, kSuccessors)), 1.0, {}});
   EXPECT_EQ(word.runCount(), 1u + 46u + 1u);
   expectWordReadsAs(word, expected);
-  EXPECT_EQ(word.cellAt(299).id, mixKey(lineage, 300));
-  EXPECT_EQ(word.cellAt(300).id, mixKey(lineage, 300));
+  EXPECT_EQ(word.cellAt(kSuccessors - 1).id, mixKey(lineage, kSuccessors));
+  EXPECT_EQ(word.cellAt(kSuccessors).id, mixKey(lineage, kSuccessors));
+  EXPECT_EQ(word.cellAt(65000).id, mixKey(lineage, 65001));
 }
 
 TEST(CompactWord, LocateAgreesWithTheCursorOnARandomWordWithState) {
-  // Runs of every length up to past 255 (so they cross several blocks), whole ids, labels
-  // with 0 to 3 values, births that differ only in sign (0.0 and -0.0 are distinct).
+  // Runs of every length up to 300 (so they cross several blocks), some starting near the
+  // largest k a run holds, whole ids, labels with 0 to 3 values, births that differ only
+  // in sign (0.0 and -0.0 are distinct).
   const std::vector<uint32_t> stateCounts{0, 1, 3, 0, 2};
   CompactWord word(stateCounts);
   std::mt19937_64 random(20261202);
@@ -95,10 +101,11 @@ TEST(CompactWord, LocateAgreesWithTheCursorOnARandomWordWithState) {
   while (expected.size() < 60000) {
     const uint64_t key = random();
     const bool whole = random() % 16 == 0;
-    const uint32_t firstK = static_cast<uint32_t>(random() % 255);
+    const uint32_t firstK =
+        static_cast<uint32_t>(random() % 4 ? random() % 255 : CompactWord::kLargestRunK - random() % 300);
     const size_t length = whole ? 1 : 1 + random() % 300;
     const double birth = births[random() % 5];
-    // The canonical rule: a run ends at k 254, and a run of whole ids holds one module.
+    // The canonical rule: a run ends at kLargestRunK, and a run of whole ids holds one module.
     runs += whole
                 ? 1
                 : 1 + (firstK + length - 1 > CompactWord::kLargestRunK ? firstK + length - 1 - CompactWord::kLargestRunK
@@ -167,7 +174,7 @@ TEST(CompactWord, TheBirthTableIsRenumberedOnceItOutgrowsTheRuns) {
 // Koch's curve (F -> F+F-F-F+F) grown as the engine grows it: an F expiring at time t
 // makes a run of 9 with the lineage mixKey(its id, keyOf(t)) and k = 1 .. 9; a sign never
 // expires and keeps its id and birth. Labels: 0 F, 1 +, 2 -.
-TEST(CompactWord, KochTakesUnderFourBytesAModule) {
+TEST(CompactWord, KochTakesAboutFourBytesAModule) {
   const uint32_t production[] = {0, 1, 0, 2, 0, 2, 0, 1, 0};
   CompactWord word({0, 0, 0}), next({0, 0, 0});
   std::vector<Expected> expected{{0, {mixKey(7, 0), 0}, 0.0, {}}}, expectedNext;
@@ -199,10 +206,10 @@ TEST(CompactWord, KochTakesUnderFourBytesAModule) {
   EXPECT_EQ(word.runCount(), 2 * fives - 1);  // a run per F of n - 1, and one per sign
   EXPECT_EQ(word.birthCount(), static_cast<size_t>(generations + 1));
   expectWordReadsAs(word, expected);
-  // 1 label byte + 1/8 bitmap + 4/64 block index + 13 bytes per run of about 5 modules.
+  // 1 label byte + 1/8 bitmap + 6/64 block index + 14 bytes per run of about 5 modules.
   const double perModule = static_cast<double>(word.bytes()) / static_cast<double>(word.size());
-  EXPECT_LT(perModule, 3.8);
-  EXPECT_GT(perModule, 3.7);
+  EXPECT_LT(perModule, 4.03);
+  EXPECT_GT(perModule, 4.0);
 }
 
 // A word written by slices reads as the word written serially, module for module,
@@ -300,7 +307,7 @@ TEST(CompactWord, AWordWrittenBySlicesReadsAsTheSerialOne) {
 
 // An event's new successors written as one run at once (CompactWord::appendRun serially,
 // Slice::appendFreshRun by slices) read as the same successors written one by one, and
-// encode alike: runs of 1 to 254 modules crossing bitmap words, with one-byte and
+// encode alike: runs of 1 to 65,534 modules crossing bitmap words, with one-byte and
 // two-byte labels, new runs beside copied ones.
 TEST(CompactWord, AnEventsRunWrittenAtOnceReadsAsItsModulesOneByOne) {
   for (const size_t labelCount : {size_t{3}, size_t{300}}) {
@@ -317,8 +324,9 @@ TEST(CompactWord, AnEventsRunWrittenAtOnceReadsAsItsModulesOneByOne) {
     old.finish();
     // Module i of the old word with a label of 1 modulo 3 fires: n(i) successors, labels
     // from its index; the others are copied.
+    // Runs of 1 to 300, and a few as long as a run goes.
     auto successorsOf = [&](size_t i) {
-      std::vector<uint32_t> labels(1 + (i * 37) % CompactWord::kLargestRunK);
+      std::vector<uint32_t> labels(i % 1500 == 4 ? CompactWord::kLargestRunK : 1 + (i * 37) % 300);
       for (size_t k = 0; k < labels.size(); ++k) labels[k] = static_cast<uint32_t>((i + 5 * k) % labelCount);
       return labels;
     };
@@ -395,6 +403,71 @@ TEST(CompactWord, AnEventsRunWrittenAtOnceReadsAsItsModulesOneByOne) {
       runs.push_back(bySlices.runCount());
     }
     EXPECT_EQ(runs[0], runs[1]);
+  }
+}
+
+// Parts of a word written each on its own (as the slices of a rewrite whose choices vary)
+// and joined with appendWord read as the word written in one piece: cuts anywhere in a
+// bitmap word, on its edges, parts shorter than a block or empty, runs as long as a run
+// goes crossing blocks; births the parts add themselves are found in the table.
+TEST(CompactWord, PartsJoinedReadAsTheWordWrittenInOnePiece) {
+  const std::vector<uint32_t> stateCounts{0, 0, 0};
+  CompactWord old(stateCounts);
+  std::mt19937_64 random(5);
+  while (old.size() < 9000) {
+    const uint64_t key = random();
+    const size_t length = random() % 50 == 0 ? 3000 : 1 + random() % 20;
+    const double birth = static_cast<double>(random() % 4);
+    for (uint32_t k = 0; k < length; ++k) old.append(random() % 3, {key, k}, birth, nullptr);
+  }
+  old.finish();
+  // Module i: copied, or renewed at a birth of its own (5 + i % 3), or, for label 2, a run
+  // of 1 to 100 new successors born at 4.
+  auto emit = [&](size_t i, CompactWord& to, std::vector<Expected>* expected) {
+    const CompactWord::Place place = old.locate(i);
+    const IdKey key = old.keyOf(place.run, place.j);
+    const uint32_t label = old.label(i);
+    if (label == 0) {
+      to.append(label, key, old.birthIndex(place.run), nullptr);
+      if (expected) expected->push_back({label, key, old.birthOf(place.run), {}});
+    } else if (label == 1) {
+      const double birth = 5.0 + static_cast<double>(i % 3);
+      to.append(label, key, birth, nullptr);
+      if (expected) expected->push_back({label, key, birth, {}});
+    } else {
+      const uint64_t lineage = mixKey(key.id(), keyOf(4.0));
+      for (uint32_t k = 1; k <= 1 + i % 100; ++k) {
+        to.append(static_cast<uint32_t>(k % 3), {lineage, k}, 4.0, nullptr);
+        if (expected) expected->push_back({k % 3, {lineage, k}, 4.0, {}});
+      }
+    }
+  };
+  std::vector<Expected> expected;
+  CompactWord whole(stateCounts);
+  whole.clearWithBirthsOf(old);
+  for (size_t i = 0; i < old.size(); ++i) emit(i, whole, &expected);
+  whole.finish();
+  expectWordReadsAs(whole, expected);
+
+  const std::vector<std::vector<size_t>> cutsOfEachTry{
+      {0, old.size()}, {0, 4500, old.size()}, {0, 1, 2, 63, 64, 64, 65, 128, 191, 1000, 7000, old.size()}};
+  for (const std::vector<size_t>& cuts : cutsOfEachTry) {
+    SCOPED_TRACE(std::to_string(cuts.size() - 1) + " parts");
+    CompactWord joined(stateCounts);
+    joined.clearWithBirthsOf(old);
+    size_t runs = 0;
+    for (size_t s = 0; s + 1 < cuts.size(); ++s) {
+      CompactWord part(stateCounts);
+      part.clearWithBirthsOf(old);
+      for (size_t i = cuts[s]; i < cuts[s + 1]; ++i) emit(i, part, nullptr);
+      runs += part.runCount();
+      joined.appendWord(part, old.birthCount());
+    }
+    joined.finish();
+    expectWordReadsAs(joined, expected);
+    EXPECT_EQ(joined.runCount(), runs);
+    EXPECT_LE(joined.runCount(), whole.runCount() + cuts.size() - 2);
+    EXPECT_LE(joined.birthCount(), old.birthCount() + 4);  // 4.0 to 7.0, each added once
   }
 }
 
