@@ -571,67 +571,8 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
         1);
   };
 
-  // Several threads, choices that vary with the context: each slice writes a word of its
-  // own in one pass, and the parts are joined (CompactWord::appendWord), for counting
-  // first would choose twice (the signal: 1.2 times faster than one thread, not 1.8).
-  // The parts hold a copy of the next word until they are joined; their memory goes back
-  // to the large block cache, for the next step.
-  if (anyChoiceVaries_) {
-    parts_.resize(sliceCount, CompactWord(word.stateCounts()));
-    std::vector<CompactCounts> counted(sliceCount);
-    std::vector<double> earliest(sliceCount, kForever);
-    std::vector<uint8_t> refused(sliceCount, 0);
-    everySlice([&](size_t s) {
-      CompactWord& part = parts_[s];
-      part.clearWithBirthsOf(word);
-      const size_t begin = size * s / sliceCount, end = size * (s + 1) / sliceCount;
-      if (lastGrowth_.modules > 0)
-        part.reserve(Growth::room(end - begin, lastGrowth_.modules),
-                     Growth::room(word.runCount() * (end - begin) / size, lastGrowth_.runs), 0);
-      SerialOut out{part};
-      // Each part asks for its share: the whole word as if every slice wrote as much.
-      auto stop = [&](const CompactCounts& sofar) {
-        refused[s] = fits && !fits(part.size() * sliceCount, sofar.events * sliceCount, sofar.born * sliceCount);
-        return refused[s] != 0;
-      };
-      double soonest = kForever;
-      counted[s] = withLabels([&](const auto& labels) {
-        return rewriteRange(word, begin, end, horizon, group, labels, out, stop, soonest);
-      });
-      earliest[s] = soonest;
-    });
-    CompactCounts counts;
-    uint64_t modules = 0, runs = 0;
-    bool anyRefused = false;
-    for (size_t s = 0; s < sliceCount; ++s) {
-      modules += parts_[s].size();
-      runs += parts_[s].runCount();
-      counts.events += counted[s].events;
-      counts.born += counted[s].born;
-      anyRefused = anyRefused || refused[s];
-    }
-    // Large arrays go back to the large block cache, which keeps them mapped for the next
-    // step; small ones are kept.
-    auto release = [&] {
-      for (CompactWord& part : parts_)
-        if (part.bytes() >= kLargePageBytes) part = CompactWord(word.stateCounts());
-    };
-    if (anyRefused || (fits && !fits(modules, counts.events, counts.born))) {
-      release();
-      return std::nullopt;
-    }
-    next.reserve(modules, runs, 0);
-    for (const CompactWord& part : parts_) next.appendWord(part, word.birthCount());
-    release();
-    next.finish();
-    for (size_t s = 0; s < sliceCount; ++s) earliestDeath_ = std::min(earliestDeath_, earliest[s]);
-    lastGrowth_ = Growth::of(word, next);
-    return counts;
-  }
-
-  // Several threads, every choice fixed: every slice counts, then writes in place
-  // (CompactWord::Slice).
-
+  // Several threads, or a large word counted first: every slice counts, then writes in
+  // place (CompactWord::Slice).
   std::vector<CompactWord::Slice>& slices = compactSlices_;  // kept from step to step
   slices.resize(sliceCount, CompactWord::Slice(word));
   for (CompactWord::Slice& slice : slices) slice.restart(word);

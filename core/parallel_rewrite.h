@@ -91,7 +91,8 @@ class ParallelRewrite {
 
  private:
   enum class Pass : uint8_t { ContextFree, AtInstant };
-  struct Slice {
+  // On cache lines of its own: a thread updates its slice's counts cell by cell.
+  struct alignas(64) Slice {
     size_t begin = 0, end = 0;  // cells of the word
     uint64_t cells = 0, values = 0, events = 0, born = 0;
     bool chained = false;             // the context-free pass: a successor expires within the step
@@ -195,8 +196,7 @@ class ParallelRewrite {
   FunctionTable functions_;
   std::vector<Slice> slices_;
   std::vector<CompactWord::Slice> compactSlices_;
-  std::vector<CompactWord> parts_;  // the slices' own words, for choices that vary
-  std::vector<double> lifetimes_;   // per master, for rewriteCompact (MasterCell is large)
+  std::vector<double> lifetimes_;  // per master, for rewriteCompact (MasterCell is large)
   // How much the last compact rewrite grew its word (next / old), modules and runs; 0:
   // none yet. The one-thread pass reserves by it.
   struct Growth {

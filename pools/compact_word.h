@@ -192,14 +192,6 @@ class CompactWord {
   /// entries no run uses and duplicates, once it holds more than max(64, 2 x runs).
   void finish();
 
-  /// Appends the modules of `part`, a word without state values written serially from
-  /// a clearWithBirthsOf of a word whose first `sharedBirths` births this word shares
-  /// (the word both copy from): labels and runs copied, the bitmap shifted into place,
-  /// the block index made for the blocks it starts, the part's own births added to the
-  /// table. The part's first module starts a run, as at a seam between slices. Not
-  /// finished: call finish() after the last part.
-  void appendWord(const CompactWord& part, size_t sharedBirths);
-
   // --- Writing by slices (each thread a slice of the word, as core/parallel_rewrite.h
   // writes the next word): every slice counts, then beginSlices sizes the word and places
   // the slices by prefix sums, each slice writes in place, and endSlices joins the seams.
@@ -227,7 +219,6 @@ class CompactWord {
   std::span<const double> values() const { return values_; }
   std::span<double> values() { return values_; }
   uint32_t stateCount(uint32_t label) const { return stateCounts_[label]; }
-  const std::vector<uint32_t>& stateCounts() const { return stateCounts_; }
 
   /// Where module i sits: its run, its place j in the run and its first state value.
   struct Place {
@@ -291,7 +282,9 @@ class CompactWord {
 /// once every slice has written. The slice's first module always starts a run: a word
 /// written by slices may have one run more a seam than the same word written serially,
 /// and reads the same, module for module.
-class CompactWord::Slice {
+// On cache lines of its own: slices side by side in an array are written module by module
+// by different threads (without it, two threads took longer on the signal than one).
+class alignas(64) CompactWord::Slice {
  public:
   /// A slice of the word that starts with the birth table of `from`, the word it copies
   /// modules from (their birth indices stay valid).

@@ -315,7 +315,7 @@ TEST(ParallelRewrite, ALimitIsReportedAsTheSerialPassReportsIt) {
 // first large word, the compact pass writes it in one pass and asks the limits on the way
 // (every 2^16 modules), so the step that passes maxCells is refused there, in the middle
 // of the word; the limit is then reported as the records' serial pass reports it, on one
-// thread and on two (where each slice writes a part of its own, and asks for its share).
+// thread and on two (by slices, refused after counting).
 TEST(ParallelRewrite, ALimitPassedInTheMiddleOfAOnePassWordIsReportedAsTheSerialPassReportsIt) {
   auto program = testing_support::compileOrFail("lsystem g {\n  axiom a\n  ∅ < a -> b a\n  a -> a a\n  b -> b\n}\n");
   ASSERT_NE(program, nullptr);
