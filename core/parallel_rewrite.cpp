@@ -465,7 +465,7 @@ struct SerialOut {
 // Cells [begin, end) of `word` through `out`: a slice counting or writing, or the next word
 // on one thread. The counting pass chooses but hashes nothing: new successors are named by
 // their event (CompactWord::Slice::appendBorn) until the writing pass computes their
-// lineage. `stop(modules)` is asked every 2^16 cells whether to give up.
+// lineage. `stop(counts so far)` is asked every 2^16 cells whether to give up.
 template <class Out, class Labels, class Stop>
 ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& word, size_t begin, size_t end,
                                                              double horizon, int group, const Labels& labels, Out& out,
@@ -542,7 +542,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   // is cheap, and writing in place beats appending (Koch: 72 against 81 ms).
   if (threads == 1 && (size < kMinimumCells || (anyChoiceVaries_ && lastGrowth_.modules > 0))) {
     if (size >= kMinimumCells)
-      next.reserve(lastGrowth_.room(size, lastGrowth_.modules), lastGrowth_.room(word.runCount(), lastGrowth_.runs), 0);
+      next.reserve(Growth::room(size, lastGrowth_.modules), Growth::room(word.runCount(), lastGrowth_.runs), 0);
     SerialOut out{next};
     bool refused = false;
     auto stop = [&](const CompactCounts& sofar) {

@@ -64,8 +64,7 @@ class ParallelRewrite {
 
   /// Says, after the counting pass of rewriteCompact, whether the next word may be
   /// written: its modules, the events and the cells born (false: rewriteCompact writes
-  /// nothing, so the caller can take a pass that reports the limit). Several threads may
-  /// ask at once.
+  /// nothing, so the caller can take a pass that reports the limit).
   using CompactFits = std::function<bool(uint64_t modules, uint64_t events, uint64_t born)>;
 
   /// The pass of rewriteAtInstant on a compact word (docs/COMPACT_WORDS.md), on `threads`
@@ -160,12 +159,12 @@ class ParallelRewrite {
   static constexpr size_t kPositionItems = 4;
   static constexpr int32_t kAnyLabel = -1, kEndLabel = -2, kNoMatch = -3;
   LabelRule labelRule(const Program& program, uint32_t master, const CompiledRule& rule) const;
-  /// Whether `choice`'s context matches around cell i of a plain word whose label at j
-  /// is labels[j] (j below size).
   /// rewriteCompact's work on cells [begin, end) of `word`, written through `out`.
   template <class Out, class Labels, class Stop>
   CompactCounts rewriteRange(const CompactWord& word, size_t begin, size_t end, double horizon, int group,
                              const Labels& labels, Out& out, const Stop& stop, double& soonest) const;
+  /// Whether `choice`'s context matches around cell i of a plain word whose label at j
+  /// is labels[j] (j below size).
   template <class Labels>
   [[gnu::always_inline]] static bool matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice,
                                                        size_t i);

@@ -129,8 +129,8 @@ TEST(Determinism, OneHashPerModelWhateverTheThreadsAndFrames) {
 // ---- Every kind of successor, pinned by value before the linear pool's storage moves
 // (docs/COMPACT_WORDS.md, section 7, slice 0). The seven cases above leave some of what a
 // compact word must reproduce unpinned: parents, `me` in per-step rules, birth ages, `<<`,
-// rules of more than 254 successors (once the largest k a compact run held), and the words the rewriting by slices
-// writes with state. These hash each cell's parent id as well.
+// rules of more than 254 successors (once the largest k a compact run held), and the words
+// the rewriting by slices writes with state. These hash each cell's parent id as well.
 
 // Repeats `label` `count` times, separated by spaces.
 std::string repeated(const std::string& label, int count) {
