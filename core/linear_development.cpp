@@ -110,9 +110,10 @@ void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
 }
 
 // What a module of the next compact word may take at most, for the memory limit before
-// it is written: a two-byte label, a run of its own (14 bytes), its bitmap bit and its
-// share of the block index (10 bytes a block of 64).
-constexpr uint64_t kCompactModuleBound = 17;
+// it is written: a two-byte label, a run of its own (14 bytes) with its first k in the
+// table of wide k (8 bytes), its bitmap bit and its share of the block index (10 bytes a
+// block of 64).
+constexpr uint64_t kCompactModuleBound = 25;
 
 void LinearDevelopment::expireCompact(double t, double t1) {
   const double horizon = t1 + timeTolerance(t1);

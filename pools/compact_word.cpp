@@ -21,7 +21,8 @@ CompactWord::CompactWord(std::vector<uint32_t> stateCounts) : stateCounts_(std::
 size_t CompactWord::bytes() const {
   return labels8_.size() + labels16_.size() * sizeof(uint16_t) + runStarts_.size() * sizeof(uint64_t) +
          (blockRuns_.size() + blockValues_.size()) * sizeof(uint32_t) + blockJ_.size() * sizeof(uint16_t) +
-         keys_.size() * (sizeof(uint64_t) + sizeof(uint32_t) + sizeof(uint16_t)) + births_.size() * sizeof(double) +
+         keys_.size() * (sizeof(uint64_t) + sizeof(uint32_t) + sizeof(uint16_t)) + wideK_.size() * sizeof(WideK) +
+         births_.size() * sizeof(double) +
          values_.size() * sizeof(double);
 }
 
@@ -36,6 +37,7 @@ void CompactWord::clear() {
   keys_.clear();
   birthIndex_.clear();
   firstK_.clear();
+  wideK_.clear();
   values_.clear();
   tail_ = RunTail{};
   runJ_ = 0;
@@ -103,6 +105,61 @@ void CompactWord::finish() {
   births_ = std::move(renumbered);
 }
 
+void CompactWord::appendWord(const CompactWord& part, size_t sharedBirths) {
+  if (!values_.empty() || !part.values_.empty())
+    throw std::logic_error("ontogen: internal error: a part of a compact word with state values");
+  if (part.stateCounts_ != stateCounts_)
+    throw std::logic_error("ontogen: internal error: a part of a compact word of other labels");
+  if (sharedBirths > part.births_.size() || sharedBirths > births_.size())
+    throw std::logic_error("ontogen: internal error: a part of a compact word that does not share the births");
+  if (part.empty()) return;
+  const size_t base = size_, n = part.size_, runsBefore = keys_.size();
+  if (runsBefore + part.keys_.size() >= UINT32_MAX) throw std::length_error("ontogen: a linear word with 2^32 runs");
+  // The part's own births, where this word's table has them or added to it.
+  std::vector<uint32_t> ownBirth;
+  for (size_t b = sharedBirths; b < part.births_.size(); ++b) ownBirth.push_back(addBirth(part.births_[b]));
+  keys_.insert(keys_.end(), part.keys_.begin(), part.keys_.end());
+  firstK_.insert(firstK_.end(), part.firstK_.begin(), part.firstK_.end());
+  for (const WideK& wide : part.wideK_) addWideK(runsBefore + wide.run, wide.k);
+  for (const uint32_t index : part.birthIndex_)
+    birthIndex_.push_back(index < sharedBirths ? index : ownBirth[index - sharedBirths]);
+  if (wide_)
+    labels16_.insert(labels16_.end(), part.labels16_.begin(), part.labels16_.end());
+  else
+    labels8_.insert(labels8_.end(), part.labels8_.begin(), part.labels8_.end());
+  // The part's run-start bits from its module `from` on, 64 of them (none past its end).
+  auto bitsFrom = [&](size_t from) {
+    const size_t word = from / kBlock;
+    const unsigned shift = from % kBlock;
+    uint64_t bits = part.runStarts_[word] >> shift;
+    if (shift != 0 && word + 1 < part.runStarts_.size()) bits |= part.runStarts_[word + 1] << (kBlock - shift);
+    const size_t left = n - from;
+    return left >= kBlock ? bits : bits & ((uint64_t{1} << left) - 1);
+  };
+  // The modules up to the end of this word's last block, then a block at a time.
+  size_t at = 0, starts = 0, lastStart = base;  // the part's module 0 starts a run
+  if (base % kBlock != 0) {
+    const uint64_t bits = bitsFrom(0) & (~uint64_t{0} >> (base % kBlock));
+    runStarts_.back() |= bits << (base % kBlock);
+    starts = static_cast<size_t>(std::popcount(bits));
+    lastStart = base + (kBlock - 1 - static_cast<size_t>(std::countl_zero(bits)));
+    at = kBlock - base % kBlock;
+  }
+  for (; at < n; at += kBlock) {
+    const uint64_t bits = bitsFrom(at);
+    const size_t first = base + at;
+    runStarts_.push_back(bits);
+    blockRuns_.push_back(static_cast<uint32_t>(runsBefore + starts));
+    blockJ_.push_back(static_cast<uint16_t>(bits & 1u ? 0 : first - lastStart));
+    if (!stateless_) blockValues_.push_back(0);  // neither word has values
+    starts += static_cast<size_t>(std::popcount(bits));
+    if (bits != 0) lastStart = first + (kBlock - 1 - static_cast<size_t>(std::countl_zero(bits)));
+  }
+  size_ += n;
+  tail_ = part.tail_;
+  runJ_ = part.runJ_;
+}
+
 void CompactWord::beginSlices(std::span<Slice> slices) {
   size_t modules = 0, values = 0, runs = 0;
   for (const Slice& slice : slices) {
@@ -142,6 +199,7 @@ void CompactWord::beginSlices(std::span<Slice> slices) {
     slice.runJ_ = 0;
     slice.tail_ = RunTail{};
     slice.births_.clear();
+    slice.wideK_.clear();
     slice.sharedWords_.clear();
     slice.bitsWord_ = SIZE_MAX;
     slice.out_ = {
@@ -161,6 +219,8 @@ void CompactWord::joinSlices(std::span<Slice> slices) {
     births_.insert(births_.end(), slice.births_.begin(), slice.births_.end());
   }
   if (births_.size() >= Slice::kNewBirth) throw std::length_error("ontogen: a linear word with 2^31 birth times");
+  for (const Slice& slice : slices)
+    for (const WideK& wide : slice.wideK_) addWideK(slice.firstRun_ + wide.run, wide.k);
   // A word two slices share holds the run starts of both: cleared, then joined.
   for (const Slice& slice : slices)
     for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] = 0;
@@ -224,6 +284,19 @@ CompactWord::Place CompactWord::locate(size_t i) const {
     place.value = value;
   }
   return place;
+}
+
+void CompactWord::addWideK(size_t run, uint32_t k) {
+  if (run >= UINT32_MAX) throw std::length_error("ontogen: a linear word with 2^32 runs");
+  wideK_.push_back({static_cast<uint32_t>(run), k});
+}
+
+uint32_t CompactWord::wideK(size_t run) const {
+  const auto at = std::lower_bound(wideK_.begin(), wideK_.end(), run,
+                                   [](const WideK& wide, size_t r) { return wide.run < r; });
+  if (at == wideK_.end() || at->run != run)
+    throw std::logic_error("ontogen: internal error: a run of a compact word marked for a wide k it does not have");
+  return at->k;
 }
 
 CellView CompactWord::cellAt(size_t i) const {

@@ -4,8 +4,9 @@
 //  - a label stream: one byte per module, two when there are more than 256 labels;
 //  - runs: stretches of consecutive modules born in one event. A run holds its lineage
 //    key, its birth (an index into a table of distinct birth times) and the successor
-//    number k of its first module; the j-th module of the run has the id
-//    mixKey(key, firstK + j), exactly the id core/successors.h gives it;
+//    number k of its first module, in two bytes (a k from 65534 on in a table of wide k
+//    beside the runs); the j-th module of the run has the id mixKey(key, firstK + j),
+//    exactly the id core/successors.h gives it;
 //  - a run-start bitmap, one bit a module, and a block index (runs and state values
 //    before each block of 64 modules, and the place in its run of the block's first
 //    module), so module i is found in constant time;
@@ -13,9 +14,10 @@
 // Koch's word takes 4.02 bytes a module this way, Thue-Morse's 8.22.
 //
 // A writer appends modules in word order; it extends the last run when the module has
-// the same key and birth and the next k (below 65535), and starts a run otherwise, so the
-// encoding of a word written serially is canonical. An id whose k is 65535 or more, or
-// one that cannot be written as (key, k) at all, is kept whole in a run of its own.
+// the same key and birth and the next k, unless that k is a multiple of 65536, and starts
+// a run otherwise, so the encoding of a word written serially is canonical, and a run
+// holds at most 65536 modules (its place j fits in two bytes). An id that cannot be
+// written as (key, k) is kept whole in a run of its own.
 
 #include <algorithm>
 #include <bit>
@@ -46,7 +48,8 @@ class CompactWordCursor;
 
 /// The canonical rule every writer and counter of a compact word applies: a module
 /// continues the run of the module before it when both have (key, k) ids with the same
-/// key and the next k, and the same birth bits.
+/// key and the next k, that k is not a multiple of 65536, and the births have the same
+/// bits.
 ///
 /// A writer by slices names the new successors of an event by the event instead of by
 /// their lineage key (continuesFresh), so that it can count its runs before it computes
@@ -56,15 +59,9 @@ class CompactWordCursor;
 /// 2^64 a module.
 class RunTail {
  public:
-  /// `key` with a k past what a run stores kept whole instead.
-  static constexpr IdKey normalised(IdKey key, uint32_t largestK) {
-    return key.k != IdKey::kWhole && key.k > largestK ? IdKey::whole(key.id()) : key;
-  }
-  /// Whether the module (`key` normalised) continues the last module's run; it becomes
-  /// the last module.
+  /// Whether the module continues the last module's run; it becomes the last module.
   bool continues(IdKey key, double birth) { return continuesAs(key.key, false, key.k, birth); }
-  /// The same for the k-th new successor (k below kWhole, normalised) of the event named
-  /// `event`.
+  /// The same for the k-th new successor (k below kWhole) of the event named `event`.
   bool continuesFresh(uint64_t event, uint32_t k, double birth) { return continuesAs(event, true, k, birth); }
   /// The tail after the successors 1 .. n of the event named `event` went by one by one
   /// with continuesFresh: the first started a run (no module before has k = 0 and the
@@ -81,7 +78,7 @@ class RunTail {
   bool continuesAs(uint64_t identity, bool fresh, uint32_t k, double birth) {
     const uint64_t bits = std::bit_cast<uint64_t>(birth);
     const bool continues = any_ && k != IdKey::kWhole && lastK_ != IdKey::kWhole && identity == last_ &&
-                           fresh == lastFresh_ && k == lastK_ + 1 && bits == lastBirth_;
+                           fresh == lastFresh_ && k == lastK_ + 1 && (k & 0xFFFFu) != 0 && bits == lastBirth_;
     any_ = true;
     last_ = identity;
     lastFresh_ = fresh;
@@ -99,10 +96,12 @@ class RunTail {
 
 class CompactWord {
  public:
-  /// The largest k a run stores (two bytes; 65535 marks a run whose one id is kept
-  /// whole). Two bytes rather than one keep an axiom's ids in runs (its module i has k = i)
-  /// and so a renewed axiom's modules: a signal along 100,000 modules takes 2 runs, not
-  /// 100,000. Koch pays 1 byte a run, 0.2 a module.
+  /// The most modules appendRun and appendFreshRun write at once. A run's first k takes
+  /// two bytes up to 65533 (65534 marks a k in the table of wide k, 65535 a run whose one
+  /// id is kept whole). Two bytes rather than one keep the ids of an axiom (its module i
+  /// has k = i) in runs of 65536 with few entries in the wide table, and so its renewed
+  /// modules: a signal along 100,000 modules takes 2 runs. Koch pays 1 byte a run, 0.2 a
+  /// module.
   static constexpr uint32_t kLargestRunK = 65534;
   /// Modules per block of the index: one 64-bit word of the run-start bitmap.
   static constexpr size_t kBlock = 64;
@@ -141,7 +140,6 @@ class CompactWord {
   /// births()[birthIndex], and the label's state count of values from `values`.
   /// Inline: a single-pass rewrite calls it for every module.
   void append(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
-    key = RunTail::normalised(key, kLargestRunK);
     const uint32_t count = stateless_ ? 0 : stateCounts_[label];
     const size_t i = size_;
     if (i % kBlock == 0) [[unlikely]]
@@ -150,7 +148,9 @@ class CompactWord {
       runStarts_.back() |= uint64_t{1} << (i % kBlock);
       keys_.push_back(key.key);
       birthIndex_.push_back(birthIndex);
-      firstK_.push_back(key.k == IdKey::kWhole ? kWholeMark : static_cast<uint16_t>(key.k));
+      firstK_.push_back(storedK(key.k));
+      if (key.k != IdKey::kWhole && key.k >= kWideMark) [[unlikely]]
+        addWideK(keys_.size() - 1, key.k);
       runJ_ = 0;
     } else {
       ++runJ_;
@@ -192,6 +192,14 @@ class CompactWord {
   /// entries no run uses and duplicates, once it holds more than max(64, 2 x runs).
   void finish();
 
+  /// Appends the modules of `part`, a word without state values written serially from
+  /// a clearWithBirthsOf of a word whose first `sharedBirths` births this word shares
+  /// (the word both copy from): labels and runs copied, the bitmap shifted into place,
+  /// the block index made for the blocks it starts, the part's own births added to the
+  /// table. The part's first module starts a run, as at a seam between slices. Not
+  /// finished: call finish() after the last part.
+  void appendWord(const CompactWord& part, size_t sharedBirths);
+
   // --- Writing by slices (each thread a slice of the word, as core/parallel_rewrite.h
   // writes the next word): every slice counts, then beginSlices sizes the word and places
   // the slices by prefix sums, each slice writes in place, and endSlices joins the seams.
@@ -219,6 +227,7 @@ class CompactWord {
   std::span<const double> values() const { return values_; }
   std::span<double> values() { return values_; }
   uint32_t stateCount(uint32_t label) const { return stateCounts_[label]; }
+  const std::vector<uint32_t>& stateCounts() const { return stateCounts_; }
 
   /// Where module i sits: its run, its place j in the run and its first state value.
   struct Place {
@@ -231,8 +240,18 @@ class CompactWord {
   Place locate(size_t i) const;
 
   IdKey keyOf(size_t run, uint32_t j) const {
-    return firstK_[run] == kWholeMark ? IdKey::whole(keys_[run]) : IdKey{keys_[run], firstK_[run] + j};
+    const uint32_t first = firstKOf(run);
+    return first == IdKey::kWhole ? IdKey::whole(keys_[run]) : IdKey{keys_[run], first + j};
   }
+  /// The k of the run's first module, or IdKey::kWhole for a run whose one id is whole.
+  uint32_t firstKOf(size_t run) const {
+    const uint16_t first = firstK_[run];
+    if (first < kWideMark) [[likely]]
+      return first;
+    return first == kWholeMark ? IdKey::kWhole : wideK(run);
+  }
+  /// Runs whose first k is in the table of wide k.
+  size_t wideKCount() const { return wideK_.size(); }
   uint32_t birthIndex(size_t run) const { return birthIndex_[run]; }
   double birthOf(size_t run) const { return births_[birthIndex_[run]]; }
 
@@ -244,6 +263,18 @@ class CompactWord {
  private:
   friend class CompactWordCursor;
   static constexpr uint16_t kWholeMark = 0xFFFF;
+  static constexpr uint16_t kWideMark = 0xFFFE;
+  // A run whose first k takes more than two bytes (from kWideMark on), in run order.
+  struct WideK {
+    uint32_t run;
+    uint32_t k;
+  };
+  static constexpr uint16_t storedK(uint32_t k) {
+    return k == IdKey::kWhole ? kWholeMark : k >= kWideMark ? kWideMark : static_cast<uint16_t>(k);
+  }
+  void addWideK(size_t run, uint32_t k);
+  /// The first k of a run marked kWideMark: a binary search of the table.
+  uint32_t wideK(size_t run) const;
 
   bool startsRun(size_t i) const { return (runStarts_[i / kBlock] >> (i % kBlock)) & 1u; }
   /// Where the next new birth of a writer goes: one of the last few of `births` whose bits
@@ -267,7 +298,8 @@ class CompactWord {
   LargeVector<uint16_t> blockJ_;       // the place in its run of each block's first module
   LargeVector<uint64_t> keys_;         // per run: lineage key, or the whole id
   LargeVector<uint32_t> birthIndex_;   // per run: index into births_
-  LargeVector<uint16_t> firstK_;       // per run: k of its first module, or kWholeMark
+  LargeVector<uint16_t> firstK_;       // per run: k of its first module, kWideMark or kWholeMark
+  std::vector<WideK> wideK_;           // the first k of the runs marked kWideMark
   std::vector<double> births_;         // distinct birth times, exact
   LargeVector<double> values_;
   RunTail tail_;       // the last module appended serially
@@ -303,14 +335,12 @@ class alignas(64) CompactWord::Slice {
   bool writing() const { return word_ != nullptr; }
   /// A module with id `key`, born at `birth` (a birth the slice may have to add to the table).
   [[gnu::always_inline]] void append(uint32_t label, IdKey key, double birth, const double* values) {
-    key = RunTail::normalised(key, kLargestRunK);
     const bool continues = tail_.continues(key, birth);
     if (!word_) return count(label, continues);
     put(label, key, continues, newBirth(birth), values);
   }
   /// A module copied from `from` with its birth index there.
   [[gnu::always_inline]] void appendCopy(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
-    key = RunTail::normalised(key, kLargestRunK);
     const bool continues = tail_.continues(key, from_->births_[birthIndex]);
     if (!word_) return count(label, continues);
     put(label, key, continues, birthIndex, values);
@@ -320,8 +350,6 @@ class alignas(64) CompactWord::Slice {
   /// counts without the lineage key: pass any while counting.
   [[gnu::always_inline]] void appendBorn(uint32_t label, uint64_t event, uint64_t lineage, uint32_t k, double birth,
                                          const double* values) {
-    if (k > kLargestRunK) [[unlikely]]
-      return append(label, word_ ? IdKey::whole(mixKey(lineage, k)) : IdKey::whole(0), birth, values);
     const bool continues = tail_.continuesFresh(event, k, birth);
     if (!word_) return count(label, continues);
     put(label, IdKey{lineage, k}, continues, newBirth(birth), values);
@@ -397,7 +425,9 @@ class alignas(64) CompactWord::Slice {
       // The word holds the runs the slice counted (beginSlices): no capacity to check.
       out_.keys[runs_] = key.key;
       out_.birthIndex[runs_] = birthIndex;
-      out_.firstK[runs_] = key.k == IdKey::kWhole ? kWholeMark : static_cast<uint16_t>(key.k);
+      out_.firstK[runs_] = storedK(key.k);
+      if (key.k != IdKey::kWhole && key.k >= kWideMark) [[unlikely]]
+        wideK_.push_back({static_cast<uint32_t>(runs_), key.k});
       ++runs_;
       runJ_ = 0;
     } else {
@@ -427,6 +457,7 @@ class alignas(64) CompactWord::Slice {
   uint32_t runJ_ = 0;                                  // the last module's place in its run
   RunTail tail_;
   std::vector<double> births_;  // new births, in order of first use
+  std::vector<WideK> wideK_;    // the slice's runs of wide k, numbered from its first run
   uint32_t lastBorn_ = 0;       // index in births_ of the last new birth appended
   struct {
     uint8_t* labels8 = nullptr;
@@ -495,9 +526,7 @@ class CompactWordCursor {
   const double* state() const { return word_->values_.data() + value_; }
   double birth() const { return runBirth_; }
   uint32_t birthIndex() const { return runBirthIndex_; }
-  IdKey key() const {
-    return runFirstK_ == CompactWord::kWholeMark ? IdKey::whole(runKey_) : IdKey{runKey_, runFirstK_ + j_};
-  }
+  IdKey key() const { return runFirstK_ == IdKey::kWhole ? IdKey::whole(runKey_) : IdKey{runKey_, runFirstK_ + j_}; }
   uint64_t id() const { return key().id(); }
   /// Where the module's values start in the word's values.
   size_t stateOffset() const { return value_; }
@@ -511,6 +540,8 @@ class CompactWordCursor {
   void loadRun() {
     runKey_ = keys_[run_];
     runFirstK_ = firstK_[run_];
+    if (runFirstK_ >= CompactWord::kWideMark) [[unlikely]]
+      runFirstK_ = word_->firstKOf(run_);
     runBirthIndex_ = birthIndex_[run_];
     runBirth_ = births_[runBirthIndex_];
   }

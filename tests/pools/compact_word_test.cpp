@@ -64,10 +64,10 @@ TEST(CompactWord, ASuccessorsEventIsOneRunAndTheIdsAreTheLineages) {
   EXPECT_EQ(word.cellAt(3).id, mixKey(lineage, 4));
 }
 
-TEST(CompactWord, IdsPastTheLargestRunKAreKeptWholeAndStillEqualTheLineages) {
-  // A production of 65,580 successors: k 1 to 65,534 make one run (1,024 blocks of the
-  // index, so module i far into it is found by its block's place in the run), 65,535 to
-  // 65,580 one run each.
+TEST(CompactWord, IdsPastTwoBytesOfKTakeTheWideTableAndStillEqualTheLineages) {
+  // A production of 65,580 successors: k 1 to 65,535 make one run (1,024 blocks of the
+  // index, so module i far into it is found by its block's place in the run), 65,536 to
+  // 65,580 another, whose first k is in the table of wide k.
   static_assert(CompactWord::kLargestRunK == 65534);
   constexpr uint32_t kSuccessors = CompactWord::kLargestRunK + 46;
   CompactWord word({0, 0});
@@ -80,17 +80,31 @@ TEST(CompactWord, IdsPastTheLargestRunKAreKeptWholeAndStillEqualTheLineages) {
   // A module that keeps a whole id (`me` of a module whose id was kept whole).
   word.append(0, IdKey::whole(mixKey(lineage, kSuccessors)), 1.0, nullptr);
   expected.push_back({0, IdKey::whole(mixKey(lineage, kSuccessors)), 1.0, {}});
-  EXPECT_EQ(word.runCount(), 1u + 46u + 1u);
+  EXPECT_EQ(word.runCount(), 3u);
+  EXPECT_EQ(word.wideKCount(), 1u);
   expectWordReadsAs(word, expected);
   EXPECT_EQ(word.cellAt(kSuccessors - 1).id, mixKey(lineage, kSuccessors));
   EXPECT_EQ(word.cellAt(kSuccessors).id, mixKey(lineage, kSuccessors));
   EXPECT_EQ(word.cellAt(65000).id, mixKey(lineage, 65001));
+  EXPECT_EQ(word.cellAt(65535).id, mixKey(lineage, 65536));
+
+  // An axiom's ids (k = i) past 2^16 and 2^17: a run for each 65,536, one wide entry for
+  // each run after the first.
+  CompactWord axiom({0});
+  std::vector<Expected> axiomExpected;
+  for (uint32_t k = 0; k < 150'000; ++k) {
+    axiom.append(0, {17, k}, 0.0, nullptr);
+    axiomExpected.push_back({0, {17, k}, 0.0, {}});
+  }
+  EXPECT_EQ(axiom.runCount(), 3u);
+  EXPECT_EQ(axiom.wideKCount(), 2u);
+  expectWordReadsAs(axiom, axiomExpected);
 }
 
 TEST(CompactWord, LocateAgreesWithTheCursorOnARandomWordWithState) {
   // Runs of every length up to 300 (so they cross several blocks), some starting near the
-  // largest k a run holds, whole ids, labels with 0 to 3 values, births that differ only
-  // in sign (0.0 and -0.0 are distinct).
+  // largest k two bytes hold or near 2^20 and 2^32 (in the table of wide k), whole ids,
+  // labels with 0 to 3 values, births that differ only in sign (0.0 and -0.0 are distinct).
   const std::vector<uint32_t> stateCounts{0, 1, 3, 0, 2};
   CompactWord word(stateCounts);
   std::mt19937_64 random(20261202);
@@ -101,15 +115,13 @@ TEST(CompactWord, LocateAgreesWithTheCursorOnARandomWordWithState) {
   while (expected.size() < 60000) {
     const uint64_t key = random();
     const bool whole = random() % 16 == 0;
-    const uint32_t firstK =
-        static_cast<uint32_t>(random() % 4 ? random() % 255 : CompactWord::kLargestRunK - random() % 300);
+    const uint32_t near[] = {CompactWord::kLargestRunK, uint32_t{1} << 20, uint32_t{0xFFFF0000}};
+    const uint32_t firstK = static_cast<uint32_t>(random() % 4 ? random() % 255 : near[random() % 3] - random() % 300);
     const size_t length = whole ? 1 : 1 + random() % 300;
     const double birth = births[random() % 5];
-    // The canonical rule: a run ends at kLargestRunK, and a run of whole ids holds one module.
-    runs += whole
-                ? 1
-                : 1 + (firstK + length - 1 > CompactWord::kLargestRunK ? firstK + length - 1 - CompactWord::kLargestRunK
-                                                                       : 0);
+    // The canonical rule: a run ends before a k that is a multiple of 65536, and a run of
+    // whole ids holds one module.
+    runs += whole ? 1 : 1 + ((firstK + length - 1) >> 16) - (firstK >> 16);
     for (size_t j = 0; j < length; ++j) {
       const uint32_t label = static_cast<uint32_t>(random() % stateCounts.size());
       Expected module{label, whole ? IdKey::whole(key) : IdKey{key, firstK + static_cast<uint32_t>(j)}, birth, {}};
@@ -221,17 +233,20 @@ TEST(CompactWord, AWordWrittenBySlicesReadsAsTheSerialOne) {
   CompactWord old(stateCounts);
   std::mt19937_64 random(7);
   double value = 0.0;
-  // The old word: runs of 1 to 20, births 0 to 3.
+  // The old word: runs of 1 to 20, births 0 to 3, one in eight with ids past two bytes
+  // of k (in the table of wide k, some crossing a multiple of 65536).
   while (old.size() < 5000) {
     const uint64_t key = random();
     const size_t length = 1 + random() % 20;
     const double birth = static_cast<double>(random() % 4);
+    const uint32_t firstK = random() % 8 ? 0 : random() % 2 ? 65530 : (uint32_t{1} << 20) - 10;
     for (uint32_t k = 0; k < length; ++k) {
       const uint32_t label = static_cast<uint32_t>(random() % 3);
       const double values[] = {value += 1, value += 1};
-      old.append(label, {key, k}, birth, values);
+      old.append(label, {key, firstK + k}, birth, values);
     }
   }
+  EXPECT_GT(old.wideKCount(), 50u);
   old.finish();
   // The next word: label 1 expands into a run of 3 born at 4.0, or of 300 (ids past 254)
   // for one module in 500; the others are copied. Each module i of the old word makes
@@ -403,6 +418,72 @@ TEST(CompactWord, AnEventsRunWrittenAtOnceReadsAsItsModulesOneByOne) {
       runs.push_back(bySlices.runCount());
     }
     EXPECT_EQ(runs[0], runs[1]);
+  }
+}
+
+// Parts of a word written each on its own (as the slices of a rewrite whose choices vary)
+// and joined with appendWord read as the word written in one piece: cuts anywhere in a
+// bitmap word, on its edges, parts shorter than a block or empty, runs as long as a run
+// goes crossing blocks; births the parts add themselves are found in the table.
+TEST(CompactWord, PartsJoinedReadAsTheWordWrittenInOnePiece) {
+  const std::vector<uint32_t> stateCounts{0, 0, 0};
+  CompactWord old(stateCounts);
+  std::mt19937_64 random(5);
+  while (old.size() < 9000) {
+    const uint64_t key = random();
+    const size_t length = random() % 50 == 0 ? 3000 : 1 + random() % 20;
+    const double birth = static_cast<double>(random() % 4);
+    const uint32_t firstK = random() % 4 ? 0 : 65530;  // some in the table of wide k
+    for (uint32_t k = 0; k < length; ++k) old.append(random() % 3, {key, firstK + k}, birth, nullptr);
+  }
+  old.finish();
+  // Module i: copied, or renewed at a birth of its own (5 + i % 3), or, for label 2, a run
+  // of 1 to 100 new successors born at 4.
+  auto emit = [&](size_t i, CompactWord& to, std::vector<Expected>* expected) {
+    const CompactWord::Place place = old.locate(i);
+    const IdKey key = old.keyOf(place.run, place.j);
+    const uint32_t label = old.label(i);
+    if (label == 0) {
+      to.append(label, key, old.birthIndex(place.run), nullptr);
+      if (expected) expected->push_back({label, key, old.birthOf(place.run), {}});
+    } else if (label == 1) {
+      const double birth = 5.0 + static_cast<double>(i % 3);
+      to.append(label, key, birth, nullptr);
+      if (expected) expected->push_back({label, key, birth, {}});
+    } else {
+      const uint64_t lineage = mixKey(key.id(), keyOf(4.0));
+      for (uint32_t k = 1; k <= 1 + i % 100; ++k) {
+        to.append(static_cast<uint32_t>(k % 3), {lineage, k}, 4.0, nullptr);
+        if (expected) expected->push_back({k % 3, {lineage, k}, 4.0, {}});
+      }
+    }
+  };
+  std::vector<Expected> expected;
+  CompactWord whole(stateCounts);
+  whole.clearWithBirthsOf(old);
+  for (size_t i = 0; i < old.size(); ++i) emit(i, whole, &expected);
+  whole.finish();
+  expectWordReadsAs(whole, expected);
+
+  const std::vector<std::vector<size_t>> cutsOfEachTry{
+      {0, old.size()}, {0, 4500, old.size()}, {0, 1, 2, 63, 64, 64, 65, 128, 191, 1000, 7000, old.size()}};
+  for (const std::vector<size_t>& cuts : cutsOfEachTry) {
+    SCOPED_TRACE(std::to_string(cuts.size() - 1) + " parts");
+    CompactWord joined(stateCounts);
+    joined.clearWithBirthsOf(old);
+    size_t runs = 0;
+    for (size_t s = 0; s + 1 < cuts.size(); ++s) {
+      CompactWord part(stateCounts);
+      part.clearWithBirthsOf(old);
+      for (size_t i = cuts[s]; i < cuts[s + 1]; ++i) emit(i, part, nullptr);
+      runs += part.runCount();
+      joined.appendWord(part, old.birthCount());
+    }
+    joined.finish();
+    expectWordReadsAs(joined, expected);
+    EXPECT_EQ(joined.runCount(), runs);
+    EXPECT_LE(joined.runCount(), whole.runCount() + cuts.size() - 2);
+    EXPECT_LE(joined.birthCount(), old.birthCount() + 4);  // 4.0 to 7.0, each added once
   }
 }
 
