@@ -127,10 +127,10 @@ void LinearDevelopment::expireCompact(double t, double t1) {
     const unsigned threads = size < ParallelRewrite::kMinimumCells ? 1 : std::max(1u, context_->threads);
     // The serial pass stops where a limit is passed and says so: a word that would pass
     // one is left to it.
-    auto fits = [&](uint64_t modules, uint64_t events, uint64_t) {
+    auto fits = [&](uint64_t modules, uint64_t events, uint64_t, uint64_t heldModules) {
       if (eventsThisStep_ + events > context_->limits.maxEventsPerStep) return false;
       try {
-        checkGrowth(*context_, modules, pool_.bytes() + modules * kCompactModuleBound);
+        checkGrowth(*context_, modules, pool_.bytes() + heldModules * kCompactModuleBound);
       } catch (const LimitError&) {
         return false;
       }

@@ -62,10 +62,13 @@ class ParallelRewrite {
   /// derives backward.
   bool appliesToCompactWords() const { return allLabelsOnly_ && plain_ && atInstants_ && allByPosition_; }
 
-  /// Says, after the counting pass of rewriteCompact, whether the next word may be
-  /// written: its modules, the events and the cells born (false: rewriteCompact writes
-  /// nothing, so the caller can take a pass that reports the limit).
-  using CompactFits = std::function<bool(uint64_t modules, uint64_t events, uint64_t born)>;
+  /// Says whether the next word may be written, or go on being written: its modules, the
+  /// events and the cells born, so far or in all, and the modules whose bytes are held
+  /// meanwhile (more than `modules` where parts of the word are written apart and then
+  /// copied into it). False: rewriteCompact gives the word up, so the caller can take a
+  /// pass that reports the limit. Asked with growing figures, it must not refuse less
+  /// figures than it accepted; it may be asked from several threads at once.
+  using CompactFits = std::function<bool(uint64_t modules, uint64_t events, uint64_t born, uint64_t heldModules)>;
 
   /// The pass of rewriteAtInstant on a compact word (docs/COMPACT_WORDS.md), on `threads`
   /// threads by slices (CompactWord::Slice): writes `next` from `word`. Every cell whose
@@ -159,6 +162,10 @@ class ParallelRewrite {
   static constexpr size_t kPositionItems = 4;
   static constexpr int32_t kAnyLabel = -1, kEndLabel = -2, kNoMatch = -3;
   LabelRule labelRule(const Program& program, uint32_t master, const CompiledRule& rule) const;
+  /// rewriteCompact on several threads for a word whose choices vary: each thread writes
+  /// its share in one pass, the shares after the first into parts_, copied after it.
+  std::optional<CompactCounts> rewriteInParts(const CompactWord& word, double horizon, int group, unsigned threads,
+                                              CompactWord& next, const CompactFits& fits);
   /// rewriteCompact's work on cells [begin, end) of `word`, written through `out`.
   template <class Out, class Labels, class Stop>
   CompactCounts rewriteRange(const CompactWord& word, size_t begin, size_t end, double horizon, int group,
@@ -195,6 +202,13 @@ class ParallelRewrite {
   FunctionTable functions_;
   std::vector<Slice> slices_;
   std::vector<CompactWord::Slice> compactSlices_;
+  // Parts of a word whose choices vary, written each by a thread of its own and copied
+  // into the next word; kept from step to step. On cache lines of their own: a writer
+  // updates its word's size and tail module by module.
+  struct alignas(64) Part {
+    CompactWord word;
+  };
+  std::vector<Part> parts_;
   std::vector<double> lifetimes_;  // per master, for rewriteCompact (MasterCell is large)
   // How much the last compact rewrite grew its word (next / old), modules and runs; 0:
   // none yet. The one-thread pass reserves by it.
