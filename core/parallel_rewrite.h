@@ -163,7 +163,7 @@ class ParallelRewrite {
   static constexpr int32_t kAnyLabel = -1, kEndLabel = -2, kNoMatch = -3;
   LabelRule labelRule(const Program& program, uint32_t master, const CompiledRule& rule) const;
   /// rewriteCompact on several threads for a word whose choices vary: each thread writes
-  /// its share in one pass, the shares after the first into parts_, copied after it.
+  /// its share in one pass into a part of parts_, then copies it into the next word.
   std::optional<CompactCounts> rewriteInParts(const CompactWord& word, double horizon, int group, unsigned threads,
                                               CompactWord& next, const CompactFits& fits);
   /// rewriteCompact's work on cells [begin, end) of `word`, written through `out`.
@@ -203,13 +203,14 @@ class ParallelRewrite {
   std::vector<Slice> slices_;
   std::vector<CompactWord::Slice> compactSlices_;
   // Parts of a word whose choices vary, written each by a thread of its own and copied
-  // into the next word; kept from step to step. On cache lines of their own: a writer
+  // into the next word by it; kept from step to step. On cache lines of their own: a writer
   // updates its word's size and tail module by module.
   struct alignas(64) Part {
     CompactWord word;
   };
   std::vector<Part> parts_;
-  std::vector<double> lifetimes_;  // per master, for rewriteCompact (MasterCell is large)
+  std::vector<CompactWord::PartPlace> partPlaces_;  // where parts_ go in the next word
+  std::vector<double> lifetimes_;                   // per master, for rewriteCompact (MasterCell is large)
   // How much the last compact rewrite grew its word (next / old), modules and runs; 0:
   // none yet. The one-thread pass reserves by it.
   struct Growth {

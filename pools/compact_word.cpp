@@ -22,8 +22,7 @@ size_t CompactWord::bytes() const {
   return labels8_.size() + labels16_.size() * sizeof(uint16_t) + runStarts_.size() * sizeof(uint64_t) +
          (blockRuns_.size() + blockValues_.size()) * sizeof(uint32_t) + blockJ_.size() * sizeof(uint16_t) +
          keys_.size() * (sizeof(uint64_t) + sizeof(uint32_t) + sizeof(uint16_t)) + wideK_.size() * sizeof(WideK) +
-         births_.size() * sizeof(double) +
-         values_.size() * sizeof(double);
+         births_.size() * sizeof(double) + values_.size() * sizeof(double);
 }
 
 void CompactWord::clear() {
@@ -106,27 +105,59 @@ void CompactWord::finish() {
 }
 
 void CompactWord::appendWord(const CompactWord& part, size_t sharedBirths) {
-  if (!values_.empty() || !part.values_.empty())
-    throw std::logic_error("ontogen: internal error: a part of a compact word with state values");
-  if (part.stateCounts_ != stateCounts_)
-    throw std::logic_error("ontogen: internal error: a part of a compact word of other labels");
-  if (sharedBirths > part.births_.size() || sharedBirths > births_.size())
-    throw std::logic_error("ontogen: internal error: a part of a compact word that does not share the births");
-  if (part.empty()) return;
-  const size_t base = size_, n = part.size_, runsBefore = keys_.size();
-  if (runsBefore + part.keys_.size() >= UINT32_MAX) throw std::length_error("ontogen: a linear word with 2^32 runs");
-  // The part's own births, where this word's table has them or added to it.
-  std::vector<uint32_t> ownBirth;
-  for (size_t b = sharedBirths; b < part.births_.size(); ++b) ownBirth.push_back(addBirth(part.births_[b]));
-  keys_.insert(keys_.end(), part.keys_.begin(), part.keys_.end());
-  firstK_.insert(firstK_.end(), part.firstK_.begin(), part.firstK_.end());
-  for (const WideK& wide : part.wideK_) addWideK(runsBefore + wide.run, wide.k);
+  PartPlace place;
+  place.part = &part;
+  placeParts({&place, 1}, sharedBirths);
+  copyPart(place, sharedBirths);
+  endParts({&place, 1});
+}
+
+void CompactWord::placeParts(std::span<PartPlace> places, size_t sharedBirths) {
+  size_t modules = size_, runs = keys_.size();
+  for (PartPlace& place : places) {
+    const CompactWord& part = *place.part;
+    if (!values_.empty() || !part.values_.empty())
+      throw std::logic_error("ontogen: internal error: a part of a compact word with state values");
+    if (part.stateCounts_ != stateCounts_)
+      throw std::logic_error("ontogen: internal error: a part of a compact word of other labels");
+    if (sharedBirths > part.births_.size() || sharedBirths > births_.size())
+      throw std::logic_error("ontogen: internal error: a part of a compact word that does not share the births");
+    place.firstModule = modules;
+    place.firstRun = runs;
+    modules += part.size_;
+    runs += part.keys_.size();
+    // The part's own births, where this word's table has them or added to it.
+    place.births.clear();
+    for (size_t b = sharedBirths; b < part.births_.size(); ++b) place.births.push_back(addBirth(part.births_[b]));
+    place.sharedWords.clear();
+  }
+  if (runs >= UINT32_MAX) throw std::length_error("ontogen: a linear word with 2^32 runs");
+  writtenBlocks_ = runStarts_.size();
+  size_ = modules;
+  (wide_ ? resizeForOverwrite(labels16_, modules) : resizeForOverwrite(labels8_, modules));
+  const size_t blocks = (modules + kBlock - 1) / kBlock;
+  resizeForOverwrite(runStarts_, blocks);
+  resizeForOverwrite(blockRuns_, blocks);
+  resizeForOverwrite(blockJ_, blocks);
+  if (!stateless_) resizeForOverwrite(blockValues_, blocks);
+  resizeForOverwrite(keys_, runs);
+  resizeForOverwrite(birthIndex_, runs);
+  resizeForOverwrite(firstK_, runs);
+}
+
+void CompactWord::copyPart(PartPlace& place, size_t sharedBirths) {
+  const CompactWord& part = *place.part;
+  const size_t base = place.firstModule, n = part.size_, runsBefore = place.firstRun;
+  if (n == 0) return;
+  std::copy(part.keys_.begin(), part.keys_.end(), keys_.begin() + static_cast<ptrdiff_t>(runsBefore));
+  std::copy(part.firstK_.begin(), part.firstK_.end(), firstK_.begin() + static_cast<ptrdiff_t>(runsBefore));
+  uint32_t* birthIndex = birthIndex_.data() + runsBefore;
   for (const uint32_t index : part.birthIndex_)
-    birthIndex_.push_back(index < sharedBirths ? index : ownBirth[index - sharedBirths]);
+    *birthIndex++ = index < sharedBirths ? index : place.births[index - sharedBirths];
   if (wide_)
-    labels16_.insert(labels16_.end(), part.labels16_.begin(), part.labels16_.end());
+    std::copy(part.labels16_.begin(), part.labels16_.end(), labels16_.begin() + static_cast<ptrdiff_t>(base));
   else
-    labels8_.insert(labels8_.end(), part.labels8_.begin(), part.labels8_.end());
+    std::copy(part.labels8_.begin(), part.labels8_.end(), labels8_.begin() + static_cast<ptrdiff_t>(base));
   // The part's run-start bits from its module `from` on, 64 of them (none past its end).
   auto bitsFrom = [&](size_t from) {
     const size_t word = from / kBlock;
@@ -136,28 +167,46 @@ void CompactWord::appendWord(const CompactWord& part, size_t sharedBirths) {
     const size_t left = n - from;
     return left >= kBlock ? bits : bits & ((uint64_t{1} << left) - 1);
   };
-  // The modules up to the end of this word's last block, then a block at a time.
+  // The modules up to the end of the block the part starts in, then a block at a time.
+  // Bitmap words the part shares with a neighbour are joined by endParts.
   size_t at = 0, starts = 0, lastStart = base;  // the part's module 0 starts a run
   if (base % kBlock != 0) {
     const uint64_t bits = bitsFrom(0) & (~uint64_t{0} >> (base % kBlock));
-    runStarts_.back() |= bits << (base % kBlock);
+    place.sharedWords.emplace_back(base / kBlock, bits << (base % kBlock));
     starts = static_cast<size_t>(std::popcount(bits));
     lastStart = base + (kBlock - 1 - static_cast<size_t>(std::countl_zero(bits)));
     at = kBlock - base % kBlock;
   }
   for (; at < n; at += kBlock) {
     const uint64_t bits = bitsFrom(at);
-    const size_t first = base + at;
-    runStarts_.push_back(bits);
-    blockRuns_.push_back(static_cast<uint32_t>(runsBefore + starts));
-    blockJ_.push_back(static_cast<uint16_t>(bits & 1u ? 0 : first - lastStart));
-    if (!stateless_) blockValues_.push_back(0);  // neither word has values
+    const size_t first = base + at, block = first / kBlock;
+    if (at + kBlock <= n)
+      runStarts_[block] = bits;
+    else
+      place.sharedWords.emplace_back(block, bits);
+    blockRuns_[block] = static_cast<uint32_t>(runsBefore + starts);
+    blockJ_[block] = static_cast<uint16_t>(bits & 1u ? 0 : first - lastStart);
+    if (!stateless_) blockValues_[block] = 0;  // neither word has values
     starts += static_cast<size_t>(std::popcount(bits));
     if (bits != 0) lastStart = first + (kBlock - 1 - static_cast<size_t>(std::countl_zero(bits)));
   }
-  size_ += n;
-  tail_ = part.tail_;
-  runJ_ = part.runJ_;
+}
+
+void CompactWord::endParts(std::span<PartPlace> places) {
+  // A shared word this word held before the parts keeps its bits; the others are
+  // cleared, then joined.
+  for (const PartPlace& place : places)
+    for (const auto& [word, bits] : place.sharedWords)
+      if (word >= writtenBlocks_) runStarts_[word] = 0;
+  for (const PartPlace& place : places)
+    for (const auto& [word, bits] : place.sharedWords) runStarts_[word] |= bits;
+  for (const PartPlace& place : places) {
+    for (const WideK& wide : place.part->wideK_) addWideK(place.firstRun + wide.run, wide.k);
+    if (!place.part->empty()) {
+      tail_ = place.part->tail_;
+      runJ_ = place.part->runJ_;
+    }
+  }
 }
 
 void CompactWord::beginSlices(std::span<Slice> slices) {
@@ -292,8 +341,8 @@ void CompactWord::addWideK(size_t run, uint32_t k) {
 }
 
 uint32_t CompactWord::wideK(size_t run) const {
-  const auto at = std::lower_bound(wideK_.begin(), wideK_.end(), run,
-                                   [](const WideK& wide, size_t r) { return wide.run < r; });
+  const auto at =
+      std::lower_bound(wideK_.begin(), wideK_.end(), run, [](const WideK& wide, size_t r) { return wide.run < r; });
   if (at == wideK_.end() || at->run != run)
     throw std::logic_error("ontogen: internal error: a run of a compact word marked for a wide k it does not have");
   return at->k;

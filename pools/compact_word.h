@@ -199,6 +199,20 @@ class CompactWord {
   /// table. The part's first module starts a run, as at a seam between slices. Not
   /// finished: call finish() after the last part.
   void appendWord(const CompactWord& part, size_t sharedBirths);
+  /// appendWord for several parts at once, each copied on a thread of its own:
+  /// placeParts (one thread) sizes the word for all of them and says where each goes,
+  /// copyPart (any thread, each part once) copies one, endParts (one thread) joins the
+  /// bitmap words parts share and takes the last part's tail. A part copied by the thread
+  /// that wrote it, and that will read it at the next rewrite, stays in that core's cache.
+  struct PartPlace {
+    const CompactWord* part = nullptr;
+    size_t firstModule = 0, firstRun = 0;
+    std::vector<uint32_t> births;                          // the part's own births here
+    std::vector<std::pair<size_t, uint64_t>> sharedWords;  // bitmap words it shares
+  };
+  void placeParts(std::span<PartPlace> places, size_t sharedBirths);
+  void copyPart(PartPlace& place, size_t sharedBirths);
+  void endParts(std::span<PartPlace> places);
 
   // --- Writing by slices (each thread a slice of the word, as core/parallel_rewrite.h
   // writes the next word): every slice counts, then beginSlices sizes the word and places
@@ -302,8 +316,9 @@ class CompactWord {
   std::vector<WideK> wideK_;           // the first k of the runs marked kWideMark
   std::vector<double> births_;         // distinct birth times, exact
   LargeVector<double> values_;
-  RunTail tail_;       // the last module appended serially
-  uint32_t runJ_ = 0;  // its place in its run
+  RunTail tail_;              // the last module appended serially
+  uint32_t runJ_ = 0;         // its place in its run
+  size_t writtenBlocks_ = 0;  // bitmap words written before placeParts
 };
 
 /// One slice of a word written by slices. Before CompactWord::beginSlices the slice

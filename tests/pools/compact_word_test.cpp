@@ -484,6 +484,26 @@ TEST(CompactWord, PartsJoinedReadAsTheWordWrittenInOnePiece) {
     EXPECT_EQ(joined.runCount(), runs);
     EXPECT_LE(joined.runCount(), whole.runCount() + cuts.size() - 2);
     EXPECT_LE(joined.birthCount(), old.birthCount() + 4);  // 4.0 to 7.0, each added once
+
+    // The same parts placed at once and copied in reverse order, as threads may copy
+    // them, after a first part written into the word itself (the engine's first thread).
+    CompactWord atOnce(stateCounts);
+    atOnce.clearWithBirthsOf(old);
+    for (size_t i = cuts[0]; i < cuts[1]; ++i) emit(i, atOnce, nullptr);
+    std::vector<CompactWord> parts;
+    for (size_t s = 1; s + 1 < cuts.size(); ++s) {
+      parts.emplace_back(stateCounts);
+      parts.back().clearWithBirthsOf(old);
+      for (size_t i = cuts[s]; i < cuts[s + 1]; ++i) emit(i, parts.back(), nullptr);
+    }
+    std::vector<CompactWord::PartPlace> places(parts.size());
+    for (size_t p = 0; p < parts.size(); ++p) places[p].part = &parts[p];
+    atOnce.placeParts(places, old.birthCount());
+    for (size_t p = places.size(); p-- > 0;) atOnce.copyPart(places[p], old.birthCount());
+    atOnce.endParts(places);
+    atOnce.finish();
+    expectWordReadsAs(atOnce, expected);
+    EXPECT_EQ(atOnce.runCount(), runs);
   }
 }
 
