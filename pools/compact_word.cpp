@@ -104,6 +104,20 @@ void CompactWord::finish() {
   births_ = std::move(renumbered);
 }
 
+void CompactWord::resizeForWriters(size_t modules, size_t runs, size_t values) {
+  size_ = modules;
+  (wide_ ? resizeForOverwrite(labels16_, modules) : resizeForOverwrite(labels8_, modules));
+  const size_t blocks = (modules + kBlock - 1) / kBlock;
+  resizeForOverwrite(runStarts_, blocks);
+  resizeForOverwrite(blockRuns_, blocks);
+  resizeForOverwrite(blockJ_, blocks);
+  if (!stateless_) resizeForOverwrite(blockValues_, blocks);
+  resizeForOverwrite(keys_, runs);
+  resizeForOverwrite(birthIndex_, runs);
+  resizeForOverwrite(firstK_, runs);
+  resizeForOverwrite(values_, values);
+}
+
 void CompactWord::appendWord(const CompactWord& part, size_t sharedBirths) {
   PartPlace place;
   place.part = &part;
@@ -133,16 +147,7 @@ void CompactWord::placeParts(std::span<PartPlace> places, size_t sharedBirths) {
   }
   if (runs >= UINT32_MAX) throw std::length_error("ontogen: a linear word with 2^32 runs");
   writtenBlocks_ = runStarts_.size();
-  size_ = modules;
-  (wide_ ? resizeForOverwrite(labels16_, modules) : resizeForOverwrite(labels8_, modules));
-  const size_t blocks = (modules + kBlock - 1) / kBlock;
-  resizeForOverwrite(runStarts_, blocks);
-  resizeForOverwrite(blockRuns_, blocks);
-  resizeForOverwrite(blockJ_, blocks);
-  if (!stateless_) resizeForOverwrite(blockValues_, blocks);
-  resizeForOverwrite(keys_, runs);
-  resizeForOverwrite(birthIndex_, runs);
-  resizeForOverwrite(firstK_, runs);
+  resizeForWriters(modules, runs, 0);
 }
 
 void CompactWord::copyPart(PartPlace& place, size_t sharedBirths) {
@@ -224,17 +229,7 @@ void CompactWord::beginSlices(std::span<Slice> slices) {
   std::vector<double> births = std::move(births_);
   clear();
   births_ = std::move(births);
-  size_ = modules;
-  (wide_ ? resizeForOverwrite(labels16_, modules) : resizeForOverwrite(labels8_, modules));
-  const size_t blocks = (modules + kBlock - 1) / kBlock;
-  resizeForOverwrite(runStarts_, blocks);
-  resizeForOverwrite(blockRuns_, blocks);
-  resizeForOverwrite(blockJ_, blocks);
-  if (!stateless_) resizeForOverwrite(blockValues_, blocks);
-  resizeForOverwrite(keys_, runs);
-  resizeForOverwrite(birthIndex_, runs);
-  resizeForOverwrite(firstK_, runs);
-  resizeForOverwrite(values_, values);
+  resizeForWriters(modules, runs, values);
   size_t module = 0, value = 0, run = 0;
   for (Slice& slice : slices) {
     slice.word_ = this;

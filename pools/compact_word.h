@@ -295,6 +295,9 @@ class CompactWord {
   /// match, or a new entry.
   static size_t birthIndexIn(std::vector<double>& births, double birth);
   uint32_t addBirth(double birth);
+  /// Sizes the arrays for `modules`, `runs` and `values`, what is already there kept and
+  /// the rest left unwritten, for writers that fill them in place (slices, parts).
+  void resizeForWriters(size_t modules, size_t runs, size_t values);
   /// A new block of the index at the next module; checks the 32-bit limits of the block
   /// index, once a block.
   void startBlock();
