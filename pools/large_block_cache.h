@@ -7,9 +7,14 @@
 // similar size (the next step's word, the next run of a world in a sweep or a studio),
 // which then starts on memory that is already mapped.
 //
-// Blocks are aligned to 2 MiB and marked for transparent huge pages (madvise), which cuts
-// the page faults 512-fold where the kernel allows it ("madvise" or "always"); elsewhere
-// the hint is ignored. All functions are thread-safe.
+// Blocks of 2 MiB and more are aligned to 2 MiB and marked for transparent huge pages
+// (madvise), which cuts the page faults 512-fold where the kernel allows it ("madvise" or
+// "always"); elsewhere the hint is ignored. Blocks from 64 KiB up to 2 MiB are kept too,
+// in sizes of powers of two: glibc maps such blocks of its own (past its mmap threshold)
+// and unmaps them when they are freed, or trims them off the top of its heap, so the
+// arrays of a word of some ten thousand to a few hundred thousand modules were faulted
+// in again at every step (Koch to n = 10: 72 against 52 ms on one thread, 43 against 27
+// on two). All functions are thread-safe.
 
 #include <cstddef>
 #include <cstdint>
@@ -17,13 +22,16 @@
 namespace ontogen {
 
 inline constexpr size_t kLargePageBytes = size_t{2} << 20;
+/// The smallest block the cache keeps.
+inline constexpr size_t kCachedBlockBytes = size_t{64} << 10;
 
 /// The most bytes the cache keeps, beyond what is in use: 1 GiB.
 inline constexpr uint64_t kLargeBlockCacheBytes = uint64_t{1} << 30;
 
-/// A block of at least `bytes` (≥ kLargePageBytes), aligned to kLargePageBytes: a kept one
-/// of a size between `bytes` and twice it when there is one, else fresh memory. Throws
-/// std::bad_alloc (after giving back what the cache held) when there is none.
+/// A block of at least `bytes` (≥ kCachedBlockBytes): a kept one of a size between `bytes`
+/// and twice it when there is one, else fresh memory; aligned to kLargePageBytes from that
+/// size on, to 64 bytes below it. Throws std::bad_alloc (after giving back what the cache
+/// held) when there is none.
 void* acquireLargeBlock(size_t bytes);
 
 /// Gives a block of acquireLargeBlock back, to be kept while the budget allows.
@@ -33,9 +41,9 @@ void releaseLargeBlock(void* block) noexcept;
 void trimLargeBlockCache() noexcept;
 
 struct LargeBlockCacheStats {
-  uint64_t keptBytes = 0;   ///< held for reuse now
-  uint64_t reused = 0;      ///< acquisitions served by a kept block
-  uint64_t fresh = 0;       ///< acquisitions that took fresh memory
+  uint64_t keptBytes = 0;  ///< held for reuse now
+  uint64_t reused = 0;     ///< acquisitions served by a kept block
+  uint64_t fresh = 0;      ///< acquisitions that took fresh memory
 };
 LargeBlockCacheStats largeBlockCacheStats() noexcept;
 

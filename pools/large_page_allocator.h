@@ -1,7 +1,7 @@
 #pragma once
-// An allocator for the pools' big arrays: blocks of 2 MiB and more come from, and go
-// back to, the large block cache (pools/large_block_cache.h): aligned, marked for huge
-// pages, and kept for the next array instead of being faulted in again.
+// An allocator for the pools' big arrays: blocks of 64 KiB and more come from, and go
+// back to, the large block cache (pools/large_block_cache.h): aligned, from 2 MiB on
+// marked for huge pages, and kept for the next array instead of being faulted in again.
 
 #include <cstddef>
 #include <new>
@@ -30,12 +30,12 @@ class LargePageAllocator {
   T* allocate(size_t count) {
     if (count > static_cast<size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
     const size_t bytes = count * sizeof(T);
-    if (bytes < kLargePageBytes) return static_cast<T*>(::operator new(bytes));
+    if (bytes < kCachedBlockBytes) return static_cast<T*>(::operator new(bytes));
     return static_cast<T*>(acquireLargeBlock(bytes));
   }
 
   void deallocate(T* block, size_t count) noexcept {
-    if (count * sizeof(T) < kLargePageBytes)
+    if (count * sizeof(T) < kCachedBlockBytes)
       ::operator delete(block);
     else
       releaseLargeBlock(block);

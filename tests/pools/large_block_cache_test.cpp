@@ -35,6 +35,32 @@ TEST(LargeBlockCache, ABlockGivenBackServesTheNextArrayOfASimilarSize) {
   EXPECT_EQ(largeBlockCacheStats().keptBytes, 0u);
 }
 
+// Blocks below 2 MiB, which glibc would map and unmap each time, are kept in powers of
+// two: a 300 KiB block is 512 KiB, and serves the next array of 256 to 512 KiB.
+TEST(LargeBlockCache, AMidSizeBlockGivenBackServesTheNextArrayOfASimilarSize) {
+  trimLargeBlockCache();
+  const LargeBlockCacheStats before = largeBlockCacheStats();
+  void* first = acquireLargeBlock(300 << 10);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(first) % 64, 0u);
+  releaseLargeBlock(first);
+  EXPECT_EQ(largeBlockCacheStats().keptBytes, size_t{512} << 10);
+  void* second = acquireLargeBlock(400 << 10);
+  EXPECT_EQ(second, first);
+  releaseLargeBlock(second);
+  void* smaller = acquireLargeBlock(100 << 10);  // 128 KiB: the kept block would waste too much
+  EXPECT_NE(smaller, first);
+  EXPECT_EQ(largeBlockCacheStats().reused, before.reused + 1);
+  EXPECT_EQ(largeBlockCacheStats().fresh, before.fresh + 2);
+  releaseLargeBlock(smaller);
+  // A fresh block gives back the kept ones smaller than itself: sizes a growing word has
+  // left behind (the 512 KiB and 128 KiB blocks), not the peak's.
+  EXPECT_EQ(largeBlockCacheStats().keptBytes, size_t{640} << 10);
+  void* large = acquireLargeBlock(4 * kMiB);
+  EXPECT_EQ(largeBlockCacheStats().keptBytes, 0u);
+  releaseLargeBlock(large);
+  trimLargeBlockCache();
+}
+
 TEST(LargeBlockCache, KeepsNoMoreThanItsBudget) {
   trimLargeBlockCache();
   // Blocks that are never touched cost address space only.
@@ -57,6 +83,13 @@ TEST(LargeBlockCache, TheNextWorldsArraysReuseTheLastOnesMemory) {
   EXPECT_EQ(again.data(), firstData);
   CellArray small(1000);  // below the block size: ordinary memory
   EXPECT_NE(small.data(), firstData);
+  const CellRecord* midData = nullptr;
+  {
+    CellArray mid(20'000);  // 480 KB: kept as a block of 512 KiB
+    midData = mid.data();
+  }
+  CellArray midAgain(15'000);
+  EXPECT_EQ(midAgain.data(), midData);
 }
 
 }  // namespace
