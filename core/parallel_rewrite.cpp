@@ -445,6 +445,23 @@ inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByPosition(const
 }
 
 namespace {
+// Calls `work(labels)` with `word`'s labels read the quickest way.
+template <class Work>
+auto withLabelsOf(const CompactWord& word, const Work& work) {
+  return word.wideLabels() ? work(CompactLabels{word}) : work(ByteLabels{word.labels8().data()});
+}
+
+// Calls `work(i)` for i in [0, count), each index on one of `threads` threads.
+template <class Work>
+void forEachIndex(size_t count, unsigned threads, const Work& work) {
+  parallelFor(
+      count, threads,
+      [&](size_t begin, size_t end, unsigned) {
+        for (size_t i = begin; i < end; ++i) work(i);
+      },
+      1);
+}
+
 // The next word itself as the output of rewriteCompact's one pass on one thread, with the
 // calls of a CompactWord::Slice.
 struct SerialOut {
@@ -527,10 +544,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     throw std::logic_error("ontogen: internal error: a compact rewrite of a word whose rules are not label-only");
   const size_t size = word.size();
   threads = std::max(threads, 1u);
-  // Calls `work(labels)` with the word's labels read the quickest way.
-  auto withLabels = [&](const auto& work) {
-    return word.wideLabels() ? work(CompactLabels{word}) : work(ByteLabels{word.labels8().data()});
-  };
+  auto withLabels = [&](const auto& work) { return withLabelsOf(word, work); };
   next.clearWithBirthsOf(word);
   earliestDeath_ = kForever;
 
@@ -568,14 +582,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     return rewriteInParts(word, horizon, group, threads, next, fits);
 
   const size_t sliceCount = std::max<size_t>(1, std::min<size_t>(size, size_t{threads} * kSlicesPerThread));
-  auto everySlice = [&](const auto& work) {
-    parallelFor(
-        sliceCount, threads,
-        [&](size_t begin, size_t end, unsigned) {
-          for (size_t s = begin; s < end; ++s) work(s);
-        },
-        1);
-  };
+  auto everySlice = [&](const auto& work) { forEachIndex(sliceCount, threads, work); };
 
   // Several threads, or a large word counted first: every slice counts, then writes in
   // place (CompactWord::Slice).
@@ -658,24 +665,18 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteInParts(co
       const uint64_t allModules = modulesSoFar.fetch_add(modules) + modules;
       const uint64_t allEvents = eventsSoFar.fetch_add(events) + events;
       const uint64_t allBorn = bornSoFar.fetch_add(born) + born;
-      if (refused.load(std::memory_order_relaxed)) return true;
-      if (fits && !fits(allModules, allEvents, allBorn, 2 * allModules)) refused.store(true, std::memory_order_relaxed);
+      if (!refused.load(std::memory_order_relaxed) && fits && !fits(allModules, allEvents, allBorn, 2 * allModules))
+        refused.store(true, std::memory_order_relaxed);
       return refused.load(std::memory_order_relaxed);
     };
     SerialOut serial{out};
     double soonest = kForever;
-    counted[p] =
-        word.wideLabels()
-            ? rewriteRange(word, begin, end, horizon, group, CompactLabels{word}, serial, stop, soonest)
-            : rewriteRange(word, begin, end, horizon, group, ByteLabels{word.labels8().data()}, serial, stop, soonest);
+    counted[p] = withLabelsOf(word, [&](const auto& labels) {
+      return rewriteRange(word, begin, end, horizon, group, labels, serial, stop, soonest);
+    });
     earliest[p] = soonest;
   };
-  parallelFor(
-      partCount, threads,
-      [&](size_t begin, size_t end, unsigned) {
-        for (size_t p = begin; p < end; ++p) writePart(p);
-      },
-      1);
+  forEachIndex(partCount, threads, writePart);
 
   CompactCounts counts;
   uint64_t modules = 0;
@@ -689,12 +690,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteInParts(co
   places.resize(partCount);
   for (size_t p = 0; p < partCount; ++p) places[p].part = &parts_[p].word;
   next.placeParts(places, word.birthCount());
-  parallelFor(
-      partCount, threads,
-      [&](size_t begin, size_t end, unsigned) {
-        for (size_t p = begin; p < end; ++p) next.copyPart(places[p], word.birthCount());
-      },
-      1);
+  forEachIndex(partCount, threads, [&](size_t p) { next.copyPart(places[p], word.birthCount()); });
   next.endParts(places);
   next.finish();
   for (size_t p = 0; p < partCount; ++p) earliestDeath_ = std::min(earliestDeath_, earliest[p]);
