@@ -11,6 +11,7 @@
 #include "core/rule_choice.h"
 #include "core/rule_evaluator.h"
 #include "core/salts.h"
+#include "lang/expression_batch.h"
 #include "lang/random.h"
 #include "pools/large_page_allocator.h"
 
@@ -125,7 +126,33 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     }
     if (master.terminalRules.size() > 1) contextFree_ = false;
     shortestLife_[m] = shortest;
+    evaluatesInBatches_.push_back(!labelsOnly_[m] && evaluatesInBatches(program, master));
+    batchedValues_.push_back(0);
+    if (evaluatesInBatches_[m] && !master.terminalRules.empty())
+      for (const SuccessorTemplate& successor : master.terminalRules.front().successors)
+        if (!successor.isMe && !successor.stateless)
+          batchedValues_[m] += program.masters[successor.master].stateCount();
+    allInBatchesOrLabelsOnly_ = allInBatchesOrLabelsOnly_ && (labelsOnly_[m] || evaluatesInBatches_[m]);
   }
+}
+
+bool ParallelRewrite::evaluatesInBatches(const Program& program, const MasterCell& master) const {
+  if (master.terminalRules.empty()) return true;  // renews itself
+  if (master.terminalRules.size() > 1) return false;
+  const CompiledRule& rule = master.terminalRules.front();
+  if (rule.group != 0 || !rule.predicate.empty() || !rule.probability.empty() || rule.hasContext() ||
+      !rule.aggregates.empty() || !rule.calculations.empty() || !rule.unboundSlots.empty())
+    return false;
+  const int slots = static_cast<int>(frameSize_);
+  for (const SuccessorTemplate& successor : rule.successors) {
+    if (!successor.birthAge.empty()) return false;
+    if (successor.isMe || successor.stateless) continue;
+    const uint32_t count = program.masters[successor.master].stateCount();
+    if (successor.args.size() < count) return false;
+    for (uint32_t j = 0; j < count; ++j)
+      if (!successor.args[j].batchable(slots)) return false;
+  }
+  return true;
 }
 
 bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const {
@@ -296,12 +323,13 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
   double* outValues = state.data();
   uint64_t valueAt = firstValue;
   double earliest = kForever;
+  const double* lifetimes = lifetimes_.data();
   auto put = [&](const CellRecord& record, const double* values, uint32_t count) {
-    earliest = std::min(earliest, record.birth + masters[record.master].lifetime);
+    earliest = std::min(earliest, record.birth + lifetimes[record.master]);
     CellRecord copy = record;
     copy.state = static_cast<uint32_t>(valueAt);
     *outCells++ = copy;
-    std::copy(values, values + count, outValues + valueAt);
+    if (values) std::copy(values, values + count, outValues + valueAt);  // null: written later, by a batch
     valueAt += count;
   };
   auto putModule = [&](const ModuleValue& module, const double* values, uint32_t count) {
@@ -334,6 +362,10 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
       }
       continue;
     }
+    if (pass == Pass::ContextFree && evaluatesInBatches_[cell.master]) {
+      writeBatched(step, cell, at.state(), death, i, worker, outValues, valueAt, put);
+      continue;
+    }
     RandomStream random(mixKey(mixKey(step.context.seed, cell.id), keyOf(death)));
     EvalContext evaluation{frame, EvalEnvironment{&random, step.context.seed}, &functions_, nullptr};
     evaluation.ancestors = step.context.ancestors;
@@ -349,11 +381,89 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
     }
     worker.successors.write(*rule, cell, frame, death, BirthCause::Terminal, evaluation, putModule);
   }
+  for (uint32_t m = 0; m < worker.batches.size(); ++m)
+    if (worker.batches[m].lanes > 0) flushBatch(m, worker.batches[m], step, outValues);
   slice.earliestDeath = earliest;
   // Counting and writing choose alike by construction; a slice that wrote other than it
   // counted is a defect of this file, stopped here rather than left in the word.
   if (outCells != cells.data() + firstCell + slice.cells || valueAt != firstValue + slice.values) [[unlikely]]
     throw std::logic_error("ontogen: internal error: a slice of the parallel rewrite wrote other than it counted");
+}
+
+// As choose() and SuccessorWriter::write do for a rule without choice or calculation: the
+// same records, ids and births, and the same frame for the arguments, evaluated later.
+template <class Put>
+void ParallelRewrite::writeBatched(const Step& step, const CellRecord& cell, const double* state, double death,
+                                   size_t i, Worker& worker, double* outValues, uint64_t& valueAt,
+                                   const Put& put) const {
+  const MasterCell& master = program_.masters[cell.master];
+  const uint32_t n = master.stateCount();
+  const CompiledRule* rule = master.terminalRules.empty() ? nullptr : &master.terminalRules.front();
+  if (!rule || !rule->hasAction) {  // renewed
+    CellRecord renewed = cell;
+    renewed.birth = death;
+    put(renewed, state, n);
+    return;
+  }
+  const uint32_t values = batchedValues_[cell.master];
+  Batch* batch = nullptr;
+  uint64_t* laneValueAt = nullptr;
+  if (values > 0) {
+    if (worker.batches.size() < program_.masters.size()) worker.batches.resize(program_.masters.size());
+    batch = &worker.batches[cell.master];
+    if (batch->frames.empty()) {
+      batch->frames.resize(size_t{CompiledExpression::kBatchLanes} * frameSize_);
+      batch->valueAt.resize(size_t{CompiledExpression::kBatchLanes} * rule->successors.size());
+    }
+    loadCellFrame(batch->frames.data() + size_t(batch->lanes) * frameSize_, master, cell, state, death,
+                  {static_cast<double>(i), 0, 0}, step.parents ? step.parents[i] : -1);
+    laneValueAt = batch->valueAt.data() + size_t(batch->lanes) * rule->successors.size();
+  }
+  const uint64_t lineage = lineageKey(cell.id, death, BirthCause::Terminal);
+  uint32_t k = 0;
+  size_t withValues = 0;
+  for (const SuccessorTemplate& successor : rule->successors) {
+    ++k;
+    if (successor.isMe) {
+      CellRecord me = cell;
+      me.birth = death;
+      put(me, state, n);
+      continue;
+    }
+    ModuleValue made{successor.master, k, death, lineage};
+    if (successor.keepsIdentity) made = ModuleValue{successor.master, ModuleValue::kOwnId, death, cell.id};
+    if (successor.stateless) {
+      put(recordOf(made), nullptr, 0);
+      continue;
+    }
+    laneValueAt[withValues++] = valueAt;
+    put(recordOf(made), nullptr, program_.masters[successor.master].stateCount());
+  }
+  if (batch && ++batch->lanes == CompiledExpression::kBatchLanes) flushBatch(cell.master, *batch, step, outValues);
+}
+
+void ParallelRewrite::flushBatch(uint32_t master, Batch& batch, const Step& step, double* outValues) const {
+  const CompiledRule& rule = program_.masters[master].terminalRules.front();
+  const size_t successors = rule.successors.size();
+  const double* frames = batch.frames.data();
+  const size_t frameSize = frameSize_;
+  auto load = [&](int lane, int slot) { return frames[size_t(lane) * frameSize + size_t(slot)]; };
+  auto noAggregate = [](int, int) { return 0.0; };
+  EvalContext context{nullptr, EvalEnvironment{nullptr, step.context.seed}, &functions_, nullptr};
+  context.ancestors = step.context.ancestors;
+  double out[CompiledExpression::kBatchLanes];
+  size_t withValues = 0;
+  for (const SuccessorTemplate& successor : rule.successors) {
+    if (successor.isMe || successor.stateless) continue;
+    const uint32_t count = program_.masters[successor.master].stateCount();
+    for (uint32_t j = 0; j < count; ++j) {
+      successor.args[j].evaluateBatch(batch.lanes, load, noAggregate, context, out);
+      for (int lane = 0; lane < batch.lanes; ++lane)
+        outValues[batch.valueAt[size_t(lane) * successors + withValues] + j] = out[lane];
+    }
+    ++withValues;
+  }
+  batch.lanes = 0;
 }
 
 bool ParallelRewrite::rewriteContextFree(const LinearPool& pool, double horizon, StepContext& context,
@@ -376,10 +486,10 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
                               StateArray& state) {
   const unsigned threads = context.threads;
   const size_t size = step.pool.size();
-  // On one thread the slices pay where nothing is evaluated (two quick passes beat the
-  // general one); a word with state keeps the serial pass there.
-  if (!context.rewriteBySlices || (threads < 2 && !allLabelsOnly_) || size < kMinimumCells || context.lineage)
-    return false;
+  // On one thread the slices pay where nothing is evaluated cell by cell (two quick
+  // passes beat the general one); other words keep the serial pass there.
+  const bool quickOnOne = allLabelsOnly_ || (pass == Pass::ContextFree && allInBatchesOrLabelsOnly_);
+  if (!context.rewriteBySlices || (threads < 2 && !quickOnOne) || size < kMinimumCells || context.lineage) return false;
   while (workers_.size() < threads) workers_.push_back(std::make_unique<Worker>(program_));
   if (anyChoiceVaries_ && chosen_.size() < size) chosen_.resize(size);
   const size_t sliceCount = std::min<size_t>(size, size_t{threads} * kSlicesPerThread);

@@ -18,9 +18,12 @@
 //    rewritten without loading a frame or a random stream.
 // Neither applies with a cut symbol, with the lineage being logged, or when the new word
 // would pass a limit: then the development takes its serial pass, which reports the
-// limit as it always did. On one thread the slices are taken only when every master
-// compares labels only (Koch, Thue-Morse, a signal): there two quick passes beat the
-// general one; a word with state keeps the serial pass.
+// limit as it always did. On one thread the slices are taken only when nothing is
+// evaluated cell by cell: every master compares labels only (Koch, Thue-Morse, a signal),
+// or, in the context-free pass, each master either compares labels only or has one rule
+// without choice or calculation whose successors' arguments are evaluated for many cells
+// at once (the benchmarks' parametric word). There two quick passes beat the general one;
+// other words with state keep the serial pass.
 
 #include <algorithm>
 #include <cstdint>
@@ -100,12 +103,20 @@ class ParallelRewrite {
     bool chained = false;             // the context-free pass: a successor expires within the step
     double earliestDeath = kForever;  // of the cells it wrote
   };
+  // The cells of one master waiting for their successors' values (evaluateInBatches_):
+  // each lane's frame, and where each of its successors' values go in the next word.
+  struct Batch {
+    int lanes = 0;
+    std::vector<double> frames;     // kBatchLanes frames of frameSize_
+    std::vector<uint64_t> valueAt;  // per lane, per successor with values: its first value
+  };
   struct Worker {
     explicit Worker(const Program& program) : successors(program) {}
     SuccessorWriter successors;
     std::vector<double> frame;
     std::vector<std::pair<const CompiledRule*, double>> candidates;
     uint32_t matched[kMaxContextItems];
+    std::vector<Batch> batches;  // per master, for the context-free pass
   };
   /// What one pass reads besides the word.
   struct Step {
@@ -127,6 +138,15 @@ class ParallelRewrite {
                              RandomStream& random, const EvalContext& evaluation) const;
 
   bool matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const;
+  /// The context-free pass's write of a cell of a master that evaluates in batches: its
+  /// records now, at their places, and its frame in the master's batch, whose values are
+  /// written when it is full (flushBatch) or at the end of the slice.
+  template <class Put>
+  void writeBatched(const Step& step, const CellRecord& cell, const double* state, double death, size_t i,
+                    Worker& worker, double* outValues, uint64_t& valueAt, const Put& put) const;
+  /// Evaluates the successors' arguments of every cell waiting in `batch` (master
+  /// `master`), lane by lane over each argument's code, into `outValues`.
+  void flushBatch(uint32_t master, Batch& batch, const Step& step, double* outValues) const;
 
   const Program& program_;
   const SystemDefinition& system_;
@@ -162,6 +182,8 @@ class ParallelRewrite {
   static constexpr size_t kPositionItems = 4;
   static constexpr int32_t kAnyLabel = -1, kEndLabel = -2, kNoMatch = -3;
   LabelRule labelRule(const Program& program, uint32_t master, const CompiledRule& rule) const;
+  /// Whether the context-free pass evaluates `master`'s successors in batches.
+  bool evaluatesInBatches(const Program& program, const MasterCell& master) const;
   /// rewriteCompact on several threads for a word whose choices vary: each thread writes
   /// its share in one pass into a part of parts_, then copies it into the next word.
   std::optional<CompactCounts> rewriteInParts(const CompactWord& word, double horizon, int group, unsigned threads,
@@ -199,6 +221,14 @@ class ParallelRewrite {
   // pass takes as it is. Left empty when no master's choice varies (Koch, Thue-Morse).
   std::vector<uint16_t> chosen_;
   std::vector<double> shortestLife_;  // per master: the shortest lifetime of what its rule writes
+  // Per master with state and one terminal rule of group 0 without choice, calculation
+  // or birth age whose successors' arguments are straight-line code without a draw
+  // (CompiledExpression::batchable): the context-free pass evaluates those arguments for
+  // kBatchLanes cells at once. With every master so or label-only, the context-free pass
+  // takes the slices on one thread too: nothing is left to evaluate cell by cell.
+  std::vector<uint8_t> evaluatesInBatches_;
+  std::vector<uint32_t> batchedValues_;  // per such master: the values its rule's successors take
+  bool allInBatchesOrLabelsOnly_ = true;
   FunctionTable functions_;
   std::vector<Slice> slices_;
   std::vector<CompactWord::Slice> compactSlices_;
