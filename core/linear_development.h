@@ -85,23 +85,23 @@ class LinearDevelopment final : public Development {
   CellArray work_;                                                  // cells still to expire, last = next
   StateArray workState_;
   uint64_t eventsThisStep_ = 0;
-  uint64_t checkInterval_ = 1;  // cells made between growth checks (growthCheckInterval)
-  uint64_t sinceCheck_ = 0;     // cells made since the last check
-  int activeGroup_ = 0;  // the rule group of the step under way (`use group:`)
+  uint64_t checkInterval_ = 1;    // cells made between growth checks (growthCheckInterval)
+  uint64_t sinceCheck_ = 0;       // cells made since the last check
+  int activeGroup_ = 0;           // the rule group of the step under way (`use group:`)
   std::vector<uint8_t> dropped_;  // a backward pass: the cells a cut leaves out
   void findParents();
   /// The earliest birth + lifetime of the word's cells (kForever for an empty word).
   double earliestDeath();
   /// Whether a cell of the word reaches its terminal age by `horizon`.
   bool anyExpires(double horizon);
-  bool readsParents_ = false;          // some rule reads me.parent
-  std::vector<int64_t> parentIndex_;   // of the word at the start of the pass
-  std::vector<double> parentValues_;   // me.parent of each cell of that word
-  ParallelRewrite parallel_;  // the context-free pass of a large word on every core
+  bool readsParents_ = false;         // some rule reads me.parent
+  std::vector<int64_t> parentIndex_;  // of the word at the start of the pass
+  std::vector<double> parentValues_;  // me.parent of each cell of that word
+  ParallelRewrite parallel_;          // the context-free pass of a large word on every core
   // Whether the word is kept compact between steps: every master's rules compare labels
-  // only (ParallelRewrite::appliesToCompactWords), and no per-step rule, rate or me.parent
-  // needs the records. Steps the compact pass cannot take (lineage logged, slices turned
-  // off, a limit about to be passed) turn the word back into records.
+  // only, without context in a word with brackets (ParallelRewrite::appliesToCompactWords),
+  // and no per-step rule, rate or me.parent needs the records. Steps the compact pass cannot take (lineage logged,
+  // slices turned off, a limit about to be passed) turn the word back into records.
   bool compactWords_ = false;
   CompactWord nextWord_;  // the next compact word is written here, then swapped in
   // The earliest terminal age in the word, for the pool's structure version it was found
@@ -109,9 +109,9 @@ class LinearDevelopment final : public Development {
   double earliestDeath_ = kForever;
   uint64_t earliestVersion_ = UINT64_MAX;
   LinearPoolView view_;
-  RuleEvaluator<LinearPoolView> evaluator_;  // per-step rules; count(), sum(x) ... for terminal rules too
+  RuleEvaluator<LinearPoolView> evaluator_;                // per-step rules; count(), sum(x) ... for terminal rules too
   std::unique_ptr<RateIntegrator<LinearPoolView>> rates_;  // made on the first step that needs it; not copied
-  uint32_t matched_[kMaxContextItems];     // cells matched by the context being tested
+  uint32_t matched_[kMaxContextItems];                     // cells matched by the context being tested
 };
 
 }  // namespace ontogen

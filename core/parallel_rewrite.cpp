@@ -116,6 +116,7 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     for (const CompiledRule& rule : master.terminalRules) {
       if (!rule.newLeft.empty() || !rule.newRight.empty() || !rule.aggregates.empty() || rule.contextDimensions != 1)
         atInstants_ = false;
+      anyContext_ = anyContext_ || rule.hasContext() || !rule.leftItems.empty() || !rule.rightItems.empty();
       if (rule.group != 0 || !rule.predicate.empty() || !rule.probability.empty() || rule.hasContext() ||
           !rule.aggregates.empty())
         contextFree_ = false;

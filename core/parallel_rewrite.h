@@ -59,11 +59,14 @@ class ParallelRewrite {
   bool rewriteAtInstant(const LinearPool& pool, double instant, int group, StepContext& context, const double* parents,
                         uint64_t& events, CellArray& cells, StateArray& state);
 
-  /// Whether rewriteCompact applies: every master's rules compare labels only, give no
-  /// birth age and, with context, compare at most kPositionItems modules a side, in a word
-  /// without brackets, cut or ignored modules, and the system neither decomposes nor
-  /// derives backward.
-  bool appliesToCompactWords() const { return allLabelsOnly_ && plain_ && atInstants_ && allByPosition_; }
+  /// Whether rewriteCompact applies: every master's rules compare labels only and give no
+  /// birth age, the system neither decomposes nor derives backward and has no cut symbol,
+  /// and either no rule has a context (brackets are then labels like any other: a plant's
+  /// F -> F [ + F ] F) or the word has no brackets or ignored modules and every context
+  /// compares at most kPositionItems modules a side.
+  bool appliesToCompactWords() const {
+    return allLabelsOnly_ && atInstants_ && (!anyContext_ || (plain_ && allByPosition_));
+  }
 
   /// Says whether the next word may be written, or go on being written: its modules, the
   /// events and the cells born, so far or in all, and the modules whose bytes are held
@@ -154,6 +157,7 @@ class ParallelRewrite {
   bool atInstants_ = true;
   std::vector<uint8_t> labelsOnly_;  // per master: its rules compare labels only
   bool plain_ = false;               // no symbol is a bracket, a cut or ignored
+  bool anyContext_ = false;          // some terminal rule has a context
   // Per master whose rules compare labels only: its terminal rules in order, with what
   // the choice reads of them side by side.
   struct LabelRule {

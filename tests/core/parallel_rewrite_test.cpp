@@ -111,6 +111,29 @@ TEST(ParallelRewrite, ArgumentsEvaluatedInBatchesEqualTheSerialPass) {
   }
 }
 
+// A plant's bracketed word whose rules have no context (ABOP Fig. 1.24d): brackets are
+// labels like any other, so the word is kept compact, and it reads as the serial pass of
+// records writes it. With a context, brackets change what a neighbour is: records.
+TEST(ParallelRewrite, ABracketedWordWithoutContextIsKeptCompactAsTheSerialPassWritesIt) {
+  auto program =
+      testing_support::compileOrFail("lsystem plant {\n  axiom X\n  X -> F [ + X ] F [ - X ] + X\n  F -> F F\n}\n");
+  ASSERT_NE(program, nullptr);
+  EXPECT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesToCompactWords());
+  const Grown serial = grow(program, 9, 1, false);
+  ASSERT_FALSE(serial.world->rootPool().holdsCompactWord());
+  ASSERT_GT(serial.world->rootPool().size(), 2 * ParallelRewrite::kMinimumCells);
+  for (unsigned threads : {1u, 2u, 3u}) {
+    const Grown compact = grow(program, 9, threads);
+    EXPECT_TRUE(compact.world->rootPool().holdsCompactWord()) << threads << " threads";
+    expectSameWords(*serial.world, *compact.world, std::to_string(threads) + " threads");
+    EXPECT_EQ(compact.stats.events, serial.stats.events);
+    EXPECT_EQ(compact.stats.cellsBorn, serial.stats.cellsBorn);
+  }
+  auto withContext = testing_support::compileOrFail("lsystem c {\n  axiom F [ F ] F\n  F < F -> F F\n}\n");
+  ASSERT_NE(withContext, nullptr);
+  EXPECT_FALSE(ParallelRewrite(*withContext, withContext->systems[withContext->root]).appliesToCompactWords());
+}
+
 TEST(ParallelRewrite, KochOnTwoThreadsIsKochOnOne) {
   auto program = testing_support::compileOrFail(kKoch);
   ASSERT_NE(program, nullptr);
