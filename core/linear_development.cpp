@@ -136,7 +136,7 @@ void LinearDevelopment::expireCompact(double t, double t1) {
       }
       return true;
     };
-    const auto counts = parallel_.rewriteCompact(word, instant, activeGroup_, threads, nextWord_, fits);
+    const auto counts = parallel_.rewriteCompact(word, instant, activeGroup_, threads, nextWord_, fits, context_->seed);
     if (!counts) {
       pool_.storeRecords();
       expireUntil(t, t1);

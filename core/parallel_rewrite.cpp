@@ -28,13 +28,15 @@ bool bindsNothing(const std::vector<ContextBinding>& side) {
   return true;
 }
 
-// Whether a master's rules are chosen by comparing labels alone and write no state.
-bool comparesLabelsOnly(const Program& program, const MasterCell& master) {
+// Whether a master's rules are chosen by comparing labels alone and write no state; with
+// `chances`, rules with constant probabilities count too (a draw then chooses among them).
+bool comparesLabelsOnly(const Program& program, const MasterCell& master, bool chances = false) {
   if (master.stateCount() > 0) return false;
   for (const CompiledRule& rule : master.terminalRules) {
-    if (!rule.predicate.empty() || !rule.probability.empty() || !rule.calculations.empty() ||
-        !rule.aggregates.empty() || !rule.unboundSlots.empty() || !bindsNothing(rule.left) ||
-        !bindsNothing(rule.right) || !bindsNothing(rule.newLeft) || !bindsNothing(rule.newRight))
+    const bool chanceAllowed = rule.probability.empty() || (chances && rule.probability.isConstant());
+    if (!rule.predicate.empty() || !chanceAllowed || !rule.calculations.empty() || !rule.aggregates.empty() ||
+        !rule.unboundSlots.empty() || !bindsNothing(rule.left) || !bindsNothing(rule.right) ||
+        !bindsNothing(rule.newLeft) || !bindsNothing(rule.newRight))
       return false;
     for (const SuccessorTemplate& successor : rule.successors)
       if (!successor.isMe && !(successor.stateless && program.masters[successor.master].stateCount() == 0))
@@ -50,6 +52,9 @@ ParallelRewrite::LabelRule ParallelRewrite::labelRule(const Program& program, ui
   choice.rule = &rule;
   choice.group = rule.group;
   choice.context = rule.hasContext();
+  choice.variant = rule.variant;
+  choice.stochastic = !rule.probability.empty();
+  if (choice.stochastic) choice.chance = rule.probability.constantValue();
   if (rule.hasAction)
     for (const SuccessorTemplate& successor : rule.successors) {
       ++choice.cells;
@@ -101,16 +106,21 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
   for (size_t m = 0; m < program.masters.size(); ++m) {
     const MasterCell& master = program.masters[m];
     labelsOnly_[m] = comparesLabelsOnly(program, master) && master.terminalRules.size() < UINT16_MAX;
+    const bool drawsByLabels = !labelsOnly_[m] && comparesLabelsOnly(program, master, true) &&
+                               std::count_if(master.terminalRules.begin(), master.terminalRules.end(),
+                                             [](const CompiledRule& rule) { return !rule.probability.empty(); }) <=
+                                   static_cast<std::ptrdiff_t>(kMostDrawn);
     std::vector<LabelRule>& choices = labelRules_.emplace_back();
-    if (labelsOnly_[m])
+    if (labelsOnly_[m] || drawsByLabels)
       for (const CompiledRule& rule : master.terminalRules)
         choices.push_back(labelRule(program, static_cast<uint32_t>(m), rule));
     const bool fixed =
         master.terminalRules.empty() || (master.terminalRules.size() == 1 && master.terminalRules.front().group == 0 &&
                                          !master.terminalRules.front().hasContext());
     fixedChoice_.push_back(labelsOnly_[m] && fixed);
-    anyChoiceVaries_ = anyChoiceVaries_ || (labelsOnly_[m] && !fixed);
+    anyChoiceVaries_ = anyChoiceVaries_ || (labelsOnly_[m] && !fixed) || drawsByLabels;
     allLabelsOnly_ = allLabelsOnly_ && labelsOnly_[m];
+    allChooseByLabels_ = allChooseByLabels_ && (labelsOnly_[m] || drawsByLabels);
     for (const LabelRule& choice : choices) allByPosition_ = allByPosition_ && (!choice.context || choice.byPosition);
     double shortest = master.lifetime;  // a renewal
     for (const CompiledRule& rule : master.terminalRules) {
@@ -545,14 +555,53 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
   return true;
 }
 
-template <class Labels>
+template <class Labels, class Draw>
 inline const ParallelRewrite::LabelRule* ParallelRewrite::chooseByPosition(const Labels& labels, size_t size,
-                                                                           uint32_t master, int group, size_t i) const {
-  for (const LabelRule& choice : labelRules_[master]) {
+                                                                           uint32_t master, int group, size_t i,
+                                                                           const Draw& draw) const {
+  const std::vector<LabelRule>& rules = labelRules_[master];
+  for (size_t r = 0; r < rules.size(); ++r) {
+    const LabelRule& choice = rules[r];
     if (choice.group != 0 && choice.group != group) continue;
-    if (!choice.context || matchesByPosition(labels, size, choice, i)) return &choice;
+    if (choice.context && !matchesByPosition(labels, size, choice, i)) continue;
+    if (!choice.stochastic) return &choice;
+    return drawAmong(labels, size, master, group, i, r, draw());
   }
   return nullptr;
+}
+
+// As ontogen::chooseRule draws (core/rule_choice.h): rule r and the later stochastic rules
+// that apply, each once however many of its variants apply, weighted by their chances;
+// `uniform` is the cell's first draw.
+template <class Labels>
+const ParallelRewrite::LabelRule* ParallelRewrite::drawAmong(const Labels& labels, size_t size, uint32_t master,
+                                                             int group, size_t i, size_t r, double uniform) const {
+  const std::vector<LabelRule>& rules = labelRules_[master];
+  auto applies = [&](const LabelRule& choice) {
+    return (choice.group == 0 || choice.group == group) &&
+           (!choice.context || matchesByPosition(labels, size, choice, i));
+  };
+  const LabelRule* candidates[kMostDrawn];
+  double weights[kMostDrawn];
+  size_t count = 0;
+  double total = 0;
+  bool taken = false;
+  for (size_t s = r; s < rules.size(); ++s) {
+    if (s == r || rules[s].variant == 0) taken = false;
+    if (taken || !rules[s].stochastic || (s != r && !applies(rules[s]))) continue;
+    candidates[count] = &rules[s];
+    weights[count] = std::max(0.0, rules[s].chance);
+    total += weights[count];
+    ++count;
+    taken = true;
+  }
+  if (!(total > 0)) return nullptr;
+  double x = uniform * total;
+  for (size_t c = 0; c < count; ++c) {
+    if (x < weights[c]) return candidates[c];
+    x -= weights[c];
+  }
+  return candidates[count - 1];
 }
 
 namespace {
@@ -598,7 +647,7 @@ struct SerialOut {
 template <class Out, class Labels, class Stop>
 ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& word, size_t begin, size_t end,
                                                              double horizon, int group, const Labels& labels, Out& out,
-                                                             const Stop& stop, double& soonest) const {
+                                                             const Stop& stop, double& soonest, uint64_t seed) const {
   const bool writing = out.writing();
   const double* lifetimes = lifetimes_.data();
   const size_t size = word.size();
@@ -619,7 +668,11 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
     }
     ++counts.events;
     const LabelRule* choice =
-        fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index());
+        fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index(), [&] {
+          // The stream the records' passes draw from (LinearDevelopment::expire).
+          RandomStream random(mixKey(mixKey(seed, cell.id()), keyOf(death)));
+          return random.uniform();
+        });
     if (!choice || !choice->rule->hasAction) {  // renewed: the same id, born again
       out.append(label, cell.key(), death, nullptr);
       soonest = std::min(soonest, death + lifetime);
@@ -650,7 +703,7 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
 std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon,
                                                                               int group, unsigned threads,
                                                                               CompactWord& next,
-                                                                              const CompactFits& fits) {
+                                                                              const CompactFits& fits, uint64_t seed) {
   if (!appliesToCompactWords())
     throw std::logic_error("ontogen: internal error: a compact rewrite of a word whose rules are not label-only");
   const size_t size = word.size();
@@ -676,7 +729,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
       return refused;
     };
     const CompactCounts counts = withLabels([&](const auto& labels) {
-      return rewriteRange(word, 0, size, horizon, group, labels, out, stop, earliestDeath_);
+      return rewriteRange(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, seed);
     });
     if (refused || (fits && !fits(next.size(), counts.events, counts.born, next.size()))) {
       next.clear();
@@ -690,7 +743,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   // Several threads, choices that vary with the context (the signal), once the growth of
   // a rewrite is known (parts are reserved by it): counting first would choose twice.
   if (anyChoiceVaries_ && lastGrowth_.modules > 0 && size >= kMinimumCells)
-    return rewriteInParts(word, horizon, group, threads, next, fits);
+    return rewriteInParts(word, horizon, group, threads, next, fits, seed);
 
   const size_t sliceCount = std::max<size_t>(1, std::min<size_t>(size, size_t{threads} * kSlicesPerThread));
   auto everySlice = [&](const auto& work) { forEachIndex(sliceCount, threads, work); };
@@ -709,7 +762,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     double soonest = kForever;
     const CompactCounts counts = withLabels([&](const auto& labels) {
       return rewriteRange(word, size * s / sliceCount, size * (s + 1) / sliceCount, horizon, group, labels, out, never,
-                          soonest);
+                          soonest, seed);
     });
     out.finish();
     if (!writing) counted[s] = counts;
@@ -747,7 +800,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
 std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteInParts(const CompactWord& word, double horizon,
                                                                               int group, unsigned threads,
                                                                               CompactWord& next,
-                                                                              const CompactFits& fits) {
+                                                                              const CompactFits& fits, uint64_t seed) {
   const size_t size = word.size();
   const size_t partCount = threads;
   if (parts_.size() < partCount) parts_.resize(partCount);
@@ -783,7 +836,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteInParts(co
     SerialOut serial{out};
     double soonest = kForever;
     counted[p] = withLabelsOf(word, [&](const auto& labels) {
-      return rewriteRange(word, begin, end, horizon, group, labels, serial, stop, soonest);
+      return rewriteRange(word, begin, end, horizon, group, labels, serial, stop, soonest, seed);
     });
     earliest[p] = soonest;
   };

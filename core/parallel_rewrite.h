@@ -65,7 +65,7 @@ class ParallelRewrite {
   /// F -> F [ + F ] F) or the word has no brackets or ignored modules and every context
   /// compares at most kPositionItems modules a side.
   bool appliesToCompactWords() const {
-    return allLabelsOnly_ && atInstants_ && (!anyContext_ || (plain_ && allByPosition_));
+    return allChooseByLabels_ && atInstants_ && (!anyContext_ || (plain_ && allByPosition_));
   }
 
   /// Says whether the next word may be written, or go on being written: its modules, the
@@ -87,8 +87,10 @@ class ParallelRewrite {
   struct CompactCounts {
     uint64_t events = 0, born = 0;
   };
+  /// `seed` is the run's: a stochastic rule's draw comes from the cell's stream, as in
+  /// the records' passes.
   std::optional<CompactCounts> rewriteCompact(const CompactWord& word, double horizon, int group, unsigned threads,
-                                              CompactWord& next, const CompactFits& fits = {});
+                                              CompactWord& next, const CompactFits& fits = {}, uint64_t seed = 0);
 
   /// The earliest terminal age (birth + lifetime) in the word rewriteAtInstant wrote last,
   /// found while writing it, so the development need not look for it again.
@@ -164,6 +166,11 @@ class ParallelRewrite {
     const CompiledRule* rule = nullptr;
     int group = 0;
     bool context = false;
+    // A stochastic rule: its constant chance, and whether it continues the rule before it
+    // (CompiledRule::variant).
+    bool stochastic = false;
+    double chance = 0;
+    int variant = 0;
     // What the rule writes when it fires: cells, state values and cells born; each
     // successor's label and whether it keeps the cell's id (`me`, `=X`); the shortest
     // lifetime among them.
@@ -191,21 +198,28 @@ class ParallelRewrite {
   /// rewriteCompact on several threads for a word whose choices vary: each thread writes
   /// its share in one pass into a part of parts_, then copies it into the next word.
   std::optional<CompactCounts> rewriteInParts(const CompactWord& word, double horizon, int group, unsigned threads,
-                                              CompactWord& next, const CompactFits& fits);
+                                              CompactWord& next, const CompactFits& fits, uint64_t seed);
   /// rewriteCompact's work on cells [begin, end) of `word`, written through `out`.
   template <class Out, class Labels, class Stop>
   CompactCounts rewriteRange(const CompactWord& word, size_t begin, size_t end, double horizon, int group,
-                             const Labels& labels, Out& out, const Stop& stop, double& soonest) const;
+                             const Labels& labels, Out& out, const Stop& stop, double& soonest, uint64_t seed) const;
   /// Whether `choice`'s context matches around cell i of a plain word whose label at j
   /// is labels[j] (j below size).
   template <class Labels>
   [[gnu::always_inline]] static bool matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice,
                                                        size_t i);
   /// The label-only rule cell i of master `master` chooses at an instant, all of whose
-  /// contexts compare by position (null: it renews itself).
-  template <class Labels>
+  /// contexts compare by position (null: it renews itself). A stochastic rule's choice
+  /// calls `draw()` for the cell's first uniform draw.
+  template <class Labels, class Draw>
   [[gnu::always_inline]] const LabelRule* chooseByPosition(const Labels& labels, size_t size, uint32_t master,
-                                                           int group, size_t i) const;
+                                                           int group, size_t i, const Draw& draw) const;
+  /// The draw among master `master`'s rule r and the later stochastic rules that apply.
+  template <class Labels>
+  const LabelRule* drawAmong(const Labels& labels, size_t size, uint32_t master, int group, size_t i, size_t r,
+                             double uniform) const;
+  // The most stochastic rules a master may have for its choice to be drawn by labels.
+  static constexpr size_t kMostDrawn = 64;
   /// The rule of a master whose choice is fixed (fixedChoice_), or null.
   const LabelRule* fixedRule(uint32_t master) const {
     return labelRules_[master].empty() ? nullptr : &labelRules_[master].front();
@@ -215,6 +229,9 @@ class ParallelRewrite {
   const LabelRule* chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const;
   std::vector<std::vector<LabelRule>> labelRules_;
   bool allLabelsOnly_ = true;
+  // Every master compares labels only, or with rules of constant chances: the compact
+  // pass draws among them as the records' passes do.
+  bool allChooseByLabels_ = true;
   bool allByPosition_ = true;  // every label-only rule with context compares by position
   // Per master whose rules compare labels only and whose choice is the same for every
   // cell (one rule of group 0 without context, or none): that rule, or null.

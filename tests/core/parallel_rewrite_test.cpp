@@ -134,6 +134,34 @@ TEST(ParallelRewrite, ABracketedWordWithoutContextIsKeptCompactAsTheSerialPassWr
   EXPECT_FALSE(ParallelRewrite(*withContext, withContext->systems[withContext->root]).appliesToCompactWords());
 }
 
+// Label-only rules with constant chances (ABOP Fig. 1.27's stochastic plant, and a plain
+// word whose drawn rules have contexts): the compact pass draws from each cell's stream as
+// the records' passes do, so the words are the same, cell for cell.
+TEST(ParallelRewrite, ADrawAmongLabelOnlyRulesIsTheSerialPassesDraw) {
+  const std::vector<std::pair<std::string, double>> programs{
+      {"lsystem plant {\n  axiom F\n  F -> F [ + F ] F [ - F ] F : 0.33\n  F -> F [ + F ] F : 0.33\n"
+       "  F -> F [ - F ] F : 0.34\n}\n",
+       11},
+      {"lsystem drawn {\n  axiom a b a b b a\n  a < b -> a b : 0.5\n  a < b -> b : 0.25\n  b > a -> a b a : 2\n"
+       "  b -> b a : 0.2\n  a -> a b : 0.6\n  a -> a : 0.4\n  a -> b : 0\n}\n",
+       14}};
+  for (const auto& [text, until] : programs) {
+    SCOPED_TRACE(text);
+    auto program = testing_support::compileOrFail(text);
+    ASSERT_NE(program, nullptr);
+    ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesToCompactWords());
+    const Grown serial = grow(program, until, 1, false);
+    ASSERT_GT(serial.world->rootPool().size(), ParallelRewrite::kMinimumCells);
+    for (unsigned threads : {1u, 2u, 3u}) {
+      const Grown compact = grow(program, until, threads);
+      EXPECT_TRUE(compact.world->rootPool().holdsCompactWord()) << threads << " threads";
+      expectSameWords(*serial.world, *compact.world, std::to_string(threads) + " threads");
+      EXPECT_EQ(compact.stats.events, serial.stats.events);
+      EXPECT_EQ(compact.stats.cellsBorn, serial.stats.cellsBorn);
+    }
+  }
+}
+
 TEST(ParallelRewrite, KochOnTwoThreadsIsKochOnOne) {
   auto program = testing_support::compileOrFail(kKoch);
   ASSERT_NE(program, nullptr);
