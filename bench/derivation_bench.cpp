@@ -13,6 +13,7 @@
 
 #include "bench/bench_support.h"
 #include "core/world.h"
+#include "pools/mix_key.h"
 
 namespace ontogen::bench {
 namespace {
@@ -113,6 +114,62 @@ void BM_ThueMorseFromAxiom(benchmark::State& state) {
   deriveFromAxiom(state, compiled, power(2, n), checkThueMorse);
 }
 BENCHMARK(BM_ThueMorseFromAxiom)->Args({24, 1})->Args({24, 2})->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
+// ---- A stochastic plant (ABOP Fig. 1.27): each F draws one of three bracketed rules ----
+// The word depends on the draws, so it is checked against the same program grown once
+// by the records' serial pass (WorldDef::rewriteBySlices off), an independent path:
+// size, and a hash of every module's label and id.
+
+const char* kStochasticPlantText = R"(lsystem plant {
+  axiom F
+  F -> F [ + F ] F [ - F ] F : 0.33
+  F -> F [ + F ] F : 0.33
+  F -> F [ - F ] F : 0.34
+})";
+
+uint64_t hashOfWord(const World& world) {
+  uint64_t hash = 0;
+  for (CellCursor cell = world.rootPool().cursor(); !cell.done(); cell.next())
+    hash = mixKey(hash, mixKey(cell.master(), cell.id()));
+  return hash;
+}
+
+struct Reference {
+  uint64_t size = 0, hash = 0;
+};
+const Reference& stochasticPlantReference(const Compiled& compiled, int n) {
+  static const Reference reference = [&] {
+    WorldDef def = kBenchWorld;
+    def.rewriteBySlices = false;
+    World world(compiled.program, def);
+    world.advanceTo(n, 1.0);
+    return Reference{world.rootPool().size(), hashOfWord(world)};
+  }();
+  return reference;
+}
+
+const Reference* stochasticReference = nullptr;
+std::string checkStochasticPlant(const Program&, const World& world, int) {
+  if (hashOfWord(world) != stochasticReference->hash) return "stochastic plant: not the serial pass's word";
+  return {};
+}
+
+void BM_StochasticPlantFromAxiom(benchmark::State& state) {
+  static const Compiled compiled = compileText("stochastic_plant.cell", kStochasticPlantText);
+  const int n = static_cast<int>(state.range(0));
+  if (!compiled.program) {
+    state.SkipWithError(compiled.error.c_str());
+    return;
+  }
+  stochasticReference = &stochasticPlantReference(compiled, n);
+  deriveFromAxiom(state, compiled, stochasticReference->size, checkStochasticPlant);
+}
+BENCHMARK(BM_StochasticPlantFromAxiom)
+    ->Args({11, 1})
+    ->Args({11, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseRealTime();
 
 // ---- Parametric: A(x) -> A(x+1) B(x*0.5), B(y) -> B(y+1) B(y*0.5) ----
 // |w_n| = 2^n: one A, whose parameter is 1 + n, then 2^n - 1 B.

@@ -102,6 +102,43 @@ void BM_ThueMorseHandWritten(benchmark::State& state) {
 }
 BENCHMARK(BM_ThueMorseHandWritten)->Arg(24)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
+// ABOP Fig. 1.27's stochastic plant as bytes: each F draws one of its three rules (chances
+// 0.33, 0.33, 0.34) from a SplitMix64 stream of its own (the generation and its place in
+// the word), as the engine draws from each cell's stream. The draws differ from the
+// engine's, so the word does too; its size is what the rate counts.
+void BM_StochasticPlantHandWritten(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  constexpr std::string_view kRules[] = {"F[+F]F[-F]F", "F[+F]F", "F[-F]F"};
+  std::vector<char> word = warmBuffer<char>(size_t{24} << 20), next = warmBuffer<char>(size_t{24} << 20);
+  uint64_t size = 0;
+  for (auto _ : state) {
+    word.clear();
+    word.push_back('F');
+    for (int generation = 0; generation < n; ++generation) {
+      next.clear();
+      for (size_t i = 0; i < word.size(); ++i) {
+        if (word[i] != 'F') {
+          next.push_back(word[i]);
+          continue;
+        }
+        uint64_t z = (uint64_t(generation) << 40 ^ i) + 0x9E3779B97F4A7C15ull;
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        const double x = static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+        const std::string_view rule = kRules[x < 0.33 ? 0 : x < 0.66 ? 1 : 2];
+        next.insert(next.end(), rule.begin(), rule.end());
+      }
+      word.swap(next);
+    }
+    benchmark::DoNotOptimize(word.data());
+    size = word.size();
+  }
+  state.counters["modules"] = static_cast<double>(size);
+  state.counters["modules/s"] = benchmark::Counter(static_cast<double>(size) * static_cast<double>(state.iterations()),
+                                                   benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_StochasticPlantHandWritten)->Arg(11)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
+
 // A(x) -> A(x + 1) B(x * 0.5), B(y) -> B(y + 1) B(y * 0.5) from A(1) to n = 20, with a
 // label and a double per module: 2^n modules, A(1 + n) first.
 void BM_ParametricHandWritten(benchmark::State& state) {
