@@ -127,7 +127,9 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
       if (!rule.newLeft.empty() || !rule.newRight.empty() || !rule.aggregates.empty() || rule.contextDimensions != 1)
         atInstants_ = false;
       anyContext_ = anyContext_ || rule.hasContext() || !rule.leftItems.empty() || !rule.rightItems.empty();
-      if (rule.group != 0 || !rule.predicate.empty() || !rule.probability.empty() || rule.hasContext() ||
+      // A constant chance is drawn from the cell's stream alone (drawByChances).
+      const bool constantChance = rule.probability.empty() || rule.probability.isConstant();
+      if (rule.group != 0 || !rule.predicate.empty() || !constantChance || rule.hasContext() ||
           !rule.aggregates.empty())
         contextFree_ = false;
       for (const SuccessorTemplate& successor : rule.successors) {
@@ -135,7 +137,10 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
         shortest = std::min(shortest, successor.isMe ? master.lifetime : program.masters[successor.master].lifetime);
       }
     }
-    if (master.terminalRules.size() > 1) contextFree_ = false;
+    // Several rules: the first one, or a draw among them when it has a chance.
+    const bool draws = !master.terminalRules.empty() && !master.terminalRules.front().probability.empty();
+    if (master.terminalRules.size() > 1 && !draws) contextFree_ = false;
+    drawsByChance_.push_back(draws);
     shortestLife_[m] = shortest;
     evaluatesInBatches_.push_back(!labelsOnly_[m] && evaluatesInBatches(program, master));
     batchedValues_.push_back(0);
@@ -164,6 +169,28 @@ bool ParallelRewrite::evaluatesInBatches(const Program& program, const MasterCel
       if (!successor.args[j].batchable(slots)) return false;
   }
   return true;
+}
+
+// As ontogen::chooseRule draws for rules that all apply (core/rule_choice.h; no context,
+// so no variants): the first rule's draw among the rules with a chance, from the stream
+// LinearDevelopment::expire gives the cell.
+const CompiledRule* ParallelRewrite::drawByChances(const MasterCell& master, uint64_t seed, uint64_t id, double death) {
+  const std::vector<CompiledRule>& rules = master.terminalRules;
+  double total = 0;
+  for (const CompiledRule& rule : rules)
+    if (!rule.probability.empty()) total += std::max(0.0, rule.probability.constantValue());
+  if (!(total > 0)) return nullptr;
+  RandomStream random(mixKey(mixKey(seed, id), keyOf(death)));
+  double x = random.uniform() * total;
+  const CompiledRule* chosen = nullptr;
+  for (const CompiledRule& rule : rules) {
+    if (rule.probability.empty()) continue;
+    chosen = &rule;
+    const double weight = std::max(0.0, rule.probability.constantValue());
+    if (x < weight) break;
+    x -= weight;
+  }
+  return chosen;
 }
 
 bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const {
@@ -303,9 +330,11 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
     }
     const CompiledRule* rule = nullptr;
     if (pass == Pass::ContextFree) {
-      // No choice to make (at most one rule, of group 0, without condition, chance or
-      // context): what it writes is counted without loading the cell's frame.
-      rule = master.terminalRules.empty() ? nullptr : &master.terminalRules.front();
+      // No choice to make but a draw among constant chances (rules of group 0, without
+      // condition or context): what it writes is counted without loading the cell's frame.
+      rule = master.terminalRules.empty()  ? nullptr
+             : drawsByChance_[cell.master] ? drawByChances(master, step.context.seed, cell.id, death)
+                                           : &master.terminalRules.front();
     } else {
       RandomStream random(mixKey(mixKey(step.context.seed, cell.id), keyOf(death)));
       EvalContext evaluation{worker.frame.data(), EvalEnvironment{&random, step.context.seed}, &functions_, nullptr};

@@ -8,9 +8,9 @@
 //
 // Two passes of the linear development come here:
 //  - the context-free pass (rewriteContextFree), when every master rewrites without a
-//    choice: at most one terminal rule, of group 0, with no predicate, probability,
-//    context, neighbour aggregate or birth age; in a step where no successor reaches its
-//    own terminal age before the step's end;
+//    choice, or by a draw alone: rules of group 0 with no predicate, context, neighbour
+//    aggregate or birth age, one of them, or several with constant chances; in a step
+//    where no successor reaches its own terminal age before the step's end;
 //  - the pass of one instant with context (rewriteAtInstant), when no rule reads the
 //    word being written (`<<`, `>>`), aggregates neighbours or gives a birth age, and the
 //    system has no decomposition. Masters without state whose rules only compare labels
@@ -143,6 +143,8 @@ class ParallelRewrite {
                              RandomStream& random, const EvalContext& evaluation) const;
 
   bool matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const;
+  /// The rule a cell of `master` (drawsByChance_) with id `id` draws at `death`, or null.
+  static const CompiledRule* drawByChances(const MasterCell& master, uint64_t seed, uint64_t id, double death);
   /// The context-free pass's write of a cell of a master that evaluates in batches: its
   /// records now, at their places, and its frame in the master's batch, whose values are
   /// written when it is full (flushBatch) or at the end of the slice.
@@ -242,6 +244,9 @@ class ParallelRewrite {
   // pass takes as it is. Left empty when no master's choice varies (Koch, Thue-Morse).
   std::vector<uint16_t> chosen_;
   std::vector<double> shortestLife_;  // per master: the shortest lifetime of what its rule writes
+  // Per master: its first rule has a chance, so the context-free pass draws among its rules
+  // (each of group 0, without condition or context, with a constant chance or none).
+  std::vector<uint8_t> drawsByChance_;
   // Per master with state and one terminal rule of group 0 without choice, calculation
   // or birth age whose successors' arguments are straight-line code without a draw
   // (CompiledExpression::batchable): the context-free pass evaluates those arguments for
