@@ -123,24 +123,27 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     allChooseByLabels_ = allChooseByLabels_ && (labelsOnly_[m] || drawsByLabels);
     for (const LabelRule& choice : choices) allByPosition_ = allByPosition_ && (!choice.context || choice.byPosition);
     double shortest = master.lifetime;  // a renewal
+    bool choosesInFrame = false;
     for (const CompiledRule& rule : master.terminalRules) {
       if (!rule.newLeft.empty() || !rule.newRight.empty() || !rule.aggregates.empty() || rule.contextDimensions != 1)
         atInstants_ = false;
       anyContext_ = anyContext_ || rule.hasContext() || !rule.leftItems.empty() || !rule.rightItems.empty();
-      // A constant chance is drawn from the cell's stream alone (drawByChances).
-      const bool constantChance = rule.probability.empty() || rule.probability.isConstant();
-      if (rule.group != 0 || !rule.predicate.empty() || !constantChance || rule.hasContext() ||
-          !rule.aggregates.empty())
-        contextFree_ = false;
+      // A condition or a chance that is an expression is evaluated in the cell's frame
+      // (choose), a constant chance drawn from the cell's stream alone (drawByChances).
+      if (rule.group != 0 || rule.hasContext() || !rule.aggregates.empty()) contextFree_ = false;
+      choosesInFrame =
+          choosesInFrame || !rule.predicate.empty() || (!rule.probability.empty() && !rule.probability.isConstant());
       for (const SuccessorTemplate& successor : rule.successors) {
         if (!successor.birthAge.empty()) contextFree_ = atInstants_ = false;
         shortest = std::min(shortest, successor.isMe ? master.lifetime : program.masters[successor.master].lifetime);
       }
     }
-    // Several rules: the first one, or a draw among them when it has a chance.
-    const bool draws = !master.terminalRules.empty() && !master.terminalRules.front().probability.empty();
-    if (master.terminalRules.size() > 1 && !draws) contextFree_ = false;
+    // Several rules: the first one, a draw among them when it has a chance, or a choice
+    // in the cell's frame.
+    const bool draws =
+        !choosesInFrame && !master.terminalRules.empty() && !master.terminalRules.front().probability.empty();
     drawsByChance_.push_back(draws);
+    choosesInFrame_.push_back(choosesInFrame);
     shortestLife_[m] = shortest;
     evaluatesInBatches_.push_back(!labelsOnly_[m] && evaluatesInBatches(program, master));
     batchedValues_.push_back(0);
@@ -329,7 +332,7 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
       continue;
     }
     const CompiledRule* rule = nullptr;
-    if (pass == Pass::ContextFree) {
+    if (pass == Pass::ContextFree && !choosesInFrame_[cell.master]) {
       // No choice to make but a draw among constant chances (rules of group 0, without
       // condition or context): what it writes is counted without loading the cell's frame.
       rule = master.terminalRules.empty()  ? nullptr

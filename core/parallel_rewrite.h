@@ -7,10 +7,10 @@
 // cell's choice, ids and random numbers derive from the cell and the old word alone.
 //
 // Two passes of the linear development come here:
-//  - the context-free pass (rewriteContextFree), when every master rewrites without a
-//    choice, or by a draw alone: rules of group 0 with no predicate, context, neighbour
-//    aggregate or birth age, one of them, or several with constant chances; in a step
-//    where no successor reaches its own terminal age before the step's end;
+//  - the context-free pass (rewriteContextFree), when every master's rules are of group
+//    0 without context, neighbour aggregate or birth age (a condition or a chance is
+//    evaluated in the cell's frame, a constant chance drawn without it); in a step where
+//    no successor reaches its own terminal age before the step's end;
 //  - the pass of one instant with context (rewriteAtInstant), when no rule reads the
 //    word being written (`<<`, `>>`), aggregates neighbours or gives a birth age, and the
 //    system has no decomposition. Masters without state whose rules only compare labels
@@ -247,6 +247,9 @@ class ParallelRewrite {
   // Per master: its first rule has a chance, so the context-free pass draws among its rules
   // (each of group 0, without condition or context, with a constant chance or none).
   std::vector<uint8_t> drawsByChance_;
+  // Per master: a rule has a condition or a chance that is an expression, so even the
+  // context-free pass chooses in the cell's frame, as the serial pass does (choose).
+  std::vector<uint8_t> choosesInFrame_;
   // Per master with state and one terminal rule of group 0 without choice, calculation
   // or birth age whose successors' arguments are straight-line code without a draw
   // (CompiledExpression::batchable): the context-free pass evaluates those arguments for

@@ -162,26 +162,34 @@ TEST(ParallelRewrite, ADrawAmongLabelOnlyRulesIsTheSerialPassesDraw) {
   }
 }
 
-// A context-free word whose masters draw among rules of constant chances (a stochastic
-// tree with values, and a master whose rules have no chance after the first), by slices:
-// each cell's draw from its own stream, as the serial pass draws it.
-TEST(ParallelRewrite, ADrawAmongChancesInAContextFreeWordIsTheSerialPassesDraw) {
-  auto program = testing_support::compileOrFail(
+// Context-free words whose masters choose, by slices, as the serial pass chooses: draws
+// among rules of constant chances (a stochastic tree with values, and a master whose rules
+// have no chance after the first); conditions, and chances that are expressions, in the
+// cell's frame (a draw in a condition among them).
+TEST(ParallelRewrite, AChoiceInAContextFreeWordIsTheSerialPassesChoice) {
+  const std::vector<std::string> programs{
       "lsystem tree {\n  axiom A(1) B\n"
       "  A(s) -> F(s) [ + A(s * 0.8) ] [ - A(s * 0.8) ] : 0.6\n"
       "  A(s) -> F(s) A(s * 0.8) : 0.35\n  A(s) -> A(s) : 0\n  A(s) -> : 0.05\n"
       "  B -> B B : 0.5\n  B -> B\n  B -> F(2) : 0.5\n"
-      "  F(x) -> F(x * 1.1)\n}\n");
-  ASSERT_NE(program, nullptr);
-  ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesContextFree());
-  const Grown serial = grow(program, 22, 1, false);
-  ASSERT_GT(serial.world->rootPool().size(), 2 * ParallelRewrite::kMinimumCells);
-  for (unsigned threads : {2u, 3u}) {
-    const Grown sliced = grow(program, 22, threads);
-    EXPECT_GT(sliced.stats.rewritesBySlices, 0u) << threads << " threads: the serial pass was taken";
-    expectSameWords(*serial.world, *sliced.world, std::to_string(threads) + " threads");
-    EXPECT_EQ(sliced.stats.events, serial.stats.events);
-    EXPECT_EQ(sliced.stats.cellsBorn, serial.stats.cellsBorn);
+      "  F(x) -> F(x * 1.1)\n}\n",
+      "lsystem conditions {\n  axiom A(0) B(3)\n"
+      "  A(t) : t < 3 -> A(t + 1) B(t)\n  A(t) : t >= 3 && uniform(0, 1) < 0.9 -> A(0) [ + A(1) ]\n"
+      "  B(x) -> B(x + 1) : 0.3 + 0.1 * sin(x)\n  B(x) -> B(x) B(x * 0.5) : 0.7\n}\n"};
+  for (const std::string& text : programs) {
+    SCOPED_TRACE(text);
+    auto program = testing_support::compileOrFail(text);
+    ASSERT_NE(program, nullptr);
+    ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesContextFree());
+    const Grown serial = grow(program, 22, 1, false);
+    ASSERT_GT(serial.world->rootPool().size(), 2 * ParallelRewrite::kMinimumCells);
+    for (unsigned threads : {2u, 3u}) {
+      const Grown sliced = grow(program, 22, threads);
+      EXPECT_GT(sliced.stats.rewritesBySlices, 0u) << threads << " threads: the serial pass was taken";
+      expectSameWords(*serial.world, *sliced.world, std::to_string(threads) + " threads");
+      EXPECT_EQ(sliced.stats.events, serial.stats.events);
+      EXPECT_EQ(sliced.stats.cellsBorn, serial.stats.cellsBorn);
+    }
   }
 }
 
