@@ -145,31 +145,35 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     drawsByChance_.push_back(draws);
     choosesInFrame_.push_back(choosesInFrame);
     shortestLife_[m] = shortest;
-    evaluatesInBatches_.push_back(!labelsOnly_[m] && evaluatesInBatches(program, master));
-    batchedValues_.push_back(0);
-    if (evaluatesInBatches_[m] && !master.terminalRules.empty())
-      for (const SuccessorTemplate& successor : master.terminalRules.front().successors)
-        if (!successor.isMe && !successor.stateless)
-          batchedValues_[m] += program.masters[successor.master].stateCount();
+    evaluatesInBatches_.push_back(!labelsOnly_[m] && evaluatesInBatches(program, master, draws));
+    firstRule_.push_back(static_cast<uint32_t>(batchedValues_.size()));
+    for (const CompiledRule& rule : master.terminalRules) {
+      uint32_t values = 0;
+      for (const SuccessorTemplate& successor : rule.successors)
+        if (!successor.isMe && !successor.stateless) values += program.masters[successor.master].stateCount();
+      batchedValues_.push_back(values);
+    }
     allInBatchesOrLabelsOnly_ = allInBatchesOrLabelsOnly_ && (labelsOnly_[m] || evaluatesInBatches_[m]);
   }
 }
 
-bool ParallelRewrite::evaluatesInBatches(const Program& program, const MasterCell& master) const {
+bool ParallelRewrite::evaluatesInBatches(const Program& program, const MasterCell& master, bool draws) const {
   if (master.terminalRules.empty()) return true;  // renews itself
-  if (master.terminalRules.size() > 1) return false;
-  const CompiledRule& rule = master.terminalRules.front();
-  if (rule.group != 0 || !rule.predicate.empty() || !rule.probability.empty() || rule.hasContext() ||
-      !rule.aggregates.empty() || !rule.calculations.empty() || !rule.unboundSlots.empty())
-    return false;
+  if (master.terminalRules.size() > 1 && !draws) return false;
   const int slots = static_cast<int>(frameSize_);
-  for (const SuccessorTemplate& successor : rule.successors) {
-    if (!successor.birthAge.empty()) return false;
-    if (successor.isMe || successor.stateless) continue;
-    const uint32_t count = program.masters[successor.master].stateCount();
-    if (successor.args.size() < count) return false;
-    for (uint32_t j = 0; j < count; ++j)
-      if (!successor.args[j].batchable(slots)) return false;
+  for (const CompiledRule& rule : master.terminalRules) {
+    const bool constantChance = rule.probability.empty() || rule.probability.isConstant();
+    if (rule.group != 0 || !rule.predicate.empty() || !constantChance || rule.hasContext() ||
+        !rule.aggregates.empty() || !rule.calculations.empty() || !rule.unboundSlots.empty())
+      return false;
+    for (const SuccessorTemplate& successor : rule.successors) {
+      if (!successor.birthAge.empty()) return false;
+      if (successor.isMe || successor.stateless) continue;
+      const uint32_t count = program.masters[successor.master].stateCount();
+      if (successor.args.size() < count) return false;
+      for (uint32_t j = 0; j < count; ++j)
+        if (!successor.args[j].batchable(slots)) return false;
+    }
   }
   return true;
 }
@@ -424,8 +428,12 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
     }
     worker.successors.write(*rule, cell, frame, death, BirthCause::Terminal, evaluation, putModule);
   }
-  for (uint32_t m = 0; m < worker.batches.size(); ++m)
-    if (worker.batches[m].lanes > 0) flushBatch(m, worker.batches[m], step, outValues);
+  for (size_t m = 0; m < masters.size(); ++m)
+    for (size_t r = 0; r < masters[m].terminalRules.size(); ++r) {
+      const size_t index = firstRule_[m] + r;
+      if (index < worker.batches.size() && worker.batches[index].lanes > 0)
+        flushBatch(masters[m].terminalRules[r], worker.batches[index], step, outValues);
+    }
   slice.earliestDeath = earliest;
   // Counting and writing choose alike by construction; a slice that wrote other than it
   // counted is a defect of this file, stopped here rather than left in the word.
@@ -441,19 +449,21 @@ void ParallelRewrite::writeBatched(const Step& step, const CellRecord& cell, con
                                    const Put& put) const {
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
-  const CompiledRule* rule = master.terminalRules.empty() ? nullptr : &master.terminalRules.front();
+  const CompiledRule* rule = master.terminalRules.empty()  ? nullptr
+                             : drawsByChance_[cell.master] ? drawByChances(master, step.context.seed, cell.id, death)
+                                                           : &master.terminalRules.front();
   if (!rule || !rule->hasAction) {  // renewed
     CellRecord renewed = cell;
     renewed.birth = death;
     put(renewed, state, n);
     return;
   }
-  const uint32_t values = batchedValues_[cell.master];
+  const uint32_t ruleIndex = firstRule_[cell.master] + static_cast<uint32_t>(rule - master.terminalRules.data());
   Batch* batch = nullptr;
   uint64_t* laneValueAt = nullptr;
-  if (values > 0) {
-    if (worker.batches.size() < program_.masters.size()) worker.batches.resize(program_.masters.size());
-    batch = &worker.batches[cell.master];
+  if (batchedValues_[ruleIndex] > 0) {
+    if (worker.batches.size() < batchedValues_.size()) worker.batches.resize(batchedValues_.size());
+    batch = &worker.batches[ruleIndex];
     if (batch->frames.empty()) {
       batch->frames.resize(size_t{CompiledExpression::kBatchLanes} * frameSize_);
       batch->valueAt.resize(size_t{CompiledExpression::kBatchLanes} * rule->successors.size());
@@ -482,11 +492,10 @@ void ParallelRewrite::writeBatched(const Step& step, const CellRecord& cell, con
     laneValueAt[withValues++] = valueAt;
     put(recordOf(made), nullptr, program_.masters[successor.master].stateCount());
   }
-  if (batch && ++batch->lanes == CompiledExpression::kBatchLanes) flushBatch(cell.master, *batch, step, outValues);
+  if (batch && ++batch->lanes == CompiledExpression::kBatchLanes) flushBatch(*rule, *batch, step, outValues);
 }
 
-void ParallelRewrite::flushBatch(uint32_t master, Batch& batch, const Step& step, double* outValues) const {
-  const CompiledRule& rule = program_.masters[master].terminalRules.front();
+void ParallelRewrite::flushBatch(const CompiledRule& rule, Batch& batch, const Step& step, double* outValues) const {
   const size_t successors = rule.successors.size();
   const double* frames = batch.frames.data();
   const size_t frameSize = frameSize_;

@@ -108,7 +108,7 @@ class ParallelRewrite {
     bool chained = false;             // the context-free pass: a successor expires within the step
     double earliestDeath = kForever;  // of the cells it wrote
   };
-  // The cells of one master waiting for their successors' values (evaluateInBatches_):
+  // The cells that fired one rule waiting for their successors' values (evaluatesInBatches_):
   // each lane's frame, and where each of its successors' values go in the next word.
   struct Batch {
     int lanes = 0;
@@ -153,7 +153,7 @@ class ParallelRewrite {
                     Worker& worker, double* outValues, uint64_t& valueAt, const Put& put) const;
   /// Evaluates the successors' arguments of every cell waiting in `batch` (master
   /// `master`), lane by lane over each argument's code, into `outValues`.
-  void flushBatch(uint32_t master, Batch& batch, const Step& step, double* outValues) const;
+  void flushBatch(const CompiledRule& rule, Batch& batch, const Step& step, double* outValues) const;
 
   const Program& program_;
   const SystemDefinition& system_;
@@ -196,7 +196,7 @@ class ParallelRewrite {
   static constexpr int32_t kAnyLabel = -1, kEndLabel = -2, kNoMatch = -3;
   LabelRule labelRule(const Program& program, uint32_t master, const CompiledRule& rule) const;
   /// Whether the context-free pass evaluates `master`'s successors in batches.
-  bool evaluatesInBatches(const Program& program, const MasterCell& master) const;
+  bool evaluatesInBatches(const Program& program, const MasterCell& master, bool draws) const;
   /// rewriteCompact on several threads for a word whose choices vary: each thread writes
   /// its share in one pass into a part of parts_, then copies it into the next word.
   std::optional<CompactCounts> rewriteInParts(const CompactWord& word, double horizon, int group, unsigned threads,
@@ -250,13 +250,17 @@ class ParallelRewrite {
   // Per master: a rule has a condition or a chance that is an expression, so even the
   // context-free pass chooses in the cell's frame, as the serial pass does (choose).
   std::vector<uint8_t> choosesInFrame_;
-  // Per master with state and one terminal rule of group 0 without choice, calculation
-  // or birth age whose successors' arguments are straight-line code without a draw
-  // (CompiledExpression::batchable): the context-free pass evaluates those arguments for
-  // kBatchLanes cells at once. With every master so or label-only, the context-free pass
-  // takes the slices on one thread too: nothing is left to evaluate cell by cell.
+  // Per master with state whose terminal rules (one, or several drawn by constant chances)
+  // are of group 0 without condition, calculation or birth age, and whose successors'
+  // arguments are straight-line code without a draw (CompiledExpression::batchable): the
+  // context-free pass evaluates those arguments for kBatchLanes cells of a rule at once.
+  // With every master so or label-only, the context-free pass takes the slices on one
+  // thread too: nothing is left to evaluate cell by cell.
   std::vector<uint8_t> evaluatesInBatches_;
-  std::vector<uint32_t> batchedValues_;  // per such master: the values its rule's successors take
+  // Per terminal rule of every master, masters in order (firstRule_: each master's first):
+  // the values its successors take. Batches are kept per rule.
+  std::vector<uint32_t> batchedValues_;
+  std::vector<uint32_t> firstRule_;
   bool allInBatchesOrLabelsOnly_ = true;
   FunctionTable functions_;
   std::vector<Slice> slices_;
