@@ -64,6 +64,27 @@ void expectSameWords(const World& serial, const World& parallel, const std::stri
         << what << ": state value " << k;
 }
 
+bool bySlices(const Grown& grown) {
+  return grown.stats.rewritesBySlices > 0;
+}
+bool compact(const Grown& grown) {
+  return grown.world->rootPool().holdsCompactWord();
+}
+
+// Grows `program` to `until` on each of `threadCounts` and expects `serial`'s word, events
+// and births; `taken(grown)` says whether the pass under test was taken.
+void expectTheSerialWordOnEveryThreadCount(const std::shared_ptr<const Program>& program, double until,
+                                           const Grown& serial, const std::vector<unsigned>& threadCounts,
+                                           bool (*taken)(const Grown&)) {
+  for (unsigned threads : threadCounts) {
+    const Grown grown = grow(program, until, threads);
+    EXPECT_TRUE(taken(grown)) << threads << " threads: the serial pass was taken";
+    expectSameWords(*serial.world, *grown.world, std::to_string(threads) + " threads");
+    EXPECT_EQ(grown.stats.events, serial.stats.events);
+    EXPECT_EQ(grown.stats.cellsBorn, serial.stats.cellsBorn);
+  }
+}
+
 TEST(ParallelRewrite, EveryKindOfSuccessorIsWrittenAsTheSerialPassWritesIt) {
   auto program = testing_support::compileOrFail(kEveryKindOfSuccessor);
   ASSERT_NE(program, nullptr);
@@ -72,13 +93,7 @@ TEST(ParallelRewrite, EveryKindOfSuccessorIsWrittenAsTheSerialPassWritesIt) {
   EXPECT_EQ(serial.stats.rewritesBySlices, 0u);
   // On one thread, a word whose rules draw and calculate keeps the serial pass.
   EXPECT_EQ(grow(program, 16, 1).stats.rewritesBySlices, 0u);
-  for (unsigned threads : {2u, 3u, 7u}) {
-    const Grown parallel = grow(program, 16, threads);
-    EXPECT_GT(parallel.stats.rewritesBySlices, 0u) << threads << " threads: the serial pass was taken";
-    expectSameWords(*serial.world, *parallel.world, std::to_string(threads) + " threads");
-    EXPECT_EQ(parallel.stats.events, serial.stats.events);
-    EXPECT_EQ(parallel.stats.cellsBorn, serial.stats.cellsBorn);
-  }
+  expectTheSerialWordOnEveryThreadCount(program, 16, serial, {2, 3, 7}, bySlices);
 }
 
 // Masters whose one rule has no choice or calculation and whose successors' arguments are
@@ -102,13 +117,7 @@ TEST(ParallelRewrite, ArgumentsEvaluatedInBatchesEqualTheSerialPass) {
   const Grown serial = grow(program, 15, 1, false);
   ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
   EXPECT_EQ(serial.stats.rewritesBySlices, 0u);
-  for (unsigned threads : {1u, 2u, 3u}) {
-    const Grown sliced = grow(program, 15, threads);
-    EXPECT_GT(sliced.stats.rewritesBySlices, 0u) << threads << " threads: the serial pass was taken";
-    expectSameWords(*serial.world, *sliced.world, std::to_string(threads) + " threads");
-    EXPECT_EQ(sliced.stats.events, serial.stats.events);
-    EXPECT_EQ(sliced.stats.cellsBorn, serial.stats.cellsBorn);
-  }
+  expectTheSerialWordOnEveryThreadCount(program, 15, serial, {1, 2, 3}, bySlices);
 }
 
 // A plant's bracketed word whose rules have no context (ABOP Fig. 1.24d): brackets are
@@ -122,13 +131,7 @@ TEST(ParallelRewrite, ABracketedWordWithoutContextIsKeptCompactAsTheSerialPassWr
   const Grown serial = grow(program, 9, 1, false);
   ASSERT_FALSE(serial.world->rootPool().holdsCompactWord());
   ASSERT_GT(serial.world->rootPool().size(), 2 * ParallelRewrite::kMinimumCells);
-  for (unsigned threads : {1u, 2u, 3u}) {
-    const Grown compact = grow(program, 9, threads);
-    EXPECT_TRUE(compact.world->rootPool().holdsCompactWord()) << threads << " threads";
-    expectSameWords(*serial.world, *compact.world, std::to_string(threads) + " threads");
-    EXPECT_EQ(compact.stats.events, serial.stats.events);
-    EXPECT_EQ(compact.stats.cellsBorn, serial.stats.cellsBorn);
-  }
+  expectTheSerialWordOnEveryThreadCount(program, 9, serial, {1, 2, 3}, compact);
   auto withContext = testing_support::compileOrFail("lsystem c {\n  axiom F [ F ] F\n  F < F -> F F\n}\n");
   ASSERT_NE(withContext, nullptr);
   EXPECT_FALSE(ParallelRewrite(*withContext, withContext->systems[withContext->root]).appliesToCompactWords());
@@ -152,13 +155,7 @@ TEST(ParallelRewrite, ADrawAmongLabelOnlyRulesIsTheSerialPassesDraw) {
     ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesToCompactWords());
     const Grown serial = grow(program, until, 1, false);
     ASSERT_GT(serial.world->rootPool().size(), ParallelRewrite::kMinimumCells);
-    for (unsigned threads : {1u, 2u, 3u}) {
-      const Grown compact = grow(program, until, threads);
-      EXPECT_TRUE(compact.world->rootPool().holdsCompactWord()) << threads << " threads";
-      expectSameWords(*serial.world, *compact.world, std::to_string(threads) + " threads");
-      EXPECT_EQ(compact.stats.events, serial.stats.events);
-      EXPECT_EQ(compact.stats.cellsBorn, serial.stats.cellsBorn);
-    }
+    expectTheSerialWordOnEveryThreadCount(program, until, serial, {1, 2, 3}, compact);
   }
 }
 
@@ -187,13 +184,7 @@ TEST(ParallelRewrite, AChoiceInAContextFreeWordIsTheSerialPassesChoice) {
     ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesContextFree());
     const Grown serial = grow(program, 22, 1, false);
     ASSERT_GT(serial.world->rootPool().size(), 2 * ParallelRewrite::kMinimumCells);
-    for (unsigned threads : threadCounts) {
-      const Grown sliced = grow(program, 22, threads);
-      EXPECT_GT(sliced.stats.rewritesBySlices, 0u) << threads << " threads: the serial pass was taken";
-      expectSameWords(*serial.world, *sliced.world, std::to_string(threads) + " threads");
-      EXPECT_EQ(sliced.stats.events, serial.stats.events);
-      EXPECT_EQ(sliced.stats.cellsBorn, serial.stats.cellsBorn);
-    }
+    expectTheSerialWordOnEveryThreadCount(program, 22, serial, threadCounts, bySlices);
   }
 }
 
