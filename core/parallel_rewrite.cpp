@@ -106,10 +106,11 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
   for (size_t m = 0; m < program.masters.size(); ++m) {
     const MasterCell& master = program.masters[m];
     labelsOnly_[m] = comparesLabelsOnly(program, master) && master.terminalRules.size() < UINT16_MAX;
-    const bool drawsByLabels = !labelsOnly_[m] && comparesLabelsOnly(program, master, true) &&
-                               std::count_if(master.terminalRules.begin(), master.terminalRules.end(),
-                                             [](const CompiledRule& rule) { return !rule.probability.empty(); }) <=
-                                   static_cast<std::ptrdiff_t>(kMostDrawn);
+    // Rules with a chance: a draw weighs at most kMostDrawn of them.
+    const bool fewDrawn = std::count_if(master.terminalRules.begin(), master.terminalRules.end(),
+                                        [](const CompiledRule& rule) { return !rule.probability.empty(); }) <=
+                          static_cast<std::ptrdiff_t>(kMostDrawn);
+    const bool drawsByLabels = !labelsOnly_[m] && fewDrawn && comparesLabelsOnly(program, master, true);
     std::vector<LabelRule>& choices = labelRules_.emplace_back();
     if (labelsOnly_[m] || drawsByLabels)
       for (const CompiledRule& rule : master.terminalRules)
@@ -139,7 +140,8 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
       }
     }
     // Several rules: the first one, a draw among them when it has a chance, or a choice
-    // in the cell's frame.
+    // in the cell's frame (also past kMostDrawn rules with a chance).
+    choosesInFrame = choosesInFrame || !fewDrawn;
     const bool draws =
         !choosesInFrame && !master.terminalRules.empty() && !master.terminalRules.front().probability.empty();
     drawsByChance_.push_back(draws);
@@ -187,17 +189,19 @@ const CompiledRule* ParallelRewrite::drawByChances(const MasterCell& master, uin
   for (const CompiledRule& rule : rules)
     if (!rule.probability.empty()) total += std::max(0.0, rule.probability.constantValue());
   if (!(total > 0)) return nullptr;
+  const CompiledRule* drawn[kMostDrawn];
+  size_t count = 0;
+  for (const CompiledRule& rule : rules)
+    if (!rule.probability.empty()) drawn[count++] = &rule;
   RandomStream random(mixKey(mixKey(seed, id), keyOf(death)));
-  double x = random.uniform() * total;
-  const CompiledRule* chosen = nullptr;
-  for (const CompiledRule& rule : rules) {
-    if (rule.probability.empty()) continue;
-    chosen = &rule;
-    const double weight = std::max(0.0, rule.probability.constantValue());
-    if (x < weight) break;
-    x -= weight;
-  }
-  return chosen;
+  return drawn[pickByWeight(random.uniform(), total, count,
+                            [&](size_t c) { return std::max(0.0, drawn[c]->probability.constantValue()); })];
+}
+
+const CompiledRule* ParallelRewrite::contextFreeRule(const MasterCell& master, uint32_t label, uint64_t seed,
+                                                     uint64_t id, double death) const {
+  if (master.terminalRules.empty()) return nullptr;
+  return drawsByChance_[label] ? drawByChances(master, seed, id, death) : &master.terminalRules.front();
 }
 
 bool ParallelRewrite::matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const {
@@ -339,9 +343,7 @@ void ParallelRewrite::count(Pass pass, const Step& step, Slice& slice, Worker& w
     if (pass == Pass::ContextFree && !choosesInFrame_[cell.master]) {
       // No choice to make but a draw among constant chances (rules of group 0, without
       // condition or context): what it writes is counted without loading the cell's frame.
-      rule = master.terminalRules.empty()  ? nullptr
-             : drawsByChance_[cell.master] ? drawByChances(master, step.context.seed, cell.id, death)
-                                           : &master.terminalRules.front();
+      rule = contextFreeRule(master, cell.master, step.context.seed, cell.id, death);
     } else {
       RandomStream random(mixKey(mixKey(step.context.seed, cell.id), keyOf(death)));
       EvalContext evaluation{worker.frame.data(), EvalEnvironment{&random, step.context.seed}, &functions_, nullptr};
@@ -449,9 +451,7 @@ void ParallelRewrite::writeBatched(const Step& step, const CellRecord& cell, con
                                    const Put& put) const {
   const MasterCell& master = program_.masters[cell.master];
   const uint32_t n = master.stateCount();
-  const CompiledRule* rule = master.terminalRules.empty()  ? nullptr
-                             : drawsByChance_[cell.master] ? drawByChances(master, step.context.seed, cell.id, death)
-                                                           : &master.terminalRules.front();
+  const CompiledRule* rule = contextFreeRule(master, cell.master, step.context.seed, cell.id, death);
   if (!rule || !rule->hasAction) {  // renewed
     CellRecord renewed = cell;
     renewed.birth = death;
@@ -637,12 +637,7 @@ const ParallelRewrite::LabelRule* ParallelRewrite::drawAmong(const Labels& label
     taken = true;
   }
   if (!(total > 0)) return nullptr;
-  double x = uniform * total;
-  for (size_t c = 0; c < count; ++c) {
-    if (x < weights[c]) return candidates[c];
-    x -= weights[c];
-  }
-  return candidates[count - 1];
+  return candidates[pickByWeight(uniform, total, count, [&](size_t c) { return weights[c]; })];
 }
 
 namespace {

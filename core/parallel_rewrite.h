@@ -145,6 +145,10 @@ class ParallelRewrite {
   bool matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const;
   /// The rule a cell of `master` (drawsByChance_) with id `id` draws at `death`, or null.
   static const CompiledRule* drawByChances(const MasterCell& master, uint64_t seed, uint64_t id, double death);
+  /// The rule a cell of `master` (label `label`), whose choice needs no frame, fires in the
+  /// context-free pass: none, the first, or drawn by chances.
+  const CompiledRule* contextFreeRule(const MasterCell& master, uint32_t label, uint64_t seed, uint64_t id,
+                                      double death) const;
   /// The context-free pass's write of a cell of a master that evaluates in batches: its
   /// records now, at their places, and its frame in the master's batch, whose values are
   /// written when it is full (flushBatch) or at the end of the slice.

@@ -20,6 +20,20 @@ namespace ontogen {
 /// is not a whole number ≥ 0 stops the run with a ModelError at the expression.
 int activeGroup(const Program& program, const SystemDefinition& system, double time, uint64_t seed);
 
+/// Which of `count` weights (each at least 0, `total` their sum, above 0) a uniform draw
+/// in [0, 1) picks: the first whose running sum passes uniform x total, else the last.
+/// `weightOf(c)` gives weight c. The one weighing of every stochastic choice.
+template <typename WeightOf>
+size_t pickByWeight(double uniform, double total, size_t count, WeightOf&& weightOf) {
+  double x = uniform * total;
+  for (size_t c = 0; c + 1 < count; ++c) {
+    const double weight = weightOf(c);
+    if (x < weight) return c;
+    x -= weight;
+  }
+  return count - 1;
+}
+
 /// The rule chosen from `rules`, or null, with `group` the active rule group.
 /// `matches(rule)` tells whether a rule's context and condition hold; `candidates` is
 /// scratch space, kept by the caller to reuse.
@@ -44,16 +58,9 @@ const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int group
       taken = true;
     }
     if (!(total > 0)) return nullptr;
-    double x = random.uniform() * total;
-    const CompiledRule* chosen = candidates.back().first;
-    for (const auto& [candidate, weight] : candidates) {
-      if (x < weight) {
-        chosen = candidate;
-        break;
-      }
-      x -= weight;
-    }
-    return chosen;
+    return candidates[pickByWeight(random.uniform(), total, candidates.size(),
+                                   [&](size_t c) { return candidates[c].second; })]
+        .first;
   }
   return nullptr;
 }
