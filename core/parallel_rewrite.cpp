@@ -157,6 +157,21 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     }
     allInBatchesOrLabelsOnly_ = allInBatchesOrLabelsOnly_ && (labelsOnly_[m] || evaluatesInBatches_[m]);
   }
+
+  byTable_ = program.masters.size() <= 256;  // one-byte labels
+  for (uint32_t m = 0; byTable_ && m < program.masters.size(); ++m) {
+    byTable_ = labelsOnly_[m] && fixedChoice_[m];
+    if (!byTable_) break;
+    RewriteTable::Entry entry;
+    entry.lifetime = entry.lifeAfter = program.masters[m].lifetime;
+    const LabelRule* choice = fixedRule(m);
+    if (choice && choice->rule->hasAction) {
+      byTable_ = !choice->freshLabels.empty();  // else a successor keeps the cell's id
+      entry.lifeAfter = choice->shortestLife;
+      table_.setSuccessors(entry, choice->freshLabels);
+    }
+    table_.entries.push_back(entry);
+  }
 }
 
 bool ParallelRewrite::evaluatesInBatches(const Program& program, const MasterCell& master, bool draws) const {
@@ -796,10 +811,18 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     CompactWord::Slice& out = slices[s];
     const bool writing = out.writing();
     double soonest = kForever;
-    const CompactCounts counts = withLabels([&](const auto& labels) {
-      return rewriteRange(word, size * s / sliceCount, size * (s + 1) / sliceCount, horizon, group, labels, out, never,
-                          soonest, seed);
-    });
+    const size_t begin = size * s / sliceCount, end = size * (s + 1) / sliceCount;
+    CompactCounts counts;
+    if (byTable_) {
+      TerminalLineage lineage;
+      const TableRewriteCounts walked = TableRewrite::rewrite(out, word, begin, end, table_, horizon, lineage);
+      counts = {walked.events, walked.born};
+      soonest = walked.soonest;
+    } else {
+      counts = withLabels([&](const auto& labels) {
+        return rewriteRange(word, begin, end, horizon, group, labels, out, never, soonest, seed);
+      });
+    }
     out.finish();
     if (!writing) counted[s] = counts;
     earliest[s] = soonest;

@@ -37,6 +37,7 @@
 #include "lang/program.h"
 #include "pools/compact_word.h"
 #include "pools/linear_pool.h"
+#include "pools/table_rewrite.h"
 
 namespace ontogen {
 
@@ -67,6 +68,11 @@ class ParallelRewrite {
   bool appliesToCompactWords() const {
     return allChooseByLabels_ && atInstants_ && (!anyContext_ || (plain_ && allByPosition_));
   }
+
+  /// Whether rewriteCompact walks the word run by run by a table (pools/table_rewrite.h):
+  /// every master without state has one label-only rule of group 0 without context, or
+  /// none, and a rule's successors are all new, at most 256 masters (Koch, Thue-Morse).
+  bool rewritesByTable() const { return byTable_; }
 
   /// Says whether the next word may be written, or go on being written: its modules, the
   /// events and the cells born, so far or in all, and the modules whose bytes are held
@@ -278,6 +284,11 @@ class ParallelRewrite {
   std::vector<Part> parts_;
   std::vector<CompactWord::PartPlace> partPlaces_;  // where parts_ go in the next word
   std::vector<double> lifetimes_;                   // per master, for rewriteCompact (MasterCell is large)
+  // Every master without state and with one label-only rule or none, whose successors,
+  // if any, are all new (no `me`, no `=X`), in a word of one-byte labels: what each label
+  // becomes, so that rewriteCompact walks the word run by run (pools/table_rewrite.h).
+  bool byTable_ = false;
+  RewriteTable table_;
   // How much the last compact rewrite grew its word (next / old), modules and runs; 0:
   // none yet. The one-thread pass reserves by it.
   struct Growth {

@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "core/limits.h"
+#include "core/module_value.h"
 #include "core/salts.h"
 #include "lang/diagnostics.h"
 #include "lang/expression.h"
 #include "lang/program.h"
-#include "core/module_value.h"
 #include "pools/cell_record.h"
 
 namespace ontogen {
@@ -50,6 +50,26 @@ inline uint64_t lineageKey(uint64_t cellId, double when, BirthCause cause) {
   return mixKey(cellId, keyOf(when)) ^ (cause == BirthCause::StepRule ? kStepRuleSalt : 0);
 }
 
+/// lineageKey(cell, death, BirthCause::Terminal) for a cell given as mixKeyFirst(cell),
+/// the second part of the death's key computed once for a run of equal deaths (every
+/// event of a step of Koch shares one).
+class TerminalLineage {
+ public:
+  uint64_t operator()(uint64_t cellFirst, double death) {
+    const uint64_t bits = keyOf(death);
+    if (!known_ || bits != deathBits_) {
+      known_ = true;
+      deathBits_ = bits;
+      deathSecond_ = mixKeySecond(bits);
+    }
+    return mixKeyJoin(cellFirst, deathSecond_);
+  }
+
+ private:
+  bool known_ = false;
+  uint64_t deathBits_ = 0, deathSecond_ = 0;
+};
+
 /// The id of the k-th successor (k from 1) of `cell` when it develops at `when`.
 inline uint64_t successorId(uint64_t cellId, double when, BirthCause cause, uint64_t k) {
   return mixKey(lineageKey(cellId, when, cause), k);
@@ -70,18 +90,17 @@ class SuccessorWriter {
   /// event's lineage key and its number k, `me` and `=X` the coordinates of `cell`.
   /// Returns the number of new cells (not `me`).
   template <typename Emit>
-  uint64_t write(const CompiledRule& rule, const ModuleValue& cell, const double* frame, double when,
-                 BirthCause cause, const EvalContext& context, Emit&& emit);
+  uint64_t write(const CompiledRule& rule, const ModuleValue& cell, const double* frame, double when, BirthCause cause,
+                 const EvalContext& context, Emit&& emit);
   /// The same for a cell a pool keeps as a record.
   template <typename Emit>
-  uint64_t write(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
-                 BirthCause cause, const EvalContext& context, Emit&& emit) {
+  uint64_t write(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when, BirthCause cause,
+                 const EvalContext& context, Emit&& emit) {
     return write(rule, moduleOf(cell), frame, when, cause, context, static_cast<Emit&&>(emit));
   }
 
  private:
-  [[noreturn]] void badBirthAge(const SuccessorTemplate& successor, uint32_t master, double age,
-                                double when) const;
+  [[noreturn]] void badBirthAge(const SuccessorTemplate& successor, uint32_t master, double age, double when) const;
 
   const Program& program_;
   std::vector<double> values_;

@@ -45,6 +45,7 @@ struct IdKey {
 };
 
 class CompactWordCursor;
+class TableRewrite;
 
 /// The canonical rule every writer and counter of a compact word applies: a module
 /// continues the run of the module before it when both have (key, k) ids with the same
@@ -276,6 +277,7 @@ class CompactWord {
 
  private:
   friend class CompactWordCursor;
+  friend class TableRewrite;
   static constexpr uint16_t kWholeMark = 0xFFFF;
   static constexpr uint16_t kWideMark = 0xFFFE;
   // A run whose first k takes more than two bytes (from kWideMark on), in run order.
@@ -420,6 +422,7 @@ class alignas(64) CompactWord::Slice {
 
  private:
   friend class CompactWord;
+  friend class TableRewrite;
   // Marks a birth index as one of the slice's new births, renumbered by place.
   static constexpr uint32_t kNewBirth = uint32_t{1} << 31;
   void count(uint32_t label, bool continues) {

@@ -24,19 +24,32 @@ constexpr uint64_t finalize(uint64_t z) {
 }
 }  // namespace random_detail
 
+// mixKey in three parts, for a caller that mixes one word with many others: the first
+// word's part, the second word's, and their join. mixKey(a, b) is
+// mixKeyJoin(mixKeyFirst(a), mixKeySecond(b)), bit for bit.
+constexpr uint64_t mixKeyFirst(uint64_t a) {
+  // Adding the gamma keeps mixKey(0, 0) away from the finaliser's fixed point at 0.
+  return random_detail::finalize(a + random_detail::kGoldenGamma);
+}
+constexpr uint64_t mixKeySecond(uint64_t b) {
+  return std::rotl(b, 29) * random_detail::kSecondWordMultiplier;
+}
+constexpr uint64_t mixKeyJoin(uint64_t first, uint64_t second) {
+  return random_detail::finalize(first ^ second);
+}
+
 /// Mixes two 64-bit words into one (a strong, invertible-per-argument hash). Inline:
 /// the engine computes one per cell born.
 constexpr uint64_t mixKey(uint64_t a, uint64_t b) {
   // Each step is a bijection of the word it touches, so for a fixed b the map a -> key
   // is one-to-one, and likewise for a fixed a. The two words go through different
-  // paths, which makes mixKey(a, b) differ from mixKey(b, a). Adding the gamma keeps
-  // mixKey(0, 0) away from the finaliser's fixed point at 0.
-  const uint64_t left = random_detail::finalize(a + random_detail::kGoldenGamma);
-  const uint64_t right = std::rotl(b, 29) * random_detail::kSecondWordMultiplier;
-  return random_detail::finalize(left ^ right);
+  // paths, which makes mixKey(a, b) differ from mixKey(b, a).
+  return mixKeyJoin(mixKeyFirst(a), mixKeySecond(b));
 }
 
 /// The bits of a double as a key (so +0.0 and -0.0 differ; NaN payloads are kept).
-constexpr uint64_t keyOf(double value) { return std::bit_cast<uint64_t>(value); }
+constexpr uint64_t keyOf(double value) {
+  return std::bit_cast<uint64_t>(value);
+}
 
 }  // namespace ontogen

@@ -226,6 +226,40 @@ TEST(ParallelRewrite, ThueMorseAndParametricWordsAreWrittenAsTheSerialPassWrites
   }
 }
 
+// A word rewritten by a table (pools/table_rewrite.h): labels whose lifetimes differ, so
+// that some modules expire while their neighbours are kept; a label without rules that
+// renews itself; eleven successors (more than one store of eight labels, and runs across
+// bitmap words); an axiom of 70,000 modules, whose ids past k = 65,533 go to the table of
+// wide k, kept and renewed.
+std::string tableProgram() {
+  std::string axiom;
+  for (int i = 0; i < 70'000; ++i) axiom += i % 9000 == 4 ? "F G " : "H ";
+  return "cell F { lifetime 1; rules { terminal: -> F G F; } }\n"
+         "cell G { lifetime 3; rules { terminal: -> H F H H G H H F H H H; } }\n"
+         "cell H { lifetime 2.5; }\n"
+         "system s { pool linear; axiom " +
+         axiom + "; }\n";
+}
+
+TEST(ParallelRewrite, AWordRewrittenByATableIsWrittenAsTheSerialPassWritesIt) {
+  auto program = testing_support::compileOrFail(tableProgram());
+  ASSERT_NE(program, nullptr);
+  ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).rewritesByTable());
+  const Grown serial = grow(program, 12, 1, false);
+  ASSERT_GT(serial.world->rootPool().size(), 100'000u);
+  expectTheSerialWordOnEveryThreadCount(program, 12, serial, {1, 2, 3}, compact);
+  for (unsigned threads : {1u, 2u}) EXPECT_GT(grow(program, 12, threads).stats.rewritesBySlices, 0u);
+  // Koch and Thue-Morse go by the table; a successor that keeps the cell's id does not.
+  for (const char* text : {kKoch, testing_support::kThueMorse}) {
+    auto model = testing_support::compileOrFail(text);
+    ASSERT_NE(model, nullptr);
+    EXPECT_TRUE(ParallelRewrite(*model, model->systems[model->root]).rewritesByTable()) << text;
+  }
+  auto keeps = testing_support::compileOrFail("lsystem k {\n  axiom A\n  A -> A B\n  B -> =B A\n}\n");
+  ASSERT_NE(keeps, nullptr);
+  EXPECT_FALSE(ParallelRewrite(*keeps, keeps->systems[keeps->root]).rewritesByTable());
+}
+
 // A production of 65,581 successors, whose k run past the largest a run holds
 // (CompactWord::kLargestRunK), applied by slices: 2 W make a word of 131,162 modules at
 // t = 1, and both rewrite again at t = 2 and 3.

@@ -142,5 +142,19 @@ TEST_F(SuccessorWriterTest, APerStepRuleSaltsTheKeyAndMeKeepsItsBirth) {
   EXPECT_EQ(out[1].module.id(), 0x1234567887654321ull);
 }
 
+// The table walk (pools/table_rewrite.h) hashes in parts: mixKey split into its first
+// word's part, its second's and their join, and the terminal lineage from the first part
+// of the cell's id with the death's part kept between calls, give the whole hashes.
+TEST(TerminalLineage, EqualsTheLineageKeyOfATerminalEvent) {
+  TerminalLineage lineage;
+  const uint64_t ids[] = {0, 1, 0x1234567887654321ull, ~uint64_t{0}};
+  const double deaths[] = {2.5, 2.5, -0.0, 0.0, 1e300, 3.0};
+  for (const uint64_t id : ids)
+    for (const double death : deaths) {
+      EXPECT_EQ(mixKeyJoin(mixKeyFirst(id), mixKeySecond(keyOf(death))), mixKey(id, keyOf(death)));
+      EXPECT_EQ(lineage(mixKeyFirst(id), death), lineageKey(id, death, BirthCause::Terminal)) << id << " " << death;
+    }
+}
+
 }  // namespace
 }  // namespace ontogen

@@ -1,0 +1,282 @@
+#pragma once
+// One rewrite of a compact word whose labels each do the same thing whenever they
+// expire: they are renewed, or replaced by the same string of new successors (Koch,
+// Thue-Morse, any D0L system without state). It is the fast path of
+// ParallelRewrite::rewriteCompact (core/parallel_rewrite.h) for such words.
+//
+// It walks the word a run at a time instead of a module at a time: the run's key, birth
+// and first k are read once, and the first part of the hash that names the parent of new
+// successors (mixKeyFirst of the run's key) is computed once per run, not once per
+// module. It writes through a CompactWord::Slice, counting or writing, with the same
+// canonical rule and the same encoding as the module-by-module pass: a kept or renewed
+// module continues the run of the module before it by RunTail's rule, and the new
+// successors of one event make one run that nothing continues.
+
+#include <algorithm>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "pools/compact_word.h"
+#include "pools/mix_key.h"
+
+namespace ontogen {
+
+/// What each label does when one of its modules expires, the same for every module.
+struct RewriteTable {
+  struct Entry {
+    /// The terminal age: a module expires when its birth plus this is at most the horizon.
+    double lifetime = std::numeric_limits<double>::infinity();
+    /// Renewed (the same id, born again at its death), or replaced by `count` new
+    /// successors with the labels labels[first ..], as one run of fresh ids.
+    bool renews = true;
+    uint32_t first = 0, count = 0;
+    /// The shortest lifetime among what it becomes (its own lifetime when renewed).
+    double lifeAfter = std::numeric_limits<double>::infinity();
+    /// The successors' labels as bytes, the first in the lowest, when there are at most
+    /// eight of them: written with one store.
+    uint64_t packed = 0;
+  };
+  /// Sets the labels of `entry` (one byte each) and appends them to `labels`.
+  void setSuccessors(Entry& entry, const std::vector<uint32_t>& successors) {
+    entry.renews = false;
+    entry.first = static_cast<uint32_t>(labels.size());
+    entry.count = static_cast<uint32_t>(successors.size());
+    labels.insert(labels.end(), successors.begin(), successors.end());
+    entry.packed = 0;
+    for (size_t s = 0; s < successors.size() && s < 8; ++s) entry.packed |= uint64_t{successors[s] & 0xFFu} << (8 * s);
+  }
+  std::vector<Entry> entries;    // per label
+  std::vector<uint32_t> labels;  // the successors' labels, every entry's in turn
+};
+
+/// What one table rewrite did: events (modules that expired), modules born, and the
+/// earliest death among the modules it wrote.
+struct TableRewriteCounts {
+  uint64_t events = 0, born = 0;
+  double soonest = std::numeric_limits<double>::infinity();
+};
+
+class TableRewrite {
+ public:
+  /// Rewrites modules [begin, end) of `from` (one-byte labels, no state values) by
+  /// `table` at `horizon` into `out`, which counts or writes (CompactWord::Slice). The
+  /// new successors of a module with id `parent` dying at `death` take the lineage key
+  /// `lineage(parentFirst, death)`, where parentFirst is mixKeyFirst(parent).
+  template <class Lineage>
+  static TableRewriteCounts rewrite(CompactWord::Slice& out, const CompactWord& from, size_t begin, size_t end,
+                                    const RewriteTable& table, double horizon, Lineage& lineage) {
+    return out.writing() ? walk<true>(out, from, begin, end, table, horizon, lineage)
+                         : walk<false>(out, from, begin, end, table, horizon, lineage);
+  }
+
+ private:
+  // What the walk keeps of the slice it writes, in locals rather than in the slice: a
+  // label is written through a byte pointer, which may alias anything, so the compiler
+  // would read every field of the slice again after each one.
+  struct Writer {
+    explicit Writer(CompactWord::Slice& slice)
+        : slice(slice),
+          at(slice.firstModule_ + slice.written_),
+          sliceEnd(slice.firstModule_ + slice.modules_),
+          runs(slice.runs_),
+          runJ(slice.runJ_),
+          bits(slice.bits_),
+          bitsWord(slice.bitsWord_),
+          labels(slice.out_.labels8),
+          keys(slice.out_.keys),
+          birthIndex(slice.out_.birthIndex),
+          firstK(slice.out_.firstK) {}
+    // Gives the slice back its state, before one of its own calls and at the end.
+    void store() {
+      slice.written_ = at - slice.firstModule_;
+      slice.runs_ = runs;
+      slice.runJ_ = runJ;
+      slice.bits_ = bits;
+      slice.bitsWord_ = bitsWord;
+    }
+    void load() {
+      at = slice.firstModule_ + slice.written_;
+      runs = slice.runs_;
+      runJ = slice.runJ_;
+      bits = slice.bits_;
+      bitsWord = slice.bitsWord_;
+    }
+    // As CompactWord::Slice::put, for a module without values.
+    void put(uint32_t label, IdKey key, bool continues, uint32_t index) {
+      if (at % CompactWord::kBlock == 0 || bitsWord == SIZE_MAX) [[unlikely]] {
+        store();
+        slice.startBlock(at);
+        load();
+      }
+      if (!continues) {
+        bits |= uint64_t{1} << (at % CompactWord::kBlock);
+        keys[runs] = key.key;
+        birthIndex[runs] = index;
+        firstK[runs] = CompactWord::storedK(key.k);
+        if (key.k != IdKey::kWhole && key.k >= CompactWord::kWideMark) [[unlikely]]
+          slice.wideK_.push_back({static_cast<uint32_t>(runs), key.k});
+        ++runs;
+        runJ = 0;
+      } else {
+        ++runJ;
+      }
+      labels[at] = static_cast<uint8_t>(label);
+      ++at;
+    }
+    // As CompactWord::Slice::appendFreshRun, with the labels also as packed bytes.
+    void putFresh(const uint32_t* successors, uint64_t packed, uint32_t n, uint64_t key, uint32_t index, double birth) {
+      const size_t place = at % CompactWord::kBlock;
+      // Most runs: eight labels or fewer, inside the bitmap word under way (not the first
+      // of the slice, which starts one), with room in the slice for a store of eight bytes
+      // (the bytes past n are written over next).
+      if (n <= 8 && place != 0 && place + n <= CompactWord::kBlock && bitsWord != SIZE_MAX && at + 8 <= sliceEnd)
+          [[likely]] {
+        bits |= uint64_t{1} << place;
+        keys[runs] = key;
+        birthIndex[runs] = index;
+        firstK[runs] = 1;
+        ++runs;
+        std::memcpy(labels + at, &packed, 8);
+        at += n;
+        runJ = n - 1;
+        return;
+      }
+      store();
+      slice.appendFreshRun(successors, n, 0, key, birth);
+      load();
+    }
+
+    CompactWord::Slice& slice;
+    size_t at, sliceEnd, runs;
+    uint32_t runJ;
+    uint64_t bits;
+    size_t bitsWord;
+    uint8_t* labels;
+    uint64_t* keys;
+    uint32_t* birthIndex;
+    uint16_t* firstK;
+  };
+
+  template <bool kWriting, class Lineage>
+  static TableRewriteCounts walk(CompactWord::Slice& out, const CompactWord& from, size_t begin, size_t end,
+                                 const RewriteTable& table, double horizon, Lineage& lineage) {
+    TableRewriteCounts counts;
+    end = std::min(end, from.size());
+    if (begin >= end) return counts;
+    const uint8_t* labels = from.labels8_.data();
+    const uint64_t* starts = from.runStarts_.data();
+    const RewriteTable::Entry* entries = table.entries.data();
+    const uint32_t* successors = table.labels.data();
+
+    // The run of the module under way.
+    const CompactWord::Place place = from.locate(begin);
+    size_t run = place.run;
+    uint32_t j = place.j;
+    uint64_t key = 0, keyFirst = 0;
+    uint32_t firstK = 0, birthIndex = 0;
+    double birth = 0;
+    bool keyFirstKnown = false;
+    auto loadRun = [&] {
+      key = from.keys_[run];
+      firstK = from.firstKOf(run);
+      birthIndex = from.birthIndex_[run];
+      birth = from.births_[birthIndex];
+      keyFirstKnown = false;
+    };
+    loadRun();
+
+    Writer writer(out);
+    size_t modules = 0, runs = 0;  // counted
+    // The last module written, for RunTail's rule: its key, k and birth bits; none after
+    // new successors, which nothing continues.
+    bool tail = false;
+    uint64_t tailKey = 0, tailBirth = 0;
+    uint32_t tailK = 0;
+    auto keep = [&](uint32_t label, uint32_t k, double bornAt, uint32_t index) {
+      const uint64_t bits = std::bit_cast<uint64_t>(bornAt);
+      const bool continues = tail && key == tailKey && k != IdKey::kWhole && tailK != IdKey::kWhole && k == tailK + 1 &&
+                             (k & 0xFFFFu) != 0 && bits == tailBirth;
+      tail = true;
+      tailKey = key;
+      tailK = k;
+      tailBirth = bits;
+      if constexpr (kWriting) {
+        writer.put(label, IdKey{key, k}, continues, index);
+      } else {
+        ++modules;
+        runs += continues ? 0 : 1;
+      }
+    };
+    // The last death of new successors, and its index in the slice's births.
+    bool deathKnown = false;
+    uint64_t lastDeath = 0;
+    uint32_t deathIndex = 0;
+    auto deathIndexOf = [&](double death) {
+      const uint64_t bits = std::bit_cast<uint64_t>(death);
+      if (!deathKnown || bits != lastDeath) {
+        deathKnown = true;
+        lastDeath = bits;
+        deathIndex = out.newBirth(death);
+      }
+      return deathIndex;
+    };
+
+    for (size_t i = begin;;) {
+      const uint32_t label = labels[i];
+      const RewriteTable::Entry& entry = entries[label];
+      const double death = birth + entry.lifetime;
+      const uint32_t k = firstK == IdKey::kWhole ? IdKey::kWhole : firstK + j;
+      if (death > horizon) {
+        keep(label, k, birth, birthIndex);
+        counts.soonest = std::min(counts.soonest, death);
+      } else {
+        ++counts.events;
+        counts.soonest = std::min(counts.soonest, death + entry.lifeAfter);
+        if (entry.renews) {
+          keep(label, k, death, kWriting ? deathIndexOf(death) : 0);
+        } else {
+          counts.born += entry.count;
+          tail = false;
+          if constexpr (kWriting) {
+            uint64_t parentFirst;
+            if (k == IdKey::kWhole) {
+              parentFirst = mixKeyFirst(key);
+            } else {
+              if (!keyFirstKnown) {
+                keyFirst = mixKeyFirst(key);
+                keyFirstKnown = true;
+              }
+              parentFirst = mixKeyFirst(mixKeyJoin(keyFirst, mixKeySecond(k)));
+            }
+            writer.putFresh(successors + entry.first, entry.packed, entry.count, lineage(parentFirst, death),
+                            deathIndexOf(death), death);
+          } else {
+            modules += entry.count;
+            ++runs;
+          }
+        }
+      }
+      if (++i == end) break;
+      if ((starts[i / CompactWord::kBlock] >> (i % CompactWord::kBlock)) & 1u) {
+        ++run;
+        j = 0;
+        loadRun();
+      } else {
+        ++j;
+      }
+    }
+    if constexpr (kWriting) {
+      writer.store();
+    } else {
+      out.modules_ += modules;
+      out.countedRuns_ += runs;
+    }
+    return counts;
+  }
+};
+
+}  // namespace ontogen
