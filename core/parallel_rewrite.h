@@ -211,6 +211,9 @@ class ParallelRewrite {
   /// its share in one pass into a part of parts_, then copies it into the next word.
   std::optional<CompactCounts> rewriteInParts(const CompactWord& word, double horizon, int group, unsigned threads,
                                               CompactWord& next, const CompactFits& fits, uint64_t seed);
+  /// rewriteCompact on one thread for a word rewritten by the table: one pass, no count.
+  std::optional<CompactCounts> rewriteByTableAlone(const CompactWord& word, double horizon, CompactWord& next,
+                                                   const CompactFits& fits);
   /// rewriteCompact's work on cells [begin, end) of `word`, written through `out`.
   template <class Out, class Labels, class Stop>
   CompactCounts rewriteRange(const CompactWord& word, size_t begin, size_t end, double horizon, int group,

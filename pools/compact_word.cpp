@@ -272,6 +272,32 @@ void CompactWord::joinSlices(std::span<Slice> slices) {
     for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] |= bits;
 }
 
+void CompactWord::beginWholeSlice(Slice& slice, size_t modules, size_t runs) {
+  if (!stateless_) throw std::logic_error("ontogen: internal error: a whole slice of a compact word with state values");
+  slice.modules_ = modules;
+  slice.countedRuns_ = runs;
+  slice.values_ = 0;
+  beginSlices({&slice, 1});
+}
+
+void CompactWord::endWholeSlice(Slice& slice) {
+  // What was written is what the slice counts: its last bitmap word is flushed as the
+  // word's own when whole, and the arrays are cut to it.
+  slice.modules_ = slice.written_;
+  slice.countedRuns_ = slice.runs_;
+  slice.finish();
+  size_ = slice.written_;
+  (wide_ ? labels16_.resize(size_) : labels8_.resize(size_));
+  const size_t blocks = (size_ + kBlock - 1) / kBlock;
+  runStarts_.resize(blocks);
+  blockRuns_.resize(blocks);
+  blockJ_.resize(blocks);
+  keys_.resize(slice.runs_);
+  birthIndex_.resize(slice.runs_);
+  firstK_.resize(slice.runs_);
+  endSlices({&slice, 1});
+}
+
 void CompactWord::Slice::place() {
   if (births_.empty()) return;
   uint32_t* birthIndex = out_.birthIndex;

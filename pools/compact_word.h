@@ -231,6 +231,12 @@ class CompactWord {
   /// endSlices in two parts, for a caller that renumbers on several threads: joinSlices
   /// (one thread), then Slice::place for every slice (any thread each).
   void joinSlices(std::span<Slice> slices);
+  /// One slice that writes the whole word without counting it first: beginWholeSlice
+  /// sizes the word for at most `modules` modules and `runs` runs (no state values), the
+  /// slice writes, and endWholeSlice cuts the word to what the slice wrote and ends it as
+  /// endSlices does. Pages past what is written are never touched.
+  void beginWholeSlice(Slice& slice, size_t modules, size_t runs);
+  void endWholeSlice(Slice& slice);
 
   // --- Reading ---
 
@@ -413,6 +419,8 @@ class alignas(64) CompactWord::Slice {
   /// After the slice's last append of a pass.
   void finish();
   size_t modules() const { return modules_; }
+  /// Modules written so far (while writing).
+  size_t written() const { return written_; }
   size_t values() const { return values_; }
   /// Runs written (after the writing pass).
   size_t runs() const { return runs_; }
