@@ -436,19 +436,33 @@ TEST(ParallelRewrite, ChoicesAndStepsWhereSuccessorsExpireTakeTheSerialPass) {
   }
 }
 
+// Koch past 100,000 cells at n = 7, from a word the serial pass writes; past 1,000,000 at
+// n = 9, from a word of 781,249 modules rewritten by the table, which gives it up on the
+// way. The message is the serial pass's, whatever the threads.
 TEST(ParallelRewrite, ALimitIsReportedAsTheSerialPassReportsIt) {
   auto program = testing_support::compileOrFail(kKoch);
-  for (unsigned threads : {1u, 2u}) {
-    WorldDef def;
-    def.threads = threads;
-    def.limits.maxCells = 100'000;
-    World world(program, def);
-    try {
-      world.advanceTo(10, 1.0);
-      ADD_FAILURE() << "no limit on " << threads << " threads";
-    } catch (const LimitError& error) {
-      EXPECT_NE(std::string(error.what()).find("100000 cells"), std::string::npos) << error.what();
-    }
+  for (const uint64_t limit : {100'000u, 1'000'000u}) {
+    std::string reference;
+    for (const bool slices : {false, true})
+      for (unsigned threads : {1u, 2u}) {
+        WorldDef def;
+        def.threads = threads;
+        def.rewriteBySlices = slices;
+        def.limits.maxCells = limit;
+        World world(program, def);
+        try {
+          if (limit > 100'000u) {  // n = 8 by the table (from 156,249 modules)
+            world.advanceTo(8, 1.0);
+            EXPECT_EQ(world.stats().rewritesBySlices, slices ? 1u : 0u);
+          }
+          world.advanceTo(10, 1.0);
+          ADD_FAILURE() << "no limit on " << threads << " threads";
+        } catch (const LimitError& error) {
+          if (reference.empty()) reference = error.what();
+          EXPECT_EQ(error.what(), reference) << threads << " threads, slices " << slices;
+          EXPECT_NE(reference.find(std::to_string(limit) + " cells"), std::string::npos) << error.what();
+        }
+      }
   }
 }
 
