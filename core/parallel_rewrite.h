@@ -23,7 +23,9 @@
 // or, in the context-free pass, each master either compares labels only or has one rule
 // without choice or calculation whose successors' arguments are evaluated for many cells
 // at once (the benchmarks' parametric word). There two quick passes beat the general one;
-// other words with state keep the serial pass.
+// other words with state keep the serial pass. A compact word whose labels each do one
+// thing when they expire (Koch, Thue-Morse) is walked run by run by a table
+// (pools/table_rewrite.h), and on one thread written in one pass without counting.
 
 #include <algorithm>
 #include <cstdint>
