@@ -216,6 +216,12 @@ class ParallelRewrite {
   /// rewriteCompact on one thread for a word rewritten by the table: one pass, no count.
   std::optional<CompactCounts> rewriteByTableAlone(const CompactWord& word, double horizon, CompactWord& next,
                                                    const CompactFits& fits);
+  /// What cells [begin, end) of a word rewritten by the table write at most, if each that
+  /// can expire does: modules, events and cells born (a histogram of the labels).
+  struct TableBound {
+    uint64_t modules = 0, events = 0, born = 0;
+  };
+  TableBound tableBound(const CompactWord& word, size_t begin, size_t end) const;
   /// rewriteCompact's work on cells [begin, end) of `word`, written through `out`.
   template <class Out, class Labels, class Stop>
   CompactCounts rewriteRange(const CompactWord& word, size_t begin, size_t end, double horizon, int group,
@@ -294,6 +300,9 @@ class ParallelRewrite {
   // becomes, so that rewriteCompact walks the word run by run (pools/table_rewrite.h).
   bool byTable_ = false;
   RewriteTable table_;
+  // Set once slices placed by their bounds wrote less than the bounds: from then on the
+  // slices of this development count first.
+  bool boundsMissed_ = false;
   // How much the last compact rewrite grew its word (next / old), modules and runs; 0:
   // none yet. The one-thread pass reserves by it.
   struct Growth {

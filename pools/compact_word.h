@@ -421,6 +421,15 @@ class alignas(64) CompactWord::Slice {
   size_t modules() const { return modules_; }
   /// Modules written so far (while writing).
   size_t written() const { return written_; }
+  /// Takes these figures as counted, without counting (no state values): a writer that
+  /// knows them, or bounds them and checks wroteAsAssumed() before finish().
+  void assume(size_t modules, size_t runs) {
+    modules_ = modules;
+    countedRuns_ = runs;
+    values_ = 0;
+  }
+  /// After writing: whether the slice wrote just the modules and runs it was given.
+  bool wroteAsAssumed() const { return written_ == modules_ && runs_ == countedRuns_; }
   size_t values() const { return values_; }
   /// Runs written (after the writing pass).
   size_t runs() const { return runs_; }
