@@ -25,7 +25,8 @@
 // at once (the benchmarks' parametric word). There two quick passes beat the general one;
 // other words with state keep the serial pass. A compact word whose labels each do one
 // thing when they expire (Koch, Thue-Morse) is walked run by run by a table
-// (pools/table_rewrite.h), and on one thread written in one pass without counting.
+// (pools/table_rewrite.h) and written without counting first: in one pass on one thread,
+// by slices placed by bounds on several.
 
 #include <algorithm>
 #include <cstdint>
