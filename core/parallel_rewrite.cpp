@@ -656,6 +656,17 @@ const ParallelRewrite::LabelRule* ParallelRewrite::drawAmong(const Labels& label
 }
 
 namespace {
+// The modules a step of a word rewritten by the table makes are born when their parents
+// die, most often all at the earliest death of the word (the step's instant; the horizon
+// is a little past it): that birth goes into the next word's table before the slices
+// write, so that no slice adds it as a birth of its own, which Slice::place would have to
+// renumber in every run. A guess that misses costs an unused entry.
+void knowTheBirth(CompactWord& next, std::span<CompactWord::Slice> slices, double birth) {
+  if (!(birth < kForever)) return;
+  const uint32_t index = next.birthIndexOf(birth);
+  for (CompactWord::Slice& slice : slices) slice.knowBirth(birth, index);
+}
+
 // Calls `work(labels)` with `word`'s labels read the quickest way.
 template <class Work>
 auto withLabelsOf(const CompactWord& word, const Work& work) {
@@ -761,6 +772,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   threads = std::max(threads, 1u);
   auto withLabels = [&](const auto& work) { return withLabelsOf(word, work); };
   next.clearWithBirthsOf(word);
+  const double expectedBirth = earliestDeath_;  // the last rewrite's, at this word's first death
   earliestDeath_ = kForever;
 
   // One thread: one pass, writing the next word as it goes, and asking `fits` on the way,
@@ -791,7 +803,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     return counts;
   }
 
-  if (threads == 1 && byTable_) return rewriteByTableAlone(word, horizon, next, fits);
+  if (threads == 1 && byTable_) return rewriteByTableAlone(word, horizon, next, fits, expectedBirth);
 
   // Several threads, choices that vary with the context (the signal), once the growth of
   // a rewrite is known (parts are reserved by it): counting first would choose twice.
@@ -857,6 +869,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     if (!fits || fits(total.modules, total.events, total.born, total.modules)) {
       byBounds = true;
       next.beginSlices(slices);
+      knowTheBirth(next, slices, expectedBirth);
       everySlice(pass);
       byBounds = false;
       const bool asBounded = std::all_of(slices.begin(), slices.end(),
@@ -892,6 +905,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   }
   if (fits && !fits(modules, counts.events, counts.born, modules)) return std::nullopt;
   next.beginSlices(slices);
+  if (byTable_) knowTheBirth(next, slices, expectedBirth);
   everySlice(pass);
   next.joinSlices(slices);
   everySlice([&](size_t s) { slices[s].place(); });
@@ -931,7 +945,8 @@ ParallelRewrite::TableBound ParallelRewrite::tableBound(const CompactWord& word,
 // on the way; each chunk starts a run, as a slice does.
 std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteByTableAlone(const CompactWord& word,
                                                                                    double horizon, CompactWord& next,
-                                                                                   const CompactFits& fits) {
+                                                                                   const CompactFits& fits,
+                                                                                   double expectedBirth) {
   constexpr size_t kChunk = size_t{1} << 16;
   const size_t size = word.size();
   const uint64_t modules = tableBound(word, 0, size).modules;
@@ -941,6 +956,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteByTableAlo
   slice.restart(word);
   // A module starts at most one run: its successors, or itself kept or renewed.
   next.beginWholeSlice(slice, modules, size);
+  knowTheBirth(next, {&slice, 1}, expectedBirth);
   TerminalLineage lineage;
   CompactCounts counts;
   for (size_t begin = 0; begin < size; begin += kChunk) {

@@ -215,8 +215,9 @@ class ParallelRewrite {
   std::optional<CompactCounts> rewriteInParts(const CompactWord& word, double horizon, int group, unsigned threads,
                                               CompactWord& next, const CompactFits& fits, uint64_t seed);
   /// rewriteCompact on one thread for a word rewritten by the table: one pass, no count.
+  /// `expectedBirth`: the birth most new modules will likely have.
   std::optional<CompactCounts> rewriteByTableAlone(const CompactWord& word, double horizon, CompactWord& next,
-                                                   const CompactFits& fits);
+                                                   const CompactFits& fits, double expectedBirth);
   /// What cells [begin, end) of a word rewritten by the table write at most, if each that
   /// can expire does: modules, events and cells born (a histogram of the labels).
   struct TableBound {

@@ -354,6 +354,7 @@ class alignas(64) CompactWord::Slice {
     stateCounts_ = from.stateCounts_.data();
     stateless_ = from.stateless_;
     word_ = nullptr;
+    knowsBirth_ = false;
     modules_ = values_ = countedRuns_ = 0;
     tail_ = RunTail{};
   }
@@ -395,7 +396,7 @@ class alignas(64) CompactWord::Slice {
       startBlock(i);
     bits_ |= uint64_t{1} << (i % kBlock);
     out_.keys[runs_] = lineage;
-    out_.birthIndex[runs_] = newBirth(birth);
+    out_.birthIndex[runs_] = birthIndexOf(birth);
     out_.firstK[runs_] = 1;
     ++runs_;
     if (i % kBlock + n <= kBlock && out_.labels8) [[likely]] {
@@ -430,6 +431,19 @@ class alignas(64) CompactWord::Slice {
   }
   /// After writing: whether the slice wrote just the modules and runs it was given.
   bool wroteAsAssumed() const { return written_ == modules_ && runs_ == countedRuns_; }
+  /// Once writing: `birth` is already births()[index] of the word written, so a writer
+  /// that asks birthIndexOf (TableRewrite) takes that index instead of adding it to the
+  /// slice's own births, which place() would then renumber.
+  void knowBirth(double birth, uint32_t index) {
+    knowsBirth_ = true;
+    knownBirth_ = std::bit_cast<uint64_t>(birth);
+    knownIndex_ = index;
+  }
+  /// The index a module born at `birth` takes: a known birth's, or a new birth's.
+  uint32_t birthIndexOf(double birth) {
+    if (knowsBirth_ && std::bit_cast<uint64_t>(birth) == knownBirth_) return knownIndex_;
+    return newBirth(birth);
+  }
   size_t values() const { return values_; }
   /// Runs written (after the writing pass).
   size_t runs() const { return runs_; }
@@ -497,6 +511,9 @@ class alignas(64) CompactWord::Slice {
   std::vector<double> births_;  // new births, in order of first use
   std::vector<WideK> wideK_;    // the slice's runs of wide k, numbered from its first run
   uint32_t lastBorn_ = 0;       // index in births_ of the last new birth appended
+  bool knowsBirth_ = false;     // knowBirth: a birth already in the word's table
+  uint64_t knownBirth_ = 0;
+  uint32_t knownIndex_ = 0;
   struct {
     uint8_t* labels8 = nullptr;
     uint16_t* labels16 = nullptr;

@@ -220,7 +220,7 @@ class TableRewrite {
       if (!deathKnown || bits != lastDeath) {
         deathKnown = true;
         lastDeath = bits;
-        deathIndex = out.newBirth(death);
+        deathIndex = out.birthIndexOf(death);
       }
       return deathIndex;
     };
