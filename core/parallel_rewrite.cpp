@@ -821,6 +821,15 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   std::vector<CompactCounts> counted(sliceCount);
   std::vector<double> earliest(sliceCount, kForever);
   auto never = [](const CompactCounts&) { return false; };
+  // After every slice wrote: their seams and births joined, the word finished.
+  auto joinTheSlices = [&](const CompactCounts& counts) {
+    next.joinSlices(slices);
+    everySlice([&](size_t s) { slices[s].place(); });
+    next.finish();
+    for (size_t s = 0; s < sliceCount; ++s) earliestDeath_ = std::min(earliestDeath_, earliest[s]);
+    lastGrowth_ = Growth::of(word, next);
+    return std::optional<CompactCounts>(counts);
+  };
   bool byBounds = false;  // the slices were placed by their bounds, not counted
   auto pass = [&](size_t s) {
     CompactWord::Slice& out = slices[s];
@@ -881,12 +890,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
           counts.born += slice.born;
         }
         if (fits && !fits(total.modules, counts.events, counts.born, total.modules)) return std::nullopt;
-        next.joinSlices(slices);
-        everySlice([&](size_t s) { slices[s].place(); });
-        next.finish();
-        for (size_t s = 0; s < sliceCount; ++s) earliestDeath_ = std::min(earliestDeath_, earliest[s]);
-        lastGrowth_ = Growth::of(word, next);
-        return counts;
+        return joinTheSlices(counts);
       }
       boundsMissed_ = true;
       next.clearWithBirthsOf(word);
@@ -907,12 +911,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   next.beginSlices(slices);
   if (byTable_) knowTheBirth(next, slices, expectedBirth);
   everySlice(pass);
-  next.joinSlices(slices);
-  everySlice([&](size_t s) { slices[s].place(); });
-  next.finish();
-  for (size_t s = 0; s < sliceCount; ++s) earliestDeath_ = std::min(earliestDeath_, earliest[s]);
-  lastGrowth_ = Growth::of(word, next);
-  return counts;
+  return joinTheSlices(counts);
 }
 
 ParallelRewrite::TableBound ParallelRewrite::tableBound(const CompactWord& word, size_t begin, size_t end) const {

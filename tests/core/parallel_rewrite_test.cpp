@@ -436,6 +436,15 @@ TEST(ParallelRewrite, ChoicesAndStepsWhereSuccessorsExpireTakeTheSerialPass) {
   }
 }
 
+// A world of `program` on `threads`, by slices or not, of at most `maxCells` cells.
+World limitedWorld(const std::shared_ptr<const Program>& program, unsigned threads, bool slices, uint64_t maxCells) {
+  WorldDef def;
+  def.threads = threads;
+  def.rewriteBySlices = slices;
+  def.limits.maxCells = maxCells;
+  return World(program, def);
+}
+
 // Koch past 100,000 cells at n = 7, from a word the serial pass writes; past 1,000,000 at
 // n = 9, from a word of 781,249 modules rewritten by the table, which gives it up on the
 // way. The message is the serial pass's, whatever the threads.
@@ -445,11 +454,7 @@ TEST(ParallelRewrite, ALimitIsReportedAsTheSerialPassReportsIt) {
     std::string reference;
     for (const bool slices : {false, true})
       for (unsigned threads : {1u, 2u}) {
-        WorldDef def;
-        def.threads = threads;
-        def.rewriteBySlices = slices;
-        def.limits.maxCells = limit;
-        World world(program, def);
+        World world = limitedWorld(program, threads, slices, limit);
         try {
           if (limit > 100'000u) {  // n = 8 by the table (from 156,249 modules)
             world.advanceTo(8, 1.0);
@@ -477,11 +482,7 @@ TEST(ParallelRewrite, ALimitPassedInTheMiddleOfAOnePassWordIsReportedAsTheSerial
   std::string reference;
   for (const bool slices : {false, true})
     for (unsigned threads : {1u, 2u}) {
-      WorldDef def;
-      def.threads = threads;
-      def.rewriteBySlices = slices;
-      def.limits.maxCells = 400'000;
-      World world(program, def);
+      World world = limitedWorld(program, threads, slices, 400'000);
       world.advanceTo(19, 1.0);  // b a ... a: 2^(n - 1) + 1 modules at n
       ASSERT_EQ(world.rootPool().size(), 262'145u);
       EXPECT_EQ(world.rootPool().holdsCompactWord(), slices);
