@@ -12,6 +12,14 @@
 
 namespace ontogen {
 
+namespace {
+// What a module without state of the next compact word may take at most, for the memory
+// limit before it is written: a two-byte label, a run of its own (14 bytes) with its first
+// k in the table of wide k (8 bytes), its bitmap bit and its share of the block index (10
+// bytes a block of 64, its values' offset included). Its values take 8 bytes each more.
+constexpr uint64_t kCompactModuleBound = 25;
+}  // namespace
+
 LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinition& system)
     : program_(program),
       system_(system),
@@ -27,7 +35,11 @@ LinearDevelopment::LinearDevelopment(const Program& program, const SystemDefinit
   for (const MasterCell& master : program.masters) values.push_back(master.stateCount());
   pool_.countValues(std::move(values));
   nextWord_ = pool_.emptyCompactWord();
-  compactWords_ = parallel_.appliesToCompactWords() && !system.sampledRules && !system.rates && !readsParents_;
+  // An environment writes its answers into the query modules' values as records.
+  compactWords_ = parallel_.appliesToCompactWords() && !system.sampledRules && !system.rates && !readsParents_ &&
+                  !program.hasQueries;
+  for (const MasterCell& master : program.masters)
+    compactModuleBound_ = std::max<uint64_t>(compactModuleBound_, kCompactModuleBound + 8 * master.stateCount());
 }
 
 // A copy develops on its own: its views look at its own pool.
@@ -44,6 +56,7 @@ LinearDevelopment::LinearDevelopment(const LinearDevelopment& other)
       readsParents_(other.readsParents_),
       parallel_(other.program_, other.system_),
       compactWords_(other.compactWords_),
+      compactModuleBound_(other.compactModuleBound_),
       nextWord_(other.pool_.emptyCompactWord()),
       view_(pool_, other.system_.symbolClass),
       evaluator_(other.program_, view_) {}
@@ -109,12 +122,6 @@ void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
   context_ = nullptr;
 }
 
-// What a module of the next compact word may take at most, for the memory limit before
-// it is written: a two-byte label, a run of its own (14 bytes) with its first k in the
-// table of wide k (8 bytes), its bitmap bit and its share of the block index (10 bytes a
-// block of 64).
-constexpr uint64_t kCompactModuleBound = 25;
-
 void LinearDevelopment::expireCompact(double t, double t1) {
   const double horizon = t1 + timeTolerance(t1);
   for (;;) {
@@ -130,13 +137,14 @@ void LinearDevelopment::expireCompact(double t, double t1) {
     auto fits = [&](uint64_t modules, uint64_t events, uint64_t, uint64_t heldModules) {
       if (eventsThisStep_ + events > context_->limits.maxEventsPerStep) return false;
       try {
-        checkGrowth(*context_, modules, pool_.bytes() + heldModules * kCompactModuleBound);
+        checkGrowth(*context_, modules, pool_.bytes() + heldModules * compactModuleBound_);
       } catch (const LimitError&) {
         return false;
       }
       return true;
     };
-    const auto counts = parallel_.rewriteCompact(word, instant, activeGroup_, threads, nextWord_, fits, context_->seed);
+    const auto counts = parallel_.rewriteCompact(word, instant, activeGroup_, threads, nextWord_, fits, context_->seed,
+                                                 context_->ancestors);
     if (!counts) {
       pool_.storeRecords();
       expireUntil(t, t1);

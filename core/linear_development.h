@@ -99,11 +99,14 @@ class LinearDevelopment final : public Development {
   std::vector<double> parentValues_;  // me.parent of each cell of that word
   ParallelRewrite parallel_;          // the context-free pass of a large word on every core
   // Whether the word is kept compact between steps: every master's rules compare labels
-  // only, without context in a word with brackets (ParallelRewrite::appliesToCompactWords),
-  // and no per-step rule, rate or me.parent needs the records. Steps the compact pass cannot take (lineage logged,
-  // slices turned off, a limit about to be passed) turn the word back into records.
+  // only, without context in a word with brackets, or evaluate their successors' values
+  // in batches (ParallelRewrite::appliesToCompactWords), and no per-step rule, rate,
+  // me.parent or environment needs the records. Steps the compact pass cannot take
+  // (lineage logged, slices turned off, a limit about to be passed) turn the word back
+  // into records.
   bool compactWords_ = false;
-  CompactWord nextWord_;  // the next compact word is written here, then swapped in
+  uint64_t compactModuleBound_ = 0;  // the most bytes a module of a compact word may take
+  CompactWord nextWord_;             // the next compact word is written here, then swapped in
   // The earliest terminal age in the word, for the pool's structure version it was found
   // at: only a new word changes it, so most steps of an animation ask without a scan.
   double earliestDeath_ = kForever;

@@ -148,12 +148,20 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     choosesInFrame_.push_back(choosesInFrame);
     shortestLife_[m] = shortest;
     evaluatesInBatches_.push_back(!labelsOnly_[m] && evaluatesInBatches(program, master, draws));
+    const bool compactBatched =
+        evaluatesInBatches_[m] && !drawsByLabels && !master.readsPosition && !master.readsParent;
+    compactBatched_.push_back(compactBatched);
+    anyCompactBatched_ = anyCompactBatched_ || compactBatched;
+    allCompact_ = allCompact_ && (labelsOnly_[m] || drawsByLabels || compactBatched);
+    anyState_ = anyState_ || master.stateCount() > 0;
+    withValues_ = anyState_ || anyCompactBatched_;
     firstRule_.push_back(static_cast<uint32_t>(batchedValues_.size()));
     for (const CompiledRule& rule : master.terminalRules) {
       uint32_t values = 0;
       for (const SuccessorTemplate& successor : rule.successors)
         if (!successor.isMe && !successor.stateless) values += program.masters[successor.master].stateCount();
       batchedValues_.push_back(values);
+      batchedRules_.push_back(compactBatched ? labelRule(program, static_cast<uint32_t>(m), rule) : LabelRule{});
     }
     allInBatchesOrLabelsOnly_ = allInBatchesOrLabelsOnly_ && (labelsOnly_[m] || evaluatesInBatches_[m]);
   }
@@ -449,7 +457,8 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
     for (size_t r = 0; r < masters[m].terminalRules.size(); ++r) {
       const size_t index = firstRule_[m] + r;
       if (index < worker.batches.size() && worker.batches[index].lanes > 0)
-        flushBatch(masters[m].terminalRules[r], worker.batches[index], step, outValues);
+        flushBatch(masters[m].terminalRules[r], worker.batches[index], step.context.seed, step.context.ancestors,
+                   outValues);
     }
   slice.earliestDeath = earliest;
   // Counting and writing choose alike by construction; a slice that wrote other than it
@@ -477,12 +486,7 @@ void ParallelRewrite::writeBatched(const Step& step, const CellRecord& cell, con
   Batch* batch = nullptr;
   uint64_t* laneValueAt = nullptr;
   if (batchedValues_[ruleIndex] > 0) {
-    if (worker.batches.size() < batchedValues_.size()) worker.batches.resize(batchedValues_.size());
-    batch = &worker.batches[ruleIndex];
-    if (batch->frames.empty()) {
-      batch->frames.resize(size_t{CompiledExpression::kBatchLanes} * frameSize_);
-      batch->valueAt.resize(size_t{CompiledExpression::kBatchLanes} * rule->successors.size());
-    }
+    batch = &batchOf(worker.batches, ruleIndex, *rule);
     loadCellFrame(batch->frames.data() + size_t(batch->lanes) * frameSize_, master, cell, state, death,
                   {static_cast<double>(i), 0, 0}, step.parents ? step.parents[i] : -1);
     laneValueAt = batch->valueAt.data() + size_t(batch->lanes) * rule->successors.size();
@@ -507,17 +511,24 @@ void ParallelRewrite::writeBatched(const Step& step, const CellRecord& cell, con
     laneValueAt[withValues++] = valueAt;
     put(recordOf(made), nullptr, program_.masters[successor.master].stateCount());
   }
-  if (batch && ++batch->lanes == CompiledExpression::kBatchLanes) flushBatch(*rule, *batch, step, outValues);
+  if (batch && ++batch->lanes == CompiledExpression::kBatchLanes)
+    flushBatch(*rule, *batch, step.context.seed, step.context.ancestors, outValues);
 }
 
-void ParallelRewrite::flushBatch(const CompiledRule& rule, Batch& batch, const Step& step, double* outValues) const {
+void ParallelRewrite::makeFrames(Batch& batch, const CompiledRule& rule) const {
+  batch.frames.resize(size_t{CompiledExpression::kBatchLanes} * frameSize_);
+  batch.valueAt.resize(size_t{CompiledExpression::kBatchLanes} * rule.successors.size());
+}
+
+void ParallelRewrite::flushBatch(const CompiledRule& rule, Batch& batch, uint64_t seed, const double* ancestors,
+                                 double* outValues) const {
   const size_t successors = rule.successors.size();
   const double* frames = batch.frames.data();
   const size_t frameSize = frameSize_;
   auto load = [&](int lane, int slot) { return frames[size_t(lane) * frameSize + size_t(slot)]; };
   auto noAggregate = [](int, int) { return 0.0; };
-  EvalContext context{nullptr, EvalEnvironment{nullptr, step.context.seed}, &functions_, nullptr};
-  context.ancestors = step.context.ancestors;
+  EvalContext context{nullptr, EvalEnvironment{nullptr, seed}, &functions_, nullptr};
+  context.ancestors = ancestors;
   double out[CompiledExpression::kBatchLanes];
   size_t withValues = 0;
   for (const SuccessorTemplate& successor : rule.successors) {
@@ -699,6 +710,8 @@ struct SerialOut {
   void appendFreshRun(const uint32_t* labels, uint32_t n, uint64_t, uint64_t lineage, double birth) {
     word.appendRun(labels, n, lineage, word.birthIndexOf(birth));
   }
+  size_t nextValue() const { return word.valueCount(); }
+  double* wordValues() const { return word.values().data(); }
 };
 }  // namespace
 
@@ -706,13 +719,16 @@ struct SerialOut {
 // on one thread. The counting pass chooses but hashes nothing: new successors are named by
 // their event (CompactWord::Slice::appendBorn) until the writing pass computes their
 // lineage. `stop(counts so far)` is asked every 2^16 cells whether to give up.
-template <class Out, class Labels, class Stop>
+template <bool kWithValues, class Out, class Labels, class Stop>
 ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& word, size_t begin, size_t end,
                                                              double horizon, int group, const Labels& labels, Out& out,
-                                                             const Stop& stop, double& soonest, uint64_t seed) const {
+                                                             const Stop& stop, double& soonest,
+                                                             CompactEvaluation& evaluation) const {
   const bool writing = out.writing();
   const double* lifetimes = lifetimes_.data();
   const size_t size = word.size();
+  // In a local: a label stored through a byte pointer may alias any member.
+  const uint8_t* batched = compactBatched_.data();
   CompactCounts counts;
   size_t untilCheck = size_t{1} << 16;
   for (CompactWordCursor cell(word, begin); !cell.done() && cell.index() < end; cell.next()) {
@@ -724,15 +740,21 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
     const double lifetime = lifetimes[label];
     const double death = cell.birth() + lifetime;
     if (death > horizon) {
-      out.appendCopy(label, cell.key(), cell.birthIndex(), nullptr);
+      out.appendCopy(label, cell.key(), cell.birthIndex(), kWithValues ? cell.state() : nullptr);
       soonest = std::min(soonest, death);
       continue;
     }
     ++counts.events;
+    if constexpr (kWithValues) {
+      if (batched[label]) {
+        expireBatched(cell, label, death, out, counts, soonest, evaluation);
+        continue;
+      }
+    }
     const LabelRule* choice =
         fixedChoice_[label] ? fixedRule(label) : chooseByPosition(labels, size, label, group, cell.index(), [&] {
           // The stream the records' passes draw from (LinearDevelopment::expire).
-          RandomStream random(mixKey(mixKey(seed, cell.id()), keyOf(death)));
+          RandomStream random(mixKey(mixKey(evaluation.seed, cell.id()), keyOf(death)));
           return random.uniform();
         });
     if (!choice || !choice->rule->hasAction) {  // renewed: the same id, born again
@@ -759,13 +781,84 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
         out.appendBorn(successor.label, counts.events, lineage, k, death, nullptr);
     }
   }
+  if (kWithValues && writing)  // the values of the cells still waiting in a batch
+    for (size_t m = 0; m < compactBatched_.size(); ++m)
+      for (uint32_t r = 0; r < program_.masters[m].terminalRules.size(); ++r) {
+        const size_t index = firstRule_[m] + r;
+        if (index < evaluation.batches.size() && evaluation.batches[index].lanes > 0)
+          flushBatch(program_.masters[m].terminalRules[r], evaluation.batches[index], evaluation.seed,
+                     evaluation.ancestors, out.wordValues());
+      }
   return counts;
+}
+
+// As writeBatched writes a cell in the records' pass: the same rule, ids, births and
+// values. The id is hashed only where it is read: for a draw, and for the frame and the
+// lineage while writing.
+template <class Out>
+void ParallelRewrite::expireBatched(const CompactWordCursor& cell, uint32_t label, double death, Out& out,
+                                    CompactCounts& counts, double& soonest, CompactEvaluation& evaluation) const {
+  const MasterCell& master = program_.masters[label];
+  const bool writing = out.writing();
+  const IdKey own = cell.key();
+  const uint64_t id = writing || drawsByChance_[label] ? own.id() : 0;
+  const CompiledRule* rule = contextFreeRule(master, label, evaluation.seed, id, death);
+  if (!rule || !rule->hasAction) {  // renewed, with its values
+    out.append(label, own, death, cell.state());
+    soonest = std::min(soonest, death + master.lifetime);
+    return;
+  }
+  const uint32_t ruleIndex = firstRule_[label] + static_cast<uint32_t>(rule - master.terminalRules.data());
+  const LabelRule& writes = batchedRules_[ruleIndex];
+  counts.born += writes.born;
+  soonest = std::min(soonest, death + writes.shortestLife);
+  Batch* batch = nullptr;
+  uint64_t* laneValueAt = nullptr;
+  if (writing && batchedValues_[ruleIndex] > 0) {
+    batch = &batchOf(evaluation.batches, ruleIndex, *rule);
+    // Its values, age and id: a master of compactBatched_ reads neither place nor parent.
+    double* frame = batch->frames.data() + size_t(batch->lanes) * frameSize_;
+    const uint32_t n = master.stateCount();
+    std::copy(cell.state(), cell.state() + n, frame);
+    loadAgeAndId(frame + n, cell.birth(), id, master.lifetime, death);
+    laneValueAt = batch->valueAt.data() + size_t(batch->lanes) * rule->successors.size();
+  }
+  const uint64_t lineage = writing ? lineageKey(id, death, BirthCause::Terminal) : 0;
+  size_t withValues = 0;
+  if (!writes.freshLabels.empty()) {  // all new: one run, written at once, its values after it
+    if (laneValueAt) {
+      size_t value = out.nextValue();
+      for (const SuccessorTemplate& successor : rule->successors) {
+        if (successor.stateless) continue;
+        laneValueAt[withValues++] = value;
+        value += program_.masters[successor.master].stateCount();
+      }
+    }
+    out.appendFreshRun(writes.freshLabels.data(), writes.cells, counts.events, lineage, death);
+  } else {
+    uint32_t k = 0;
+    for (const SuccessorTemplate& successor : rule->successors) {
+      ++k;
+      if (successor.isMe) {
+        out.append(label, own, death, cell.state());
+        continue;
+      }
+      if (laneValueAt && !successor.stateless) laneValueAt[withValues++] = out.nextValue();
+      if (successor.keepsIdentity)
+        out.append(successor.master, own, death, nullptr);
+      else
+        out.appendBorn(successor.master, counts.events, lineage, k, death, nullptr);
+    }
+  }
+  if (batch && ++batch->lanes == CompiledExpression::kBatchLanes)
+    flushBatch(*rule, *batch, evaluation.seed, evaluation.ancestors, out.wordValues());
 }
 
 std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(const CompactWord& word, double horizon,
                                                                               int group, unsigned threads,
                                                                               CompactWord& next,
-                                                                              const CompactFits& fits, uint64_t seed) {
+                                                                              const CompactFits& fits, uint64_t seed,
+                                                                              const double* ancestors) {
   if (!appliesToCompactWords())
     throw std::logic_error("ontogen: internal error: a compact rewrite of a word whose rules are not label-only");
   const size_t size = word.size();
@@ -777,22 +870,29 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
 
   // One thread: one pass, writing the next word as it goes, and asking `fits` on the way,
   // for a small word, and for a large one whose choices vary with the context (a signal),
-  // where counting first would choose twice. A large word's arrays are then reserved for
-  // the growth of the last rewrite, since growing them as it goes would hold a copy more
-  // (Koch at n = 10: 144 MB against 101 MB); with no growth to go by yet, the word is
-  // counted first, as by slices. Where every choice is fixed (Koch, Thue-Morse) counting
-  // is cheap, and writing in place beats appending (Koch: 72 against 81 ms).
-  if (threads == 1 && (size < kMinimumCells || (anyChoiceVaries_ && lastGrowth_.modules > 0))) {
+  // where counting first would choose twice, or whose successors' values are evaluated
+  // (the parametric word), where counting first would walk the events twice. A large
+  // word's arrays are then reserved for the growth of the last rewrite, since growing them
+  // as it goes would hold a copy more (Koch at n = 10: 144 MB against 101 MB); with no
+  // growth to go by yet, the word is counted first, as by slices. Where every choice is
+  // fixed (Koch, Thue-Morse) counting is cheap, and writing in place beats appending
+  // (Koch: 72 against 81 ms).
+  const bool onePass = anyChoiceVaries_ || anyCompactBatched_;
+  if (threads == 1 && (size < kMinimumCells || (onePass && lastGrowth_.modules > 0))) {
     if (size >= kMinimumCells)
-      next.reserve(Growth::room(size, lastGrowth_.modules), Growth::room(word.runCount(), lastGrowth_.runs), 0);
+      next.reserve(Growth::room(size, lastGrowth_.modules), Growth::room(word.runCount(), lastGrowth_.runs),
+                   Growth::room(word.valueCount(), lastGrowth_.values));
     SerialOut out{next};
     bool refused = false;
     auto stop = [&](const CompactCounts& sofar) {
       refused = fits && !fits(next.size(), sofar.events, sofar.born, next.size());
       return refused;
     };
+    CompactEvaluation evaluation{seed, ancestors, {}};
     const CompactCounts counts = withLabels([&](const auto& labels) {
-      return rewriteRange(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, seed);
+      return withValues_
+                 ? rewriteRange<true>(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, evaluation)
+                 : rewriteRange<false>(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, evaluation);
     });
     if (refused || (fits && !fits(next.size(), counts.events, counts.born, next.size()))) {
       next.clear();
@@ -807,7 +907,8 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
 
   // Several threads, choices that vary with the context (the signal), once the growth of
   // a rewrite is known (parts are reserved by it): counting first would choose twice.
-  if (anyChoiceVaries_ && lastGrowth_.modules > 0 && size >= kMinimumCells)
+  // Parts hold no state values (CompactWord::appendWord).
+  if (anyChoiceVaries_ && !anyState_ && lastGrowth_.modules > 0 && size >= kMinimumCells)
     return rewriteInParts(word, horizon, group, threads, next, fits, seed);
 
   const size_t sliceCount = std::max<size_t>(1, std::min<size_t>(size, size_t{threads} * kSlicesPerThread));
@@ -843,8 +944,11 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
       counts = {walked.events, walked.born};
       soonest = walked.soonest;
     } else {
+      CompactEvaluation evaluation{seed, ancestors, {}};
       counts = withLabels([&](const auto& labels) {
-        return rewriteRange(word, begin, end, horizon, group, labels, out, never, soonest, seed);
+        return withValues_
+                   ? rewriteRange<true>(word, begin, end, horizon, group, labels, out, never, soonest, evaluation)
+                   : rewriteRange<false>(word, begin, end, horizon, group, labels, out, never, soonest, evaluation);
       });
     }
     if (byBounds) {
@@ -1023,8 +1127,11 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteInParts(co
     };
     SerialOut serial{out};
     double soonest = kForever;
+    CompactEvaluation evaluation{seed, nullptr, {}};  // no state: nothing is evaluated
     counted[p] = withLabelsOf(word, [&](const auto& labels) {
-      return rewriteRange(word, begin, end, horizon, group, labels, serial, stop, soonest, seed);
+      return withValues_
+                 ? rewriteRange<true>(word, begin, end, horizon, group, labels, serial, stop, soonest, evaluation)
+                 : rewriteRange<false>(word, begin, end, horizon, group, labels, serial, stop, soonest, evaluation);
     });
     earliest[p] = soonest;
   };

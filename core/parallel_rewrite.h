@@ -26,7 +26,10 @@
 // other words with state keep the serial pass. A compact word whose labels each do one
 // thing when they expire (Koch, Thue-Morse) is walked run by run by a table
 // (pools/table_rewrite.h) and written without counting first: in one pass on one thread,
-// by slices placed by bounds on several.
+// by slices placed by bounds on several. A compact word may hold values too, where every
+// master with state evaluates its successors' arguments in batches without reading its
+// place or parent (compactBatched_): its new successors go in one run, their values are
+// left in place and written when the batch is evaluated.
 
 #include <algorithm>
 #include <cstdint>
@@ -63,13 +66,14 @@ class ParallelRewrite {
   bool rewriteAtInstant(const LinearPool& pool, double instant, int group, StepContext& context, const double* parents,
                         uint64_t& events, CellArray& cells, StateArray& state);
 
-  /// Whether rewriteCompact applies: every master's rules compare labels only and give no
-  /// birth age, the system neither decomposes nor derives backward and has no cut symbol,
+  /// Whether rewriteCompact applies: every master's rules compare labels only, or are
+  /// evaluated in batches without reading the cell's place (compactBatched_), and give no
+  /// birth age; the system neither decomposes nor derives backward and has no cut symbol;
   /// and either no rule has a context (brackets are then labels like any other: a plant's
   /// F -> F [ + F ] F) or the word has no brackets or ignored modules and every context
   /// compares at most kPositionItems modules a side.
   bool appliesToCompactWords() const {
-    return allChooseByLabels_ && atInstants_ && (!anyContext_ || (plain_ && allByPosition_));
+    return allCompact_ && atInstants_ && (!anyContext_ || (plain_ && allByPosition_));
   }
 
   /// Whether rewriteCompact walks the word run by run by a table (pools/table_rewrite.h):
@@ -97,9 +101,11 @@ class ParallelRewrite {
     uint64_t events = 0, born = 0;
   };
   /// `seed` is the run's: a stochastic rule's draw comes from the cell's stream, as in
-  /// the records' passes.
+  /// the records' passes. `ancestors`: the values the cells' expressions read of their
+  /// ancestors (StepContext::ancestors).
   std::optional<CompactCounts> rewriteCompact(const CompactWord& word, double horizon, int group, unsigned threads,
-                                              CompactWord& next, const CompactFits& fits = {}, uint64_t seed = 0);
+                                              CompactWord& next, const CompactFits& fits = {}, uint64_t seed = 0,
+                                              const double* ancestors = nullptr);
 
   /// The earliest terminal age (birth + lifetime) in the word rewriteAtInstant wrote last,
   /// found while writing it, so the development need not look for it again.
@@ -165,8 +171,22 @@ class ParallelRewrite {
   void writeBatched(const Step& step, const CellRecord& cell, const double* state, double death, size_t i,
                     Worker& worker, double* outValues, uint64_t& valueAt, const Put& put) const;
   /// Evaluates the successors' arguments of every cell waiting in `batch` (master
-  /// `master`), lane by lane over each argument's code, into `outValues`.
-  void flushBatch(const CompiledRule& rule, Batch& batch, const Step& step, double* outValues) const;
+  /// `master`), lane by lane over each argument's code, into `outValues`; `seed` and
+  /// `ancestors` as StepContext's.
+  void flushBatch(const CompiledRule& rule, Batch& batch, uint64_t seed, const double* ancestors,
+                  double* outValues) const;
+  /// The batch of rule `ruleIndex` (firstRule_) among `batches`, its frames made the first
+  /// time.
+  [[gnu::always_inline]] Batch& batchOf(std::vector<Batch>& batches, uint32_t ruleIndex,
+                                        const CompiledRule& rule) const {
+    if (batches.size() < batchedValues_.size()) [[unlikely]]
+      batches.resize(batchedValues_.size());
+    Batch& batch = batches[ruleIndex];
+    if (batch.frames.empty()) [[unlikely]]
+      makeFrames(batch, rule);
+    return batch;
+  }
+  void makeFrames(Batch& batch, const CompiledRule& rule) const;
 
   const Program& program_;
   const SystemDefinition& system_;
@@ -224,10 +244,25 @@ class ParallelRewrite {
     uint64_t modules = 0, events = 0, born = 0;
   };
   TableBound tableBound(const CompactWord& word, size_t begin, size_t end) const;
+  /// What the expressions of a compact rewrite read besides the word: the run's seed and
+  /// the ancestors' values; and the batches of one rewriteRange (compactBatched_).
+  struct CompactEvaluation {
+    uint64_t seed = 0;
+    const double* ancestors = nullptr;
+    std::vector<Batch> batches;  // per rule (firstRule_), made as they are needed
+  };
   /// rewriteCompact's work on cells [begin, end) of `word`, written through `out`.
-  template <class Out, class Labels, class Stop>
+  /// kWithValues: withValues_; words of labels alone take the loop without values.
+  template <bool kWithValues, class Out, class Labels, class Stop>
   CompactCounts rewriteRange(const CompactWord& word, size_t begin, size_t end, double horizon, int group,
-                             const Labels& labels, Out& out, const Stop& stop, double& soonest, uint64_t seed) const;
+                             const Labels& labels, Out& out, const Stop& stop, double& soonest,
+                             CompactEvaluation& evaluation) const;
+  /// rewriteRange's event of `cell`, of a master of compactBatched_, dying at `death`:
+  /// the rule it fires (or its renewal) written through `out` as writeBatched writes it,
+  /// the successors' values left to `evaluation`'s batches while writing.
+  template <class Out>
+  void expireBatched(const CompactWordCursor& cell, uint32_t label, double death, Out& out, CompactCounts& counts,
+                     double& soonest, CompactEvaluation& evaluation) const;
   /// Whether `choice`'s context matches around cell i of a plain word whose label at j
   /// is labels[j] (j below size).
   template <class Labels>
@@ -258,6 +293,21 @@ class ParallelRewrite {
   // pass draws among them as the records' passes do.
   bool allChooseByLabels_ = true;
   bool allByPosition_ = true;  // every label-only rule with context compares by position
+  // Per master that evaluates in batches (evaluatesInBatches_) and reads neither its place
+  // nor its parent: a compact word holds its values, and rewriteCompact writes its
+  // successors as writeBatched does (the benchmarks' parametric word). Its place is left
+  // out because the context-free pass gives a successor that expires within the step its
+  // ancestor's place at the start of the step, which the compact pass, instant by
+  // instant, does not know.
+  std::vector<uint8_t> compactBatched_;
+  bool anyCompactBatched_ = false;
+  // Per terminal rule (firstRule_) of a master of compactBatched_: what it writes.
+  std::vector<LabelRule> batchedRules_;
+  // Every master compares labels only, draws among rules of constant chances by labels,
+  // or is of compactBatched_.
+  bool allCompact_ = true;
+  bool anyState_ = false;    // some master has state values
+  bool withValues_ = false;  // anyState_ or anyCompactBatched_
   // Per master whose rules compare labels only and whose choice is the same for every
   // cell (one rule of group 0 without context, or none): that rule, or null.
   std::vector<uint8_t> fixedChoice_;
@@ -305,14 +355,16 @@ class ParallelRewrite {
   // Set once slices placed by their bounds wrote less than the bounds: from then on the
   // slices of this development count first.
   bool boundsMissed_ = false;
-  // How much the last compact rewrite grew its word (next / old), modules and runs; 0:
-  // none yet. The one-thread pass reserves by it.
+  // How much the last compact rewrite grew its word (next / old), modules, runs and
+  // values; 0: none yet. The one-thread pass reserves by it.
   struct Growth {
-    double modules = 0, runs = 0;
+    double modules = 0, runs = 0, values = 0;
     static Growth of(const CompactWord& word, const CompactWord& next) {
       if (word.empty() || word.runCount() == 0) return {};
       return {static_cast<double>(next.size()) / static_cast<double>(word.size()),
-              static_cast<double>(next.runCount()) / static_cast<double>(word.runCount())};
+              static_cast<double>(next.runCount()) / static_cast<double>(word.runCount()),
+              word.valueCount() == 0 ? 0.0
+                                     : static_cast<double>(next.valueCount()) / static_cast<double>(word.valueCount())};
     }
     /// Room for `count` grown by `ratio`, a sixteenth more, at most 8 times `count`: a
     /// word growing faster grows its arrays as it goes, at the cost of a copy.

@@ -138,7 +138,8 @@ class CompactWord {
     return addBirth(birth);
   }
   /// Appends a module with label `label` (below the label count), id `key`, birth
-  /// births()[birthIndex], and the label's state count of values from `values`.
+  /// births()[birthIndex], and the label's state count of values from `values` (null:
+  /// the caller writes them later, at values()[valueCount() before the append]).
   /// Inline: a single-pass rewrite calls it for every module.
   void append(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
     const uint32_t count = stateless_ ? 0 : stateCounts_[label];
@@ -164,29 +165,40 @@ class CompactWord {
       if (values_.size() + count > UINT32_MAX) [[unlikely]]
         tooManyValues();
       const size_t at = values_.size();
-      values_.resize(at + count);
-      for (uint32_t v = 0; v < count; ++v) values_[at + v] = values[v];
+      if (values) {
+        values_.resize(at + count);
+        for (uint32_t v = 0; v < count; ++v) values_[at + v] = values[v];
+      } else {
+        resizeForOverwrite(values_, at + count);  // written later, from `at` on
+      }
     }
     ++size_;
   }
   void append(uint32_t label, IdKey key, double birth, const double* values) {
     append(label, key, birthIndexOf(birth), values);
   }
-  /// Modules with ids (lineage, 1) .. (lineage, n), labels `labels`, no state, n from 1 to
-  /// kLargestRunK, born at births()[birthIndex]: as n appends, the later n - 1 continuing
-  /// the first's run by the canonical rule without asking it.
+  /// Modules with ids (lineage, 1) .. (lineage, n), labels `labels`, n from 1 to
+  /// kLargestRunK, born at births()[birthIndex]: as n appends with null values (written
+  /// later, from valueCount() before the call on), the later n - 1 continuing the first's
+  /// run by the canonical rule without asking it.
   void appendRun(const uint32_t* labels, uint32_t n, uint64_t lineage, uint32_t birthIndex) {
     append(labels[0], IdKey{lineage, 1}, birthIndex, nullptr);
+    size_t values = 0;  // of the modules appended since the values last grew
     for (uint32_t k = 2; k <= n; ++k) {
-      if (size_ % kBlock == 0) [[unlikely]]
+      if (size_ % kBlock == 0) [[unlikely]] {
+        growValues(values);  // the block index counts the values before the block
+        values = 0;
         startBlock();
+      }
       ++runJ_;
       if (wide_)
         labels16_.push_back(static_cast<uint16_t>(labels[k - 1]));
       else
         labels8_.push_back(static_cast<uint8_t>(labels[k - 1]));
+      if (!stateless_) values += stateCounts_[labels[k - 1]];
       ++size_;
     }
+    growValues(values);
     tail_.continues(IdKey{lineage, n}, births_[birthIndex]);  // the last module becomes the tail
   }
   /// After the last append: renumbers the birth table in order of first use, dropping
@@ -310,6 +322,13 @@ class CompactWord {
   /// index, once a block.
   void startBlock();
   [[noreturn]] static void tooManyValues();
+  /// `count` more values, written later.
+  void growValues(size_t count) {
+    if (count == 0) return;
+    if (values_.size() + count > UINT32_MAX) [[unlikely]]
+      tooManyValues();
+    resizeForOverwrite(values_, values_.size() + count);
+  }
 
   std::vector<uint32_t> stateCounts_;
   bool wide_ = false;
@@ -381,14 +400,17 @@ class alignas(64) CompactWord::Slice {
     if (!word_) return count(label, continues);
     put(label, IdKey{lineage, k}, continues, newBirth(birth), values);
   }
-  /// The new successors 1 .. n of an event, all without state, none keeping an id, n at
-  /// most kLargestRunK: as n calls of appendBorn, in one run written at once.
+  /// The new successors 1 .. n of an event, none keeping an id, n at most kLargestRunK:
+  /// as n calls of appendBorn with null values (written later, from nextValue() before
+  /// the call on), in one run written at once.
   [[gnu::always_inline]] void appendFreshRun(const uint32_t* labels, uint32_t n, uint64_t event, uint64_t lineage,
                                              double birth) {
     tail_.endFresh(event, n, birth);
     if (!word_) {
       modules_ += n;
       ++countedRuns_;
+      if (!stateless_) [[unlikely]]
+        for (uint32_t j = 0; j < n; ++j) values_ += stateCounts_[labels[j]];
       return;
     }
     const size_t i = firstModule_ + written_;
@@ -402,6 +424,8 @@ class alignas(64) CompactWord::Slice {
     if (i % kBlock + n <= kBlock && out_.labels8) [[likely]] {
       uint8_t* to = out_.labels8 + i;
       for (uint32_t j = 0; j < n; ++j) to[j] = static_cast<uint8_t>(labels[j]);
+      if (!stateless_) [[unlikely]]
+        for (uint32_t j = 0; j < n; ++j) writtenValues_ += stateCounts_[labels[j]];
     } else {
       for (uint32_t j = 0; j < n; ++j) {
         if (j > 0 && (i + j) % kBlock == 0) {
@@ -412,6 +436,7 @@ class alignas(64) CompactWord::Slice {
           out_.labels8[i + j] = static_cast<uint8_t>(labels[j]);
         else
           out_.labels16[i + j] = static_cast<uint16_t>(labels[j]);
+        if (!stateless_) writtenValues_ += stateCounts_[labels[j]];  // before the next block starts
       }
     }
     written_ += n;
@@ -445,6 +470,11 @@ class alignas(64) CompactWord::Slice {
     return newBirth(birth);
   }
   size_t values() const { return values_; }
+  /// While writing: where the next module's first value goes in the word's values, and
+  /// those values, for a writer that appends a module without its values (null) and
+  /// writes them later.
+  size_t nextValue() const { return firstValue_ + writtenValues_; }
+  double* wordValues() const { return out_.values; }
   /// Runs written (after the writing pass).
   size_t runs() const { return runs_; }
   /// After CompactWord::joinSlices: gives the slice's runs born at its new births their
@@ -493,7 +523,8 @@ class alignas(64) CompactWord::Slice {
     if (stateless_) return;
     const uint32_t count = stateCounts_[label];
     double* to = out_.values + firstValue_ + writtenValues_;
-    for (uint32_t v = 0; v < count; ++v) to[v] = values[v];
+    if (values)  // null: written later, at nextValue() before the append
+      for (uint32_t v = 0; v < count; ++v) to[v] = values[v];
     writtenValues_ += count;
   }
   /// At module i: the block index entry of a block starting there, and a new bitmap word.

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <string>
 #include <vector>
@@ -62,6 +63,12 @@ void expectSameWords(const World& serial, const World& parallel, const std::stri
   for (size_t k = 0; k < a.stateArena().size(); ++k)
     ASSERT_EQ(std::bit_cast<uint64_t>(a.stateArena()[k]), std::bit_cast<uint64_t>(b.stateArena()[k]))
         << what << ": state value " << k;
+  // Cells found by index, as interpretation and queries find them: a compact word finds
+  // their values through its block index.
+  for (size_t i = 0; i < a.size(); i += 61) {
+    ASSERT_EQ(a.stateOffset(i), b.stateOffset(i)) << what << ": cell " << i;
+    ASSERT_EQ(a.cellAt(i).id, b.cellAt(i).id) << what << ": cell " << i;
+  }
 }
 
 bool bySlices(const Grown& grown) {
@@ -105,7 +112,7 @@ TEST(ParallelRewrite, EveryKindOfSuccessorIsWrittenAsTheSerialPassWritesIt) {
 const char* kEvaluatedInBatches = R"(
 cell A(x = 1, w = 2) { lifetime 1; rules { terminal: -> A(x * 0.5 + sqrt(w), w + age) B(x - me.x, time) me C; } }
 cell B(y = 0, z = 0) { lifetime 1; rules { terminal: -> =B(y + me.parent, z * 0.25 + id % 7) C G(y); } }
-cell G(g = 0) { lifetime 1; rules { terminal: -> G(g + 1 / (1 + age)); } }
+cell G(g = 0) { lifetime 3; rules { terminal: -> G(g + 1 / (1 + age)); } }
 cell C { lifetime 2; }
 cell E(v = 3) { lifetime 1; }
 system s { pool linear; axiom E A B E; }
@@ -118,6 +125,57 @@ TEST(ParallelRewrite, ArgumentsEvaluatedInBatchesEqualTheSerialPass) {
   ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
   EXPECT_EQ(serial.stats.rewritesBySlices, 0u);
   expectTheSerialWordOnEveryThreadCount(program, 15, serial, {1, 2, 3}, bySlices);
+}
+
+// Words with state kept compact (ParallelRewrite::appliesToCompactWords): masters whose
+// successors' values are evaluated in batches, with all-new successors in one run (A,
+// with a stateless C in it, and fourteen successors crossing blocks of 64), `=X` (B),
+// `me` (G), a renewal with state (E, whose lifetime of 1.5 makes two instants a step), a
+// draw among constant chances (H), and arguments reading age, time, id, a built-in
+// function and an enclosing system's state (parent.k).
+const char* kStateKeptCompact = R"(
+cell A(x = 1, w = 2) { lifetime 1;
+  rules { terminal: -> A(x * 0.5 + sqrt(w), w + age) B(x - id % 5, time) C G(w)
+                       G(1) G(2) G(3) G(4) G(5) G(6) G(7) G(8) G(9) A(parent.k, x); } }
+cell B(y = 0, z = 0) { lifetime 1; rules { terminal: -> =B(y + 1, z * 0.25 + id % 7) C H(y); } }
+cell G(g = 0) { lifetime 3; rules { terminal: -> G(g + 1 / (1 + age)) me; } }
+cell H(h = 1) { lifetime 1;
+  rules { terminal: -> H(h + 1) H(h * 2) : 0.3; terminal: -> H(h - 1) : 0.6; terminal: -> : 0.1; } }
+cell C { lifetime 2; }
+cell E(v = 3) { lifetime 1.5; }
+system inner(k = 4) { pool linear; axiom E A B E H; }
+system s { pool linear; axiom inner; }
+)";
+
+TEST(ParallelRewrite, AWordWithStateIsKeptCompactAsTheSerialPassWritesIt) {
+  auto program = testing_support::compileOrFail(kStateKeptCompact);
+  ASSERT_NE(program, nullptr);
+  const auto inner = std::find_if(program->systems.begin(), program->systems.end(),
+                                  [](const SystemDefinition& system) { return system.name == "inner"; });
+  ASSERT_NE(inner, program->systems.end());
+  ASSERT_TRUE(ParallelRewrite(*program, *inner).appliesToCompactWords());
+  auto innerWorld = [](const Grown& grown) -> const World& {
+    const World* world = grown.world->childOf(grown.world->rootPool().cellAt(0).id);
+    if (!world) throw std::logic_error("no inner world");
+    return *world;
+  };
+  const Grown serial = grow(program, 13, 1, false);
+  ASSERT_GT(innerWorld(serial).rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
+  for (unsigned threads : {1u, 2u, 3u}) {
+    const Grown grown = grow(program, 13, threads);
+    EXPECT_TRUE(innerWorld(grown).rootPool().holdsCompactWord()) << threads << " threads";
+    expectSameWords(innerWorld(serial), innerWorld(grown), std::to_string(threads) + " threads");
+    EXPECT_EQ(innerWorld(grown).stats().events, innerWorld(serial).stats().events);
+    EXPECT_EQ(innerWorld(grown).stats().cellsBorn, innerWorld(serial).stats().cellsBorn);
+    EXPECT_GT(innerWorld(grown).stats().rewritesBySlices, 0u);
+  }
+  // A master that reads its place (me.x) or its parent keeps the records.
+  for (const char* reads : {"me.x", "me.parent"}) {
+    auto model = testing_support::compileOrFail(std::string("lsystem p {\n  axiom A(1)\n  A(x) -> A(x + ") + reads +
+                                                ") A(x)\n}\n");
+    ASSERT_NE(model, nullptr);
+    EXPECT_FALSE(ParallelRewrite(*model, model->systems[model->root]).appliesToCompactWords()) << reads;
+  }
 }
 
 // A plant's bracketed word whose rules have no context (ABOP Fig. 1.24d): brackets are
