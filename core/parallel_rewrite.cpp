@@ -792,6 +792,13 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
   return counts;
 }
 
+template <class Out, class Labels, class Stop>
+[[gnu::noinline]] ParallelRewrite::CompactCounts ParallelRewrite::rewriteRangeWithValues(
+    const CompactWord& word, size_t begin, size_t end, double horizon, int group, const Labels& labels, Out& out,
+    const Stop& stop, double& soonest, CompactEvaluation& evaluation) const {
+  return rewriteRange<true>(word, begin, end, horizon, group, labels, out, stop, soonest, evaluation);
+}
+
 // As writeBatched writes a cell in the records' pass: the same rule, ids, births and
 // values. The id is hashed only where it is read: for a draw, and for the frame and the
 // lineage while writing.
@@ -881,7 +888,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   if (threads == 1 && (size < kMinimumCells || (onePass && lastGrowth_.modules > 0))) {
     if (size >= kMinimumCells)
       next.reserve(Growth::room(size, lastGrowth_.modules), Growth::room(word.runCount(), lastGrowth_.runs),
-                   Growth::room(word.valueCount(), lastGrowth_.values));
+                   withValues_ ? Growth::room(word.valueCount(), lastGrowth_.values) : 0);
     SerialOut out{next};
     bool refused = false;
     auto stop = [&](const CompactCounts& sofar) {
@@ -891,7 +898,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     CompactEvaluation evaluation{seed, ancestors, {}};
     const CompactCounts counts = withLabels([&](const auto& labels) {
       return withValues_
-                 ? rewriteRange<true>(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, evaluation)
+                 ? rewriteRangeWithValues(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, evaluation)
                  : rewriteRange<false>(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, evaluation);
     });
     if (refused || (fits && !fits(next.size(), counts.events, counts.born, next.size()))) {
@@ -947,7 +954,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
       CompactEvaluation evaluation{seed, ancestors, {}};
       counts = withLabels([&](const auto& labels) {
         return withValues_
-                   ? rewriteRange<true>(word, begin, end, horizon, group, labels, out, never, soonest, evaluation)
+                   ? rewriteRangeWithValues(word, begin, end, horizon, group, labels, out, never, soonest, evaluation)
                    : rewriteRange<false>(word, begin, end, horizon, group, labels, out, never, soonest, evaluation);
       });
     }
@@ -1130,7 +1137,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteInParts(co
     CompactEvaluation evaluation{seed, nullptr, {}};  // no state: nothing is evaluated
     counted[p] = withLabelsOf(word, [&](const auto& labels) {
       return withValues_
-                 ? rewriteRange<true>(word, begin, end, horizon, group, labels, serial, stop, soonest, evaluation)
+                 ? rewriteRangeWithValues(word, begin, end, horizon, group, labels, serial, stop, soonest, evaluation)
                  : rewriteRange<false>(word, begin, end, horizon, group, labels, serial, stop, soonest, evaluation);
     });
     earliest[p] = soonest;

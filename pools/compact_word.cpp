@@ -79,6 +79,18 @@ void CompactWord::tooManyValues() {
   throw std::length_error("ontogen: a linear word with 2^32 state values");
 }
 
+void CompactWord::appendValues(uint32_t count, const double* values) {
+  if (values_.size() + count > UINT32_MAX) [[unlikely]]
+    tooManyValues();
+  const size_t at = values_.size();
+  if (!values) {
+    resizeForOverwrite(values_, at + count);  // written later, from `at` on
+    return;
+  }
+  values_.resize(at + count);
+  std::copy(values, values + count, values_.begin() + static_cast<std::ptrdiff_t>(at));
+}
+
 void CompactWord::startBlock() {
   // The block index counts runs and values in 32 bits, as a record's state offset did.
   if (keys_.size() >= UINT32_MAX || values_.size() >= UINT32_MAX)

@@ -161,17 +161,7 @@ class CompactWord {
       labels16_.push_back(static_cast<uint16_t>(label));
     else
       labels8_.push_back(static_cast<uint8_t>(label));
-    if (count > 0) {
-      if (values_.size() + count > UINT32_MAX) [[unlikely]]
-        tooManyValues();
-      const size_t at = values_.size();
-      if (values) {
-        values_.resize(at + count);
-        for (uint32_t v = 0; v < count; ++v) values_[at + v] = values[v];
-      } else {
-        resizeForOverwrite(values_, at + count);  // written later, from `at` on
-      }
-    }
+    if (count > 0) appendValues(count, values);
     ++size_;
   }
   void append(uint32_t label, IdKey key, double birth, const double* values) {
@@ -322,6 +312,9 @@ class CompactWord {
   /// index, once a block.
   void startBlock();
   [[noreturn]] static void tooManyValues();
+  /// `count` values from `values`, or left to be written later (null). Out of line: words
+  /// of labels alone never call it, and their appends stay small.
+  void appendValues(uint32_t count, const double* values);
   /// `count` more values, written later.
   void growValues(size_t count) {
     if (count == 0) return;
