@@ -121,7 +121,6 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     fixedChoice_.push_back(labelsOnly_[m] && fixed);
     anyChoiceVaries_ = anyChoiceVaries_ || (labelsOnly_[m] && !fixed) || drawsByLabels;
     allLabelsOnly_ = allLabelsOnly_ && labelsOnly_[m];
-    allChooseByLabels_ = allChooseByLabels_ && (labelsOnly_[m] || drawsByLabels);
     for (const LabelRule& choice : choices) allByPosition_ = allByPosition_ && (!choice.context || choice.byPosition);
     double shortest = master.lifetime;  // a renewal
     bool choosesInFrame = false;
@@ -453,13 +452,7 @@ void ParallelRewrite::write(Pass pass, const Step& step, Slice& slice, uint64_t 
     }
     worker.successors.write(*rule, cell, frame, death, BirthCause::Terminal, evaluation, putModule);
   }
-  for (size_t m = 0; m < masters.size(); ++m)
-    for (size_t r = 0; r < masters[m].terminalRules.size(); ++r) {
-      const size_t index = firstRule_[m] + r;
-      if (index < worker.batches.size() && worker.batches[index].lanes > 0)
-        flushBatch(masters[m].terminalRules[r], worker.batches[index], step.context.seed, step.context.ancestors,
-                   outValues);
-    }
+  flushWaiting(worker.batches, step.context.seed, step.context.ancestors, outValues);
   slice.earliestDeath = earliest;
   // Counting and writing choose alike by construction; a slice that wrote other than it
   // counted is a defect of this file, stopped here rather than left in the word.
@@ -513,6 +506,17 @@ void ParallelRewrite::writeBatched(const Step& step, const CellRecord& cell, con
   }
   if (batch && ++batch->lanes == CompiledExpression::kBatchLanes)
     flushBatch(*rule, *batch, step.context.seed, step.context.ancestors, outValues);
+}
+
+void ParallelRewrite::flushWaiting(std::vector<Batch>& batches, uint64_t seed, const double* ancestors,
+                                   double* outValues) const {
+  const auto& masters = program_.masters;
+  for (size_t m = 0; m < masters.size(); ++m)
+    for (size_t r = 0; r < masters[m].terminalRules.size(); ++r) {
+      const size_t index = firstRule_[m] + r;
+      if (index < batches.size() && batches[index].lanes > 0)
+        flushBatch(masters[m].terminalRules[r], batches[index], seed, ancestors, outValues);
+    }
 }
 
 void ParallelRewrite::makeFrames(Batch& batch, const CompiledRule& rule) const {
@@ -782,13 +786,7 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
     }
   }
   if (kWithValues && writing)  // the values of the cells still waiting in a batch
-    for (size_t m = 0; m < compactBatched_.size(); ++m)
-      for (uint32_t r = 0; r < program_.masters[m].terminalRules.size(); ++r) {
-        const size_t index = firstRule_[m] + r;
-        if (index < evaluation.batches.size() && evaluation.batches[index].lanes > 0)
-          flushBatch(program_.masters[m].terminalRules[r], evaluation.batches[index], evaluation.seed,
-                     evaluation.ancestors, out.wordValues());
-      }
+    flushWaiting(evaluation.batches, evaluation.seed, evaluation.ancestors, out.wordValues());
   return counts;
 }
 

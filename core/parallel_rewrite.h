@@ -187,6 +187,8 @@ class ParallelRewrite {
     return batch;
   }
   void makeFrames(Batch& batch, const CompiledRule& rule) const;
+  /// flushBatch for every batch among `batches` (per rule, firstRule_) with cells waiting.
+  void flushWaiting(std::vector<Batch>& batches, uint64_t seed, const double* ancestors, double* outValues) const;
 
   const Program& program_;
   const SystemDefinition& system_;
@@ -295,9 +297,6 @@ class ParallelRewrite {
   const LabelRule* chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const;
   std::vector<std::vector<LabelRule>> labelRules_;
   bool allLabelsOnly_ = true;
-  // Every master compares labels only, or with rules of constant chances: the compact
-  // pass draws among them as the records' passes do.
-  bool allChooseByLabels_ = true;
   bool allByPosition_ = true;  // every label-only rule with context compares by position
   // Per master that evaluates in batches (evaluatesInBatches_) and reads neither its place
   // nor its parent: a compact word holds its values, and rewriteCompact writes its
