@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cstdint>
 #include <stdexcept>
 
@@ -699,11 +700,29 @@ void forEachIndex(size_t count, unsigned threads, const Work& work) {
       1);
 }
 
+// Modules first .. first + n - 1 of a word, in one run, kept with their birth index or
+// renewed with birth `birth` (rewriteRange).
+struct KeptStretch {
+  size_t first = 0;
+  uint32_t n = 0;
+  IdKey key{};
+  bool renewed = false;
+  uint32_t birthIndex = 0;
+  double birth = 0;
+};
+
 // The next word itself as the output of rewriteCompact's one pass on one thread, with the
 // calls of a CompactWord::Slice.
 struct SerialOut {
   CompactWord& word;
+  const CompactWord& from;  // the word rewritten
   bool writing() const { return true; }
+  void appendKept(size_t first, uint32_t n, IdKey key, uint32_t birthIndex) {
+    word.appendStretch(from, first, n, key, birthIndex);
+  }
+  void appendRenewed(size_t first, uint32_t n, IdKey key, double birth) {
+    word.appendStretch(from, first, n, key, word.birthIndexOf(birth));
+  }
   void appendCopy(uint32_t label, IdKey key, uint32_t birthIndex, const double* values) {
     word.append(label, key, birthIndex, values);
   }
@@ -734,18 +753,40 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
   // In a local: a label stored through a byte pointer may alias any member.
   const uint8_t* batched = compactBatched_.data();
   CompactCounts counts;
+  // In a word of labels alone, modules kept or renewed one after another in one run go
+  // out as one stretch (appendKept, appendRenewed): the writer continues their run
+  // without asking module by module (the signal renews 10^5 modules a step).
+  KeptStretch kept;
+  auto flushKept = [&] {
+    if (kept.n == 0) return;
+    if (kept.renewed)
+      out.appendRenewed(kept.first, kept.n, kept.key, kept.birth);
+    else
+      out.appendKept(kept.first, kept.n, kept.key, kept.birthIndex);
+    kept.n = 0;
+  };
   size_t untilCheck = size_t{1} << 16;
   for (CompactWordCursor cell(word, begin); !cell.done() && cell.index() < end; cell.next()) {
     if (--untilCheck == 0) [[unlikely]] {
       untilCheck = size_t{1} << 16;
+      if constexpr (!kWithValues) flushKept();  // `stop` reads what was written
       if (stop(counts)) break;
     }
     const uint32_t label = labels[cell.index()];
     const double lifetime = lifetimes[label];
     const double death = cell.birth() + lifetime;
     if (death > horizon) {
-      out.appendCopy(label, cell.key(), cell.birthIndex(), kWithValues ? cell.state() : nullptr);
       soonest = std::min(soonest, death);
+      if constexpr (!kWithValues) {
+        if (kept.n > 0 && !kept.renewed && cell.continuesRun()) {
+          ++kept.n;
+        } else {
+          flushKept();
+          kept = KeptStretch{cell.index(), 1, cell.key(), false, cell.birthIndex(), 0};
+        }
+      } else {
+        out.appendCopy(label, cell.key(), cell.birthIndex(), cell.state());
+      }
       continue;
     }
     ++counts.events;
@@ -762,10 +803,21 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
           return random.uniform();
         });
     if (!choice || !choice->rule->hasAction) {  // renewed: the same id, born again
-      out.append(label, cell.key(), death, nullptr);
       soonest = std::min(soonest, death + lifetime);
+      if constexpr (!kWithValues) {
+        if (kept.n > 0 && kept.renewed && cell.continuesRun() &&
+            std::bit_cast<uint64_t>(death) == std::bit_cast<uint64_t>(kept.birth)) {
+          ++kept.n;
+        } else {
+          flushKept();
+          kept = KeptStretch{cell.index(), 1, cell.key(), true, 0, death};
+        }
+      } else {
+        out.append(label, cell.key(), death, nullptr);
+      }
       continue;
     }
+    if constexpr (!kWithValues) flushKept();
     // As SuccessorWriter::write: `me` and `=X` keep the cell's id, the others take the
     // event's lineage and their number.
     const IdKey own = cell.key();
@@ -785,6 +837,7 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
         out.appendBorn(successor.label, counts.events, lineage, k, death, nullptr);
     }
   }
+  if constexpr (!kWithValues) flushKept();
   if (kWithValues && writing)  // the values of the cells still waiting in a batch
     flushWaiting(evaluation.batches, evaluation.seed, evaluation.ancestors, out.wordValues());
   return counts;
@@ -887,7 +940,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     if (size >= kMinimumCells)
       next.reserve(Growth::room(size, lastGrowth_.modules), Growth::room(word.runCount(), lastGrowth_.runs),
                    withValues_ ? Growth::room(word.valueCount(), lastGrowth_.values) : 0);
-    SerialOut out{next};
+    SerialOut out{next, word};
     bool refused = false;
     auto stop = [&](const CompactCounts& sofar) {
       refused = fits && !fits(next.size(), sofar.events, sofar.born, next.size());
@@ -1130,7 +1183,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteInParts(co
         refused.store(true, std::memory_order_relaxed);
       return refused.load(std::memory_order_relaxed);
     };
-    SerialOut serial{out};
+    SerialOut serial{out, word};
     double soonest = kForever;
     CompactEvaluation evaluation{seed, nullptr, {}};  // no state: nothing is evaluated
     counted[p] = withLabelsOf(word, [&](const auto& labels) {

@@ -103,6 +103,25 @@ void CompactWord::startBlock() {
   if (!stateless_) blockValues_.push_back(static_cast<uint32_t>(values_.size()));
 }
 
+void CompactWord::appendStretch(const CompactWord& from, size_t first, uint32_t n, IdKey key, uint32_t birthIndex) {
+  if (!stateless_) throw std::logic_error("ontogen: internal error: a stretch appended to a word with state values");
+  append(from.label(first), key, birthIndex, nullptr);
+  for (uint32_t j = 1; j < n;) {
+    if (size_ % kBlock == 0) startBlock();  // before runJ_ moves: the block's j is one more
+    const uint32_t room = std::min<uint32_t>(n - j, static_cast<uint32_t>(kBlock - size_ % kBlock));
+    if (wide_)
+      labels16_.insert(labels16_.end(), from.labels16_.begin() + static_cast<std::ptrdiff_t>(first + j),
+                       from.labels16_.begin() + static_cast<std::ptrdiff_t>(first + j + room));
+    else
+      labels8_.insert(labels8_.end(), from.labels8_.begin() + static_cast<std::ptrdiff_t>(first + j),
+                      from.labels8_.begin() + static_cast<std::ptrdiff_t>(first + j + room));
+    runJ_ += room;
+    size_ += room;
+    j += room;
+  }
+  if (n > 1) tail_.continues(IdKey{key.key, key.k + n - 1}, births_[birthIndex]);
+}
+
 void CompactWord::finish() {
   if (births_.size() <= std::max<size_t>(64, 2 * keys_.size())) return;
   std::vector<double> renumbered;

@@ -23,6 +23,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <utility>
 #include <vector>
@@ -191,6 +192,12 @@ class CompactWord {
     growValues(values);
     tail_.continues(IdKey{lineage, n}, births_[birthIndex]);  // the last module becomes the tail
   }
+  /// Modules first .. first + n - 1 of `from`, which lie in one run there, with their
+  /// labels and ids (key.key, key.k + j), born at births()[birthIndex]: as n appends, the
+  /// later n - 1 continuing the first's run without asking, which they do (kept or renewed
+  /// together, their k follow one another and none is a multiple of 65,536). For words
+  /// without state values: a stretch of a word of labels alone.
+  void appendStretch(const CompactWord& from, size_t first, uint32_t n, IdKey key, uint32_t birthIndex);
   /// After the last append: renumbers the birth table in order of first use, dropping
   /// entries no run uses and duplicates, once it holds more than max(64, 2 x runs).
   void finish();
@@ -435,6 +442,21 @@ class alignas(64) CompactWord::Slice {
     written_ += n;
     runJ_ = n - 1;
   }
+  /// Modules first .. first + n - 1 of the word the slice copies from, which lie in one
+  /// run there, kept with their ids (the first's is `key`) and birth index: as n calls of
+  /// appendCopy (CompactWord::appendStretch says why the later ones continue the first).
+  void appendKept(size_t first, uint32_t n, IdKey key, uint32_t birthIndex) {
+    const double birth = from_->births_[birthIndex];
+    const bool continues = tail_.continues(key, birth);
+    stretch(first, n, key, continues, birthIndex);
+    if (n > 1) tail_.continues(IdKey{key.key, key.k + n - 1}, birth);
+  }
+  /// The same modules renewed, born again at `birth`: as n calls of append.
+  void appendRenewed(size_t first, uint32_t n, IdKey key, double birth) {
+    const bool continues = tail_.continues(key, birth);
+    stretch(first, n, key, continues, word_ ? newBirth(birth) : 0);
+    if (n > 1) tail_.continues(IdKey{key.key, key.k + n - 1}, birth);
+  }
   /// After the slice's last append of a pass.
   void finish();
   size_t modules() const { return modules_; }
@@ -519,6 +541,28 @@ class alignas(64) CompactWord::Slice {
     if (values)  // null: written later, at nextValue() before the append
       for (uint32_t v = 0; v < count; ++v) to[v] = values[v];
     writtenValues_ += count;
+  }
+  // appendKept and appendRenewed once the first module's run is known. Words without
+  // state values only.
+  void stretch(size_t first, uint32_t n, IdKey key, bool continues, uint32_t birthIndex) {
+    if (!word_) {
+      modules_ += n;
+      countedRuns_ += continues ? 0 : 1;
+      return;
+    }
+    put(from_->label(first), key, continues, birthIndex, nullptr);
+    for (uint32_t j = 1; j < n;) {
+      const size_t i = firstModule_ + written_;
+      if (i % kBlock == 0) startBlock(i);  // before runJ_ moves: the block's j is one more
+      const uint32_t room = std::min<uint32_t>(n - j, static_cast<uint32_t>(kBlock - i % kBlock));
+      if (out_.labels8)
+        std::memcpy(out_.labels8 + i, from_->labels8_.data() + first + j, room);
+      else
+        std::memcpy(out_.labels16 + i, from_->labels16_.data() + first + j, room * sizeof(uint16_t));
+      runJ_ += room;
+      written_ += room;
+      j += room;
+    }
   }
   /// At module i: the block index entry of a block starting there, and a new bitmap word.
   void startBlock(size_t i);
@@ -605,6 +649,8 @@ class CompactWordCursor {
   const double* state() const { return word_->values_.data() + value_; }
   double birth() const { return runBirth_; }
   uint32_t birthIndex() const { return runBirthIndex_; }
+  /// Whether the module continues the run of the module before it.
+  bool continuesRun() const { return j_ > 0; }
   IdKey key() const { return runFirstK_ == IdKey::kWhole ? IdKey::whole(runKey_) : IdKey{runKey_, runFirstK_ + j_}; }
   uint64_t id() const { return key().id(); }
   /// Where the module's values start in the word's values.

@@ -362,6 +362,42 @@ TEST(ParallelRewrite, ALabelOnlyContextIsWrittenAsTheSerialPassWritesIt) {
   }
 }
 
+// Modules of one run that are kept, or renewed together, go out of the compact pass as
+// one stretch (ParallelRewrite::rewriteRange): here runs of 150 modules, kept (P never
+// expires) and renewed in stretches across blocks of 64, where A and B renew at deaths a
+// trillionth apart, within one instant's tolerance, so that each keeps its own birth. A
+// context that never matches (no Z is ever made) keeps the word from the table walk.
+std::string stretchesProgram() {
+  std::string successors;
+  for (const auto& [label, count] : std::vector<std::pair<std::string, int>>{
+           {"A", 40}, {"B", 30}, {"P", 70}, {"A", 5}, {"B", 1}, {"P", 1}, {"A", 1}, {"P", 2}})
+    for (int i = 0; i < count; ++i) successors += " " + label;
+  std::string axiom;
+  for (int i = 0; i < 600; ++i) axiom += " S";
+  return "cell S { lifetime 1; rules { terminal: ->" + successors +
+         "; } }\ncell A { lifetime 1; rules { terminal: Z me: -> Z; } }\n"
+         "cell B { lifetime 1.000000000001; rules { terminal: Z me: -> Z; } }\ncell P { }\ncell Z { }\n"
+         "system s { pool linear; axiom" +
+         axiom + "; }\n";
+}
+
+TEST(ParallelRewrite, ModulesKeptOrRenewedTogetherAreWrittenAsTheSerialPassWritesThem) {
+  auto program = testing_support::compileOrFail(stretchesProgram());
+  ASSERT_NE(program, nullptr);
+  EXPECT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesToCompactWords());
+  const Grown serial = grow(program, 3.5, 1, false);
+  ASSERT_FALSE(serial.world->rootPool().holdsCompactWord());
+  ASSERT_GT(serial.world->rootPool().size(), 2 * ParallelRewrite::kMinimumCells);
+  // A and B of one run were renewed at their own deaths: two births a trillionth apart.
+  const CellView a = serial.world->rootPool().cellAt(0), b = serial.world->rootPool().cellAt(40);
+  EXPECT_EQ(program->masters[a.master].label, "A");
+  EXPECT_EQ(program->masters[b.master].label, "B");
+  EXPECT_EQ(a.birth, 3.0);
+  EXPECT_GT(b.birth, 3.0);
+  EXPECT_LT(b.birth, 3.0 + 1e-9);
+  expectTheSerialWordOnEveryThreadCount(program, 3.5, serial, {1, 2, 3}, compact);
+}
+
 // Labels only, with two modules of left context, right context, the wildcard and the
 // word's ends: in a word of plain modules (matched by position) and in one with branches
 // and an ignored module (matched through the bracket index).
