@@ -700,8 +700,8 @@ void forEachIndex(size_t count, unsigned threads, const Work& work) {
       1);
 }
 
-// Modules first .. first + n - 1 of a word, in one run, kept with their birth index or
-// renewed with birth `birth` (rewriteRange).
+// Modules first .. first + n - 1 of a word, in one run, born at `birth`: kept with their
+// birth index, or renewed (rewriteRange).
 struct KeptStretch {
   size_t first = 0;
   uint32_t n = 0;
@@ -765,6 +765,18 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
       out.appendKept(kept.first, kept.n, kept.key, kept.birthIndex);
     kept.n = 0;
   };
+  // The cell joins the stretch when it continues the stretch's last module in its run
+  // and goes out the same way, at the same birth (a run's modules share theirs, but
+  // labels of other lifetimes die at other instants); else it starts one.
+  auto keep = [&](const CompactWordCursor& cell, bool renewed, double birth) {
+    if (kept.n > 0 && kept.renewed == renewed && cell.continuesRun() &&
+        std::bit_cast<uint64_t>(birth) == std::bit_cast<uint64_t>(kept.birth)) {
+      ++kept.n;
+      return;
+    }
+    flushKept();
+    kept = KeptStretch{cell.index(), 1, cell.key(), renewed, cell.birthIndex(), birth};
+  };
   size_t untilCheck = size_t{1} << 16;
   for (CompactWordCursor cell(word, begin); !cell.done() && cell.index() < end; cell.next()) {
     if (--untilCheck == 0) [[unlikely]] {
@@ -777,16 +789,10 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
     const double death = cell.birth() + lifetime;
     if (death > horizon) {
       soonest = std::min(soonest, death);
-      if constexpr (!kWithValues) {
-        if (kept.n > 0 && !kept.renewed && cell.continuesRun()) {
-          ++kept.n;
-        } else {
-          flushKept();
-          kept = KeptStretch{cell.index(), 1, cell.key(), false, cell.birthIndex(), 0};
-        }
-      } else {
+      if constexpr (!kWithValues)
+        keep(cell, false, cell.birth());
+      else
         out.appendCopy(label, cell.key(), cell.birthIndex(), cell.state());
-      }
       continue;
     }
     ++counts.events;
@@ -804,17 +810,10 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteRange(const CompactWord& 
         });
     if (!choice || !choice->rule->hasAction) {  // renewed: the same id, born again
       soonest = std::min(soonest, death + lifetime);
-      if constexpr (!kWithValues) {
-        if (kept.n > 0 && kept.renewed && cell.continuesRun() &&
-            std::bit_cast<uint64_t>(death) == std::bit_cast<uint64_t>(kept.birth)) {
-          ++kept.n;
-        } else {
-          flushKept();
-          kept = KeptStretch{cell.index(), 1, cell.key(), true, 0, death};
-        }
-      } else {
+      if constexpr (!kWithValues)
+        keep(cell, true, death);
+      else
         out.append(label, cell.key(), death, nullptr);
-      }
       continue;
     }
     if constexpr (!kWithValues) flushKept();
