@@ -65,6 +65,7 @@ struct StepContext {
   WorldHeld elsewhere{};
   bool rewriteBySlices = true;  ///< WorldDef::rewriteBySlices
   bool rateStencils = true;     ///< WorldDef::rateStencils
+  bool wordsWithoutIds = true;  ///< WorldDef::wordsWithoutIds
 };
 
 /// Throws LimitError when a pool that holds `cells` cells and `bytes` bytes (its pool and

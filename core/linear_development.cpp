@@ -9,6 +9,7 @@
 #include "core/parents.h"
 #include "core/rate_integrator.h"
 #include "core/rule_choice.h"
+#include "core/table_replay.h"
 
 namespace ontogen {
 
@@ -124,6 +125,10 @@ void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
 
 void LinearDevelopment::expireCompact(double t, double t1) {
   const double horizon = t1 + timeTolerance(t1);
+  // A word rewritten by a table is written without ids, which its replay makes again if
+  // a reader asks (core/table_replay.h). The pool keeps the replay, not this development.
+  parallel_.writeWithoutIds(context_->wordsWithoutIds);
+  if (!parallel_.writesWithoutIds()) pool_.ensureIds();
   for (;;) {
     const double earliest = earliestDeath();
     if (earliest > horizon) return;
@@ -150,7 +155,19 @@ void LinearDevelopment::expireCompact(double t, double t1) {
       expireUntil(t, t1);
       return;
     }
+    std::shared_ptr<const IdReplay> before = pool_.idReplay();
     pool_.swapCompactWord(nextWord_);
+    if (parallel_.writesWithoutIds()) {
+      if (const auto chain = std::dynamic_pointer_cast<const TableReplay>(before)) {
+        pool_.holdWithoutIds(chain->then(instant));
+      } else {
+        // The word before held its ids: it is the anchor of the replay, and the next word
+        // is written into fresh storage.
+        auto anchor = std::make_shared<const CompactWord>(std::move(nextWord_));
+        nextWord_ = pool_.emptyCompactWord();
+        pool_.holdWithoutIds(std::make_shared<const TableReplay>(std::move(anchor), parallel_.table(), instant));
+      }
+    }
     eventsThisStep_ += counts->events;
     context_->stats.events += counts->events;
     context_->stats.cellsBorn += counts->born;

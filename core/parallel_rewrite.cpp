@@ -180,6 +180,7 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     }
     table_.entries.push_back(entry);
   }
+  if (byTable_) table_.finish();
 }
 
 bool ParallelRewrite::evaluatesInBatches(const Program& program, const MasterCell& master, bool draws) const {
@@ -918,6 +919,8 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
                                                                               const double* ancestors) {
   if (!appliesToCompactWords())
     throw std::logic_error("ontogen: internal error: a compact rewrite of a word whose rules are not label-only");
+  if (!word.holdsIds() && !withoutIds_)
+    throw std::logic_error("ontogen: internal error: a compact word held without ids rewritten with ids");
   const size_t size = word.size();
   threads = std::max(threads, 1u);
   auto withLabels = [&](const auto& work) { return withLabelsOf(word, work); };
@@ -934,6 +937,9 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   // growth to go by yet, the word is counted first, as by slices. Where every choice is
   // fixed (Koch, Thue-Morse) counting is cheap, and writing in place beats appending
   // (Koch: 72 against 81 ms).
+  // A word written without ids takes the table's walk at every size.
+  if (withoutIds_ && (threads == 1 || size < kMinimumCells))
+    return rewriteByTableAlone(word, horizon, next, fits, expectedBirth);
   const bool onePass = anyChoiceVaries_ || anyCompactBatched_;
   if (threads == 1 && (size < kMinimumCells || (onePass && lastGrowth_.modules > 0))) {
     if (size >= kMinimumCells)
@@ -981,6 +987,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   auto never = [](const CompactCounts&) { return false; };
   // After every slice wrote: their seams and births joined, the word finished.
   auto joinTheSlices = [&](const CompactCounts& counts) {
+    if (withoutIds_) next.closeRunGaps(slices);
     next.joinSlices(slices);
     everySlice([&](size_t s) { slices[s].place(); });
     next.finish();
@@ -997,7 +1004,8 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     CompactCounts counts;
     if (byTable_) {
       TerminalLineage lineage;
-      const TableRewriteCounts walked = TableRewrite::rewrite(out, word, begin, end, table_, horizon, lineage);
+      const TableRewriteCounts walked =
+          TableRewrite::rewrite(out, word, begin, end, table_, horizon, lineage, !withoutIds_);
       counts = {walked.events, walked.born};
       soonest = walked.soonest;
     } else {
@@ -1010,7 +1018,10 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     }
     if (byBounds) {
       counted[s] = counts;
-      if (!out.wroteAsAssumed()) return;  // the word is given up; nothing to finish
+      // The word is given up; nothing to finish. Without ids a slice writes fewer runs
+      // than its bound, and closeRunGaps closes the gaps.
+      if (!(withoutIds_ ? out.wroteModulesAsAssumed() : out.wroteAsAssumed())) return;
+      if (withoutIds_) out.keepRunsWritten();
     }
     out.finish();
     if (!writing) counted[s] = counts;
@@ -1026,7 +1037,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     std::vector<TableBound> bounds(sliceCount);
     everySlice([&](size_t s) {
       const size_t begin = size * s / sliceCount, end = size * (s + 1) / sliceCount;
-      bounds[s] = tableBound(word, begin, end);
+      bounds[s] = TableRewrite::bound(word, begin, end, table_);
       slices[s].assume(bounds[s].modules, end - begin);
     });
     TableBound total;
@@ -1039,6 +1050,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     if (!fits || fits(total.modules, total.events, total.born, total.modules)) {
       byBounds = true;
       next.beginSlices(slices);
+      if (withoutIds_) next.markWithoutIds();
       knowTheBirth(next, slices, expectedBirth);
       everySlice(pass);
       byBounds = false;
@@ -1070,31 +1082,10 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   }
   if (fits && !fits(modules, counts.events, counts.born, modules)) return std::nullopt;
   next.beginSlices(slices);
+  if (withoutIds_) next.markWithoutIds();
   if (byTable_) knowTheBirth(next, slices, expectedBirth);
   everySlice(pass);
   return joinTheSlices(counts);
-}
-
-ParallelRewrite::TableBound ParallelRewrite::tableBound(const CompactWord& word, size_t begin, size_t end) const {
-  uint64_t histogram[4][256] = {};  // four, so that equal labels in a row do not wait on each other
-  const uint8_t* labels = word.labels8().data();
-  size_t i = begin;
-  for (; i + 4 <= end; i += 4) {
-    ++histogram[0][labels[i]];
-    ++histogram[1][labels[i + 1]];
-    ++histogram[2][labels[i + 2]];
-    ++histogram[3][labels[i + 3]];
-  }
-  for (; i < end; ++i) ++histogram[0][labels[i]];
-  TableBound bound;
-  for (size_t label = 0; label < table_.entries.size(); ++label) {
-    const RewriteTable::Entry& entry = table_.entries[label];
-    const uint64_t count = histogram[0][label] + histogram[1][label] + histogram[2][label] + histogram[3][label];
-    if (entry.lifetime < kForever) bound.events += count;
-    bound.modules += count * (entry.renews ? 1 : entry.count);
-    bound.born += count * (entry.renews ? 0 : entry.count);
-  }
-  return bound;
 }
 
 // One pass on one thread, without counting first (which took a seventh of Thue-Morse's
@@ -1109,19 +1100,20 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteByTableAlo
                                                                                    double expectedBirth) {
   constexpr size_t kChunk = size_t{1} << 16;
   const size_t size = word.size();
-  const uint64_t modules = tableBound(word, 0, size).modules;
+  const uint64_t modules = TableRewrite::bound(word, 0, size, table_).modules;
   std::vector<CompactWord::Slice>& slices = compactSlices_;
   slices.resize(1, CompactWord::Slice(word));
   CompactWord::Slice& slice = slices.front();
   slice.restart(word);
   // A module starts at most one run: its successors, or itself kept or renewed.
   next.beginWholeSlice(slice, modules, size);
+  if (withoutIds_) next.markWithoutIds();
   knowTheBirth(next, {&slice, 1}, expectedBirth);
   TerminalLineage lineage;
   CompactCounts counts;
   for (size_t begin = 0; begin < size; begin += kChunk) {
-    const TableRewriteCounts walked =
-        TableRewrite::rewrite(slice, word, begin, std::min(size, begin + kChunk), table_, horizon, lineage);
+    const TableRewriteCounts walked = TableRewrite::rewrite(slice, word, begin, std::min(size, begin + kChunk), table_,
+                                                            horizon, lineage, !withoutIds_);
     counts.events += walked.events;
     counts.born += walked.born;
     earliestDeath_ = std::min(earliestDeath_, walked.soonest);

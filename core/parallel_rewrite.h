@@ -80,6 +80,13 @@ class ParallelRewrite {
   /// every master without state has one label-only rule of group 0 without context, or
   /// none, and a rule's successors are all new, at most 256 masters (Koch, Thue-Morse).
   bool rewritesByTable() const { return byTable_; }
+  /// The table, when rewritesByTable().
+  const RewriteTable& table() const { return table_; }
+  /// Whether rewriteCompact writes words rewritten by the table without ids
+  /// (CompactWord::holdsIds; docs/COMPACT_WORDS.md, "Words without ids"). It then takes
+  /// the table's walk for every word, small ones too, and accepts words held without ids.
+  void writeWithoutIds(bool on) { withoutIds_ = on && byTable_; }
+  bool writesWithoutIds() const { return withoutIds_; }
 
   /// Says whether the next word may be written, or go on being written: its modules, the
   /// events and the cells born, so far or in all, and the modules whose bytes are held
@@ -240,12 +247,6 @@ class ParallelRewrite {
   /// `expectedBirth`: the birth most new modules will likely have.
   std::optional<CompactCounts> rewriteByTableAlone(const CompactWord& word, double horizon, CompactWord& next,
                                                    const CompactFits& fits, double expectedBirth);
-  /// What cells [begin, end) of a word rewritten by the table write at most, if each that
-  /// can expire does: modules, events and cells born (a histogram of the labels).
-  struct TableBound {
-    uint64_t modules = 0, events = 0, born = 0;
-  };
-  TableBound tableBound(const CompactWord& word, size_t begin, size_t end) const;
   /// What the expressions of a compact rewrite read besides the word: the run's seed and
   /// the ancestors' values; and the batches of one rewriteRange (compactBatched_).
   struct CompactEvaluation {
@@ -357,6 +358,7 @@ class ParallelRewrite {
   // becomes, so that rewriteCompact walks the word run by run (pools/table_rewrite.h).
   bool byTable_ = false;
   RewriteTable table_;
+  bool withoutIds_ = false;  // writeWithoutIds
   // Set once slices placed by their bounds wrote less than the bounds: from then on the
   // slices of this development count first.
   bool boundsMissed_ = false;

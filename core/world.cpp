@@ -56,6 +56,7 @@ StepContext World::stepContext(const WorldHeld& elsewhere) {
   context.elsewhere = elsewhere;
   context.lineage = def_.recordLineage ? &lineage_ : nullptr;
   context.rewriteBySlices = def_.rewriteBySlices;
+  context.wordsWithoutIds = def_.wordsWithoutIds;
   context.rateStencils = def_.rateStencils;
   context.idSalt = idSalt();
   context.systemCellId = parent_ ? idValue(cellId_) : -1;

@@ -55,6 +55,11 @@ struct WorldDef {
   /// (core/rate_stencil.h) where it applies. Off, every pool takes the general path; the
   /// result is the same bits, which is what tests compare.
   bool rateStencils = true;
+  /// Grow words rewritten by a table (Koch, Thue-Morse: core/parallel_rewrite.h) without
+  /// their ids, which are made again the first time a reader asks for the cells
+  /// (docs/COMPACT_WORDS.md, "Words without ids"). Off, every word holds its ids as it
+  /// grows; readers see the same cells either way, which is what tests compare.
+  bool wordsWithoutIds = true;
   /// Answers the query modules (`?P(x, y, z)` ...) after seeding and after every step
   /// (core/environment_process.h); null: they keep their values. Shared by copies.
   std::shared_ptr<const EnvironmentProcess> environment = nullptr;

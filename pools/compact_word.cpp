@@ -1,6 +1,7 @@
 #include "pools/compact_word.h"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -21,7 +22,8 @@ CompactWord::CompactWord(std::vector<uint32_t> stateCounts) : stateCounts_(std::
 size_t CompactWord::bytes() const {
   return labels8_.size() + labels16_.size() * sizeof(uint16_t) + runStarts_.size() * sizeof(uint64_t) +
          (blockRuns_.size() + blockValues_.size()) * sizeof(uint32_t) + blockJ_.size() * sizeof(uint16_t) +
-         keys_.size() * (sizeof(uint64_t) + sizeof(uint32_t) + sizeof(uint16_t)) + wideK_.size() * sizeof(WideK) +
+         keys_.size() * (sizeof(uint64_t) + sizeof(uint16_t)) + birthIndex_.size() * sizeof(uint32_t) +
+         wideK_.size() * sizeof(WideK) +
          births_.size() * sizeof(double) + values_.size() * sizeof(double);
 }
 
@@ -40,6 +42,11 @@ void CompactWord::clear() {
   values_.clear();
   tail_ = RunTail{};
   runJ_ = 0;
+  withoutIds_ = false;
+}
+
+void CompactWord::noIds() {
+  throw std::logic_error("ontogen: internal error: an id read from a compact word held without ids");
 }
 
 void CompactWord::clearWithBirthsOf(const CompactWord& other) {
@@ -123,7 +130,7 @@ void CompactWord::appendStretch(const CompactWord& from, size_t first, uint32_t 
 }
 
 void CompactWord::finish() {
-  if (births_.size() <= std::max<size_t>(64, 2 * keys_.size())) return;
+  if (births_.size() <= std::max<size_t>(64, 2 * birthIndex_.size())) return;
   std::vector<double> renumbered;
   std::unordered_map<uint64_t, uint32_t> indexOf;
   for (uint32_t& index : birthIndex_) {
@@ -303,6 +310,30 @@ void CompactWord::joinSlices(std::span<Slice> slices) {
     for (const auto& [word, bits] : slice.sharedWords_) runStarts_[word] |= bits;
 }
 
+void CompactWord::closeRunGaps(std::span<Slice> slices) {
+  if (!withoutIds_) throw std::logic_error("ontogen: internal error: run gaps closed in a word with ids");
+  size_t run = 0;
+  for (Slice& slice : slices) {
+    if (slice.firstRun_ != run) {
+      const size_t from = slice.firstRun_, n = slice.runs_, gap = from - run;
+      std::memmove(birthIndex_.data() + run, birthIndex_.data() + from, n * sizeof(uint32_t));
+      // The blocks the slice started (Slice::startBlock) counted the runs before them from
+      // its first run as placed.
+      const size_t firstBlock = (slice.firstModule_ + kBlock - 1) / kBlock;
+      const size_t endBlock = (slice.firstModule_ + slice.written_ + kBlock - 1) / kBlock;
+      for (size_t block = firstBlock; block < endBlock; ++block) blockRuns_[block] -= static_cast<uint32_t>(gap);
+      slice.firstRun_ = run;
+      slice.out_.birthIndex = birthIndex_.data() + run;
+    }
+    slice.keepRunsWritten();
+    run += slice.runs_;
+  }
+  // A word without ids keeps no key or first k (its writers wrote none).
+  keys_.clear();
+  birthIndex_.resize(run);
+  firstK_.clear();
+}
+
 void CompactWord::beginWholeSlice(Slice& slice, size_t modules, size_t runs) {
   if (!stateless_) throw std::logic_error("ontogen: internal error: a whole slice of a compact word with state values");
   slice.modules_ = modules;
@@ -323,9 +354,9 @@ void CompactWord::endWholeSlice(Slice& slice) {
   runStarts_.resize(blocks);
   blockRuns_.resize(blocks);
   blockJ_.resize(blocks);
-  keys_.resize(slice.runs_);
+  keys_.resize(withoutIds_ ? 0 : slice.runs_);  // a word without ids keeps no key or first k
   birthIndex_.resize(slice.runs_);
-  firstK_.resize(slice.runs_);
+  firstK_.resize(withoutIds_ ? 0 : slice.runs_);
   endSlices({&slice, 1});
 }
 

@@ -114,10 +114,19 @@ class CompactWord {
 
   size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
-  size_t runCount() const { return keys_.size(); }
+  size_t runCount() const { return birthIndex_.size(); }
   size_t birthCount() const { return births_.size(); }
   size_t valueCount() const { return values_.size(); }
   bool wideLabels() const { return wide_; }
+  /// Whether the runs hold the modules' ids. A word rewritten by a table may be written
+  /// without them (docs/COMPACT_WORDS.md, "Words without ids"): its runs then split only
+  /// where the birth changes, their keys and first k mean nothing, and reading an id
+  /// (cursor, cellAt, keyOf) is an internal error; labels, births and locate's run stay
+  /// exact. The word's owner makes the ids again when they are read (pools/id_replay.h).
+  bool holdsIds() const { return !withoutIds_; }
+  /// Says the word is written without ids (until the next clear): after beginSlices or
+  /// beginWholeSlice, before the slices end. Its runs then keep no key or first k.
+  void markWithoutIds() { withoutIds_ = true; }
   /// Bytes the word's arrays take (their sizes, not their capacities: pages never
   /// written are never mapped).
   size_t bytes() const;
@@ -240,6 +249,11 @@ class CompactWord {
   /// endSlices in two parts, for a caller that renumbers on several threads: joinSlices
   /// (one thread), then Slice::place for every slice (any thread each).
   void joinSlices(std::span<Slice> slices);
+  /// Before joinSlices, for slices placed by bounds that wrote their modules but fewer
+  /// runs than they were given (a word written without ids, whose runs split only where
+  /// the birth changes): moves each slice's runs after the last one's, corrects the block
+  /// index, and cuts the runs to those written. One thread; it moves runs, not modules.
+  void closeRunGaps(std::span<Slice> slices);
   /// One slice that writes the whole word without counting it first: beginWholeSlice
   /// sizes the word for at most `modules` modules and `runs` runs (no state values), the
   /// slice writes, and endWholeSlice cuts the word to what the slice wrote and ends it as
@@ -270,6 +284,8 @@ class CompactWord {
   Place locate(size_t i) const;
 
   IdKey keyOf(size_t run, uint32_t j) const {
+    if (withoutIds_) [[unlikely]]
+      noIds();
     const uint32_t first = firstKOf(run);
     return first == IdKey::kWhole ? IdKey::whole(keys_[run]) : IdKey{keys_[run], first + j};
   }
@@ -349,6 +365,8 @@ class CompactWord {
   RunTail tail_;              // the last module appended serially
   uint32_t runJ_ = 0;         // its place in its run
   size_t writtenBlocks_ = 0;  // bitmap words written before placeParts
+  bool withoutIds_ = false;   // markWithoutIds: the runs' keys and first k mean nothing
+  [[noreturn]] static void noIds();
 };
 
 /// One slice of a word written by slices. Before CompactWord::beginSlices the slice
@@ -471,6 +489,10 @@ class alignas(64) CompactWord::Slice {
   }
   /// After writing: whether the slice wrote just the modules and runs it was given.
   bool wroteAsAssumed() const { return written_ == modules_ && runs_ == countedRuns_; }
+  /// The same for a slice of a word written without ids, whose bound on its runs need not
+  /// be met: CompactWord::closeRunGaps closes the gaps. Then keepRunsWritten before finish.
+  bool wroteModulesAsAssumed() const { return written_ == modules_ && runs_ <= countedRuns_; }
+  void keepRunsWritten() { countedRuns_ = runs_; }
   /// Once writing: `birth` is already births()[index] of the word written, so a writer
   /// that asks birthIndexOf (TableRewrite) takes that index instead of adding it to the
   /// slice's own births, which place() would then renumber.
@@ -619,6 +641,8 @@ class CompactWordCursor {
         size_(word.size_),
         stateless_(word.stateless_),
         index_(first) {
+    if (word.withoutIds_) [[unlikely]]
+      CompactWord::noIds();
     if (first >= size_) return;
     if (first > 0) {
       const CompactWord::Place place = word.locate(first);

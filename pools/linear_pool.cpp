@@ -35,6 +35,7 @@ void LinearPool::swapCompactWord(CompactWord& next) {
     compact_ = true;
   }
   std::swap(word_, next);
+  forgetIdReplay();  // the caller says when the word came without ids (holdWithoutIds)
   ++version_;
 }
 
@@ -53,6 +54,7 @@ void LinearPool::storeCompactWord(uint64_t seedKey) {
 
 void LinearPool::storeRecords() {
   if (!compact_) return;
+  readable();
   CellArray cells;
   StateArray state;
   cells.reserve(word_.size());

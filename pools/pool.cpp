@@ -41,6 +41,27 @@ void Pool::swapContents(CellArray& cells, StateArray& state) {
 void Pool::dropCompactWord() {
   word_ = CompactWord(stateCounts_);
   compact_ = false;
+  forgetIdReplay();
+}
+
+void Pool::holdWithoutIds(std::shared_ptr<const IdReplay> replay) {
+  if (!compact_ || word_.holdsIds() || !replay)
+    throw std::logic_error("ontogen: internal error: a replay of ids for a word that holds them");
+  ids_.replay = std::move(replay);
+  ids_.pending.store(true, std::memory_order_release);
+}
+
+// The replay is run by the first reader; the others wait on the lock. The cells do not
+// change (the structure version stays), only how the word holds them.
+void Pool::restoreIds() const {
+  std::lock_guard<std::mutex> hold(*ids_.lock);
+  if (!ids_.pending.load(std::memory_order_acquire)) return;
+  CompactWord withIds = ids_.replay->replay();
+  if (withIds.size() != word_.size() || !withIds.holdsIds())
+    throw std::logic_error("ontogen: internal error: a replay of ids gave another word");
+  word_ = std::move(withIds);
+  ids_.replay.reset();
+  ids_.pending.store(false, std::memory_order_release);
 }
 
 void Pool::countValues(std::vector<uint32_t> perMaster) {

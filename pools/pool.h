@@ -5,14 +5,17 @@
 // bracketed string; the grid pool (N-D, von Neumann or Moore) and the spatial pool
 // (Euclidean distance) follow the same interface.
 
+#include <atomic>
 #include <cstddef>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string_view>
 #include <vector>
 
 #include "pools/cell_cursor.h"
 #include "pools/cell_record.h"
+#include "pools/id_replay.h"
 #include "pools/large_page_allocator.h"
 
 namespace ontogen {
@@ -41,6 +44,7 @@ class Pool {
   CellCursor cursor() const { return cursor(0); }
   /// A cursor at cell `first` (at most size()), for a pass over a chunk of the cells.
   CellCursor cursor(size_t first) const {
+    readable();
     if (compact_) return CellCursor(word_, first);
     if (!counted_) return CellCursor(cells_, state_.data(), first);
     return CellCursor(cells_, state_.data(), first, anyState_ ? stateCounts_.data() : nullptr,
@@ -48,6 +52,7 @@ class Pool {
   }
   /// Cell i (below size()).
   CellView cellAt(size_t i) const {
+    readable();
     if (compact_) return word_.cellAt(i);
     const CellRecord& cell = cells_[i];
     return {cell.master, state_.data() + stateOffset(i), cell.birth, cell.id, i};
@@ -126,14 +131,29 @@ class Pool {
   /// Bytes in use, for the memory limit. Capacity reserved beyond the size is not
   /// counted: pages never written are never mapped.
   size_t bytes() const {
-    return compact_ ? word_.bytes() : cells_.size() * sizeof(CellRecord) + state_.size() * sizeof(double);
+    if (!compact_) return cells_.size() * sizeof(CellRecord) + state_.size() * sizeof(double);
+    return word_.bytes() + (ids_.replay ? ids_.replay->bytes() : 0);
   }
 
   /// Whether the cells are held as a compact word (docs/COMPACT_WORDS.md) rather than as
   /// records: a linear pool whose development rewrites its words in that form.
   bool holdsCompactWord() const { return compact_; }
-  /// The compact word (holdsCompactWord()).
+  /// The compact word (holdsCompactWord()), as the development holds it: perhaps without
+  /// ids (holdsIds()).
   const CompactWord& compactWord() const { return word_; }
+
+  /// Whether the compact word holds its ids. A word held without them (CompactWord::
+  /// holdsIds, docs/COMPACT_WORDS.md "Words without ids") is given its ids again by its
+  /// replay, once, the first time a reader asks for a cell (cursor, cellAt) or the
+  /// records: thread-safe, and invisible to readers but for the time it takes.
+  bool holdsIds() const { return !ids_.pending.load(std::memory_order_acquire); }
+  /// For core/: the compact word just swapped in was written without ids, and `replay`
+  /// makes them again.
+  void holdWithoutIds(std::shared_ptr<const IdReplay> replay);
+  /// Gives a word held without ids its ids now (as the first reader would).
+  void ensureIds() const { readable(); }
+  /// The replay of a word held without ids, or null.
+  std::shared_ptr<const IdReplay> idReplay() const { return holdsIds() ? nullptr : ids_.replay; }
 
   /// Changes whenever cells are added, removed or reordered (not when state values
   /// change), so a caller can keep what it derived from the structure until then.
@@ -152,6 +172,17 @@ class Pool {
   [[noreturn]] static void noRecords();
   /// Back to records: forgets the compact word and its storage.
   void dropCompactWord();
+  /// Before a reader sees the cells: a word held without ids is given them.
+  void readable() const {
+    if (ids_.pending.load(std::memory_order_acquire)) [[unlikely]]
+      restoreIds();
+  }
+  void restoreIds() const;
+  /// The word in word_ now holds its ids (swapped in, or dropped).
+  void forgetIdReplay() {
+    ids_.replay.reset();
+    ids_.pending.store(false, std::memory_order_release);
+  }
 
   CellArray cells_;
   StateArray state_;
@@ -161,7 +192,24 @@ class Pool {
   std::vector<uint32_t> stateCounts_;   // values per master
   std::vector<uint32_t> blockOffsets_;  // where each block's first cell's values start
   bool compact_ = false;                // the cells are word_, not cells_ and state_
-  CompactWord word_;
+  // The compact word. Mutable: a word held without ids is replaced by the same word with
+  // ids when first read (restoreIds), which readers see as a const pool.
+  mutable CompactWord word_;
+  // The replay of a word held without ids; `pending` while it has not run. A copy of the
+  // pool shares the replay and has a lock of its own.
+  struct IdsToRestore {
+    std::shared_ptr<const IdReplay> replay;
+    std::atomic<bool> pending{false};
+    std::unique_ptr<std::mutex> lock = std::make_unique<std::mutex>();
+    IdsToRestore() = default;
+    IdsToRestore(const IdsToRestore& other) : replay(other.replay), pending(other.pending.load()) {}
+    IdsToRestore& operator=(const IdsToRestore& other) {
+      replay = other.replay;
+      pending.store(other.pending.load());
+      return *this;
+    }
+  };
+  mutable IdsToRestore ids_;
 };
 
 }  // namespace ontogen

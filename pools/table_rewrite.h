@@ -49,8 +49,46 @@ struct RewriteTable {
     entry.packed = 0;
     for (size_t s = 0; s < successors.size() && s < 8; ++s) entry.packed |= uint64_t{successors[s] & 0xFFu} << (8 * s);
   }
+  /// After the last entry: the steps and bytes the walk without ids reads.
+  void finish() {
+    bytes.assign(labels.begin(), labels.end());  // one byte each (at most 256 labels)
+    const uint32_t self = static_cast<uint32_t>(bytes.size());
+    for (size_t label = 0; label < entries.size(); ++label) bytes.push_back(static_cast<uint8_t>(label));
+    bytes.resize(bytes.size() + kBytesPadding, 0);
+    lifetimes.clear();
+    steps.clear();
+    for (size_t label = 0; label < entries.size(); ++label) {
+      const Entry& entry = entries[label];
+      lifetimes.push_back(entry.lifetime);
+      const uint32_t itself = self + static_cast<uint32_t>(label);
+      steps.push_back({itself, 1, 0, 0, 0.0});  // kept
+      if (entry.renews)
+        steps.push_back({itself, 1, 0, 1, entry.lifeAfter});
+      else
+        steps.push_back({entry.first, entry.count, entry.count, 1, entry.lifeAfter});
+    }
+  }
   std::vector<Entry> entries;    // per label
   std::vector<uint32_t> labels;  // the successors' labels, every entry's in turn
+  /// What a module does, kept (steps[2 * label]) or expiring (steps[2 * label + 1]):
+  /// the labels it writes (bytes[source ..], count of them), the cells born, whether it
+  /// is an event, and what its death adds to give the earliest death after it.
+  struct Step {
+    uint32_t source = 0, count = 0, born = 0, event = 0;
+    double soonAfter = 0;
+  };
+  std::vector<Step> steps;
+  std::vector<double> lifetimes;  // per label
+  /// The successors' labels as bytes, then each label itself, then kBytesPadding zeros:
+  /// up to 16 labels of a step are copied with one store of 16 bytes.
+  static constexpr size_t kBytesPadding = 16;
+  std::vector<uint8_t> bytes;
+};
+
+/// What modules [begin, end) of a word write at most by a table, if each that can expire
+/// does: modules, events and cells born.
+struct TableBound {
+  uint64_t modules = 0, events = 0, born = 0;
 };
 
 /// What one table rewrite did: events (modules that expired), modules born, and the
@@ -66,17 +104,51 @@ class TableRewrite {
   /// `table` at `horizon` into `out`, which counts or writes (CompactWord::Slice). The
   /// new successors of a module with id `parent` dying at `death` take the lineage key
   /// `lineage(parentFirst, death)`, where parentFirst is mixKeyFirst(parent).
+  ///
+  /// `withIds` false writes the word without ids (CompactWord::holdsIds): no key is
+  /// computed, a module continues the run of the module before it whenever both are born
+  /// at the same instant, and `lineage` is not called. `from` may then be held without
+  /// ids too.
   template <class Lineage>
   static TableRewriteCounts rewrite(CompactWord::Slice& out, const CompactWord& from, size_t begin, size_t end,
-                                    const RewriteTable& table, double horizon, Lineage& lineage) {
+                                    const RewriteTable& table, double horizon, Lineage& lineage, bool withIds = true) {
+    if (!withIds)
+      return out.writing() ? walkWithoutIds<true>(out, from, begin, end, table, horizon)
+                           : walkWithoutIds<false>(out, from, begin, end, table, horizon);
     return out.writing() ? walk<true>(out, from, begin, end, table, horizon, lineage)
                          : walk<false>(out, from, begin, end, table, horizon, lineage);
+  }
+
+  /// What modules [begin, end) of `from` write at most by `table`: a histogram of their
+  /// labels.
+  static TableBound bound(const CompactWord& from, size_t begin, size_t end, const RewriteTable& table) {
+    uint64_t histogram[4][256] = {};  // four, so that equal labels in a row do not wait on each other
+    const uint8_t* labels = from.labels8_.data();
+    size_t i = begin;
+    for (; i + 4 <= end; i += 4) {
+      ++histogram[0][labels[i]];
+      ++histogram[1][labels[i + 1]];
+      ++histogram[2][labels[i + 2]];
+      ++histogram[3][labels[i + 3]];
+    }
+    for (; i < end; ++i) ++histogram[0][labels[i]];
+    TableBound result;
+    for (size_t label = 0; label < table.entries.size(); ++label) {
+      const RewriteTable::Entry& entry = table.entries[label];
+      const uint64_t count = histogram[0][label] + histogram[1][label] + histogram[2][label] + histogram[3][label];
+      if (entry.lifetime < std::numeric_limits<double>::infinity()) result.events += count;
+      result.modules += count * (entry.renews ? 1 : entry.count);
+      result.born += count * (entry.renews ? 0 : entry.count);
+    }
+    return result;
   }
 
  private:
   // What the walk keeps of the slice it writes, in locals rather than in the slice: a
   // label is written through a byte pointer, which may alias anything, so the compiler
-  // would read every field of the slice again after each one.
+  // would read every field of the slice again after each one. Without ids (kWithIds
+  // false) a run keeps its birth alone.
+  template <bool kWithIds>
   struct Writer {
     explicit Writer(CompactWord::Slice& slice)
         : slice(slice),
@@ -114,11 +186,13 @@ class TableRewrite {
       }
       if (!continues) {
         bits |= uint64_t{1} << (at % CompactWord::kBlock);
-        keys[runs] = key.key;
         birthIndex[runs] = index;
-        firstK[runs] = CompactWord::storedK(key.k);
-        if (key.k != IdKey::kWhole && key.k >= CompactWord::kWideMark) [[unlikely]]
-          slice.wideK_.push_back({static_cast<uint32_t>(runs), key.k});
+        if constexpr (kWithIds) {
+          keys[runs] = key.key;
+          firstK[runs] = CompactWord::storedK(key.k);
+          if (key.k != IdKey::kWhole && key.k >= CompactWord::kWideMark) [[unlikely]]
+            slice.wideK_.push_back({static_cast<uint32_t>(runs), key.k});
+        }
         ++runs;
         runJ = 0;
       } else {
@@ -150,6 +224,35 @@ class TableRewrite {
       load();
     }
 
+    // `count` labels from `source` (padded: 16 bytes may be read), the first starting a
+    // run born at births[index] when `starts`, the others continuing it.
+    void putWithoutIds(const uint8_t* source, uint32_t count, bool starts, uint32_t index) {
+      if (at % CompactWord::kBlock == 0 || bitsWord == SIZE_MAX) [[unlikely]] {
+        store();
+        slice.startBlock(at);
+        load();
+      }
+      if (starts) {  // a slice counted first has room for just its runs
+        bits |= uint64_t{1} << (at % CompactWord::kBlock);
+        birthIndex[runs++] = index;
+      }
+      if (count <= 16 && at + 16 <= sliceEnd) [[likely]] {
+        std::memcpy(labels + at, source, 16);  // the bytes past count are written over next
+      } else {
+        std::memcpy(labels + at, source, count);
+      }
+      const size_t next = at + count;
+      // Blocks that start inside the labels just written: their first module continues
+      // the run under way.
+      for (size_t block = at / CompactWord::kBlock + 1; block * CompactWord::kBlock < next; ++block) {
+        runJ = 0;
+        store();
+        slice.startBlock(block * CompactWord::kBlock);
+        load();
+      }
+      at = next;
+    }
+
     CompactWord::Slice& slice;
     size_t at, sliceEnd, runs;
     uint32_t runJ;
@@ -160,6 +263,84 @@ class TableRewrite {
     uint32_t* birthIndex;
     uint16_t* firstK;
   };
+
+  // The walk without ids: a module's birth, the step it takes (kept or expiring) and the
+  // labels it writes are chosen without a branch, and a run starts where the birth
+  // written changes. The old word is read run by run: a run's birth is read once.
+  template <bool kWriting>
+  static TableRewriteCounts walkWithoutIds(CompactWord::Slice& out, const CompactWord& from, size_t begin,
+                                           size_t end, const RewriteTable& table, double horizon) {
+    TableRewriteCounts counts;
+    end = std::min(end, from.size());
+    if (begin >= end) return counts;
+    const uint8_t* labels = from.labels8_.data();
+    const uint64_t* starts = from.runStarts_.data();
+    const RewriteTable::Step* steps = table.steps.data();
+    const double* lifetimes = table.lifetimes.data();
+    const uint8_t* bytes = table.bytes.data();
+
+    size_t run = from.locate(begin).run;
+    Writer<false> writer(out);
+    constexpr uint64_t kNone = ~uint64_t{0};  // the bits of no birth (a NaN)
+    uint64_t tailBits = kNone;                // the birth of the last module written
+    uint64_t deathBits = kNone;               // the last death, and its index
+    uint32_t deathIndex = 0;
+    uint64_t events = 0, born = 0, modules = 0, runs = 0;
+    double soonest = std::numeric_limits<double>::infinity();
+
+    for (size_t i = begin; i < end;) {
+      // The modules of one run of `from` up to the next run start, or the end.
+      const uint32_t birthIndex = from.birthIndex_[run];
+      const double birth = from.births_[birthIndex];
+      const uint64_t birthBits = std::bit_cast<uint64_t>(birth);
+      size_t runEnd = end;
+      for (size_t w = (i + 1) / CompactWord::kBlock, last = (end - 1) / CompactWord::kBlock; w <= last; ++w) {
+        uint64_t word = starts[w];
+        if (w == (i + 1) / CompactWord::kBlock) word &= ~uint64_t{0} << ((i + 1) % CompactWord::kBlock);
+        if (word != 0) {
+          runEnd = std::min(end, w * CompactWord::kBlock + static_cast<size_t>(std::countr_zero(word)));
+          break;
+        }
+      }
+      for (; i < runEnd; ++i) {
+        const uint32_t label = labels[i];
+        const double death = birth + lifetimes[label];
+        const bool expires = death <= horizon;
+        const RewriteTable::Step& step = steps[2 * label + (expires ? 1 : 0)];
+        events += step.event;
+        born += step.born;
+        soonest = std::min(soonest, death + step.soonAfter);
+        const uint64_t bits = expires ? std::bit_cast<uint64_t>(death) : birthBits;
+        const bool startsRun = bits != tailBits;
+        tailBits = bits;
+        if constexpr (kWriting) {
+          uint32_t index = birthIndex;
+          if (expires) {
+            if (bits != deathBits) [[unlikely]] {
+              deathBits = bits;
+              deathIndex = out.birthIndexOf(death);
+            }
+            index = deathIndex;
+          }
+          writer.putWithoutIds(bytes + step.source, step.count, startsRun, index);
+        } else {
+          modules += step.count;
+          runs += startsRun ? 1 : 0;
+        }
+      }
+      ++run;
+    }
+    if constexpr (kWriting) {
+      writer.store();
+    } else {
+      out.modules_ += modules;
+      out.countedRuns_ += runs;
+    }
+    counts.events = events;
+    counts.born = born;
+    counts.soonest = soonest;
+    return counts;
+  }
 
   template <bool kWriting, class Lineage>
   static TableRewriteCounts walk(CompactWord::Slice& out, const CompactWord& from, size_t begin, size_t end,
@@ -189,7 +370,7 @@ class TableRewrite {
     };
     loadRun();
 
-    Writer writer(out);
+    Writer<true> writer(out);
     size_t modules = 0, runs = 0;  // counted
     // The last module written, for RunTail's rule: its key, k and birth bits; none after
     // new successors, which nothing continues. The rule is written out here rather than

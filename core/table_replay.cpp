@@ -1,0 +1,46 @@
+#include "core/table_replay.h"
+
+#include "core/successors.h"
+
+namespace ontogen {
+
+TableReplay::TableReplay(std::shared_ptr<const CompactWord> anchor, const RewriteTable& table, double instant)
+    : anchor_(std::move(anchor)), table_(std::make_shared<const RewriteTable>(table)), instants_{instant} {}
+
+std::shared_ptr<const TableReplay> TableReplay::then(double instant) const {
+  std::shared_ptr<TableReplay> next(new TableReplay());
+  next->anchor_ = anchor_;
+  next->table_ = table_;
+  next->instants_.reserve(instants_.size() + 1);
+  next->instants_ = instants_;
+  next->instants_.push_back(instant);
+  return next;
+}
+
+// Each rewrite as ParallelRewrite::rewriteByTableAlone writes it with ids, in one walk of
+// the whole word: the runs may split elsewhere than the development's slices split them,
+// which no reader sees.
+CompactWord TableReplay::replay() const {
+  CompactWord words[2] = {CompactWord(anchor_->stateCounts()), CompactWord(anchor_->stateCounts())};
+  const CompactWord* from = anchor_.get();
+  CompactWord::Slice slice(*from);
+  for (size_t r = 0; r < instants_.size(); ++r) {
+    CompactWord& next = words[r % 2];
+    next.clearWithBirthsOf(*from);
+    slice.restart(*from);
+    const size_t size = from->size();
+    next.beginWholeSlice(slice, TableRewrite::bound(*from, 0, size, *table_).modules, size);
+    TerminalLineage lineage;
+    TableRewrite::rewrite(slice, *from, 0, size, *table_, instants_[r], lineage);
+    next.endWholeSlice(slice);
+    next.finish();
+    from = &next;
+  }
+  return instants_.empty() ? *anchor_ : std::move(words[(instants_.size() - 1) % 2]);
+}
+
+size_t TableReplay::bytes() const {
+  return anchor_->bytes() + instants_.capacity() * sizeof(double);
+}
+
+}  // namespace ontogen

@@ -1,0 +1,154 @@
+// Words rewritten by a table grow without their ids (docs/COMPACT_WORDS.md, "Words
+// without ids"), and a reader sees the ids the development gives when it keeps them: the
+// pool replays the rewrites from the last word that held its ids (core/table_replay.h).
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/parallel_rewrite.h"
+#include "core/world.h"
+#include "test_support.h"
+
+namespace ontogen {
+namespace {
+
+// A timed word by a table: F and G expire at different instants (their successors are
+// born at their deaths, which fall between the steps' ends), H is renewed every 2.5 s, I
+// never expires and is kept with its birth. Large enough for slices from t = 5 on.
+std::string timedTable() {
+  std::string axiom;
+  for (int i = 0; i < 40'000; ++i) axiom += i % 7000 == 4 ? "F G I " : i % 3 ? "H " : "I ";
+  return "cell F { lifetime 1; rules { terminal: -> F G F F I; } }\n"
+         "cell G { lifetime 3.25; rules { terminal: -> H F H H G H H F H H H H H H H H H H H; } }\n"
+         "cell H { lifetime 2.5; }\n"
+         "cell I { }\n"
+         "system s { pool linear; axiom " +
+         axiom + "; }\n";
+}
+
+const char* kKoch = R"(lsystem koch {
+  axiom F
+  F -> F + F - F - F + F
+})";
+
+World growing(const std::shared_ptr<const Program>& program, unsigned threads, bool withoutIds) {
+  WorldDef def;
+  def.seed = 5;
+  def.threads = threads;
+  def.wordsWithoutIds = withoutIds;
+  return World(program, def);
+}
+
+// The cells, read through a cursor and by index, as every reader reads them.
+void expectSameCells(const Pool& expected, const Pool& actual, const std::string& what) {
+  ASSERT_EQ(expected.size(), actual.size()) << what;
+  for (CellCursor x = expected.cursor(), y = actual.cursor(); !x.done(); x.next(), y.next())
+    ASSERT_TRUE(x.master() == y.master() && x.id() == y.id() &&
+                std::bit_cast<uint64_t>(x.birth()) == std::bit_cast<uint64_t>(y.birth()))
+        << what << ": cell " << x.index();
+  for (size_t i = 0; i < expected.size(); i += 97) ASSERT_EQ(expected.cellAt(i).id, actual.cellAt(i).id) << what;
+}
+
+TEST(WordsWithoutIds, ATimedWordReadsAsTheWordGrownWithIdsOnEveryThreadCount) {
+  auto program = testing_support::compileOrFail(timedTable());
+  ASSERT_NE(program, nullptr);
+  ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).rewritesByTable());
+  World reference = growing(program, 1, false);
+  reference.advanceTo(9, 1.0);
+  ASSERT_GT(reference.rootPool().size(), 200'000u);
+  ASSERT_TRUE(reference.rootPool().holdsIds());
+  for (unsigned threads : {1u, 2u, 3u}) {
+    World world = growing(program, threads, true);
+    world.advanceTo(9, 1.0);
+    const Pool& pool = world.rootPool();
+    ASSERT_TRUE(pool.holdsCompactWord());
+    EXPECT_FALSE(pool.holdsIds()) << threads << " threads";
+    // Runs split where the birth changes, not at every event, and keep no key.
+    EXPECT_LT(pool.compactWord().runCount(), reference.rootPool().compactWord().runCount()) << threads << " threads";
+    EXPECT_LT(pool.bytes(), reference.rootPool().bytes() / 2) << threads << " threads";
+    EXPECT_EQ(world.stats().events, reference.stats().events);
+    EXPECT_EQ(world.stats().cellsBorn, reference.stats().cellsBorn);
+    expectSameCells(reference.rootPool(), pool, std::to_string(threads) + " threads");
+    EXPECT_TRUE(pool.holdsIds()) << "read once, the ids are held";
+  }
+}
+
+// Read in the middle of the growth, the word takes its ids back and becomes the anchor of
+// the words after it; a copy of a world shares its replay and reads the same.
+TEST(WordsWithoutIds, AWordReadOnTheWayAndACopyReadAsTheWordGrownWithIds) {
+  auto program = testing_support::compileOrFail(timedTable());
+  ASSERT_NE(program, nullptr);
+  World reference = growing(program, 2, false);
+  World world = growing(program, 2, true);
+  for (double t : {3.0, 6.5, 8.0}) {
+    reference.advanceTo(t, 1.0);
+    world.advanceTo(t, 1.0);
+    World copy = world;
+    EXPECT_FALSE(copy.rootPool().holdsIds()) << t;
+    expectSameCells(reference.rootPool(), copy.rootPool(), "the copy at t = " + std::to_string(t));
+    EXPECT_FALSE(world.rootPool().holdsIds()) << "the copy read its own word";
+    expectSameCells(reference.rootPool(), world.rootPool(), "t = " + std::to_string(t));
+  }
+}
+
+// Readers on several threads at once: one replays, the others wait for it.
+TEST(WordsWithoutIds, ReadersOnSeveralThreadsSeeTheSameIds) {
+  auto program = testing_support::compileOrFail(kKoch);
+  ASSERT_NE(program, nullptr);
+  World reference = growing(program, 1, false);
+  reference.advanceTo(8, 1.0);
+  World world = growing(program, 2, true);
+  world.advanceTo(8, 1.0);
+  ASSERT_FALSE(world.rootPool().holdsIds());
+  std::vector<uint64_t> sums(4, 0);
+  std::vector<std::thread> readers;
+  for (size_t r = 0; r < sums.size(); ++r)
+    readers.emplace_back([&, r] {
+      for (CellCursor cell = world.rootPool().cursor(r * 1000); !cell.done(); cell.next()) sums[r] ^= cell.id();
+    });
+  for (std::thread& reader : readers) reader.join();
+  for (size_t r = 0; r < sums.size(); ++r) {
+    uint64_t expected = 0;
+    for (CellCursor cell = reference.rootPool().cursor(r * 1000); !cell.done(); cell.next()) expected ^= cell.id();
+    EXPECT_EQ(sums[r], expected) << "reader " << r;
+  }
+}
+
+// Koch holds about two bytes a module without ids (labels, runs of a birth each, a bit
+// and the block index), and a
+// cell limit stops it as it stops the word with ids.
+TEST(WordsWithoutIds, KochTakesAByteAModuleAndALimitStopsItAsBefore) {
+  auto program = testing_support::compileOrFail(kKoch);
+  ASSERT_NE(program, nullptr);
+  World world = growing(program, 1, true);
+  world.advanceTo(8, 1.0);
+  const Pool& pool = world.rootPool();
+  ASSERT_EQ(pool.size(), 781'249u);
+  ASSERT_FALSE(pool.holdsIds());
+  // A run for the new successors of each F and one for each turn kept, as with ids, but
+  // a run keeps only its birth: 4 bytes instead of 14.
+  EXPECT_LE(pool.compactWord().runCount(), 156'249u);
+  EXPECT_LT(static_cast<double>(pool.bytes()) / static_cast<double>(pool.size()), 2.1);
+  std::string messages[2];
+  for (const bool withoutIds : {false, true}) {
+    WorldDef def;
+    def.wordsWithoutIds = withoutIds;
+    def.limits.maxCells = 1'000'000;
+    World limited(program, def);
+    try {
+      limited.advanceTo(10, 1.0);
+      ADD_FAILURE() << "no limit";
+    } catch (const LimitError& error) {
+      messages[withoutIds] = error.what();
+    }
+  }
+  EXPECT_EQ(messages[0], messages[1]);
+  EXPECT_NE(messages[0].find("1000000 cells"), std::string::npos) << messages[0];
+}
+
+}  // namespace
+}  // namespace ontogen
