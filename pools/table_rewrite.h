@@ -305,26 +305,32 @@ class TableRewrite {
       for (; i < runEnd; ++i) {
         const uint32_t label = labels[i];
         const double death = birth + lifetimes[label];
-        const bool expires = death <= horizon;
-        const RewriteTable::Step& step = steps[2 * label + (expires ? 1 : 0)];
-        events += step.event;
-        born += step.born;
-        soonest = std::min(soonest, death + step.soonAfter);
-        const uint64_t bits = expires ? std::bit_cast<uint64_t>(death) : birthBits;
-        const bool startsRun = bits != tailBits;
-        tailBits = bits;
-        if constexpr (kWriting) {
-          uint32_t index = birthIndex;
-          if (expires) {
+        const RewriteTable::Step* step;
+        uint64_t bits;
+        uint32_t index = birthIndex;
+        if (death <= horizon) {
+          step = steps + 2 * label + 1;
+          bits = std::bit_cast<uint64_t>(death);
+          if constexpr (kWriting) {
             if (bits != deathBits) [[unlikely]] {
               deathBits = bits;
               deathIndex = out.birthIndexOf(death);
             }
             index = deathIndex;
           }
-          writer.putWithoutIds(bytes + step.source, step.count, startsRun, index);
         } else {
-          modules += step.count;
+          step = steps + 2 * label;
+          bits = birthBits;
+        }
+        events += step->event;
+        born += step->born;
+        soonest = std::min(soonest, death + step->soonAfter);
+        const bool startsRun = bits != tailBits;
+        tailBits = bits;
+        if constexpr (kWriting) {
+          writer.putWithoutIds(bytes + step->source, step->count, startsRun, index);
+        } else {
+          modules += step->count;
           runs += startsRun ? 1 : 0;
         }
       }

@@ -53,6 +53,21 @@ void expectSameCells(const Pool& expected, const Pool& actual, const std::string
   for (size_t i = 0; i < expected.size(); i += 97) ASSERT_EQ(expected.cellAt(i).id, actual.cellAt(i).id) << what;
 }
 
+// The word held without ids, before anyone reads its ids: its labels, and each module's
+// birth found through the block index (CompactWord::locate), as the next rewrite finds it.
+void expectSameLabelsAndBirths(const Pool& expected, const Pool& withoutIds, const std::string& what) {
+  ASSERT_FALSE(withoutIds.holdsIds()) << what;
+  const CompactWord& word = withoutIds.compactWord();
+  ASSERT_EQ(expected.size(), word.size()) << what;
+  for (CellCursor x = expected.cursor(); !x.done(); x.next()) {
+    const size_t i = x.index();
+    ASSERT_TRUE(x.master() == word.label(i) &&
+                std::bit_cast<uint64_t>(x.birth()) == std::bit_cast<uint64_t>(word.birthOf(word.locate(i).run)))
+        << what << ": module " << i;
+  }
+  ASSERT_FALSE(withoutIds.holdsIds()) << what << ": nothing above reads an id";
+}
+
 TEST(WordsWithoutIds, ATimedWordReadsAsTheWordGrownWithIdsOnEveryThreadCount) {
   auto program = testing_support::compileOrFail(timedTable());
   ASSERT_NE(program, nullptr);
@@ -72,6 +87,7 @@ TEST(WordsWithoutIds, ATimedWordReadsAsTheWordGrownWithIdsOnEveryThreadCount) {
     EXPECT_LT(pool.bytes(), reference.rootPool().bytes() / 2) << threads << " threads";
     EXPECT_EQ(world.stats().events, reference.stats().events);
     EXPECT_EQ(world.stats().cellsBorn, reference.stats().cellsBorn);
+    expectSameLabelsAndBirths(reference.rootPool(), pool, std::to_string(threads) + " threads");
     expectSameCells(reference.rootPool(), pool, std::to_string(threads) + " threads");
     EXPECT_TRUE(pool.holdsIds()) << "read once, the ids are held";
   }
@@ -87,11 +103,30 @@ TEST(WordsWithoutIds, AWordReadOnTheWayAndACopyReadAsTheWordGrownWithIds) {
   for (double t : {3.0, 6.5, 8.0}) {
     reference.advanceTo(t, 1.0);
     world.advanceTo(t, 1.0);
+    expectSameLabelsAndBirths(reference.rootPool(), world.rootPool(), "t = " + std::to_string(t));
     World copy = world;
     EXPECT_FALSE(copy.rootPool().holdsIds()) << t;
     expectSameCells(reference.rootPool(), copy.rootPool(), "the copy at t = " + std::to_string(t));
     EXPECT_FALSE(world.rootPool().holdsIds()) << "the copy read its own word";
     expectSameCells(reference.rootPool(), world.rootPool(), "t = " + std::to_string(t));
+  }
+}
+
+// Every module of Thue-Morse expires at every step, so a step's word is one run a slice:
+// slices placed by bounds (a run a module) close the gaps between their runs.
+TEST(WordsWithoutIds, ThueMorseBySlicesTakesARunASlice) {
+  auto program = testing_support::compileOrFail(testing_support::kThueMorse);
+  ASSERT_NE(program, nullptr);
+  World reference = growing(program, 1, false);
+  reference.advanceTo(18, 1.0);
+  ASSERT_EQ(reference.rootPool().size(), 262'144u);
+  for (unsigned threads : {1u, 2u, 3u}) {
+    World world = growing(program, threads, true);
+    world.advanceTo(18, 1.0);
+    EXPECT_GT(world.stats().rewritesBySlices, 0u);
+    EXPECT_LE(world.rootPool().compactWord().runCount(), 4u * threads) << threads << " threads";
+    expectSameLabelsAndBirths(reference.rootPool(), world.rootPool(), std::to_string(threads) + " threads");
+    expectSameCells(reference.rootPool(), world.rootPool(), std::to_string(threads) + " threads");
   }
 }
 
@@ -103,7 +138,7 @@ TEST(WordsWithoutIds, ReadersOnSeveralThreadsSeeTheSameIds) {
   reference.advanceTo(8, 1.0);
   World world = growing(program, 2, true);
   world.advanceTo(8, 1.0);
-  ASSERT_FALSE(world.rootPool().holdsIds());
+  expectSameLabelsAndBirths(reference.rootPool(), world.rootPool(), "Koch on two threads");
   std::vector<uint64_t> sums(4, 0);
   std::vector<std::thread> readers;
   for (size_t r = 0; r < sums.size(); ++r)
