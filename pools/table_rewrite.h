@@ -57,6 +57,10 @@ struct RewriteTable {
     bytes.resize(bytes.size() + kBytesPadding, 0);
     lifetimes.clear();
     steps.clear();
+    oneLifetime = !entries.empty();
+    for (const Entry& entry : entries)
+      oneLifetime = oneLifetime && entry.lifetime == entries.front().lifetime && entry.lifetime < kForever &&
+                    entry.count <= kBytesPadding;
     for (size_t label = 0; label < entries.size(); ++label) {
       const Entry& entry = entries[label];
       lifetimes.push_back(entry.lifetime);
@@ -79,6 +83,10 @@ struct RewriteTable {
   };
   std::vector<Step> steps;
   std::vector<double> lifetimes;  // per label
+  /// Every label has the same finite lifetime and at most 16 successors: the modules of
+  /// a run of the old word all expire at one instant, or none does.
+  bool oneLifetime = false;
+  static constexpr double kForever = std::numeric_limits<double>::infinity();
   /// The successors' labels as bytes, then each label itself, then kBytesPadding zeros:
   /// up to 16 labels of a step are copied with one store of 16 bytes.
   static constexpr size_t kBytesPadding = 16;
@@ -112,9 +120,15 @@ class TableRewrite {
   template <class Lineage>
   static TableRewriteCounts rewrite(CompactWord::Slice& out, const CompactWord& from, size_t begin, size_t end,
                                     const RewriteTable& table, double horizon, Lineage& lineage, bool withIds = true) {
-    if (!withIds)
-      return out.writing() ? walkWithoutIds<true>(out, from, begin, end, table, horizon)
-                           : walkWithoutIds<false>(out, from, begin, end, table, horizon);
+    if (!withIds) {
+      // Steps noted a run when runs are long (Thue-Morse: 54 against 63 ms); Koch's runs
+      // of five modules or so pay more for the note than for the minima (20 against 19 ms).
+      if (table.steps.size() <= 64 && from.size() >= 8 * from.runCount())
+        return out.writing() ? walkWithoutIds<true, true>(out, from, begin, end, table, horizon)
+                             : walkWithoutIds<false, true>(out, from, begin, end, table, horizon);
+      return out.writing() ? walkWithoutIds<true, false>(out, from, begin, end, table, horizon)
+                           : walkWithoutIds<false, false>(out, from, begin, end, table, horizon);
+    }
     return out.writing() ? walk<true>(out, from, begin, end, table, horizon, lineage)
                          : walk<false>(out, from, begin, end, table, horizon, lineage);
   }
@@ -269,7 +283,12 @@ class TableRewrite {
   // birth written changes. The old word is read run by run: a run's birth is read once.
   // Expiry is a branch, not a select: in Koch kept turns and expiring F alternate in a
   // pattern the predictor learns (a select made Koch 13 % slower, bench/README.md).
-  template <bool kWriting>
+  //
+  // The earliest death after the word is a minimum over its modules, each of (birth +
+  // lifetime) + what its step adds: a chain of minima 4 cycles a module. With at most 64
+  // steps (kFewSteps) the walk notes which steps a run of the old word took, and takes
+  // the minimum over those once the run ends, with the same sums: the same result.
+  template <bool kWriting, bool kFewSteps>
   static TableRewriteCounts walkWithoutIds(CompactWord::Slice& out, const CompactWord& from, size_t begin,
                                            size_t end, const RewriteTable& table, double horizon) {
     TableRewriteCounts counts;
@@ -290,6 +309,43 @@ class TableRewrite {
     uint64_t events = 0, born = 0, modules = 0, runs = 0;
     double soonest = std::numeric_limits<double>::infinity();
 
+    // One module of a run born at `birth`: its step, its labels written or counted.
+    auto visit = [&](size_t i, double birth, uint64_t birthBits, uint32_t birthIndex, uint64_t& seen) {
+      const uint32_t label = labels[i];
+      const double death = birth + lifetimes[label];
+      uint32_t taken = 2 * label;  // the step, kept; expiring is the next
+      uint64_t bits;
+      uint32_t index = birthIndex;
+      if (death <= horizon) {
+        ++taken;
+        bits = std::bit_cast<uint64_t>(death);
+        if constexpr (kWriting) {
+          if (bits != deathBits) [[unlikely]] {
+            deathBits = bits;
+            deathIndex = out.birthIndexOf(death);
+          }
+          index = deathIndex;
+        }
+      } else {
+        bits = birthBits;
+      }
+      const RewriteTable::Step* step = steps + taken;
+      events += step->event;
+      born += step->born;
+      if constexpr (kFewSteps)
+        seen |= uint64_t{1} << taken;
+      else
+        soonest = std::min(soonest, death + step->soonAfter);
+      const bool startsRun = bits != tailBits;
+      tailBits = bits;
+      if constexpr (kWriting) {
+        writer.putWithoutIds(bytes + step->source, step->count, startsRun, index);
+      } else {
+        modules += step->count;
+        runs += startsRun ? 1 : 0;
+      }
+    };
+
     for (size_t i = begin; i < end;) {
       // The modules of one run of `from` up to the next run start, or the end.
       const uint32_t birthIndex = from.birthIndex_[run];
@@ -304,36 +360,40 @@ class TableRewrite {
           break;
         }
       }
-      for (; i < runEnd; ++i) {
-        const uint32_t label = labels[i];
-        const double death = birth + lifetimes[label];
-        const RewriteTable::Step* step;
-        uint64_t bits;
-        uint32_t index = birthIndex;
-        if (death <= horizon) {
-          step = steps + 2 * label + 1;
-          bits = std::bit_cast<uint64_t>(death);
-          if constexpr (kWriting) {
-            if (bits != deathBits) [[unlikely]] {
-              deathBits = bits;
-              deathIndex = out.birthIndexOf(death);
+      uint64_t seen = 0;  // kFewSteps: bit s, step s taken in this run
+      // A run whose modules all expire at one death (every label has one lifetime, at most
+      // 16 successors: Thue-Morse) continues the run its first module writes: after that
+      // module, the rest goes by a loop of a copy a module, blocks started as they pass.
+      if constexpr (kWriting) {
+        if (table.oneLifetime && i + 1 < runEnd && birth + lifetimes[labels[i]] <= horizon) {
+          const double death = birth + lifetimes[labels[i]];
+          visit(i++, birth, birthBits, birthIndex, seen);
+          size_t blockEnd = (writer.at / CompactWord::kBlock + 1) * CompactWord::kBlock;
+          for (; i < runEnd && writer.at + 16 <= writer.sliceEnd; ++i) {
+            const uint32_t taken = 2 * labels[i] + 1;
+            const RewriteTable::Step& step = steps[taken];
+            std::memcpy(writer.labels + writer.at, bytes + step.source, 16);  // bytes past count written over next
+            writer.at += step.count;
+            ++events;
+            born += step.born;
+            if constexpr (kFewSteps)
+              seen |= uint64_t{1} << taken;
+            else
+              soonest = std::min(soonest, death + step.soonAfter);
+            for (; blockEnd < writer.at; blockEnd += CompactWord::kBlock) {
+              writer.runJ = 0;
+              writer.store();
+              out.startBlock(blockEnd);
+              writer.load();
             }
-            index = deathIndex;
           }
-        } else {
-          step = steps + 2 * label;
-          bits = birthBits;
         }
-        events += step->event;
-        born += step->born;
-        soonest = std::min(soonest, death + step->soonAfter);
-        const bool startsRun = bits != tailBits;
-        tailBits = bits;
-        if constexpr (kWriting) {
-          writer.putWithoutIds(bytes + step->source, step->count, startsRun, index);
-        } else {
-          modules += step->count;
-          runs += startsRun ? 1 : 0;
+      }
+      for (; i < runEnd; ++i) visit(i, birth, birthBits, birthIndex, seen);
+      if constexpr (kFewSteps) {
+        for (; seen != 0; seen &= seen - 1) {
+          const size_t taken = static_cast<size_t>(std::countr_zero(seen));
+          soonest = std::min(soonest, (birth + lifetimes[taken / 2]) + steps[taken].soonAfter);
         }
       }
       ++run;

@@ -113,7 +113,8 @@ TEST(WordsWithoutIds, AWordReadOnTheWayAndACopyReadAsTheWordGrownWithIds) {
 }
 
 // Every module of Thue-Morse expires at every step, so a step's word is one run a slice:
-// slices placed by bounds (a run a module) close the gaps between their runs.
+// slices placed by bounds (a run a module) close the gaps between their runs. Its labels
+// share one lifetime, so a run goes by the walk's loop of a copy a module.
 TEST(WordsWithoutIds, ThueMorseBySlicesTakesARunASlice) {
   auto program = testing_support::compileOrFail(testing_support::kThueMorse);
   ASSERT_NE(program, nullptr);
@@ -125,6 +126,8 @@ TEST(WordsWithoutIds, ThueMorseBySlicesTakesARunASlice) {
     world.advanceTo(18, 1.0);
     EXPECT_GT(world.stats().rewritesBySlices, 0u);
     EXPECT_LE(world.rootPool().compactWord().runCount(), 4u * threads) << threads << " threads";
+    EXPECT_EQ(world.stats().events, reference.stats().events) << threads << " threads";
+    EXPECT_EQ(world.stats().cellsBorn, reference.stats().cellsBorn) << threads << " threads";
     expectSameLabelsAndBirths(reference.rootPool(), world.rootPool(), std::to_string(threads) + " threads");
     expectSameCells(reference.rootPool(), world.rootPool(), std::to_string(threads) + " threads");
   }
