@@ -11,7 +11,6 @@ std::shared_ptr<const TableReplay> TableReplay::then(double instant) const {
   std::shared_ptr<TableReplay> next(new TableReplay());
   next->anchor_ = anchor_;
   next->table_ = table_;
-  next->instants_.reserve(instants_.size() + 1);
   next->instants_ = instants_;
   next->instants_.push_back(instant);
   return next;

@@ -23,7 +23,6 @@ class TableReplay final : public IdReplay {
 
   CompactWord replay() const override;
   size_t bytes() const override;
-  size_t rewrites() const { return instants_.size(); }
 
  private:
   TableReplay() = default;

@@ -150,7 +150,7 @@ class TableRewrite {
     for (size_t label = 0; label < table.entries.size(); ++label) {
       const RewriteTable::Entry& entry = table.entries[label];
       const uint64_t count = histogram[0][label] + histogram[1][label] + histogram[2][label] + histogram[3][label];
-      if (entry.lifetime < std::numeric_limits<double>::infinity()) result.events += count;
+      if (entry.lifetime < RewriteTable::kForever) result.events += count;
       result.modules += count * (entry.renews ? 1 : entry.count);
       result.born += count * (entry.renews ? 0 : entry.count);
     }
@@ -255,16 +255,21 @@ class TableRewrite {
       } else {
         std::memcpy(labels + at, source, count);
       }
-      const size_t next = at + count;
-      // Blocks that start inside the labels just written: their first module continues
-      // the run under way.
-      for (size_t block = at / CompactWord::kBlock + 1; block * CompactWord::kBlock < next; ++block) {
-        runJ = 0;
+      size_t blockEnd = (at / CompactWord::kBlock + 1) * CompactWord::kBlock;
+      at += count;
+      startBlocksBefore(blockEnd);
+    }
+
+    // Starts the blocks from `blockEnd` (the start of a block) on that begin before the
+    // module at `at`, inside labels just written: their first module continues the run
+    // under way. `blockEnd` is left at the next block to start.
+    void startBlocksBefore(size_t& blockEnd) {
+      for (; blockEnd < at; blockEnd += CompactWord::kBlock) {
+        runJ = 0;  // read only for words with ids
         store();
-        slice.startBlock(block * CompactWord::kBlock);
+        slice.startBlock(blockEnd);
         load();
       }
-      at = next;
     }
 
     CompactWord::Slice& slice;
@@ -380,12 +385,7 @@ class TableRewrite {
               seen |= uint64_t{1} << taken;
             else
               soonest = std::min(soonest, death + step.soonAfter);
-            for (; blockEnd < writer.at; blockEnd += CompactWord::kBlock) {
-              writer.runJ = 0;
-              writer.store();
-              out.startBlock(blockEnd);
-              writer.load();
-            }
+            writer.startBlocksBefore(blockEnd);
           }
         }
       }
