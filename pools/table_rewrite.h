@@ -66,12 +66,13 @@ struct RewriteTable {
       oneLifetime = oneLifetime && entry.lifetime == runLifetime && entry.count <= kBytesPadding;
     }
     oneLifetime = oneLifetime && runLifetime < kForever;
-    anyTimeless = std::any_of(entries.begin(), entries.end(), [](const Entry& e) { return e.lifetime == kForever; });
+    anyTimeless = false;
     for (size_t label = 0; label < entries.size(); ++label) {
       const Entry& entry = entries[label];
       lifetimes.push_back(entry.lifetime);
       const uint32_t itself = self + static_cast<uint32_t>(label);
       const bool timeless = entry.lifetime == kForever;
+      anyTimeless = anyTimeless || timeless;
       // Kept: adds nothing to its death, which is forever for a timeless module.
       steps.push_back({itself, 1, 0, 0, timeless ? kForever : 0.0, timeless});
       if (entry.renews)

@@ -67,16 +67,17 @@ size_t expectSameLabelsAndBirths(const Program& program, const Pool& expected, c
   size_t timeless = 0;
   for (CellCursor x = expected.cursor(); !x.done(); x.next()) {
     const size_t i = x.index();
-    EXPECT_EQ(x.master(), word.label(i)) << what << ": module " << i;
-    if (x.master() != word.label(i)) return timeless;
-    if (program.masters[x.master()].lifetime == std::numeric_limits<double>::infinity()) {
+    const uint32_t label = word.label(i);
+    EXPECT_EQ(x.master(), label) << what << ": module " << i;
+    if (x.master() != label) return timeless;
+    if (program.masters[label].lifetime == std::numeric_limits<double>::infinity()) {
       ++timeless;
       continue;
     }
-    EXPECT_EQ(std::bit_cast<uint64_t>(x.birth()), std::bit_cast<uint64_t>(word.birthOf(word.locate(i).run)))
-        << what << ": module " << i;
-    if (std::bit_cast<uint64_t>(x.birth()) != std::bit_cast<uint64_t>(word.birthOf(word.locate(i).run)))
-      return timeless;
+    const uint64_t expectedBirth = std::bit_cast<uint64_t>(x.birth());
+    const uint64_t heldBirth = std::bit_cast<uint64_t>(word.birthOf(word.locate(i).run));
+    EXPECT_EQ(expectedBirth, heldBirth) << what << ": module " << i;
+    if (expectedBirth != heldBirth) return timeless;
   }
   EXPECT_FALSE(withoutIds.holdsIds()) << what << ": nothing above reads an id";
   return timeless;
