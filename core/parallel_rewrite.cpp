@@ -167,20 +167,52 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
   }
 
   byTable_ = program.masters.size() <= 256;  // one-byte labels
+  std::vector<uint32_t> stateCounts;
   for (uint32_t m = 0; byTable_ && m < program.masters.size(); ++m) {
-    byTable_ = labelsOnly_[m] && fixedChoice_[m];
-    if (!byTable_) break;
-    RewriteTable::Entry entry;
-    entry.lifetime = entry.lifeAfter = program.masters[m].lifetime;
+    byTable_ = tableEntry(program, m);
+    stateCounts.push_back(program.masters[m].stateCount());
+  }
+  if (byTable_) table_.finish(std::move(stateCounts));
+}
+
+// What master m does by the table, when it always does the same: a master of labels alone
+// with a fixed choice, or one whose one rule (group 0, no chance, condition, context or
+// calculation) computes each of its successors' values by one operation on the cell's
+// own values (ValueOperation: `A(x) -> A(x + 1) B(x * 0.5)`). New successors all take
+// fresh ids; a master without a rule is renewed with its values.
+bool ParallelRewrite::tableEntry(const Program& program, uint32_t m) {
+  const MasterCell& master = program.masters[m];
+  RewriteTable::Entry entry;
+  entry.lifetime = entry.lifeAfter = master.lifetime;
+  if (labelsOnly_[m] && fixedChoice_[m]) {
     const LabelRule* choice = fixedRule(m);
     if (choice && choice->rule->hasAction) {
-      byTable_ = !choice->freshLabels.empty();  // else a successor keeps the cell's id
+      if (choice->freshLabels.empty()) return false;  // a successor keeps the cell's id
       entry.lifeAfter = choice->shortestLife;
       table_.setSuccessors(entry, choice->freshLabels);
     }
     table_.entries.push_back(entry);
+    return true;
   }
-  if (byTable_) table_.finish();
+  if (!compactBatched_[m] || master.terminalRules.size() > 1) return false;
+  if (!master.terminalRules.empty() && master.terminalRules.front().hasAction) {
+    const CompiledRule& rule = master.terminalRules.front();
+    if (rule.group != 0 || !rule.probability.empty() || rule.hasContext()) return false;
+    const LabelRule& choice = batchedRules_[firstRule_[m]];
+    if (choice.freshLabels.empty()) return false;
+    std::vector<ValueOperation> operations;
+    for (const SuccessorTemplate& successor : rule.successors) {
+      if (successor.stateless) continue;
+      for (uint32_t v = 0; v < program.masters[successor.master].stateCount(); ++v)
+        if (!successor.args[v].asValueOperation(static_cast<int>(master.stateCount()), operations.emplace_back()))
+          return false;
+    }
+    entry.lifeAfter = choice.shortestLife;
+    table_.setSuccessors(entry, choice.freshLabels);
+    table_.setOperations(entry, operations);
+  }
+  table_.entries.push_back(entry);
+  return true;
 }
 
 bool ParallelRewrite::evaluatesInBatches(const Program& program, const MasterCell& master, bool draws) const {
@@ -1038,7 +1070,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     everySlice([&](size_t s) {
       const size_t begin = size * s / sliceCount, end = size * (s + 1) / sliceCount;
       bounds[s] = TableRewrite::bound(word, begin, end, table_);
-      slices[s].assume(bounds[s].modules, end - begin);
+      slices[s].assume(bounds[s].modules, end - begin, bounds[s].values);
     });
     TableBound total;
     for (const TableBound& bound : bounds) {
@@ -1100,13 +1132,13 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteByTableAlo
                                                                                    double expectedBirth) {
   constexpr size_t kChunk = size_t{1} << 16;
   const size_t size = word.size();
-  const uint64_t modules = TableRewrite::bound(word, 0, size, table_).modules;
+  const TableBound bound = TableRewrite::bound(word, 0, size, table_);
   std::vector<CompactWord::Slice>& slices = compactSlices_;
   slices.resize(1, CompactWord::Slice(word));
   CompactWord::Slice& slice = slices.front();
   slice.restart(word);
   // A module starts at most one run: its successors, or itself kept or renewed.
-  next.beginWholeSlice(slice, modules, size);
+  next.beginWholeSlice(slice, bound.modules, size, bound.values);
   if (withoutIds_) next.markWithoutIds();
   knowTheBirth(next, {&slice, 1}, expectedBirth);
   TerminalLineage lineage;

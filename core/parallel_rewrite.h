@@ -76,9 +76,11 @@ class ParallelRewrite {
     return allCompact_ && atInstants_ && (!anyContext_ || (plain_ && allByPosition_));
   }
 
-  /// Whether rewriteCompact walks the word run by run by a table (pools/table_rewrite.h):
-  /// every master without state has one label-only rule of group 0 without context, or
-  /// none, and a rule's successors are all new, at most 256 masters (Koch, Thue-Morse).
+  /// Whether rewriteCompact walks the word by a table (pools/table_rewrite.h): every
+  /// master has one rule of group 0 without context, chance or condition, or none, a
+  /// rule's successors are all new, and their values, if any, each one operation on the
+  /// cell's own (ValueOperation); at most 256 masters (Koch, Thue-Morse, the parametric
+  /// A(x) -> A(x + 1) B(x * 0.5)).
   bool rewritesByTable() const { return byTable_; }
   /// The table, when rewritesByTable().
   const RewriteTable& table() const { return table_; }
@@ -353,9 +355,12 @@ class ParallelRewrite {
   std::vector<Part> parts_;
   std::vector<CompactWord::PartPlace> partPlaces_;  // where parts_ go in the next word
   std::vector<double> lifetimes_;                   // per master, for rewriteCompact (MasterCell is large)
-  // Every master without state and with one label-only rule or none, whose successors,
-  // if any, are all new (no `me`, no `=X`), in a word of one-byte labels: what each label
-  // becomes, so that rewriteCompact walks the word run by run (pools/table_rewrite.h).
+  // Every master does the same whenever it expires (one label-only rule or none, or one
+  // rule computing its successors' values by ValueOperations), and successors, if any,
+  // are all new (no `me`, no `=X`), in a word of one-byte labels: what each label
+  // becomes, so that rewriteCompact walks the word by a table (pools/table_rewrite.h).
+  // tableEntry adds master m's entry, or says it has none.
+  bool tableEntry(const Program& program, uint32_t m);
   bool byTable_ = false;
   RewriteTable table_;
   bool withoutIds_ = false;  // writeWithoutIds

@@ -28,7 +28,8 @@ CompactWord TableReplay::replay() const {
     next.clearWithBirthsOf(*from);
     slice.restart(*from);
     const size_t size = from->size();
-    next.beginWholeSlice(slice, TableRewrite::bound(*from, 0, size, *table_).modules, size);
+    const TableBound bound = TableRewrite::bound(*from, 0, size, *table_);
+    next.beginWholeSlice(slice, bound.modules, size, bound.values);
     TerminalLineage lineage;
     TableRewrite::rewrite(slice, *from, 0, size, *table_, instants_[r], lineage);
     next.endWholeSlice(slice);

@@ -27,6 +27,47 @@ bool CompiledExpression::batchable(int slots) const {
   return true;
 }
 
+bool CompiledExpression::asValueOperation(int slots, ValueOperation& operation) const {
+  using Kind = ValueOperation::Kind;
+  if (stochastic_) return false;
+  auto slot = [&](const Bytecode& in) { return in.op == OpCode::Load && in.operand >= 0 && in.operand < slots; };
+  if (code_.size() == 1) {
+    if (code_[0].op == OpCode::Const) {
+      operation = ValueOperation::make(Kind::Constant, 0, constants_[code_[0].operand]);
+      return true;
+    }
+    if (!slot(code_[0])) return false;
+    operation = ValueOperation::copy(static_cast<uint32_t>(code_[0].operand));
+    return true;
+  }
+  if (code_.size() != 3) return false;
+  // x op c, or c op x: the operands in the interpreter's order.
+  const bool slotFirst = slot(code_[0]) && code_[1].op == OpCode::Const;
+  const bool slotSecond = code_[0].op == OpCode::Const && slot(code_[1]);
+  if (!slotFirst && !slotSecond) return false;
+  Kind kind;
+  switch (code_[2].op) {
+    case OpCode::Add:
+      kind = slotFirst ? Kind::Add : Kind::AddTo;
+      break;
+    case OpCode::Sub:
+      kind = slotFirst ? Kind::Subtract : Kind::SubtractFrom;
+      break;
+    case OpCode::Mul:
+      kind = slotFirst ? Kind::Multiply : Kind::MultiplyBy;
+      break;
+    case OpCode::Div:
+      kind = slotFirst ? Kind::Divide : Kind::DivideInto;
+      break;
+    default:
+      return false;
+  }
+  const Bytecode& value = slotFirst ? code_[0] : code_[1];
+  const Bytecode& constant = slotFirst ? code_[1] : code_[0];
+  operation = ValueOperation::make(kind, static_cast<uint32_t>(value.operand), constants_[constant.operand]);
+  return true;
+}
+
 bool CompiledExpression::aggregates() const {
   for (const Bytecode& in : code_)
     if (in.op == OpCode::Aggregate) return true;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lang/builtins.h"
+#include "pools/value_operation.h"
 
 namespace ontogen {
 
@@ -107,6 +108,10 @@ class CompiledExpression {
   /// evaluate() gives: `load(lane, slot)` reads a frame slot of a lane's cell and
   /// `aggregate(lane, query)` its neighbour aggregate; out[lane] gets the value. One pass
   /// over the code for all lanes instead of one per cell (lang/expression_batch.h).
+  /// The expression as one operation on frame slot s below `slots` and a constant (`x`,
+  /// `c`, `x + c`, `c / x` ...: pools/value_operation.h), whose apply() gives the bits
+  /// evaluate() gives; false for any other expression.
+  bool asValueOperation(int slots, ValueOperation& operation) const;
   template <typename Load, typename Aggregate>
   void evaluateBatch(int lanes, Load&& load, Aggregate&& aggregate, const EvalContext& context, double* out) const;
   static constexpr int kBatchLanes = 32;

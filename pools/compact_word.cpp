@@ -334,11 +334,12 @@ void CompactWord::closeRunGaps(std::span<Slice> slices) {
   firstK_.clear();
 }
 
-void CompactWord::beginWholeSlice(Slice& slice, size_t modules, size_t runs) {
-  if (!stateless_) throw std::logic_error("ontogen: internal error: a whole slice of a compact word with state values");
+void CompactWord::beginWholeSlice(Slice& slice, size_t modules, size_t runs, size_t values) {
+  if (stateless_ && values > 0)
+    throw std::logic_error("ontogen: internal error: state values in a whole slice of a word without them");
   slice.modules_ = modules;
   slice.countedRuns_ = runs;
-  slice.values_ = 0;
+  slice.values_ = values;
   beginSlices({&slice, 1});
 }
 
@@ -347,6 +348,7 @@ void CompactWord::endWholeSlice(Slice& slice) {
   // word's own when whole, and the arrays are cut to it.
   slice.modules_ = slice.written_;
   slice.countedRuns_ = slice.runs_;
+  slice.values_ = slice.writtenValues_;
   slice.finish();
   size_ = slice.written_;
   (wide_ ? labels16_.resize(size_) : labels8_.resize(size_));
@@ -354,6 +356,8 @@ void CompactWord::endWholeSlice(Slice& slice) {
   runStarts_.resize(blocks);
   blockRuns_.resize(blocks);
   blockJ_.resize(blocks);
+  if (!stateless_) blockValues_.resize(blocks);
+  values_.resize(slice.writtenValues_);
   keys_.resize(withoutIds_ ? 0 : slice.runs_);  // a word without ids keeps no key or first k
   birthIndex_.resize(slice.runs_);
   firstK_.resize(withoutIds_ ? 0 : slice.runs_);
@@ -397,6 +401,26 @@ void CompactWord::Slice::finish() {
   // would leave unwritten memory in the word, so it stops here.
   if (written_ != modules_ || writtenValues_ != values_ || runs_ != countedRuns_)
     throw std::logic_error("ontogen: internal error: a slice of a compact word wrote other than it counted");
+}
+
+bool CompactWord::indexAgrees() const {
+  size_t runs = 0, values = 0;
+  for (size_t i = 0; i < size_; ++i) {
+    const size_t block = i / kBlock;
+    if (i % kBlock == 0) {
+      const bool startsHere = startsRun(i);
+      // A block's count of runs before it, and its place in its run when its first module
+      // continues one (read only for words with ids).
+      if (blockRuns_[block] != runs || (!stateless_ && blockValues_[block] != values)) return false;
+      if (!startsHere && runs == 0) return false;
+    }
+    if (startsRun(i)) ++runs;
+    values += stateless_ ? 0 : stateCounts_[label(i)];
+  }
+  // No run starts past the end, and every run is held.
+  const size_t blocks = (size_ + kBlock - 1) / kBlock;
+  if (size_ % kBlock != 0 && (runStarts_[blocks - 1] >> (size_ % kBlock)) != 0) return false;
+  return runs == birthIndex_.size() && values == values_.size();
 }
 
 CompactWord::Place CompactWord::locate(size_t i) const {

@@ -255,10 +255,10 @@ class CompactWord {
   /// index, and cuts the runs to those written. One thread; it moves runs, not modules.
   void closeRunGaps(std::span<Slice> slices);
   /// One slice that writes the whole word without counting it first: beginWholeSlice
-  /// sizes the word for at most `modules` modules and `runs` runs (no state values), the
-  /// slice writes, and endWholeSlice cuts the word to what the slice wrote and ends it as
-  /// endSlices does. Pages past what is written are never touched.
-  void beginWholeSlice(Slice& slice, size_t modules, size_t runs);
+  /// sizes the word for at most `modules` modules, `runs` runs and `values` state values,
+  /// the slice writes, and endWholeSlice cuts the word to what the slice wrote and ends it
+  /// as endSlices does. Pages past what is written are never touched.
+  void beginWholeSlice(Slice& slice, size_t modules, size_t runs, size_t values = 0);
   void endWholeSlice(Slice& slice);
 
   // --- Reading ---
@@ -301,6 +301,10 @@ class CompactWord {
   uint32_t birthIndex(size_t run) const { return birthIndex_[run]; }
   double birthOf(size_t run) const { return births_[birthIndex_[run]]; }
 
+  /// Whether the block index agrees with the run-start bitmap and the labels: each
+  /// block's count of runs and values before it, and the runs and values held. For tests:
+  /// it reads the whole word.
+  bool indexAgrees() const;
   /// Module i as readers see it (pools/cell_cursor.h).
   CellView cellAt(size_t i) const;
   /// A cursor at the first module.
@@ -482,16 +486,20 @@ class alignas(64) CompactWord::Slice {
   size_t written() const { return written_; }
   /// Takes these figures as counted, without counting (no state values): a writer that
   /// knows them, or bounds them and checks wroteAsAssumed() before finish().
-  void assume(size_t modules, size_t runs) {
+  void assume(size_t modules, size_t runs, size_t values = 0) {
     modules_ = modules;
     countedRuns_ = runs;
-    values_ = 0;
+    values_ = values;
   }
-  /// After writing: whether the slice wrote just the modules and runs it was given.
-  bool wroteAsAssumed() const { return written_ == modules_ && runs_ == countedRuns_; }
+  /// After writing: whether the slice wrote just the modules, runs and values it was given.
+  bool wroteAsAssumed() const {
+    return written_ == modules_ && runs_ == countedRuns_ && writtenValues_ == values_;
+  }
   /// The same for a slice of a word written without ids, whose bound on its runs need not
   /// be met: CompactWord::closeRunGaps closes the gaps. Then keepRunsWritten before finish.
-  bool wroteModulesAsAssumed() const { return written_ == modules_ && runs_ <= countedRuns_; }
+  bool wroteModulesAsAssumed() const {
+    return written_ == modules_ && runs_ <= countedRuns_ && writtenValues_ == values_;
+  }
   void keepRunsWritten() { countedRuns_ = runs_; }
   /// Once writing: `birth` is already births()[index] of the word written, so a writer
   /// that asks birthIndexOf (TableRewrite) takes that index instead of adding it to the

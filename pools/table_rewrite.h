@@ -22,6 +22,7 @@
 
 #include "pools/compact_word.h"
 #include "pools/mix_key.h"
+#include "pools/value_operation.h"
 
 namespace ontogen {
 
@@ -39,6 +40,9 @@ struct RewriteTable {
     /// The successors' labels as bytes, the first in the lowest, when there are at most
     /// eight of them: written with one store.
     uint64_t packed = 0;
+    /// The successors' state values, each from the module's own by operations[first ..]
+    /// (setOperations), one a value, successor after successor.
+    uint32_t firstOperation = 0, operationCount = 0;
   };
   /// Sets the labels of `entry` (one byte each) and appends them to `labels`.
   void setSuccessors(Entry& entry, const std::vector<uint32_t>& successors) {
@@ -49,8 +53,26 @@ struct RewriteTable {
     entry.packed = 0;
     for (size_t s = 0; s < successors.size() && s < 8; ++s) entry.packed |= uint64_t{successors[s] & 0xFFu} << (8 * s);
   }
-  /// After the last entry: the steps and bytes the walk without ids reads.
-  void finish() {
+  /// Sets how the successors of `entry` (setSuccessors) compute their state values from
+  /// the module's: one operation a value, in the order of the successors and their values.
+  void setOperations(Entry& entry, const std::vector<ValueOperation>& computed) {
+    entry.firstOperation = static_cast<uint32_t>(operations.size());
+    entry.operationCount = static_cast<uint32_t>(computed.size());
+    operations.insert(operations.end(), computed.begin(), computed.end());
+  }
+  /// After the last entry: the steps and bytes the walk without ids reads. `values`: each
+  /// label's count of state values (none: a word of labels alone).
+  void finish(std::vector<uint32_t> values = {}) {
+    stateCounts = std::move(values);
+    stateCounts.resize(entries.size(), 0);
+    withValues = std::any_of(stateCounts.begin(), stateCounts.end(), [](uint32_t n) { return n > 0; });
+    // A kept or renewed module takes its own values: one copy a value, after the entries'.
+    std::vector<uint32_t> copies(entries.size());
+    for (size_t label = 0; label < entries.size(); ++label) {
+      copies[label] = static_cast<uint32_t>(operations.size());
+      for (uint32_t v = 0; v < stateCounts[label]; ++v) operations.push_back(ValueOperation::copy(v));
+    }
+    boundValues.assign(entries.size(), 0);
     bytes.assign(labels.begin(), labels.end());  // one byte each (at most 256 labels)
     const uint32_t self = static_cast<uint32_t>(bytes.size());
     for (size_t label = 0; label < entries.size(); ++label) bytes.push_back(static_cast<uint8_t>(label));
@@ -74,11 +96,13 @@ struct RewriteTable {
       const bool timeless = entry.lifetime == kForever;
       anyTimeless = anyTimeless || timeless;
       // Kept: adds nothing to its death, which is forever for a timeless module.
-      steps.push_back({itself, 1, 0, 0, timeless ? kForever : 0.0, timeless});
+      steps.push_back({itself, 1, 0, 0, timeless ? kForever : 0.0, timeless, copies[label], stateCounts[label]});
       if (entry.renews)
-        steps.push_back({itself, 1, 0, 1, entry.lifeAfter, false});
+        steps.push_back({itself, 1, 0, 1, entry.lifeAfter, false, copies[label], stateCounts[label]});
       else
-        steps.push_back({entry.first, entry.count, entry.count, 1, entry.lifeAfter, false});
+        steps.push_back({entry.first, entry.count, entry.count, 1, entry.lifeAfter, false, entry.firstOperation,
+                         entry.operationCount});
+      boundValues[label] = std::max(steps[2 * label].operationCount, steps[2 * label + 1].operationCount);
       runSteps.push_back(static_cast<uint32_t>(2 * label + (timeless ? 0 : 1)));
     }
   }
@@ -93,10 +117,14 @@ struct RewriteTable {
   /// walk reads the birth of a module that never expires, and the replay of the ids gives
   /// every module its own, docs/COMPACT_WORDS.md). Koch's turns so join the run of the F
   /// beside them.
+  ///
+  /// The values it writes: operations[firstOperation ..], operationCount of them, which
+  /// read the module's own values.
   struct Step {
     uint32_t source = 0, count = 0, born = 0, event = 0;
     double soonAfter = 0;
     bool joins = false;
+    uint32_t firstOperation = 0, operationCount = 0;
   };
   std::vector<Step> steps;
   std::vector<double> lifetimes;  // per label
@@ -108,6 +136,11 @@ struct RewriteTable {
   double runLifetime = kForever;
   std::vector<uint32_t> runSteps;
   bool anyTimeless = false;  // some label never expires
+  /// State values: per label how many a module holds (stateCounts), and the most its step
+  /// writes, kept or expiring (boundValues); how successors compute theirs (operations).
+  bool withValues = false;
+  std::vector<uint32_t> stateCounts, boundValues;
+  std::vector<ValueOperation> operations;
   static constexpr double kForever = std::numeric_limits<double>::infinity();
   /// The successors' labels as bytes, then each label itself, then kBytesPadding zeros:
   /// up to 16 labels of a step are copied with one store of 16 bytes.
@@ -118,7 +151,7 @@ struct RewriteTable {
 /// What modules [begin, end) of a word write at most by a table, if each that can expire
 /// does: modules, events and cells born.
 struct TableBound {
-  uint64_t modules = 0, events = 0, born = 0;
+  uint64_t modules = 0, events = 0, born = 0, values = 0;
 };
 
 /// What one table rewrite did: events (modules that expired), modules born, and the
@@ -130,7 +163,7 @@ struct TableRewriteCounts {
 
 class TableRewrite {
  public:
-  /// Rewrites modules [begin, end) of `from` (one-byte labels, no state values) by
+  /// Rewrites modules [begin, end) of `from` (one-byte labels) by
   /// `table` at `horizon` into `out`, which counts or writes (CompactWord::Slice). The
   /// new successors of a module with id `parent` dying at `death` take the lineage key
   /// `lineage(parentFirst, death)`, where parentFirst is mixKeyFirst(parent).
@@ -142,6 +175,13 @@ class TableRewrite {
   template <class Lineage>
   static TableRewriteCounts rewrite(CompactWord::Slice& out, const CompactWord& from, size_t begin, size_t end,
                                     const RewriteTable& table, double horizon, Lineage& lineage, bool withIds = true) {
+    if (table.withValues) {
+      if (withIds)
+        return out.writing() ? walkValues<true, true>(out, from, begin, end, table, horizon, lineage)
+                             : walkValues<false, true>(out, from, begin, end, table, horizon, lineage);
+      return out.writing() ? walkValues<true, false>(out, from, begin, end, table, horizon, lineage)
+                           : walkValues<false, false>(out, from, begin, end, table, horizon, lineage);
+    }
     if (!withIds) {
       // Steps noted a run when runs are long (Thue-Morse: 54 against 63 ms); Koch's runs
       // of five modules or so pay more for the note than for the minima (20 against 19 ms).
@@ -156,7 +196,8 @@ class TableRewrite {
   }
 
   /// What modules [begin, end) of `from` write at most by `table`: a histogram of their
-  /// labels.
+  /// labels. Modules and values are exact where every module that can expire does, and
+  /// no kept module holds more values than its successors would.
   static TableBound bound(const CompactWord& from, size_t begin, size_t end, const RewriteTable& table) {
     uint64_t histogram[4][256] = {};  // four, so that equal labels in a row do not wait on each other
     const uint8_t* labels = from.labels8_.data();
@@ -175,6 +216,7 @@ class TableRewrite {
       if (entry.lifetime < RewriteTable::kForever) result.events += count;
       result.modules += count * (entry.renews ? 1 : entry.count);
       result.born += count * (entry.renews ? 0 : entry.count);
+      result.values += count * (table.withValues ? table.boundValues[label] : 0);
     }
     return result;
   }
@@ -197,7 +239,9 @@ class TableRewrite {
           labels(slice.out_.labels8),
           keys(slice.out_.keys),
           birthIndex(slice.out_.birthIndex),
-          firstK(slice.out_.firstK) {
+          firstK(slice.out_.firstK),
+          values(slice.out_.values),
+          valueAt(slice.firstValue_ + slice.writtenValues_) {
       if (slice.word_ && slice.word_->stateless_) {  // writing a word without values
         runStarts = slice.word_->runStarts_.data();
         blockRuns = slice.word_->blockRuns_.data();
@@ -211,9 +255,11 @@ class TableRewrite {
       slice.runJ_ = runJ;
       slice.bits_ = bits;
       slice.bitsWord_ = bitsWord;
+      slice.writtenValues_ = valueAt - slice.firstValue_;
     }
     void load() {
       at = slice.firstModule_ + slice.written_;
+      valueAt = slice.firstValue_ + slice.writtenValues_;
       runs = slice.runs_;
       runJ = slice.runJ_;
       bits = slice.bits_;
@@ -317,6 +363,25 @@ class TableRewrite {
       }
     }
 
+    // Starts the blocks from `blockEnd` on that begin before the module at `at`, inside the
+    // labels of one step just written from module `stepModule` and value `stepValue`: the
+    // block index counts the values before each. Their first module continues the run
+    // under way. `blockEnd` is left at the next block to start.
+    [[gnu::noinline]] void startValueBlocks(size_t& blockEnd, size_t stepModule, size_t stepValue,
+                                            const uint32_t* stateCounts) {
+      const size_t valueAfter = valueAt;
+      for (; blockEnd < at; blockEnd += CompactWord::kBlock) {
+        size_t value = stepValue;
+        for (size_t m = stepModule; m < blockEnd; ++m) value += stateCounts[labels[m]];
+        runJ = 0;  // read only for words with ids
+        valueAt = value;
+        store();
+        slice.startBlock(blockEnd);
+        load();
+      }
+      valueAt = valueAfter;
+    }
+
     CompactWord::Slice& slice;
     size_t at, sliceEnd, runs;
     uint32_t runJ;
@@ -326,6 +391,9 @@ class TableRewrite {
     uint64_t* keys;
     uint32_t* birthIndex;
     uint16_t* firstK;
+    // The word's values, and where the next module's go (walkValues).
+    double* values;
+    size_t valueAt;
     // The word's bitmap and block index, when writing a word without values.
     uint64_t* runStarts = nullptr;
     uint32_t* blockRuns = nullptr;
@@ -425,7 +493,9 @@ class TableRewrite {
           const uint64_t runDeathBits = std::bit_cast<uint64_t>(death);
           while (i < runEnd && tailBits != runDeathBits) visit(i++, birth, birthBits, birthIndex, seen);
           const uint32_t* runSteps = table.runSteps.data();
-          size_t blockEnd = (writer.at / CompactWord::kBlock + 1) * CompactWord::kBlock;
+          // The first block that starts after what is written; one starting just there has
+          // not been started yet (a put starts a block before its first module).
+          size_t blockEnd = (writer.at + CompactWord::kBlock - 1) / CompactWord::kBlock * CompactWord::kBlock;
           // Without timeless labels every module is an event, and its step follows from its
           // label: a load less a module (Thue-Morse 6 % faster).
           auto copies = [&]<bool kTimeless>() {
@@ -470,6 +540,278 @@ class TableRewrite {
     counts.events = events;
     counts.born = born;
     counts.soonest = soonest;
+    return counts;
+  }
+
+  // The loop of a step a module of walkValues, for modules of one run of the old word that
+  // all take their step at one death: each module's labels copied with one store of 16
+  // bytes, its values by its step's operations. Its state lives in locals (the walk's
+  // would be reloaded around every store through a byte pointer).
+  struct StepsWithValues {
+    const uint8_t* labels;
+    const uint32_t* runSteps;
+    const RewriteTable::Step* steps;
+    const uint8_t* bytes;
+    const ValueOperation* operations;
+    const uint32_t* stateCounts;
+    const double* in;
+    uint8_t* outLabels;
+    double* outValues;
+    struct State {
+      size_t i, at, valueAt, value;
+      uint64_t events, born, seen;  // seen: bit s, step s taken
+      size_t stepModule = 0, stepValue = 0;
+    };
+    // Modules from state.i up to `end`, while what is written starts before `stop`, until a
+    // step writes past `blockEnd` (the next block to start).
+    [[gnu::noinline]] void run(State& state, size_t end, size_t stop, size_t blockEnd) const {
+      size_t i = state.i, at = state.at, valueAt = state.valueAt, value = state.value;
+      uint64_t events = state.events, born = state.born, seen = state.seen;
+      // In locals: a label stored through a byte pointer may alias the members.
+      const uint8_t* const from = labels;
+      const uint32_t* const stepOf = runSteps;
+      const RewriteTable::Step* const stepAt = steps;
+      const uint8_t* const source = bytes;
+      const ValueOperation* const computed = operations;
+      const uint32_t* const counts = stateCounts;
+      const double* const values = in;
+      uint8_t* const labelsOut = outLabels;
+      double* const valuesOut = outValues;
+      while (i < end && at <= stop) {
+        const uint32_t label = from[i++];
+        const uint32_t taken = stepOf[label];
+        const RewriteTable::Step& step = stepAt[taken];
+        std::memcpy(labelsOut + at, source + step.source, 16);  // bytes past count written over next
+        const double* own = values + value;
+        double* to = valuesOut + valueAt;
+        const ValueOperation* operation = computed + step.firstOperation;
+        for (uint32_t v = 0; v < step.operationCount; ++v) to[v] = operation[v].applyQuickly(own);
+        value += counts[label];
+        at += step.count;
+        valueAt += step.operationCount;
+        events += step.event;
+        born += step.born;
+        seen |= uint64_t{1} << taken;
+        if (blockEnd < at) [[unlikely]]
+          break;
+      }
+      state.i = i;
+      state.at = at;
+      state.valueAt = valueAt;
+      state.value = value;
+      state.events = events;
+      state.born = born;
+      state.seen = seen;
+    }
+    // After run() stopped past a block start: the module and value the last step wrote
+    // from, found again from its label in the old word (module state.i - 1).
+    void lastStep(State& state) const {
+      const RewriteTable::Step& step = steps[runSteps[labels[state.i - 1]]];
+      state.stepModule = state.at - step.count;
+      state.stepValue = state.valueAt - step.operationCount;
+    }
+  };
+
+  // The walk of a word with state values, with ids or without: module by module, each
+  // taking its step from the table as walkWithoutIds does, and writing its values by the
+  // step's operations on its own values (a kept or renewed module copies them). With ids,
+  // runs follow RunTail's rule as in walk(); without, a run starts where the birth written
+  // changes, timeless modules joining the run under way.
+  template <bool kWriting, bool kWithIds, class Lineage>
+  static TableRewriteCounts walkValues(CompactWord::Slice& out, const CompactWord& from, size_t begin, size_t end,
+                                       const RewriteTable& table, double horizon,
+                                       [[maybe_unused]] Lineage& lineage) {
+    TableRewriteCounts counts;
+    end = std::min(end, from.size());
+    if (begin >= end) return counts;
+    const uint8_t* labels = from.labels8_.data();
+    const uint64_t* starts = from.runStarts_.data();
+    const RewriteTable::Step* steps = table.steps.data();
+    const double* lifetimes = table.lifetimes.data();
+    const uint8_t* bytes = table.bytes.data();
+    const uint32_t* stateCounts = table.stateCounts.data();
+    const ValueOperation* operations = table.operations.data();
+    const double* in = from.values_.data();
+
+    const CompactWord::Place place = from.locate(begin);
+    size_t run = place.run, value = place.value;
+    // With ids only: the run's key, first k and the module's place j in it.
+    [[maybe_unused]] uint32_t j = place.j;
+    [[maybe_unused]] uint64_t key = 0, keyFirst = 0;
+    [[maybe_unused]] uint32_t firstK = 0;
+    [[maybe_unused]] bool keyFirstKnown = false;
+    uint64_t birthBits = 0;
+    uint32_t birthIndex = 0;
+    double birth = 0;
+    auto loadRun = [&] {
+      if constexpr (kWithIds) {
+        key = from.keys_[run];
+        firstK = from.firstKOf(run);
+        keyFirstKnown = false;
+      }
+      birthIndex = from.birthIndex_[run];
+      birth = from.births_[birthIndex];
+      birthBits = std::bit_cast<uint64_t>(birth);
+    };
+    loadRun();
+
+    Writer<kWithIds> writer(out);
+    constexpr uint64_t kNone = ~uint64_t{0};  // the bits of no birth (a NaN)
+    // The last module written: its birth bits, and with ids its key and k (none after new
+    // successors, which nothing continues).
+    uint64_t tailBits = kNone;
+    [[maybe_unused]] uint64_t tailKey = 0;
+    [[maybe_unused]] uint32_t tailK = IdKey::kWhole;
+    uint64_t deathBits = kNone;
+    uint32_t deathIndex = 0;
+    uint64_t modules = 0, runs = 0, values = 0;
+
+    // Module i, of the run loaded.
+    auto visit = [&](size_t i) {
+      const uint32_t label = labels[i];
+      const double death = birth + lifetimes[label];
+      uint32_t taken = 2 * label;  // the step, kept; expiring is the next
+      uint64_t bits = birthBits;
+      [[maybe_unused]] uint32_t index = birthIndex;
+      if (death <= horizon) {
+        ++taken;
+        bits = std::bit_cast<uint64_t>(death);
+        if constexpr (kWriting) {
+          if (bits != deathBits) [[unlikely]] {
+            deathBits = bits;
+            deathIndex = out.birthIndexOf(death);
+          }
+          index = deathIndex;
+        }
+      } else if constexpr (!kWithIds) {
+        if (steps[taken].joins && tailBits != kNone) bits = tailBits;
+      }
+      const RewriteTable::Step& step = steps[taken];
+      counts.events += step.event;
+      counts.born += step.born;
+      counts.soonest = std::min(counts.soonest, death + step.soonAfter);
+      // Whether the first module written starts a run, and the ids of what is written.
+      bool startsRun;
+      [[maybe_unused]] uint64_t writtenKey = 0;
+      [[maybe_unused]] uint32_t writtenK = 1;
+      if constexpr (kWithIds) {
+        const uint32_t k = firstK == IdKey::kWhole ? IdKey::kWhole : firstK + j;
+        if (step.born == 0) {  // kept or renewed: its own id
+          writtenKey = key;
+          writtenK = k;
+          startsRun = !(tailK != IdKey::kWhole && k != IdKey::kWhole && key == tailKey && k == tailK + 1 &&
+                        (k & 0xFFFFu) != 0 && bits == tailBits);
+          tailKey = key;
+          tailK = k;
+        } else {  // new successors, one run of fresh ids
+          startsRun = true;
+          if constexpr (kWriting) {
+            uint64_t parentFirst;
+            if (k == IdKey::kWhole) {
+              parentFirst = mixKeyFirst(key);
+            } else {
+              if (!keyFirstKnown) {
+                keyFirst = mixKeyFirst(key);
+                keyFirstKnown = true;
+              }
+              parentFirst = mixKeyFirst(mixKeyJoin(keyFirst, mixKeySecond(k)));
+            }
+            writtenKey = lineage(parentFirst, death);
+          }
+          tailK = IdKey::kWhole;
+        }
+      } else {
+        startsRun = bits != tailBits;
+      }
+      tailBits = bits;
+      if constexpr (kWriting) {
+        const double* own = in + value;
+        const ValueOperation* operation = operations + step.firstOperation;
+        for (uint32_t s = 0; s < step.count; ++s) {
+          const uint32_t written = bytes[step.source + s];
+          writer.put(written, IdKey{writtenKey, step.born == 0 ? writtenK : s + 1}, !(s == 0 && startsRun), index);
+          double* to = writer.values + writer.valueAt;
+          for (uint32_t v = 0, n = stateCounts[written]; v < n; ++v) to[v] = operation[v].applyQuickly(own);
+          operation += stateCounts[written];
+          writer.valueAt += stateCounts[written];
+        }
+      } else {
+        modules += step.count;
+        runs += startsRun ? 1 : 0;
+        values += step.operationCount;
+      }
+      value += stateCounts[label];
+    };
+
+    for (size_t i = begin;;) {
+      // Without ids, a run of the old word whose modules that can expire all expire at one
+      // death (RewriteTable::oneLifetime) continues the run of that death once a module
+      // has started it: after that module, the rest goes by a loop of a step a module,
+      // its labels copied with one store and its values by its operations.
+      if constexpr (kWriting && !kWithIds) {
+        if (table.oneLifetime && table.steps.size() <= 64 && birth + table.runLifetime <= horizon) {
+          size_t runEnd = end;
+          for (size_t w = (i + 1) / CompactWord::kBlock, last = (end - 1) / CompactWord::kBlock; w <= last; ++w) {
+            uint64_t word = starts[w];
+            if (w == (i + 1) / CompactWord::kBlock) word &= ~uint64_t{0} << ((i + 1) % CompactWord::kBlock);
+            if (word != 0) {
+              runEnd = std::min(end, w * CompactWord::kBlock + static_cast<size_t>(std::countr_zero(word)));
+              break;
+            }
+          }
+          const double death = birth + table.runLifetime;
+          const uint64_t runDeathBits = std::bit_cast<uint64_t>(death);
+          while (i < runEnd && tailBits != runDeathBits) visit(i++);
+          // The first block that starts after what is written; one starting just there has
+          // not been started yet (put starts a block before its first module).
+          size_t blockEnd = (writer.at + CompactWord::kBlock - 1) / CompactWord::kBlock * CompactWord::kBlock;
+          StepsWithValues loop{labels, table.runSteps.data(), steps, bytes, operations, stateCounts, in,
+                               writer.labels, writer.values};
+          StepsWithValues::State state{i, writer.at, writer.valueAt, value, 0, 0, 0};
+          // A step is written while 16 bytes fit in the slice (a slice smaller than that
+          // takes the walk module by module).
+          const size_t stop = writer.sliceEnd - RewriteTable::kBytesPadding;
+          for (; writer.sliceEnd >= RewriteTable::kBytesPadding;) {
+            loop.run(state, runEnd, stop, blockEnd);
+            writer.at = state.at;
+            writer.valueAt = state.valueAt;
+            if (!(blockEnd < state.at)) break;
+            // The last step crossed into a block, whose values start inside the step's.
+            loop.lastStep(state);
+            writer.startValueBlocks(blockEnd, state.stepModule, state.stepValue, stateCounts);
+          }
+          i = state.i;
+          value = state.value;
+          counts.events += state.events;
+          counts.born += state.born;
+          for (uint64_t seen = state.seen; seen != 0; seen &= seen - 1) {
+            const size_t taken = static_cast<size_t>(std::countr_zero(seen));
+            counts.soonest = std::min(counts.soonest, death + steps[taken].soonAfter);
+          }
+          while (i < runEnd) visit(i++);
+          if (i == end) break;
+          ++run;  // i starts a run
+          loadRun();
+          continue;
+        }
+      }
+      visit(i);
+      if (++i == end) break;
+      if ((starts[i / CompactWord::kBlock] >> (i % CompactWord::kBlock)) & 1u) {
+        ++run;
+        j = 0;
+        loadRun();
+      } else {
+        ++j;
+      }
+    }
+    if constexpr (kWriting) {
+      writer.store();
+    } else {
+      out.modules_ += modules;
+      out.countedRuns_ += runs;
+      out.values_ += values;
+    }
     return counts;
   }
 

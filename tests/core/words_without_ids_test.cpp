@@ -6,6 +6,7 @@
 
 #include <bit>
 #include <limits>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -100,6 +101,7 @@ TEST(WordsWithoutIds, ATimedWordReadsAsTheWordGrownWithIdsOnEveryThreadCount) {
     // Runs split where the birth changes, not at every event, and keep no key.
     EXPECT_LT(pool.compactWord().runCount(), reference.rootPool().compactWord().runCount()) << threads << " threads";
     EXPECT_LT(pool.bytes(), reference.rootPool().bytes() / 2) << threads << " threads";
+    EXPECT_TRUE(pool.compactWord().indexAgrees()) << threads << " threads";
     EXPECT_EQ(world.stats().events, reference.stats().events);
     EXPECT_EQ(world.stats().cellsBorn, reference.stats().cellsBorn);
     EXPECT_GT(expectSameLabelsAndBirths(*program, reference.rootPool(), pool, std::to_string(threads) + " threads"), 0u);
@@ -139,9 +141,13 @@ TEST(WordsWithoutIds, ThueMorseBySlicesTakesARunASlice) {
   ASSERT_EQ(reference.rootPool().size(), 262'144u);
   for (unsigned threads : {1u, 2u, 3u}) {
     World world = growing(program, threads, true);
-    world.advanceTo(18, 1.0);
+    for (int t = 1; t <= 18; ++t) {  // each word's block index, as the next rewrite reads it
+      world.advanceTo(t, 1.0);
+      ASSERT_TRUE(world.rootPool().compactWord().indexAgrees()) << threads << " threads, t = " << t;
+    }
     EXPECT_GT(world.stats().rewritesBySlices, 0u);
     EXPECT_LE(world.rootPool().compactWord().runCount(), 4u * threads) << threads << " threads";
+    EXPECT_TRUE(world.rootPool().compactWord().indexAgrees()) << threads << " threads";
     EXPECT_EQ(world.stats().events, reference.stats().events) << threads << " threads";
     EXPECT_EQ(world.stats().cellsBorn, reference.stats().cellsBorn) << threads << " threads";
     expectSameLabelsAndBirths(*program, reference.rootPool(), world.rootPool(), std::to_string(threads) + " threads");
@@ -179,12 +185,16 @@ TEST(WordsWithoutIds, KochTakesAByteAModuleAndALimitStopsItAsBefore) {
   auto program = testing_support::compileOrFail(kKoch);
   ASSERT_NE(program, nullptr);
   World world = growing(program, 1, true);
-  world.advanceTo(8, 1.0);
+  for (int t = 1; t <= 8; ++t) {
+    world.advanceTo(t, 1.0);
+    ASSERT_TRUE(world.rootPool().compactWord().indexAgrees()) << "t = " << t;
+  }
   const Pool& pool = world.rootPool();
   ASSERT_EQ(pool.size(), 781'249u);
   ASSERT_FALSE(pool.holdsIds());
   // With ids: a run for the new successors of each F and one for each turn kept (156,249).
   EXPECT_LE(pool.compactWord().runCount(), 16u);
+  EXPECT_TRUE(pool.compactWord().indexAgrees());
   EXPECT_LT(static_cast<double>(pool.bytes()) / static_cast<double>(pool.size()), 1.25);
   std::string messages[2];
   for (const bool withoutIds : {false, true}) {
@@ -201,6 +211,81 @@ TEST(WordsWithoutIds, KochTakesAByteAModuleAndALimitStopsItAsBefore) {
   }
   EXPECT_EQ(messages[0], messages[1]);
   EXPECT_NE(messages[0].find("1000000 cells"), std::string::npos) << messages[0];
+}
+
+// A timed word with state values by a table: each successor's value is one operation on
+// the cell's own values (every kind: a constant, a copy, x + c, c + x, x - c, c - x,
+// x * c, c * x, x / c, c / x), F and G expire at different instants, H is renewed with its
+// value, I keeps two values and never expires, C is a renewed module without values.
+std::string timedTableWithValues() {
+  std::string axiom;
+  for (int i = 0; i < 40'000; ++i) axiom += i % 7000 == 4 ? "F(1, 2) G(0.5) I(3, 4) " : i % 3 ? "H(0.75) " : "I(1, 2) ";
+  return "cell F(x = 1, y = 2) { lifetime 1;\n"
+         "  rules { terminal: -> F(x + 1, y) G(x * 0.5) F(3 - x, y / 4) C I(y - 0.25, 7); } }\n"
+         "cell G(g = 0) { lifetime 3.25;\n"
+         "  rules { terminal: -> H(g) F(g / 3, 1.5 * g) G(2 + g) H(0 - g) H(6 / g) C C H(g) H(g) H(g)\n"
+         "                       H(g) H(g) H(g) H(g) H(g) H(g) H(g) H(g) H(g); } }\n"
+         "cell H(h = 0) { lifetime 2.5; }\n"
+         "cell I(a = 0, b = 0) { }\n"
+         "cell C { lifetime 2; }\n"
+         "system s { pool linear; axiom " +
+         axiom + "; }\n";
+}
+
+void expectSameValues(std::span<const double> expected, std::span<const double> actual, const std::string& what) {
+  ASSERT_EQ(expected.size(), actual.size()) << what;
+  for (size_t v = 0; v < expected.size(); ++v)
+    ASSERT_EQ(std::bit_cast<uint64_t>(expected[v]), std::bit_cast<uint64_t>(actual[v])) << what << ": value " << v;
+}
+
+// The values a word without ids holds are those the records' serial pass computes (the
+// next rewrite reads them before any id is replayed), and the replay gives every cell its
+// id, birth and values, on every thread count. Arguments that are not one operation on
+// the cell's values keep the batch interpreter.
+TEST(WordsWithoutIds, AWordWithValuesComputesThemAsTheInterpreterDoes) {
+  auto program = testing_support::compileOrFail(timedTableWithValues());
+  ASSERT_NE(program, nullptr);
+  ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).rewritesByTable());
+  WorldDef serialDef;
+  serialDef.seed = 5;
+  serialDef.rewriteBySlices = false;  // the records' pass, with the expression interpreter
+  World reference(program, serialDef);
+  reference.advanceTo(12, 1.0);
+  ASSERT_GT(reference.rootPool().size(), 200'000u);
+  World withIds = growing(program, 2, false);
+  withIds.advanceTo(12, 1.0);
+  for (unsigned threads : {1u, 2u, 3u}) {
+    const std::string what = std::to_string(threads) + " threads";
+    World world = growing(program, threads, true);
+    world.advanceTo(12, 1.0);
+    const Pool& pool = world.rootPool();
+    ASSERT_TRUE(pool.holdsCompactWord()) << what;
+    EXPECT_FALSE(pool.holdsIds()) << what;
+    EXPECT_GT(world.stats().rewritesBySlices, 0u) << what;
+    EXPECT_TRUE(pool.compactWord().indexAgrees()) << what;
+    EXPECT_EQ(world.stats().events, reference.stats().events) << what;
+    EXPECT_EQ(world.stats().cellsBorn, reference.stats().cellsBorn) << what;
+    expectSameValues(reference.rootPool().stateArena(), pool.compactWord().values(), what + ", held without ids");
+    EXPECT_GT(expectSameLabelsAndBirths(*program, withIds.rootPool(), pool, what), 0u) << "I is timeless";
+    expectSameCells(reference.rootPool(), pool, what);
+    expectSameValues(reference.rootPool().stateArena(), pool.stateArena(), what + ", replayed");
+    for (size_t i = 0; i < pool.size(); i += 101)
+      ASSERT_EQ(reference.rootPool().stateOffset(i), pool.stateOffset(i)) << what << ": cell " << i;
+  }
+  expectSameCells(reference.rootPool(), withIds.rootPool(), "grown with ids");
+  expectSameValues(reference.rootPool().stateArena(), withIds.rootPool().stateArena(), "grown with ids");
+
+  // The benchmark's parametric system goes by the table too; an argument of two values,
+  // a negation, the age or a function does not.
+  auto parametric = testing_support::compileOrFail(testing_support::kParametric);
+  ASSERT_NE(parametric, nullptr);
+  EXPECT_TRUE(ParallelRewrite(*parametric, parametric->systems[parametric->root]).rewritesByTable());
+  for (const char* argument : {"x * x", "-x", "x + age", "sqrt(x)", "x * 2 + 1"}) {
+    auto model = testing_support::compileOrFail(std::string("lsystem p {\n  axiom A(1)\n  A(x) -> A(") + argument +
+                                                ") A(x)\n}\n");
+    ASSERT_NE(model, nullptr) << argument;
+    EXPECT_FALSE(ParallelRewrite(*model, model->systems[model->root]).rewritesByTable()) << argument;
+  }
 }
 
 }  // namespace

@@ -140,6 +140,38 @@ TEST(ExpressionBatch, EachLaneIsTheOneCellEvaluation) {
   }
 }
 
+// An expression of one operation on one slot and a constant is recognised
+// (pools/value_operation.h), and both ways a rewrite by a table computes it give the bits
+// of the interpreter: zeros of either sign, denormals, infinities, overflow (a NaN for a
+// NaN, whichever operand's), a constant NaN too.
+TEST(ExpressionBatch, OneOperationOnASlotGivesTheInterpretersBits) {
+  const char* expressions[] = {"x",       "y",         "2.5",     "x + 1.25", "0.5 + y", "x - 3",    "0.75 - x",
+                               "x * 0.5", "-2 * x",    "x / 3",   "6 / y",    "x * 0",   "0 - x",    "x - 0",
+                               "x + 0",   "x * -1",    "x * 1e300", "-0.0 + x", "x + -0.0", "x + 0 / 0", "(0 / 0) * y"};
+  const double values[] = {0.0, -0.0, 1.5, -2.25, 3e-310, 7.0, -1e300, std::nan(""), INFINITY, -INFINITY, 0.5};
+  for (const char* text : expressions) {
+    auto f = compileText(text);
+    ASSERT_FALSE(f->sink.hasErrors()) << text << formatDiagnostics(f->sink);
+    ValueOperation operation;
+    ASSERT_TRUE(f->compiled.asValueOperation(2, operation)) << text;
+    for (double x : values)
+      for (double y : values) {
+        double frame[2] = {x, y};
+        EvalContext context{frame, EvalEnvironment{nullptr, 1}, nullptr};
+        const double one = f->compiled.evaluate(context);
+        for (const double value : {operation.apply(frame), operation.applyQuickly(frame)}) {
+          if (std::isnan(one) && std::isnan(value)) continue;
+          EXPECT_EQ(std::bit_cast<uint64_t>(value), std::bit_cast<uint64_t>(one))
+              << text << " at x = " << x << ", y = " << y << ": " << value << " and " << one;
+        }
+      }
+  }
+  ValueOperation operation;
+  for (const char* text : {"x * y", "-x", "x ^ 2", "x % 2", "x + y", "sin(x)", "x * 2 + 1", "uniform(0, 1)", "x < 1"})
+    EXPECT_FALSE(compileText(text)->compiled.asValueOperation(2, operation)) << text;
+  EXPECT_FALSE(compileText("y + 1")->compiled.asValueOperation(1, operation)) << "y is slot 1, past the cell's values";
+}
+
 TEST(ExpressionBatch, JumpsDrawsAndFunctionsAreNotBatched) {
   for (const char* text : {"x > 0 && y > 0", "x > 0 || y", "uniform(0, 1) * x", "if(x > 1, x, y)"}) {
     auto f = compileText(text);
