@@ -103,6 +103,12 @@ struct RewriteTable {
         steps.push_back({entry.first, entry.count, entry.count, 1, entry.lifeAfter, false, entry.firstOperation,
                          entry.operationCount});
       boundValues[label] = std::max(steps[2 * label].operationCount, steps[2 * label + 1].operationCount);
+      for (size_t taken = 2 * label; taken < 2 * label + 2; ++taken) {
+        Step& step = steps[taken];
+        step.affine = step.count > 0 && std::all_of(operations.begin() + step.firstOperation,
+                                                     operations.begin() + step.firstOperation + step.operationCount,
+                                                     [](const ValueOperation& operation) { return operation.affine; });
+      }
       runSteps.push_back(static_cast<uint32_t>(2 * label + (timeless ? 0 : 1)));
     }
   }
@@ -125,6 +131,8 @@ struct RewriteTable {
     double soonAfter = 0;
     bool joins = false;
     uint32_t firstOperation = 0, operationCount = 0;
+    /// Every operation is affine (ValueOperation::affine): x * multiplier + addend.
+    bool affine = false;
   };
   std::vector<Step> steps;
   std::vector<double> lifetimes;  // per label
@@ -578,9 +586,35 @@ class TableRewrite {
       uint8_t* const labelsOut = outLabels;
       double* const valuesOut = outValues;
       while (i < end && at <= stop) {
-        const uint32_t label = from[i++];
+        const uint32_t label = from[i];
         const uint32_t taken = stepOf[label];
         const RewriteTable::Step& step = stepAt[taken];
+        if (step.affine) {
+          // Modules of this label one after another, each writing the same labels and its
+          // values by multiply-adds, up to the step that writes past blockEnd.
+          const uint32_t count = step.count, written = step.operationCount, read = counts[label];
+          const size_t room = std::min({end - i, (stop - at) / count + 1, (blockEnd - at) / count + 1});
+          const uint8_t* writes = source + step.source;
+          const ValueOperation* operation = computed + step.firstOperation;
+          size_t k = 0;
+          for (; k < room && from[i + k] == label; ++k) {
+            std::memcpy(labelsOut + at, writes, 16);  // bytes past count written over next
+            const double* own = values + value;
+            double* to = valuesOut + valueAt;
+            for (uint32_t v = 0; v < written; ++v)
+              to[v] = own[operation[v].slot] * operation[v].multiplier + operation[v].addend;
+            at += count;
+            valueAt += written;
+            value += read;
+          }
+          i += k;
+          events += step.event * k;
+          born += step.born * k;
+          seen |= uint64_t{1} << taken;
+          if (blockEnd < at) break;
+          continue;
+        }
+        ++i;
         std::memcpy(labelsOut + at, source + step.source, 16);  // bytes past count written over next
         const double* own = values + value;
         double* to = valuesOut + valueAt;
