@@ -597,6 +597,21 @@ class TableRewrite {
           const uint8_t* writes = source + step.source;
           const ValueOperation* operation = computed + step.firstOperation;
           size_t k = 0;
+          // One value a module, a few written (the parametric word's A and B: two): the
+          // multipliers and addends held in registers.
+          if (read == 1 && written >= 1 && written <= 4) {
+            const auto stretch = [&]<uint32_t kWritten>() {
+              return stretchOfOne<kWritten>(from + i, room, label, writes, count, operation, values + value,
+                                            labelsOut + at, valuesOut + valueAt);
+            };
+            k = written == 1   ? stretch.template operator()<1>()
+                : written == 2 ? stretch.template operator()<2>()
+                : written == 3 ? stretch.template operator()<3>()
+                               : stretch.template operator()<4>();
+            at += k * count;
+            valueAt += k * written;
+            value += k;
+          }
           for (; k < room && from[i + k] == label; ++k) {
             std::memcpy(labelsOut + at, writes, 16);  // bytes past count written over next
             const double* own = values + value;
@@ -636,6 +651,28 @@ class TableRewrite {
       state.events = events;
       state.born = born;
       state.seen = seen;
+    }
+    // The modules from[0 ..] up to `room` of them while their label is `label`, each
+    // holding one value x and writing the labels `writes` (count of them) and kWritten
+    // values x * multiplier + addend. Returns how many.
+    template <uint32_t kWritten>
+    static size_t stretchOfOne(const uint8_t* from, size_t room, uint32_t label, const uint8_t* writes, uint32_t count,
+                               const ValueOperation* operation, const double* own, uint8_t* labelsOut,
+                               double* valuesOut) {
+      double multiplier[kWritten], addend[kWritten];
+      for (uint32_t w = 0; w < kWritten; ++w) {
+        multiplier[w] = operation[w].multiplier;
+        addend[w] = operation[w].addend;
+      }
+      size_t k = 0;
+      for (; k < room && from[k] == label; ++k) {
+        std::memcpy(labelsOut, writes, 16);  // bytes past count written over next
+        labelsOut += count;
+        const double x = own[k];
+        for (uint32_t w = 0; w < kWritten; ++w) valuesOut[w] = x * multiplier[w] + addend[w];
+        valuesOut += kWritten;
+      }
+      return k;
     }
     // After run() stopped past a block start: the module and value the last step wrote
     // from, found again from its label in the old word (module state.i - 1).

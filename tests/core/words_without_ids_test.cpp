@@ -288,5 +288,39 @@ TEST(WordsWithoutIds, AWordWithValuesComputesThemAsTheInterpreterDoes) {
   }
 }
 
+// Modules of one value that follow one another go by the loop of multiply-adds, for one
+// to four values written (D renewed: one; A: two; B, with a module without values among
+// its successors: three; C: four). Each step's values, held without ids and read by the
+// next step before any id is replayed, are those the interpreter computes.
+TEST(WordsWithoutIds, ModulesOfOneValueComputeTheirSuccessorsValuesAsTheInterpreterDoes) {
+  auto program = testing_support::compileOrFail(
+      "cell A(x = 1) { lifetime 1; rules { terminal: -> A(x + 1) B(x * 0.5); } }\n"
+      "cell B(y = 0) { lifetime 1; rules { terminal: -> B(y + 1) S C(y * 0.5) B(2 - y); } }\n"
+      "cell C(z = 0) { lifetime 1; rules { terminal: -> C(z * 3) B(z - 1) C(0.25 * z) D(z + 0.5) D(z); } }\n"
+      "cell D(w = 0) { lifetime 1; }\n"
+      "cell S { lifetime 1; }\n"
+      "system s { pool linear; axiom A(1) D(7) B(0.5); }\n");
+  ASSERT_NE(program, nullptr);
+  ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).rewritesByTable());
+  WorldDef serialDef;
+  serialDef.seed = 5;
+  serialDef.rewriteBySlices = false;
+  for (unsigned threads : {1u, 2u, 3u}) {
+    World reference(program, serialDef);
+    World world = growing(program, threads, true);
+    for (int t = 1; t <= 10; ++t) {
+      const std::string what = std::to_string(threads) + " threads, t = " + std::to_string(t);
+      reference.advanceTo(t, 1.0);
+      world.advanceTo(t, 1.0);
+      ASSERT_FALSE(world.rootPool().holdsIds()) << what;
+      ASSERT_TRUE(world.rootPool().compactWord().indexAgrees()) << what;
+      expectSameValues(reference.rootPool().stateArena(), world.rootPool().compactWord().values(), what);
+    }
+    EXPECT_GT(world.rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
+    EXPECT_GT(world.stats().rewritesBySlices, 0u);
+    expectSameCells(reference.rootPool(), world.rootPool(), std::to_string(threads) + " threads");
+  }
+}
+
 }  // namespace
 }  // namespace ontogen
