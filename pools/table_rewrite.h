@@ -230,6 +230,26 @@ class TableRewrite {
   }
 
  private:
+  // The first run start after module i in `starts`, before `end`, or `end`.
+  static size_t nextRunStart(const uint64_t* starts, size_t i, size_t end) {
+    for (size_t w = (i + 1) / CompactWord::kBlock, last = (end - 1) / CompactWord::kBlock; w <= last; ++w) {
+      uint64_t word = starts[w];
+      if (w == (i + 1) / CompactWord::kBlock) word &= ~uint64_t{0} << ((i + 1) % CompactWord::kBlock);
+      if (word != 0) return std::min(end, w * CompactWord::kBlock + static_cast<size_t>(std::countr_zero(word)));
+    }
+    return end;
+  }
+  // mixKeyFirst of the id (key, k) of a parent: the first half of the hash its successors'
+  // lineage key takes. mixKeyFirst(key) is computed once a run (keyFirst, once known).
+  static uint64_t parentFirstOf(uint64_t key, uint32_t k, uint64_t& keyFirst, bool& keyFirstKnown) {
+    if (k == IdKey::kWhole) return mixKeyFirst(key);
+    if (!keyFirstKnown) {
+      keyFirst = mixKeyFirst(key);
+      keyFirstKnown = true;
+    }
+    return mixKeyFirst(mixKeyJoin(keyFirst, mixKeySecond(k)));
+  }
+
   // What the walk keeps of the slice it writes, in locals rather than in the slice: a
   // label is written through a byte pointer, which may alias anything, so the compiler
   // would read every field of the slice again after each one. Without ids (kWithIds
@@ -481,15 +501,7 @@ class TableRewrite {
       const uint32_t birthIndex = from.birthIndex_[run];
       const double birth = from.births_[birthIndex];
       const uint64_t birthBits = std::bit_cast<uint64_t>(birth);
-      size_t runEnd = end;
-      for (size_t w = (i + 1) / CompactWord::kBlock, last = (end - 1) / CompactWord::kBlock; w <= last; ++w) {
-        uint64_t word = starts[w];
-        if (w == (i + 1) / CompactWord::kBlock) word &= ~uint64_t{0} << ((i + 1) % CompactWord::kBlock);
-        if (word != 0) {
-          runEnd = std::min(end, w * CompactWord::kBlock + static_cast<size_t>(std::countr_zero(word)));
-          break;
-        }
-      }
+      const size_t runEnd = nextRunStart(starts, i, end);
       uint64_t seen = 0;  // kFewSteps: bit s, step s taken in this run
       // A run whose modules that can expire all expire at one death (one lifetime, at most
       // 16 successors, the other labels timeless: Thue-Morse, Koch) continues the run of
@@ -777,17 +789,7 @@ class TableRewrite {
         } else {  // new successors, one run of fresh ids
           startsRun = true;
           if constexpr (kWriting) {
-            uint64_t parentFirst;
-            if (k == IdKey::kWhole) {
-              parentFirst = mixKeyFirst(key);
-            } else {
-              if (!keyFirstKnown) {
-                keyFirst = mixKeyFirst(key);
-                keyFirstKnown = true;
-              }
-              parentFirst = mixKeyFirst(mixKeyJoin(keyFirst, mixKeySecond(k)));
-            }
-            writtenKey = lineage(parentFirst, death);
+            writtenKey = lineage(parentFirstOf(key, k, keyFirst, keyFirstKnown), death);
           }
           tailK = IdKey::kWhole;
         }
@@ -821,15 +823,7 @@ class TableRewrite {
       // its labels copied with one store and its values by its operations.
       if constexpr (kWriting && !kWithIds) {
         if (table.oneLifetime && table.steps.size() <= 64 && birth + table.runLifetime <= horizon) {
-          size_t runEnd = end;
-          for (size_t w = (i + 1) / CompactWord::kBlock, last = (end - 1) / CompactWord::kBlock; w <= last; ++w) {
-            uint64_t word = starts[w];
-            if (w == (i + 1) / CompactWord::kBlock) word &= ~uint64_t{0} << ((i + 1) % CompactWord::kBlock);
-            if (word != 0) {
-              runEnd = std::min(end, w * CompactWord::kBlock + static_cast<size_t>(std::countr_zero(word)));
-              break;
-            }
-          }
+          const size_t runEnd = nextRunStart(starts, i, end);
           const double death = birth + table.runLifetime;
           const uint64_t runDeathBits = std::bit_cast<uint64_t>(death);
           while (i < runEnd && tailBits != runDeathBits) visit(i++);
@@ -969,18 +963,8 @@ class TableRewrite {
           counts.born += entry.count;
           tail = false;
           if constexpr (kWriting) {
-            uint64_t parentFirst;
-            if (k == IdKey::kWhole) {
-              parentFirst = mixKeyFirst(key);
-            } else {
-              if (!keyFirstKnown) {
-                keyFirst = mixKeyFirst(key);
-                keyFirstKnown = true;
-              }
-              parentFirst = mixKeyFirst(mixKeyJoin(keyFirst, mixKeySecond(k)));
-            }
-            writer.putFresh(successors + entry.first, entry.packed, entry.count, lineage(parentFirst, death),
-                            deathIndexOf(death), death);
+            writer.putFresh(successors + entry.first, entry.packed, entry.count,
+                            lineage(parentFirstOf(key, k, keyFirst, keyFirstKnown), death), deathIndexOf(death), death);
           } else {
             modules += entry.count;
             ++runs;
