@@ -1,8 +1,9 @@
 #pragma once
 // One rewrite of a compact word whose labels each do the same thing whenever they
 // expire: they are renewed, or replaced by the same string of new successors (Koch,
-// Thue-Morse, any D0L system without state). It is the fast path of
-// ParallelRewrite::rewriteCompact (core/parallel_rewrite.h) for such words.
+// Thue-Morse, any D0L system without state), whose values, if any, are each one operation
+// on the module's own (pools/value_operation.h: A(x) -> A(x + 1) B(x * 0.5)). It is the
+// fast path of ParallelRewrite::rewriteCompact (core/parallel_rewrite.h) for such words.
 //
 // It walks the word a run at a time instead of a module at a time: the run's key, birth
 // and first k are read once, and the first part of the hash that names the parent of new
@@ -60,7 +61,7 @@ struct RewriteTable {
     entry.operationCount = static_cast<uint32_t>(computed.size());
     operations.insert(operations.end(), computed.begin(), computed.end());
   }
-  /// After the last entry: the steps and bytes the walk without ids reads. `values`: each
+  /// After the last entry, once: the steps and bytes the walks read. `values`: each
   /// label's count of state values (none: a word of labels alone).
   void finish(std::vector<uint32_t> values = {}) {
     stateCounts = std::move(values);
