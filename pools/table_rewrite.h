@@ -624,16 +624,17 @@ class TableRewrite {
             at += k * count;
             valueAt += k * written;
             value += k;
-          }
-          for (; k < room && from[i + k] == label; ++k) {
-            std::memcpy(labelsOut + at, writes, 16);  // bytes past count written over next
-            const double* own = values + value;
-            double* to = valuesOut + valueAt;
-            for (uint32_t v = 0; v < written; ++v)
-              to[v] = own[operation[v].slot] * operation[v].multiplier + operation[v].addend;
-            at += count;
-            valueAt += written;
-            value += read;
+          } else {
+            for (; k < room && from[i + k] == label; ++k) {
+              std::memcpy(labelsOut + at, writes, 16);  // bytes past count written over next
+              const double* own = values + value;
+              double* to = valuesOut + valueAt;
+              for (uint32_t v = 0; v < written; ++v)
+                to[v] = own[operation[v].slot] * operation[v].multiplier + operation[v].addend;
+              at += count;
+              valueAt += written;
+              value += read;
+            }
           }
           i += k;
           events += step.event * k;
