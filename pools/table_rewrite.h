@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "pools/compact_word.h"
+#include "pools/label_counts.h"
 #include "pools/mix_key.h"
 #include "pools/value_operation.h"
 
@@ -204,24 +205,16 @@ class TableRewrite {
                          : walk<false>(out, from, begin, end, table, horizon, lineage);
   }
 
-  /// What modules [begin, end) of `from` write at most by `table`: a histogram of their
-  /// labels. Modules and values are exact where every module that can expire does, and
-  /// no kept module holds more values than its successors would.
+  /// What modules [begin, end) of `from` write at most by `table`, from the counts of
+  /// their labels (pools/label_counts.h). Modules and values are exact where every module
+  /// that can expire does, and no kept module holds more values than its successors would.
   static TableBound bound(const CompactWord& from, size_t begin, size_t end, const RewriteTable& table) {
-    uint64_t histogram[4][256] = {};  // four, so that equal labels in a row do not wait on each other
-    const uint8_t* labels = from.labels8_.data();
-    size_t i = begin;
-    for (; i + 4 <= end; i += 4) {
-      ++histogram[0][labels[i]];
-      ++histogram[1][labels[i + 1]];
-      ++histogram[2][labels[i + 2]];
-      ++histogram[3][labels[i + 3]];
-    }
-    for (; i < end; ++i) ++histogram[0][labels[i]];
+    uint64_t counts[256];
+    countLabels(from.labels8_.data() + begin, end - begin, table.entries.size(), counts);
     TableBound result;
     for (size_t label = 0; label < table.entries.size(); ++label) {
       const RewriteTable::Entry& entry = table.entries[label];
-      const uint64_t count = histogram[0][label] + histogram[1][label] + histogram[2][label] + histogram[3][label];
+      const uint64_t count = counts[label];
       if (entry.lifetime < RewriteTable::kForever) result.events += count;
       result.modules += count * (entry.renews ? 1 : entry.count);
       result.born += count * (entry.renews ? 0 : entry.count);
