@@ -1,18 +1,24 @@
 #include "core/word.h"
 
+#include <algorithm>
 #include <array>
+#include <type_traits>
 
 #include "core/homomorphism.h"
 #include "core/parents.h"
+#include "pools/label_counts.h"
+#include "pools/label_cursor.h"
 
 namespace ontogen {
 
 namespace {
 
 // Streams the word under `cell` (the pool's, or a homomorphism's image whose i-th cell
-// comes from the pool's cell sourceOf(i)).
-template <typename SourceOf>
-void stream(const World& world, CellCursor cell, SourceOf&& sourceOf, bool interpreted, WordVisitor& visitor) {
+// comes from the pool's cell sourceOf(i)). A LabelCursor gives labels, values and run
+// births alone: the caller has made sure (labelsAlone) that nothing else is read.
+template <typename Cursor, typename SourceOf>
+void stream(const World& world, Cursor cell, SourceOf&& sourceOf, bool interpreted, WordVisitor& visitor) {
+  constexpr bool kWithIds = !std::is_same_v<Cursor, LabelCursor>;
   const Program& program = world.program();
   const bool grid = world.rootSystem().poolKind == PoolKind::Grid;
   const bool spatial = world.rootSystem().poolKind == PoolKind::Spatial;
@@ -26,36 +32,77 @@ void stream(const World& world, CellCursor cell, SourceOf&& sourceOf, bool inter
   WordCellView view;
   for (; !cell.done(); cell.next()) {
     const MasterCell& master = program.masters[cell.master()];
-    if (grid || spatial) {
-      position = world.positionOf(sourceOf(cell.index()));
-      view.position = std::span<const double>(position.data(), static_cast<size_t>(dimensions));
-    }
     view.label = master.label;
     const double* state = cell.state();
     const size_t count = master.stateCount();
     view.params = std::span<const double>(state, count);
-    if (master.developmentFunction < 0) {
-      view.developed = std::span<const double>(state, count);
-    } else {
-      world.developedValues(cell.view(), developed);
-      view.developed = developed;
-    }
-    view.age = world.time() - cell.birth();
     view.timed = master.timedNotation;
-    view.id = cell.id();
-    view.parent = linear ? walk.next(cell, master) : above;
-    view.system = master.system >= 0;
-    visitor.cell(view);
-    if (!view.system) continue;
-    visitor.enterPool();
-    if (const World* child = world.childOf(view.id)) {
-      if (interpreted)
-        visitInterpretedWord(*child, visitor);
-      else
-        visitWord(*child, visitor);
+    if constexpr (!kWithIds) {
+      view.developed = view.params;
+      view.age = world.time() - cell.birth();
+      visitor.cell(view);
+      continue;
+    } else {
+      if (grid || spatial) {
+        position = world.positionOf(sourceOf(cell.index()));
+        view.position = std::span<const double>(position.data(), static_cast<size_t>(dimensions));
+      }
+      if (master.developmentFunction < 0) {
+        view.developed = std::span<const double>(state, count);
+      } else {
+        world.developedValues(cell.view(), developed);
+        view.developed = developed;
+      }
+      view.age = world.time() - cell.birth();
+      view.id = cell.id();
+      view.parent = linear ? walk.next(cell, master) : above;
+      view.system = master.system >= 0;
+      visitor.cell(view);
+      if (!view.system) continue;
+      visitor.enterPool();
+      if (const World* child = world.childOf(view.id)) {
+        if (interpreted)
+          visitInterpretedWord(*child, visitor);
+        else
+          visitWord(*child, visitor);
+      }
+      visitor.leavePool();
     }
-    visitor.leavePool();
   }
+}
+
+// Whether the world's word can be streamed to `visitor` by labels, values and run births
+// alone, without making its ids again: it is held without them, the visitor reads none,
+// and no module in it needs them: none is a system cell (whose pool is found by its id)
+// or develops its parameters (with the cell's view), and none printed with its age is
+// timeless (such a module keeps no birth of its own in a word without ids:
+// docs/COMPACT_WORDS.md, "Timeless modules join runs").
+bool labelsAlone(const World& world, const WordVisitor& visitor) {
+  const Pool& pool = world.rootPool();
+  if (visitor.readsIds() || !pool.holdsCompactWord() || pool.holdsIds()) return false;
+  const std::vector<MasterCell>& masters = world.program().masters;
+  std::vector<size_t> readingIds;
+  for (size_t m = 0; m < masters.size(); ++m) {
+    const MasterCell& master = masters[m];
+    if (master.system >= 0 || master.developmentFunction >= 0 || (master.timedNotation && master.lifetime == kForever))
+      readingIds.push_back(m);
+  }
+  if (readingIds.empty()) return true;
+  // The root system is a master too, and most such masters are in no word: count them.
+  const CompactWord& word = pool.compactWord();
+  if (word.wideLabels() || masters.size() > 256) return false;
+  std::vector<uint64_t> counts(masters.size());
+  countLabels(word.labels8().data(), word.size(), masters.size(), counts.data());
+  return std::all_of(readingIds.begin(), readingIds.end(), [&counts](size_t m) { return counts[m] == 0; });
+}
+
+// The world's own word (not a homomorphism's image) to `visitor`.
+void streamPool(const World& world, bool interpreted, WordVisitor& visitor) {
+  const auto same = [](size_t i) { return i; };
+  if (labelsAlone(world, visitor))
+    stream(world, LabelCursor(world.rootPool().compactWord()), same, interpreted, visitor);
+  else
+    stream(world, world.rootPool().cursor(), same, interpreted, visitor);
 }
 
 // Collects a streamed word into records, nested pools into their system cells.
@@ -86,13 +133,11 @@ class WordCollector final : public WordVisitor {
 
 }  // namespace
 
-void visitWord(const World& world, WordVisitor& visitor) {
-  stream(world, world.rootPool().cursor(), [](size_t i) { return i; }, false, visitor);
-}
+void visitWord(const World& world, WordVisitor& visitor) { streamPool(world, false, visitor); }
 
 void visitInterpretedWord(const World& world, WordVisitor& visitor) {
   if (!world.rootSystem().homomorphism) {
-    stream(world, world.rootPool().cursor(), [](size_t i) { return i; }, true, visitor);
+    streamPool(world, true, visitor);
     return;
   }
   const HomomorphismImage image(world);

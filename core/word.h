@@ -54,6 +54,11 @@ class WordVisitor {
   virtual void cell(const WordCellView& cell) = 0;
   virtual void enterPool() {}
   virtual void leavePool() {}
+  /// Whether the visitor reads a cell's id or parent, or the age of a cell that is not in
+  /// timed notation. A visitor that reads none of them may be streamed a word held
+  /// without ids as it is held, without making its ids again (docs/COMPACT_WORDS.md,
+  /// "Words without ids"); those fields are then left unset.
+  virtual bool readsIds() const { return true; }
 };
 
 /// Streams the world's cells in pool order to `visitor`.

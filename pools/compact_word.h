@@ -46,6 +46,7 @@ struct IdKey {
 };
 
 class CompactWordCursor;
+class LabelCursor;
 class TableRewrite;
 
 /// The canonical rule every writer and counter of a compact word applies: a module
@@ -312,6 +313,7 @@ class CompactWord {
 
  private:
   friend class CompactWordCursor;
+  friend class LabelCursor;
   friend class TableRewrite;
   static constexpr uint16_t kWholeMark = 0xFFFF;
   static constexpr uint16_t kWideMark = 0xFFFE;

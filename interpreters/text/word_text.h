@@ -42,6 +42,8 @@ class WordTextWriter final : public WordVisitor {
   void cell(const WordCellView& cell) override;
   void enterPool() override;
   void leavePool() override;
+  /// Labels, parameters, and ages of timed modules alone.
+  bool readsIds() const override { return false; }
 
  private:
   BufferedOutput& out_;

@@ -7,12 +7,15 @@
 #include <bit>
 #include <limits>
 #include <span>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "core/parallel_rewrite.h"
+#include "core/word.h"
 #include "core/world.h"
+#include "interpreters/text/word_text.h"
 #include "test_support.h"
 
 namespace ontogen {
@@ -320,6 +323,67 @@ TEST(WordsWithoutIds, ModulesOfOneValueComputeTheirSuccessorsValuesAsTheInterpre
     EXPECT_GT(world.stats().rewritesBySlices, 0u);
     expectSameCells(reference.rootPool(), world.rootPool(), std::to_string(threads) + " threads");
   }
+}
+
+// The word as text, as `ontogen word` streams it.
+std::string wordText(const World& world, bool interpreted) {
+  std::ostringstream text;
+  {
+    BufferedOutput out(text);
+    WordTextWriter writer(out, 9);
+    if (interpreted)
+      visitInterpretedWord(world, writer);
+    else
+      visitWord(world, writer);
+  }
+  return text.str();
+}
+
+// The text of a word reads labels, values and the ages of timed modules alone: a word held
+// without ids is written as it is held, without the replay of its ids, and reads as the
+// word grown by the records' pass. Timed modules take their ages from their runs' births.
+TEST(WordsWithoutIds, TheWordAsTextIsWrittenWithoutMakingItsIdsAgain) {
+  for (const std::string& text : {std::string(testing_support::kParametric), timedTableWithValues()}) {
+    auto program = testing_support::compileOrFail(text);
+    ASSERT_NE(program, nullptr);
+    WorldDef serialDef;
+    serialDef.seed = 5;
+    serialDef.rewriteBySlices = false;
+    World reference(program, serialDef);
+    World world = growing(program, 2, true);
+    for (double t : {6.0, 8.5}) {
+      const std::string what = program->systems[program->root].name + " at t = " + std::to_string(t);
+      reference.advanceTo(t, 1.0);
+      world.advanceTo(t, 1.0);
+      ASSERT_FALSE(world.rootPool().holdsIds()) << what;
+      const std::string expected = formatWord(captureWord(reference), 9);
+      EXPECT_EQ(wordText(world, false), expected) << what;
+      EXPECT_EQ(wordText(world, true), expected) << what << ", interpreted";
+      EXPECT_FALSE(world.rootPool().holdsIds()) << what << ": the text read no id";
+    }
+    EXPECT_NE(formatWord(captureWord(world), 9).find('('), std::string::npos) << "with values";
+  }
+}
+
+// A timeless module printed with its age keeps no birth of its own in a word without ids
+// (it joins the run beside it): its text makes the ids again, and reads right.
+TEST(WordsWithoutIds, ATimelessModuleWithAnAgeIsWrittenFromTheReplayedWord) {
+  auto program = testing_support::compileOrFail(R"(lsystem timeless {
+  axiom (F, 0) (I, 0.5)
+  (F, 1) -> F I F
+})");
+  ASSERT_NE(program, nullptr);
+  ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).rewritesByTable());
+  World reference = growing(program, 1, false);
+  World world = growing(program, 1, true);
+  reference.advanceTo(16, 1.0);
+  world.advanceTo(16, 1.0);
+  ASSERT_GT(world.rootPool().size(), ParallelRewrite::kMinimumCells);
+  ASSERT_FALSE(world.rootPool().holdsIds());
+  const std::string expected = formatWord(captureWord(reference), 9);
+  EXPECT_NE(expected.find("(I, 16.5)"), std::string::npos) << "the axiom's I, kept";
+  EXPECT_EQ(wordText(world, false), expected);
+  EXPECT_TRUE(world.rootPool().holdsIds()) << "read with its ids";
 }
 
 }  // namespace
