@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 
@@ -62,43 +63,47 @@ double MidiSequence::secondsAt(double tick) const {
   return seconds + (tick - from) * tempo / (1e6 * ppq);
 }
 
-bool MidiStreamEncoder::Pending::operator>(const Pending& other) const {
-  if (tick != other.tick) return tick > other.tick;
-  if (priority != other.priority) return priority > other.priority;
-  if (group != other.group) return group > other.group;
-  return index > other.index;
-}
-
 MidiStreamEncoder::MidiStreamEncoder(int ppq, double tempo) : ppq_(ppq), sounding_(16, std::vector<uint32_t>(128, 0)) {
   if (ppq < 1 || ppq > 32767) throw std::invalid_argument("ppq must be 1..32767");
   if (!(tempo > 0) || !std::isfinite(tempo)) throw std::invalid_argument("the tempo must be > 0");
   initialTempo_ = microsecondsPerQuarter(tempo);
 }
 
+// The note-off of a note whose end is known. A note closed before it could sound still
+// ends: its note-on may have been sent.
+void MidiStreamEncoder::takeNoteOff(const ScoreNote& note, size_t index) {
+  const uint64_t on = toTick(note.start, ppq_);
+  const uint64_t off = note.duration > 0 ? std::max(on + 1, toTick(note.start + note.duration, ppq_)) : on + 1;
+  taken_.push_back(pending(off, 0, index, static_cast<uint8_t>(0x80 | note.channel), note.pitch, 64));
+}
+
 void MidiStreamEncoder::take(const Score& score) {
+  // Room for what the score added (a note-on and -off each note), growing as a vector does.
+  const size_t room = taken_.size() + 2 * (score.notes.size() - nextNote_) + (score.controls.size() - nextControl_);
+  if (room > taken_.capacity()) taken_.reserve(std::max(room, 2 * taken_.capacity()));
+  // Notes still sounding (an infinite duration) wait in open_ for their end.
+  std::erase_if(open_, [&](size_t index) {
+    const ScoreNote& note = score.notes[index];
+    if (std::isinf(note.duration)) return false;
+    takeNoteOff(note, index);
+    return true;
+  });
   for (; nextNote_ < score.notes.size(); ++nextNote_) {
     const ScoreNote& note = score.notes[nextNote_];
     if (note.pitch > 127 || note.channel > 15 || !(note.duration > 0) || !std::isfinite(note.start)) continue;
     uint8_t velocity = std::clamp<uint8_t>(note.velocity, 1, 127);
     uint64_t on = toTick(note.start, ppq_);
-    pending_.push({on, 2, 0, nextNote_, {on, static_cast<uint8_t>(0x90 | note.channel), note.pitch, velocity}});
-    open_.push_back(nextNote_);
+    taken_.push_back(pending(on, 2, nextNote_, static_cast<uint8_t>(0x90 | note.channel), note.pitch, velocity));
+    if (std::isinf(note.duration))
+      open_.push_back(nextNote_);
+    else
+      takeNoteOff(note, nextNote_);
   }
-  // Notes whose end is now known, in the order they were given.
-  std::erase_if(open_, [&](size_t index) {
-    const ScoreNote& note = score.notes[index];
-    if (std::isinf(note.duration)) return false;
-    uint64_t on = toTick(note.start, ppq_);
-    // A note closed before it could sound still ends: its note-on may have been sent.
-    uint64_t off = note.duration > 0 ? std::max(on + 1, toTick(note.start + note.duration, ppq_)) : on + 1;
-    pending_.push({off, 0, 0, index, {off, static_cast<uint8_t>(0x80 | note.channel), note.pitch, 64}});
-    return true;
-  });
   for (; nextControl_ < score.controls.size(); ++nextControl_) {
     const ScoreControl& control = score.controls[nextControl_];
     if (control.channel > 15 || !std::isfinite(control.time)) continue;
-    uint64_t tick = toTick(control.time, ppq_);
-    pending_.push({tick, 1, 1, nextControl_, controlMessage(control, tick)});
+    const MidiMessage message = controlMessage(control, toTick(control.time, ppq_));
+    taken_.push_back(pending(message.tick, 1, nextControl_, message.status, message.data1, message.data2));
   }
   for (; nextTempo_ < score.tempos.size(); ++nextTempo_)
     if (score.tempos[nextTempo_].bpm > 0 && std::isfinite(score.tempos[nextTempo_].bpm))
@@ -121,9 +126,29 @@ void MidiStreamEncoder::release(uint64_t beforeTick, MidiSequence& out, size_t& 
   }
   tempos_.erase(tempos_.begin(), tempos_.begin() + static_cast<std::ptrdiff_t>(tempo));
 
-  while (!pending_.empty() && pending_.top().tick < beforeTick) {
-    MidiMessage message = pending_.top().message;
-    pending_.pop();
+  if (!taken_.empty()) {
+    std::sort(taken_.begin(), taken_.end());
+    if (pending_.empty()) {
+      pending_.swap(taken_);
+    } else {
+      merged_.clear();
+      merged_.reserve(pending_.size() + taken_.size());
+      std::merge(pending_.begin(), pending_.end(), taken_.begin(), taken_.end(), std::back_inserter(merged_));
+      pending_.swap(merged_);
+    }
+    taken_.clear();
+  }
+  // What is released, sorted by tick: room for it in `out` at once (a note-on may add a
+  // note-off before it; push_back makes room for those).
+  const size_t end = static_cast<size_t>(
+      std::partition_point(pending_.begin(), pending_.end(), [&](const Pending& p) { return p.tick < beforeTick; }) -
+      pending_.begin());
+  const size_t room = out.messages.size() + end;
+  if (room > out.messages.capacity()) out.messages.reserve(std::max(room, 2 * out.messages.capacity()));
+  size_t next = 0;
+  for (; next < end; ++next) {
+    const Pending& waiting = pending_[next];
+    MidiMessage message{waiting.tick, waiting.status, waiting.data1, waiting.data2};
     // An end given after later messages were sent (a cell found gone a step late) is
     // sent at once: the sequence stays in sending order.
     if (!out.messages.empty()) message.tick = std::max(message.tick, out.messages.back().tick);
@@ -141,6 +166,7 @@ void MidiStreamEncoder::release(uint64_t beforeTick, MidiSequence& out, size_t& 
     }
     appended += out.messages.size() - before;
   }
+  pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(next));
 }
 
 size_t MidiStreamEncoder::advance(const Score& score, double horizon, MidiSequence& out) {

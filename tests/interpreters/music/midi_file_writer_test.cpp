@@ -97,6 +97,26 @@ TEST(MidiFileWriter, OverlappingNotesOfOnePitchRetriggerAndEveryNoteOnEnds) {
   EXPECT_EQ(sequence.messages[3].tick, 30u);
 }
 
+// At one tick a note-off goes before a controller, and a controller before a note-on, so
+// that a note followed at once by the same pitch ends and sounds again; then the score's
+// order.
+TEST(MidiFileWriter, AtOneTickNoteOffsGoFirstThenControlsThenNoteOns) {
+  Score score;
+  score.notes.push_back({1, 1, 0, 50, 90});  // given first, starts where the next ends
+  score.notes.push_back({0, 1, 0, 50, 100});
+  score.notes.push_back({1, 1, 0, 52, 80});
+  score.controls.push_back({1, ScoreControl::Kind::Controller, 0, 7, 99});
+  score.controls.push_back({1, ScoreControl::Kind::Controller, 0, 10, 64});
+  const MidiSequence sequence = makeMidiSequence(score, 10, 120);
+  const std::vector<std::vector<int>> expected = {
+      {0, 0x90, 50, 100}, {10, 0x80, 50, 64}, {10, 0xB0, 7, 99}, {10, 0xB0, 10, 64},
+      {10, 0x90, 50, 90}, {10, 0x90, 52, 80}, {20, 0x80, 50, 64}, {20, 0x80, 52, 64}};
+  std::vector<std::vector<int>> messages;
+  for (const MidiMessage& m : sequence.messages)
+    messages.push_back({static_cast<int>(m.tick), m.status, m.data1, m.data2});
+  EXPECT_EQ(messages, expected);
+}
+
 TEST(MidiFileWriter, ScoreValuesOutsideMidiAreLeftOutAndBadSettingsRejected) {
   Score score;
   score.notes.push_back({0, 1, 0, 200, 100});  // pitch > 127
