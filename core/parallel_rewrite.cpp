@@ -1122,7 +1122,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
 
 // One pass on one thread, without counting first (which took a seventh of Thue-Morse's
 // time): the next word is sized for the most it can hold, each module that can expire
-// replaced by its successors (a histogram of the labels gives that), and cut to what was
+// replaced by its successors (the counts of the labels give that), and cut to what was
 // written. Where every such module expires (Koch, Thue-Morse) the bound is the size. The
 // walk goes by chunks, asking `fits` after each, so that a word past a limit is given up
 // on the way; each chunk starts a run, as a slice does.
