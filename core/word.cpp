@@ -41,7 +41,6 @@ void stream(const World& world, Cursor cell, SourceOf&& sourceOf, bool interpret
       view.developed = view.params;
       view.age = world.time() - cell.birth();
       visitor.cell(view);
-      continue;
     } else {
       if (grid || spatial) {
         position = world.positionOf(sourceOf(cell.index()));
