@@ -27,6 +27,8 @@ class CellCounter : public WordVisitor {
   void cell(const WordCellView& cell) override {
     if (auto found = into_.labels.find(cell.label); found != into_.labels.end()) ++found->second;
   }
+  // Labels alone: a word grown without ids is counted as it is held.
+  bool readsIds() const override { return false; }
 
  private:
   RunQuantities& into_;
