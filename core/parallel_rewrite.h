@@ -29,7 +29,10 @@
 // by slices placed by bounds on several. A compact word may hold values too, where every
 // master with state evaluates its successors' arguments in batches without reading its
 // place or parent (compactBatched_): its new successors go in one run, their values are
-// left in place and written when the batch is evaluated.
+// left in place and written when the batch is evaluated. A word whose choices vary with
+// the context is written in one pass too: where every rule writes one successor (a
+// signal), each thread's slice knows its place and is written in place; else each thread
+// writes a part of its own, copied into the word after.
 
 #include <algorithm>
 #include <cstdint>
@@ -245,6 +248,10 @@ class ParallelRewrite {
   /// its share in one pass into a part of parts_, then copies it into the next word.
   std::optional<CompactCounts> rewriteInParts(const CompactWord& word, double horizon, int group, unsigned threads,
                                               CompactWord& next, const CompactFits& fits, uint64_t seed);
+  /// rewriteCompact on several threads for a word whose choices vary and whose modules
+  /// each write one (oneForOne_): each thread writes its slice in place in one pass.
+  CompactCounts rewriteOneForOne(const CompactWord& word, double horizon, int group, unsigned threads,
+                                 CompactWord& next, uint64_t seed, double expectedBirth);
   /// rewriteCompact on one thread for a word rewritten by the table: one pass, no count.
   /// `expectedBirth`: the birth most new modules will likely have.
   std::optional<CompactCounts> rewriteByTableAlone(const CompactWord& word, double horizon, CompactWord& next,
@@ -320,6 +327,10 @@ class ParallelRewrite {
   // cell (one rule of group 0 without context, or none): that rule, or null.
   std::vector<uint8_t> fixedChoice_;
   bool anyChoiceVaries_ = false;
+  // Every rule that acts writes one successor (`b < a -> b`, `a -> b : 0.5`): each module
+  // of a word becomes one module, whichever rule it chooses, so a slice of the word knows
+  // where its successors go before choosing (rewriteOneForOne).
+  bool oneForOne_ = true;
   // Per cell of the word, for a master whose rules compare labels only and whose choice
   // varies: the rule the counting pass chose (1 + its index; 0: none), which the writing
   // pass takes as it is. Left empty when no master's choice varies (Koch, Thue-Morse).

@@ -311,27 +311,33 @@ void CompactWord::joinSlices(std::span<Slice> slices) {
 }
 
 void CompactWord::closeRunGaps(std::span<Slice> slices) {
-  if (!withoutIds_) throw std::logic_error("ontogen: internal error: run gaps closed in a word with ids");
   size_t run = 0;
   for (Slice& slice : slices) {
     if (slice.firstRun_ != run) {
       const size_t from = slice.firstRun_, n = slice.runs_, gap = from - run;
       std::memmove(birthIndex_.data() + run, birthIndex_.data() + from, n * sizeof(uint32_t));
+      if (!withoutIds_) {
+        std::memmove(keys_.data() + run, keys_.data() + from, n * sizeof(uint64_t));
+        std::memmove(firstK_.data() + run, firstK_.data() + from, n * sizeof(uint16_t));
+      }
       // The blocks the slice started (Slice::startBlock) counted the runs before them from
       // its first run as placed.
       const size_t firstBlock = (slice.firstModule_ + kBlock - 1) / kBlock;
       const size_t endBlock = (slice.firstModule_ + slice.written_ + kBlock - 1) / kBlock;
       for (size_t block = firstBlock; block < endBlock; ++block) blockRuns_[block] -= static_cast<uint32_t>(gap);
       slice.firstRun_ = run;
+      slice.out_.keys = keys_.data() + run;
       slice.out_.birthIndex = birthIndex_.data() + run;
+      slice.out_.firstK = firstK_.data() + run;
     }
     slice.keepRunsWritten();
     run += slice.runs_;
   }
-  // A word without ids keeps no key or first k (its writers wrote none).
-  keys_.clear();
+  // A word without ids keeps no key or first k (its writers wrote none). The slices' runs
+  // of wide k are numbered from their first run, which joinSlices reads as moved here.
+  keys_.resize(withoutIds_ ? 0 : run);
   birthIndex_.resize(run);
-  firstK_.clear();
+  firstK_.resize(withoutIds_ ? 0 : run);
 }
 
 void CompactWord::beginWholeSlice(Slice& slice, size_t modules, size_t runs, size_t values) {

@@ -252,8 +252,9 @@ class CompactWord {
   void joinSlices(std::span<Slice> slices);
   /// Before joinSlices, for slices placed by bounds that wrote their modules but fewer
   /// runs than they were given (a word written without ids, whose runs split only where
-  /// the birth changes): moves each slice's runs after the last one's, corrects the block
-  /// index, and cuts the runs to those written. One thread; it moves runs, not modules.
+  /// the birth changes; a word whose modules each write one, given a run a module): moves
+  /// each slice's runs after the last one's, corrects the block index, and cuts the runs
+  /// to those written. One thread; it moves runs, not modules.
   void closeRunGaps(std::span<Slice> slices);
   /// One slice that writes the whole word without counting it first: beginWholeSlice
   /// sizes the word for at most `modules` modules, `runs` runs and `values` state values,
@@ -478,7 +479,7 @@ class alignas(64) CompactWord::Slice {
   /// The same modules renewed, born again at `birth`: as n calls of append.
   void appendRenewed(size_t first, uint32_t n, IdKey key, double birth) {
     const bool continues = tail_.continues(key, birth);
-    stretch(first, n, key, continues, word_ ? newBirth(birth) : 0);
+    stretch(first, n, key, continues, word_ ? birthIndexOf(birth) : 0);
     if (n > 1) tail_.continues(IdKey{key.key, key.k + n - 1}, birth);
   }
   /// After the slice's last append of a pass.

@@ -362,6 +362,35 @@ TEST(ParallelRewrite, ALabelOnlyContextIsWrittenAsTheSerialPassWritesIt) {
   }
 }
 
+// Where every rule that acts writes one successor, each thread writes its slice of the next
+// word in place (ParallelRewrite::rewriteOneForOne), given a run a module, and the runs it
+// wrote are moved together after it (CompactWord::closeRunGaps). Here in a word of many
+// signals, each going on by chance or dying, whose events break the runs at random; and
+// in the signal along the axiom's one run of 200,000 modules, where the slices of two and
+// three threads start at places in the run past two bytes (CompactWord's wide k).
+TEST(ParallelRewrite, AOneForOneWordIsWrittenInPlaceAsTheSerialPassWritesIt) {
+  std::string signals;
+  for (int i = 0; i < 6000; ++i) signals += " b a a a a a a";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"signals by chance",
+       "lsystem d {\n  axiom" + signals + "\n  b < a -> b : 0.9\n  b < a -> c : 0.1\n  b -> a\n  c -> a\n}\n"},
+      {"one long run", signalProgram(200'000)}};
+  for (const auto& [name, text] : cases) {
+    SCOPED_TRACE(name);
+    auto program = testing_support::compileOrFail(text);
+    ASSERT_NE(program, nullptr);
+    const Grown serial = grow(program, 12, 1, false);
+    for (unsigned threads : {2u, 3u}) {
+      const Grown parallel = grow(program, 12, threads);
+      EXPECT_TRUE(compact(parallel)) << threads << " threads";
+      EXPECT_EQ(parallel.stats.rewritesBySlices, 12u) << threads << " threads";
+      expectSameWords(*serial.world, *parallel.world, name + " on " + std::to_string(threads) + " threads");
+      EXPECT_EQ(parallel.stats.events, serial.stats.events);
+      EXPECT_EQ(parallel.stats.cellsBorn, serial.stats.cellsBorn);
+    }
+  }
+}
+
 // Modules of one run that are kept, or renewed together, go out of the compact pass as
 // one stretch (ParallelRewrite::rewriteRange): here runs of 150 modules, kept (P never
 // expires) and renewed in stretches across blocks of 64, where A and B renew at deaths a
@@ -590,6 +619,37 @@ TEST(ParallelRewrite, ALimitPassedInTheMiddleOfAOnePassWordIsReportedAsTheSerial
         EXPECT_NE(reference.find("400000 cells"), std::string::npos) << reference;
       }
     }
+}
+
+// A one-for-one word is written in place when its bounds fit the limits: every module
+// expiring, each giving birth to one. The signal of 50,000 modules expires every module
+// every step, so 50,000 events a step fit a limit of 60,000 and pass one of 40,000, which
+// is then reported as the records' serial pass reports it, on one thread and on two.
+TEST(ParallelRewrite, AOneForOneWordPastTheEventLimitIsReportedAsTheSerialPassReportsIt) {
+  auto program = testing_support::compileOrFail(signalProgram(50'000));
+  ASSERT_NE(program, nullptr);
+  std::string reference;
+  for (const uint64_t limit : {60'000u, 40'000u})
+    for (const bool slices : {false, true})
+      for (unsigned threads : {1u, 2u}) {
+        WorldDef def;
+        def.threads = threads;
+        def.rewriteBySlices = slices;
+        def.limits.maxEventsPerStep = limit;
+        World world(program, def);
+        try {
+          world.advanceTo(5, 1.0);
+          EXPECT_EQ(limit, 60'000u) << threads << " threads, slices " << slices;
+          EXPECT_EQ(world.rootPool().holdsCompactWord(), slices);
+          EXPECT_EQ(world.stats().events, 250'000u);
+        } catch (const LimitError& error) {
+          EXPECT_EQ(limit, 40'000u) << error.what();
+          if (reference.empty()) reference = error.what();
+          EXPECT_EQ(error.what(), reference) << threads << " threads, slices " << slices;
+          EXPECT_NE(reference.find("40000"), std::string::npos) << reference;
+        }
+      }
+  EXPECT_FALSE(reference.empty());
 }
 
 }  // namespace
