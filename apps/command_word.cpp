@@ -54,6 +54,9 @@ int runWord(const WordOptions& options) {
       // word is kept as text to the end too.
       const bool stream = last && !options.interpreted;
       if (stream) {
+        // Giving a word grown without ids its ids again can still pass the memory limit.
+        // JSON prints the ids, text does not (WordVisitor::readsIds).
+        prepareToVisit(*world, options.json);
         std::cout << earlier.str();
         earlier = std::ostringstream();
       }

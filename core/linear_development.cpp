@@ -165,7 +165,8 @@ void LinearDevelopment::expireCompact(double t, double t1) {
         // is written into fresh storage.
         auto anchor = std::make_shared<const CompactWord>(std::move(nextWord_));
         nextWord_ = pool_.emptyCompactWord();
-        pool_.holdWithoutIds(std::make_shared<const TableReplay>(std::move(anchor), parallel_.table(), instant));
+        pool_.holdWithoutIds(std::make_shared<const TableReplay>(std::move(anchor), parallel_.table(), instant,
+                                                                 context_->limits, compactModuleBound_));
       }
     }
     eventsThisStep_ += counts->events;

@@ -1,11 +1,18 @@
 #include "core/table_replay.h"
 
+#include <string>
+
 #include "core/successors.h"
 
 namespace ontogen {
 
-TableReplay::TableReplay(std::shared_ptr<const CompactWord> anchor, const RewriteTable& table, double instant)
-    : anchor_(std::move(anchor)), table_(std::make_shared<const RewriteTable>(table)), instants_{instant} {}
+TableReplay::TableReplay(std::shared_ptr<const CompactWord> anchor, const RewriteTable& table, double instant,
+                         const WorldLimits& limits, uint64_t moduleBytes)
+    : anchor_(std::move(anchor)),
+      table_(std::make_shared<const RewriteTable>(table)),
+      instants_{instant},
+      limits_(limits),
+      moduleBytes_(moduleBytes) {}
 
 std::shared_ptr<const TableReplay> TableReplay::then(double instant) const {
   std::shared_ptr<TableReplay> next(new TableReplay());
@@ -13,13 +20,15 @@ std::shared_ptr<const TableReplay> TableReplay::then(double instant) const {
   next->table_ = table_;
   next->instants_ = instants_;
   next->instants_.push_back(instant);
+  next->limits_ = limits_;
+  next->moduleBytes_ = moduleBytes_;
   return next;
 }
 
 // Each rewrite as ParallelRewrite::rewriteByTableAlone writes it with ids, in one walk of
 // the whole word: the runs may split elsewhere than the development's slices split them,
 // which no reader sees.
-CompactWord TableReplay::replay() const {
+CompactWord TableReplay::replay(size_t heldBytes) const {
   CompactWord words[2] = {CompactWord(anchor_->stateCounts()), CompactWord(anchor_->stateCounts())};
   const CompactWord* from = anchor_.get();
   CompactWord::Slice slice(*from);
@@ -29,6 +38,9 @@ CompactWord TableReplay::replay() const {
     slice.restart(*from);
     const size_t size = from->size();
     const TableBound bound = TableRewrite::bound(*from, 0, size, *table_);
+    const uint64_t held = heldBytes + anchor_->bytes() + (from == anchor_.get() ? 0 : from->bytes());
+    checkOutsideMemory("giving the word of " + std::to_string(bound.modules) + " modules its ids again",
+                       bound.modules * moduleBytes_, held, limits_);
     next.beginWholeSlice(slice, bound.modules, size, bound.values);
     TerminalLineage lineage;
     TableRewrite::rewrite(slice, *from, 0, size, *table_, instants_[r], lineage);

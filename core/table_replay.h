@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/limits.h"
 #include "pools/compact_word.h"
 #include "pools/id_replay.h"
 #include "pools/table_rewrite.h"
@@ -16,12 +17,17 @@ namespace ontogen {
 
 class TableReplay final : public IdReplay {
  public:
-  /// The first word written without ids, by `table` at `instant` from `anchor`.
-  TableReplay(std::shared_ptr<const CompactWord> anchor, const RewriteTable& table, double instant);
-  /// The word after this one's, written at `instant`: the same anchor and table.
+  /// The first word written without ids, by `table` at `instant` from `anchor`, in a
+  /// world of `limits` whose compact words take at most `moduleBytes` bytes a module.
+  TableReplay(std::shared_ptr<const CompactWord> anchor, const RewriteTable& table, double instant,
+              const WorldLimits& limits, uint64_t moduleBytes);
+  /// The word after this one's, written at `instant`: the same anchor, table and limits.
   std::shared_ptr<const TableReplay> then(double instant) const;
 
-  CompactWord replay() const override;
+  /// Before each rewrite, the words it holds then (`heldBytes`, the anchor, the word it
+  /// rewrites, and the next at `moduleBytes` a module of its bound) are checked against
+  /// the memory limit, as the development checks the words it writes.
+  CompactWord replay(size_t heldBytes) const override;
   size_t bytes() const override;
 
  private:
@@ -29,6 +35,8 @@ class TableReplay final : public IdReplay {
   std::shared_ptr<const CompactWord> anchor_;
   std::shared_ptr<const RewriteTable> table_;
   std::vector<double> instants_;  // of each rewrite since the anchor, in order
+  WorldLimits limits_;
+  uint64_t moduleBytes_ = 0;
 };
 
 }  // namespace ontogen

@@ -76,9 +76,9 @@ void stream(const World& world, Cursor cell, SourceOf&& sourceOf, bool interpret
 // or develops its parameters (with the cell's view), and none printed with its age is
 // timeless (such a module keeps no birth of its own in a word without ids:
 // docs/COMPACT_WORDS.md, "Timeless modules join runs").
-bool labelsAlone(const World& world, const WordVisitor& visitor) {
+bool labelsAlone(const World& world, bool visitorReadsIds) {
   const Pool& pool = world.rootPool();
-  if (visitor.readsIds() || !pool.holdsCompactWord() || pool.holdsIds()) return false;
+  if (visitorReadsIds || !pool.holdsCompactWord() || pool.holdsIds()) return false;
   const std::vector<MasterCell>& masters = world.program().masters;
   std::vector<size_t> readingIds;
   for (size_t m = 0; m < masters.size(); ++m) {
@@ -98,7 +98,7 @@ bool labelsAlone(const World& world, const WordVisitor& visitor) {
 // The world's own word (not a homomorphism's image) to `visitor`.
 void streamPool(const World& world, bool interpreted, WordVisitor& visitor) {
   const auto same = [](size_t i) { return i; };
-  if (labelsAlone(world, visitor))
+  if (labelsAlone(world, visitor.readsIds()))
     stream(world, LabelCursor(world.rootPool().compactWord()), same, interpreted, visitor);
   else
     stream(world, world.rootPool().cursor(), same, interpreted, visitor);
@@ -133,6 +133,10 @@ class WordCollector final : public WordVisitor {
 }  // namespace
 
 void visitWord(const World& world, WordVisitor& visitor) { streamPool(world, false, visitor); }
+
+void prepareToVisit(const World& world, bool visitorReadsIds) {
+  if (!labelsAlone(world, visitorReadsIds)) world.rootPool().ensureIds();
+}
 
 void visitInterpretedWord(const World& world, WordVisitor& visitor) {
   if (!world.rootSystem().homomorphism) {

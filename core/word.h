@@ -63,6 +63,11 @@ class WordVisitor {
 
 /// Streams the world's cells in pool order to `visitor`.
 void visitWord(const World& world, WordVisitor& visitor);
+/// Does now what visitWord would do first and may fail: the root pool's word held without
+/// ids is given them when the visitor (WordVisitor::readsIds) or a module of the word
+/// reads them, which may pass the memory limit (LimitError). A caller that writes as it
+/// streams calls it before writing anything.
+void prepareToVisit(const World& world, bool visitorReadsIds);
 /// Streams the interpreted word (captureInterpretedWord) to `visitor`.
 void visitInterpretedWord(const World& world, WordVisitor& visitor);
 /// Streams a captured word to `visitor`, as visitWord streamed it.

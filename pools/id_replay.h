@@ -15,8 +15,10 @@ class IdReplay {
  public:
   virtual ~IdReplay() = default;
   /// The word with its ids: module for module the labels and births of the word held
-  /// without them, and the ids the development would have given it.
-  virtual CompactWord replay() const = 0;
+  /// without them, and the ids the development would have given it. `heldBytes`: what
+  /// the pool holds meanwhile (the word without ids). A replay that would pass the
+  /// world's memory limit throws a LimitError (core/limits.h) before it takes the memory.
+  virtual CompactWord replay(size_t heldBytes) const = 0;
   /// Bytes held to replay (counted with the pool's, for the memory limit).
   virtual size_t bytes() const = 0;
 };

@@ -56,7 +56,7 @@ void Pool::holdWithoutIds(std::shared_ptr<const IdReplay> replay) {
 void Pool::restoreIds() const {
   std::lock_guard<std::mutex> hold(*ids_.lock);
   if (!ids_.pending.load(std::memory_order_acquire)) return;
-  CompactWord withIds = ids_.replay->replay();
+  CompactWord withIds = ids_.replay->replay(word_.bytes());
   if (withIds.size() != word_.size() || !withIds.holdsIds())
     throw std::logic_error("ontogen: internal error: a replay of ids gave another word");
   word_ = std::move(withIds);

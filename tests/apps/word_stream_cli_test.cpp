@@ -64,5 +64,23 @@ TEST(WordStream, NothingPrintedWhenALaterTimeFails) {
   }
 }
 
+// Koch at n = 8 grows without its ids under 19 MiB, and JSON prints ids: giving the word
+// its ids again would pass the limit, which is said before anything is printed, the
+// earlier time's word included. The text reads no ids and is printed under the same limit.
+TEST(WordStream, NothingPrintedWhenGivingTheWordItsIdsPassesTheMemoryLimit) {
+  const std::string command = "word " + modelPath("koch.cell") + " --at 1,8";
+  const CliResult json = runOntogen(command + " --json --max-memory 19");
+  EXPECT_EQ(json.exitCode, 3);
+  EXPECT_EQ(json.out, "");
+  EXPECT_NE(json.err.find("its ids again"), std::string::npos) << json.err;
+  EXPECT_NE(json.err.find("--max-memory"), std::string::npos) << json.err;
+  const CliResult text = runOntogen(command + " --max-memory 19");
+  ASSERT_EQ(text.exitCode, 0) << text.err;
+  EXPECT_EQ(countOf(text.out, "F"), 5u + 390'625u);  // 5 at t = 1, 5^8 at t = 8
+  const CliResult roomier = runOntogen(command + " --json --max-memory 24");
+  ASSERT_EQ(roomier.exitCode, 0) << roomier.err;
+  EXPECT_EQ(countOf(roomier.out, "\"label\": \"F\""), 5u + 390'625u);
+}
+
 }  // namespace
 }  // namespace ontogen::test

@@ -386,5 +386,45 @@ TEST(WordsWithoutIds, ATimelessModuleWithAnAgeIsWrittenFromTheReplayedWord) {
   EXPECT_TRUE(world.rootPool().holdsIds()) << "read with its ids";
 }
 
+// The replay of the ids is held to the memory limit as the development's words are: a
+// word it would write is counted at the development's bound a module (25 bytes here),
+// besides the word without ids, the anchor and the word it rewrites. Koch at n = 8
+// (781,249 modules) grows without ids under a limit of 19.5 MiB, whose development counts
+// the new word at 18.6 MiB beside 0.2 MiB, and its replay (18.6 MiB beside 0.9 MiB held,
+// and the word at n = 7 with its ids) does not fit: the first reader gets a LimitError,
+// and the word is left as it was, so that the next reader gets it again. Under 24 MiB it
+// fits, and the reader sees the ids of the world grown with them.
+TEST(WordsWithoutIds, AReplayPastTheMemoryLimitStopsWithALimitError) {
+  auto program = testing_support::compileOrFail(kKoch);
+  ASSERT_NE(program, nullptr);
+  World withIds = growing(program, 1, false);
+  withIds.advanceTo(8, 1.0);
+  for (const double mebibytes : {19.5, 24.0}) {
+    WorldDef def;
+    def.limits.maxMemoryBytes = static_cast<uint64_t>(mebibytes * 1024 * 1024);
+    World world(program, def);
+    world.advanceTo(8, 1.0);
+    const Pool& pool = world.rootPool();
+    ASSERT_EQ(pool.size(), 781'249u);
+    ASSERT_FALSE(pool.holdsIds());
+    if (mebibytes == 24.0) {
+      expectSameCells(withIds.rootPool(), pool, "replayed under 24 MiB");
+      continue;
+    }
+    for (int reader = 0; reader < 2; ++reader) {
+      try {
+        (void)pool.cellAt(0);
+        ADD_FAILURE() << "no limit, reader " << reader;
+      } catch (const LimitError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("giving the word of 781249 modules its ids again"), std::string::npos) << message;
+        EXPECT_NE(message.find("--max-memory"), std::string::npos) << message;
+      }
+      EXPECT_FALSE(pool.holdsIds());
+      EXPECT_EQ(pool.compactWord().size(), 781'249u);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ontogen
