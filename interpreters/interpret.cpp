@@ -31,8 +31,18 @@ void interpretPool(const World& world, InterpretationSet& set) {
   bool readsParent = set.wantsParents();
   for (const MasterCell& master : program.masters) readsParent = readsParent || master.readsParent;
   const std::vector<uint64_t> parents = readsParent ? parentIds(world) : std::vector<uint64_t>{};
+  // Per master, whether its cells' ids are read: by the set, by an interpretation block
+  // (its frame and random stream), by a development function (its random stream), or to
+  // find a system cell's pool. The others' ids are not computed.
+  std::vector<uint8_t> readsId(program.masters.size());
+  for (size_t m = 0; m < program.masters.size(); ++m) {
+    const MasterCell& master = program.masters[m];
+    readsId[m] = set.wantsIds() || master.interpretation(set.name()) || master.developmentFunction >= 0 ||
+                 master.system >= 0;
+  }
   for (CellCursor cursor = image ? image->cursor() : pool.cursor(); !cursor.done(); cursor.next()) {
-    const CellView cell = cursor.view();
+    const uint32_t label = cursor.master();
+    const CellView cell{label, cursor.state(), cursor.birth(), readsId[label] ? cursor.id() : 0, cursor.index()};
     const size_t i = image ? image->sourceOf(cell.index) : cell.index;  // in the word
     const uint64_t parent = parents.empty() ? kNoParent : parents[i];
     const MasterCell& master = program.masters[cell.master];
@@ -74,7 +84,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
     }
     // A system cell's pool is realised where the cell stands, as a branch: what it
     // draws or plays starts from the state here and leaves it unchanged.
-    if (const World* child = world.childOf(cell.id)) {
+    if (const World* child = master.system >= 0 ? world.childOf(cell.id) : nullptr) {
       set.execute("[", {});
       interpretPool(*child, set);
       set.execute("]", {});

@@ -124,6 +124,9 @@ class InterpretationSet {
   virtual void beginCell(const CellContext& /*cell*/) {}
   /// True when the set reads CellContext::parent (finding parents costs a pass over the word).
   virtual bool wantsParents() const { return false; }
+  /// False when the set never reads CellContext::id: a compact word then does not compute
+  /// the id of a cell nothing else reads it of (a hash a module; docs/COMPACT_WORDS.md).
+  virtual bool wantsIds() const { return true; }
   /// Called by interpretWord after the last cell of a word.
   virtual void endWord() {}
 

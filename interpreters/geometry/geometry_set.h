@@ -44,6 +44,7 @@ class GeometrySet : public InterpretationSet {
   void beginFrame(const FrameTarget& target) override;
   void beginCell(const CellContext& cell) override;
   bool wantsParents() const override { return recordsNodes_; }
+  bool wantsIds() const override { return recordsNodes_; }
   void execute(std::string_view command, std::span<const double> args) override;
   /// `id` indexes turtleCommands().
   void executeCommand(int id, std::string_view command, std::span<const double> args) override;

@@ -63,8 +63,10 @@ TEST(Hierarchy, OrchardIsThreeSystemsDeepAndReadsEveryLevel) {
 // Records what an interpretation set is asked to do.
 class RecordingSet final : public InterpretationSet {
  public:
+  explicit RecordingSet(bool wantsIds = true) : wantsIds_(wantsIds) {}
   std::string_view name() const override { return "geometry"; }
-  bool knows(std::string_view command) const override { return command == "F" || command == "f"; }
+  bool knows(std::string_view command) const override { return command == "F" || command == "f" || command == "D"; }
+  bool wantsIds() const override { return wantsIds_; }
   void beginFrame(const FrameTarget&) override {}
   void execute(std::string_view command, std::span<const double> args) override {
     std::string entry(command);
@@ -73,6 +75,9 @@ class RecordingSet final : public InterpretationSet {
   }
   std::vector<std::filesystem::path> endFrame() override { return {}; }
   std::vector<std::string> log;
+
+ private:
+  bool wantsIds_;
 };
 
 // A system cell's pool is realised as a branch where the cell stands, after the cell.
@@ -90,6 +95,34 @@ TEST(Hierarchy, InterpretationWalksTheTreeAsBranches) {
   RecordingSet set;
   interpretWord(world, set);
   EXPECT_EQ(set.log, (std::vector<std::string>{"F 1", "[", "F 4", "[", "F 22", "]", "]", "F 3"}));
+}
+
+// A set that reads no ids (the geometry set without scene nodes) is interpreted as one
+// that does: the ids a word's cells need are computed for them whatever the set reads.
+// A system cell's id finds its pool, an interpretation block's random stream and a
+// development function's are keyed by the cell's id, so two cells of one master draw
+// different numbers.
+TEST(Hierarchy, CellsThatReadTheirIdsAreInterpretedAsWellForASetThatReadsNone) {
+  DiagnosticSink sink;
+  auto program = compileSource("ids.cell",
+                               "system top { pool linear; axiom F(1) sub(2) R R D(1) D(1); }\n"
+                               "system sub(w = 0) { pool linear; axiom F(4); }\n"
+                               "cell R { interpret geometry { F(uniform(0, 1000)) } }\n"
+                               "cell D(x = 0) { }\n"
+                               "g D(x) = uniform(1, 1000)\n",
+                               sink);
+  ASSERT_NE(program, nullptr) << formatDiagnostics(sink);
+  World world(std::shared_ptr<const Program>(std::move(program)));
+  world.advanceTo(1, 1);
+  RecordingSet readingIds(true), readingNone(false);
+  interpretWord(world, readingIds);
+  interpretWord(world, readingNone);
+  ASSERT_EQ(readingIds.log.size(), 8u);
+  EXPECT_EQ(std::vector<std::string>(readingIds.log.begin(), readingIds.log.begin() + 4),
+            (std::vector<std::string>{"F 1", "[", "F 4", "]"}));
+  EXPECT_NE(readingIds.log[4], readingIds.log[5]) << "R draws by its id";
+  EXPECT_NE(readingIds.log[6], readingIds.log[7]) << "D develops by its id";
+  EXPECT_EQ(readingNone.log, readingIds.log);
 }
 
 // Systems created by an action get their pool at the end of that step, and the same
