@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -81,19 +82,29 @@ class RecordingSet final : public InterpretationSet {
 };
 
 // A system cell's pool is realised as a branch where the cell stands, after the cell.
-TEST(Hierarchy, InterpretationWalksTheTreeAsBranches) {
+// The world of `source` at time `until`, or null (a failure added) when it does not compile.
+std::unique_ptr<World> grownWorld(const std::string& source, double until) {
   DiagnosticSink sink;
-  auto program = compileSource("walk.cell",
-                               "system top { pool linear; axiom F(1) sub(2) F(3); }\n"
-                               "system sub(w = 0) { pool linear; axiom F(4) inner; }\n"
-                               "system inner { pool linear; axiom C; }\n"
-                               "cell C { interpret geometry { F(root.age + parent.parent.w * 10) } }\n",
-                               sink);
-  ASSERT_NE(program, nullptr) << formatDiagnostics(sink);
-  World world(std::shared_ptr<const Program>(std::move(program)));
-  world.advanceTo(2, 1);
+  auto program = compileSource("world.cell", source, sink);
+  if (!program) {
+    ADD_FAILURE() << formatDiagnostics(sink);
+    return nullptr;
+  }
+  auto world = std::make_unique<World>(std::shared_ptr<const Program>(std::move(program)));
+  world->advanceTo(until, 1);
+  return world;
+}
+
+TEST(Hierarchy, InterpretationWalksTheTreeAsBranches) {
+  const std::unique_ptr<World> world = grownWorld(
+      "system top { pool linear; axiom F(1) sub(2) F(3); }\n"
+      "system sub(w = 0) { pool linear; axiom F(4) inner; }\n"
+      "system inner { pool linear; axiom C; }\n"
+      "cell C { interpret geometry { F(root.age + parent.parent.w * 10) } }\n",
+      2);
+  ASSERT_NE(world, nullptr);
   RecordingSet set;
-  interpretWord(world, set);
+  interpretWord(*world, set);
   EXPECT_EQ(set.log, (std::vector<std::string>{"F 1", "[", "F 4", "[", "F 22", "]", "]", "F 3"}));
 }
 
@@ -103,20 +114,17 @@ TEST(Hierarchy, InterpretationWalksTheTreeAsBranches) {
 // development function's are keyed by the cell's id, so two cells of one master draw
 // different numbers.
 TEST(Hierarchy, CellsThatReadTheirIdsAreInterpretedAsWellForASetThatReadsNone) {
-  DiagnosticSink sink;
-  auto program = compileSource("ids.cell",
-                               "system top { pool linear; axiom F(1) sub(2) R R D(1) D(1); }\n"
-                               "system sub(w = 0) { pool linear; axiom F(4); }\n"
-                               "cell R { interpret geometry { F(uniform(0, 1000)) } }\n"
-                               "cell D(x = 0) { }\n"
-                               "g D(x) = uniform(1, 1000)\n",
-                               sink);
-  ASSERT_NE(program, nullptr) << formatDiagnostics(sink);
-  World world(std::shared_ptr<const Program>(std::move(program)));
-  world.advanceTo(1, 1);
+  const std::unique_ptr<World> world = grownWorld(
+      "system top { pool linear; axiom F(1) sub(2) R R D(1) D(1); }\n"
+      "system sub(w = 0) { pool linear; axiom F(4); }\n"
+      "cell R { interpret geometry { F(uniform(0, 1000)) } }\n"
+      "cell D(x = 0) { }\n"
+      "g D(x) = uniform(1, 1000)\n",
+      1);
+  ASSERT_NE(world, nullptr);
   RecordingSet readingIds(true), readingNone(false);
-  interpretWord(world, readingIds);
-  interpretWord(world, readingNone);
+  interpretWord(*world, readingIds);
+  interpretWord(*world, readingNone);
   ASSERT_EQ(readingIds.log.size(), 8u);
   EXPECT_EQ(std::vector<std::string>(readingIds.log.begin(), readingIds.log.begin() + 4),
             (std::vector<std::string>{"F 1", "[", "F 4", "]"}));
