@@ -37,8 +37,8 @@ void interpretPool(const World& world, InterpretationSet& set) {
   std::vector<uint8_t> readsId(program.masters.size());
   for (size_t m = 0; m < program.masters.size(); ++m) {
     const MasterCell& master = program.masters[m];
-    readsId[m] = set.wantsIds() || master.interpretation(set.name()) || master.developmentFunction >= 0 ||
-                 master.system >= 0;
+    readsId[m] =
+        set.wantsIds() || master.interpretation(set.name()) || master.developmentFunction >= 0 || master.system >= 0;
   }
   for (CellCursor cursor = image ? image->cursor() : pool.cursor(); !cursor.done(); cursor.next()) {
     const uint32_t label = cursor.master();

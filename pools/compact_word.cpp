@@ -23,8 +23,7 @@ size_t CompactWord::bytes() const {
   return labels8_.size() + labels16_.size() * sizeof(uint16_t) + runStarts_.size() * sizeof(uint64_t) +
          (blockRuns_.size() + blockValues_.size()) * sizeof(uint32_t) + blockJ_.size() * sizeof(uint16_t) +
          keys_.size() * (sizeof(uint64_t) + sizeof(uint16_t)) + birthIndex_.size() * sizeof(uint32_t) +
-         wideK_.size() * sizeof(WideK) +
-         births_.size() * sizeof(double) + values_.size() * sizeof(double);
+         wideK_.size() * sizeof(WideK) + births_.size() * sizeof(double) + values_.size() * sizeof(double);
 }
 
 void CompactWord::clear() {

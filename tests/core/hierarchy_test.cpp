@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "core/word.h"
-#include "interpreters/text/word_text.h"
 #include "core/world.h"
 #include "interpreters/interpret.h"
+#include "interpreters/text/word_text.h"
 #include "test_support.h"
 
 namespace ontogen {
