@@ -1056,12 +1056,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   auto never = [](const CompactCounts&) { return false; };
   // After every slice wrote: their seams and births joined, the word finished.
   auto joinTheSlices = [&](const CompactCounts& counts) {
-    if (withoutIds_) next.closeRunGaps(slices);
-    next.joinSlices(slices);
-    everySlice([&](size_t s) { slices[s].place(); });
-    next.finish();
-    for (size_t s = 0; s < sliceCount; ++s) earliestDeath_ = std::min(earliestDeath_, earliest[s]);
-    lastGrowth_ = Growth::of(word, next);
+    joinWrittenSlices(word, next, slices, earliest, withoutIds_, threads);
     return std::optional<CompactCounts>(counts);
   };
   bool byBounds = false;  // the slices were placed by their bounds, not counted
@@ -1242,13 +1237,20 @@ ParallelRewrite::CompactCounts ParallelRewrite::rewriteOneForOne(const CompactWo
     counts.events += slice.events;
     counts.born += slice.born;
   }
-  next.closeRunGaps(slices);
+  // Renumbered on this thread: a slice has few runs, and none when the birth was known.
+  joinWrittenSlices(word, next, slices, earliest, true, 1);
+  return counts;
+}
+
+void ParallelRewrite::joinWrittenSlices(const CompactWord& word, CompactWord& next,
+                                        std::span<CompactWord::Slice> slices, std::span<const double> earliest,
+                                        bool closeGaps, unsigned threads) {
+  if (closeGaps) next.closeRunGaps(slices);
   next.joinSlices(slices);
-  for (CompactWord::Slice& slice : slices) slice.place();  // nothing to renumber when the birth was known
+  forEachIndex(slices.size(), threads, [&](size_t s) { slices[s].place(); });
   next.finish();
   for (double soonest : earliest) earliestDeath_ = std::min(earliestDeath_, soonest);
   lastGrowth_ = Growth::of(word, next);
-  return counts;
 }
 
 // Each thread writes its share of the word in one pass into a part of its own, then

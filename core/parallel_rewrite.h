@@ -39,6 +39,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/development.h"
@@ -252,6 +253,12 @@ class ParallelRewrite {
   /// each write one (oneForOne_): each thread writes its slice in place in one pass.
   CompactCounts rewriteOneForOne(const CompactWord& word, double horizon, int group, unsigned threads,
                                  CompactWord& next, uint64_t seed, double expectedBirth);
+  /// After every slice of `next` (rewritten from `word`) wrote: the runs of slices placed
+  /// by bounds moved together (`closeGaps`), seams and births joined, the slices' runs
+  /// renumbered on `threads`, the word finished; the earliest of `earliest` and the
+  /// growth kept for the next rewrite.
+  void joinWrittenSlices(const CompactWord& word, CompactWord& next, std::span<CompactWord::Slice> slices,
+                         std::span<const double> earliest, bool closeGaps, unsigned threads);
   /// rewriteCompact on one thread for a word rewritten by the table: one pass, no count.
   /// `expectedBirth`: the birth most new modules will likely have.
   std::optional<CompactCounts> rewriteByTableAlone(const CompactWord& word, double horizon, CompactWord& next,
