@@ -56,21 +56,37 @@ const file = path.join(work, 'tree.cell');
 fs.writeFileSync(file, program(30, 1.5));
 fs.mkdirSync(outputDir, { recursive: true });
 
-const server = spawn(executable, ['studio', file, '--port', '0', '--frames', '21', '--save', work], {
-  stdio: ['ignore', 'pipe', 'pipe'],
-});
-let serverErrors = '';
-server.stderr.on('data', (chunk) => { serverErrors += chunk; });
-const url = await new Promise((resolve, reject) => {
-  let out = '';
-  const timer = setTimeout(() => reject(new Error('the studio printed no address within 30 s: ' + serverErrors)), 30000);
-  server.stdout.on('data', (chunk) => {
-    out += chunk;
-    const match = out.match(/http:\/\/127\.0\.0\.1:(\d+)\//);
-    if (match) { clearTimeout(timer); resolve(match[0]); }
+// Starts `ontogen studio` on a free port; resolves to its process and address.
+async function startStudio(model, args = []) {
+  const child = spawn(executable, ['studio', model, '--port', '0', ...args], { stdio: ['ignore', 'pipe', 'pipe'] });
+  const started = { process: child, errors: '', url: '' };
+  child.stderr.on('data', (chunk) => { started.errors += chunk; });
+  started.url = await new Promise((resolve, reject) => {
+    let out = '';
+    const timer = setTimeout(() => reject(new Error('the studio printed no address within 30 s: ' + started.errors)), 30000);
+    child.stdout.on('data', (chunk) => {
+      out += chunk;
+      const match = out.match(/http:\/\/127\.0\.0\.1:(\d+)\//);
+      if (match) { clearTimeout(timer); resolve(match[0]); }
+    });
+    child.on('exit', (code) => reject(new Error(`the studio ended (${code}): ${started.errors}`)));
   });
-  server.on('exit', (code) => reject(new Error(`the studio ended (${code}): ${serverErrors}`)));
-});
+  return started;
+}
+async function stopStudio(started) {
+  if (started.process.exitCode !== null) return;
+  const ended = new Promise((r) => started.process.on('exit', r));
+  started.process.kill('SIGINT');
+  await ended;
+}
+
+// A model whose drawing grows with its time: one more F each second, turning 30 degrees
+// (at 90, the fifth F would only go over the first).
+const growing = path.join(work, 'growing.cell');
+fs.writeFileSync(growing, 'lsystem growing {\n  #angle 30\n  #until 10\n  axiom F A\n  A -> + F A\n}\n');
+const growingStudio = await startStudio(growing, ['--frames', '11']);
+const studio = await startStudio(file, ['--frames', '21', '--save', work]);
+const url = studio.url;
 console.log('studio at', url);
 
 const browser = await chromium.launch({
@@ -109,6 +125,37 @@ const difference = (a, b) => a.grey.reduce((sum, v, i) => sum + Math.abs(v - b.g
 const settle = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 
 try {
+  // Scrubbing shows the model at every time, in any order, and so does Play (three.js
+  // pauses a finished LoopOnce action; the page must pose it all the same).
+  {
+    const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
+    await page.goto(growingStudio.url);
+    await page.waitForSelector('body[data-model-version="1"]', { timeout: 20000 });
+    const at = async (t) => {
+      await page.locator('#time').fill(String(t));
+      await settle(page);
+      return (await picture(page)).drawn;
+    };
+    const scrubbed = [];
+    for (const t of [10, 0, 10, 5, 0, 10]) scrubbed.push(await at(t));
+    const [end, zero, end2, half, zero2, end3] = scrubbed;
+    check(zero < half && half < end, `scrubbing shows growth: ${zero} pixels drawn at 0, ${half} at 5, ${end} at 10`);
+    check(end2 === end && end3 === end && zero2 === zero,
+      `scrubbing back and forth shows the same frames again (${scrubbed.join(', ')} pixels at 10, 0, 10, 5, 0, 10)`);
+    await at(0);
+    await page.click('#play');
+    const during = [];
+    for (const after of [3, 6]) {
+      await page.waitForFunction((t) => window.studio.time >= t, after, { timeout: 15000 });
+      await settle(page);
+      during.push((await picture(page)).drawn);
+    }
+    await page.click('#play');
+    check(zero < during[0] && during[0] < during[1] && during[1] < end,
+      `Play shows the model growing (${zero}, ${during.join(', ')}, ${end} pixels drawn at 0, >3, >6, 10 s)`);
+    await page.close();
+  }
+
   const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
   const pageErrors = [];
   page.on('pageerror', (error) => pageErrors.push(String(error)));
@@ -203,10 +250,10 @@ try {
   check(false, String(error && error.stack || error));
 } finally {
   await browser.close();
-  server.kill('SIGINT');
-  await new Promise((r) => server.on('exit', r));
+  await stopStudio(studio);
+  await stopStudio(growingStudio);
   fs.rmSync(work, { recursive: true, force: true });
 }
-check(serverErrors === '' || !/internal error/.test(serverErrors), 'the studio reported no internal error');
+check(!/internal error/.test(studio.errors + growingStudio.errors), 'the studio reported no internal error');
 console.log(failures === 0 ? 'studio page test: passed' : `studio page test: ${failures} failed`);
 process.exit(failures === 0 ? 0 : 1);

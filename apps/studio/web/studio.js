@@ -39,7 +39,8 @@ camera.position.set(0, 0, 10);
 const controls = new OrbitControls(camera, canvas);
 controls.enableDamping = true;
 let model = null;        // the loaded glTF scene
-let mixer = null;        // plays its animation by setTime
+let mixer = null;        // poses the model at a time (setTime)
+let action = null;       // the clip's one action
 let clipStart = 0, clipEnd = 0;
 let framed = false;      // the camera is framed on the first model only, then kept
 
@@ -95,11 +96,12 @@ function showModel(gltf) {
   for (const light of lights) light.removeFromParent();
   scene.add(model);
   mixer = null;
+  action = null;
   clipStart = clipEnd = 0;
   const clip = gltf.animations[0];
   if (clip) {
     mixer = new THREE.AnimationMixer(model);
-    const action = mixer.clipAction(clip);
+    action = mixer.clipAction(clip);
     action.setLoop(THREE.LoopOnce, 1);
     action.clampWhenFinished = true;
     action.play();
@@ -124,7 +126,13 @@ function setTime(t) {
     const clipTime = typeof extras.ontogen_time_scale === 'number'
       ? (studio.time - extras.ontogen_time_start) * extras.ontogen_time_scale
       : studio.time;
-    mixer.setTime(Math.min(Math.max(clipTime, clipStart), clipEnd));
+    // The page poses the action itself: once a LoopOnce action reaches its end three.js
+    // pauses it (clampWhenFinished), and mixer.setTime() would then leave it at the start
+    // for ever after. Unpaused, at the time asked, and updated by nothing, it shows that time.
+    action.enabled = true;
+    action.paused = false;
+    action.time = Math.min(Math.max(clipTime, clipStart), clipEnd);
+    mixer.update(0);
   }
 }
 
