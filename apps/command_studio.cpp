@@ -2,10 +2,12 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <system_error>
+#include <thread>
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
@@ -73,7 +75,10 @@ int runStudio(const StudioOptions& options) {
 
   std::unique_ptr<studio::HttpServer> http;
   try {
-    http = std::make_unique<studio::HttpServer>(options.port);
+    studio::HttpServerDef httpDef;
+    httpDef.port = options.port;
+    http = std::make_unique<studio::HttpServer>(
+        httpDef, [&server](const studio::HttpRequest& request) { return server.handle(request); });
   } catch (const std::runtime_error& error) {
     std::cerr << "ontogen: error: " << error.what() << " (--port N picks another; 0 a free one)\n";
     return kExitUsage;
@@ -90,8 +95,13 @@ int runStudio(const StudioOptions& options) {
   sigemptyset(&action.sa_mask);
   ::sigaction(SIGINT, &action, nullptr);
   ::sigaction(SIGTERM, &action, nullptr);
-  http->serve([&server](const studio::HttpRequest& request) { return server.handle(request); },
-              [&server] { server.idle(); }, [] { return stopRequested != 0; });
+  http->start();
+  // The file is looked at ten times a second; requests are answered on the server's threads.
+  while (stopRequested == 0) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    server.idle();
+  }
+  http->stop();
   std::cerr << "ontogen studio: stopped\n";
   return kExitOk;
 }

@@ -1,60 +1,82 @@
 #pragma once
-// A small HTTP/1.1 server for the studio: loopback only (127.0.0.1), one connection at a
-// time, every response closes its connection. The studio is one person's page on their
-// own machine, so a sequential server is enough, and it keeps the re-growing of the model
-// and the answering of requests on one thread with nothing shared.
+// The studio's HTTP server: cpp-httplib (Debian's libcpp-httplib-dev) on 127.0.0.1, a
+// pool of threads answering many connections at once, each with its own time-outs. The studio's
+// routes (apps/studio/studio_server.h) see a plain HttpRequest and answer an
+// HttpResponse; nothing of the library shows through this header.
 //
-// Requests are read with limits (16 KiB of head, 4 MiB of body, 5 s to arrive): a
-// malformed or oversized request is answered 400 or 413 and closed, never a crash.
+// Why cpp-httplib: it is one small, widely used library packaged by Debian, its
+// thread-per-connection pool needs no asynchronous code of ours, and it reads requests
+// with the limits a server must have (head and body sizes, read and write time-outs,
+// keep-alive counts). Boost.Beast would scale past a few dozen connections, which a page
+// on one person's machine never opens, at the price of several hundred lines of
+// asynchronous handlers.
 
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
-#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace ontogen::studio {
 
 struct HttpRequest {
-  std::string method;                        ///< "GET", "POST", ...
-  std::string path;                          ///< decoded, without the query: "/model.glb"
-  std::map<std::string, std::string> query;  ///< decoded ?name=value pairs
+  std::string method;                          ///< "GET", "POST", ...
+  std::string path;                            ///< decoded, without the query: "/model.glb"
+  std::map<std::string, std::string> query;    ///< decoded ?name=value pairs
+  std::map<std::string, std::string> headers;  ///< by lower-case name; the first of repeated ones
   std::string body;
+
+  /// The value of a header by its lower-case name; empty when absent.
+  std::string header(const std::string& lowerCaseName) const {
+    const auto found = headers.find(lowerCaseName);
+    return found == headers.end() ? std::string() : found->second;
+  }
 };
 
 struct HttpResponse {
   int status = 200;
   std::string contentType = "text/plain; charset=utf-8";
   std::string body;
+  std::vector<std::pair<std::string, std::string>> headers = {};  ///< more headers to send
 };
 
-/// Parses the head and body of a request; false when it is malformed. Exposed for tests.
-bool parseHttpRequest(std::string_view text, HttpRequest& request);
-/// Decodes %XX and '+' of a URL component; false on a bad escape.
-bool decodeUrlComponent(std::string_view text, std::string& decoded);
+struct HttpServerDef {
+  uint16_t port = 0;  ///< on 127.0.0.1; 0: a free port the system picks
+  /// Connections answered at once; each open connection (an idle one too, until its
+  /// time-out) holds a thread. A page opens at most six, a browser's limit.
+  int threads = 48;
+  /// Seconds a connection may take to send its request, and to take a response.
+  int readTimeoutSeconds = 5;
+  int writeTimeoutSeconds = 5;
+  /// Seconds an idle connection is kept open for the next request.
+  int keepAliveSeconds = 5;
+  std::size_t maxBodyBytes = 4 * 1024 * 1024;  ///< larger requests are answered 413
+};
 
 class HttpServer {
  public:
-  /// Listens on 127.0.0.1:port (0: a free port the system picks). Throws
-  /// std::runtime_error with the reason when the port cannot be had.
-  explicit HttpServer(uint16_t port);
+  using Handler = std::function<HttpResponse(const HttpRequest&)>;
+  /// Listens on 127.0.0.1:def.port and answers with handler, which is called on many
+  /// threads at once. Throws std::runtime_error with the reason when the port cannot be
+  /// had or the definition is bad. Serving starts with start().
+  HttpServer(const HttpServerDef& def, Handler handler);
+  /// Stops serving (see stop()).
   ~HttpServer();
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;
 
   /// The port it listens on.
   uint16_t port() const { return port_; }
-
-  using Handler = std::function<HttpResponse(const HttpRequest&)>;
-  /// Answers requests with handler until stop() returns true; between requests, and at
-  /// least every idleMilliseconds, calls idle() (the studio looks at its file there).
-  void serve(const Handler& handler, const std::function<void()>& idle, const std::function<bool()>& stop,
-             int idleMilliseconds = 100);
+  /// Answers requests on threads of its own until stop().
+  void start();
+  /// Stops listening, ends the streams of events and waits for the requests at hand.
+  void stop();
 
  private:
-  void answer(int connection, const Handler& handler);
-
-  int socket_ = -1;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
   uint16_t port_ = 0;
 };
 

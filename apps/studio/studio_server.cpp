@@ -23,7 +23,10 @@ nlohmann::json bodyOf(const HttpRequest& request) {
 }
 }  // namespace
 
-void StudioServer::idle() { model_.refresh(); }
+void StudioServer::idle() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  model_.refresh();
+}
 
 void StudioServer::restartGallery() {
   // The gallery starts from what the page shows: the text with the sliders' values.
@@ -52,6 +55,7 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
         return {200, "text/plain; charset=utf-8",
                 "This build of ontogen has no studio page: it was built without esbuild and three.js (bash .ci/setup "
                 "installs them; then build again).\n"};
+      const std::lock_guard<std::mutex> lock(mutex_);
       if (path == "/api/state") return json(model_.state());
       if (path == "/model.glb") {
         if (model_.glb().empty()) return error(404, "no model has grown yet (see the diagnostics)");
@@ -83,6 +87,7 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
       return error(404, "no such page: " + path);
     }
     if (post) {
+      const std::lock_guard<std::mutex> lock(mutex_);
       const nlohmann::json body = bodyOf(request);
       if (body.is_discarded()) return error(400, "the request's body is not a JSON object");
       if (path == "/api/define") {

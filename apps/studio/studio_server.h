@@ -15,6 +15,7 @@
 // Errors are JSON {"error": message} with status 400 (a bad request) or 422 (a request the
 // model cannot follow).
 
+#include <mutex>
 #include <string>
 
 #include "apps/studio/gallery.h"
@@ -27,8 +28,9 @@ class StudioServer {
  public:
   StudioServer(StudioModel& model, Gallery& gallery) : model_(model), gallery_(gallery) {}
 
+  /// Answers a request; called on many threads at once (one at a time gets the model).
   HttpResponse handle(const HttpRequest& request);
-  /// Called between requests: re-grows the model when its file changed.
+  /// Called now and then: re-grows the model when its file changed.
   void idle();
 
  private:
@@ -37,6 +39,7 @@ class StudioServer {
   StudioModel& model_;
   Gallery& gallery_;
   std::string galleryText_;  // the model text the gallery started from
+  std::mutex mutex_;         // the model and the gallery, for one request at a time
 };
 
 }  // namespace ontogen::studio

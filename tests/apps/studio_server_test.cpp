@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -27,38 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(HttpRequest, ParsesAGetWithItsQuery) {
-  HttpRequest request;
-  ASSERT_TRUE(parseHttpRequest("GET /gallery/3.png?g=2&name=a%20b+c HTTP/1.1\r\nHost: x\r\n\r\n", request));
-  EXPECT_EQ(request.method, "GET");
-  EXPECT_EQ(request.path, "/gallery/3.png");
-  EXPECT_EQ(request.query.at("g"), "2");
-  EXPECT_EQ(request.query.at("name"), "a b c");
-  EXPECT_EQ(request.body, "");
-}
-
-TEST(HttpRequest, ParsesAPostBodyOfItsContentLength) {
-  HttpRequest request;
-  ASSERT_TRUE(parseHttpRequest("POST /api/define HTTP/1.1\r\ncontent-LENGTH: 5\r\n\r\n{\"a\"}tail", request));
-  EXPECT_EQ(request.method, "POST");
-  EXPECT_EQ(request.body, "{\"a\"}");
-}
-
-TEST(HttpRequest, RefusesMalformedRequests) {
-  HttpRequest request;
-  EXPECT_FALSE(parseHttpRequest("GET / HTTP/1.1\r\n", request));                       // no end of head
-  EXPECT_FALSE(parseHttpRequest("get / HTTP/1.1\r\n\r\n", request));                   // method case
-  EXPECT_FALSE(parseHttpRequest("GET nothing HTTP/1.1\r\n\r\n", request));             // not a path
-  EXPECT_FALSE(parseHttpRequest("GET / SPDY/3\r\n\r\n", request));                     // not HTTP/1.x
-  EXPECT_FALSE(parseHttpRequest("GET /%zz HTTP/1.1\r\n\r\n", request));                // bad escape
-  EXPECT_FALSE(parseHttpRequest("GET /%4 HTTP/1.1\r\n\r\n", request));                 // cut escape
-  EXPECT_FALSE(parseHttpRequest("POST / HTTP/1.1\r\nContent-Length: 9\r\n\r\nshort", request));
-  EXPECT_FALSE(parseHttpRequest("POST / HTTP/1.1\r\nContent-Length: -1\r\n\r\n", request));
-  std::string decoded;
-  EXPECT_TRUE(decodeUrlComponent("%41%62", decoded));
-  EXPECT_EQ(decoded, "Ab");
-}
-
 // Sends raw bytes to 127.0.0.1:port and returns the whole answer.
 std::string exchange(uint16_t port, const std::string& bytes) {
   const int client = ::socket(AF_INET, SOCK_STREAM, 0);
@@ -70,8 +39,9 @@ std::string exchange(uint16_t port, const std::string& bytes) {
     ::close(client);
     return "connect failed";
   }
+  // No half-close: the server would take it for a page gone away. The requests say
+  // `Connection: close`, or are bad ones the server closes after answering.
   ::send(client, bytes.data(), bytes.size(), MSG_NOSIGNAL);
-  ::shutdown(client, SHUT_WR);
   std::string answer;
   char buffer[4096];
   for (ssize_t n; (n = ::recv(client, buffer, sizeof buffer, 0)) > 0;) answer.append(buffer, static_cast<size_t>(n));
@@ -79,27 +49,72 @@ std::string exchange(uint16_t port, const std::string& bytes) {
   return answer;
 }
 
+// A socket connected to 127.0.0.1:port, or -1.
+int connectTo(uint16_t port) {
+  const int client = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  address.sin_port = htons(port);
+  if (::connect(client, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
+    ::close(client);
+    return -1;
+  }
+  return client;
+}
+
+HttpResponse echo(const HttpRequest& request) {
+  return HttpResponse{200, "text/plain", "path " + request.path + " q " + (request.query.count("g") ? request.query.at("g") : "") +
+                                             " host " + request.header("host") + " body " + request.body};
+}
+
 TEST(HttpServer, AnswersOverASocketAndRefusesBadRequests) {
-  HttpServer server(0);
+  HttpServerDef def;
+  def.readTimeoutSeconds = 1;  // the request cut short below ends after it,
+  def.keepAliveSeconds = 1;    // and the bad ones, which the server keeps alive
+  HttpServer server(def, echo);
   ASSERT_GT(server.port(), 0);
-  std::atomic<bool> stop{false};
-  std::atomic<int> idles{0};
-  std::thread serving([&] {
-    server.serve([](const HttpRequest& request) { return HttpResponse{200, "text/plain", "path " + request.path}; },
-                 [&] { ++idles; }, [&] { return stop.load(); }, 10);
-  });
-  const std::string ok = exchange(server.port(), "GET /hello HTTP/1.1\r\n\r\n");
+  server.start();
+  const std::string ok = exchange(server.port(), "GET /a%20b?g=2 HTTP/1.1\r\nHost: here\r\nConnection: close\r\n\r\n");
   EXPECT_TRUE(ok.starts_with("HTTP/1.1 200 OK\r\n")) << ok;
-  EXPECT_NE(ok.find("Content-Length: 11\r\n"), std::string::npos) << ok;
-  EXPECT_TRUE(ok.ends_with("\r\n\r\npath /hello")) << ok;
-  EXPECT_TRUE(exchange(server.port(), "NONSENSE\r\n\r\n").starts_with("HTTP/1.1 400 ")) ;
-  EXPECT_TRUE(exchange(server.port(), "GET / HTTP/1.1\r\n" + std::string(20000, 'x')).starts_with("HTTP/1.1 413 "));
+  EXPECT_NE(ok.find("Cache-Control: no-store\r\n"), std::string::npos) << ok;
+  EXPECT_TRUE(ok.ends_with("\r\n\r\npath /a b q 2 host here body ")) << ok;
+  const std::string posted =
+      exchange(server.port(), "POST /p HTTP/1.1\r\nContent-Length: 5\r\nConnection: close\r\n\r\n{\"a\"}tail");
+  EXPECT_TRUE(posted.ends_with("body {\"a\"}")) << posted;
+  EXPECT_TRUE(exchange(server.port(), "NONSENSE\r\n\r\n").starts_with("HTTP/1.1 400 "));
   EXPECT_TRUE(exchange(server.port(), "POST / HTTP/1.1\r\nContent-Length: 99999999\r\n\r\n").starts_with("HTTP/1.1 413 "));
   // A request cut short is never answered from half of it.
-  EXPECT_EQ(exchange(server.port(), "GET /cut HTTP/1.1\r\n"), "");
-  stop = true;
-  serving.join();
-  EXPECT_GT(idles.load(), 0);
+  const std::string cut = exchange(server.port(), "GET /cut HTTP/1.1\r\n");
+  EXPECT_TRUE(cut.empty() || cut.starts_with("HTTP/1.1 400 ")) << cut;
+  server.stop();
+}
+
+// Idle connections do not hold up the others: with 20 connections open that send nothing,
+// a request is answered while they are all still open, long before their time-out (the
+// sequential server answered it only after 20 of them). Nothing here asserts a duration:
+// the idle sockets' own time-out is the clock.
+TEST(HttpServer, IdleConnectionsDoNotDelayARequest) {
+  HttpServerDef def;
+  def.readTimeoutSeconds = 20;
+  def.keepAliveSeconds = 20;
+  HttpServer server(def, echo);
+  server.start();
+  std::vector<int> idle;
+  for (int i = 0; i < 20; ++i) {
+    idle.push_back(connectTo(server.port()));
+    ASSERT_GE(idle.back(), 0);
+  }
+  const std::string answer = exchange(server.port(), "GET /busy HTTP/1.1\r\nConnection: close\r\n\r\n");
+  EXPECT_TRUE(answer.starts_with("HTTP/1.1 200 OK\r\n")) << answer;
+  // Every idle connection is still open: the server has not closed one to get to the request.
+  for (int socket : idle) {
+    char byte = 0;
+    EXPECT_EQ(::recv(socket, &byte, 1, MSG_DONTWAIT), -1);
+    EXPECT_TRUE(errno == EAGAIN || errno == EWOULDBLOCK);
+    ::close(socket);
+  }
+  server.stop();
 }
 
 const char* kTree = R"(#define ANGLE 30
