@@ -57,7 +57,9 @@ void MovieWriter::addFrame(const Image& image) {
 }
 
 void MovieWriter::finish() {
-  const std::filesystem::path temporary = path_.string() + ".partial.mp4";
+  // Written through a link, refusing what is not a regular file, as every output is.
+  const std::filesystem::path target = outputTarget(path_);
+  const std::filesystem::path temporary = target.string() + ".partial.mp4";
   const std::string rate = std::to_string(framesPerSecond_);
   const std::string input = (folder_ / "frame_%06d.png").string();
   const std::string output = temporary.string();
@@ -82,7 +84,7 @@ void MovieWriter::finish() {
     throw OutputError("ffmpeg could not make " + path_.string());
   }
   std::error_code error;
-  std::filesystem::rename(temporary, path_, error);
+  std::filesystem::rename(temporary, target, error);
   if (error) throw OutputError("cannot rename " + temporary.string() + " to " + path_.string() + ": " + error.message());
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace ontogen {
@@ -117,6 +118,72 @@ TEST_F(OutputFileTest, TargetThatIsADirectoryThrowsAndLeavesNoTemporary) {
   }
   EXPECT_TRUE(fs::is_directory(path));
   EXPECT_EQ(entries(), 1);
+}
+
+TEST_F(OutputFileTest, AnEmptyFolderIsRefusedToo) {
+  fs::path path = directory_ / "empty";
+  fs::create_directory(path);
+  try {
+    writeFileAtomically(path, [](std::ostream& out) { out << "x"; });
+    FAIL() << "no exception";
+  } catch (const OutputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "cannot write '" + path.string() + "': it is a folder; ontogen writes only regular files");
+  }
+  EXPECT_TRUE(fs::is_directory(path));
+  EXPECT_EQ(entries(), 1);
+}
+
+// The link stays a link; the file it points to gets the bytes and keeps its permissions.
+TEST_F(OutputFileTest, ASymbolicLinkIsWrittenThrough) {
+  fs::create_directory(directory_ / "real");
+  std::ofstream(directory_ / "real" / "a.txt") << "old";
+  ::chmod((directory_ / "real" / "a.txt").c_str(), 0600);
+  fs::create_symlink("real/a.txt", directory_ / "link.txt");
+  fs::create_symlink("link.txt", directory_ / "link2.txt");  // a link to a link
+  writeFileAtomically(directory_ / "link2.txt", [](std::ostream& out) { out << "new\n"; });
+  EXPECT_TRUE(fs::is_symlink(directory_ / "link.txt"));
+  EXPECT_TRUE(fs::is_symlink(directory_ / "link2.txt"));
+  EXPECT_EQ(fs::read_symlink(directory_ / "link.txt"), "real/a.txt");
+  EXPECT_EQ(read(directory_ / "real" / "a.txt"), "new\n");
+  EXPECT_EQ(fs::status(directory_ / "real" / "a.txt").permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write);
+  EXPECT_EQ(entries(), 3);
+  EXPECT_EQ(std::distance(fs::directory_iterator(directory_ / "real"), fs::directory_iterator()), 1);
+}
+
+TEST_F(OutputFileTest, ADanglingLinkMakesTheFileItNames) {
+  fs::create_symlink("made.txt", directory_ / "link.txt");
+  writeFileAtomically(directory_ / "link.txt", [](std::ostream& out) { out << "x"; });
+  EXPECT_TRUE(fs::is_symlink(directory_ / "link.txt"));
+  EXPECT_EQ(read(directory_ / "made.txt"), "x");
+}
+
+TEST_F(OutputFileTest, AFifoAndALinkToItAreRefusedAndKept) {
+  const fs::path fifo = directory_ / "fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_symlink("fifo", directory_ / "link");
+  for (const auto& [path, says] :
+       {std::pair{fifo, std::string("it is a FIFO")},
+        std::pair{directory_ / "link", "it is a FIFO (through its link, '" + fifo.string() + "')"}}) {
+    try {
+      writeFileAtomically(path, [](std::ostream& out) { out << "x"; });
+      FAIL() << "no exception";
+    } catch (const OutputError& error) {
+      EXPECT_EQ(std::string(error.what()), "cannot write '" + path.string() + "': " + says + "; ontogen writes only regular files");
+    }
+  }
+  EXPECT_EQ(fs::symlink_status(fifo).type(), fs::file_type::fifo);
+  EXPECT_TRUE(fs::is_symlink(directory_ / "link"));
+  EXPECT_EQ(entries(), 2);
+}
+
+TEST_F(OutputFileTest, LinksInALoopAreRefused) {
+  fs::create_symlink("b", directory_ / "a");
+  fs::create_symlink("a", directory_ / "b");
+  EXPECT_THROW(writeFileAtomically(directory_ / "a", [](std::ostream& out) { out << "x"; }), OutputError);
+  EXPECT_TRUE(fs::is_symlink(directory_ / "a"));
+  EXPECT_EQ(entries(), 2);
 }
 
 }  // namespace
