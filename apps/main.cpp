@@ -3,6 +3,9 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -15,6 +18,7 @@
 #include "apps/program_loader.h"
 #include "core/limits.h"
 #include "interpreters/formats/look.h"
+#include "interpreters/interpretation_set.h"
 #include "interpreters/temporary_files.h"
 
 namespace {
@@ -235,8 +239,7 @@ int dispatch(int argc, char** argv) {
       app.add_subcommand("statics", "Solve the physics design model of the word at a time (paper 003)");
   addCommon(*staticsCommand, statics.common);
   addDevelopment(*staticsCommand, statics.common);
-  staticsCommand->add_option("--at", statics.at, "Global time, seconds (default: #until)")
-      ->check(CLI::NonNegativeNumber);
+  addRealOption(*staticsCommand, "--at", statics.at, RealRange::atLeast(0), "Global time, seconds (default: #until)");
   staticsCommand->add_flag("--json", statics.json, "Print one JSON object");
   staticsCommand->add_option("--equations", statics.equations, "Write the system of equations to this text file");
 
@@ -350,12 +353,29 @@ int dispatch(int argc, char** argv) {
 
 }  // namespace
 
+// A command's words on standard output are an output like any file: when they could not
+// all be written (a full disk, /dev/full, a closed terminal) the command fails with
+// kExitOutputError, unless it failed already for its own reason.
+int checkStandardOutput(int code) {
+  std::cout.flush();
+  errno = 0;
+  const bool failed = !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
+  if (!failed) return code;
+  const int error = errno;
+  std::cerr << "ontogen: error: cannot write the standard output" << (error != 0 ? std::string(": ") + std::strerror(error) : "")
+            << "\n";
+  return code == kExitOk ? kExitOutputError : code;
+}
+
 // Nothing ontogen throws may end the process through std::terminate: what the commands
 // do not turn into a message of their own becomes one here, with its exit code.
 int main(int argc, char** argv) {
   ontogen::removeTemporariesOnSignals();
   try {
-    return dispatch(argc, argv);
+    return checkStandardOutput(dispatch(argc, argv));
+  } catch (const ontogen::OutputError& error) {
+    std::cerr << "\nontogen: error: " << error.what() << "\n";
+    return kExitOutputError;
   } catch (const std::bad_alloc&) {
     std::cerr << "\nontogen: error: the machine ran out of memory; lower the limits with --max-memory MIB or "
                  "--max-cells N\n";
