@@ -2,7 +2,9 @@
 # Measures the timing of live MIDI playback against a real peer on a headless machine:
 # a JACK server with the dummy backend and jack_midi_dump recording what arrives
 # (Debian's jackd2). Prints ontogen's own lateness at sending (--stats) and the error of
-# each arrival against the schedule, from the MIDI file read by python3-mido.
+# each arrival against the schedule, from the MIDI file read by python3-mido; with
+# --midi-clock also the spacing of the clocks as they arrived (the figure the tests
+# report but do not assert, since a busy machine moves it by percents).
 #   bash bench/live_midi_timing.sh build/apps/ontogen models/swell.cell [run options...]
 set -euo pipefail
 ontogen=$(realpath "$1"); model=$(realpath "$2"); shift 2
@@ -32,8 +34,11 @@ import math, sys
 import mido
 sent = []
 t = 0.0
+tempo = 500000  # microseconds a beat, MIDI's default
 for message in mido.MidiFile(sys.argv[1]):
     t += message.time
+    if message.type == "set_tempo" and t == 0:
+        tempo = message.tempo
     if not message.is_meta:
         sent.append((t, tuple(message.bytes())))
 got = []
@@ -48,6 +53,8 @@ for line in open(sys.argv[2]):
         else:
             break
     got.append((int(head) / 48000.0, tuple(fields)))
+clocks = [time for time, data in got if data == (0xF8,)]
+got = [(time, data) for time, data in got if data and data[0] < 0xF0]  # the notes, as the file holds them
 # Match the k-th occurrence of each message; errors from the first message's time.
 index = {}
 for k, (time, data) in enumerate(got):
@@ -77,4 +84,9 @@ print(f"arrivals: {len(got)} of {len(sent)} messages ({missing} missing); error 
 r99 = residuals[max(0, math.ceil(0.99 * n) - 1)]
 print(f"frame clock rate against the schedule {slope:.5f}; jitter around it: median "
       f"{residuals[n // 2] * 1e3:.2f} ms, p99 {r99 * 1e3:.2f} ms")
+if len(clocks) > 1:
+    gaps = sorted(b - a for a, b in zip(clocks, clocks[1:]))
+    spacing = (clocks[-1] - clocks[0]) / (len(clocks) - 1)
+    print(f"MIDI clock: {len(clocks)} clocks, mean spacing {spacing * 1e3:.3f} ms against {tempo / 24e3:.3f} ms "
+          f"({(spacing / (tempo / 24e6) - 1) * 100:+.2f} %), gaps from {gaps[0] * 1e3:.2f} to {gaps[-1] * 1e3:.2f} ms")
 PY
