@@ -4,6 +4,7 @@
 
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "core/salts.h"
 #include "interpreters/interpret.h"
 #include "interpreters/output_file.h"
 #include "interpreters/physics/physics_set.h"
@@ -50,7 +51,7 @@ int runStatics(const StaticsOptions& options) {
            << (frame.elastic ? " (elastic, " + std::to_string(frame.iterations) + " iterations)" : std::string(""))
            << "\n";
       for (const RodResult& rod : frame.rods)
-        text << "  rod " << rod.id << ": mass " << rod.mass << " kg, |F| " << rod.force.norm() << " N, |M| "
+        text << "  rod " << (rod.id & kIdBits) << ": mass " << rod.mass << " kg, |F| " << rod.force.norm() << " N, |M| "
              << rod.moment.norm() << " N m\n";
     }
   } catch (const NonFiniteResult& bad) {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "core/salts.h"
 #include "interpreters/physics/rigid_statics.h"
 
 namespace ontogen {
@@ -30,6 +31,10 @@ std::string tuple(const Eigen::Vector3d& v) {
   return "(" + number(v.x()) + ", " + number(v.y()) + ", " + number(v.z()) + ")";
 }
 
+// A rod's id as `word --json` prints the cell's (its low 53 bits, which a JSON reader
+// holds exactly), so that the two outputs join on it.
+std::string idText(uint64_t id) { return std::to_string(id & kIdBits); }
+
 }  // namespace
 
 void writeStaticsJson(std::ostream& out, const PhysicsFrame& frame) {
@@ -37,8 +42,8 @@ void writeStaticsJson(std::ostream& out, const PhysicsFrame& frame) {
   for (size_t i = 0; i < frame.rods.size(); ++i) {
     const RodResult& rod = frame.rods[i];
     text += i ? ",\n  " : "\n  ";
-    text += "{\"id\": " + std::to_string(rod.id) + ", \"parent\": " +
-            (rod.parent == kNoParentRod ? std::string("-1") : std::to_string(rod.parent)) +
+    text += "{\"id\": " + idText(rod.id) + ", \"parent\": " +
+            (rod.parent == kNoParentRod ? std::string("-1") : idText(rod.parent)) +
             ", \"base\": " + vector(rod.base) + ", \"tip\": " + vector(rod.tip) + ", \"rest_tip\": " +
             vector(rod.restTip) + ", \"length\": " + number(rod.length) + ", \"mass\": " + number(rod.mass) +
             ", \"force\": " + vector(rod.force) + ", \"moment\": " + vector(rod.moment) + "}";
@@ -59,12 +64,12 @@ void writeStaticsEquations(std::ostream& out, const RodTable& table, double g, d
     const Eigen::Vector3d force = weight + rod.load;
     const Eigen::Vector3d moment =
         (0.5 * (rod.tip - rod.base)).cross(weight) + (rod.loadPoint() - rod.base).cross(rod.load);
-    const std::string id = std::to_string(rod.id);
+    const std::string id = idText(rod.id);
     std::string f = "F_" + id + " = " + tuple(force);
     std::string m = "M_" + id + " = " + tuple(moment);
     for (int child : table.children(static_cast<int>(i))) {
       const Rod& c = rods[static_cast<size_t>(child)];
-      const std::string k = std::to_string(c.id);
+      const std::string k = idText(c.id);
       f += " + F_" + k;
       m += " + " + tuple(c.base - rod.base) + " x F_" + k + " + M_" + k;
     }

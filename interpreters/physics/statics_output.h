@@ -19,7 +19,8 @@ struct NonFiniteResult : std::domain_error {
 
 /// {"t": T, "g": 9.81, "rods": [{"id": ID, "parent": ID or -1, "base": [x, y, z],
 /// "tip": [...], "rest_tip": [...], "length": L, "mass": M, "force": [...],
-/// "moment": [...]}, ...]}, numbers in their shortest exact form. Throws NonFiniteResult.
+/// "moment": [...]}, ...]}, numbers in their shortest exact form; ids are the low 53 bits,
+/// as `word --json` prints a cell's, so a rod joins its cell. Throws NonFiniteResult.
 void writeStaticsJson(std::ostream& out, const PhysicsFrame& frame);
 
 /// For each rod, in the order drawn:

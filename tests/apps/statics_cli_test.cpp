@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <functional>
+#include <set>
 #include <string>
 
 #include "tests/apps/cli_support.h"
@@ -55,6 +57,27 @@ TEST(StaticsCli, TheSpiralHas29RodsInAChainAndAtTwoSecondsTwo) {
   EXPECT_EQ(text.out.rfind("3 rods at t = 3 s\n", 0), 0u) << text.out;
 }
 
+// A rod's id is its cell's id as `word --json` prints it: the two outputs join on it.
+TEST(StaticsCli, RodsJoinTheirCellsOfWordJsonById) {
+  const CliResult statics = ontogen("statics " + model("statics_binary_tree.cell") + " --json --at 4");
+  ASSERT_EQ(statics.exitCode, 0) << statics.err;
+  const CliResult word = ontogen("word " + model("statics_binary_tree.cell") + " --json --at 4");
+  ASSERT_EQ(word.exitCode, 0) << word.err;
+  std::set<double> cells;
+  std::function<void(const nlohmann::json&)> collect = [&](const nlohmann::json& value) {
+    if (value.is_object() && value.contains("id")) cells.insert(value["id"].get<double>());
+    if (value.is_object() || value.is_array())
+      for (const nlohmann::json& item : value) collect(item);
+  };
+  collect(nlohmann::json::parse(word.out));
+  const nlohmann::json rods = nlohmann::json::parse(statics.out)["rods"];
+  ASSERT_EQ(rods.size(), 15u);
+  for (const nlohmann::json& rod : rods) {
+    EXPECT_TRUE(cells.count(rod["id"].get<double>())) << rod["id"];
+    EXPECT_LT(rod["id"].get<double>(), 9007199254740992.0) << "past 2^53 a JSON reader rounds it";
+  }
+}
+
 TEST(StaticsCli, TheCantileverBendsAndReportsItsDeflectedTip) {
   const CliResult result = ontogen("statics " + model("cantilever.cell") + " --json --define P=2000");
   ASSERT_EQ(result.exitCode, 0) << result.err;
@@ -65,6 +88,12 @@ TEST(StaticsCli, TheCantileverBendsAndReportsItsDeflectedTip) {
 
 TEST(StaticsCli, BadInputHasItsExitCode) {
   EXPECT_EQ(ontogen("statics " + model("cantilever.cell") + " --at -1").exitCode, 2);
+  // Not a time: a bad argument, refused in one short line (no 300 digits), not a model error.
+  for (const char* at : {"nan", "inf", "-inf", "1e999"}) {
+    const CliResult result = ontogen("statics " + model("cantilever.cell") + " --at " + at);
+    EXPECT_EQ(result.exitCode, 2) << at << "\n" << result.err;
+    EXPECT_LT(result.err.size(), 200u) << result.err;
+  }
   EXPECT_EQ(ontogen("statics " + model("cantilever.cell") + " --define Q=1").exitCode, 2);
   const fs::path dir = scratch("bad");
   std::ofstream(dir / "bad.cell") << "lsystem a {\n  axiom rod(1, y)\n}\n";
