@@ -1,0 +1,53 @@
+#include "interpreters/dynamics/mujoco_model.h"
+
+#include <cstring>
+#include <mutex>
+
+namespace ontogen {
+
+namespace {
+
+// MuJoCo prints its warnings and writes MUJOCO_LOG.TXT unless a handler takes them; the
+// library never prints, and the data counts them anyway.
+void dropWarning(const char*) {}
+
+void installHandlers() {
+  static std::once_flag once;
+  std::call_once(once, [] { mju_user_warning = dropWarning; });
+}
+
+struct VfsDeleter {
+  void operator()(mjVFS* vfs) const {
+    mj_deleteVFS(vfs);
+    delete vfs;
+  }
+};
+
+}  // namespace
+
+MujocoModel::MujocoModel(std::string_view mjcf) {
+  installHandlers();
+  // mjVFS holds its file table inline (megabytes): on the heap, not the stack.
+  std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
+  mj_defaultVFS(vfs.get());
+  const char* file = "model.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), file, static_cast<int>(mjcf.size())) != 0)
+    throw MujocoError("MuJoCo's file system has no room for the model");
+  const int index = mj_findFileVFS(vfs.get(), file);
+  std::memcpy(vfs->filedata[index], mjcf.data(), mjcf.size());
+  char error[1000] = "";
+  model_ = mj_loadXML(file, vfs.get(), error, sizeof error);
+  if (!model_) throw MujocoError(std::string("MuJoCo did not compile the model: ") + error);
+  data_ = mj_makeData(model_);
+  if (!data_) {
+    mj_deleteModel(model_);
+    throw MujocoError("MuJoCo could not allocate the model's data");
+  }
+}
+
+MujocoModel::~MujocoModel() {
+  if (data_) mj_deleteData(data_);
+  if (model_) mj_deleteModel(model_);
+}
+
+}  // namespace ontogen
