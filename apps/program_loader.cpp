@@ -43,13 +43,8 @@ bool onlyOptionErrors(const DiagnosticSink& sink) {
                      [](const Diagnostic& d) { return d.severity != Severity::Error || !d.span.valid(); });
 }
 
-std::optional<std::string> readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+// A view file holds a few settings: no more than this is read of one.
+constexpr uint64_t kMaxViewBytes = uint64_t{1} << 20;
 
 }  // namespace
 
@@ -68,13 +63,27 @@ ProgramText readProgramText(const std::string& path, uint64_t maxBytes) {
     result.text = std::move(text);
     return result;
   }
-  // cpfg keeps the turn angle in the view file beside the L-system, named alike.
+  // cpfg keeps the turn angle in the view file beside the L-system, named alike. It is
+  // read as a program is, a regular file up to a limit: a FIFO or a device named .v
+  // must neither block nor fill memory.
   std::string view;
-  if (*dialect == convert::Dialect::Cpfg)
-    view = readFile(std::filesystem::path(path).replace_extension(".v").string()).value_or("");
+  if (*dialect == convert::Dialect::Cpfg) {
+    const std::filesystem::path viewPath = std::filesystem::path(path).replace_extension(".v");
+    std::error_code missing;
+    if (std::filesystem::exists(std::filesystem::symlink_status(viewPath, missing))) {
+      SourceText viewText = readSourceFile(viewPath, kMaxViewBytes);
+      if (!viewText.text) {
+        std::cerr << "ontogen: error: cannot read the view file '" << viewPath.string() << "': " << viewText.error
+                  << "\n";
+        result.exitCode = kExitUsage;
+        return result;
+      }
+      view = std::move(*viewText.text);
+    }
+  }
   auto source = std::make_shared<const SourceFile>(path, std::move(*text));
   DiagnosticSink sink;
-  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink);
+  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, maxBytes);
   std::cerr << formatDiagnostics(sink);
   if (!converted.program) {
     std::cerr << "ontogen: " << path << " cannot be converted from " << convert::dialectName(*dialect) << "\n";
@@ -84,7 +93,15 @@ ProgramText readProgramText(const std::string& path, uint64_t maxBytes) {
   result.text = std::move(converted.program);
   result.name = path + " (converted)";
   result.converted = true;
+  result.original = std::move(source);
+  result.lineOrigins = std::move(converted.lineOrigins);
   return result;
+}
+
+Diagnostic inOriginal(const Diagnostic& diagnostic, const ProgramText& text) {
+  if (!text.converted || !text.original || !diagnostic.span.valid() || diagnostic.span.file->name() != text.name)
+    return diagnostic;
+  return convert::mapToOriginal(diagnostic, *text.original, text.lineOrigins);
 }
 
 LoadedProgram loadProgram(const CommonOptions& common) {
@@ -119,7 +136,7 @@ LoadedProgram loadProgram(const CommonOptions& common) {
   }
   DiagnosticSink sink(common.maxErrors);
   // Each error reaches the terminal as it is found, not all of them at the end.
-  sink.streamTo([](const Diagnostic& diagnostic) { std::cerr << formatDiagnostic(diagnostic); });
+  sink.streamTo([&text](const Diagnostic& diagnostic) { std::cerr << formatDiagnostic(inOriginal(diagnostic, text)); });
   options.commandSets = commandSets();
   options.rootSystem = common.system;
   options.maxSourceBytes = common.maxSourceBytes;

@@ -5,7 +5,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "lang/convert/lsystem_file.h"
+#include "lang/diagnostics.h"
 #include "lang/program.h"
 #include "lang/source_reader.h"
 
@@ -42,7 +45,15 @@ struct ProgramText {
   std::string name;  ///< for diagnostics: the path, "PATH (converted)" for another tool's file
   bool converted = false;
   int exitCode = kExitOk;  ///< kExitProgramError or kExitUntranslatable when there is no text
+  /// A converted file: the file itself, and for each line of `text` the bytes of it the
+  /// line was written from (convert::mapToOriginal shows errors there).
+  std::shared_ptr<const SourceFile> original;
+  std::vector<convert::SourceRange> lineOrigins;
 };
+
+/// A diagnostic of the compiler about `text`, at its place in the file it was converted
+/// from when it was (convert::mapToOriginal).
+Diagnostic inOriginal(const Diagnostic& diagnostic, const ProgramText& text);
 ProgramText readProgramText(const std::string& path, uint64_t maxBytes = kDefaultMaxSourceBytes);
 
 /// Reads and compiles the program file of `options` with its --system and --define. On

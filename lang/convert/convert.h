@@ -8,10 +8,12 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "lang/convert/lsystem_file.h"
 #include "lang/diagnostics.h"
 #include "lang/source.h"
+#include "lang/source_reader.h"
 
 namespace ontogen::convert {
 
@@ -20,13 +22,25 @@ std::optional<Dialect> dialectOfPath(std::string_view path);
 
 struct ConvertResult {
   std::optional<std::string> program;  ///< the cell-language text; empty on error
+  /// For each line of `program` (index: line − 1), the bytes of the file it was written
+  /// from: errors in the converted text are shown at the file's own line.
+  std::vector<SourceRange> lineOrigins;
   /// The error was a construct ontogen cannot express (code of the other tool), rather
   /// than text the reader could not make out.
   bool untranslatable = false;
 };
 
 /// Converts `file`, written for `dialect`; `view` is cpfg's view file (.v), where cpfg
-/// keeps the turn angle, or empty. The error, if any, goes to `sink` with its place.
-ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_view view, DiagnosticSink& sink);
+/// keeps the turn angle, or empty. The error, if any, and the warnings go to `sink` with
+/// their places. A program longer than `maxBytes` is an error: the source limit holds for
+/// the converted text too.
+ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_view view, DiagnosticSink& sink,
+                          uint64_t maxBytes = kDefaultMaxSourceBytes);
+
+/// A diagnostic of the compiler in converted text, at the place of the file it was
+/// converted from (`original`), with the converted line quoted; one at a line that came
+/// from no place of the file is returned as it is.
+Diagnostic mapToOriginal(const Diagnostic& diagnostic, const SourceFile& original,
+                         const std::vector<SourceRange>& lineOrigins);
 
 }  // namespace ontogen::convert

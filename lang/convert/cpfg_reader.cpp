@@ -57,6 +57,8 @@ class CpfgReader {
       uint32_t begin = firstNonSpace(clean_, line), end = line.end;
       syntax_.trim(begin, end);
       if (begin == end) continue;
+      stamp();
+      line_ = {begin, end};
       if (ended) syntax_.fail(begin, end, "text after endlsystem: ontogen convert reads one L-system per file", false);
       if (auto at = afterKeyword(clean_, line, "lsystem:")) {
         if (++lsystems > 1)
@@ -84,19 +86,21 @@ class CpfgReader {
         symbols(StatementKind::Consider, *at, end);
         continue;
       }
-      if (auto at = afterKeyword(clean_, line, "seed:")) {
+      if (auto at = afterLabel(clean_, line, "seed")) {
         file_.seed = syntax_.expression(*at, end);
         continue;
       }
-      if (auto at = afterKeyword(clean_, line, "derivation length:")) {
+      if (auto at = afterLabel(clean_, line, "derivation length")) {
         file_.derivationLength = syntax_.expression(*at, end);
+        file_.derivationLengthOrigin = line_;
         continue;
       }
-      if (auto at = afterKeyword(clean_, line, "axiom:")) {
+      if (auto at = afterLabel(clean_, line, "axiom")) {
         file_.axiom = syntax_.modules(*at, end, false);
+        file_.axiomOrigin = line_;
         continue;
       }
-      if (auto at = afterKeyword(clean_, line, "maximum depth:")) {
+      if (auto at = afterLabel(clean_, line, "maximum depth")) {
         Statement s;
         s.kind = StatementKind::MaximumDepth;
         s.word = syntax_.expression(*at, end);
@@ -137,12 +141,20 @@ class CpfgReader {
                      false);
       }
     }
+    stamp();
+    file_.warnings = std::move(syntax_.warnings);
     return std::move(file_);
   }
 
   LSystemFile file_;
 
  private:
+  // The statements read from the line before have its place.
+  void stamp() {
+    for (; stamped_ < file_.statements.size(); ++stamped_)
+      if (!file_.statements[stamped_].origin.known()) file_.statements[stamped_].origin = line_;
+  }
+
   std::optional<uint32_t> keyword(const Line& line, std::initializer_list<std::string_view> words) const {
     for (std::string_view word : words)
       if (auto at = afterKeyword(clean_, line, word)) return at;
@@ -175,7 +187,7 @@ class CpfgReader {
     if (stop == at) syntax_.fail(at, end, "expected a name after #define", false);
     if (stop < end && clean_[stop] == '(')
       syntax_.fail(at, end, "a #define with parameters is a C macro, which ontogen convert does not translate");
-    file_.defines.emplace_back(std::string(clean_.substr(at, stop - at)), syntax_.expression(stop, end));
+    file_.defines.push_back({std::string(clean_.substr(at, stop - at)), syntax_.expression(stop, end), line_});
   }
 
   void symbols(StatementKind kind, uint32_t at, uint32_t end) {
@@ -194,6 +206,8 @@ class CpfgReader {
 
   std::string clean_;
   ForeignSyntax syntax_;
+  SourceRange line_;
+  size_t stamped_ = 0;
 };
 
 }  // namespace

@@ -22,17 +22,138 @@ bool isCellSymbol(char c) {
   return std::string_view("+-^&/\\|!<>[]$~@%").find(c) != std::string_view::npos;
 }
 
-// L-Py's predefined modules whose names are longer than a letter and that the cell
-// language spells the same way.
-constexpr std::string_view kLPyNamedModules[] = {
-    "SetWidth", "SetColor", "IncColor", "DecColor",   "Sphere",   "Circle",   "Label",      "Frame", "MoveTo",
-    "LineTo",   "Pinpoint", "Tropism",  "Elasticity", "SetGuide", "EndGuide", "TurnAround", "RollL", "RollR"};
+// What a predefined module of cpfg or L-Py becomes. A turtle command ontogen has is
+// translated to it; a drawing command it has not stays a module of a name (the word is the
+// other tool's), with a warning that it draws nothing; a query whose parameters ontogen
+// would not fill is refused, as the word would differ.
+enum class Fate { Translate, Inert, Refuse };
+struct Predefined {
+  std::string_view name;  ///< as the file writes it
+  std::string_view cell;  ///< Translate: the cell-language label; Inert: the module's name
+  Fate fate;
+  bool lpyOnly = true;    ///< a name of L-Py alone (cpfg's modules are one character or '@' names)
+};
+
+constexpr Predefined kPredefined[] = {
+    // Both tools' '@' modules.
+    {"@O", "sphere", Fate::Translate, false},
+    {"@o", "disc", Fate::Translate, false},
+    {"@v", "$", Fate::Translate, false},
+    {"@M", "MoveTo", Fate::Inert, false},
+    {"@R", "SetHead", Fate::Inert, false},
+    {"@L", "Label", Fate::Inert, false},
+    {"@B", "Box", Fate::Inert, true},
+    {"@b", "Quad", Fate::Inert, false},
+    {"@g", "PglShape", Fate::Inert, true},
+    {"@h", "RollToHorizontal", Fate::Inert, true},
+    {"@Dd", "DivScale", Fate::Inert, true},
+    {"@Di", "MultScale", Fate::Inert, true},
+    {"@D", "SetScale", Fate::Inert, true},
+    {"@Ts", "Elasticity", Fate::Inert, true},
+    {"@Tp", "Tropism", Fate::Inert, true},
+    {"@2D", "StartScreenProjection", Fate::Inert, true},
+    {"@3D", "EndScreenProjection", Fate::Inert, true},
+    {"@Gc", "gcbegin", Fate::Translate, true},  // L-Py's StartGC
+    {"@Ge", "gcend", Fate::Translate, false},
+    // L-Py's names.
+    {"Sphere", "sphere", Fate::Translate},
+    {"Circle", "disc", Fate::Translate},
+    {"StartGC", "gcbegin", Fate::Translate},
+    {"EndGC", "gcend", Fate::Translate},
+    {"IncColor", "color", Fate::Translate},
+    {"SetColor", "color", Fate::Translate},
+    {"SetWidth", "!", Fate::Translate},
+    {"DecWidth", "!", Fate::Translate},
+    {"Left", "+", Fate::Translate},
+    {"Right", "-", Fate::Translate},
+    {"Up", "^", Fate::Translate},
+    {"Down", "&", Fate::Translate},
+    {"RollL", "/", Fate::Translate},
+    {"RollR", "\\", Fate::Translate},
+    {"TurnAround", "|", Fate::Translate},
+    {"RollToVert", "$", Fate::Translate},
+    {"SB", "[", Fate::Translate},
+    {"EB", "]", Fate::Translate},
+    {"GetPos", "?P", Fate::Translate},
+    {"GetHead", "?H", Fate::Translate},
+    {"GetUp", "?U", Fate::Translate},
+    {"GetLeft", "?L", Fate::Translate},
+    {"GetRight", "", Fate::Refuse},
+    {"GetFrame", "", Fate::Refuse},
+    {"DecColor", "DecColor", Fate::Inert},
+    {"nF", "nF", Fate::Inert},
+    {"BP", "BP", Fate::Inert},
+    {"EP", "EP", Fate::Inert},
+    {"PP", "PP", Fate::Inert},
+    {"MoveTo", "MoveTo", Fate::Inert},
+    {"MoveRel", "MoveRel", Fate::Inert},
+    {"LineTo", "LineTo", Fate::Inert},
+    {"OLineTo", "OLineTo", Fate::Inert},
+    {"LineRel", "LineRel", Fate::Inert},
+    {"OLineRel", "OLineRel", Fate::Inert},
+    {"Pinpoint", "Pinpoint", Fate::Inert},
+    {"PinpointRel", "PinpointRel", Fate::Inert},
+    {"SetHead", "SetHead", Fate::Inert},
+    {"EulerAngles", "EulerAngles", Fate::Inert},
+    {"iRollL", "iRollL", Fate::Inert},
+    {"iRollR", "iRollR", Fate::Inert},
+    {"RollToHorizontal", "RollToHorizontal", Fate::Inert},
+    {"Box", "Box", Fate::Inert},
+    {"Quad", "Quad", Fate::Inert},
+    {"Label", "Label", Fate::Inert},
+    {"IncWidth", "IncWidth", Fate::Inert},
+    {"InterpolateColors", "InterpolateColors", Fate::Inert},
+    {"TextureBaseColor", "TextureBaseColor", Fate::Inert},
+    {"InterpolateTextureBaseColors", "InterpolateTextureBaseColors", Fate::Inert},
+    {"DivScale", "DivScale", Fate::Inert},
+    {"MultScale", "MultScale", Fate::Inert},
+    {"SetScale", "SetScale", Fate::Inert},
+    {"PglShape", "PglShape", Fate::Inert},
+    {"Frame", "Frame", Fate::Inert},
+    {"Arrow", "Arrow", Fate::Inert},
+    {"Elasticity", "Elasticity", Fate::Inert},
+    {"Tropism", "Tropism", Fate::Inert},
+    {"SetContour", "SetContour", Fate::Inert},
+    {"SectionResolution", "SectionResolution", Fate::Inert},
+    {"SetGuide", "SetGuide", Fate::Inert},
+    {"EndGuide", "EndGuide", Fate::Inert},
+    {"Sweep", "Sweep", Fate::Inert},
+    {"PositionOnGuide", "PositionOnGuide", Fate::Inert},
+    {"TextureScale", "TextureScale", Fate::Inert},
+    {"TextureUScale", "TextureUScale", Fate::Inert},
+    {"TextureVScale", "TextureVScale", Fate::Inert},
+    {"TextureVCoeff", "TextureVCoeff", Fate::Inert},
+    {"TextureTranslation", "TextureTranslation", Fate::Inert},
+    {"TextureRotation", "TextureRotation", Fate::Inert},
+    {"TextureTransformation", "TextureTransformation", Fate::Inert},
+    {"LeftReflection", "LeftReflection", Fate::Inert},
+    {"UpReflection", "UpReflection", Fate::Inert},
+    {"HeadingReflection", "HeadingReflection", Fate::Inert},
+    {"StartScreenProjection", "StartScreenProjection", Fate::Inert},
+    {"EndScreenProjection", "EndScreenProjection", Fate::Inert},
+};
+
+const Predefined* predefined(std::string_view name, Dialect dialect) {
+  for (const Predefined& p : kPredefined)
+    if (p.name == name && (dialect == Dialect::LPy || !p.lpyOnly)) return &p;
+  return nullptr;
+}
 
 std::string shown(std::string_view text) {
   return "'" + std::string(text) + "'";
 }
 
 }  // namespace
+
+ForeignSyntax::Nested::Nested(const ForeignSyntax& syntax, uint32_t begin, uint32_t end) : depth(syntax.depth_) {
+  if (++depth > kMaxConvertNesting) {
+    --depth;
+    syntax.fail(begin, end,
+                "nested too deeply (more than " + std::to_string(kMaxConvertNesting) +
+                    " levels of conditionals or alternatives)",
+                false);
+  }
+}
 
 void ForeignSyntax::fail(uint32_t begin, uint32_t end, std::string message, bool untranslatable) const {
   throw ConvertError{begin, end > begin ? end : begin + 1, std::move(message), untranslatable};
@@ -57,18 +178,38 @@ uint32_t ForeignSyntax::find(uint32_t begin, uint32_t end, std::string_view what
 // The end of the label that starts at `at` (before its parameters).
 uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label) const {
   const char c = text_[at];
-  // Query modules ?P ?H ?L ?U (ABOP section 1.10), in both tools.
+  // Query modules ?P ?H ?L ?U (ABOP section 1.10), in both tools; L-Py's ?R ?F as well.
   if (c == '?' && at + 1 < end && isLetter(text_[at + 1])) {
     label = std::string(text_.substr(at, 2));
+    if (label == "?R" || label == "?F")
+      fail(at, at + 2,
+           "L-Py's query " + shown(label) +
+               " has no cell-language counterpart: ontogen's turtle fills ?P, ?H, ?L and ?U only, so the word "
+               "would differ");
     return at + 2;
   }
-  if (dialect_ == Dialect::LPy && (c == '@' || c == '~') && at + 1 < end && isLetter(text_[at + 1])) {
-    uint32_t stop = at + 1;
-    while (stop < end && isNameChar(text_[stop])) ++stop;
-    fail(at, stop,
-         "L-Py's module " + shown(text_.substr(at, stop - at)) +
-             " has no cell-language spelling (labels are names or one of + - ^ & / \\ | ! < > [ ] $ ~ @ %); "
-             "write a module of the geometry set instead, such as sphere(r) for @O(r)");
+  // '@' modules: the longest predefined name, as the tools read them (@GcI is @Gc I).
+  if (c == '@' && at + 1 < end && isNameChar(text_[at + 1])) {
+    size_t best = 0;
+    for (const Predefined& p : kPredefined)
+      if (p.name[0] == '@' && (dialect_ == Dialect::LPy || !p.lpyOnly) && p.name.size() > best &&
+          at + p.name.size() <= end && text_.compare(at, p.name.size(), p.name) == 0)
+        best = p.name.size();
+    if (best == 0) {
+      uint32_t stop = at + 1;
+      while (stop < end && isNameChar(text_[stop])) ++stop;
+      fail(at, stop,
+           std::string(dialectName(dialect_)) + "'s module " + shown(text_.substr(at, stop - at)) +
+               " is none ontogen can translate (it knows @O, @o, @v, @M, @R, @L, @b, @Ge" +
+               (dialect_ == Dialect::LPy ? ", @Gc, @B, @g, @h, @D, @Dd, @Di, @Ts, @Tp, @2D, @3D" : "") + ")");
+    }
+    label = std::string(text_.substr(at, best));
+    return at + static_cast<uint32_t>(best);
+  }
+  // A predefined surface, ~l: one letter names it in both tools.
+  if (c == '~' && at + 1 < end && isLetter(text_[at + 1])) {
+    label = std::string(text_.substr(at, 2));
+    return at + 2;
   }
   if (dialect_ == Dialect::LPy && isLetter(c)) {
     // Longest declared or predefined name first; otherwise one letter is one module.
@@ -78,11 +219,13 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
         best = name.size();
     };
     for (const std::string& name : declaredNames) consider(name);
-    for (std::string_view name : kLPyNamedModules) consider(name);
+    for (const Predefined& p : kPredefined)
+      if (p.name[0] != '@') consider(p.name);
     label = std::string(text_.substr(at, best));
     return at + static_cast<uint32_t>(best);
   }
-  if (isNameChar(c) || isCellSymbol(c)) {
+  if (isNameChar(c) || isCellSymbol(c) || c == ';' || c == ',' || c == '{' || c == '}' || c == '.' ||
+      (c == '#' && dialect_ == Dialect::Cpfg)) {
     label = std::string(1, c);
     return at + 1;
   }
@@ -97,6 +240,55 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
            " has no cell-language spelling (labels are names or one of + - ^ & / \\ | ! < > [ ] $ ~ @ %)");
 }
 
+void ForeignSyntax::warnOnce(const std::string& label, uint32_t begin, uint32_t end, std::string message) const {
+  if (!warned_.insert(label).second) return;
+  warnings.push_back({SourceRange{begin, end > begin ? end : begin + 1}, std::move(message)});
+}
+
+// A module of the other tool's vocabulary as the cell language has it (kPredefined).
+void ForeignSyntax::vocabulary(ModuleText& module, uint32_t begin, uint32_t end, bool pattern) const {
+  if (auto alias = aliases.find(module.label); alias != aliases.end()) module.label = alias->second;
+  if (declaredNames.count(module.label)) return;  // the file's own module
+  const std::string tool(dialectName(dialect_));
+  auto inert = [&](std::string name, const std::string& what) {
+    warnOnce(module.label, begin, end,
+             tool + "'s " + what + " " + shown(module.label) +
+                 " has no counterpart in ontogen's turtle: it stays a module named " + shown(name) +
+                 ", so the word is " + tool + "'s, but it draws nothing");
+    module.label = std::move(name);
+  };
+  const std::string label = module.label;
+  if (label == "?P" || label == "?H" || label == "?L" || label == "?U") {
+    if (module.hasArgs) return;
+    // L-Py writes a query bare; ontogen's has the three parameters the turtle fills.
+    if (pattern)
+      fail(begin, end,
+           "a query " + shown(label) + " without parameters in a pattern: write " + label +
+               "(x, y, z) to match it",
+           false);
+    module.hasArgs = true;
+    module.args = {"0", "0", "0"};
+    return;
+  }
+  if (label == ";" || (label == "," && module.hasArgs && !module.args.empty())) {
+    module.label = "color";  // ;  and ;(i) take the next colour or colour i; ,(i) colour i
+    return;
+  }
+  if (label == ",") return inert("DecColor", "colour module (the previous colour)");
+  if (label == "{") return inert("BP", "polygon module");
+  if (label == "}") return inert("EP", "polygon module");
+  if (label == ".") return inert("PP", "polygon module");
+  if (label == "#") return inert("IncWidth", "module");
+  if (label.size() == 2 && label[0] == '~') return inert("Surface_" + label.substr(1), "surface");
+  const Predefined* p = predefined(label, dialect_);
+  if (!p) return;
+  if (p->fate == Fate::Refuse)
+    fail(begin, end, tool + "'s module " + shown(label) + " has no cell-language counterpart; the word would differ");
+  if (p->fate == Fate::Inert) return inert(std::string(p->cell), "module");
+  if (p->cell == "color" && module.args.size() > 1) return inert("SetColor", "colour by components");
+  module.label = std::string(p->cell);
+}
+
 std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, bool pattern) const {
   std::vector<ModuleText> result;
   uint32_t at = begin;
@@ -108,6 +300,17 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
     if (text_[at] == '(' || text_[at] == ')')
       fail(at, at + 1, "expected a module before " + shown(text_.substr(at, 1)), false);
     ModuleText module;
+    const uint32_t moduleBegin = at;
+    if (dialect_ == Dialect::LPy && text_.compare(at, 4, "None") == 0 && at + 4 <= end &&
+        (at + 4 == end || !isNameChar(text_[at + 4])) && !declaredNames.count("None")) {
+      if (!pattern) fail(at, at + 4, "L-Py's None stands in a context, for no module there", false);
+      // L-Py's None in a context: no module there, the cell language's ∅ (the start of
+      // the word on the left, the end of the branch or word on the right).
+      module.label = "∅";
+      at += 4;
+      result.push_back(std::move(module));
+      continue;
+    }
     if (text_[at] == '*' && pattern) {
       module.label = "*";  // a wildcard in a context
       ++at;
@@ -119,6 +322,11 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
     } else {
       at = moduleEnd(at, end, module.label);
     }
+    if (pattern && dialect_ == Dialect::LPy && module.label == "x" && at < end && text_[at] == '(' &&
+        !declaredNames.count("x"))
+      fail(moduleBegin, at + 1,
+           "L-Py's repetition x(...) in a context has no cell-language counterpart (a context of the cell "
+           "language is a fixed sequence of modules)");
     if (at < end && text_[at] == '(') {
       int depth = 0;
       uint32_t stop = at;
@@ -128,6 +336,7 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
       }
       if (stop >= end) fail(at, end, "the parameters of " + shown(module.label) + " have no closing ')'", false);
       if (pattern && dialect_ == Dialect::LPy && module.label == "or") {
+        const Nested nested(*this, moduleBegin, stop + 1);
         // L-Py's or(B(x) C, D) in a context: the cell language's alternatives (B(x) C | D).
         std::string group;
         uint32_t argBegin = at + 1;
@@ -203,6 +412,7 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
       }
       at = stop + 1;
     }
+    vocabulary(module, moduleBegin, at, pattern);
     result.push_back(std::move(module));
   }
   return result;
@@ -220,6 +430,7 @@ std::optional<std::string> ForeignSyntax::conditional(uint32_t begin, uint32_t e
   if (dialect_ == Dialect::Cpfg) {
     const uint32_t question = find(begin, end, "?");
     if (question == end) return std::nullopt;
+    const Nested nested(*this, question, question + 1);
     // The ':' that matches this '?' (conditionals nest to the right).
     int open = 0;
     uint32_t colon = end;
@@ -245,6 +456,7 @@ std::optional<std::string> ForeignSyntax::conditional(uint32_t begin, uint32_t e
   };
   const uint32_t ifAt = word(begin, "if");
   if (ifAt == end) return std::nullopt;
+  const Nested nested(*this, ifAt, ifAt + 2);
   const uint32_t elseAt = word(ifAt + 2, "else");
   if (elseAt == end) fail(ifAt, ifAt + 2, "Python's 'if' without 'else' in an expression", false);
   return "if(" + expression(ifAt + 2, elseAt) + ", " + expression(begin, ifAt) + ", " + expression(elseAt + 4, end) +

@@ -6,6 +6,7 @@
 // is a byte offset into the whole file, so errors name the file, line and column.
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -30,6 +31,11 @@ class ForeignSyntax {
 
   /// L-Py's `module Name` declarations: names read as one module, not letter by letter.
   std::set<std::string, std::less<>> declaredNames;
+  /// L-Py's `module A = F`: A is read as F.
+  std::map<std::string, std::string, std::less<>> aliases;
+  /// Constructs converted with a loss (a drawing command ontogen's turtle has not), each
+  /// label once, at its first place.
+  mutable std::vector<ConvertWarning> warnings;
 
   /// The modules of text [begin, end); `pattern`: a predecessor or context, whose
   /// parameters are names. Throws ConvertError.
@@ -54,10 +60,29 @@ class ForeignSyntax {
 
  private:
   uint32_t moduleEnd(uint32_t at, uint32_t end, std::string& label) const;
+  void vocabulary(ModuleText& module, uint32_t begin, uint32_t end, bool pattern) const;
+  void warnOnce(const std::string& label, uint32_t begin, uint32_t end, std::string message) const;
+  /// One level deeper of conditionals or alternatives; past kMaxNesting an error at
+  /// [begin, end), so that no file exhausts the stack.
+  struct Nested {
+    explicit Nested(const ForeignSyntax& syntax, uint32_t begin, uint32_t end);
+    ~Nested() { --depth; }
+    Nested(const Nested&) = delete;
+    Nested& operator=(const Nested&) = delete;
+    int& depth;
+  };
+
   std::optional<std::string> conditional(uint32_t begin, uint32_t end) const;
 
   Dialect dialect_;
   std::string_view text_;
+  mutable std::set<std::string, std::less<>> warned_;
+  mutable int depth_ = 0;
 };
+
+/// Levels of conditionals (`c ? a : b`, `a if c else b`) and of L-Py's `or(...)` the
+/// converter reads inside one another. The compiler takes 200 levels of nesting, and each
+/// conditional becomes two (a call and its arguments); no model nests a tenth as deep.
+inline constexpr int kMaxConvertNesting = 64;
 
 }  // namespace ontogen::convert

@@ -37,4 +37,13 @@ std::optional<uint32_t> afterKeyword(std::string_view text, Line line, std::stri
   return after;
 }
 
+std::optional<uint32_t> afterLabel(std::string_view text, Line line, std::string_view keyword) {
+  std::optional<uint32_t> after = afterKeyword(text, line, keyword);
+  if (!after) return std::nullopt;
+  uint32_t at = *after;
+  while (at < line.end && (text[at] == ' ' || text[at] == '\t')) ++at;
+  if (at >= line.end || text[at] != ':') return std::nullopt;
+  return at + 1;
+}
+
 }  // namespace ontogen::convert

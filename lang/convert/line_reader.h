@@ -23,6 +23,10 @@ std::vector<Line> splitLines(std::string_view text);
 /// run on into a name: `group` does not start `groups`.
 std::optional<uint32_t> afterKeyword(std::string_view text, Line line, std::string_view keyword);
 
+/// Like afterKeyword for a keyword written before a colon, `Axiom:` or `Axiom :` (the
+/// tools allow spaces before it): the offset just after the colon.
+std::optional<uint32_t> afterLabel(std::string_view text, Line line, std::string_view keyword);
+
 /// The offset of the line's first non-space character (its end for a blank line).
 uint32_t firstNonSpace(std::string_view text, Line line);
 

@@ -57,21 +57,34 @@ class LPyReader {
     bool ended = false;
     for (size_t i = 0; i < lines.size(); ++i) {
       const Line& line = lines[i];
-      if (original_.substr(firstNonSpace(original_, line), kInitialisation.size()) == kInitialisation) break;
+      if (original_.substr(firstNonSpace(original_, line), kInitialisation.size()) == kInitialisation) {
+        initialisation(lines, i + 1);
+        break;
+      }
       uint32_t begin = firstNonSpace(clean_, line), end = line.end;
       syntax_.trim(begin, end);
       if (begin == end) continue;
+      stamp();
+      line_ = {begin, end};
       const bool indented = begin > line.begin;
       if (ended || indented) python(begin, end);
-      if (auto at = afterKeyword(clean_, line, "axiom:")) {
+      if (auto at = afterLabel(clean_, line, "axiom")) {
         file_.axiom = syntax_.modules(*at, end, false);
+        file_.axiomOrigin = line_;
         continue;
       }
-      if (auto at = afterKeyword(clean_, line, "derivation length:")) {
+      if (auto at = afterLabel(clean_, line, "derivation length")) {
+        uint32_t a = *at, b = end;
+        syntax_.trim(a, b);
+        if (clean_.substr(a, b - a) == "0")
+          syntax_.fail(a, b,
+                       "derivation length 0 (the word is the axiom): ontogen's #until is at least 1; "
+                       "ask for the axiom with word --at 0");
         file_.derivationLength = syntax_.expression(*at, end);
+        file_.derivationLengthOrigin = line_;
         continue;
       }
-      if (auto at = afterKeyword(clean_, line, "maximum depth:")) {
+      if (auto at = afterLabel(clean_, line, "maximum depth")) {
         add(StatementKind::MaximumDepth, syntax_.expression(*at, end));
         continue;
       }
@@ -79,11 +92,11 @@ class LPyReader {
         add(StatementKind::Section, *section);
         continue;
       }
-      if (auto at = afterKeyword(clean_, line, "ignore:")) {
+      if (auto at = afterLabel(clean_, line, "ignore")) {
         symbols(StatementKind::Ignore, *at, end);
         continue;
       }
-      if (auto at = afterKeyword(clean_, line, "consider:")) {
+      if (auto at = afterLabel(clean_, line, "consider")) {
         symbols(StatementKind::Consider, *at, end);
         continue;
       }
@@ -123,6 +136,10 @@ class LPyReader {
       }
       { python(begin, end); }
     }
+    stamp();
+    // L-Py derives once unless the file says otherwise.
+    if (!file_.derivationLength) file_.derivationLength = "1";
+    file_.warnings = std::move(syntax_.warnings);
     return std::move(file_);
   }
 
@@ -165,6 +182,7 @@ class LPyReader {
     }
     // The head as a production whose arrow is the body's `produce`.
     Statement s = productionOf(begin, end - 1, *produce, lines[body].end);
+    s.origin = {begin, lines[body].end};
     file_.statements.push_back(std::move(s));
     return body;
   }
@@ -208,9 +226,9 @@ class LPyReader {
     struct Word {
       std::string_view lpy, cell;
     };
-    for (Word word : {Word{"production:", "production"}, Word{"decomposition:", "decomposition"},
-                      Word{"homomorphism:", "homomorphism"}, Word{"interpretation:", "homomorphism"}})
-      if (auto at = afterKeyword(clean_, line, word.lpy)) {
+    for (Word word : {Word{"production", "production"}, Word{"decomposition", "decomposition"},
+                      Word{"homomorphism", "homomorphism"}, Word{"interpretation", "homomorphism"}})
+      if (auto at = afterLabel(clean_, line, word.lpy)) {
         uint32_t a = *at, b = line.end;
         syntax_.trim(a, b);
         if (a == b) return std::string(word.cell);
@@ -238,19 +256,64 @@ class LPyReader {
       while (value < end && clean_[value] != '=') ++value;
       ++value;
     }
-    file_.defines.emplace_back(std::move(name), syntax_.expression(value, end));
+    file_.defines.push_back({std::move(name), syntax_.expression(value, end), line_});
   }
 
   void declare(uint32_t at, uint32_t end) {
-    // `module A, Apex(x), B`: each name, without its parameters.
-    for (uint32_t i = at; i < end;) {
-      while (i < end && !isNameChar(clean_[i])) ++i;
+    // `module A, Apex(x), B`, `module A = F` (an alias), `module B : scale = 1`.
+    const uint32_t colon = syntax_.find(at, end, ":");
+    if (colon < end)
+      syntax_.fail(colon, end,
+                   "L-Py's module attributes (scale = N: multiscale modules; base = A: a module that matches as "
+                   "another) have no cell-language counterpart yet");
+    const uint32_t equals = syntax_.find(at, end, "=");
+    std::vector<std::string> names;
+    for (uint32_t i = at; i < equals;) {
+      while (i < equals && !isNameChar(clean_[i])) ++i;
       uint32_t stop = i;
-      while (stop < end && isNameChar(clean_[stop])) ++stop;
-      if (stop > i) syntax_.declaredNames.emplace(clean_.substr(i, stop - i));
-      while (stop < end && clean_[stop] != ',') ++stop;
+      while (stop < equals && isNameChar(clean_[stop])) ++stop;
+      if (stop > i) names.emplace_back(clean_.substr(i, stop - i));
+      // Past the parameters, A(x, y), to the next name.
+      for (int depth = 0; stop < equals && (depth > 0 || clean_[stop] != ','); ++stop) {
+        if (clean_[stop] == '(') ++depth;
+        if (clean_[stop] == ')') --depth;
+      }
       i = stop + 1;
     }
+    for (const std::string& name : names) syntax_.declaredNames.emplace(name);
+    if (equals == end) return;
+    uint32_t a = equals + 1, b = end;
+    syntax_.trim(a, b);
+    std::vector<ModuleText> target = a < b ? syntax_.modules(a, b, false) : std::vector<ModuleText>{};
+    if (target.size() != 1 || target.front().hasArgs)
+      syntax_.fail(a, b, "an alias names one module, as in module A = F", false);
+    for (const std::string& name : names) syntax_.aliases[name] = target.front().label;
+  }
+
+  // The section the L-Py editor writes after the L-system: its options are read where
+  // they change what the productions mean.
+  void initialisation(const std::vector<Line>& lines, size_t from) {
+    constexpr std::string_view kMatching = "'String matching'";
+    for (size_t k = from; k < lines.size(); ++k) {
+      std::string_view text = original_.substr(lines[k].begin, lines[k].end - lines[k].begin);
+      const size_t at = text.find(kMatching);
+      if (at == std::string_view::npos || text.find("setSelection") == std::string_view::npos) continue;
+      // 1, L-Py's default, matches contexts as an axial tree, as ontogen does; 0 reads the
+      // word as a plain string, 2 and 3 as multiscale trees.
+      size_t value = at + kMatching.size();
+      while (value < text.size() && (text[value] == ',' || text[value] == ' ')) ++value;
+      if (value < text.size() && text[value] == '1') continue;
+      const uint32_t begin = lines[k].begin + static_cast<uint32_t>(at);
+      syntax_.fail(begin, begin + static_cast<uint32_t>(kMatching.size()),
+                   "L-Py's option 'String matching' other than 'As AxialTree' (multiscale or plain-string "
+                   "matching of contexts) has no cell-language counterpart yet");
+    }
+  }
+
+  // The statements read from the line before have its place.
+  void stamp() {
+    for (; stamped_ < file_.statements.size(); ++stamped_)
+      if (!file_.statements[stamped_].origin.known()) file_.statements[stamped_].origin = line_;
   }
 
   void symbols(StatementKind kind, uint32_t at, uint32_t end) {
@@ -271,6 +334,8 @@ class LPyReader {
   std::string clean_;
   ForeignSyntax syntax_;
   LSystemFile file_;
+  SourceRange line_;
+  size_t stamped_ = 0;
 };
 
 }  // namespace

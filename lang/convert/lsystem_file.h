@@ -6,6 +6,7 @@
 // lays them out; statements keep their order, so sections, groups and ignore lists
 // stay where the file put them.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -16,6 +17,21 @@ namespace ontogen::convert {
 
 /// The tool whose file this is.
 enum class Dialect { Cpfg, LPy };
+
+/// Bytes [begin, end) of the file read: where a statement came from, so that what the
+/// compiler finds in the converted text is shown at the file's own line. Empty
+/// (begin == end) for text the converter writes of itself.
+struct SourceRange {
+  uint32_t begin = 0;
+  uint32_t end = 0;
+  bool known() const { return end > begin; }
+};
+
+/// A construct converted with a loss the user should know of, at its place in the file.
+struct ConvertWarning {
+  SourceRange at;
+  std::string message;
+};
 
 /// "cpfg" or "L-Py".
 std::string_view dialectName(Dialect dialect);
@@ -48,22 +64,39 @@ struct Statement {
   std::string condition;               ///< empty: none
   std::vector<ModuleText> successors;  ///< empty: the empty word
   std::string probability;             ///< empty: none
+  SourceRange origin;                  ///< the line or lines of the file it was read from
+};
+
+struct Define {
+  std::string name;
+  std::string value;  ///< a cell-language expression
+  SourceRange origin;
 };
 
 struct LSystemFile {
   Dialect dialect = Dialect::Cpfg;
   std::string name;                                          ///< the block's name, an identifier
-  std::vector<std::pair<std::string, std::string>> defines;  ///< name, cell-language expression
-  std::optional<std::string> angle;                          ///< degrees: the default turn
+  std::vector<Define> defines;
+  std::optional<std::string> angle;  ///< degrees: the default turn
   std::optional<std::string> seed;
   std::optional<std::string> derivationLength;  ///< steps: `#until`
+  SourceRange derivationLengthOrigin;
   std::vector<ModuleText> axiom;
+  SourceRange axiomOrigin;
   std::vector<Statement> statements;
+  std::vector<ConvertWarning> warnings;
+};
+
+/// A converted program and, for each of its lines (index: line − 1), the range of the
+/// file it was written from.
+struct CellProgram {
+  std::string text;
+  std::vector<SourceRange> lineOrigins;
 };
 
 /// The file as a cell-language program: one lsystem block, with a comment naming the
 /// file it came from. A block whose labels include digits gets `#letters`.
-std::string writeCellProgram(const LSystemFile& file, std::string_view sourceName);
+CellProgram writeCellProgram(const LSystemFile& file, std::string_view sourceName);
 
 /// A block name from a file name: its stem, other characters than letters, digits and
 /// '_' made '_', a leading digit prefixed with "l_".

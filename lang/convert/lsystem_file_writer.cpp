@@ -77,18 +77,25 @@ std::string blockNameOf(std::string_view path) {
   return name;
 }
 
-std::string writeCellProgram(const LSystemFile& file, std::string_view sourceName) {
-  std::string out = "// Converted by ontogen convert from " + std::string(sourceName) + " (" +
-                    std::string(dialectName(file.dialect)) + ")\n";
-  out += "lsystem " + file.name + " {\n";
-  if (needsLetters(file)) out += "  #letters\n";
-  for (const auto& [name, value] : file.defines) out += "  #define " + name + " " + value + "\n";
-  if (file.angle) out += "  #angle " + *file.angle + "\n";
-  if (file.seed) out += "  #seed " + *file.seed + "\n";
-  if (file.derivationLength) out += "  #until " + *file.derivationLength + "\n";
-  if (!file.axiom.empty()) out += "  axiom " + wordText(file.axiom) + "\n";
-  for (const Statement& statement : file.statements) out += "  " + statementText(statement) + "\n";
-  return out + "}\n";
+CellProgram writeCellProgram(const LSystemFile& file, std::string_view sourceName) {
+  CellProgram out;
+  auto line = [&](const std::string& text, SourceRange origin = {}) {
+    out.text += text;
+    out.text += '\n';
+    out.lineOrigins.push_back(origin);
+  };
+  line("// Converted by ontogen convert from " + std::string(sourceName) + " (" +
+       std::string(dialectName(file.dialect)) + ")");
+  line("lsystem " + file.name + " {");
+  if (needsLetters(file)) line("  #letters");
+  for (const Define& define : file.defines) line("  #define " + define.name + " " + define.value, define.origin);
+  if (file.angle) line("  #angle " + *file.angle);
+  if (file.seed) line("  #seed " + *file.seed);
+  if (file.derivationLength) line("  #until " + *file.derivationLength, file.derivationLengthOrigin);
+  if (!file.axiom.empty()) line("  axiom " + wordText(file.axiom), file.axiomOrigin);
+  for (const Statement& statement : file.statements) line("  " + statementText(statement), statement.origin);
+  line("}");
+  return out;
 }
 
 }  // namespace ontogen::convert

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -198,6 +199,38 @@ TEST(Convert, SectionsGroupsCutAndQueriesConvertAsText) {
             "  homomorphism:\n"
             "  C -> F\n"
             "}\n");
+}
+
+// Issue 37, defect 7: a view file that is a FIFO or a link to /dev/zero is refused at
+// once (exit 2), neither waited on nor read without end.
+TEST(Convert, AViewFileThatIsNoRegularFileIsRefused) {
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "view";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(file("fig1_24b.l"), dir / "fifo.l");
+  ASSERT_EQ(mkfifo((dir / "fifo.v").c_str(), 0600), 0);
+  fs::copy_file(file("fig1_24b.l"), dir / "zero.l");
+  fs::create_symlink("/dev/zero", dir / "zero.v");
+  for (const char* name : {"fifo", "zero"}) {
+    for (const char* command : {"convert", "check"}) {
+      Result result = ontogen(std::string(command) + " " + (dir / (std::string(name) + ".l")).string());
+      EXPECT_EQ(result.exitCode, 2) << name << " " << command << "\n" << result.err;
+      EXPECT_NE(result.err.find("cannot read the view file"), std::string::npos) << result.err;
+      EXPECT_NE(result.err.find("it is not a regular file"), std::string::npos) << result.err;
+    }
+  }
+}
+
+// An error the compiler finds in converted text is shown at the line of the file.
+TEST(Convert, ErrorsInTheConvertedTextAreShownAtTheFilesLine) {
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "mapped";
+  fs::create_directories(dir);
+  std::ofstream(dir / "mapped.lpy") << "Axiom: A(1)\n\nproduction:\nA(x) --> A(str(x))\n";
+  Result result = ontogen("check " + (dir / "mapped.lpy").string());
+  EXPECT_EQ(result.exitCode, 1) << result.err;
+  EXPECT_NE(result.err.find("mapped.lpy:4:1: error: "), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("(in the converted line 'A(x) -> A(str(x))', column"), std::string::npos) << result.err;
+  EXPECT_EQ(result.err.find("(converted):"), std::string::npos) << result.err;
 }
 
 TEST(Convert, OnlyReadsOtherToolsFiles) {

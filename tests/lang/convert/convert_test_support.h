@@ -3,6 +3,7 @@
 // line, column and message.
 
 #include <string>
+#include <vector>
 
 #include "lang/convert/convert.h"
 
@@ -14,6 +15,7 @@ struct Converted {
   int column = 0;
   std::string error;
   bool untranslatable = false;
+  std::vector<std::string> warnings;  ///< "line:column: message"
 };
 
 inline Converted convertText(Dialect dialect, const std::string& name, const std::string& text,
@@ -24,8 +26,13 @@ inline Converted convertText(Dialect dialect, const std::string& name, const std
   Converted converted;
   converted.program = result.program.value_or("");
   converted.untranslatable = result.untranslatable;
-  if (!sink.diagnostics().empty()) {
-    const Diagnostic& d = sink.diagnostics().front();
+  for (const Diagnostic& d : sink.diagnostics()) {
+    if (d.severity == Severity::Warning) {
+      converted.warnings.push_back(std::to_string(d.span.line()) + ":" + std::to_string(d.span.column()) + ": " +
+                                   d.message);
+      continue;
+    }
+    if (!converted.error.empty()) continue;
     converted.line = d.span.line();
     converted.column = d.span.column();
     converted.error = d.message;

@@ -72,10 +72,10 @@ TEST(CpfgReader, CCodeAndUnspellableModulesAreErrorsAtTheirPlace) {
   EXPECT_EQ(assignment.column, 14);
   EXPECT_NE(assignment.error.find("an assignment: C code"), std::string::npos) << assignment.error;
 
-  auto comma = convertText(Dialect::Cpfg, "a.l", "Axiom: F,(2)F\n");
-  EXPECT_EQ(comma.line, 1);
-  EXPECT_EQ(comma.column, 9);
-  EXPECT_NE(comma.error.find("the module ',' of cpfg has no cell-language spelling"), std::string::npos) << comma.error;
+  auto quote = convertText(Dialect::Cpfg, "a.l", "Axiom: F'(2)F\n");
+  EXPECT_EQ(quote.line, 1);
+  EXPECT_EQ(quote.column, 9);
+  EXPECT_NE(quote.error.find("the module ''' of cpfg has no cell-language spelling"), std::string::npos) << quote.error;
 
   auto macro = convertText(Dialect::Cpfg, "a.l", "#define SQ(x) x*x\nAxiom: A\n");
   EXPECT_EQ(macro.line, 1);

@@ -30,13 +30,13 @@ TEST(LPyReader, ConstantsModulesAndPythonExpressions) {
 TEST(LPyReader, ConditionalExpressionsBecomeIf) {
   auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: B(1)\nB(i) --> B(2 if i % 2 else 3)\n");
   ASSERT_EQ(c.error, "");
-  EXPECT_EQ(body(c.program), "  #angle 60\n  axiom B(1)\n  B(i) -> B(if(i % 2, 2, 3))\n");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  #until 1\n  axiom B(1)\n  B(i) -> B(if(i % 2, 2, 3))\n");
 }
 
 TEST(LPyReader, NewContextsWildcardsAndAProduceBody) {
   auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: A B\nproduction:\nA << B >> * --> C\nB :\n    produce D\n");
   ASSERT_EQ(c.error, "");
-  EXPECT_EQ(body(c.program), "  #angle 60\n  axiom A B\n  production:\n  A << B >> * -> C\n  B -> D\n");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  #until 1\n  axiom A B\n  production:\n  A << B >> * -> C\n  B -> D\n");
 }
 
 // L-Py's wildcard names the label first, *(name, x); the cell language's binds the
@@ -47,7 +47,7 @@ TEST(LPyReader, WildcardParametersAndAlternatives) {
                        "*(n) < B(y) --> B(y)\nA > or( B(x)C(y)D(z), E(i), F(j)G(k) ) --> H\n");
   ASSERT_EQ(c.error, "");
   EXPECT_EQ(body(c.program),
-            "  #angle 60\n  axiom C(1) B(2) A(3)\n  production:\n  C(x) *(y) < A(z) -> M(x, y, z)\n"
+            "  #angle 60\n  #until 1\n  axiom C(1) B(2) A(3)\n  production:\n  C(x) *(y) < A(z) -> M(x, y, z)\n"
             "  *() < B(y) -> B(y)\n  A > (B(x) C(y) D(z) | E(i) | F(j) G(k)) -> H\n");
   auto variadic = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nA > *(*args) --> B\n");
   EXPECT_EQ(variadic.line, 2);
@@ -64,7 +64,7 @@ TEST(LPyReader, TheEditorsInitialisationSectionIsNotRead) {
   auto c = convertText(Dialect::LPy, "a.lpy",
                        "Axiom: A\n###### INITIALISATION ######\ndef __initialiseContext__(context):\n\tpass\n");
   ASSERT_EQ(c.error, "");
-  EXPECT_EQ(body(c.program), "  #angle 60\n  axiom A\n");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  #until 1\n  axiom A\n");
 }
 
 TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
@@ -83,10 +83,10 @@ TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
   EXPECT_EQ(identity.column, 14);
   EXPECT_NE(identity.error.find("Python's 'is'"), std::string::npos) << identity.error;
 
-  auto sphere = convertText(Dialect::LPy, "a.lpy", "Axiom: F @O(1)\n");
-  EXPECT_EQ(sphere.line, 1);
-  EXPECT_EQ(sphere.column, 10);
-  EXPECT_NE(sphere.error.find("L-Py's module '@O' has no cell-language spelling"), std::string::npos) << sphere.error;
+  auto query = convertText(Dialect::LPy, "a.lpy", "Axiom: F ?R(1)\n");
+  EXPECT_EQ(query.line, 1);
+  EXPECT_EQ(query.column, 10);
+  EXPECT_NE(query.error.find("L-Py's query '?R' has no cell-language counterpart"), std::string::npos) << query.error;
 
   auto import = convertText(Dialect::LPy, "a.lpy", "from random import random\nAxiom: A\n");
   EXPECT_EQ(import.line, 1);

@@ -1,0 +1,196 @@
+// What the converter does not translate is never converted into something else: each
+// construct is translated, kept with a located warning, or refused with a located error
+// (lang/convert/foreign_syntax.cpp, lpy_reader.cpp, cpfg_reader.cpp).
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "lang/convert/foreign_syntax.h"
+#include "tests/lang/convert/convert_test_support.h"
+
+namespace ontogen::convert {
+namespace {
+
+using test::convertText;
+
+std::string body(const std::string& program) {
+  const size_t open = program.find("{\n"), close = program.rfind("}");
+  if (open == std::string::npos || close == std::string::npos) return program;
+  return program.substr(open + 2, close - open - 2);
+}
+
+// The productions of a converted program: its lines from the first that holds "->".
+std::string rules(const std::string& program) {
+  const std::string b = body(program);
+  size_t at = b.find("->");
+  if (at == std::string::npos) return "";
+  return b.substr(b.rfind('\n', at) + 1);
+}
+
+TEST(Untranslated, NoneInAContextIsNothingThere) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nproduction:\nNone < A > None --> M\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program), "  ∅ < A > ∅ -> M\n");
+  auto successor = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nA --> None\n");
+  EXPECT_NE(successor.error, "");
+  EXPECT_EQ(successor.line, 2);
+}
+
+TEST(Untranslated, RepetitionInAContextIsRefusedAtItsPlace) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: I A\nproduction:\nx(I) < A --> B\n");
+  EXPECT_EQ(c.program, "");
+  EXPECT_EQ(c.line, 3);
+  EXPECT_EQ(c.column, 1);
+  EXPECT_TRUE(c.untranslatable);
+  EXPECT_NE(c.error.find("L-Py's repetition x(...)"), std::string::npos) << c.error;
+  // A module the file declares as x is its own.
+  auto declared = convertText(Dialect::LPy, "a.lpy", "module x\nAxiom: x(1) A\nx(n) < A --> B\n");
+  EXPECT_EQ(declared.error, "");
+}
+
+// L-Py's predefined modules are one module each, never split into letters: translated
+// where ontogen's turtle has the command, kept by name with a warning where it has not.
+TEST(Untranslated, LPyPredefinedModulesAreNeverLetters) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "Axiom: StartGC F nF(3, 1) EndGC SetHead(0,0,1,1,0,0) OLineTo(1,2,3) PinpointRel(1,0,0) "
+                       "Sweep SetContour @O(2) @GcI ;(2) ; SetColor(3) Circle(1)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #angle 60\n  #until 1\n  axiom gcbegin F nF(3, 1) gcend SetHead(0, 0, 1, 1, 0, 0) OLineTo(1, 2, 3) "
+            "PinpointRel(1, 0, 0) Sweep SetContour sphere(2) gcbegin I color(2) color color(3) disc(1)\n");
+  ASSERT_EQ(c.warnings.size(), 6u);
+  EXPECT_EQ(c.warnings[0].rfind("1:18: L-Py's module 'nF' has no counterpart in ontogen's turtle", 0), 0u)
+      << c.warnings[0];
+  EXPECT_NE(c.warnings[0].find("it draws nothing"), std::string::npos);
+  auto frame = convertText(Dialect::LPy, "a.lpy", "Axiom: A ?F\n");
+  EXPECT_EQ(frame.line, 1);
+  EXPECT_EQ(frame.column, 10);
+  EXPECT_TRUE(frame.untranslatable);
+  auto unknown = convertText(Dialect::LPy, "a.lpy", "Axiom: A @Zq(1)\n");
+  EXPECT_EQ(unknown.column, 10);
+  EXPECT_NE(unknown.error.find("'@Zq' is none ontogen can translate"), std::string::npos) << unknown.error;
+}
+
+TEST(Untranslated, ASurfaceIsOneModuleNotATildeAndALetter) {
+  for (Dialect dialect : {Dialect::Cpfg, Dialect::LPy}) {
+    auto c = convertText(dialect, dialect == Dialect::Cpfg ? "a.l" : "a.lpy", "Axiom: F ~l(2) f\n");
+    ASSERT_EQ(c.error, "");
+    EXPECT_NE(c.program.find("axiom F Surface_l(2) f\n"), std::string::npos) << c.program;
+    ASSERT_EQ(c.warnings.size(), 1u);
+    EXPECT_EQ(c.warnings[0].rfind("1:10: ", 0), 0u) << c.warnings[0];
+  }
+}
+
+TEST(Untranslated, MultiscaleModulesAndStringMatchingAreRefused) {
+  auto scale = convertText(Dialect::LPy, "a.lpy", "module U, E : scale = 1\nAxiom: U\n");
+  EXPECT_EQ(scale.line, 1);
+  EXPECT_EQ(scale.column, 13);
+  EXPECT_TRUE(scale.untranslatable);
+  EXPECT_NE(scale.error.find("scale = N: multiscale modules"), std::string::npos) << scale.error;
+  auto base = convertText(Dialect::LPy, "a.lpy", "module A\nmodule B : base = A\nAxiom: B\n");
+  EXPECT_EQ(base.line, 2);
+  const std::string init =
+      "Axiom: A\n\n###### INITIALISATION ######\n\ndef __initialiseContext__(context):\n"
+      "\tcontext.options.setSelection('String matching',3)\n";
+  auto matching = convertText(Dialect::LPy, "a.lpy", init);
+  EXPECT_EQ(matching.line, 6);
+  EXPECT_EQ(matching.column, 31);
+  EXPECT_NE(matching.error.find("'String matching'"), std::string::npos) << matching.error;
+  std::string axial = init;
+  axial.replace(axial.find("',3)"), 4, "',1)");
+  EXPECT_EQ(convertText(Dialect::LPy, "a.lpy", axial).error, "");
+}
+
+TEST(Untranslated, AnAliasIsReadAsTheModuleItNames) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "module A(x), Bud = F\nAxiom: A(1) Bud\nA(x) --> A(x) Bud\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  #until 1\n  axiom F(1) F\n  F(x) -> F(x) F\n");
+}
+
+TEST(Untranslated, AQueryWithoutParametersHasTheThreeTheTurtleFills) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: F(10) ?P\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("axiom F(10) ?P(0, 0, 0)\n"), std::string::npos) << c.program;
+  auto pattern = convertText(Dialect::LPy, "a.lpy", "Axiom: ?P A\n?P < A --> B\n");
+  EXPECT_EQ(pattern.line, 2);
+  EXPECT_EQ(pattern.column, 1);
+}
+
+TEST(Untranslated, LPysDerivationLengthIsOneUnlessSaid) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nA --> A A\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  #until 1\n"), std::string::npos) << c.program;
+  auto zero = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nderivation length: 0\nA --> A A\n");
+  EXPECT_EQ(zero.line, 2);
+  EXPECT_EQ(zero.column, 20);
+  EXPECT_TRUE(zero.untranslatable);
+  EXPECT_NE(zero.error.find("word --at 0"), std::string::npos) << zero.error;
+}
+
+// Issue 37, defect 6: nesting 10,000 deep is an error at the level past the limit, not
+// a stack overflow.
+TEST(Untranslated, DeepNestingIsALocatedError) {
+  std::string c = "Axiom: A(1)\nA(x) --> A(";
+  for (int i = 0; i < 10000; ++i) c += "x?";
+  c += "1";
+  for (int i = 0; i < 10000; ++i) c += ":2";
+  c += ")\n";
+  auto cpfg = convertText(Dialect::Cpfg, "a.l", c);
+  EXPECT_EQ(cpfg.line, 2);
+  EXPECT_EQ(cpfg.column, 13 + 2 * kMaxConvertNesting);  // the first '?' past the limit
+  EXPECT_NE(cpfg.error.find("nested too deeply"), std::string::npos) << cpfg.error;
+  std::string p = "Axiom: A(1)\nA(x) --> A(";
+  for (int i = 0; i < 10000; ++i) p += "1 if x else ";
+  p += "2)\n";
+  auto lpy = convertText(Dialect::LPy, "a.lpy", p);
+  EXPECT_EQ(lpy.line, 2);
+  EXPECT_NE(lpy.error.find("nested too deeply"), std::string::npos) << lpy.error;
+  std::string alternatives = "Axiom: A\nA > ";
+  for (int i = 0; i < 10000; ++i) alternatives += "or(B,";
+  alternatives += "C" + std::string(10000, ')') + " --> D\n";
+  auto nested = convertText(Dialect::LPy, "a.lpy", alternatives);
+  EXPECT_EQ(nested.line, 2);
+  EXPECT_NE(nested.error.find("nested too deeply"), std::string::npos) << nested.error;
+}
+
+TEST(Untranslated, TheConvertedTextIsHeldToTheSourceLimit) {
+  SourceFile file("a.lpy", "Axiom: " + std::string(1000, 'F') + "\n");
+  DiagnosticSink sink;
+  ConvertResult result = convertFile(file, Dialect::LPy, "", sink, 1500);
+  EXPECT_FALSE(result.program);
+  ASSERT_EQ(sink.diagnostics().size(), 1u);
+  EXPECT_NE(sink.diagnostics()[0].message.find("is larger than the limit of 1.5 KiB"), std::string::npos)
+      << sink.diagnostics()[0].message;
+}
+
+// Each line of the converted text knows the line of the file it came from.
+TEST(Untranslated, TheLinesOfTheConvertedTextKnowTheirOrigin) {
+  SourceFile file("a.lpy", "N = 2\nAxiom: A\n\nproduction:\nA :\n  produce B(N)\nB(x) --> B(str(x))\n");
+  DiagnosticSink sink;
+  ConvertResult result = convertFile(file, Dialect::LPy, "", sink);
+  ASSERT_TRUE(result.program);
+  const SourceFile converted("a.lpy (converted)", *result.program);
+  const size_t at = result.program->find("str(x)");
+  ASSERT_NE(at, std::string::npos);
+  Diagnostic d{Severity::Error, SourceSpan{&converted, static_cast<uint32_t>(at), static_cast<uint32_t>(at + 3)},
+               "unknown function 'str'"};
+  Diagnostic mapped = mapToOriginal(d, file, result.lineOrigins);
+  EXPECT_EQ(mapped.span.file, &file);
+  EXPECT_EQ(mapped.span.line(), 7);
+  EXPECT_EQ(mapped.span.column(), 1);
+  EXPECT_EQ(mapped.message, "unknown function 'str' (in the converted line 'B(x) -> B(str(x))', column 11)");
+  // A production of a head and a produce body spans both lines.
+  const size_t produced = result.program->find("A -> B(N)");
+  ASSERT_NE(produced, std::string::npos);
+  d.span = SourceSpan{&converted, static_cast<uint32_t>(produced), static_cast<uint32_t>(produced + 1)};
+  mapped = mapToOriginal(d, file, result.lineOrigins);
+  EXPECT_EQ(mapped.span.line(), 5);
+  EXPECT_EQ(formatDiagnostic(mapped).substr(0, 12), "a.lpy:5:1: e");
+  const size_t define = result.program->find("#define N 2");
+  d.span = SourceSpan{&converted, static_cast<uint32_t>(define), static_cast<uint32_t>(define + 1)};
+  EXPECT_EQ(mapToOriginal(d, file, result.lineOrigins).span.line(), 1);
+}
+
+}  // namespace
+}  // namespace ontogen::convert
