@@ -384,7 +384,14 @@ int main(int argc, char** argv) {
     std::cerr << "\nontogen: error: " << limit.what() << "\n";
     return kExitModelError;
   } catch (const std::exception& error) {
-    std::cerr << "\nontogen: internal error: " << error.what() << " (please report it)\n";
+    // The libraries' logic errors already say "ontogen: internal error: "; say it once.
+    std::string_view what = error.what();
+    for (std::string_view prefix : {"ontogen: internal error: ", "ontogen: "})
+      if (what.starts_with(prefix)) {
+        what.remove_prefix(prefix.size());
+        break;
+      }
+    std::cerr << "\nontogen: internal error: " << what << " (please report it)\n";
     return kExitInternalError;
   } catch (...) {
     std::cerr << "\nontogen: internal error: an unknown exception (please report it)\n";

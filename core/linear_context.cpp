@@ -7,15 +7,15 @@ namespace ontogen {
 namespace {
 
 // Copies the values the side's patterns bind; a wildcard `*(x, y)` needs a module with
-// exactly that many parameters. stateOf(j) gives the values of cell j of `cells`.
-template <typename StateOf>
-bool bindSide(const Program& program, const std::vector<ContextBinding>& bindings, std::span<const CellRecord> cells,
+// exactly that many parameters. masterOf(j) and stateOf(j) give the master and the values
+// of cell j: a pool may hold its word compactly, without records.
+template <typename MasterOf, typename StateOf>
+bool bindSide(const Program& program, const std::vector<ContextBinding>& bindings, MasterOf&& masterOf,
               StateOf&& stateOf, const uint32_t* matched, double* frame) {
   for (size_t k = 0; k < bindings.size(); ++k) {
     const ContextBinding& binding = bindings[k];
     if (binding.arity < 0 && binding.count == 0) continue;
-    const CellRecord& cell = cells[matched[k]];
-    if (binding.arity >= 0 && program.masters[cell.master].stateCount() != static_cast<uint32_t>(binding.arity))
+    if (binding.arity >= 0 && program.masters[masterOf(matched[k])].stateCount() != static_cast<uint32_t>(binding.arity))
       return false;
     const double* values = stateOf(matched[k]);
     std::copy(values, values + binding.count, frame + binding.firstSlot);
@@ -34,21 +34,23 @@ bool matchLinearContext(const Program& program, const CompiledRule& rule, const 
   // written keeps them in its records.
   auto inPool = [&](uint32_t j) { return arena + pool.stateOffset(j); };
   auto inWritten = [&](uint32_t j) { return written.state + written.cells[j].state; };
+  auto masterInPool = [&](uint32_t j) { return pool.masterAt(j); };
+  auto masterInWritten = [&](uint32_t j) { return written.cells[j].master; };
   if (!rule.leftItems.empty()) {
     if (!pool.matchLeft(index, rule.leftItems, classOf, matched)) return false;
-    if (!bindSide(program, rule.left, pool.cells(), inPool, matched, frame)) return false;
+    if (!bindSide(program, rule.left, masterInPool, inPool, matched, frame)) return false;
   }
   if (!rule.newLeftItems.empty()) {
     if (!LinearPool::matchLeftOfEnd(written.cells, rule.newLeftItems, classOf, matched)) return false;
-    if (!bindSide(program, rule.newLeft, written.cells, inWritten, matched, frame)) return false;
+    if (!bindSide(program, rule.newLeft, masterInWritten, inWritten, matched, frame)) return false;
   }
   if (!rule.newRightItems.empty()) {
     if (!LinearPool::matchRightOfReversed(written.cells, rule.newRightItems, classOf, matched)) return false;
-    if (!bindSide(program, rule.newRight, written.cells, inWritten, matched, frame)) return false;
+    if (!bindSide(program, rule.newRight, masterInWritten, inWritten, matched, frame)) return false;
   }
   if (!rule.rightItems.empty()) {
     if (!pool.matchRight(index, rule.rightItems, classOf, matched)) return false;
-    if (!bindSide(program, rule.right, pool.cells(), inPool, matched, frame)) return false;
+    if (!bindSide(program, rule.right, masterInPool, inPool, matched, frame)) return false;
   }
   return true;
 }

@@ -16,7 +16,7 @@ void LinearPool::indexBranches(std::span<const uint8_t> classOf) {
   partner_.assign(size, kNoPartner);
   std::vector<uint32_t> open;
   for (uint32_t i = 0; i < size; ++i) {
-    uint8_t symbol = classOf[compact_ ? word_.label(i) : cells_[i].master];
+    uint8_t symbol = classOf[masterAt(i)];
     if (symbol & kSymbolBranchOpen) {
       open.push_back(i);
     } else if ((symbol & kSymbolBranchClose) && !open.empty()) {
@@ -73,7 +73,7 @@ bool LinearPool::matchLeft(size_t index, std::span<const ContextItem> items, std
   for (size_t k = 0; k < items.size(); ++k) {
     for (;;) {
       if (--pos < 0) break;
-      uint8_t symbol = classOf[cells_[pos].master];
+      uint8_t symbol = classOf[masterAt(static_cast<size_t>(pos))];
       if (symbol & kSymbolBranchClose) {
         if (partner_[pos] != kNoPartner) pos = partner_[pos];  // skip a complete sibling branch
         continue;
@@ -88,12 +88,12 @@ bool LinearPool::matchLeft(size_t index, std::span<const ContextItem> items, std
     if (pos < 0) return items[k].kind == ContextItem::Kind::End;  // the start of the word
     if (items[k].kind == ContextItem::Kind::End) return false;
     if (items[k].kind == ContextItem::Kind::BranchOpen) {
-      if (!(classOf[cells_[pos].master] & kSymbolBranchOpen)) return false;
+      if (!(classOf[masterAt(static_cast<size_t>(pos))] & kSymbolBranchOpen)) return false;
       matched[k] = static_cast<uint32_t>(pos);
       continue;
     }
     if (items[k].kind != ContextItem::Kind::Any &&
-        (items[k].kind != ContextItem::Kind::Module || cells_[pos].master != items[k].master))
+        (items[k].kind != ContextItem::Kind::Module || masterAt(static_cast<size_t>(pos)) != items[k].master))
       return false;
     matched[k] = static_cast<uint32_t>(pos);
   }
@@ -102,7 +102,7 @@ bool LinearPool::matchLeft(size_t index, std::span<const ContextItem> items, std
 
 bool LinearPool::matchRight(size_t index, std::span<const ContextItem> items, std::span<const uint8_t> classOf,
                             uint32_t* matched) const {
-  const int64_t size = static_cast<int64_t>(cells_.size());
+  const int64_t size = static_cast<int64_t>(this->size());
   int64_t pos = static_cast<int64_t>(index);
   for (size_t k = 0; k < items.size(); ++k) {
     const ContextItem& item = items[k];
@@ -110,7 +110,7 @@ bool LinearPool::matchRight(size_t index, std::span<const ContextItem> items, st
       // Skip the rest of the current branch, nested branches included, up to its ']'.
       for (;;) {
         if (++pos >= size) return false;
-        uint8_t symbol = classOf[cells_[pos].master];
+        uint8_t symbol = classOf[masterAt(static_cast<size_t>(pos))];
         if (symbol & kSymbolBranchOpen) {
           if (partner_[pos] == kNoPartner) return false;
           pos = partner_[pos];
@@ -123,7 +123,7 @@ bool LinearPool::matchRight(size_t index, std::span<const ContextItem> items, st
     }
     for (;;) {
       if (++pos >= size) return item.kind == ContextItem::Kind::End;  // the end of the word
-      uint8_t symbol = classOf[cells_[pos].master];
+      uint8_t symbol = classOf[masterAt(static_cast<size_t>(pos))];
       if (symbol & kSymbolIgnored) continue;
       if (symbol & kSymbolBranchOpen) {
         if (item.kind == ContextItem::Kind::BranchOpen) break;  // enter this branch
@@ -136,8 +136,8 @@ bool LinearPool::matchRight(size_t index, std::span<const ContextItem> items, st
     }
     if (item.kind == ContextItem::Kind::End) return false;
     if (item.kind == ContextItem::Kind::BranchOpen) {
-      if (!(classOf[cells_[pos].master] & kSymbolBranchOpen)) return false;
-    } else if (item.kind != ContextItem::Kind::Any && cells_[pos].master != item.master) {
+      if (!(classOf[masterAt(static_cast<size_t>(pos))] & kSymbolBranchOpen)) return false;
+    } else if (item.kind != ContextItem::Kind::Any && masterAt(static_cast<size_t>(pos)) != item.master) {
       return false;
     }
     matched[k] = static_cast<uint32_t>(pos);

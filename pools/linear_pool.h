@@ -74,6 +74,10 @@ class LinearPool final : public Pool {
   static bool matchRightOfReversed(std::span<const CellRecord> reversed, std::span<const ContextItem> items,
                                    std::span<const uint8_t> classOf, uint32_t* matched);
 
+  /// The master (label) of cell i, read from the records or from the compact word: the
+  /// one view of a word that every context match reads, whichever form holds it.
+  uint32_t masterAt(size_t i) const { return compact_ ? word_.label(i) : cells_[i].master; }
+
   /// Matching bracket of cell i, or kNoPartner (an unmatched bracket or not a bracket).
   uint32_t partnerOf(size_t i) const { return i < partner_.size() ? partner_[i] : kNoPartner; }
   static constexpr uint32_t kNoPartner = UINT32_MAX;
