@@ -1,4 +1,4 @@
-// `ontogen studio FILE`: the live page (apps/studio/). Serves 127.0.0.1 until Ctrl-C.
+// `ontogen studio FILE`: the live page (studio/). Serves 127.0.0.1 until Ctrl-C.
 
 #include <unistd.h>
 
@@ -6,16 +6,19 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <string_view>
 #include <system_error>
 #include <thread>
 
+#include "apps/cli_values.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
-#include "apps/studio/gallery.h"
-#include "apps/studio/http_server.h"
-#include "apps/studio/studio_assets.h"
-#include "apps/studio/studio_model.h"
-#include "apps/studio/studio_server.h"
+#include "studio/gallery.h"
+#include "studio/http_server.h"
+#include "studio/studio_assets.h"
+#include "studio/studio_model.h"
+#include "studio/studio_server.h"
 
 namespace ontogen::app {
 
@@ -38,6 +41,30 @@ std::filesystem::path makeWorkFolder() {
   std::filesystem::create_directories(folder);
   return folder;
 }
+// The command line's settings as the studio grows with them; files of other tools are
+// converted as `ontogen run` converts them. The defines were checked by loadProgram.
+studio::StudioProgramOptions programOptionsOf(const CommonOptions& common) {
+  studio::StudioProgramOptions program;
+  program.file = common.file;
+  program.system = common.system;
+  for (const std::string& text : common.defines) {
+    const std::size_t equals = text.find('=');
+    if (equals == std::string::npos) continue;
+    if (const std::optional<double> value = parseReal(std::string_view(text).substr(equals + 1)))
+      program.defines[text.substr(0, equals)] = *value;
+  }
+  program.seed = common.seed;
+  program.step = common.step;
+  program.limits = common.limits;
+  program.threads = common.threads;
+  program.maxErrors = common.maxErrors;
+  program.maxSourceBytes = common.maxSourceBytes;
+  program.read = [](const std::string& path, uint64_t maxBytes) {
+    ProgramText read = readProgramText(path, maxBytes);  // says why on stderr when it fails
+    return studio::StudioSource{std::move(read.text), read.name, ""};
+  };
+  return program;
+}
 }  // namespace
 
 int runStudio(const StudioOptions& options) {
@@ -56,14 +83,14 @@ int runStudio(const StudioOptions& options) {
   } removeWork{work};
 
   studio::StudioModelDef modelDef;
-  modelDef.common = options.common;
+  modelDef.program = programOptionsOf(options.common);
   modelDef.until = options.until;
   modelDef.frames = options.frames;
   modelDef.work = work / "model";
-  studio::StudioModel model(std::move(modelDef));
+  studio::StudioModel model(modelDef);
 
   studio::GalleryDef galleryDef;
-  galleryDef.common = options.common;
+  galleryDef.program = modelDef.program;
   galleryDef.until = options.until;
   galleryDef.seed = options.gallerySeed;
   galleryDef.constants = options.varyConstants;

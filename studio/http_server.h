@@ -1,7 +1,7 @@
 #pragma once
 // The studio's HTTP server: cpp-httplib (Debian's libcpp-httplib-dev) on 127.0.0.1, a
 // pool of threads answering many connections at once, each with its own time-outs. The studio's
-// routes (apps/studio/studio_server.h) see a plain HttpRequest and answer an
+// routes (studio/studio_server.h) see a plain HttpRequest and answer an
 // HttpResponse; nothing of the library shows through this header.
 //
 // Why cpp-httplib: it is one small, widely used library packaged by Debian, its

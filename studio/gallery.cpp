@@ -1,13 +1,13 @@
-#include "apps/studio/gallery.h"
+#include "studio/gallery.h"
 
 #include <stdexcept>
 
-#include "apps/studio/file_bytes.h"
 #include "interpreters/output_file.h"
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 #include "lang/random.h"
+#include "studio/file_bytes.h"
 
 namespace ontogen::studio {
 
@@ -77,8 +77,8 @@ void Gallery::render(GalleryVariant& variant, int index) const {
   DiagnosticSink sink(1);
   CompileOptions options;
   options.commandSets = commandSets();
-  options.rootSystem = def_.common.system;
-  options.maxSourceBytes = def_.common.maxSourceBytes;
+  options.rootSystem = def_.program.system;
+  options.maxSourceBytes = def_.program.maxSourceBytes;
   const std::string name = (def_.saveTo / (stem_ + ".cell")).string();
   std::shared_ptr<const Program> program;
   try {
@@ -94,9 +94,9 @@ void Gallery::render(GalleryVariant& variant, int index) const {
   RunDef run;
   run.program = program;
   run.stem = "variant";
-  run.world = app::worldDefOf(def_.common, *program);
+  run.world = worldDefOf(def_.program, *program);
   run.until = def_.until;
-  run.step = def_.common.step;
+  run.step = def_.program.step;
   run.frames = 1;
   run.sets = {"geometry"};
   for (const std::string& set : program->interpretSets)

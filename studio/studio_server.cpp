@@ -1,12 +1,12 @@
-#include "apps/studio/studio_server.h"
+#include "studio/studio_server.h"
 
 #include <cmath>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
-#include "apps/studio/studio_assets.h"
 #include "interpreters/output_file.h"
+#include "studio/studio_assets.h"
 
 namespace ontogen::studio {
 

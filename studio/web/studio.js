@@ -1,12 +1,11 @@
 // The studio's page: shows the model the executable grows (the same .glb `ontogen run`
 // writes), follows it as the file is saved, scrubs and plays its time, moves its
 // #defines, plays its music set with the animation, and breeds variants in a gallery.
-// Everything it knows comes from the studio's HTTP routes (apps/studio/studio_server.h);
-// the variants and their operators are the executable's, not the page's.
+// Everything it knows comes from the studio's HTTP routes (studio/studio_server.h); the
+// variants and their operators are the executable's, not the page's. The 3-D view is
+// scene_view.js.
 
-import * as THREE from 'three';
-import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { SceneView } from './scene_view.js';
 
 const pollMilliseconds = 200;
 const $ = (id) => document.getElementById(id);
@@ -25,92 +24,7 @@ const studio = {
 window.studio = studio;
 
 // ---- the 3-D view ----------------------------------------------------------------------
-const canvas = $('canvas');
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio || 1);
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0x2a2d33);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x50505a, 1.6));
-const key = new THREE.DirectionalLight(0xffffff, 2.2);
-key.position.set(1, 2, 1.5);
-scene.add(key);
-const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 1000);
-camera.position.set(0, 0, 10);
-const controls = new OrbitControls(camera, canvas);
-controls.enableDamping = true;
-let model = null;        // the loaded glTF scene
-let mixer = null;        // poses the model at a time (setTime)
-let action = null;       // the clip's one action
-let clipStart = 0, clipEnd = 0;
-let framed = false;      // the camera is framed on the first model only, then kept
-
-function resize() {
-  const { clientWidth: w, clientHeight: h } = canvas;
-  if (canvas.width !== Math.floor(w * renderer.getPixelRatio()) || canvas.height !== Math.floor(h * renderer.getPixelRatio())) {
-    renderer.setSize(w, h, false);
-    camera.aspect = w / Math.max(h, 1);
-    camera.updateProjectionMatrix();
-  }
-}
-
-// The union of every frame's geometry: the .glb says it in its scene's extras
-// (ontogen_bounds, formats/glb_writer.h), as its parts move and scale over the frames;
-// a file without them is measured from its meshes.
-function boundsOfAllFrames(root) {
-  const b = root.userData.ontogen_bounds;
-  if (Array.isArray(b) && b.length === 6) {
-    return new THREE.Box3(new THREE.Vector3(b[0], b[1], b[2]), new THREE.Vector3(b[3], b[4], b[5]));
-  }
-  const box = new THREE.Box3();
-  root.traverse((object) => {
-    if (!object.geometry) return;
-    object.geometry.computeBoundingBox();
-    box.union(object.geometry.boundingBox);
-  });
-  return box;
-}
-
-function frameCamera(root) {
-  const box = boundsOfAllFrames(root);
-  if (box.isEmpty()) return;
-  const centre = box.getCenter(new THREE.Vector3());
-  const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-6);
-  const distance = radius / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.1;
-  camera.near = distance / 1000;
-  camera.far = distance * 100;
-  camera.position.copy(centre).add(new THREE.Vector3(0.35, 0.45, 1).normalize().multiplyScalar(distance));
-  camera.updateProjectionMatrix();
-  controls.target.copy(centre);
-  controls.update();
-}
-
-function showModel(gltf) {
-  if (model) {
-    scene.remove(model);
-    model.traverse((o) => { if (o.geometry) o.geometry.dispose(); });
-  }
-  model = gltf.scene;
-  // The file's key light is in lux for Blender (thousands); the page has its own lights.
-  const lights = [];
-  model.traverse((o) => { if (o.isLight) lights.push(o); });
-  for (const light of lights) light.removeFromParent();
-  scene.add(model);
-  mixer = null;
-  action = null;
-  clipStart = clipEnd = 0;
-  const clip = gltf.animations[0];
-  if (clip) {
-    mixer = new THREE.AnimationMixer(model);
-    action = mixer.clipAction(clip);
-    action.setLoop(THREE.LoopOnce, 1);
-    action.clampWhenFinished = true;
-    action.play();
-    clipStart = Math.min(...clip.tracks.map((t) => t.times[0]));
-    clipEnd = clip.duration;
-  }
-  if (!framed) { frameCamera(model); framed = true; }
-  setTime(studio.time);
-}
+const view = new SceneView($('canvas'));
 
 function setTime(t) {
   const lo = timeSlider.min === '' ? 0 : Number(timeSlider.min);
@@ -118,22 +32,7 @@ function setTime(t) {
   studio.time = Math.min(Math.max(t, lo), hi);
   timeSlider.value = String(studio.time);
   $('time-value').textContent = studio.time.toFixed(2) + ' s';
-  // The animation's keys are the frames' developmental times less the first's, played
-  // faster for a long run (the scene's extras say how); before the first key the first
-  // frame shows.
-  if (mixer) {
-    const extras = model.userData;
-    const clipTime = typeof extras.ontogen_time_scale === 'number'
-      ? (studio.time - extras.ontogen_time_start) * extras.ontogen_time_scale
-      : studio.time;
-    // The page poses the action itself: once a LoopOnce action reaches its end three.js
-    // pauses it (clampWhenFinished), and mixer.setTime() would then leave it at the start
-    // for ever after. Unpaused, at the time asked, and updated by nothing, it shows that time.
-    action.enabled = true;
-    action.paused = false;
-    action.time = Math.min(Math.max(clipTime, clipStart), clipEnd);
-    mixer.update(0);
-  }
+  view.setTime(studio.time);
 }
 
 // ---- time and music --------------------------------------------------------------------
@@ -178,7 +77,6 @@ function playNote(note, when) {
 
 function tick(now) {
   requestAnimationFrame(tick);
-  resize();
   if (studio.playing) {
     const before = studio.time;
     const after = before + (now - lastTick) / 1000;
@@ -192,8 +90,7 @@ function tick(now) {
     setTime(after);
     if (after >= Number(timeSlider.max)) stopPlaying();
   }
-  controls.update();
-  renderer.render(scene, camera);
+  view.render();
 }
 requestAnimationFrame(tick);
 
@@ -289,7 +186,7 @@ async function loadModel(version) {
     return;
   }
   const bytes = await response.arrayBuffer();
-  const gltf = await new GLTFLoader().parseAsync(bytes, '');
+  const gltf = await view.parse(bytes);
   if (loadingModel !== version) return;  // a newer model is on its way
   $('no-model').hidden = true;
   const grown = studio.time >= Number(timeSlider.max) || studio.modelVersion === 0;
@@ -297,7 +194,8 @@ async function loadModel(version) {
   timeSlider.max = String(Math.max(stateShown.until, stateShown.from));
   timeSlider.step = String(Math.max((stateShown.until - stateShown.from) / 1000, 1e-6));
   if (grown) studio.time = Number(timeSlider.max);  // a new model shows grown, unless scrubbed
-  showModel(gltf);
+  view.show(gltf, studio.time);
+  setTime(studio.time);
   const notesAnswer = await (await fetch('/api/notes')).json();
   notes = notesAnswer.notes;
   $('note-count').textContent = notes.length ? `(${notes.length} notes)` : '(no music set)';

@@ -17,15 +17,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/commands.h"
+#include "studio/program_options.h"
 
 namespace ontogen::studio {
 
 struct StudioModelDef {
-  app::CommonOptions common;          ///< the file, seed, limits, threads, --define values to start from
-  std::optional<double> until;        ///< empty: the program's #until
-  std::optional<int> frames;          ///< empty: the program's #fps, else kDefaultFrames
-  std::filesystem::path work;         ///< a folder of the studio's own for the outputs
+  StudioProgramOptions program;  ///< the file, seed, limits, threads, define values to start from
+  std::optional<double> until;   ///< empty: the program's #until
+  std::optional<int> frames;     ///< empty: the program's #fps, else kDefaultFrames
+  std::filesystem::path work;    ///< a folder of the studio's own for the outputs
 };
 
 /// Frames of a model without #fps: enough to scrub through its growth smoothly.
@@ -34,8 +34,8 @@ inline constexpr int kDefaultStudioFrames = 60;
 /// A define as its slider shows it.
 struct StudioDefine {
   std::string name;
-  double value = 0;      ///< in effect now
-  double written = 0;    ///< as the text writes it
+  double value = 0;    ///< in effect now
+  double written = 0;  ///< as the text writes it
   double low = 0, high = 0;
   bool integer = false;
   int line = 0;

@@ -1,4 +1,4 @@
-#include "apps/studio/http_server.h"
+#include "studio/http_server.h"
 
 #include <httplib.h>
 

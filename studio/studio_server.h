@@ -1,7 +1,7 @@
 #pragma once
-// What the studio's page can ask of it, over HTTP (apps/studio/http_server.h):
+// What the studio's page can ask of it, over HTTP (studio/http_server.h):
 //
-//   GET  /, /studio.js, /studio.css   the page (apps/studio/studio_assets.h)
+//   GET  /, /studio.js, /studio.css   the page (studio/studio_assets.h)
 //   GET  /api/state                   versions, diagnostics, defines, times, source (JSON)
 //   GET  /model.glb                   the last model that grew, as `ontogen run --format glb` writes it
 //   GET  /api/notes                   the music set's notes, in seconds (JSON)
@@ -18,9 +18,9 @@
 #include <mutex>
 #include <string>
 
-#include "apps/studio/gallery.h"
-#include "apps/studio/http_server.h"
-#include "apps/studio/studio_model.h"
+#include "studio/gallery.h"
+#include "studio/http_server.h"
+#include "studio/studio_model.h"
 
 namespace ontogen::studio {
 

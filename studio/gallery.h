@@ -18,27 +18,27 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/commands.h"
 #include "lang/variation.h"
+#include "studio/program_options.h"
 
 namespace ontogen::studio {
 
 struct GalleryDef {
-  app::CommonOptions common;      ///< seed, limits, threads of each variant's world
-  std::optional<double> until;    ///< empty: each variant's #until
-  int size = 12;                  ///< variants a generation
-  uint64_t seed = 1;              ///< of the mutations
-  bool constants = false;         ///< vary numeric constants as well as defines
-  int thumbnailSide = 240;        ///< pixels
-  std::filesystem::path work;     ///< a folder of the gallery's own
-  std::filesystem::path saveTo;   ///< where saved variants go
+  StudioProgramOptions program;  ///< seed, limits, threads of each variant's world
+  std::optional<double> until;   ///< empty: each variant's #until
+  int size = 12;                 ///< variants a generation
+  uint64_t seed = 1;             ///< of the mutations
+  bool constants = false;        ///< vary numeric constants as well as defines
+  int thumbnailSide = 240;       ///< pixels
+  std::filesystem::path work;    ///< a folder of the gallery's own
+  std::filesystem::path saveTo;  ///< where saved variants go
 };
 
 struct GalleryVariant {
   Genome genome;
-  std::string text;       ///< the variant's program
-  std::string png;        ///< its picture; empty when it failed
-  std::string error;      ///< why it failed (the first diagnostic), empty when it grew
+  std::string text;          ///< the variant's program
+  std::string png;           ///< its picture; empty when it failed
+  std::string error;         ///< why it failed (the first diagnostic), empty when it grew
   std::vector<int> parents;  ///< indices in the previous generation; empty in the first
 };
 

@@ -1,17 +1,15 @@
-#include "apps/studio/studio_model.h"
+#include "studio/studio_model.h"
 
 #include <chrono>
 #include <cmath>
-#include <iostream>
 #include <stdexcept>
 
-#include "apps/program_loader.h"
-#include "apps/studio/file_bytes.h"
 #include "interpreters/music/music_set.h"
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 #include "lang/variation.h"
+#include "studio/file_bytes.h"
 
 namespace ontogen::studio {
 
@@ -29,22 +27,14 @@ const char* severityName(Severity severity) {
 
 StudioModel::StudioModel(StudioModelDef def) : def_(std::move(def)) {
   // --define values given when the studio starts are where the sliders start.
-  for (const std::string& text : def_.common.defines) {
-    const std::size_t equals = text.find('=');
-    if (equals == std::string::npos) continue;
-    try {
-      overrides_[text.substr(0, equals)] = std::stod(text.substr(equals + 1));
-    } catch (const std::exception&) {
-      // checked by the command before the studio starts
-    }
-  }
+  overrides_ = def_.program.defines;
 }
 
 std::optional<StudioModel::FileStamp> StudioModel::stampOf() const {
   std::error_code error;
-  const auto time = std::filesystem::last_write_time(def_.common.file, error);
+  const auto time = std::filesystem::last_write_time(def_.program.file, error);
   if (error) return std::nullopt;
-  const auto size = std::filesystem::file_size(def_.common.file, error);
+  const auto size = std::filesystem::file_size(def_.program.file, error);
   if (error) return std::nullopt;
   return FileStamp{time, size};
 }
@@ -88,14 +78,14 @@ void StudioModel::regrow() {
 
 void StudioModel::grow() {
   stamp_ = stampOf();
-  const app::ProgramText read = app::readProgramText(def_.common.file, def_.common.maxSourceBytes);
+  const StudioSource read = readStudioSource(def_.program);
   if (!read.text) {
-    diagnostics_.push_back({"error", 0, 0, "cannot read or convert " + def_.common.file,
-                            "ontogen: error: cannot read or convert " + def_.common.file + "\n"});
+    const std::string why = "cannot read or convert " + def_.program.file + (read.error.empty() ? "" : ": " + read.error);
+    diagnostics_.push_back({"error", 0, 0, why, "ontogen: error: " + why + "\n"});
     return;
   }
   text_ = *read.text;
-  stem_ = std::filesystem::path(def_.common.file).stem().string();
+  stem_ = std::filesystem::path(def_.program.file).stem().string();
 
   // The sliders: one per define name the text writes, ranged as a variant's would be.
   std::vector<StudioDefine> defines;
@@ -117,11 +107,11 @@ void StudioModel::grow() {
 
   CompileOptions options;
   options.commandSets = commandSets();
-  options.rootSystem = def_.common.system;
-  options.maxSourceBytes = def_.common.maxSourceBytes;
+  options.rootSystem = def_.program.system;
+  options.maxSourceBytes = def_.program.maxSourceBytes;
   for (const StudioDefine& define : defines_)
     if (overrides_.count(define.name)) options.defines.push_back({define.name, overrides_.at(define.name)});
-  DiagnosticSink sink(def_.common.maxErrors);
+  DiagnosticSink sink(def_.program.maxErrors);
   std::shared_ptr<const Program> program = compileSource(read.name, text_, sink, options);
   for (const ontogen::Diagnostic& diagnostic : sink.diagnostics())
     diagnostics_.push_back({severityName(diagnostic.severity), diagnostic.span.line(), diagnostic.span.column(),
@@ -131,9 +121,9 @@ void StudioModel::grow() {
   RunDef run;
   run.program = program;
   run.stem = stem_;
-  run.world = app::worldDefOf(def_.common, *program);
+  run.world = worldDefOf(def_.program, *program);
   run.until = def_.until;
-  run.step = def_.common.step;
+  run.step = def_.program.step;
   run.frames = def_.frames;
   if (!run.frames && program->framesPerSecond <= 0) run.frames = kDefaultStudioFrames;
   run.sets = program->interpretSets.empty() ? std::vector<std::string>{"geometry"} : program->interpretSets;
@@ -176,7 +166,7 @@ void StudioModel::grow() {
 nlohmann::json StudioModel::state() const {
   nlohmann::json state = {{"version", version_},
                           {"modelVersion", modelVersion_},
-                          {"file", def_.common.file},
+                          {"file", def_.program.file},
                           {"stem", stem_},
                           {"hasModel", !glb_.empty()},
                           {"from", from_},

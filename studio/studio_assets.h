@@ -1,6 +1,6 @@
 #pragma once
 // The studio's web page, built into the executable: index.html, the stylesheet and the
-// script bundled with three.js at build time (apps/studio/web/, bundled by esbuild from
+// script bundled with three.js at build time (studio/web/, bundled by esbuild from
 // the npm packages .ci/setup fetches). Nothing is fetched from the internet at run time.
 
 #include <span>

@@ -17,11 +17,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "apps/studio/gallery.h"
-#include "apps/studio/http_server.h"
-#include "apps/studio/studio_model.h"
-#include "apps/studio/studio_server.h"
 #include "lang/compiler.h"
+#include "studio/gallery.h"
+#include "studio/http_server.h"
+#include "studio/studio_model.h"
+#include "studio/studio_server.h"
 
 namespace ontogen::studio {
 namespace {
@@ -145,14 +145,14 @@ struct StudioFixture : ::testing::Test {
   }
   StudioModelDef modelDef() {
     StudioModelDef def;
-    def.common.file = file.string();
+    def.program.file = file.string();
     def.frames = 4;
     def.work = folder / "work";
     return def;
   }
   GalleryDef galleryDef(uint64_t seed = 7) {
     GalleryDef def;
-    def.common.file = file.string();
+    def.program.file = file.string();
     def.seed = seed;
     def.thumbnailSide = 64;
     def.work = folder / "gallery";

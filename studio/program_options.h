@@ -1,0 +1,51 @@
+#pragma once
+// How the studio reads and grows its program: the settings of `ontogen run` it shares
+// (file, root system, seed, step, limits, threads, source size), given by the command
+// that starts the studio. The studio library knows nothing of the command line.
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "core/limits.h"
+#include "core/world.h"
+#include "lang/diagnostics.h"
+#include "lang/program.h"
+#include "lang/source_reader.h"
+
+namespace ontogen::studio {
+
+/// A program's text as read for the studio.
+struct StudioSource {
+  std::optional<std::string> text;  ///< empty when it cannot be read
+  std::string name;                 ///< names the text in diagnostics
+  std::string error;                ///< why there is no text
+};
+
+/// Reads the program file at path, at most maxBytes of it (with its imports).
+using StudioReader = std::function<StudioSource(const std::string& path, uint64_t maxBytes)>;
+
+struct StudioProgramOptions {
+  std::string file;                       ///< the program file
+  std::string system;                     ///< root system; empty: the first
+  std::map<std::string, double> defines;  ///< define values to start from (`--define`)
+  std::optional<uint64_t> seed;           ///< empty: the program's #seed
+  std::optional<double> step;             ///< empty: the program's #dt
+  WorldLimits limits;
+  unsigned threads = 0;                              ///< 0: all cores
+  int maxErrors = kDefaultMaxErrors;                 ///< errors reported before the compiler stops; 0: all
+  uint64_t maxSourceBytes = kDefaultMaxSourceBytes;  ///< of the program and its imports
+  /// Reads the file; empty: read as a cell-language file (lang/source_reader.h). The
+  /// command gives one that converts cpfg and L-Py files too.
+  StudioReader read;
+};
+
+/// The program file's text, read as options say.
+StudioSource readStudioSource(const StudioProgramOptions& options);
+
+/// The world a run of program grows with these options.
+WorldDef worldDefOf(const StudioProgramOptions& options, const Program& program);
+
+}  // namespace ontogen::studio
