@@ -9,11 +9,11 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_values.h"
-#include "apps/cluster.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
-#include "apps/sweep_batch.h"
-#include "apps/sweep_support.h"
+#include "apps/sweep_terminal.h"
+#include "batch/batch_run.h"
+#include "batch/sweep_setup.h"
 #include "interpreters/formats/png_writer.h"
 #include "interpreters/output_file.h"
 #include "lang/random.h"
@@ -83,8 +83,11 @@ int runEvolve(const EvolveOptions& options) {
     if (!range) return kExitUsage;
     variation.ranges.push_back(std::move(*range));
   }
+  SweepSettings given;
+  if (int code = readSweepSettings(options.sweep, given); code != kExitOk) return code;
+  given.variation = variation;
   SweepSetup setup;
-  if (int code = prepareSweep(options.sweep, variation, {}, setup); code != kExitOk) return code;
+  if (int code = prepareSweepReporting(given, setup); code != kExitOk) return code;
   const VariationSpace& space = *setup.space;
   if (space.genes().empty()) {
     std::cerr << "ontogen: error: " << setup.path
@@ -151,10 +154,12 @@ int runEvolve(const EvolveOptions& options) {
     batch.columns = columns;
     batch.count = population;
     batch.resume = options.sweep.resume;
-    batch.progress = options.sweep.progress;
     batch.workers = setup.workers;
-    batch.label = "evolving " + setup.stem + ", generation " + std::to_string(generation + 1) + "/" +
-                  std::to_string(options.generations);
+    BatchProgressBar bar("evolving " + setup.stem + ", generation " + std::to_string(generation + 1) + "/" +
+                             std::to_string(options.generations),
+                         options.sweep.progress, cluster->leader());
+    batch.progress = bar.callback();
+    batch.stop = &BatchInterrupt::requested;
     nlohmann::json header = settings;
     header["generation"] = generation;
     std::string population_text;
@@ -175,10 +180,15 @@ int runEvolve(const EvolveOptions& options) {
       for (double value : genome.values) leading.push_back(formatValue(value));
       return runSweepVariant(setup, dir, index, space.programText(genome), seed, std::move(leading), {}, note);
     };
-    const BatchResult result = runBatch(batch, *cluster);
-    if (result.exitCode == kExitInterrupted && cluster->leader())
+    BatchResult result;
+    {
+      BatchInterrupt interrupt;
+      result = runBatch(batch, *cluster);
+    }
+    const int code = bar.finish(result);
+    if (code == kExitInterrupted && cluster->leader())
       std::cerr << "ontogen: stopped in generation " << generation << "; --resume continues the evolution\n";
-    if (result.exitCode != kExitOk) return result.exitCode;
+    if (code != kExitOk) return code;
 
     // Rank by fitness, best first; ties go to the lower index, so the order is total.
     std::vector<double> fitness(population, -std::numeric_limits<double>::infinity());

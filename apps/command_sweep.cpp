@@ -2,14 +2,11 @@
 #include <iostream>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include "apps/cli_values.h"
-#include "apps/cluster.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
-#include "apps/sweep_batch.h"
-#include "apps/sweep_support.h"
+#include "apps/sweep_terminal.h"
+#include "batch/sweep.h"
 
 namespace ontogen::app {
 
@@ -18,12 +15,6 @@ namespace {
 /// --define NAME=A:B:N: N values from A to B, at most this many (a sweep of more values
 /// of one define than a table of kMaxVariants rows holds is a mistyped N).
 constexpr uint64_t kMaxDefineValues = kMaxVariants;
-
-struct SweptDefine {
-  std::string name;
-  std::vector<double> values;
-  std::vector<std::string> written;  // as the table writes them
-};
 
 // `NAME=A:B:N` or `NAME=v1,v2,...`; prints why not.
 std::optional<SweptDefine> parseSweptDefine(const std::string& text) {
@@ -101,28 +92,10 @@ int runSweep(const SweepOptions& options) {
   }
   SweepCommonOptions common = options.sweep;
   common.common.defines.clear();  // swept, not fixed: written into each variant's text
-  std::vector<std::string> names;
-  for (const SweptDefine& define : defines) names.push_back(define.name);
-  SweepSetup setup;
-  if (int code = prepareSweep(common, {}, names, setup); code != kExitOk) return code;
-
-  // Each swept define is a gene of the text: a #define whose value is one number.
-  std::vector<std::vector<size_t>> genesOf;
-  for (const SweptDefine& define : defines) {
-    std::vector<size_t> genes;
-    for (size_t i = 0; i < setup.space->genes().size(); ++i)
-      if (setup.space->genes()[i].kind == Gene::Kind::Define && setup.space->genes()[i].name == define.name)
-        genes.push_back(i);
-    if (genes.empty()) {
-      std::cerr << "ontogen: error: --define " << define.name << ": the program has no #define " << define.name
-                << " whose value is a number (a sweep writes each value into the text; a #define that is an "
-                   "expression follows the numbers it names)\n";
-      return kExitUsage;
-    }
-    genesOf.push_back(std::move(genes));
-  }
-  std::pair<uint64_t, uint64_t> seeds{options.sweep.common.seed.value_or(setup.programSeed),
-                                      options.sweep.common.seed.value_or(setup.programSeed)};
+  SweepDef def;
+  if (int code = readSweepSettings(common, def.settings); code != kExitOk) return code;
+  def.seeds = {options.sweep.common.seed.value_or(def.settings.program->seed),
+               options.sweep.common.seed.value_or(def.settings.program->seed)};
   if (!options.seeds.empty()) {
     if (options.sweep.common.seed) {
       std::cerr << "ontogen: error: --seed and --seeds: a sweep takes one of them\n";
@@ -130,98 +103,29 @@ int runSweep(const SweepOptions& options) {
     }
     const auto parsed = parseSeeds(options.seeds);
     if (!parsed) return kExitUsage;
-    seeds = *parsed;
+    def.seeds = *parsed;
   }
-  // The product, the first --define outermost and the seed innermost: row i is variant i.
-  uint64_t count = 1;
-  const uint64_t seedCount = seeds.second - seeds.first + 1;
-  bool tooMany = seedCount == 0 || seedCount > kMaxVariants;
-  for (const SweptDefine& define : defines) {
-    if (tooMany) break;
-    count *= define.values.size();
-    tooMany = count > kMaxVariants;
-  }
-  if (!tooMany) {
-    count *= seedCount;
-    tooMany = count > kMaxVariants;
-  }
-  if (tooMany) {
-    std::cerr << "ontogen: error: the sweep has more than " << kMaxVariants
-              << " variants (the product of the --define lists and the --seeds)\n";
-    return kExitUsage;
-  }
-  setup.digits = std::max<int>(4, static_cast<int>(std::to_string(count - 1).size()));
-
-  BatchDef batch;
-  batch.dir = options.sweep.out;
-  batch.count = count;
-  batch.resume = options.sweep.resume;
-  batch.progress = options.sweep.progress;
-  batch.workers = setup.workers;
-  batch.label = "sweeping " + setup.stem;
-  for (const SweptDefine& define : defines) batch.columns.push_back(define.name);
-  batch.columns.push_back("seed");
-  for (const Measure& measure : setup.measures) batch.columns.push_back(measure.name());
+  def.defines = std::move(defines);
+  def.out = options.sweep.out;
+  def.resume = options.sweep.resume;
+  def.sizeText = options.sweep.size;
+  def.stop = &BatchInterrupt::requested;
+  BatchProgressBar bar("sweeping " + def.settings.stem, options.sweep.progress, cluster->leader());
+  def.progress = bar.callback();
+  const std::filesystem::path dir = def.out;
+  SweepResult result;
   {
-    nlohmann::json header;
-    header["ontogen"] = "sweep";
-    header["program"] = setup.path;
-    header["text"] = textDigest(setup.space->text());
-    header["columns"] = batch.columns;
-    nlohmann::json values = nlohmann::json::array();
-    for (const SweptDefine& define : defines) values.push_back(define.written);
-    header["defines"] = values;
-    header["seeds"] = {seeds.first, seeds.second};
-    nlohmann::json measures = nlohmann::json::array();
-    for (const Measure& measure : setup.measures) measures.push_back(measure.name() + "=" + measure.text());
-    header["measures"] = measures;
-    header["run"] = setup.rerunFlags;
-    header["size"] = options.sweep.size;
-    header["view"] = options.sweep.view;
-    header["limits"] = {setup.run.world.limits.maxCells, setup.run.world.limits.maxEventsPerStep,
-                        setup.run.world.limits.maxSteps, setup.run.world.limits.maxMemoryBytes};
-    batch.header = header.dump();
+    BatchInterrupt interrupt;
+    result = runSweep(std::move(def), *cluster);
   }
-  const std::filesystem::path dir = options.sweep.out;
-  batch.thumbnail = [&setup, dir](uint64_t i) { return dir / "thumbnails" / (variantStem(setup, i) + ".png"); };
-  if (const auto size = parsePictureSize(options.sweep.size)) {
-    batch.sheet.tileWidth = size->first;
-    batch.sheet.tileHeight = size->second;
-  }
-  batch.run = [&](uint64_t index) {
-    // Mixed radix: the seed varies fastest, then the last define, ..., then the first.
-    uint64_t rest = index;
-    const uint64_t seed = seeds.first + rest % seedCount;
-    rest /= seedCount;
-    std::vector<size_t> choice(defines.size());
-    for (size_t d = defines.size(); d-- > 0;) {
-      choice[d] = static_cast<size_t>(rest % defines[d].values.size());
-      rest /= defines[d].values.size();
-    }
-    Genome genome = setup.space->original();
-    std::vector<std::string> leading;
-    std::vector<std::pair<std::string, double>> values;
-    std::string note = "// ontogen sweep of " + setup.path + ", variant " + std::to_string(index) + ":";
-    for (size_t d = 0; d < defines.size(); ++d) {
-      const double value = defines[d].values[choice[d]];
-      for (size_t gene : genesOf[d]) genome.values[gene] = value;
-      leading.push_back(defines[d].written[choice[d]]);
-      values.emplace_back(defines[d].name, value);
-      note += " " + defines[d].name + " = " + defines[d].written[choice[d]] + ",";
-    }
-    note += " seed " + std::to_string(seed) + "\n";
-    return runSweepVariant(setup, dir, index, setup.space->programText(genome), seed, std::move(leading),
-                           std::move(values), note);
-  };
-
-  const BatchResult result = runBatch(batch, *cluster);
-  if (result.exitCode == kExitInterrupted && cluster->leader())
-    std::cerr << "ontogen: stopped: " << result.table.rows.size() << " of " << count << " variants done, in "
-              << (dir / "results.csv").string() << "; --resume finishes the sweep\n";
-  if (result.exitCode != kExitOk) return result.exitCode;
+  const int code = bar.finish(result.batch);
+  if (code == kExitInterrupted && cluster->leader())
+    std::cerr << "ontogen: stopped: " << result.batch.table.rows.size() << " of " << result.count
+              << " variants done, in " << (dir / "results.csv").string() << "; --resume finishes the sweep\n";
+  if (code != kExitOk) return code;
   if (cluster->leader())
-    std::cerr << "swept " << count << " variant" << (count == 1 ? "" : "s") << " (" << result.failed
-              << " failed) into " << (dir / "results.csv").string() << "\n";
+    std::cerr << "swept " << result.count << " variant" << (result.count == 1 ? "" : "s") << " ("
+              << result.batch.failed << " failed) into " << (dir / "results.csv").string() << "\n";
   return kExitOk;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "batch/sweep.h"
 #include "core/world.h"
 #include "lang/diagnostics.h"
 #include "lang/source_reader.h"
@@ -34,9 +35,8 @@ inline constexpr double kDefaultMovieFps = 25;
 /// a small model on a cluster; a larger evolution is a mistyped number.
 inline constexpr uint64_t kMaxGenerations = 10'000;
 inline constexpr uint64_t kMaxPopulation = 10'000;
-/// Variants of one sweep: the journal and the tables hold every row in memory, about
-/// 200 bytes each; ten million is 2 GB.
-inline constexpr uint64_t kMaxVariants = 10'000'000;
+/// Variants of one sweep (batch/sweep.h says why).
+inline constexpr uint64_t kMaxVariants = kMaxSweepVariants;
 /// --max-rows: a diagram taller than ten million rows is no picture.
 inline constexpr uint64_t kMaxTimelineRows = 10'000'000;
 

@@ -4,21 +4,29 @@
 // journal (interpreters/sweep/sweep_table.h), appending each row as it arrives, and at
 // the end writes DIR/results.csv, DIR/results.json and DIR/gallery.png; every rank runs
 // its share of the variants not yet in the journal (the k-th of them on rank k mod K),
-// on its worker threads. Ctrl-C (SIGINT) starts no further variant, waits for the
-// running ones and writes the table of what finished; a second Ctrl-C ends at once.
+// on its worker threads. When `stop` says so, no further variant starts: the running
+// ones finish and the table of what finished is written. Nothing here prints: progress
+// goes to a callback, and why a batch failed comes back in its result.
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "apps/cluster.h"
+#include "batch/cluster.h"
 #include "interpreters/sweep/contact_sheet.h"
 #include "interpreters/sweep/sweep_table.h"
 
-namespace ontogen::app {
+namespace ontogen {
+
+/// How far a batch has come, as rank 0 sees it after each row.
+struct BatchProgress {
+  uint64_t done = 0;          ///< rows in the table, from the journal or run now
+  uint64_t total = 0;         ///< variants of the batch
+  uint64_t failed = 0;        ///< rows with an error
+  double secondsLeft = 0;     ///< estimated from the rows run now (seconds)
+};
 
 struct BatchDef {
   std::filesystem::path dir;          ///< the folder of the table (made if missing)
@@ -27,26 +35,35 @@ struct BatchDef {
   uint64_t count = 0;                 ///< variants 0 .. count - 1
   bool resume = false;                ///< continue the journal in dir (else dir must hold none)
   unsigned workers = 1;               ///< threads on each rank
-  std::string label = "sweep";        ///< the progress bar's
-  std::optional<bool> progress;       ///< draw the bar on rank 0; empty: when stderr is a terminal
   /// Runs variant i (on any rank, on a worker thread) and writes its own files; must
   /// not throw.
   std::function<SweepRow(uint64_t)> run;
   /// The thumbnail of variant i (for the gallery), whether or not it exists.
   std::function<std::filesystem::path(uint64_t)> thumbnail;
   ContactSheetDef sheet{};
+  /// Asked between rows on the thread that called runBatch: true starts no further
+  /// variant (Ctrl-C). Empty: never.
+  std::function<bool()> stop;
+  /// Called on rank 0, on the thread that called runBatch, after each row; empty: none.
+  std::function<void(const BatchProgress&)> progress;
+};
+
+/// How a batch ended.
+enum class BatchStatus {
+  Done,         ///< every variant has its row
+  Refused,      ///< the folder holds another batch, or one when not resuming (a usage error)
+  OutputError,  ///< the folder, the journal or the table could not be written
+  Stopped,      ///< `stop` said so: the table holds what finished
 };
 
 struct BatchResult {
-  int exitCode = 0;      ///< kExitOk, or why the batch stopped (usage, output, interrupted)
-  SweepTable table;      ///< every row finished (all of them unless interrupted), on every rank
+  BatchStatus status = BatchStatus::Done;
+  std::string message;   ///< why, unless Done or Stopped (on rank 0)
+  SweepTable table;      ///< every row finished (all of them unless stopped), on every rank
   uint64_t failed = 0;   ///< rows with an error
 };
 
 /// Runs the batch; every rank calls it with the same definition.
 BatchResult runBatch(const BatchDef& def, Cluster& cluster);
 
-/// Ctrl-C while a batch runs: set by the handler, read between variants.
-bool batchInterrupted();
-
-}  // namespace ontogen::app
+}  // namespace ontogen

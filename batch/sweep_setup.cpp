@@ -1,16 +1,13 @@
-#include "apps/sweep_support.h"
+#include "batch/sweep_setup.h"
 
 #include <algorithm>
 #include <cstdio>
-#include <iostream>
 #include <thread>
 
-#include "apps/cli_values.h"
-#include "apps/program_loader.h"
 #include "interpreters/output_file.h"
 #include "interpreters/set_registry.h"
 
-namespace ontogen::app {
+namespace ontogen {
 
 namespace {
 
@@ -49,37 +46,15 @@ std::string textDigest(const std::string& text) {
   return buffer;
 }
 
-std::unique_ptr<Cluster> joinCluster() {
-  try {
-    return std::make_unique<Cluster>();
-  } catch (const std::runtime_error& error) {
-    std::cerr << "ontogen: error: " << error.what() << "\n";
-    return nullptr;
-  }
-}
-
-QuietFollowers::QuietFollowers(bool leader) {
-  if (!leader) saved_ = std::cerr.rdbuf(nullptr);
-}
-
-QuietFollowers::~QuietFollowers() {
-  if (!saved_) return;
-  std::cerr.rdbuf(saved_);
-  std::cerr.clear();
-}
-
-int prepareSweep(const SweepCommonOptions& options, VariationOptions variation,
-                 const std::vector<std::string>& extraNames, SweepSetup& setup) {
-  const CommonOptions& common = options.common;
-  LoadedProgram loaded = loadProgram(common);
-  if (!loaded.program) return loaded.exitCode;
-  const Program& program = *loaded.program;
-  ProgramText text = readProgramText(common.file, common.maxSourceBytes);
-  if (!text.text) return text.exitCode;
-  // The values given with --define (evolve's fixed ones) are written into the text, so
-  // that every variant's program holds them.
-  if (!common.defines.empty()) {
-    VariationSpace all(*text.text);
+std::string prepareSweep(const SweepSettings& settings, SweepSetup& setup) {
+  const Program& program = *settings.program;
+  std::string text = settings.text;
+  VariationOptions variation = settings.variation;
+  // The values given to the program's defines (evolve's fixed ones) are written into the
+  // text, so that every variant's program holds them.
+  if (std::any_of(program.defines.begin(), program.defines.end(),
+                  [](const ProgramDefine& define) { return define.overridden; })) {
+    VariationSpace all(text);
     Genome genome = all.original();
     for (const ProgramDefine& define : program.defines) {
       if (!define.overridden) continue;
@@ -89,25 +64,22 @@ int prepareSweep(const SweepCommonOptions& options, VariationOptions variation,
           genome.values[i] = define.value;
           gene = true;
         }
-      if (!gene) {
-        std::cerr << "ontogen: error: --define " << define.name << ": the program's #define " << define.name
-                  << " is an expression, not a number; only a number can be written in\n";
-        return kExitUsage;
-      }
+      if (!gene)
+        return "--define " + define.name + ": the program's #define " + define.name +
+               " is an expression, not a number; only a number can be written in";
       variation.fixed.push_back(define.name);
     }
-    text.text = all.programText(genome);
+    text = all.programText(genome);
   }
   try {
-    setup.space = std::make_unique<VariationSpace>(*text.text, variation);
+    setup.space = std::make_unique<VariationSpace>(text, variation);
   } catch (const std::invalid_argument& bad) {
-    std::cerr << "ontogen: error: " << bad.what() << "\n";
-    return kExitUsage;
+    return bad.what();
   }
-  setup.path = common.file;
-  setup.stem = loaded.stem;
+  setup.path = settings.path;
+  setup.stem = settings.stem;
   setup.programSeed = program.seed;
-  setup.sets = !options.sets.empty()               ? options.sets
+  setup.sets = !settings.sets.empty()              ? settings.sets
                : !program.interpretSets.empty() ? program.interpretSets
                                                 : std::vector<std::string>{"geometry"};
   const std::vector<std::string> known = interpretationSetNames();
@@ -115,62 +87,49 @@ int prepareSweep(const SweepCommonOptions& options, VariationOptions variation,
     if (!hasSet(known, set)) {
       std::string list;
       for (const std::string& name : known) list += (list.empty() ? "" : ", ") + name;
-      std::cerr << "ontogen: error: --interpret: unknown interpretation set '" << set << "' (known: " << list << ")\n";
-      return kExitUsage;
+      return "--interpret: unknown interpretation set '" + set + "' (known: " + list + ")";
     }
-  for (const std::string& given : options.measures) {
+  for (const std::string& given : settings.measures) {
     try {
-      setup.measures.push_back(parseMeasure(given, extraNames));
+      setup.measures.push_back(parseMeasure(given, settings.extraNames));
     } catch (const MeasureError& bad) {
-      std::cerr << "ontogen: error: " << bad.what() << "\n";
-      return kExitUsage;
+      return bad.what();
     }
     const std::string& name = setup.measures.back().name();
-    bool clash = hasSet(extraNames, name) || name == "seed" || name == "variant" || name == "error";
+    bool clash = hasSet(settings.extraNames, name) || name == "seed" || name == "variant" || name == "error";
     for (size_t i = 0; i + 1 < setup.measures.size(); ++i) clash = clash || setup.measures[i].name() == name;
-    if (clash) {
-      std::cerr << "ontogen: error: --measure " << name << ": the name of another column of the table\n";
-      return kExitUsage;
-    }
-    if (std::string missing = missingSet(setup.measures.back(), setup.sets); !missing.empty()) {
-      std::cerr << "ontogen: error: " << missing << "\n";
-      return kExitUsage;
-    }
-  }
-  const std::optional<std::pair<int, int>> size = parsePictureSize(options.size);
-  if (!size) {
-    std::cerr << "ontogen: error: --size takes WIDTHxHEIGHT in pixels, as in 128x128, not '" << options.size << "'\n";
-    return kExitUsage;
+    if (clash) return "--measure " + name + ": the name of another column of the table";
+    if (std::string missing = missingSet(setup.measures.back(), setup.sets); !missing.empty()) return missing;
   }
 
-  setup.compile.rootSystem = common.system;
+  setup.compile.rootSystem = settings.system;
   setup.compile.commandSets = commandSets();
-  setup.compile.maxSourceBytes = common.maxSourceBytes;
+  setup.compile.maxSourceBytes = settings.maxSourceBytes;
   RunDef& run = setup.run;
-  run.world.limits = common.limits;
+  run.world.limits = settings.limits;
   run.world.threads = 1;  // a variant is one task: the workers are the parallelism
-  run.until = options.until;
-  run.step = common.step;
-  run.frames = options.frames;
+  run.until = settings.until;
+  run.step = settings.step;
+  run.frames = settings.frames;
   run.sets = setup.sets;
   run.setOptions.formats = "png";
-  run.setOptions.render.width = size->first;
-  run.setOptions.render.height = size->second;
-  if (options.view.size() == 2) {
-    run.setOptions.render.azimuth = options.view[0];
-    run.setOptions.render.elevation = options.view[1];
+  run.setOptions.render.width = settings.width;
+  run.setOptions.render.height = settings.height;
+  if (settings.view.size() == 2) {
+    run.setOptions.render.azimuth = settings.view[0];
+    run.setOptions.render.elevation = settings.view[1];
   }
-  if (options.until) setup.rerunFlags += " --until " + formatValue(*options.until);
-  if (common.step) setup.rerunFlags += " --step " + formatValue(*common.step);
-  if (options.frames) setup.rerunFlags += " --frames " + std::to_string(*options.frames);
-  if (!common.system.empty()) setup.rerunFlags += " --system " + common.system;
-  if (!options.sets.empty()) {
+  if (settings.until) setup.rerunFlags += " --until " + formatValue(*settings.until);
+  if (settings.step) setup.rerunFlags += " --step " + formatValue(*settings.step);
+  if (settings.frames) setup.rerunFlags += " --frames " + std::to_string(*settings.frames);
+  if (!settings.system.empty()) setup.rerunFlags += " --system " + settings.system;
+  if (!settings.sets.empty()) {
     std::string list;
-    for (const std::string& set : options.sets) list += (list.empty() ? "" : ",") + set;
+    for (const std::string& set : settings.sets) list += (list.empty() ? "" : ",") + set;
     setup.rerunFlags += " --interpret " + list;
   }
-  setup.workers = options.workers > 0 ? options.workers : std::max(1u, std::thread::hardware_concurrency());
-  return kExitOk;
+  setup.workers = settings.workers > 0 ? settings.workers : std::max(1u, std::thread::hardware_concurrency());
+  return {};
 }
 
 std::string variantStem(const SweepSetup& setup, uint64_t index) {
@@ -218,4 +177,4 @@ SweepRow runSweepVariant(const SweepSetup& setup, const std::filesystem::path& d
   return row;
 }
 
-}  // namespace ontogen::app
+}  // namespace ontogen

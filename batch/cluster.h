@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-namespace ontogen::app {
+namespace ontogen {
 
 /// What one rank sends another.
 enum class ClusterTag : int {
@@ -25,10 +25,15 @@ struct ClusterMessage {
 
 class Cluster {
  public:
-  /// Joins the MPI job when an MPI launcher started this process (its environment says
-  /// so); else one rank. Throws std::runtime_error when launched as one of several ranks
-  /// by a build without MPI, which would have every rank run the whole sweep.
-  Cluster();
+  /// Whether a Cluster joins the MPI job its launcher started.
+  enum class Join {
+    FromLauncher,  ///< when an MPI launcher started this process (its environment says so)
+    Alone,         ///< never: one rank (a host program that runs a sweep on this machine)
+  };
+  /// Joins the MPI job when `join` says so and an MPI launcher started this process;
+  /// else one rank. Throws std::runtime_error when launched as one of several ranks by a
+  /// build without MPI, which would have every rank run the whole sweep.
+  explicit Cluster(Join join = Join::FromLauncher);
   ~Cluster();
   Cluster(const Cluster&) = delete;
   Cluster& operator=(const Cluster&) = delete;
@@ -55,4 +60,4 @@ class Cluster {
   bool joined_ = false;  // MPI was initialised here
 };
 
-}  // namespace ontogen::app
+}  // namespace ontogen

@@ -1,4 +1,4 @@
-#include "apps/cluster.h"
+#include "batch/cluster.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -9,7 +9,7 @@
 #include <mpi.h>
 #endif
 
-namespace ontogen::app {
+namespace ontogen {
 
 namespace {
 // The size of the job as its launcher announces it: Open MPI's mpirun, then the PMI
@@ -33,8 +33,8 @@ bool Cluster::built() {
 #endif
 }
 
-Cluster::Cluster() {
-  const int launched = launchedSize();
+Cluster::Cluster(Join join) {
+  const int launched = join == Join::Alone ? 0 : launchedSize();
 #ifdef ONTOGEN_HAVE_MPI
   // Without a launcher MPI_Init would start a singleton job (an Open MPI daemon): not
   // worth its second for a run on one machine.
@@ -111,4 +111,4 @@ void Cluster::barrier() {
 #endif
 }
 
-}  // namespace ontogen::app
+}  // namespace ontogen

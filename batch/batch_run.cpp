@@ -1,68 +1,24 @@
-#include "apps/sweep_batch.h"
+#include "batch/batch_run.h"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <csignal>
-#include <cstdio>
 #include <fstream>
-#include <iostream>
 #include <set>
 #include <sstream>
 
-#include "apps/program_loader.h"
-#include "apps/progress_bar.h"
 #include "interpreters/formats/png_writer.h"
 #include "interpreters/interpretation_set.h"
 #include "interpreters/output_file.h"
 #include "interpreters/sweep/variant_pool.h"
 
-namespace ontogen::app {
+namespace ontogen {
 
 namespace {
 
-// Set by the SIGINT handler, read by the loop below between messages; a lock-free atomic
-// is safe to store from a handler.
-std::atomic<bool> gInterrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free);
-struct sigaction gPrevious {};
-
-// The first Ctrl-C asks for a clean stop; the handler then gives the signal back to the
-// one before it (which removes temporaries and ends the process), so a second Ctrl-C
-// ends at once.
-extern "C" void onBatchInterrupt(int) {
-  gInterrupted.store(true);
-  ::sigaction(SIGINT, &gPrevious, nullptr);
-}
-
-class InterruptGuard {
- public:
-  InterruptGuard() {
-    gInterrupted.store(false);
-    struct sigaction action {};
-    action.sa_handler = onBatchInterrupt;
-    sigemptyset(&action.sa_mask);
-    ::sigaction(SIGINT, &action, &gPrevious);
-  }
-  ~InterruptGuard() { ::sigaction(SIGINT, &gPrevious, nullptr); }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
-};
-
-std::string formatSeconds(double seconds) {
-  char text[32];
-  if (seconds < 100)
-    std::snprintf(text, sizeof text, "%.0f s", seconds);
-  else if (seconds < 6000)
-    std::snprintf(text, sizeof text, "%.0f min", seconds / 60);
-  else
-    std::snprintf(text, sizeof text, "%.1f h", seconds / 3600);
-  return text;
-}
-
 // Rank 0's side of the journal: checks a resumed one, drops a line cut short, appends.
 struct JournalSetup {
-  int exitCode = kExitOk;
+  BatchStatus status = BatchStatus::Done;
   std::string message;
   std::vector<SweepRow> rows;
 };
@@ -96,19 +52,19 @@ JournalSetup openJournal(const BatchDef& def, const std::filesystem::path& path)
   std::error_code error;
   std::filesystem::create_directories(def.dir, error);
   if (error) {
-    setup.exitCode = kExitOutputError;
+    setup.status = BatchStatus::OutputError;
     setup.message = "cannot create the folder '" + def.dir.string() + "': " + error.message();
     return setup;
   }
   JournalContents contents = readJournal(path, def.columns.size());
   if (contents.exists && !def.resume) {
-    setup.exitCode = kExitUsage;
+    setup.status = BatchStatus::Refused;
     setup.message = "'" + def.dir.string() +
                     "' holds a sweep already (journal.jsonl); --resume continues it, or choose another --out";
     return setup;
   }
   if (contents.exists && contents.header != def.header) {
-    setup.exitCode = kExitUsage;
+    setup.status = BatchStatus::Refused;
     setup.message = "'" + def.dir.string() +
                     "' holds a sweep of other settings (another program, defines, seeds, measures or run settings); "
                     "--resume continues a sweep only with the command that began it";
@@ -126,7 +82,7 @@ JournalSetup openJournal(const BatchDef& def, const std::filesystem::path& path)
     if (!out) error = std::make_error_code(std::errc::io_error);
   }
   if (error) {
-    setup.exitCode = kExitOutputError;
+    setup.status = BatchStatus::OutputError;
     setup.message = "cannot write '" + path.string() + "': " + error.message();
     return setup;
   }
@@ -165,8 +121,6 @@ void writeOutputs(const BatchDef& def, const SweepTable& table) {
 
 }  // namespace
 
-bool batchInterrupted() { return gInterrupted.load(); }
-
 BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
   BatchResult result;
   result.table.columns = def.columns;
@@ -175,11 +129,12 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
   // Rank 0 opens the journal and tells the others which rows are done (or why none run).
   JournalSetup setup;
   if (cluster.leader()) setup = openJournal(def, journalPath);
-  const std::string status = cluster.broadcast(std::to_string(setup.exitCode) + "\n" + encodeRows(setup.rows));
-  const int code = std::stoi(status.substr(0, status.find('\n')));
-  if (code != kExitOk) {
-    if (cluster.leader()) std::cerr << "ontogen: error: " << setup.message << "\n";
-    result.exitCode = code;
+  const std::string status =
+      cluster.broadcast(std::to_string(static_cast<int>(setup.status)) + "\n" + encodeRows(setup.rows));
+  const auto code = static_cast<BatchStatus>(std::stoi(status.substr(0, status.find('\n'))));
+  if (code != BatchStatus::Done) {
+    result.status = code;
+    result.message = setup.message;
     return result;
   }
   std::vector<SweepRow> rows = decodeRows(status.substr(status.find('\n') + 1), def.columns.size());
@@ -195,8 +150,6 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
 
   std::ofstream journal;
   if (cluster.leader()) journal.open(journalPath, std::ios::binary | std::ios::app);
-  ProgressBar progress(def.label, def.progress);
-  if (!cluster.leader()) progress.disable();
   uint64_t failedNow = 0, doneNow = 0;
   for (const SweepRow& row : rows) failedNow += !row.error.empty();
   const auto started = std::chrono::steady_clock::now();
@@ -210,18 +163,17 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
     rows.push_back(std::move(*row));
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const double left = elapsed / static_cast<double>(doneNow) * static_cast<double>(pending - doneNow);
-    progress.update(static_cast<long>(finished.size()), static_cast<long>(def.count),
-                    std::to_string(failedNow) + " failed, " + formatSeconds(left) + " left");
+    if (def.progress) def.progress({finished.size(), def.count, failedNow, left});
   };
 
+  auto stopAsked = [&def] { return def.stop && def.stop(); };
   {
-    InterruptGuard guard;
     VariantPool pool(def.workers, mine, [&def](uint64_t i) { return journalLine(def.run(i)); });
     bool stopping = false;
     int ranksDone = cluster.leader() ? 1 : 0;  // rank 0 counts itself when its pool is done
     bool sentDone = false;
     for (;;) {
-      if (batchInterrupted() && !stopping) {
+      if (!stopping && stopAsked()) {
         stopping = true;
         pool.stop();
         if (cluster.leader())
@@ -250,13 +202,12 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
       if (ranksDone == cluster.size()) break;
     }
     if (cluster.leader() && !journal) {
-      std::cerr << "\nontogen: error: cannot write '" << journalPath.string() << "'\n";
-      result.exitCode = kExitOutputError;
+      result.status = BatchStatus::OutputError;
+      result.message = "cannot write '" + journalPath.string() + "'";
     }
-    stopping = stopping || batchInterrupted();
-    if (stopping && result.exitCode == kExitOk) result.exitCode = kExitInterrupted;
+    stopping = stopping || stopAsked();
+    if (stopping && result.status == BatchStatus::Done) result.status = BatchStatus::Stopped;
   }
-  if (finished.size() == def.count || result.exitCode == kExitInterrupted) progress.finish();
 
   // Rank 0 writes the table and sends it to all (an evolution chooses its next
   // generation from it on every rank).
@@ -266,15 +217,16 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
     try {
       writeOutputs(def, result.table);
     } catch (const OutputError& error) {
-      std::cerr << "ontogen: error: " << error.what() << "\n";
-      result.exitCode = kExitOutputError;
+      result.status = BatchStatus::OutputError;
+      result.message = error.what();
     }
   }
-  const std::string table = cluster.broadcast(std::to_string(result.exitCode) + "\n" + encodeRows(rows));
-  result.exitCode = std::stoi(table.substr(0, table.find('\n')));
+  const std::string table =
+      cluster.broadcast(std::to_string(static_cast<int>(result.status)) + "\n" + encodeRows(rows));
+  result.status = static_cast<BatchStatus>(std::stoi(table.substr(0, table.find('\n'))));
   result.table.rows = decodeRows(table.substr(table.find('\n') + 1), def.columns.size());
   for (const SweepRow& row : result.table.rows) result.failed += !row.error.empty();
   return result;
 }
 
-}  // namespace ontogen::app
+}  // namespace ontogen
