@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <optional>
+#include <utility>
 
 namespace ontogen::convert {
 
@@ -517,6 +518,27 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
       std::string name(text_.substr(at, stop - at));
       if (python) {
         if (name.rfind("math.", 0) == 0) name = name.substr(5);  // math.sqrt is sqrt
+        if (name.rfind("random.", 0) == 0) name = name.substr(7);  // random.uniform is uniform
+        uint32_t next = stop;
+        while (next < end && isSpace(text_[next])) ++next;
+        if (next < end && text_[next] == '(') {
+          // Python's functions as the cell language names them; random ones draw from
+          // ontogen's seeded streams (section 4.10).
+          static constexpr std::pair<std::string_view, std::string_view> kCalls[] = {
+              {"random", "uniform"}, {"gauss", "gaussian"},  {"normalvariate", "gaussian"},
+              {"normal", "gaussian"}, {"int", "trunc"},      {"radians", "rad"},
+              {"degrees", "deg"},     {"fabs", "abs"},
+          };
+          for (const auto& [pythonName, cell] : kCalls)
+            if (name == pythonName) name = std::string(cell);
+          if (name == "float") {  // float(x) is x
+            at = stop;
+            continue;
+          }
+          if (name == "randint" || name == "choice" || name == "randrange" || name == "shuffle" ||
+              name == "sample" || name == "len" || name == "range" || name == "str")
+            code(at, stop, "Python's " + shown(name));
+        }
         if (name.find('.') != std::string::npos) code(at, stop, "the attribute " + shown(name));
         if (name == "and" || name == "or") {
           closeNots();

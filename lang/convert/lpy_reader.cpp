@@ -1,10 +1,12 @@
 #include "lang/convert/lpy_reader.h"
 
 #include <cctype>
+#include <optional>
 #include <string>
 
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
+#include "lang/convert/python_body.h"
 
 namespace ontogen::convert {
 
@@ -68,6 +70,10 @@ class LPyReader {
       line_ = {begin, end};
       const bool indented = begin > line.begin;
       if (ended || indented) python(begin, end);
+      if (auto last = quietHook(lines, i, begin, end)) {
+        i = *last;
+        continue;
+      }
       if (auto at = afterLabel(clean_, line, "axiom")) {
         file_.axiom = syntax_.modules(*at, end, false);
         file_.axiomOrigin = line_;
@@ -126,9 +132,14 @@ class LPyReader {
         file_.statements.push_back(syntax_.production(begin, end));
         continue;
       }
-      if (clean_[end - 1] == ':' && !pythonKeyword(begin, end)) {
-        i = producedBody(lines, i, begin, end);
-        continue;
+      if (isImport(begin, end)) continue;
+      if (const uint32_t colon = syntax_.find(begin, end, ":"); colon < end && !pythonKeyword(begin, end)) {
+        uint32_t a = colon + 1, b = end;
+        syntax_.trim(a, b);
+        if (a == b || startsStatement(a, b)) {
+          i = producedBody(lines, i, begin, colon, a == b);
+          continue;
+        }
       }
       if (isAssignment(begin, end)) {
         define(begin, end, "=");
@@ -137,6 +148,7 @@ class LPyReader {
       { python(begin, end); }
     }
     stamp();
+    checkKept();
     // L-Py derives once unless the file says otherwise.
     if (!file_.derivationLength) file_.derivationLength = "1";
     file_.warnings = std::move(syntax_.warnings);
@@ -161,65 +173,127 @@ class LPyReader {
     return false;
   }
 
-  // `A(x) :` with an indented body of one `produce SUCCESSORS` line.
-  size_t producedBody(const std::vector<Line>& lines, size_t i, uint32_t begin, uint32_t end) {
-    size_t body = i + 1;
-    auto blank = [&](size_t k) {
-      uint32_t a = firstNonSpace(clean_, lines[k]);
-      return a == lines[k].end;
-    };
-    while (body < lines.size() && blank(body)) ++body;
-    if (body >= lines.size() || firstNonSpace(clean_, lines[body]) == lines[body].begin)
-      syntax_.fail(begin, end, "a production head without a body", false);
-    auto produce = afterKeyword(clean_, lines[body], "produce");
-    size_t next = body + 1;
-    while (next < lines.size() && blank(next)) ++next;
-    const bool single = next >= lines.size() || firstNonSpace(clean_, lines[next]) == lines[next].begin;
-    if (!produce || !single) {
-      uint32_t a = firstNonSpace(clean_, lines[produce ? next : body]);
-      const Line& where = lines[produce ? next : body];
-      python(a, where.end);
+  // `import math`, `from random import *`: the names these give are translated.
+  bool isImport(uint32_t begin, uint32_t end) const {
+    const Line line{begin, end};
+    for (std::string_view module : {"math", "random", "openalea.plantgl.all"}) {
+      if (auto at = afterKeyword(clean_, line, "import")) {
+        uint32_t a = *at, b = end;
+        syntax_.trim(a, b);
+        if (clean_.substr(a, b - a) == module) return true;
+      }
+      if (auto at = afterKeyword(clean_, line, "from")) {
+        uint32_t a = *at, b = end;
+        syntax_.trim(a, b);
+        if (clean_.compare(a, module.size(), module) == 0 && a + module.size() < b &&
+            std::isspace(static_cast<unsigned char>(clean_[a + module.size()])) &&
+            afterKeyword(clean_, Line{static_cast<uint32_t>(a + module.size()), b}, "import"))
+          return true;
+      }
     }
-    // The head as a production whose arrow is the body's `produce`.
-    Statement s = productionOf(begin, end - 1, *produce, lines[body].end);
-    s.origin = {begin, lines[body].end};
-    file_.statements.push_back(std::move(s));
-    return body;
+    return false;
   }
 
-  Statement productionOf(uint32_t headBegin, uint32_t headEnd, uint32_t bodyBegin, uint32_t bodyEnd) {
-    // Read the head and the body as `head --> body` through a copy that keeps offsets
-    // for the head (the body is read in place).
-    Statement s;
-    uint32_t a = headBegin, b = headEnd;
-    syntax_.trim(a, b);
-    const uint32_t colon = syntax_.find(a, b, ":");
-    uint32_t patternEnd = b;
-    if (colon < b) {
-      s.condition = syntax_.expression(colon + 1, b);
-      patternEnd = colon;
+  // L-Py's hooks `def Start():`, `End`, `StartEach`, `EndEach`, `StartInterpretation`
+  // whose body only prints or passes change nothing the converted block holds: they are
+  // read over. The index of the hook's last line.
+  std::optional<size_t> quietHook(const std::vector<Line>& lines, size_t i, uint32_t begin, uint32_t end) const {
+    auto at = afterKeyword(clean_, Line{begin, end}, "def");
+    if (!at) return std::nullopt;
+    uint32_t a = *at;
+    while (a < end && std::isspace(static_cast<unsigned char>(clean_[a]))) ++a;
+    uint32_t stop = a;
+    while (stop < end && isNameChar(clean_[stop])) ++stop;
+    const std::string_view name = std::string_view(clean_).substr(a, stop - a);
+    if (name != "Start" && name != "End" && name != "StartEach" && name != "EndEach" && name != "StartInterpretation")
+      return std::nullopt;
+    const uint32_t colon = syntax_.find(stop, end, ":");
+    if (colon == end) return std::nullopt;
+    size_t last = i;
+    std::vector<BodyLine> body;
+    for (size_t k = i + 1; k < lines.size(); ++k) {
+      const uint32_t first = firstNonSpace(clean_, lines[k]);
+      if (first == lines[k].end) continue;
+      if (first == lines[k].begin) break;
+      last = k;
     }
-    uint32_t predBegin = a, predEnd = patternEnd;
-    const uint32_t less = syntax_.find(a, patternEnd, "<");
-    if (less < patternEnd) {
+    for (const BodyLine& line : logicalLines(clean_, colon + 1, lines[last].end)) {
+      const Line l{line.begin, line.end};
+      if (afterKeyword(clean_, l, "pass") || afterKeyword(clean_, l, "print")) continue;
+      return std::nullopt;  // read as Python: an error at the def
+    }
+    return last;
+  }
+
+  bool startsStatement(uint32_t begin, uint32_t end) const {
+    for (std::string_view word : {"produce", "nproduce", "pass", "return"})
+      if (afterKeyword(clean_, Line{begin, end}, word)) return true;
+    return false;
+  }
+
+  // `A(x) :` and a Python body: on the line (`A(x) : produce B`) or on the indented lines
+  // after it. The index of the body's last line.
+  size_t producedBody(const std::vector<Line>& lines, size_t i, uint32_t begin, uint32_t colon, bool below) {
+    size_t last = i;
+    for (size_t k = i + 1; k < lines.size(); ++k) {
+      const uint32_t first = firstNonSpace(clean_, lines[k]);
+      if (first == lines[k].end) continue;
+      if (first == lines[k].begin) break;
+      last = k;
+    }
+    if (below && last == i) syntax_.fail(begin, colon + 1, "a production head without a body", false);
+    const uint32_t bodyEnd = lines[last].end;
+    Statement head = headOf(begin, colon);
+    head.origin = {begin, bodyEnd};
+    for (Statement& s : translatePythonBody(syntax_, clean_, head, logicalLines(clean_, colon + 1, bodyEnd)))
+      file_.statements.push_back(std::move(s));
+    return last;
+  }
+
+  // The contexts and predecessor of a production head [begin, end).
+  Statement headOf(uint32_t begin, uint32_t end) {
+    Statement s;
+    uint32_t a = begin, b = end;
+    syntax_.trim(a, b);
+    uint32_t predBegin = a, predEnd = b;
+    const uint32_t less = syntax_.find(a, b, "<");
+    if (less < b) {
       s.leftArrow = clean_.compare(less, 2, "<<") == 0 ? "<<" : "<";
       s.left = syntax_.modules(a, less, true);
       predBegin = less + static_cast<uint32_t>(s.leftArrow.size());
     }
-    const uint32_t greater = syntax_.find(predBegin, patternEnd, ">");
-    if (greater < patternEnd) {
+    const uint32_t greater = syntax_.find(predBegin, b, ">");
+    if (greater < b) {
       s.rightArrow = clean_.compare(greater, 2, ">>") == 0 ? ">>" : ">";
-      s.right = syntax_.modules(greater + static_cast<uint32_t>(s.rightArrow.size()), patternEnd, true);
+      s.right = syntax_.modules(greater + static_cast<uint32_t>(s.rightArrow.size()), b, true);
       predEnd = greater;
     }
     std::vector<ModuleText> predecessor = syntax_.modules(predBegin, predEnd, true);
     if (predecessor.size() != 1) syntax_.fail(predBegin, predEnd, "a production has one predecessor module", false);
     syntax_.checkPredecessor(predecessor.front(), predBegin, predEnd);
     s.predecessor = std::move(predecessor.front());
-    uint32_t c = bodyBegin, d = bodyEnd;
-    syntax_.trim(c, d);
-    if (clean_.substr(c, d - c) != "*") s.successors = syntax_.modules(c, d, false);
     return s;
+  }
+
+  // A way of a random choice that keeps its module stands for L-Py's trying the module's
+  // later productions: there must be none in its section.
+  void checkKept() const {
+    const std::vector<Statement>& all = file_.statements;
+    for (size_t k = 0; k < all.size(); ++k) {
+      if (!all[k].keepsModule) continue;
+      for (size_t j = k + 1; j < all.size() && all[j].kind != StatementKind::Section; ++j) {
+        const Statement& later = all[j];
+        if (later.kind != StatementKind::Production || later.origin.begin == all[k].origin.begin) continue;
+        if (later.predecessor.label == all[k].predecessor.label &&
+            later.predecessor.args.size() == all[k].predecessor.args.size() &&
+            later.predecessor.hasArgs == all[k].predecessor.hasArgs)
+          syntax_.fail(all[k].origin.begin, all[k].origin.end,
+                       "a random choice of this body produces nothing on one way, where L-Py tries the later "
+                       "productions of " +
+                           all[k].predecessor.label +
+                           ": the cell language chooses among weighted productions together; make the way produce");
+      }
+    }
   }
 
   std::optional<std::string> sectionOf(const Line& line) const {

@@ -64,6 +64,9 @@ struct Statement {
   std::string condition;               ///< empty: none
   std::vector<ModuleText> successors;  ///< empty: the empty word
   std::string probability;             ///< empty: none
+  /// A way of an L-Py body's random choice that produces nothing, written as the module
+  /// itself: L-Py would try the module's later productions instead, so there must be none.
+  bool keepsModule = false;
   SourceRange origin;                  ///< the line or lines of the file it was read from
 };
 

@@ -136,6 +136,13 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
       {"parametric_1_35.lpy", "1,2,3,4",
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
+      {"python_body.lpy", "1,2", "t = 1: A(1)\nt = 2: A(2)\n"},
+      // Python bodies: if/elif/else, nproduce, locals, math, a word over lines, return,
+      // and random choices of chance 1 and 0, as L-Py derives them.
+      {"python_branches.lpy", "1,2,3",
+       "t = 1: A(2) A(2) G(1) B(2) K C(2) D(5) R T S T\n"
+       "t = 2: F(3) [ +(3) ] E F(3) [ +(3) ] E G(1) B(1) K K C(4) D(9) R T T S T T\n"
+       "t = 3: F(3) [ +(3) ] E F(3) [ +(3) ] E G(1) B(0) K K K C(8) D(9) R T T T S T T T\n"},
       {"new_contexts.lpy", "1", "t = 1: B A S B A S C(1) B(2) M(1, 2, 3) H(4) E(4) H(11) F(5) G(6) H(0) K\n"},
   };
   for (const Case& c : cases) {
@@ -157,8 +164,8 @@ TEST(Convert, CodeItCannotTranslateIsAnErrorAtItsPlace) {
   const Case cases[] = {
       {"python_code.lpy",
        "python_code.lpy:4:1: error: ", "'def': Python code, which ontogen convert does not translate"},
-      {"python_body.lpy",
-       "python_body.lpy:5:5: error: ", "'if': Python code, which ontogen convert does not translate"},
+      {"python_loop.lpy",
+       "python_loop.lpy:4:5: error: ", "'for': Python which ontogen convert does not translate"},
       {"c_code.l", "c_code.l:3:1: error: ", "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code"},
       {"c_condition.l", "c_condition.l:4:8: error: ", "a C block '{ ... }' in the condition: C code"},
   };
@@ -225,11 +232,12 @@ TEST(Convert, AViewFileThatIsNoRegularFileIsRefused) {
 TEST(Convert, ErrorsInTheConvertedTextAreShownAtTheFilesLine) {
   const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "mapped";
   fs::create_directories(dir);
-  std::ofstream(dir / "mapped.lpy") << "Axiom: A(1)\n\nproduction:\nA(x) --> A(str(x))\n";
+  std::ofstream(dir / "mapped.lpy") << "Axiom: A(1)\n\nproduction:\nA(x) --> A(nodelength(x))\n";
   Result result = ontogen("check " + (dir / "mapped.lpy").string());
   EXPECT_EQ(result.exitCode, 1) << result.err;
   EXPECT_NE(result.err.find("mapped.lpy:4:1: error: "), std::string::npos) << result.err;
-  EXPECT_NE(result.err.find("(in the converted line 'A(x) -> A(str(x))', column"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("(in the converted line 'A(x) -> A(nodelength(x))', column"), std::string::npos)
+      << result.err;
   EXPECT_EQ(result.err.find("(converted):"), std::string::npos) << result.err;
 }
 

@@ -74,7 +74,7 @@ TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
   EXPECT_TRUE(def.untranslatable);
   EXPECT_NE(def.error.find("'def': Python code"), std::string::npos) << def.error;
 
-  auto body = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nA :\n    nproduce B\n    produce C\n");
+  auto body = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nA :\n    while True:\n        produce C\n");
   EXPECT_EQ(body.line, 3);
   EXPECT_EQ(body.column, 5);
 
@@ -88,7 +88,7 @@ TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
   EXPECT_EQ(query.column, 10);
   EXPECT_NE(query.error.find("L-Py's query '?R' has no cell-language counterpart"), std::string::npos) << query.error;
 
-  auto import = convertText(Dialect::LPy, "a.lpy", "from random import random\nAxiom: A\n");
+  auto import = convertText(Dialect::LPy, "a.lpy", "from numpy import random\nAxiom: A\n");
   EXPECT_EQ(import.line, 1);
   EXPECT_NE(import.error.find("'from': Python code"), std::string::npos) << import.error;
 }

@@ -166,20 +166,20 @@ TEST(Untranslated, TheConvertedTextIsHeldToTheSourceLimit) {
 
 // Each line of the converted text knows the line of the file it came from.
 TEST(Untranslated, TheLinesOfTheConvertedTextKnowTheirOrigin) {
-  SourceFile file("a.lpy", "N = 2\nAxiom: A\n\nproduction:\nA :\n  produce B(N)\nB(x) --> B(str(x))\n");
+  SourceFile file("a.lpy", "N = 2\nAxiom: A\n\nproduction:\nA :\n  produce B(N)\nB(x) --> B(vlen(x))\n");
   DiagnosticSink sink;
   ConvertResult result = convertFile(file, Dialect::LPy, "", sink);
   ASSERT_TRUE(result.program);
   const SourceFile converted("a.lpy (converted)", *result.program);
-  const size_t at = result.program->find("str(x)");
+  const size_t at = result.program->find("vlen(x)");
   ASSERT_NE(at, std::string::npos);
-  Diagnostic d{Severity::Error, SourceSpan{&converted, static_cast<uint32_t>(at), static_cast<uint32_t>(at + 3)},
-               "unknown function 'str'"};
+  Diagnostic d{Severity::Error, SourceSpan{&converted, static_cast<uint32_t>(at), static_cast<uint32_t>(at + 4)},
+               "unknown function 'vlen'"};
   Diagnostic mapped = mapToOriginal(d, file, result.lineOrigins);
   EXPECT_EQ(mapped.span.file, &file);
   EXPECT_EQ(mapped.span.line(), 7);
   EXPECT_EQ(mapped.span.column(), 1);
-  EXPECT_EQ(mapped.message, "unknown function 'str' (in the converted line 'B(x) -> B(str(x))', column 11)");
+  EXPECT_EQ(mapped.message, "unknown function 'vlen' (in the converted line 'B(x) -> B(vlen(x))', column 11)");
   // A production of a head and a produce body spans both lines.
   const size_t produced = result.program->find("A -> B(N)");
   ASSERT_NE(produced, std::string::npos);

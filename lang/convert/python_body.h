@@ -1,0 +1,51 @@
+#pragma once
+// L-Py's productions written as Python function bodies,
+//
+//   A(x) :
+//     y = x * 2
+//     if y > 3:
+//       nproduce F(y)
+//       produce B(y)
+//     elif random() < 0.3: produce C
+//     else: produce D
+//
+// read as cell-language productions: every way through the `if`/`elif`/`else` tree that
+// ends in `produce` (or has `nproduce`d something) becomes one production, whose
+// condition is the conjunction of the tests taken and whose successors are what the way
+// `nproduce`d followed by what it `produce`d. Local assignments are substituted into what
+// follows them. A test of a uniform draw against a value, `random() < p`, is not a
+// condition but a choice: the ways it splits become stochastic productions weighted p and
+// 1 - p, and a way of such a choice that produces nothing keeps the module (L-Py leaves it
+// unchanged). Any other Python is an error at its place.
+
+#include <cstdint>
+#include <vector>
+
+#include "lang/convert/foreign_syntax.h"
+#include "lang/convert/lsystem_file.h"
+
+namespace ontogen::convert {
+
+/// One logical line of a body: bytes [begin, end) of the file (a line continued inside
+/// parentheses spans several), and its indentation in columns.
+struct BodyLine {
+  uint32_t begin = 0;
+  uint32_t end = 0;
+  int indent = 0;
+};
+
+/// Most productions one body becomes; more is a located error (a body of many tests in a
+/// row multiplies its ways, and no model writes a tenth as many).
+inline constexpr size_t kMaxBodyProductions = 256;
+
+/// The productions `head` (its contexts and predecessor read, no successors) becomes with
+/// the body `lines`. A way that produces nothing and chooses nothing gives no production
+/// (L-Py then tries the next one). Throws ConvertError at the construct it cannot read.
+std::vector<Statement> translatePythonBody(const ForeignSyntax& syntax, std::string_view text,
+                                           const Statement& head, const std::vector<BodyLine>& lines);
+
+/// The logical lines of [begin, end) of `text`: blank lines dropped, lines joined while
+/// parentheses or brackets are open or a line ends in a backslash.
+std::vector<BodyLine> logicalLines(std::string_view text, uint32_t begin, uint32_t end);
+
+}  // namespace ontogen::convert

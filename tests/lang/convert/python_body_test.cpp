@@ -1,0 +1,160 @@
+// L-Py's productions written as Python bodies, read as cell-language productions
+// (lang/convert/python_body.cpp): each way through the tests one production, random
+// choices weighted, anything else a located error.
+
+#include "lang/convert/python_body.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "tests/lang/convert/convert_test_support.h"
+
+namespace ontogen::convert {
+namespace {
+
+using test::convertText;
+
+// The productions of a converted program: its lines after `production:`.
+std::string rules(const std::string& program) {
+  const size_t at = program.find("production:\n");
+  if (at == std::string::npos) return program;
+  const size_t close = program.rfind("}");
+  return program.substr(at + 12, close - at - 12);
+}
+
+std::string lpy(const std::string& productions) {
+  return "from math import *\nfrom random import *\nAxiom: A(1)\nproduction:\n" + productions + "endlsystem\n";
+}
+
+TEST(PythonBody, EveryWayThroughTheTestsIsAProduction) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  if x > 3:\n    nproduce F(x)\n    produce B\n  elif x > 1: produce C\n"
+                           "  else:\n    produce D\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program),
+            "  A(x) : x > 3 -> F(x) B\n  A(x) : !(x > 3) && x > 1 -> C\n  A(x) : !(x > 3) && !(x > 1) -> D\n");
+}
+
+TEST(PythonBody, LocalsAreSubstitutedAndTheWayGoesOnAfterAnIf) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  d = 1\n  if x > 1:\n    d = math.sqrt(x) * 2\n  d += x\n"
+                           "  produce F(d, int(d), float(x), degrees(pi))\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program),
+            "  A(x) : x > 1 -> F((sqrt(x) * 2) + (x), trunc(((sqrt(x) * 2) + (x))), (x), deg(pi))\n"
+            "  A(x) : !(x > 1) -> F((1) + (x), trunc(((1) + (x))), (x), deg(pi))\n");
+}
+
+// `produce` ends the way; a way without it gives what was nproduced, or no production
+// at all (L-Py then tries the next one): `return` and falling off the end alike.
+TEST(PythonBody, AWayWithoutProduceGivesItsNProducedWordOrNothing) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  nproduce F\n  if x > 1: produce B\nC(x) :\n  if x > 1:\n    return\n"
+                           "  print(x)\n  pass\n  produce D\nE(x) :\n  if x > 1: produce B\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program),
+            "  A(x) : x > 1 -> F B\n  A(x) : !(x > 1) -> F\n  C(x) : !(x > 1) -> D\n  E(x) : x > 1 -> B\n");
+}
+
+TEST(PythonBody, OneLineAndParenthesisedWords) {
+  auto c = convertText(Dialect::LPy, "a.lpy", lpy("A(x) : produce B(x)\nB(x) :\n  produce (C\n    D(x)  # d\n  )\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program), "  A(x) -> B(x)\n  B(x) -> C D(x)\n");
+}
+
+// A uniform draw tested against a chance is a choice between weighted productions; the
+// way that produces nothing keeps the module, as L-Py leaves it.
+TEST(PythonBody, RandomTestsAreWeightedChoices) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  r = random()\n  if r <= min(1, x / 4):\n    produce B\n  produce C\n"
+                           "B :\n  if x > 1 and 0.3 > random.uniform(0, 1):\n    produce D\nC :\n"
+                           "  if 0.25 > uniform(0, 1): produce D(gauss(0, 1), uniform(2, 3))\n"));
+  // `x > 1 and random() < p` mixes a test and a draw: refused, located.
+  EXPECT_EQ(c.line, 11);
+  EXPECT_EQ(c.column, 6);
+  EXPECT_NE(c.error.find("a test of a random value other than a uniform draw compared with a chance"),
+            std::string::npos)
+      << c.error;
+  auto ok = convertText(Dialect::LPy, "a.lpy",
+                        lpy("A(x) :\n  r = random()\n  if r <= min(1, x / 4):\n    produce B\n  produce C\n"
+                            "C :\n  if 0.25 > uniform(0, 1): produce D(gauss(0, 1), uniform(2, 3))\n"));
+  ASSERT_EQ(ok.error, "");
+  EXPECT_EQ(rules(ok.program),
+            "  A(x) -> B : clamp(min(1, x / 4), 0, 1)\n  A(x) -> C : (1 - clamp(min(1, x / 4), 0, 1))\n"
+            "  C -> D(gaussian(0, 1), uniform(2, 3)) : 0.25\n  C -> C : (1 - 0.25)\n");
+}
+
+TEST(PythonBody, ARandomValueUsedTwiceIsRefused) {
+  auto c = convertText(Dialect::LPy, "a.lpy", lpy("A(x) :\n  r = uniform(0, 1)\n  produce B(r) C(r)\n"));
+  EXPECT_EQ(c.line, 7);
+  EXPECT_EQ(c.column, 3);
+  EXPECT_NE(c.error.find("the random value 'r' used a second time"), std::string::npos) << c.error;
+  // Two tests of one draw are not two choices.
+  auto chain = convertText(Dialect::LPy, "a.lpy",
+                           lpy("A(x) :\n  r = random()\n  if r < 0.3: produce B\n  elif r < 0.6: produce C\n"));
+  EXPECT_EQ(chain.line, 7);
+  EXPECT_NE(chain.error.find("the random value 'r' used a second time"), std::string::npos) << chain.error;
+}
+
+// L-Py tries a module's later productions where a body produces nothing; a weighted
+// choice cannot, so a random way that keeps the module before another production of it
+// is refused.
+TEST(PythonBody, AKeptModuleBeforeALaterProductionIsRefused) {
+  auto c = convertText(Dialect::LPy, "a.lpy", lpy("A(x) :\n  if random() < 0.5: produce B\nA(x) --> C\n"));
+  EXPECT_EQ(c.line, 5);
+  EXPECT_EQ(c.column, 1);
+  EXPECT_NE(c.error.find("L-Py tries the later productions of A"), std::string::npos) << c.error;
+}
+
+TEST(PythonBody, OtherPythonIsALocatedError) {
+  struct Case {
+    const char* body;
+    int line, column;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"A(x) :\n  for i in range(3):\n    nproduce F\n  produce B\n", 6, 3, "'for': Python which ontogen"},
+      {"A(x) :\n  while x > 1:\n    produce B\n", 6, 3, "'while': Python which ontogen"},
+      {"A(x) :\n  global n\n  produce B\n", 6, 3, "'global': Python which ontogen"},
+      {"A(x) :\n  return [B]\n", 6, 3, "a 'return' of a value"},
+      {"A(x) :\n  produce B(randint(1, 3))\n", 6, 13, "Python's 'randint'"},
+      {"A(x) :\n  a, b = 1, 2\n  produce B\n", 6, 3, "'a': Python which ontogen"},
+      {"A(x) :\n  else:\n    produce B\n", 6, 3, "'elif' or 'else' without its 'if'"},
+      {"A(x) :\n  if x > 1:\n      produce B\n    produce C\n", 8, 5, "unexpected indentation"},
+      {"A(x) :\n", 5, 1, "a production head without a body"},
+  };
+  for (const Case& k : cases) {
+    auto c = convertText(Dialect::LPy, "a.lpy", lpy(k.body));
+    EXPECT_EQ(c.program, "") << k.body;
+    EXPECT_EQ(c.line, k.line) << k.body << c.error;
+    EXPECT_EQ(c.column, k.column) << k.body << c.error;
+    EXPECT_NE(c.error.find(k.message), std::string::npos) << k.body << c.error;
+  }
+}
+
+TEST(PythonBody, QuietHooksAndImportsAreReadOver) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "import math\nfrom openalea.plantgl.all import *\ndef Start():\n  print('go')\n\n"
+                       "def EndEach(lstring):\n  pass\nAxiom: A\n");
+  ASSERT_EQ(c.error, "");
+  auto hook = convertText(Dialect::LPy, "a.lpy", "def StartEach():\n  backward()\nAxiom: A\n");
+  EXPECT_EQ(hook.line, 1);
+  EXPECT_NE(hook.error.find("'def': Python code"), std::string::npos) << hook.error;
+  auto other = convertText(Dialect::LPy, "a.lpy", "import numpy\nAxiom: A\n");
+  EXPECT_EQ(other.line, 1);
+  EXPECT_NE(other.error.find("'import': Python code"), std::string::npos) << other.error;
+}
+
+TEST(PythonBody, LogicalLinesJoinOpenParentheses) {
+  const std::string text = "a(1,\n  2)\n\n  b [\nc\n";
+  const std::vector<BodyLine> lines = logicalLines(text, 0, static_cast<uint32_t>(text.size()));
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(text.substr(lines[0].begin, lines[0].end - lines[0].begin), "a(1,\n  2)");
+  EXPECT_EQ(lines[1].indent, 2);
+  EXPECT_EQ(text.substr(lines[1].begin, lines[1].end - lines[1].begin), "b [");
+  EXPECT_EQ(lines[2].indent, 0);
+}
+
+}  // namespace
+}  // namespace ontogen::convert
