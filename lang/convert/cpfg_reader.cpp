@@ -10,15 +10,33 @@ namespace ontogen::convert {
 
 namespace {
 
-// The text with its `/* */` comments made spaces, so that offsets stay the file's.
+// The text with its `/* */` and `//` comments made spaces, so that offsets stay the
+// file's. cpfg reads its file through the C preprocessor, which removes both.
 std::string withoutComments(std::string_view text) {
   std::string result(text);
-  for (size_t open = result.find("/*"); open != std::string::npos; open = result.find("/*", open)) {
-    size_t close = result.find("*/", open + 2);
-    size_t stop = close == std::string::npos ? result.size() : close + 2;
-    for (size_t i = open; i < stop; ++i)
-      if (result[i] != '\n') result[i] = ' ';
-    open = stop;
+  for (size_t at = 0; at + 1 < result.size(); ++at) {
+    if (result[at] == '/' && result[at + 1] == '*') {
+      size_t close = result.find("*/", at + 2);
+      size_t stop = close == std::string::npos ? result.size() : close + 2;
+      for (size_t i = at; i < stop; ++i)
+        if (result[i] != '\n') result[i] = ' ';
+      at = stop - 1;
+    } else if (result[at] == '/' && result[at + 1] == '/') {
+      for (; at < result.size() && result[at] != '\n'; ++at) result[at] = ' ';
+    }
+  }
+  return result;
+}
+
+// cpfg's statements: a line and the lines after it that start with a tab (its reader
+// takes a line break followed by a tab as a space).
+std::vector<Line> statementLines(std::string_view text) {
+  std::vector<Line> result;
+  for (const Line& line : splitLines(text)) {
+    if (!result.empty() && line.begin < line.end && text[line.begin] == '\t')
+      result.back().end = line.end;
+    else
+      result.push_back(line);
   }
   return result;
 }
@@ -53,7 +71,7 @@ class CpfgReader {
   LSystemFile read() {
     bool ended = false;
     int lsystems = 0;
-    for (const Line& line : splitLines(clean_)) {
+    for (const Line& line : statementLines(clean_)) {
       uint32_t begin = firstNonSpace(clean_, line), end = line.end;
       syntax_.trim(begin, end);
       if (begin == end) continue;
@@ -103,7 +121,7 @@ class CpfgReader {
       if (auto at = afterLabel(clean_, line, "maximum depth")) {
         Statement s;
         s.kind = StatementKind::MaximumDepth;
-        s.word = syntax_.expression(*at, end);
+        s.word = syntax_.maximumDepth(*at, end);
         file_.statements.push_back(std::move(s));
         continue;
       }

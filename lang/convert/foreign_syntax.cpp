@@ -1,8 +1,11 @@
 #include "lang/convert/foreign_syntax.h"
 
 #include <cctype>
+#include <cstdlib>
 #include <optional>
 #include <utility>
+
+#include "lang/program.h"
 
 namespace ontogen::convert {
 
@@ -33,7 +36,12 @@ struct Predefined {
   std::string_view cell;  ///< Translate: the cell-language label; Inert: the module's name
   Fate fate;
   bool lpyOnly = true;    ///< a name of L-Py alone (cpfg's modules are one character or '@' names)
+  bool cpfgOnly = false;  ///< a name of cpfg alone
 };
+
+bool inDialect(const Predefined& p, Dialect dialect) {
+  return dialect == Dialect::LPy ? !p.cpfgOnly : !p.lpyOnly;
+}
 
 constexpr Predefined kPredefined[] = {
     // Both tools' '@' modules.
@@ -55,6 +63,13 @@ constexpr Predefined kPredefined[] = {
     {"@2D", "StartScreenProjection", Fate::Inert, true},
     {"@3D", "EndScreenProjection", Fate::Inert, true},
     {"@Gc", "gcbegin", Fate::Translate, true},  // L-Py's StartGC
+    // cpfg's generalized cylinders (its blackbox.c): @Gs starts one, @Gc adds a control
+    // point (ontogen's F adds them), @Gt and @Gr shape its tangents.
+    {"@Gs", "gcbegin", Fate::Translate, false, true},
+    {"@Gc", "ContinueSpline", Fate::Inert, false, true},
+    {"@Gt", "SplineTangents", Fate::Inert, false, true},
+    {"@Gr", "RadiusTangents", Fate::Inert, false, true},
+    {"@c", "Circle3D", Fate::Inert, false, true},  // a circle facing the turtle's heading
     {"@Ge", "gcend", Fate::Translate, false},
     // L-Py's names.
     {"Sphere", "sphere", Fate::Translate},
@@ -136,7 +151,7 @@ constexpr Predefined kPredefined[] = {
 
 const Predefined* predefined(std::string_view name, Dialect dialect) {
   for (const Predefined& p : kPredefined)
-    if (p.name == name && (dialect == Dialect::LPy || !p.lpyOnly)) return &p;
+    if (p.name == name && inDialect(p, dialect)) return &p;
   return nullptr;
 }
 
@@ -193,7 +208,7 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
   if (c == '@' && at + 1 < end && isNameChar(text_[at + 1])) {
     size_t best = 0;
     for (const Predefined& p : kPredefined)
-      if (p.name[0] == '@' && (dialect_ == Dialect::LPy || !p.lpyOnly) && p.name.size() > best &&
+      if (p.name[0] == '@' && inDialect(p, dialect_) && p.name.size() > best &&
           at + p.name.size() <= end && text_.compare(at, p.name.size(), p.name) == 0)
         best = p.name.size();
     if (best == 0) {
@@ -201,8 +216,9 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
       while (stop < end && isNameChar(text_[stop])) ++stop;
       fail(at, stop,
            std::string(dialectName(dialect_)) + "'s module " + shown(text_.substr(at, stop - at)) +
-               " is none ontogen can translate (it knows @O, @o, @v, @M, @R, @L, @b, @Ge" +
-               (dialect_ == Dialect::LPy ? ", @Gc, @B, @g, @h, @D, @Dd, @Di, @Ts, @Tp, @2D, @3D" : "") + ")");
+               " is none ontogen can translate (it knows @O, @o, @v, @M, @R, @L, @b, @Ge, @Gc" +
+               (dialect_ == Dialect::LPy ? ", @B, @g, @h, @D, @Dd, @Di, @Ts, @Tp, @2D, @3D" : ", @Gs, @Gt, @Gr, @c") +
+               ")");
     }
     label = std::string(text_.substr(at, best));
     return at + static_cast<uint32_t>(best);
@@ -417,6 +433,22 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
     result.push_back(std::move(module));
   }
   return result;
+}
+
+std::string ForeignSyntax::maximumDepth(uint32_t begin, uint32_t end) const {
+  std::string value = expression(begin, end);
+  char* stop = nullptr;
+  const double depth = std::strtod(value.c_str(), &stop);
+  if (stop == value.c_str() + value.size() && depth > kMaxRewriteDepth) {
+    trim(begin, end);
+    warnings.push_back({SourceRange{begin, end},
+                        "maximum depth " + value + " is above ontogen's limit of " +
+                            std::to_string(kMaxRewriteDepth) + ": the block rewrites at most " +
+                            std::to_string(kMaxRewriteDepth) +
+                            " deep, which differs only where the rules recurse deeper"});
+    value = std::to_string(kMaxRewriteDepth);
+  }
+  return value;
 }
 
 std::vector<std::string> ForeignSyntax::symbols(uint32_t begin, uint32_t end) const {

@@ -42,6 +42,10 @@ class ForeignSyntax {
   std::vector<ModuleText> modules(uint32_t begin, uint32_t end, bool pattern) const;
   /// An expression of the dialect as a cell-language expression. Throws ConvertError.
   std::string expression(uint32_t begin, uint32_t end) const;
+  /// The value of `maximum depth: N`: N, or kMaxRewriteDepth (the deepest the cell
+  /// language takes) with a warning when N is a number above it; cpfg's files ask for up
+  /// to 1000 where their homomorphisms recurse a few levels.
+  std::string maximumDepth(uint32_t begin, uint32_t end) const;
   /// The labels of an `ignore:` or `consider:` list.
   std::vector<std::string> symbols(uint32_t begin, uint32_t end) const;
   /// A production of [begin, end), which holds an arrow (`-->` or `->`).
@@ -84,5 +88,6 @@ class ForeignSyntax {
 /// converter reads inside one another. The compiler takes 200 levels of nesting, and each
 /// conditional becomes two (a call and its arguments); no model nests a tenth as deep.
 inline constexpr int kMaxConvertNesting = 64;
+
 
 }  // namespace ontogen::convert

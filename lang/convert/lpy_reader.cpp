@@ -1,6 +1,7 @@
 #include "lang/convert/lpy_reader.h"
 
 #include <cctype>
+#include <cstdlib>
 #include <optional>
 #include <string>
 
@@ -91,7 +92,7 @@ class LPyReader {
         continue;
       }
       if (auto at = afterLabel(clean_, line, "maximum depth")) {
-        add(StatementKind::MaximumDepth, syntax_.expression(*at, end));
+        add(StatementKind::MaximumDepth, syntax_.maximumDepth(*at, end));
         continue;
       }
       if (auto section = sectionOf(line)) {
@@ -133,6 +134,15 @@ class LPyReader {
         continue;
       }
       if (isImport(begin, end)) continue;
+      if (angleIncrement(begin, end)) continue;
+      // print(...) writes to the terminal, which changes no word.
+      if (afterKeyword(clean_, line, "print")) continue;
+      // seed(N): the run's seed (ontogen's streams are its own, so the numbers differ
+      // from Python's; a run is still the same for the same seed).
+      if (auto at = seedCall(begin, end)) {
+        file_.seed = *at;
+        continue;
+      }
       if (const uint32_t colon = syntax_.find(begin, end, ":"); colon < end && !pythonKeyword(begin, end)) {
         uint32_t a = colon + 1, b = end;
         syntax_.trim(a, b);
@@ -148,7 +158,7 @@ class LPyReader {
       { python(begin, end); }
     }
     stamp();
-    checkKept();
+    checkChoices();
     // L-Py derives once unless the file says otherwise.
     if (!file_.derivationLength) file_.derivationLength = "1";
     file_.warnings = std::move(syntax_.warnings);
@@ -195,8 +205,8 @@ class LPyReader {
   }
 
   // L-Py's hooks `def Start():`, `End`, `StartEach`, `EndEach`, `StartInterpretation`
-  // whose body only prints or passes change nothing the converted block holds: they are
-  // read over. The index of the hook's last line.
+  // whose body only prints, asserts or passes change nothing the converted block holds:
+  // they are read over. The index of the hook's last line.
   std::optional<size_t> quietHook(const std::vector<Line>& lines, size_t i, uint32_t begin, uint32_t end) const {
     auto at = afterKeyword(clean_, Line{begin, end}, "def");
     if (!at) return std::nullopt;
@@ -219,10 +229,80 @@ class LPyReader {
     }
     for (const BodyLine& line : logicalLines(clean_, colon + 1, lines[last].end)) {
       const Line l{line.begin, line.end};
-      if (afterKeyword(clean_, l, "pass") || afterKeyword(clean_, l, "print")) continue;
+      if (afterKeyword(clean_, l, "pass") || afterKeyword(clean_, l, "print") || afterKeyword(clean_, l, "assert"))
+        continue;
       return std::nullopt;  // read as Python: an error at the def
     }
     return last;
+  }
+
+  // `context().turtle.setAngleIncrement(A)` (or execContext(), or the editor's
+  // `context.turtle...`): the block's #angle.
+  bool angleIncrement(uint32_t begin, uint32_t end) {
+    for (std::string_view call : {"context().turtle.setAngleIncrement(", "execContext().turtle.setAngleIncrement(",
+                                  "context.turtle.setAngleIncrement("}) {
+      if (clean_.compare(begin, call.size(), call) != 0) continue;
+      const uint32_t open = begin + static_cast<uint32_t>(call.size()) - 1;
+      uint32_t close = end;
+      while (close > open && clean_[close - 1] != ')') --close;
+      if (close <= open + 1) return false;
+      file_.angle = syntax_.expression(open + 1, close - 1);
+      return true;
+    }
+    return false;
+  }
+
+  // The editor's scalars, `scalars = [('N', 'Integer', 10, 1, 20), ('B', 'Bool', True)]`:
+  // #defines of their values, unless the file gives the name itself.
+  void scalars(uint32_t begin, uint32_t end) {
+    uint32_t at = syntax_.find(begin, end, "[");
+    for (at = at < end ? at + 1 : end; at < end;) {
+      uint32_t open = at;
+      while (open < end && clean_[open] != '(') ++open;
+      if (open == end) break;
+      int depth = 0;
+      uint32_t close = open;
+      for (; close < end; ++close) {
+        if (clean_[close] == '(') ++depth;
+        if (clean_[close] == ')' && --depth == 0) break;
+      }
+      if (close == end) break;
+      std::vector<std::string> fields;
+      for (uint32_t a = open + 1; a <= close;) {
+        uint32_t comma = syntax_.find(a, close, ",");
+        uint32_t x = a, y = comma;
+        syntax_.trim(x, y);
+        fields.emplace_back(clean_.substr(x, y - x));
+        a = comma + 1;
+      }
+      at = close + 1;
+      if (fields.size() < 3) continue;
+      auto unquote = [](std::string text) {
+        if (text.size() >= 2 && (text[0] == '\'' || text[0] == '"')) text = text.substr(1, text.size() - 2);
+        return text;
+      };
+      const std::string name = unquote(fields[0]), type = unquote(fields[1]);
+      std::string value = fields[2];
+      if (type == "Bool") value = value == "True" ? "1" : "0";
+      else if (type != "Integer" && type != "Float") continue;
+      bool given = false;
+      for (const Define& d : file_.defines) given = given || d.name == name;
+      if (given || name.empty()) continue;
+      char* stop = nullptr;
+      (void)std::strtod(value.c_str(), &stop);
+      if (value.empty() || stop != value.c_str() + value.size()) continue;
+      file_.defines.push_back({name, value, SourceRange{open, close + 1}});
+    }
+  }
+
+  std::optional<std::string> seedCall(uint32_t begin, uint32_t end) const {
+    for (std::string_view call : {"seed(", "random.seed("}) {
+      if (clean_.compare(begin, call.size(), call) != 0 || clean_[end - 1] != ')') continue;
+      const uint32_t open = begin + static_cast<uint32_t>(call.size()) - 1;
+      if (syntax_.find(open + 1, end, ")") != end) continue;  // the ')' is the call's own
+      return syntax_.expression(open + 1, end - 1);
+    }
+    return std::nullopt;
   }
 
   bool startsStatement(uint32_t begin, uint32_t end) const {
@@ -275,23 +355,32 @@ class LPyReader {
     return s;
   }
 
-  // A way of a random choice that keeps its module stands for L-Py's trying the module's
-  // later productions: there must be none in its section.
-  void checkKept() const {
+  // The cell language chooses among a module's matching weighted productions together,
+  // L-Py takes the first body that produces. So a body's random choice stands alone: no
+  // later production of the module in its section may join it (a weighted one would be
+  // chosen with it), nor follow a way that keeps the module (L-Py would try it there).
+  void checkChoices() const {
     const std::vector<Statement>& all = file_.statements;
     for (size_t k = 0; k < all.size(); ++k) {
-      if (!all[k].keepsModule) continue;
+      if (all[k].probability.empty()) continue;
       for (size_t j = k + 1; j < all.size() && all[j].kind != StatementKind::Section; ++j) {
         const Statement& later = all[j];
         if (later.kind != StatementKind::Production || later.origin.begin == all[k].origin.begin) continue;
-        if (later.predecessor.label == all[k].predecessor.label &&
-            later.predecessor.args.size() == all[k].predecessor.args.size() &&
-            later.predecessor.hasArgs == all[k].predecessor.hasArgs)
+        if (later.predecessor.label != all[k].predecessor.label ||
+            later.predecessor.args.size() != all[k].predecessor.args.size() ||
+            later.predecessor.hasArgs != all[k].predecessor.hasArgs)
+          continue;
+        if (all[k].keepsModule)
           syntax_.fail(all[k].origin.begin, all[k].origin.end,
                        "a random choice of this body produces nothing on one way, where L-Py tries the later "
                        "productions of " +
                            all[k].predecessor.label +
                            ": the cell language chooses among weighted productions together; make the way produce");
+        if (!later.probability.empty())
+          syntax_.fail(later.origin.begin, later.origin.end,
+                       "a second body with a random choice for " + later.predecessor.label +
+                           ": the cell language would choose among both bodies' ways together, where L-Py takes the "
+                           "first body that produces; join them in one body");
       }
     }
   }
@@ -370,6 +459,15 @@ class LPyReader {
     constexpr std::string_view kMatching = "'String matching'";
     for (size_t k = from; k < lines.size(); ++k) {
       std::string_view text = original_.substr(lines[k].begin, lines[k].end - lines[k].begin);
+      {
+        uint32_t a = firstNonSpace(clean_, lines[k]), b = lines[k].end;
+        syntax_.trim(a, b);
+        if (a < b && !angleIncrement(a, b) && afterKeyword(clean_, Line{a, b}, "scalars")) {
+          uint32_t eq = a + 7;
+          while (eq < b && std::isspace(static_cast<unsigned char>(clean_[eq]))) ++eq;
+          if (eq < b && clean_[eq] == '=') scalars(eq + 1, b);
+        }
+      }
       const size_t at = text.find(kMatching);
       if (at == std::string_view::npos || text.find("setSelection") == std::string_view::npos) continue;
       // 1, L-Py's default, matches contexts as an axial tree, as ontogen does; 0 reads the

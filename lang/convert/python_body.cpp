@@ -82,7 +82,7 @@ bool isUniformDraw(std::string_view text) {
 }
 
 // `u < p`, `u <= p`, `p > u`, `p >= u` with u a uniform draw in [0, 1): p, the chance
-// the test holds.
+// the test holds; `u > p`, `p < u`: 1 - p.
 std::optional<std::string> chanceOf(std::string_view condition) {
   const std::string_view text = bare(condition);
   int depth = 0;
@@ -103,13 +103,18 @@ std::optional<std::string> chanceOf(std::string_view condition) {
   const std::string_view left = text.substr(0, at), right = text.substr(at + size);
   const bool less = text[at] == '<';
   std::string_view chance;
-  if (less && isUniformDraw(left) && !holdsRandom(right))
+  bool complement = false;  // u > p holds with chance 1 - p
+  if (isUniformDraw(left) && !holdsRandom(right)) {
     chance = right;
-  else if (!less && isUniformDraw(right) && !holdsRandom(left))
+    complement = !less;
+  } else if (isUniformDraw(right) && !holdsRandom(left)) {
     chance = left;
-  else
+    complement = less;
+  } else {
     return std::nullopt;
+  }
   chance = bare(chance);
+  if (complement) return "(1 - clamp(" + std::string(chance) + ", 0, 1))";
   // A chance written as a number from 0 to 1 stands as it is.
   char* stop = nullptr;
   const std::string number(chance);

@@ -137,6 +137,7 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
       {"parametric_1_35.lpy", "1,2,3,4",
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
       {"python_body.lpy", "1,2", "t = 1: A(1)\nt = 2: A(2)\n"},
+      {"continued.l", "1,2", "t = 1: B [ C ] A\nt = 2: B [ C ] B [ C ] A\n"},
       // Python bodies: if/elif/else, nproduce, locals, math, a word over lines, return,
       // and random choices of chance 1 and 0, as L-Py derives them.
       {"python_branches.lpy", "1,2,3",
@@ -229,6 +230,23 @@ TEST(Convert, AViewFileThatIsNoRegularFileIsRefused) {
 }
 
 // An error the compiler finds in converted text is shown at the line of the file.
+// `if random() < 0.25` in an L-Py body is a choice of chance 0.25: of 400 modules about
+// 100 take it (the count is fixed by the seed; 60 to 140 is 4.6 standard deviations).
+TEST(Convert, ARandomTestInAPythonBodyChoosesWithItsChance) {
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "chance";
+  fs::create_directories(dir);
+  std::string axiom;
+  for (int i = 0; i < 400; ++i) axiom += " R";
+  std::ofstream(dir / "chance.lpy") << "from random import *\nAxiom:" << axiom
+                                    << "\nproduction:\nR :\n  if random() < 0.25: produce X\n  else: produce Y\n";
+  Result result = ontogen("word " + (dir / "chance.lpy").string() + " --at 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const size_t x = count(result.out, " X"), y = count(result.out, " Y");
+  EXPECT_EQ(x + y, 400u) << result.out;
+  EXPECT_GE(x, 60u);
+  EXPECT_LE(x, 140u);
+}
+
 TEST(Convert, ErrorsInTheConvertedTextAreShownAtTheFilesLine) {
   const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "mapped";
   fs::create_directories(dir);

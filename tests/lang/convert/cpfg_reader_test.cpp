@@ -101,3 +101,47 @@ TEST(CpfgReader, ValuePatternsAreTranslated) {
 
 }  // namespace
 }  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+// cpfg's reader takes a line break followed by a tab as a space, and the C
+// preprocessor it reads through removes `//` comments.
+TEST(CpfgReader, TabbedLinesContinueAStatementAndSlashCommentsAreRemoved) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "Lsystem: 1\nAxiom: A\nA --> B // a comment\n\tC\n\t[D]\nB --> E\n  \nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  axiom A\n  A -> B C [ D ]\n  B -> E\n");
+}
+
+// cpfg's generalized cylinders: @Gs starts one (gcbegin), @Ge ends it; its control
+// points, tangents and 3D circle stay modules of a name, with a warning.
+TEST(CpfgReader, GeneralizedCylinderModules) {
+  auto c = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: @GsF@Gc(3)@Gt(1,2)@Gr(1)@Ge(4)@c(2)\nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  axiom gcbegin F ContinueSpline(3) SplineTangents(1, 2) RadiusTangents(1) gcend(4) Circle3D(2)\n");
+  ASSERT_EQ(c.warnings.size(), 4u);
+  EXPECT_EQ(c.warnings[0].substr(0, 5), "2:12:");
+  // L-Py knows @Gc as StartGC, and not @Gs.
+  auto lpy = convertText(Dialect::LPy, "a.lpy", "Axiom: @Gc F @Gs\n");
+  EXPECT_EQ(lpy.line, 1);
+  EXPECT_EQ(lpy.column, 14);
+  EXPECT_NE(lpy.error.find("L-Py's module '@Gs' is none ontogen can translate"), std::string::npos) << lpy.error;
+}
+
+TEST(CpfgReader, AMaximumDepthAboveTheLimitIsTheLimitWithAWarning) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "Lsystem: 1\nAxiom: A\nhomomorphism\nmaximum depth: 1000\nA --> B\nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  axiom A\n  homomorphism:\n  maximum depth: 256\n  A -> B\n");
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_EQ(c.warnings[0],
+            "4:16: maximum depth 1000 is above ontogen's limit of 256: the block rewrites at most 256 deep, which "
+            "differs only where the rules recurse deeper");
+  auto within = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A\nhomomorphism\nmaximum depth: 256\nendlsystem\n");
+  EXPECT_TRUE(within.warnings.empty());
+}
+
+}  // namespace
+}  // namespace ontogen::convert

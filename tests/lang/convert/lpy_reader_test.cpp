@@ -101,3 +101,36 @@ TEST(LPyReader, TheToolIsKnownByTheExtension) {
 
 }  // namespace
 }  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+// The turtle's angle set from Python, and the editor's scalars, which the file's own
+// constants override.
+TEST(LPyReader, AngleIncrementAndTheEditorsScalars) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "context().turtle.setAngleIncrement(90)\nN = 4\nAxiom: A(N, M, B, F)\n"
+                       "###### INITIALISATION ######\ndef __initialiseContext__(context):\n"
+                       "\tscalars = [('N', 'Integer', 10, 1, 20), ('M', 'Float', 0.5, 0., 1.), ('B', 'Bool', True), "
+                       "('C', 'Category', None), ('F', 'Bool', False)]\n\tcontext[\"__scalars__\"] = scalars\n");
+  ASSERT_EQ(c.error, "");
+  const size_t open = c.program.find("{\n"), close = c.program.rfind("}");
+  EXPECT_EQ(c.program.substr(open + 2, close - open - 2),
+            "  #define N 4\n  #define M 0.5\n  #define B 1\n  #define F 0\n  #angle 90\n  #until 1\n"
+            "  axiom A(N, M, B, F)\n");
+}
+
+}  // namespace
+}  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+TEST(LPyReader, SeedAndPrintAtTheTopLevel) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "from random import seed\nseed(3)\nprint('hello')\nAxiom: A\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  #seed 3\n"), std::string::npos) << c.program;
+}
+
+}  // namespace
+}  // namespace ontogen::convert

@@ -85,6 +85,13 @@ TEST(PythonBody, RandomTestsAreWeightedChoices) {
             "  C -> D(gaussian(0, 1), uniform(2, 3)) : 0.25\n  C -> C : (1 - 0.25)\n");
 }
 
+TEST(PythonBody, ADrawAboveAChanceHoldsWithTheComplement) {
+  auto c = convertText(Dialect::LPy, "a.lpy", lpy("A(x) :\n  if random() > x: produce B\n  else: produce C\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program),
+            "  A(x) -> B : (1 - clamp(x, 0, 1))\n  A(x) -> C : (1 - (1 - clamp(x, 0, 1)))\n");
+}
+
 TEST(PythonBody, ARandomValueUsedTwiceIsRefused) {
   auto c = convertText(Dialect::LPy, "a.lpy", lpy("A(x) :\n  r = uniform(0, 1)\n  produce B(r) C(r)\n"));
   EXPECT_EQ(c.line, 7);
@@ -105,6 +112,12 @@ TEST(PythonBody, AKeptModuleBeforeALaterProductionIsRefused) {
   EXPECT_EQ(c.line, 5);
   EXPECT_EQ(c.column, 1);
   EXPECT_NE(c.error.find("L-Py tries the later productions of A"), std::string::npos) << c.error;
+  auto two = convertText(Dialect::LPy, "a.lpy",
+                         lpy("A(x) :\n  if random() < 0.5: produce B\n  else: produce C\n"
+                             "A(x) :\n  if random() < 0.5: produce D\n  else: produce E\n"));
+  EXPECT_EQ(two.line, 8);
+  EXPECT_EQ(two.column, 1);
+  EXPECT_NE(two.error.find("a second body with a random choice for A"), std::string::npos) << two.error;
 }
 
 TEST(PythonBody, OtherPythonIsALocatedError) {
@@ -136,7 +149,7 @@ TEST(PythonBody, OtherPythonIsALocatedError) {
 TEST(PythonBody, QuietHooksAndImportsAreReadOver) {
   auto c = convertText(Dialect::LPy, "a.lpy",
                        "import math\nfrom openalea.plantgl.all import *\ndef Start():\n  print('go')\n\n"
-                       "def EndEach(lstring):\n  pass\nAxiom: A\n");
+                       "def EndEach(lstring):\n  assert lstring == 'A'\n  pass\nAxiom: A\n");
   ASSERT_EQ(c.error, "");
   auto hook = convertText(Dialect::LPy, "a.lpy", "def StartEach():\n  backward()\nAxiom: A\n");
   EXPECT_EQ(hook.line, 1);
