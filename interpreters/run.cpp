@@ -21,10 +21,7 @@ constexpr double kMaxFrames = 1e6;
 
 std::string formatRunDiagnostic(const RunDiagnostic& diagnostic) {
   if (diagnostic.span.valid()) return formatDiagnostic(Diagnostic{diagnostic.severity, diagnostic.span, diagnostic.message});
-  const char* severity = diagnostic.severity == Severity::Error     ? "error"
-                         : diagnostic.severity == Severity::Warning ? "warning"
-                                                                    : "note";
-  return std::string("ontogen: ") + severity + ": " + diagnostic.message + "\n";
+  return std::string("ontogen: ") + severityName(diagnostic.severity) + ": " + diagnostic.message + "\n";
 }
 
 namespace {

@@ -31,7 +31,7 @@ void DiagnosticSink::clear() {
   dropped_ = 0;
 }
 
-static const char* severityName(Severity severity) {
+const char* severityName(Severity severity) {
   switch (severity) {
     case Severity::Error: return "error";
     case Severity::Warning: return "warning";

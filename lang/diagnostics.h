@@ -17,6 +17,9 @@ namespace ontogen {
 
 enum class Severity { Error, Warning, Note };
 
+/// "error", "warning" or "note": the word formatDiagnostic prints before the message.
+const char* severityName(Severity severity);
+
 struct Diagnostic {
   Severity severity = Severity::Error;
   SourceSpan span;  ///< may be invalid for errors that belong to no source text

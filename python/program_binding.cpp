@@ -23,15 +23,6 @@ namespace ontogen::python {
 
 namespace {
 
-const char* severityName(Severity severity) {
-  switch (severity) {
-    case Severity::Error: return "error";
-    case Severity::Warning: return "warning";
-    case Severity::Note: return "note";
-  }
-  return "error";
-}
-
 // (file, line, column, message, severity): file None and line 0 for what belongs to no text.
 py::tuple diagnosticTuple(const Diagnostic& diagnostic) {
   py::object file = diagnostic.span.valid() ? py::object(py::str(diagnostic.span.file->name())) : py::none();

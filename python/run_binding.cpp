@@ -28,15 +28,6 @@ const char* statusName(RunStatus status) {
   return "model failed";
 }
 
-const char* severityName(Severity severity) {
-  switch (severity) {
-    case Severity::Error: return "error";
-    case Severity::Warning: return "warning";
-    case Severity::Note: return "note";
-  }
-  return "error";
-}
-
 py::dict diagnosticDict(const RunDiagnostic& diagnostic) {
   py::dict d;
   d["severity"] = severityName(diagnostic.severity);

@@ -13,18 +13,6 @@
 
 namespace ontogen::studio {
 
-namespace {
-const char* severityName(Severity severity) {
-  switch (severity) {
-    case Severity::Error: return "error";
-    case Severity::Warning: return "warning";
-    case Severity::Note: return "note";
-  }
-  return "error";
-}
-
-}  // namespace
-
 StudioModel::StudioModel(StudioModelDef def) : def_(std::move(def)) {
   // --define values given when the studio starts are where the sliders start.
   overrides_ = def_.program.defines;
