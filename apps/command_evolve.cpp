@@ -172,6 +172,12 @@ int runEvolve(const EvolveOptions& options) {
       batch.sheet.tileWidth = size->first;
       batch.sheet.tileHeight = size->second;
     }
+    batch.leading = [&](uint64_t index) {
+      std::vector<std::string> leading;
+      for (double value : genomes[index].values) leading.push_back(formatValue(value));
+      leading.push_back(std::to_string(seed));
+      return leading;
+    };
     batch.run = [&, dir, generation](uint64_t index) {
       const Genome& genome = genomes[index];
       std::vector<std::string> leading;

@@ -7,6 +7,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "interpreters/formats/png_writer.h"
 #include "interpreters/interpretation_set.h"
 #include "interpreters/output_file.h"
@@ -20,6 +22,7 @@ namespace {
 struct JournalSetup {
   BatchStatus status = BatchStatus::Done;
   std::string message;
+  std::filesystem::path target;  // the file the journal's rows are appended to
   std::vector<SweepRow> rows;
 };
 
@@ -47,6 +50,17 @@ void removeStaleTemporaries(const std::filesystem::path& dir) {
   }
 }
 
+// The settings that make the variants: the header without what is measured of them.
+// Two journals of one identity hold rows of the same variants; rows measured otherwise
+// fail their checksums and run again.
+std::string identityOf(const std::string& header) {
+  nlohmann::json settings = nlohmann::json::parse(header, nullptr, false);
+  if (settings.is_discarded() || !settings.is_object()) return header;
+  settings.erase("measures");
+  settings.erase("columns");
+  return settings.dump();
+}
+
 JournalSetup openJournal(const BatchDef& def, const std::filesystem::path& path) {
   JournalSetup setup;
   std::error_code error;
@@ -56,52 +70,67 @@ JournalSetup openJournal(const BatchDef& def, const std::filesystem::path& path)
     setup.message = "cannot create the folder '" + def.dir.string() + "': " + error.message();
     return setup;
   }
-  JournalContents contents = readJournal(path, def.columns.size());
-  if (contents.exists && !def.resume) {
+  // The journal follows the rule of every output (interpreters/output_file.h): written
+  // through a symbolic link, refused when it is no regular file (a FIFO would never end).
+  try {
+    setup.target = outputTarget(path);
+  } catch (const OutputError& bad) {
+    setup.status = BatchStatus::OutputError;
+    setup.message = bad.what();
+    return setup;
+  }
+  JournalContents contents = readJournal(setup.target, def.columns.size(), def.header);
+  // A journal without a whole first line (empty, or its header cut short by a kill)
+  // holds no row: it is written anew.
+  const bool holdsSweep = contents.exists && !contents.header.empty();
+  if (holdsSweep && !def.resume) {
     setup.status = BatchStatus::Refused;
     setup.message = "'" + def.dir.string() +
                     "' holds a sweep already (journal.jsonl); --resume continues it, or choose another --out";
     return setup;
   }
-  if (contents.exists && contents.header != def.header) {
+  if (holdsSweep && identityOf(contents.header) != identityOf(def.header)) {
     setup.status = BatchStatus::Refused;
     setup.message = "'" + def.dir.string() +
-                    "' holds a sweep of other settings (another program, defines, seeds, measures or run settings); "
+                    "' holds a sweep of other settings (another program, defines, seeds or run settings); "
                     "--resume continues a sweep only with the command that began it";
     return setup;
   }
-  // A journal whose last line was cut short by a kill is truncated to its whole lines
-  // (also a header cut short: a journal of nothing).
-  if (contents.exists && contents.header.empty()) contents.exists = false;
-  if (contents.exists) {
-    removeStaleTemporaries(def.dir);
-    std::filesystem::resize_file(path, contents.goodBytes, error);
-  } else {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out << def.header << '\n';
-    if (!out) error = std::make_error_code(std::errc::io_error);
+  if (holdsSweep) removeStaleTemporaries(def.dir);
+  // Only rows that check and say what their variant is are kept; the journal is written
+  // again with them alone (the others run again), atomically.
+  for (SweepRow& row : contents.rows) {
+    if (row.variant >= def.count) continue;
+    if (def.leading) {
+      const std::vector<std::string> expected = def.leading(row.variant);
+      if (row.values.size() < expected.size() || !std::equal(expected.begin(), expected.end(), row.values.begin()))
+        continue;
+    }
+    setup.rows.push_back(std::move(row));
   }
-  if (error) {
+  try {
+    writeFileAtomically(path, [&](std::ostream& out) {
+      out << def.header << '\n';
+      for (const SweepRow& row : setup.rows) out << journalLine(row, def.header) << '\n';
+    });
+  } catch (const OutputError& bad) {
     setup.status = BatchStatus::OutputError;
-    setup.message = "cannot write '" + path.string() + "': " + error.message();
-    return setup;
+    setup.message = bad.what();
   }
-  for (SweepRow& row : contents.rows)
-    if (row.variant < def.count) setup.rows.push_back(std::move(row));
   return setup;
 }
 
-std::string encodeRows(const std::vector<SweepRow>& rows) {
+std::string encodeRows(const std::vector<SweepRow>& rows, const std::string& header) {
   std::string text;
-  for (const SweepRow& row : rows) text += journalLine(row) + "\n";
+  for (const SweepRow& row : rows) text += journalLine(row, header) + "\n";
   return text;
 }
 
-std::vector<SweepRow> decodeRows(const std::string& text, size_t columns) {
+std::vector<SweepRow> decodeRows(const std::string& text, size_t columns, const std::string& header) {
   std::vector<SweepRow> rows;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);)
-    if (auto row = parseJournalLine(line, columns)) rows.push_back(std::move(*row));
+    if (auto row = parseJournalLine(line, columns, header)) rows.push_back(std::move(*row));
   return rows;
 }
 
@@ -130,14 +159,14 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
   JournalSetup setup;
   if (cluster.leader()) setup = openJournal(def, journalPath);
   const std::string status =
-      cluster.broadcast(std::to_string(static_cast<int>(setup.status)) + "\n" + encodeRows(setup.rows));
+      cluster.broadcast(std::to_string(static_cast<int>(setup.status)) + "\n" + encodeRows(setup.rows, def.header));
   const auto code = static_cast<BatchStatus>(std::stoi(status.substr(0, status.find('\n'))));
   if (code != BatchStatus::Done) {
     result.status = code;
     result.message = setup.message;
     return result;
   }
-  std::vector<SweepRow> rows = decodeRows(status.substr(status.find('\n') + 1), def.columns.size());
+  std::vector<SweepRow> rows = decodeRows(status.substr(status.find('\n') + 1), def.columns.size(), def.header);
   std::set<uint64_t> finished;
   for (const SweepRow& row : rows) finished.insert(row.variant);
   std::vector<uint64_t> mine;
@@ -149,12 +178,12 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
   }
 
   std::ofstream journal;
-  if (cluster.leader()) journal.open(journalPath, std::ios::binary | std::ios::app);
+  if (cluster.leader()) journal.open(setup.target, std::ios::binary | std::ios::app);
   uint64_t failedNow = 0, doneNow = 0;
   for (const SweepRow& row : rows) failedNow += !row.error.empty();
   const auto started = std::chrono::steady_clock::now();
   auto record = [&](const std::string& line) {
-    std::optional<SweepRow> row = parseJournalLine(line, def.columns.size());
+    std::optional<SweepRow> row = parseJournalLine(line, def.columns.size(), def.header);
     if (!row || finished.count(row->variant)) return;
     journal << line << '\n' << std::flush;
     finished.insert(row->variant);
@@ -168,7 +197,7 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
 
   auto stopAsked = [&def] { return def.stop && def.stop(); };
   {
-    VariantPool pool(def.workers, mine, [&def](uint64_t i) { return journalLine(def.run(i)); });
+    VariantPool pool(def.workers, mine, [&def](uint64_t i) { return journalLine(def.run(i), def.header); });
     bool stopping = false;
     int ranksDone = cluster.leader() ? 1 : 0;  // rank 0 counts itself when its pool is done
     bool sentDone = false;
@@ -222,9 +251,9 @@ BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
     }
   }
   const std::string table =
-      cluster.broadcast(std::to_string(static_cast<int>(result.status)) + "\n" + encodeRows(rows));
+      cluster.broadcast(std::to_string(static_cast<int>(result.status)) + "\n" + encodeRows(rows, def.header));
   result.status = static_cast<BatchStatus>(std::stoi(table.substr(0, table.find('\n'))));
-  result.table.rows = decodeRows(table.substr(table.find('\n') + 1), def.columns.size());
+  result.table.rows = decodeRows(table.substr(table.find('\n') + 1), def.columns.size(), def.header);
   for (const SweepRow& row : result.table.rows) result.failed += !row.error.empty();
   return result;
 }

@@ -30,7 +30,10 @@ struct BatchProgress {
 
 struct BatchDef {
   std::filesystem::path dir;          ///< the folder of the table (made if missing)
-  std::string header;                 ///< the journal's first line: the settings that make the rows
+  /// The journal's first line: a JSON object of the settings that make the rows. Its
+  /// "measures" and "columns" may differ when a journal is resumed (its rows then run
+  /// again, measured anew); any other difference refuses the journal.
+  std::string header;
   std::vector<std::string> columns;   ///< between `variant` and `error`
   uint64_t count = 0;                 ///< variants 0 .. count - 1
   bool resume = false;                ///< continue the journal in dir (else dir must hold none)
@@ -38,6 +41,9 @@ struct BatchDef {
   /// Runs variant i (on any rank, on a worker thread) and writes its own files; must
   /// not throw.
   std::function<SweepRow(uint64_t)> run;
+  /// The values a row of variant i begins with (its defines or genes, its seed): a row of
+  /// the journal that says otherwise is not trusted but run again. Empty: not checked.
+  std::function<std::vector<std::string>(uint64_t)> leading;
   /// The thumbnail of variant i (for the gallery), whether or not it exists.
   std::function<std::filesystem::path(uint64_t)> thumbnail;
   ContactSheetDef sheet{};

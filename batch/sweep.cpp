@@ -100,16 +100,29 @@ SweepResult runSweep(SweepDef def, Cluster& cluster) {
   batch.thumbnail = [&setup, dir](uint64_t i) { return dir / "thumbnails" / (variantStem(setup, i) + ".png"); };
   batch.sheet.tileWidth = def.settings.width;
   batch.sheet.tileHeight = def.settings.height;
-  batch.run = [&](uint64_t index) {
-    // Mixed radix: the seed varies fastest, then the last define, ..., then the first.
+  // Mixed radix: the seed varies fastest, then the last define, ..., then the first.
+  auto variantOf = [&](uint64_t index, std::vector<size_t>& choice) {
     uint64_t rest = index;
     const uint64_t seed = seeds.first + rest % seedCount;
     rest /= seedCount;
-    std::vector<size_t> choice(defines.size());
+    choice.assign(defines.size(), 0);
     for (size_t d = defines.size(); d-- > 0;) {
       choice[d] = static_cast<size_t>(rest % defines[d].values.size());
       rest /= defines[d].values.size();
     }
+    return seed;
+  };
+  batch.leading = [&](uint64_t index) {
+    std::vector<size_t> choice;
+    const uint64_t seed = variantOf(index, choice);
+    std::vector<std::string> leading;
+    for (size_t d = 0; d < defines.size(); ++d) leading.push_back(defines[d].written[choice[d]]);
+    leading.push_back(std::to_string(seed));
+    return leading;
+  };
+  batch.run = [&](uint64_t index) {
+    std::vector<size_t> choice;
+    const uint64_t seed = variantOf(index, choice);
     Genome genome = setup.space->original();
     std::vector<std::string> leading;
     std::vector<std::pair<std::string, double>> values;

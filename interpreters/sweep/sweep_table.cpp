@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -63,17 +64,45 @@ void writeTableJson(const SweepTable& table, std::ostream& out) {
   out << (table.rows.empty() ? "]}\n" : "\n]}\n");
 }
 
-std::string journalLine(const SweepRow& row) {
+namespace {
+
+// FNV-1a, 64 bits, of the header, a line break and the row's JSON without its check, in
+// hexadecimal: catches a row edited or damaged, and a row moved from under another header.
+std::string rowChecksum(std::string_view header, const nlohmann::json& row) {
+  uint64_t hash = 1469598103934665603ull;
+  auto add = [&hash](std::string_view text) {
+    for (unsigned char c : text) {
+      hash ^= c;
+      hash *= 1099511628211ull;
+    }
+  };
+  add(header);
+  add("\n");
+  add(row.dump());
+  char buffer[20];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(hash));
+  return buffer;
+}
+
+}  // namespace
+
+std::string journalLine(const SweepRow& row, std::string_view header) {
   nlohmann::json line;
   line["variant"] = row.variant;
   line["values"] = row.values;
   line["error"] = row.error;
+  line["check"] = rowChecksum(header, line);
   return line.dump();
 }
 
-std::optional<SweepRow> parseJournalLine(std::string_view text, size_t columns) {
-  const nlohmann::json line = nlohmann::json::parse(text, nullptr, false);
+std::optional<SweepRow> parseJournalLine(std::string_view text, size_t columns, std::string_view header) {
+  nlohmann::json line = nlohmann::json::parse(text, nullptr, false);
   if (line.is_discarded() || !line.is_object()) return std::nullopt;
+  const auto check = line.find("check");
+  if (check == line.end() || !check->is_string()) return std::nullopt;
+  const std::string written = check->get<std::string>();
+  line.erase("check");
+  if (line.size() != 3 || rowChecksum(header, line) != written) return std::nullopt;
   const auto variant = line.find("variant");
   const auto values = line.find("values");
   const auto error = line.find("error");
@@ -93,7 +122,7 @@ std::optional<SweepRow> parseJournalLine(std::string_view text, size_t columns) 
   return row;
 }
 
-JournalContents readJournal(const std::filesystem::path& path, size_t columns) {
+JournalContents readJournal(const std::filesystem::path& path, size_t columns, std::string_view header) {
   JournalContents contents;
   std::ifstream in(path, std::ios::binary);
   if (!in) return contents;
@@ -111,13 +140,12 @@ JournalContents readJournal(const std::filesystem::path& path, size_t columns) {
     if (first) {
       contents.header = std::string(line);
       first = false;
-    } else {
-      std::optional<SweepRow> row = parseJournalLine(line, columns);
-      if (!row) break;
+    } else if (std::optional<SweepRow> row = parseJournalLine(line, columns, header)) {
       if (seen.insert(row->variant).second) contents.rows.push_back(std::move(*row));
+    } else {
+      ++contents.rejected;
     }
     at = end + 1;
-    contents.goodBytes = at;
   }
   return contents;
 }

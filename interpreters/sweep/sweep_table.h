@@ -8,8 +8,10 @@
 //
 // The journal (DIR/journal.jsonl) is what a run appends as variants finish: a first
 // line naming the sweep (its settings, so that --resume refuses another sweep's folder),
-// then one JSON object per finished row, in the order they finished. A line cut short
-// by a kill is dropped when the journal is read again.
+// then one JSON object per finished row, in the order they finished. Each row carries a
+// checksum of itself and of the first line it was written under, so a row changed by
+// hand or by a fault, or written under other settings (other measures), reads back as no
+// row and is run again; so is a line cut short by a kill.
 
 #include <cstdint>
 #include <filesystem>
@@ -44,19 +46,25 @@ void writeTableCsv(const SweepTable& table, std::ostream& out);
 /// {"columns": [...], "rows": [{"variant": 0, "<column>": number or null, ..., "error": null or "..."}]}.
 void writeTableJson(const SweepTable& table, std::ostream& out);
 
-/// A row as one line of the journal (no line break).
-std::string journalLine(const SweepRow& row);
-/// The row of a journal line; nothing when the line is not one (cut short).
-std::optional<SweepRow> parseJournalLine(std::string_view line, size_t columns);
+/// A row as one line of the journal (no line break), with its checksum under `header`
+/// (the journal's first line).
+std::string journalLine(const SweepRow& row, std::string_view header);
+/// The row of a journal line written under `header`; nothing when the line is not one
+/// (cut short, another number of columns) or its checksum fails (changed since, or
+/// written under another header).
+std::optional<SweepRow> parseJournalLine(std::string_view line, size_t columns, std::string_view header);
 
 /// What a journal held.
 struct JournalContents {
   bool exists = false;
-  std::string header;           ///< its first line
-  std::vector<SweepRow> rows;   ///< every whole row, in the order written (later duplicates dropped)
-  uint64_t goodBytes = 0;       ///< bytes up to the end of the last whole line
+  std::string header;           ///< its first line; empty when it has no whole first line
+  std::vector<SweepRow> rows;   ///< every whole row that checks, in the order written (later duplicates dropped)
+  uint64_t rejected = 0;        ///< whole lines after the first that are no row or fail their checksum
 };
-/// Reads DIR/journal.jsonl; a missing file is an empty JournalContents.
-JournalContents readJournal(const std::filesystem::path& path, size_t columns);
+/// Reads a journal whose rows were written under `header` (its own first line may say
+/// otherwise: its rows then fail their checksums); a missing file is an empty
+/// JournalContents. The file must be a regular file (interpreters/output_file.h,
+/// outputTarget): a FIFO would never end.
+JournalContents readJournal(const std::filesystem::path& path, size_t columns, std::string_view header);
 
 }  // namespace ontogen

@@ -85,6 +85,30 @@ TEST(Sweep, RowsAreTheProductOfDefinesAndSeedsMeasured) {
   EXPECT_TRUE(readAll(dir / "out" / "results.csv").starts_with("variant,LEN,S,seed,h,n,error\n"));
 }
 
+// A journal row whose checksum holds but whose values are another variant's (written by
+// a tool, or a fault that kept the line whole) is run again, not trusted.
+TEST(Sweep, AJournalRowThatContradictsItsVariantRunsAgain) {
+  const fs::path dir = scratch("contradiction");
+  const SweepResult first = runSweep(chainSweep(dir));
+  ASSERT_EQ(first.batch.status, BatchStatus::Done) << first.batch.message;
+  const std::string journal = readAll(dir / "out" / "journal.jsonl");
+  const std::string header = journal.substr(0, journal.find('\n'));
+  SweepRow forged = first.batch.table.rows[5];  // LEN 2, S 0.5, seed 8 ...
+  forged.variant = 0;                           // ... claiming to be LEN 1, S 0.5, seed 7
+  std::string kept;
+  {
+    std::istringstream in(journal);
+    for (std::string line; std::getline(in, line);)
+      if (line.find("\"variant\":0}") == std::string::npos) kept += line + "\n";
+  }
+  std::ofstream(dir / "out" / "journal.jsonl", std::ios::binary) << kept << journalLine(forged, header) << "\n";
+  SweepDef again = chainSweep(dir);
+  again.resume = true;
+  const SweepResult resumed = runSweep(again);
+  ASSERT_EQ(resumed.batch.status, BatchStatus::Done) << resumed.batch.message;
+  EXPECT_EQ(resumed.batch.table.rows, first.batch.table.rows);
+}
+
 TEST(Sweep, ADefineTheProgramDoesNotHaveIsRefusedWithItsName) {
   const fs::path dir = scratch("unknown_define");
   SweepDef def = chainSweep(dir);

@@ -58,23 +58,51 @@ TEST(SweepTable, CsvAndJsonHoldTheSameRows) {
 TEST(SweepTable, TheJournalReadsBackAndDropsALineCutShort) {
   const std::filesystem::path path = std::filesystem::temp_directory_path() / "ontogen_sweep_table_test.jsonl";
   const SweepTable table = sample();
+  const std::string header = "{\"sweep\": 1}";
   {
     std::ofstream out(path, std::ios::binary);
-    out << "{\"sweep\": 1}\n" << journalLine(table.rows[1]) << "\n" << journalLine(table.rows[0]) << "\n";
-    out << journalLine(table.rows[0]) << "\n";  // a row written twice counts once
-    out << journalLine(table.rows[1]).substr(0, 20);  // killed while writing
+    out << header << "\n" << journalLine(table.rows[1], header) << "\n" << journalLine(table.rows[0], header) << "\n";
+    out << journalLine(table.rows[0], header) << "\n";  // a row written twice counts once
+    out << journalLine(table.rows[1], header).substr(0, 20);  // killed while writing
   }
-  const JournalContents contents = readJournal(path, 3);
+  const JournalContents contents = readJournal(path, 3, header);
   EXPECT_TRUE(contents.exists);
-  EXPECT_EQ(contents.header, "{\"sweep\": 1}");
+  EXPECT_EQ(contents.header, header);
   ASSERT_EQ(contents.rows.size(), 2u);
   EXPECT_EQ(contents.rows[0], table.rows[1]);
   EXPECT_EQ(contents.rows[1], table.rows[0]);
-  EXPECT_EQ(contents.goodBytes, std::filesystem::file_size(path) - 20);
+  EXPECT_EQ(contents.rejected, 0u);
   // Lines of another shape are no rows.
-  EXPECT_FALSE(parseJournalLine(journalLine(table.rows[0]), 2));
-  EXPECT_FALSE(parseJournalLine("{\"variant\": 1, \"values\": [\"x\", \"1\", \"2\"], \"error\": \"\"}", 3));
-  EXPECT_FALSE(readJournal(path.string() + ".missing", 3).exists);
+  EXPECT_FALSE(parseJournalLine(journalLine(table.rows[0], header), 2, header));
+  EXPECT_FALSE(readJournal(path.string() + ".missing", 3, header).exists);
+  std::filesystem::remove(path);
+}
+
+TEST(SweepTable, AJournalRowChangedOrWrittenUnderAnotherHeaderIsNoRow) {
+  const SweepTable table = sample();
+  const std::string header = "{\"sweep\": 1}";
+  const std::string line = journalLine(table.rows[0], header);
+  ASSERT_TRUE(parseJournalLine(line, 3, header));
+  EXPECT_EQ(*parseJournalLine(line, 3, header), table.rows[0]);
+  // Under other settings (other measures) the same line does not check.
+  EXPECT_FALSE(parseJournalLine(line, 3, "{\"sweep\": 2}"));
+  // A value changed by hand, or a row without its check, is no row either.
+  std::string changed = line;
+  const size_t at = changed.find("\"values\":[\"");
+  ASSERT_NE(at, std::string::npos) << line;
+  changed[at + 11] = changed[at + 11] == '9' ? '8' : '9';
+  EXPECT_FALSE(parseJournalLine(changed, 3, header)) << changed;
+  EXPECT_FALSE(parseJournalLine("{\"variant\": 1, \"values\": [\"1\", \"1\", \"2\"], \"error\": \"\"}", 3, header));
+  // A whole line that does not check is skipped, not the end of the journal.
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "ontogen_sweep_table_check.jsonl";
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << header << "\n" << changed << "\n" << journalLine(table.rows[1], header) << "\n";
+  }
+  const JournalContents contents = readJournal(path, 3, header);
+  ASSERT_EQ(contents.rows.size(), 1u);
+  EXPECT_EQ(contents.rows[0], table.rows[1]);
+  EXPECT_EQ(contents.rejected, 1u);
   std::filesystem::remove(path);
 }
 
