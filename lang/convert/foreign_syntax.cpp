@@ -655,17 +655,13 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   // The head: left < predecessor > right : condition.
   uint32_t headEnd = arrow;
   const uint32_t colon = find(begin, arrow, ":");
+  uint32_t condBegin = arrow, condEnd = arrow;
   if (colon < arrow) {
     uint32_t a = colon + 1, b = arrow;
     trim(a, b);
     if (text_.substr(a, b - a) != "*") {  // cpfg's '*': no condition
-      if (find(a, b, "{") < b) {
-        const uint32_t brace = find(a, b, "{");
-        fail(brace, brace + 1,
-             "a C block '{ ... }' in the condition: C code, which ontogen convert does not translate (it reads "
-             "conditions over arithmetic)");
-      }
-      s.condition = expression(a, b);
+      condBegin = a;
+      condEnd = b;
     }
     headEnd = colon;
   }
@@ -694,6 +690,19 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   }
   checkPredecessor(predecessor.front(), predBegin, predEnd);
   s.predecessor = std::move(predecessor.front());
+  // cpfg's blocks around the condition, `{t = t - PL;} t > 0 {u = t / 2;}`: assignments
+  // put in where they are read after them.
+  std::vector<std::pair<std::string, std::string>> locals;
+  if (condBegin < condEnd) {
+    uint32_t a = condBegin, b = condEnd;
+    if (text_[a] == '{') a = block(a, b, s, begin, end, locals);
+    const uint32_t post = find(a, b, "{");
+    uint32_t x = a, y = post;
+    trim(x, y);
+    if (x < y) s.condition = substituted(expression(x, y), locals);
+    if (post < b && block(post, b, s, begin, end, locals) < b)
+      fail(post, b, "a C block '{ ... }' in the condition: C code, which ontogen convert does not translate", false);
+  }
   // The body: successors : probability (cpfg's stochastic productions).
   uint32_t bodyEnd = end;
   const uint32_t probability = find(arrowEnd, end, ":");
@@ -707,7 +716,97 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   uint32_t a = arrowEnd, b = bodyEnd;
   trim(a, b);
   if (text_.substr(a, b - a) != "*") s.successors = modules(a, b, false);
+  for (ModuleText& m : s.successors)
+    for (std::string& arg : m.args) arg = substituted(arg, locals);
+  if (!s.probability.empty()) s.probability = substituted(s.probability, locals);
   return s;
+}
+
+std::string ForeignSyntax::substituted(const std::string& expr,
+                                       const std::vector<std::pair<std::string, std::string>>& locals) const {
+  std::string result;
+  for (size_t i = 0; i < expr.size();) {
+    const bool starts = isLetter(expr[i]) && (i == 0 || !(isNameChar(expr[i - 1]) || expr[i - 1] == '.'));
+    if (!starts) {
+      result += expr[i++];
+      continue;
+    }
+    size_t stop = i;
+    while (stop < expr.size() && isNameChar(expr[stop])) ++stop;
+    const std::string name = expr.substr(i, stop - i);
+    const std::string* value = nullptr;
+    for (const auto& [local, text] : locals)
+      if (local == name) value = &text;
+    result += value && (stop == expr.size() || expr[stop] != '(') ? *value : name;
+    i = stop;
+  }
+  return result;
+}
+
+// A block `{ name = expr; ... }` at `at` of a cpfg condition; the offset after its '}'.
+// A name that is no parameter of the production is a variable of the whole file in
+// cpfg: it is taken as the production's own only where every other line that reads it
+// assigns it in a block of its own.
+uint32_t ForeignSyntax::block(uint32_t at, uint32_t end, const Statement& s, uint32_t statementBegin,
+                              uint32_t statementEnd, std::vector<std::pair<std::string, std::string>>& locals) const {
+  uint32_t close = at + 1;
+  while (close < end && text_[close] != '}' && text_[close] != '{') ++close;
+  if (close >= end || text_[close] != '}') fail(at, at + 1, "a C block '{' without its '}'", false);
+  auto code = [&](uint32_t a, uint32_t b, const std::string& what) {
+    fail(a, b, what + ": C code, which ontogen convert does not translate (it reads blocks of assignments "
+                      "name = expression; before and after a condition)");
+  };
+  for (uint32_t from = at + 1; from < close;) {
+    uint32_t semi = from;
+    while (semi < close && text_[semi] != ';') ++semi;
+    uint32_t a = from, b = semi;
+    trim(a, b);
+    from = semi + 1;
+    if (a == b) continue;
+    uint32_t stop = a;
+    while (stop < b && isNameChar(text_[stop])) ++stop;
+    uint32_t eq = stop;
+    while (eq < b && isSpace(text_[eq])) ++eq;
+    if (stop == a || !isLetter(text_[a]) || eq >= b || text_[eq] != '=' || (eq + 1 < b && text_[eq + 1] == '='))
+      code(a, b, "a statement other than an assignment in a C block");
+    const std::string name(text_.substr(a, stop - a));
+    bool parameter = false;
+    auto binds = [&](const std::vector<ModuleText>& modules) {
+      for (const ModuleText& m : modules)
+        for (const std::string& arg : m.args) parameter = parameter || arg == name;
+    };
+    binds(s.left);
+    binds({s.predecessor});
+    binds(s.right);
+    if (!parameter) {
+      // Every other place of the name must be on a line that assigns it in a block.
+      for (size_t k = text_.find(name); k != std::string_view::npos; k = text_.find(name, k + 1)) {
+        if ((k > 0 && isNameChar(text_[k - 1])) || (k + name.size() < text_.size() && isNameChar(text_[k + name.size()])))
+          continue;
+        if (k >= statementBegin && k < statementEnd) continue;
+        const size_t lineBegin = text_.rfind('\n', k) == std::string_view::npos ? 0 : text_.rfind('\n', k) + 1;
+        size_t lineEnd = text_.find('\n', k);
+        if (lineEnd == std::string_view::npos) lineEnd = text_.size();
+        const std::string_view line = text_.substr(lineBegin, lineEnd - lineBegin);
+        const size_t brace = line.find('{');
+        bool assigns = brace != std::string_view::npos && line.find("-->") != std::string_view::npos;
+        if (assigns) {
+          const size_t own = line.find(name, brace);
+          size_t after = own == std::string_view::npos ? line.size() : own + name.size();
+          while (after < line.size() && isSpace(line[after])) ++after;
+          assigns = after < line.size() && line[after] == '=' && (after + 1 >= line.size() || line[after + 1] != '=');
+        }
+        if (!assigns)
+          code(a, stop,
+               "the variable '" + name +
+                   "', which other statements of the file read (a variable of cpfg holds its value between "
+                   "productions)");
+      }
+    }
+    std::string value = substituted(expression(eq + 1, b), locals);
+    locals.emplace_back(name, "(" + value + ")");
+  }
+  return close + 1;
 }
 
 }  // namespace ontogen::convert

@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "lang/convert/lsystem_file.h"
@@ -77,6 +78,9 @@ class ForeignSyntax {
   };
 
   std::optional<std::string> conditional(uint32_t begin, uint32_t end) const;
+  std::string substituted(const std::string& expr, const std::vector<std::pair<std::string, std::string>>& locals) const;
+  uint32_t block(uint32_t at, uint32_t end, const Statement& s, uint32_t statementBegin, uint32_t statementEnd,
+                 std::vector<std::pair<std::string, std::string>>& locals) const;
 
   Dialect dialect_;
   std::string_view text_;

@@ -137,6 +137,7 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
       {"parametric_1_35.lpy", "1,2,3,4",
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
       {"python_body.lpy", "1,2", "t = 1: A(1)\nt = 2: A(2)\n"},
+      {"c_block.l", "1,2", "t = 1: A(2)\nt = 2: A(3)\n"},
       {"continued.l", "1,2", "t = 1: B [ C ] A\nt = 2: B [ C ] B [ C ] A\n"},
       // Python bodies: if/elif/else, nproduce, locals, math, a word over lines, return,
       // and random choices of chance 1 and 0, as L-Py derives them.
@@ -168,7 +169,7 @@ TEST(Convert, CodeItCannotTranslateIsAnErrorAtItsPlace) {
       {"python_loop.lpy",
        "python_loop.lpy:4:5: error: ", "'for': Python which ontogen convert does not translate"},
       {"c_code.l", "c_code.l:3:1: error: ", "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code"},
-      {"c_condition.l", "c_condition.l:4:8: error: ", "a C block '{ ... }' in the condition: C code"},
+      {"c_condition.l", "c_condition.l:4:20: error: ", "a statement other than an assignment in a C block: C code"},
   };
   for (const Case& c : cases) {
     for (const char* command : {"convert", "run", "word", "check"}) {

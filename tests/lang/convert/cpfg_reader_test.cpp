@@ -145,3 +145,31 @@ TEST(CpfgReader, AMaximumDepthAboveTheLimitIsTheLimitWithAWarning) {
 
 }  // namespace
 }  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+// cpfg's blocks of assignments before and after a condition are put in where they are
+// read; a variable that other statements read holds state between productions, refused.
+TEST(CpfgReader, AssignmentBlocksAroundAConditionAreSubstituted) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "Lsystem: 1\n#define PL 1\nAxiom: A(3)\nA(t) : {t=t-PL;} t>0 {u=t*2;} --> I(u)A(t)\n"
+                       "M(t) : 1 {x=0.5*t;} --> F(x)\nN : {x=2;} 1 --> F(x)\nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #define PL 1\n  axiom A(3)\n  A(t) : (t - PL) > 0 -> I(((t - PL) * 2)) A((t - PL))\n"
+            "  M(t) : 1 -> F((0.5 * t))\n  N : 1 -> F((2))\n");
+  auto global = convertText(Dialect::Cpfg, "a.l",
+                            "Lsystem: 1\nAxiom: A\nA : {x=1;} 1 --> B\nB --> C(x)\nendlsystem\n");
+  EXPECT_EQ(global.line, 3);
+  EXPECT_EQ(global.column, 6);
+  EXPECT_NE(global.error.find("the variable 'x', which other statements of the file read"), std::string::npos)
+      << global.error;
+  auto code = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A\nA : {printf(1);} 1 --> B\nendlsystem\n");
+  EXPECT_EQ(code.line, 3);
+  EXPECT_EQ(code.column, 6);
+  EXPECT_NE(code.error.find("a statement other than an assignment in a C block"), std::string::npos) << code.error;
+}
+
+}  // namespace
+}  // namespace ontogen::convert
