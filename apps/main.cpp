@@ -199,7 +199,7 @@ int dispatch(int argc, char** argv) {
       ->delimiter(',');
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();
   runCommand->add_option("--format", run.format,
-                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, ply-ascii, svg, joints; none: grow only, "
+                         "Geometry outputs, comma-separated: glb, png, png-frames, mp4, obj, ply, ply-ascii, svg, joints, mjcf (the dynamics set's MuJoCo model); none: grow only, "
                          "interpret and write nothing (with --stats, for measuring)")
       ->capture_default_str();
   addRealListOption(*runCommand, "--view", run.view, {RealRange::between(-360, 360), RealRange::between(-90, 90)},

@@ -37,8 +37,9 @@ void interpretPool(const World& world, InterpretationSet& set) {
   std::vector<uint8_t> readsId(program.masters.size());
   for (size_t m = 0; m < program.masters.size(); ++m) {
     const MasterCell& master = program.masters[m];
-    readsId[m] =
-        set.wantsIds() || master.interpretation(set.name()) || master.developmentFunction >= 0 || master.system >= 0;
+    readsId[m] = set.wantsIds() || master.interpretation(set.name()) ||
+                 (!set.alsoReads().empty() && master.interpretation(set.alsoReads())) ||
+                 master.developmentFunction >= 0 || master.system >= 0;
   }
   for (CellCursor cursor = image ? image->cursor() : pool.cursor(); !cursor.done(); cursor.next()) {
     const uint32_t label = cursor.master();
@@ -46,7 +47,12 @@ void interpretPool(const World& world, InterpretationSet& set) {
     const size_t i = image ? image->sourceOf(cell.index) : cell.index;  // in the word
     const uint64_t parent = parents.empty() ? kNoParent : parents[i];
     const MasterCell& master = program.masters[cell.master];
-    if (const InterpretationBlock* block = master.interpretation(set.name())) {
+    const InterpretationBlock* own = master.interpretation(set.name());
+    const InterpretationBlock* block =
+        own != nullptr || set.alsoReads().empty() ? own : master.interpretation(set.alsoReads());
+    // Another set's block: its commands were resolved against that set's table, so by name.
+    const bool borrowed = block != nullptr && own == nullptr;
+    if (block) {
       frame.resize(master.stateCount() + FrameSlot::kCount);
       loadCellFrame(frame.data(), master, cell, world.time(), world.positionOf(i),
                     parent == kNoParent ? -1 : idValue(parent));
@@ -58,7 +64,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
         set.locate({instruction.span, master.label, world.time()});
         args.clear();
         for (const CompiledExpression& arg : instruction.args) args.push_back(arg.evaluate(context));
-        if (instruction.commandId >= 0)
+        if (instruction.commandId >= 0 && !borrowed)
           set.executeCommand(instruction.commandId, instruction.command, args);
         else
           set.execute(instruction.command, args);

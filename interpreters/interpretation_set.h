@@ -118,6 +118,16 @@ class InterpretationSet {
   /// time): a run calls beginFrame once, interpretWord at the start and after every step
   /// of the development, and endFrame at the end, instead of one frame per --frames.
   virtual bool followsDevelopment() const { return false; }
+  /// True for a set that simulates between frames (the dynamics set): a run feeds it the
+  /// word at the start and at every instant of the step grid k * dt (never at a frame off
+  /// that grid, so frames cannot change what it does), and at each frame calls
+  /// beginFrame() and contribute() without a word; at the end, endFrame() returns the
+  /// files it wrote of the whole run. It must also draw a scene (drawsScene()).
+  virtual bool simulates() const { return false; }
+  /// Another set whose `interpret` blocks this set reads where a cell has none of its own
+  /// (the dynamics set reads the creature set's); their instructions come by name
+  /// through execute(). Empty: none.
+  virtual std::string_view alsoReads() const { return {}; }
   /// Called by interpretWord before the first cell of a word, with the word's time.
   virtual void beginWord(double /*time*/) {}
   /// Called by interpretWord before the instructions of each cell the set realises.

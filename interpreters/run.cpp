@@ -200,27 +200,38 @@ void Run::develop(RunReport& report) {
     world.advanceTo(until, dt);
     return;
   }
-  std::vector<InterpretationSet*> following;
+  std::vector<InterpretationSet*> following, simulating;
   for (auto& set : sets_)
     if (set->followsDevelopment()) {
       following.push_back(set.get());
       set->beginFrame(FrameTarget{def_.out, def_.stem, 0, 1, 0});
       interpretWord(world, *set);
+    } else if (set->simulates()) {
+      simulating.push_back(set.get());
+      interpretWord(world, *set);
     }
   for (int frame = 0; frame < frames; ++frame) {
     const double t = frames == 1 ? until : from + (until - from) * frame / (frames - 1);
-    if (!following.empty()) {
+    if (!following.empty() || !simulating.empty()) {
       // The next instant of the step grid k * dt, where per-step rules fire.
       auto nextStep = [&] { return (std::floor(world.time() / dt + 1e-9) + 1) * dt; };
       for (double next = nextStep(); next < t - timeTolerance(t); next = nextStep()) {
         world.advanceTo(next, dt);
         for (InterpretationSet* set : following) interpretWord(world, *set);
+        for (InterpretationSet* set : simulating) interpretWord(world, *set);
       }
     }
-    const bool moved = t > world.time();
-    world.advanceTo(t, dt);
-    if (moved)
+    // A simulation sees the grid only: a frame between its instants changes nothing, and
+    // a frame on one is grown to the instant as the grid's k * dt, to the bit.
+    const bool onGrid = std::abs(t - std::round(t / dt) * dt) <= timeTolerance(t);
+    const double frameTime = !simulating.empty() && onGrid ? std::round(t / dt) * dt : t;
+    const bool moved = frameTime > world.time();
+    world.advanceTo(frameTime, dt);
+    if (moved) {
       for (InterpretationSet* set : following) interpretWord(world, *set);
+      if (onGrid)
+        for (InterpretationSet* set : simulating) interpretWord(world, *set);
+    }
     // Every set that draws adds to one scene, which the output stage writes; the other
     // sets write their own files.
     const FrameTarget target{def_.out, def_.stem, frame, frames, world.time()};
@@ -228,6 +239,12 @@ void Run::develop(RunReport& report) {
     bool drawn = false;
     for (auto& set : sets_) {
       if (set->followsDevelopment()) continue;
+      if (set->simulates()) {
+        set->beginFrame(target);
+        set->contribute(scene_);
+        drawn = true;
+        continue;
+      }
       if (set->drawsScene()) {
         set->beginFrame(target);
         interpretWord(world, *set);
@@ -245,6 +262,8 @@ void Run::develop(RunReport& report) {
     if (def_.progress) def_.progress(frame + 1, frames);
   }
   for (InterpretationSet* set : following)
+    for (auto& path : set->endFrame()) report.files.push_back(std::move(path));
+  for (InterpretationSet* set : simulating)
     for (auto& path : set->endFrame()) report.files.push_back(std::move(path));
 }
 

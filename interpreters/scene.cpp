@@ -14,6 +14,8 @@ void Scene::clear() {
   nodes.clear();
   skeleton.joints.clear();
   skeleton.skin.clear();
+  skeleton.simulated = false;
+  skeleton.contacts.clear();
 }
 
 void Scene::append(const Scene& other) {
@@ -35,6 +37,8 @@ void Scene::append(const Scene& other) {
     range.joint += joints;
     skeleton.skin.push_back(range);
   }
+  skeleton.simulated = skeleton.simulated || other.skeleton.simulated;
+  for (int contact : other.skeleton.contacts) skeleton.contacts.push_back(contact + joints);
 }
 
 }  // namespace ontogen

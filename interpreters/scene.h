@@ -71,6 +71,10 @@ struct SkinRange {
 struct Skeleton {
   std::vector<SceneJoint> joints;
   std::vector<SkinRange> skin;
+  /// True when a simulation posed the joints (the dynamics set): `contacts` is then known.
+  bool simulated = false;
+  /// Indices in `joints` of the joints whose limbs touch the ground, ascending.
+  std::vector<int> contacts;
   bool empty() const { return joints.empty(); }
 };
 

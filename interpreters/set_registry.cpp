@@ -4,6 +4,8 @@
 
 #include "interpreters/creature/creature_commands.h"
 #include "interpreters/creature/creature_set.h"
+#include "interpreters/dynamics/dynamics_commands.h"
+#include "interpreters/dynamics/dynamics_set.h"
 #include "interpreters/geometry/geometry_set.h"
 #include "interpreters/geometry/obj_reader.h"
 #include "interpreters/geometry/turtle_commands.h"
@@ -17,7 +19,8 @@
 
 namespace ontogen {
 
-std::vector<std::string> interpretationSetNames() { return {"geometry", "creature", "physics", "image", "music", "trace"}; }
+std::vector<std::string> interpretationSetNames() { return {"geometry", "creature", "dynamics", "physics", "image", "music", "trace"};
+}
 
 SceneOutputDef sceneOutputDefOf(const SetOptions& options) {
   SceneOutputDef def;
@@ -57,6 +60,16 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     if (!out.writeSvg && !out.writeObj && !out.writePly && !out.writePngFrames && !out.writeMp4)
       def.meshing = out.writePng ? LimbMeshing::GrownAndLastFrame : LimbMeshing::GrownFrames;
     return std::make_unique<CreatureSet>(def);
+  }
+  if (name == "dynamics") {
+    DynamicsSetDef def;
+    const SceneOutputDef out = sceneOutputDefOf(options);
+    def.radians = settings.radians;
+    def.physics.timestep = settings.timestep;
+    def.writeMjcf = out.writeMjcf;
+    if (!out.writeSvg && !out.writeObj && !out.writePly && !out.writePngFrames && !out.writeMp4)
+      def.meshing = out.writePng ? LimbMeshing::GrownAndLastFrame : LimbMeshing::GrownFrames;
+    return std::make_unique<DynamicsSet>(def);
   }
   if (name == "physics") {
     PhysicsSetDef def;
@@ -122,6 +135,8 @@ std::vector<CommandSetInfo> commandSets() {
                     return {};
                   }});
   sets.push_back({"creature", findInTable<creatureCommands>});
+  // Its own commands, then the creature set's, numbered after them.
+  sets.push_back({"dynamics", findInTable<dynamicsCommands, creatureCommands>});
   // Its own commands, then the turtle's, numbered after them.
   sets.push_back({"physics", findInTable<physicsCommands, turtleCommands>});
   sets.push_back({"image", [](std::string_view command) -> const CommandInfo* {

@@ -28,7 +28,7 @@ constexpr std::array<std::string_view, 2> kMusicTimes{"sequential", "development
 constexpr std::array<std::string_view, 3> kLookNames{"light", "dark", "paper"};
 // The interpretation sets (interpreters/set_registry.h, interpretationSetNames(); a test
 // keeps the two lists equal).
-constexpr std::array<std::string_view, 6> kSetNames{"geometry", "creature", "physics", "image", "music", "trace"};
+constexpr std::array<std::string_view, 7> kSetNames{"geometry", "creature", "dynamics", "physics", "image", "music", "trace"};
 
 // The order is the one `unknown directive` lists and `ontogen help` prints.
 // Limits: ppq and the beats per bar are what a MIDI file can hold (a 15-bit division, a
@@ -150,6 +150,14 @@ const std::array kDirectives{
               .syntax = "#dt D",
               .doc = "step of the development, seconds (--step overrides)",
               .apply = [](const Value& v, Target& t) { t.program.dt = v.number; }},
+    // Its upper end: a step past a tenth of a second resolves no contact a body makes.
+    Directive{.name = "timestep",
+              .owner = Owner::Geometry,
+              .range = {.min = 0, .max = 0.1, .minOpen = true},
+              .rangeError = "#timestep is the dynamics set's simulation step in seconds, above 0 and at most 0.1",
+              .syntax = "#timestep H",
+              .doc = "the dynamics set's simulation step, seconds (default 0.002); fixed, whatever the frames",
+              .apply = [](const Value& v, Target& t) { t.settings.timestep = v.number; }},
     Directive{.name = "tolerance",
               .owner = Owner::World,
               .range = {.min = 0, .max = 1, .minOpen = true, .maxOpen = true},

@@ -253,6 +253,7 @@ struct InterpretSettings {
   double step = 1;    ///< default move length (#length)
   double radius = 0;  ///< default cylinder radius (#radius); 0 draws lines
   bool radians = false;
+  double timestep = 0.002;  ///< the dynamics set's simulation step, seconds (#timestep)
   MusicSettings music{};
   std::vector<SurfaceFile> surfaces{};  ///< #surface directives, in order
 };

@@ -78,11 +78,13 @@ void CreatureSet::beginFrame(const FrameTarget& target) {
   creatures_.clear();
   legs_.clear();
   limbs_.clear();
+  wordLimbs_.clear();
   stats_ = {};
   lastFrame_ = target.frame + 1 >= target.frameCount;
 }
 
 void CreatureSet::endWord() {
+  if (reposer_) reposer_(scene_.skeleton, limbs_);
   const std::size_t joints = scene_.skeleton.joints.size();
   const bool grown = joints > mostJoints_ || mostJoints_ == 0;
   const bool wanted = def_.meshing == LimbMeshing::EveryFrame || grown ||
@@ -101,6 +103,7 @@ void CreatureSet::endWord() {
       if (limb.joint >= 0 && count > 0) scene_.skeleton.skin.push_back({first, count, limb.joint});
     }
   }
+  wordLimbs_.swap(limbs_);
   limbs_.clear();
 }
 

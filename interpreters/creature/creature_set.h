@@ -17,6 +17,7 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <span>
 #include <string>
@@ -52,6 +53,25 @@ struct CreatureSetDef {
   SceneOutputDef output{};  ///< what endFrame() writes when the set is used on its own
 };
 
+/// A rigid limb of a word: a generalized cylinder from start along the frame's H.
+struct CreatureLimb {
+  glm::dvec3 start{0.0};  ///< world position of its base, model units
+  glm::dmat3 frame{1.0};  ///< world frame, columns H, L, U
+  double length = 0, r0 = 0, r1 = 0;  ///< model units
+  uint32_t material = 0;
+  int joint = -1;  ///< index in the skeleton of the joint it moves with; -1: none
+};
+
+/// A degree of freedom's range, radians, as `range` gives it.
+struct CreatureRange {
+  bool set = false;
+  double lo = 0, hi = 0;  ///< radians
+};
+
+/// Moves a word's joints and limbs before its limbs are meshed (a simulation posing the
+/// body where its physics put it); limbs name their joints by index.
+using CreatureReposer = std::function<void(Skeleton&, std::vector<CreatureLimb>&)>;
+
 /// What the set saw in a frame, for tests and reports.
 struct CreatureFrameStats {
   int creatures = 0;
@@ -86,12 +106,20 @@ class CreatureSet : public InterpretationSet {
   const CreatureFrameStats& stats() const { return stats_; }
   /// The ground's height (world y), model units.
   double ground() const { return def_.ground; }
+  /// Where the turtle stands now (world, model units), its frame (columns H, L, U) and
+  /// the index of the joint it hangs from (-1: none): what a command about to run starts from.
+  const glm::dvec3& turtlePosition() const { return pose_.position; }
+  const glm::dmat3& turtleFrame() const { return pose_.frame; }
+  int turtleJoint() const { return pose_.joint; }
+  /// The ranges the next joint's degrees of freedom will be held in.
+  const std::array<CreatureRange, 3>& turtleRanges() const { return pose_.ranges; }
+  /// Called at the end of every word before its limbs are meshed (empty: none).
+  void setReposer(CreatureReposer reposer) { reposer_ = std::move(reposer); }
+  /// The limbs of radius above 0 of the last word, in the order drawn (kept until the next frame).
+  const std::vector<CreatureLimb>& wordLimbs() const { return wordLimbs_; }
 
  private:
-  struct Range {
-    bool set = false;
-    double lo = 0, hi = 0;  // radians
-  };
+  using Range = CreatureRange;
   // Where the turtle is, as posed and at rest (every driven angle 0: where the gait's
   // neutral foot points come from), and what it hangs from.
   struct Pose {
@@ -111,13 +139,7 @@ class CreatureSet : public InterpretationSet {
     glm::dvec3 forward{1, 0, 0}, up{0, 1, 0}, left{0, 0, -1};
     glm::dvec3 root{0.0};
   };
-  struct PendingLimb {
-    glm::dvec3 start{0.0};
-    glm::dmat3 frame{1.0};
-    double length = 0, r0 = 0, r1 = 0;
-    uint32_t material = 0;
-    int joint = -1;
-  };
+  using PendingLimb = CreatureLimb;
   struct Leg {
     double upper = 1, lower = 1;
     glm::dvec3 target{0.0};
@@ -150,8 +172,10 @@ class CreatureSet : public InterpretationSet {
   std::map<std::array<double, 3>, Mesh> limbMeshes_;
   Mesh placed_;
   std::vector<PendingLimb> limbs_;  // of the word being drawn, meshed at its end
+  std::vector<CreatureLimb> wordLimbs_;  // of the last word
   std::size_t mostJoints_ = 0;      // the most joints a meshed frame had
   bool lastFrame_ = false;
+  CreatureReposer reposer_;
 
   CreatureSetDef def_;
   SceneOutput output_;

@@ -21,8 +21,8 @@ struct PhysicsDef {
   double ground = 0;        ///< the ground's height (world y), model units
   double density = 100;     ///< of the limbs, mass per cubic model unit, > 0
   double friction = 1;      ///< sliding, between the limbs and the ground, >= 0
-  double kp = 20000;        ///< the servos' stiffness, torque per radian, >= 0 (0: no servos)
-  double kd = 400;          ///< their damping, torque per radian a second, >= 0
+  double kp = 5000;         ///< the servos' stiffness, torque per radian, >= 0 (0: no servos)
+  double kd = 100;          ///< their damping, torque per radian a second, >= 0
   double torque = 4000;     ///< the most torque a servo gives, > 0 (infinity: no limit)
   bool rungeKutta = false;  ///< integrate with MuJoCo's RK4 instead of its semi-implicit Euler
 };

@@ -1,5 +1,6 @@
 #include "interpreters/formats/joints_writer.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -18,6 +19,8 @@ void JointTrackWriter::addFrame(const Scene& scene) {
   Frame frame;
   frame.time = scene.time;
   for (const SceneJoint& joint : scene.skeleton.joints) frame.positions[joint.id] = joint.position;
+  frame.simulated = scene.skeleton.simulated;
+  for (int contact : scene.skeleton.contacts) frame.contacts.push_back(scene.skeleton.joints[contact].id);
   frames_.push_back(std::move(frame));
 }
 
@@ -51,7 +54,17 @@ void JointTrackWriter::write(std::ostream& out) const {
       const glm::dvec3& p = found->second;
       positions.push_back({number(p.x), number(p.y), number(p.z)});
     }
-    doc["frames"].push_back({{"t", number(frame.time)}, {"positions", positions}});
+    nlohmann::json entry = {{"t", number(frame.time)}, {"positions", positions}};
+    if (frame.simulated) {
+      // Indices in the listed joints, ascending.
+      std::vector<int> contacts;
+      for (uint64_t id : frame.contacts)
+        for (std::size_t i = 0; i < joints_.size(); ++i)
+          if (joints_[i].id == id) contacts.push_back(static_cast<int>(i));
+      std::sort(contacts.begin(), contacts.end());
+      entry["contacts"] = contacts;
+    }
+    doc["frames"].push_back(std::move(entry));
   }
   out << doc.dump() << "\n";
 }

@@ -6,6 +6,9 @@
 //                "side": "left"|"right"|null, "segment": M or null}, ...],
 //    "frames": [{"t": T, "positions": [[x, y, z], ...]}, ...]}
 //
+// Frames a simulation posed (the dynamics set) also give "contacts": [INDEX, ...], the
+// joints (indices in "joints", ascending) whose limbs touch the ground.
+//
 // The joints are those of the frame with the most joints (the first such: a body that
 // grows is listed grown), parents first; each frame gives every joint's world position in
 // that order, null for a joint the frame lacks (it had not grown yet). Ids are
@@ -34,6 +37,8 @@ class JointTrackWriter {
   struct Frame {
     double time = 0;
     std::unordered_map<uint64_t, glm::dvec3> positions;  // by joint id
+    bool simulated = false;
+    std::vector<uint64_t> contacts;  // joint ids
   };
   double ground_ = 0;
   std::vector<SceneJoint> joints_;  // of the frame with the most

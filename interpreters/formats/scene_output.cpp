@@ -29,7 +29,7 @@ uint64_t geometryBytes(const Geometry& geometry) {
 
 std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
   def.writeSvg = def.writeObj = def.writeMtl = def.writePly = false;
-  def.writePng = def.writePngFrames = def.writeGlb = def.writeMp4 = def.writeJoints = false;
+  def.writePng = def.writePngFrames = def.writeGlb = def.writeMp4 = def.writeJoints = def.writeMjcf = false;
   bool binaryPly = false, asciiPly = false;
   std::size_t start = 0;
   while (start <= list.size()) {
@@ -56,6 +56,8 @@ std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
       def.writeMp4 = true;
     } else if (name == "joints") {
       def.writeJoints = true;
+    } else if (name == "mjcf") {
+      def.writeMjcf = true;
     } else if (name == "none") {
       return "the format 'none' (grow only, write nothing) goes alone, not with other formats";
     } else {

@@ -36,6 +36,7 @@ struct SceneOutputDef {
   bool writeGlb = false;       ///< write <stem>.glb of every frame after the last
   bool writeMp4 = false;       ///< write <stem>.mp4 of every frame after the last (ffmpeg)
   bool writeJoints = false;    ///< write <stem>.joints.json, the skeleton's tracks, after the last
+  bool writeMjcf = false;      ///< the dynamics set writes <stem>.xml, its MuJoCo model (the stage writes nothing)
   double framesPerSecond = 25; ///< of the MP4
   UpAxis up = UpAxis::Y;       ///< the up axis of the OBJ and PLY files (glTF is y-up by its specification)
   SvgOptions svg{};            ///< picture size and number format of the SVG
@@ -43,7 +44,7 @@ struct SceneOutputDef {
 };
 
 /// The formats `--format` accepts, in the order `ontogen help` lists them.
-inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj, ply, ply-ascii, svg, joints";
+inline constexpr const char* kGeometryFormats = "glb, png, png-frames, mp4, obj, ply, ply-ascii, svg, joints, mjcf";
 
 /// Sets def's write flags from a comma-separated list of formats (kGeometryFormats),
 /// clearing the others. Returns an error message naming the bad entry, or "" on success.

@@ -107,7 +107,7 @@ TEST_F(OutputsTest, FormatsAreParsedAndUnknownOnesNamed) {
   EXPECT_TRUE(def.writeGlb && def.writePng);
   EXPECT_FALSE(def.writeSvg || def.writeObj || def.writePly || def.writeMp4 || def.writePngFrames);
   EXPECT_EQ(applyGeometryFormats("obj,gltf", def),
-            "unknown format 'gltf' (known: glb, png, png-frames, mp4, obj, ply, ply-ascii, svg, joints, or none alone)");
+            "unknown format 'gltf' (known: glb, png, png-frames, mp4, obj, ply, ply-ascii, svg, joints, mjcf, or none alone)");
   EXPECT_EQ(applyGeometryFormats("ply-ascii", def), "");
   EXPECT_TRUE(def.writePly && !def.plyBinary);
   EXPECT_EQ(applyGeometryFormats("ply", def), "");

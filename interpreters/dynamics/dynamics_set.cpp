@@ -1,0 +1,477 @@
+#include "interpreters/dynamics/dynamics_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <glm/geometric.hpp>
+
+#include "interpreters/creature/creature_commands.h"
+#include "interpreters/dynamics/dynamics_commands.h"
+#include "interpreters/dynamics/mujoco_model.h"
+#include "interpreters/formats/scene_output.h"
+#include "interpreters/output_file.h"
+
+namespace ontogen {
+
+namespace {
+
+bool finite(std::span<const double> args) {
+  return std::all_of(args.begin(), args.end(), [](double v) { return std::isfinite(v); });
+}
+
+// The joint a creature command makes, if it makes one.
+std::optional<JointKind> jointKindOf(CreatureOp op) {
+  switch (op) {
+    case CreatureOp::Gait: return JointKind::Free;
+    case CreatureOp::Bend: return JointKind::Bend;
+    case CreatureOp::Hinge: return JointKind::Hinge;
+    case CreatureOp::Hip: return JointKind::Hip;
+    case CreatureOp::Knee: return JointKind::Knee;
+    case CreatureOp::Foot: return JointKind::Weld;
+    default: return std::nullopt;
+  }
+}
+
+CreatureSetDef creatureDefOf(const DynamicsSetDef& def, LimbMeshing meshing) {
+  CreatureSetDef inner;
+  inner.radians = def.radians;
+  inner.ground = def.physics.ground;
+  inner.meshing = meshing;
+  return inner;
+}
+
+mjData* data(void* scratch) { return static_cast<mjData*>(scratch); }
+
+// World frame (columns H, L, U) of a MuJoCo body: its xmat, row-major.
+glm::dmat3 frameOf(const mjData* d, int body) {
+  const mjtNum* x = d->xmat + 9 * body;
+  return glm::dmat3(glm::dvec3(x[0], x[3], x[6]), glm::dvec3(x[1], x[4], x[7]), glm::dvec3(x[2], x[5], x[8]));
+}
+
+glm::dvec3 positionOf(const mjData* d, int body) {
+  const mjtNum* x = d->xpos + 3 * body;
+  return {x[0], x[1], x[2]};
+}
+
+std::string numbers(const mjtNum* values, int count) {
+  std::string out;
+  char text[32];
+  for (int i = 0; i < count; ++i) {
+    std::snprintf(text, sizeof text, "%s%.17g", i > 0 ? " " : "", values[i]);
+    out += text;
+  }
+  return out;
+}
+
+}  // namespace
+
+DynamicsSet::DynamicsSet(const DynamicsSetDef& def)
+    : def_(def),
+      inner_(creatureDefOf(def, LimbMeshing::GrownFrames)),
+      replay_(creatureDefOf(def, LimbMeshing::GrownFrames)),
+      draw_(creatureDefOf(def, def.meshing)),
+      physics_(def.physics),
+      wordPhysics_(def.physics),
+      scene_{0, Geometry(MeshDef{}), {}, {}} {
+  if (const char* error = physicsError(def.physics)) throw std::invalid_argument(error);
+}
+
+DynamicsSet::~DynamicsSet() {
+  if (scratch_) mj_deleteData(data(scratch_));
+}
+
+bool DynamicsSet::knows(std::string_view command) const {
+  return findDynamicsCommand(command) != nullptr || findCreatureCommand(command) != nullptr;
+}
+
+void DynamicsSet::beginFrame(const FrameTarget& target) {
+  target_ = target;
+  framed_ = true;
+}
+
+void DynamicsSet::beginWord(double time) {
+  wordTime_ = time;
+  wordTape_.clear();
+  wordPhysics_ = def_.physics;
+  starts_.clear();
+  inner_.beginFrame(FrameTarget{{}, {}, 0, 1, time});
+  inner_.beginWord(time);
+}
+
+void DynamicsSet::beginCell(const CellContext& cell) {
+  inner_.beginCell(cell);
+  TapeEntry entry;
+  entry.cell = true;
+  entry.context = cell;
+  wordTape_.push_back(std::move(entry));
+}
+
+void DynamicsSet::execute(std::string_view command, std::span<const double> args) {
+  if (const DynamicsCommand* own = findDynamicsCommand(command)) {
+    executeCommand(static_cast<int>(own - dynamicsCommands().data()), command, args);
+    return;
+  }
+  if (const CreatureCommand* creature = findCreatureCommand(command))
+    executeCommand(static_cast<int>(dynamicsCommands().size() + (creature - creatureCommands().data())), command, args);
+}
+
+void DynamicsSet::executeCommand(int id, std::string_view command, std::span<const double> args) {
+  const auto own = dynamicsCommands();
+  if (id < 0 || static_cast<std::size_t>(id) >= own.size() + creatureCommands().size()) {
+    execute(command, args);
+    return;
+  }
+  if (static_cast<std::size_t>(id) < own.size()) {
+    const DynamicsCommand& found = own[static_cast<std::size_t>(id)];
+    if (static_cast<int>(args.size()) < found.minArity || static_cast<int>(args.size()) > found.maxArity ||
+        !finite(args)) {
+      badArguments_.add(1, site_);
+      return;
+    }
+    PhysicsDef next = wordPhysics_;
+    switch (found.op) {
+      case DynamicsOp::Density: next.density = args[0]; break;
+      case DynamicsOp::Friction: next.friction = args[0]; break;
+      case DynamicsOp::Servo:
+        next.kp = args[0];
+        next.kd = args[1];
+        if (args.size() > 2) next.torque = args[2];
+        break;
+    }
+    if (physicsError(next) != nullptr) {
+      badArguments_.add(1, site_);
+      return;
+    }
+    wordPhysics_ = next;
+    return;
+  }
+  const int creature = id - static_cast<int>(own.size());
+  inner_.locate(site_);
+  runCreature(inner_, creature, args, starts_);
+  TapeEntry entry;
+  entry.site = site_;
+  entry.command = creature;
+  entry.args.assign(args.begin(), args.end());
+  wordTape_.push_back(std::move(entry));
+}
+
+void DynamicsSet::runCreature(CreatureSet& set, int command, std::span<const double> args,
+                              std::vector<JointStart>& starts) {
+  const CreatureCommand& row = creatureCommands()[static_cast<std::size_t>(command)];
+  const std::optional<JointKind> kind = jointKindOf(row.op);
+  if (!kind) {
+    set.executeCommand(command, row.name, args);
+    return;
+  }
+  const JointStart start{*kind, set.turtleFrame(), set.turtleRanges()};
+  const std::size_t before = set.scene().skeleton.joints.size();
+  set.executeCommand(command, row.name, args);
+  if (set.scene().skeleton.joints.size() == before + 1) starts.push_back(start);
+}
+
+void DynamicsSet::replay(const std::vector<TapeEntry>& tape, const FrameTarget& target, CreatureSet& set,
+                         std::vector<JointStart>& starts) {
+  starts.clear();
+  const double time = target.time;
+  set.beginFrame(target);
+  set.beginWord(time);
+  for (const TapeEntry& entry : tape) {
+    if (entry.cell) {
+      CellContext context = entry.context;
+      context.time = time;
+      set.beginCell(context);
+      continue;
+    }
+    set.locate(entry.site);
+    runCreature(set, entry.command, entry.args, starts);
+  }
+}
+
+BodyPlan DynamicsSet::planOf(const CreatureSet& set, const std::vector<JointStart>& starts) const {
+  BodyPlan plan;
+  const auto& joints = set.scene().skeleton.joints;
+  if (starts.size() != joints.size()) return plan;
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    PlanBody body;
+    body.id = joints[i].id;
+    body.parent = joints[i].parent;
+    body.kind = starts[i].kind;
+    body.position = joints[i].position;
+    body.orientation = joints[i].orientation;
+    body.base = body.kind == JointKind::Free ? body.orientation : starts[i].base;
+    // A hip's third range holds its swivel about the hip-foot line, not its roll about H.
+    const int ranged = body.kind == JointKind::Hip ? 2 : 3;
+    for (int dof = 0; dof < ranged; ++dof) {
+      const CreatureRange& range = starts[i].ranges[static_cast<std::size_t>(dof)];
+      body.ranges[static_cast<std::size_t>(dof)] = {range.set, range.lo, range.hi};
+    }
+    plan.bodies.push_back(std::move(body));
+  }
+  for (const CreatureLimb& limb : set.wordLimbs()) {
+    if (limb.joint < 0 || static_cast<std::size_t>(limb.joint) >= plan.bodies.size()) continue;
+    plan.bodies[static_cast<std::size_t>(limb.joint)].limbs.push_back(
+        {limb.start, limb.start + limb.length * limb.frame[0], (limb.r0 + limb.r1) / 2});
+  }
+  return plan;
+}
+
+void DynamicsSet::endWord() {
+  inner_.endWord();
+  // The simulation reaches this word's time on the last word's targets, then takes this one.
+  advanceTo(wordTime_);
+  tape_.swap(wordTape_);
+  tapeTime_ = wordTime_;
+  BodyPlan plan = planOf(inner_, starts_);
+  const bool hasHinges = std::any_of(plan.bodies.begin(), plan.bodies.end(),
+                                     [](const PlanBody& b) { return b.kind != JointKind::Weld; });
+  const bool physicsChanged = wordPhysics_.density != physics_.density || wordPhysics_.friction != physics_.friction ||
+                              wordPhysics_.kp != physics_.kp || wordPhysics_.kd != physics_.kd ||
+                              wordPhysics_.torque != physics_.torque;
+  if (!hasHinges) {
+    sim_.reset();
+    plan_ = {};
+    return;
+  }
+  if (!sim_ || !plan.sameStructure(plan_) || physicsChanged) {
+    physics_ = wordPhysics_;
+    build(plan, wordTime_);
+  }
+}
+
+void DynamicsSet::build(const BodyPlan& plan, double time) {
+  plan_ = plan;
+  mjcf_ = mjcfOf(plan_, physics_, target_.stem.empty() ? "dynamics" : target_.stem);
+  if (scratch_) {
+    mj_deleteData(data(scratch_));
+    scratch_ = nullptr;
+  }
+  sim_ = std::make_unique<MujocoModel>(mjcf_);
+  const mjModel* m = sim_->model();
+  mjData* d = sim_->data();
+  scratch_ = mj_makeData(m);
+  start_ = time;
+  steps_ = 0;
+  ++stats_.rebuilds;
+  stats_.simulating = true;
+  groundGeom_ = mj_name2id(m, mjOBJ_GEOM, "ground");
+  bodyIds_.assign(plan_.bodies.size(), -1);
+  planOfBody_.assign(static_cast<std::size_t>(m->nbody), -1);
+  hinges_.clear();
+  for (std::size_t b = 0; b < plan_.bodies.size(); ++b) {
+    const PlanBody& body = plan_.bodies[b];
+    const int index = static_cast<int>(b);
+    bodyIds_[b] = mj_name2id(m, mjOBJ_BODY, bodyName(index).c_str());
+    if (bodyIds_[b] >= 0) planOfBody_[static_cast<std::size_t>(bodyIds_[b])] = index;
+    // The hinges start at the kinematic angles (the free roots where the plan has them).
+    const std::array<double, 3> angles = hingeAngles(body.kind, body.base, body.orientation);
+    for (int dof = 0; dof < hingeCount(body.kind); ++dof) {
+      Hinge hinge;
+      hinge.body = index;
+      hinge.dof = dof;
+      const int joint = mj_name2id(m, mjOBJ_JOINT, hingeName(index, dof).c_str());
+      hinge.qpos = m->jnt_qposadr[joint];
+      hinge.dof_address = m->jnt_dofadr[joint];
+      hinge.actuator = mj_name2id(m, mjOBJ_ACTUATOR, ("s" + std::to_string(index) + "_" + std::to_string(dof)).c_str());
+      const HingeRange& range = body.ranges[static_cast<std::size_t>(dof)];
+      hinge.range = {range.set, range.lo, range.hi};
+      d->qpos[hinge.qpos] = angles[static_cast<std::size_t>(dof)];
+      hinges_.push_back(hinge);
+    }
+  }
+  setControls(time);
+  mj_forward(m, d);
+}
+
+void DynamicsSet::setControls(double time) {
+  replay(tape_, FrameTarget{{}, {}, 0, 1, time}, replay_, stepStarts_);
+  const auto& joints = replay_.scene().skeleton.joints;
+  // A tape that no longer makes the model's joints holds the controls as they are.
+  if (joints.size() != plan_.bodies.size() || stepStarts_.size() != joints.size()) return;
+  mjData* d = sim_->data();
+  std::size_t body = plan_.bodies.size();
+  std::array<double, 3> angles{};
+  for (const Hinge& hinge : hinges_) {
+    if (hinge.actuator < 0) continue;
+    if (static_cast<std::size_t>(hinge.body) != body) {
+      body = static_cast<std::size_t>(hinge.body);
+      angles = hingeAngles(plan_.bodies[body].kind, stepStarts_[body].base, joints[body].orientation);
+    }
+    double target = angles[static_cast<std::size_t>(hinge.dof)];
+    if (hinge.range.set) target = std::clamp(target, hinge.range.lo, hinge.range.hi);
+    d->ctrl[hinge.actuator] = target;
+  }
+}
+
+void DynamicsSet::advanceTo(double time) {
+  if (!sim_) return;
+  const mjModel* m = sim_->model();
+  mjData* d = sim_->data();
+  const double h = physics_.timestep;
+  while (stepTime(steps_ + 1) <= time + 1e-9 * std::max(1.0, std::abs(time))) {
+    setControls(stepTime(steps_));
+    sim_->step();
+    ++steps_;
+    stats_.simulatedTime += h;
+    // The servos' work and the ground contacts' sliding over the step.
+    for (const Hinge& hinge : hinges_)
+      if (hinge.actuator >= 0)
+        stats_.energy += std::abs(d->actuator_force[hinge.actuator] * d->qvel[hinge.dof_address]) * h;
+    for (int c = 0; c < d->ncon; ++c) {
+      const mjContact& contact = d->contact[c];
+      if (contact.geom1 != groundGeom_ && contact.geom2 != groundGeom_) continue;
+      const int body = m->geom_bodyid[contact.geom1 == groundGeom_ ? contact.geom2 : contact.geom1];
+      mjtNum velocity[6];
+      mj_objectVelocity(m, d, mjOBJ_BODY, body, velocity, 0);
+      const glm::dvec3 w(velocity[0], velocity[1], velocity[2]), v(velocity[3], velocity[4], velocity[5]);
+      const glm::dvec3 at = glm::dvec3(contact.pos[0], contact.pos[1], contact.pos[2]) - positionOf(d, body);
+      const glm::dvec3 point = v + glm::cross(w, at);
+      stats_.slip += std::hypot(point.x, point.z) * h;
+    }
+  }
+  if (const int bad = sim_->instabilities(); bad > stats_.instabilities) {
+    unstable_.add(static_cast<uint64_t>(bad - stats_.instabilities), site_);
+    stats_.instabilities = bad;
+  }
+}
+
+void DynamicsSet::stateAt(double time) {
+  const mjModel* m = sim_->model();
+  mjData* s = data(scratch_);
+  mj_copyData(s, m, sim_->data());
+  const double now = stepTime(steps_);
+  if (time > now + 1e-12) {
+    // A partial step to the frame's time, on a copy: the simulation keeps its own steps.
+    setControls(now);
+    mju_copy(s->ctrl, sim_->data()->ctrl, m->nu);
+    mjModel* model = sim_->model();
+    const double h = model->opt.timestep;
+    model->opt.timestep = time - now;
+    mj_step(model, s);
+    model->opt.timestep = h;
+  }
+  mj_forward(m, s);
+}
+
+void DynamicsSet::contribute(Scene& scene) {
+  const double time = target_.time;
+  advanceTo(time);
+  const bool first = stats_.rebuilds > 0 && firstMjcf_.empty() && sim_;
+  // Read by the reposer as the frame's word ends, below.
+  const mjData* s = nullptr;
+  std::vector<int> contacts;
+  if (sim_) {
+    stateAt(time);
+    s = data(scratch_);
+    for (int c = 0; c < s->ncon; ++c) {
+      const mjContact& contact = s->contact[c];
+      if (contact.geom1 != groundGeom_ && contact.geom2 != groundGeom_) continue;
+      const int body = sim_->model()->geom_bodyid[contact.geom1 == groundGeom_ ? contact.geom2 : contact.geom1];
+      if (planOfBody_[static_cast<std::size_t>(body)] >= 0) contacts.push_back(planOfBody_[static_cast<std::size_t>(body)]);
+    }
+    std::sort(contacts.begin(), contacts.end());
+    contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
+    draw_.setReposer([&](Skeleton& skeleton, std::vector<CreatureLimb>& limbs) {
+      if (skeleton.joints.size() != plan_.bodies.size()) return;
+      // Each joint to its body's place; its limbs move rigidly with it.
+      std::vector<glm::dmat3> turns(skeleton.joints.size());
+      std::vector<glm::dvec3> from(skeleton.joints.size());
+      for (std::size_t j = 0; j < skeleton.joints.size(); ++j) {
+        SceneJoint& joint = skeleton.joints[j];
+        const int body = bodyIds_[j];
+        if (body < 0) continue;
+        const glm::dmat3 frame = frameOf(s, body);
+        turns[j] = frame * glm::transpose(joint.orientation);
+        from[j] = joint.position;
+        joint.position = positionOf(s, body);
+        joint.orientation = frame;
+      }
+      for (CreatureLimb& limb : limbs) {
+        if (limb.joint < 0 || static_cast<std::size_t>(limb.joint) >= skeleton.joints.size()) continue;
+        const std::size_t j = static_cast<std::size_t>(limb.joint);
+        limb.start = skeleton.joints[j].position + turns[j] * (limb.start - from[j]);
+        limb.frame = turns[j] * limb.frame;
+      }
+      skeleton.simulated = true;
+      skeleton.contacts = contacts;
+    });
+  } else {
+    draw_.setReposer({});
+  }
+  FrameTarget frame = target_;
+  frame.time = time;
+  replay(tape_, frame, draw_, stepStarts_);
+  draw_.endWord();
+  draw_.setReposer({});
+  scene_.clear();
+  draw_.contribute(scene_);
+  scene_.time = time;
+
+  if (sim_) {
+    // Where the body is: its first root, its centre of mass, its lowest joint.
+    const mjModel* m = sim_->model();
+    const glm::dvec3 root = positionOf(s, bodyIds_[0]);
+    double mass = 0;
+    glm::dvec3 centre(0.0);
+    for (int b = 1; b < m->nbody; ++b) {
+      mass += m->body_mass[b];
+      centre += m->body_mass[b] * glm::dvec3(s->xipos[3 * b], s->xipos[3 * b + 1], s->xipos[3 * b + 2]);
+    }
+    const double height = (mass > 0 ? centre.y / mass : root.y) - physics_.ground;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const SceneJoint& joint : scene_.skeleton.joints) lowest = std::min(lowest, joint.position.y - physics_.ground);
+    if (first) {
+      stats_.rootStart = root;
+      stats_.startHeight = height;
+      stats_.lowest = lowest;
+    }
+    stats_.root = root;
+    stats_.height = height;
+    stats_.lowest = std::min(stats_.lowest, lowest);
+  }
+  if (first) {
+    // The model as it stands at the first frame: its state as the keyframe MuJoCo resets to.
+    const mjModel* m = sim_->model();
+    const mjData* d = data(scratch_);
+    std::string key = "  <keyframe>\n    <key time=\"" + numbers(&d->time, 1) + "\" qpos=\"" + numbers(d->qpos, m->nq) +
+                      "\" qvel=\"" + numbers(d->qvel, m->nv) + "\"";
+    if (m->nu > 0) key += " ctrl=\"" + numbers(d->ctrl, m->nu) + "\"";
+    key += "/>\n  </keyframe>\n";
+    firstMjcf_ = mjcf_;
+    firstMjcf_.insert(firstMjcf_.rfind("</mujoco>"), key);
+  }
+  scene.time = time;
+  scene.append(scene_);
+}
+
+std::vector<std::filesystem::path> DynamicsSet::endFrame() {
+  std::vector<std::filesystem::path> out;
+  if (def_.writeMjcf && !firstMjcf_.empty() && framed_) {
+    FrameTarget whole = target_;
+    whole.frameCount = 1;
+    const std::filesystem::path path = outputPath(whole, "xml");
+    writeFileAtomically(path, [&](std::ostream& stream) { stream << firstMjcf_; });
+    out.push_back(path);
+    framed_ = false;
+  }
+  return out;
+}
+
+std::vector<SetWarning> DynamicsSet::takeWarnings() {
+  std::vector<SetWarning> out = inner_.takeWarnings();
+  for (auto& warning : out) {
+    const std::string creature = "the creature set";
+    if (warning.message.rfind(creature, 0) == 0) warning.message.replace(0, creature.size(), "the dynamics set");
+  }
+  // The replays repeat the word's own warnings.
+  replay_.takeWarnings();
+  draw_.takeWarnings();
+  badArguments_.takeInto(out, "the dynamics set ignored " + std::to_string(badArguments_.count) +
+                                  " of its commands with bad arguments: values not finite or out of range (the first here)");
+  unstable_.takeInto(out, "MuJoCo found the simulation unstable " + std::to_string(unstable_.count) +
+                              " times and reset it: a smaller #timestep or weaker servos (the first here)");
+  return out;
+}
+
+}  // namespace ontogen

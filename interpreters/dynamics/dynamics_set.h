@@ -1,0 +1,159 @@
+#pragma once
+// The "dynamics" interpretation set: the creature set's body (interpreters/creature/)
+// living under physics, simulated by MuJoCo. It runs the creature set's commands on an
+// inner creature set and keeps the word as a tape of its cells and commands. At the end
+// of a word it makes the word's body plan (body_plan.h), a rigid body per joint, and its
+// MuJoCo model (mjcf_builder.h); each hinge gets a position servo whose target, at every
+// step of the simulation, is the angle the kinematic pose asks at that time: the tape
+// replayed at the step's time, so the gait's inverse kinematics follows the simulated
+// time while the drivers (the cells' arguments) hold the values of the last word seen.
+//
+// A run feeds the set the word at every instant of the development's step grid
+// (InterpretationSet::simulates), never at frames: the simulation steps at its own fixed
+// step (#timestep) from the first word with joints, and a frame reads its state at the
+// frame's time from a copy (a partial step from the last step before it), so which
+// frames are drawn never changes the motion. A word whose body differs from the model's
+// (joints added or removed) rebuilds the model at that word's kinematic pose.
+//
+// A frame is the inner creature set's scene of the tape at the frame's time, every joint
+// and limb moved to where the simulation has its body; the skeleton is marked simulated
+// and lists the joints whose limbs touch the ground.
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "interpreters/creature/creature_set.h"
+#include "interpreters/dynamics/body_plan.h"
+#include "interpreters/dynamics/mjcf_builder.h"
+#include "interpreters/interpretation_set.h"
+#include "interpreters/scene.h"
+
+namespace ontogen {
+
+class MujocoModel;
+
+struct DynamicsSetDef {
+  bool radians = false;     ///< angles in radians (#radians), else degrees
+  LimbMeshing meshing = LimbMeshing::EveryFrame;  ///< as the creature set's
+  PhysicsDef physics{};     ///< timestep (#timestep) and the defaults of the set's commands
+  bool writeMjcf = false;   ///< endFrame() writes DIR/<stem>.xml, the model of the first frame
+};
+
+/// What the simulation did up to the last frame drawn, for measures and tests.
+struct DynamicsStats {
+  bool simulating = false;   ///< a model exists
+  int rebuilds = 0;          ///< models made (the first counts)
+  double simulatedTime = 0;  ///< seconds stepped in all
+  glm::dvec3 rootStart{0.0};  ///< the first root body's place at the first frame
+  glm::dvec3 root{0.0};       ///< and at the last
+  double startHeight = 0;     ///< the body's centre of mass above the ground at the first frame
+  double height = 0;          ///< and at the last
+  double lowest = 0;          ///< the lowest height above the ground any joint had at a frame
+  double energy = 0;          ///< the servos' work, |torque x angular speed| summed over steps
+  double slip = 0;            ///< distance contact points slid along the ground, summed
+  int instabilities = 0;      ///< times MuJoCo reset an unstable simulation
+};
+
+class DynamicsSet : public InterpretationSet {
+ public:
+  /// Throws std::invalid_argument when def is out of range.
+  explicit DynamicsSet(const DynamicsSetDef& def = {});
+  ~DynamicsSet() override;
+
+  std::string_view name() const override { return "dynamics"; }
+  bool knows(std::string_view command) const override;
+  bool simulates() const override { return true; }
+  /// Cells with no `interpret dynamics` block run their `interpret creature` one.
+  std::string_view alsoReads() const override { return "creature"; }
+  bool drawsScene() const override { return true; }
+  void beginFrame(const FrameTarget& target) override;
+  void beginWord(double time) override;
+  void beginCell(const CellContext& cell) override;
+  void execute(std::string_view command, std::span<const double> args) override;
+  /// `id` indexes dynamicsCommands() followed by creatureCommands().
+  void executeCommand(int id, std::string_view command, std::span<const double> args) override;
+  /// Simulates up to the word's time with the last word, then takes this one.
+  void endWord() override;
+  /// Simulates up to the frame's time and draws the body where the simulation has it.
+  void contribute(Scene& scene) override;
+  /// Writes what the set keeps of the whole run (the MJCF, when asked); returns the paths.
+  std::vector<std::filesystem::path> endFrame() override;
+  std::vector<SetWarning> takeWarnings() override;
+
+  const DynamicsStats& stats() const { return stats_; }
+  /// The scene of the last frame drawn.
+  const Scene& scene() const { return scene_; }
+  /// The MJCF of the model at the first frame drawn, with its state as a keyframe ("" before).
+  const std::string& firstFrameMjcf() const { return firstMjcf_; }
+
+ private:
+  // An entry of a word's tape: a cell begins, or a creature command runs.
+  struct TapeEntry {
+    bool cell = false;
+    CellContext context;
+    InstructionSite site;
+    int command = -1;  // index in creatureCommands()
+    std::vector<double> args;
+  };
+  // What a joint command made of the turtle it started from.
+  struct JointStart {
+    JointKind kind = JointKind::Weld;
+    glm::dmat3 base{1.0};
+    std::array<CreatureRange, 3> ranges{};
+  };
+  // Replays the tape as a frame at target.time into `set`, collecting the joints' starts.
+  void replay(const std::vector<TapeEntry>& tape, const FrameTarget& target, CreatureSet& set,
+              std::vector<JointStart>& starts);
+  void runCreature(CreatureSet& set, int command, std::span<const double> args, std::vector<JointStart>& starts);
+  BodyPlan planOf(const CreatureSet& set, const std::vector<JointStart>& starts) const;
+  void build(const BodyPlan& plan, double time);
+  void advanceTo(double time);
+  void setControls(double time);
+  double stepTime(long steps) const { return start_ + static_cast<double>(steps) * physics_.timestep; }
+  // The state at `time` (not before the last step) in scratch_, its kinematics computed.
+  void stateAt(double time);
+
+  DynamicsSetDef def_;
+  CreatureSet inner_;   // runs each word as it comes
+  CreatureSet replay_;  // the tape at each step's time
+  CreatureSet draw_;    // the tape at each frame's time, meshed
+  std::vector<TapeEntry> tape_, wordTape_;  // the last word taken; the word being read
+  std::vector<JointStart> starts_, stepStarts_;
+  PhysicsDef physics_, wordPhysics_;
+  double wordTime_ = 0;
+  double tapeTime_ = 0;
+
+  std::unique_ptr<MujocoModel> sim_;
+  BodyPlan plan_;
+  std::string mjcf_;
+  double start_ = 0;   // the model's first instant, seconds
+  long steps_ = 0;     // taken since
+  struct Hinge {
+    int body = 0, dof = 0, qpos = 0, dof_address = 0, actuator = -1;
+    CreatureRange range;
+  };
+  std::vector<Hinge> hinges_;
+  std::vector<int> bodyIds_;   // MuJoCo's body of each plan body
+  std::vector<int> planOfBody_;  // the plan body of each MuJoCo body (-1: the world)
+  int groundGeom_ = -1;
+  void* scratch_ = nullptr;  // mjData, the state a frame reads
+
+  FrameTarget target_;
+  bool framed_ = false;
+  Scene scene_;
+  std::string firstMjcf_;
+  std::vector<std::filesystem::path> written_;
+  DynamicsStats stats_;
+  WarningCounter badArguments_;
+  WarningCounter unstable_;
+};
+
+}  // namespace ontogen
