@@ -194,7 +194,7 @@ int dispatch(int argc, char** argv) {
           "Background, light and palette of pictures and movies: " + ontogen::lookList() + " (default: #look, else light)")
       ->type_name("NAME");
   runCommand->add_option("--interpret", run.sets,
-                         "Interpretation sets, comma-separated: geometry, creature, physics, image, music, trace (default: the "
+                         "Interpretation sets, comma-separated: geometry, creature, dynamics, physics, image, music, trace (default: the "
                          "program's #interpret, else geometry)")
       ->delimiter(',');
   runCommand->add_option("--out", run.out, "Output directory")->capture_default_str();

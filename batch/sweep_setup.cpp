@@ -18,9 +18,12 @@ bool hasSet(const std::vector<std::string>& sets, std::string_view name) {
 // A measure that reads a set's quantities needs that set among the variants' sets.
 std::string missingSet(const Measure& measure, const std::vector<std::string>& sets) {
   for (QuantitySource source : measure.sources()) {
-    const bool drawing = hasSet(sets, "geometry") || hasSet(sets, "creature") || hasSet(sets, "physics");
+    const bool drawing = hasSet(sets, "geometry") || hasSet(sets, "creature") || hasSet(sets, "physics") ||
+                         hasSet(sets, "dynamics");
+    // The dynamics set reports a walk's quantities too, from its simulation.
     const bool present = source == QuantitySource::World || (source == QuantitySource::Scene && drawing) ||
-                         (source != QuantitySource::Scene && hasSet(sets, quantitySourceSet(source)));
+                         (source != QuantitySource::Scene && hasSet(sets, quantitySourceSet(source))) ||
+                         (source == QuantitySource::Creature && hasSet(sets, "dynamics"));
     if (present) continue;
     if (source == QuantitySource::Scene)
       return "--measure " + measure.name() +

@@ -35,9 +35,15 @@ constexpr std::array kQuantities{
     QuantityInfo{"root_force", Source::Physics, "|F| at the base of the first root rod, N"},
     QuantityInfo{"root_moment", Source::Physics, "|M| about the base of the first root rod, N m"},
     QuantityInfo{"deflection", Source::Physics, "the largest distance of a rod's tip from its rest tip, m"},
-    QuantityInfo{"distance", Source::Creature, "walked by the last creature since time 0, model units"},
+    QuantityInfo{"distance", Source::Creature,
+                 "walked by the last creature since time 0, model units (dynamics: the first root's travel along the "
+                 "ground from the first frame to the last)"},
     QuantityInfo{"slip", Source::Creature,
-                 "the farthest a foot moved while planted (on the ground in consecutive frames), model units"},
+                 "the farthest a foot moved while planted (on the ground in consecutive frames), model units "
+                 "(dynamics: how far the points touching the ground slid along it in all)"},
+    QuantityInfo{"fallen", Source::Dynamics,
+                 "1 when the body's centre of mass ended below half its height at the first frame, else 0"},
+    QuantityInfo{"energy", Source::Dynamics, "the servos' work, |torque x angular speed| over every step, summed"},
 };
 
 // An expression deeper than this is no measure anyone writes; the bound keeps the
@@ -64,6 +70,7 @@ std::string_view quantitySourceSet(QuantitySource source) {
     case Source::Geometry: return "geometry";
     case Source::Physics: return "physics";
     case Source::Creature: return "creature";
+    case Source::Dynamics: return "dynamics";
   }
   return "";
 }

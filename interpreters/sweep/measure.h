@@ -30,7 +30,8 @@ enum class QuantitySource : uint8_t {
   Scene,     ///< the last frame's scene: a set that draws (geometry, creature, physics)
   Geometry,  ///< the geometry set's turtle
   Physics,   ///< the physics set's solve of the last frame
-  Creature,  ///< the creature set over every frame
+  Creature,  ///< the creature set over every frame (or the dynamics set's simulation of it)
+  Dynamics,  ///< the dynamics set's simulation
 };
 
 /// One quantity a measure may name.

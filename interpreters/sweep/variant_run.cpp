@@ -9,6 +9,7 @@
 
 #include "core/word.h"
 #include "interpreters/creature/creature_set.h"
+#include "interpreters/dynamics/dynamics_set.h"
 #include "interpreters/geometry/geometry_set.h"
 #include "interpreters/physics/physics_set.h"
 #include "interpreters/set_registry.h"
@@ -156,6 +157,13 @@ VariantResult runVariant(VariantDef def) {
     if (const auto* creature = dynamic_cast<const CreatureSet*>(set.get())) {
       q.values["distance"] = creature->stats().distance;
       q.values["slip"] = watch.slip;
+    }
+    if (const auto* dynamics = dynamic_cast<const DynamicsSet*>(set.get())) {
+      const DynamicsStats& stats = dynamics->stats();
+      q.values["distance"] = std::hypot(stats.root.x - stats.rootStart.x, stats.root.z - stats.rootStart.z);
+      q.values["slip"] = stats.slip;
+      q.values["fallen"] = stats.simulating && stats.height < stats.startHeight / 2 ? 1 : 0;
+      q.values["energy"] = stats.energy;
     }
   }
   for (const auto& [name, value] : def.values) q.values[name] = value;

@@ -98,7 +98,7 @@ std::string before(const Directive& directive) {
 std::string settingsOf(const Program& program, int system) {
   const InterpretSettings& s = program.systems[system].settings;
   std::ostringstream out;
-  out << s.angle << ' ' << s.yawAngle << ' ' << s.step << ' ' << s.radius << ' ' << s.radians << ' '
+  out << s.angle << ' ' << s.yawAngle << ' ' << s.step << ' ' << s.radius << ' ' << s.radians << ' ' << s.timestep << ' '
       << static_cast<int>(s.music.time) << ' ' << s.music.tempo << ' ' << s.music.ppq << ' ' << s.music.format << ' '
       << s.music.timeSignatureNumerator << '/' << s.music.timeSignatureDenominator << ' ' << s.surfaces.size();
   for (const std::string& name : s.music.trackNames) out << " '" << name << "'";
@@ -222,7 +222,8 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   // docs/LANGUAGE.md section 6 quotes it.
   EXPECT_EQ(error.message,
             "unknown directive '#defne' (known: #define, #range, #angle, #yawangle, #length, #radius, #radians, "
-            "#degrees, #seed, #until, #from, #fps, #speed, #look, #interpret, #dt, #tolerance, #music, #tempo, #ppq, "
+            "#degrees, #seed, #until, #from, #fps, #speed, #look, #interpret, #dt, #timestep, #tolerance, #music, #tempo, "
+            "#ppq, "
             "#midiformat, #timesig, #track, #surface, #letters)");
   for (const Directive& directive : directives()) {
     EXPECT_NE(error.message.find("#" + std::string(directive.name)), std::string::npos) << directive.name;

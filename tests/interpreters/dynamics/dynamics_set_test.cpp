@@ -21,6 +21,8 @@
 
 #include "interpreters/dynamics/mujoco_model.h"
 #include "interpreters/run.h"
+#include "interpreters/sweep/measure.h"
+#include "interpreters/sweep/variant_run.h"
 #include "tests/core/test_support.h"
 
 namespace ontogen {
@@ -224,6 +226,39 @@ TEST(DynamicsSet, TheWrittenMjcfIsTheFirstFramesModel) {
   EXPECT_GT(d->qpos[1], kHeight / 2);
   mj_deleteData(d);
   mj_deleteModel(m);
+}
+
+// The measures sweep and evolve read: a walk that goes forward, does not fall, spends
+// energy and slips a little; a body given no servos (servo(0, 0)) spends none.
+TEST(DynamicsSet, MeasuresTheWalk) {
+  auto measure = [](const std::string& text) {
+    VariantDef def;
+    def.name = "models/creature.cell";
+    def.text = text;
+    def.compile.commandSets = commandSets();
+    def.compile.defines = {{"SEGMENTS", 4}};
+    def.run.sets = {"dynamics"};
+    def.run.setOptions.formats = "joints";
+    def.run.out = fs::path(ONTOGEN_BINARY_DIR) / "dynamics_set_test" / "measures";
+    def.run.from = kPeriod;
+    def.run.until = kPeriod + 3;
+    def.run.frames = 4;
+    for (const char* m : {"d=distance", "f=fallen", "e=energy", "s=slip"}) def.measures.push_back(parseMeasure(m));
+    return runVariant(std::move(def));
+  };
+  const std::string model = testing_support::readModel("creature.cell");
+  const VariantResult walking = measure(model);
+  ASSERT_EQ(walking.error, "");
+  EXPECT_GT(walking.measures[0], 0.5 * kStride / (0.5 * kPeriod) * 3);
+  EXPECT_EQ(walking.measures[1], 0);
+  EXPECT_GT(walking.measures[2], 0);
+  EXPECT_GT(walking.measures[3], 0);
+  std::string limp = model;
+  limp.replace(limp.find("axiom Gait body;"), 16, "axiom Limp Gait body;");
+  limp += "\ncell Limp { interpret dynamics { servo(0, 0) } }\n";
+  const VariantResult fallen = measure(limp);
+  ASSERT_EQ(fallen.error, "");
+  EXPECT_EQ(fallen.measures[2], 0);
 }
 
 }  // namespace
