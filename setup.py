@@ -40,6 +40,10 @@ class CMakeBuild(build_ext):
             raise RuntimeError(f"the build made no extension in {build / 'python' / 'ontogen'}")
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(built[0], target)
+        # The notebook's 3-D viewer, bundled when esbuild and three.js were there.
+        viewer = build / "python" / "ontogen" / "viewer.js"
+        if viewer.exists():
+            shutil.copyfile(viewer, target.parent / "viewer.js")
 
 
 setup(

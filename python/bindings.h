@@ -12,9 +12,11 @@ namespace ontogen::python {
 void bindProgram(pybind11::module_& module);
 /// World, Cell.
 void bindWorld(pybind11::module_& module);
-/// Scene.
+/// Scene, World.scene, World.animation.
 void bindScene(pybind11::module_& module);
-/// run, statics, sweep.
+/// run, statics.
 void bindRun(pybind11::module_& module);
+/// sweep.
+void bindSweep(pybind11::module_& module);
 
 }  // namespace ontogen::python

@@ -85,4 +85,5 @@ PYBIND11_MODULE(_ontogen, module) {
   python::bindWorld(module);
   python::bindScene(module);
   python::bindRun(module);
+  python::bindSweep(module);
 }

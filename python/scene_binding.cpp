@@ -1,16 +1,22 @@
 // World.scene and Scene: what the drawing sets make of a world's word, as numpy arrays
 // laid out as the OBJ file `ontogen run` writes (its vertices, in its order: the mesh's
 // positions, then the segments' ends, a segment that starts where the previous one ended
-// sharing its vertex), so the two can be compared vertex for vertex.
+// sharing its vertex), so the two can be compared vertex for vertex. Scene.glb and
+// World.animation give the .glb `ontogen run --format glb` writes, which the notebook's
+// 3-D view shows (python/ontogen/display.py).
 
+#include <cmath>
 #include <cstring>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include "interpreters/formats/glb_writer.h"
+#include "interpreters/formats/skinned_glb_writer.h"
 #include "interpreters/interpret.h"
 #include "interpreters/palette.h"
 #include "interpreters/scene.h"
@@ -119,6 +125,72 @@ void makeArrays(SceneHandle& handle) {
   handle.nodes = nodes;
 }
 
+// The sets named, made as a run makes them, recording the scene's nodes (the .glb's cells).
+std::vector<std::unique_ptr<InterpretationSet>> drawingSets(const Program& program,
+                                                            const std::vector<std::string>& names) {
+  SetOptions options;
+  options.sceneNodes = true;
+  std::vector<std::unique_ptr<InterpretationSet>> drawing;
+  for (const std::string& name : names) {
+    std::unique_ptr<InterpretationSet> set;
+    try {
+      set = makeInterpretationSet(name, program.rootSystem().settings, options);
+    } catch (const std::invalid_argument& error) {
+      throw py::value_error(error.what());
+    }
+    if (!set) throw py::value_error("scene: there is no set '" + name + "'");
+    if (!set->drawsScene()) throw py::value_error("scene: the set '" + name + "' draws no scene");
+    drawing.push_back(std::move(set));
+  }
+  return drawing;
+}
+
+// What `drawing` makes of the world's word now, as a run draws a frame. The world's lock is held.
+void draw(const World& grown, const std::string& stem, std::vector<std::unique_ptr<InterpretationSet>>& drawing,
+          Scene& scene) {
+  scene.time = grown.time();
+  for (auto& set : drawing) {
+    set->beginFrame(FrameTarget{".", stem, 0, 1, grown.time()});
+    interpretWord(grown, *set);
+    set->contribute(scene);
+  }
+}
+
+// Frames collected into one .glb, written as `ontogen run` writes it (formats/scene_output.cpp):
+// one skin from the first frame that holds a skeleton, else persistent parts.
+class GlbFrames {
+ public:
+  void add(const Scene& scene) {
+    if (skinned_.frameCount() > 0 || !scene.skeleton.empty())
+      skinned_.addFrame(scene);
+    else
+      parts_.addFrame(scene);
+  }
+  std::string bytes() const {
+    std::ostringstream out;
+    if (skinned_.frameCount() > 0)
+      skinned_.write(out);
+    else
+      parts_.write(out);
+    return std::move(out).str();
+  }
+
+ private:
+  GlbAnimationWriter parts_;
+  SkinnedGlbWriter skinned_;
+};
+
+// Program's #interpret sets that draw a scene, else geometry: what a World shows itself with.
+std::vector<std::string> shownSets(const Program& program) {
+  std::vector<std::string> shown;
+  for (const std::string& name : program.interpretSets) {
+    std::unique_ptr<InterpretationSet> set = makeInterpretationSet(name, program.rootSystem().settings);
+    if (set && set->drawsScene()) shown.push_back(name);
+  }
+  if (shown.empty()) shown.push_back("geometry");
+  return shown;
+}
+
 }  // namespace
 
 
@@ -132,7 +204,15 @@ void bindScene(py::module_& module) {
       .def_readonly("lines", &SceneHandle::lines, "K x 2 uint32: the zero-radius line segments.")
       .def_readonly("nodes", &SceneHandle::nodes,
                     "One record per drawing cell: id (uint64), parent (int64, -1: none), transform (4 x 4).")
-      .def_property_readonly("time", [](const SceneHandle& s) { return s.scene.time; }, "Seconds.");
+      .def_property_readonly("time", [](const SceneHandle& s) { return s.scene.time; }, "Seconds.")
+      .def(
+          "glb",
+          [](const SceneHandle& s) {
+            GlbFrames glb;
+            glb.add(s.scene);
+            return py::bytes(glb.bytes());
+          },
+          "The scene as the .glb `ontogen run --format glb` writes of one frame.");
 
   py::class_<WorldHandle, std::shared_ptr<WorldHandle>> world =
       py::reinterpret_borrow<py::class_<WorldHandle, std::shared_ptr<WorldHandle>>>(
@@ -141,36 +221,47 @@ void bindScene(py::module_& module) {
       "scene",
       [](WorldHandle& handle, const std::vector<std::string>& sets) {
         auto made = std::make_shared<SceneHandle>();
-        const Program& program = *handle.program->program;
-        SetOptions options;
-        options.sceneNodes = true;
-        std::vector<std::unique_ptr<InterpretationSet>> drawing;
-        for (const std::string& name : sets) {
-          std::unique_ptr<InterpretationSet> set;
-          try {
-            set = makeInterpretationSet(name, program.rootSystem().settings, options);
-          } catch (const std::invalid_argument& error) {
-            throw py::value_error(error.what());
-          }
-          if (!set) throw py::value_error("scene: there is no set '" + name + "'");
-          if (!set->drawsScene()) throw py::value_error("scene: the set '" + name + "' draws no scene");
-          drawing.push_back(std::move(set));
-        }
+        std::vector<std::unique_ptr<InterpretationSet>> drawing = drawingSets(*handle.program->program, sets);
         withoutGil([&](const std::function<void()>&) {
           std::lock_guard lock(handle.mutex);
-          const World& grown = *handle.world;
-          made->scene.time = grown.time();
-          for (auto& set : drawing) {
-            set->beginFrame(FrameTarget{".", handle.program->stem, 0, 1, grown.time()});
-            interpretWord(grown, *set);
-            set->contribute(made->scene);
-          }
+          draw(*handle.world, handle.program->stem, drawing, made->scene);
         });
         makeArrays(*made);
         return made;
       },
       py::arg("sets") = std::vector<std::string>{"geometry"},
       "What the drawing sets (geometry, creature, physics) make of the word now, as a Scene.");
+  world.def(
+      "_animation",
+      [](WorldHandle& handle, double until, int frames, const std::vector<std::string>& sets) {
+        if (!std::isfinite(until)) throw py::value_error("animation: the time must be a finite number of seconds");
+        if (frames < 1) throw py::value_error("animation: an animation needs at least one frame");
+        std::vector<std::unique_ptr<InterpretationSet>> drawing = drawingSets(*handle.program->program, sets);
+        GlbFrames glb;
+        std::vector<double> times;
+        withoutGil([&](const std::function<void()>& checkInterrupt) {
+          std::lock_guard lock(handle.mutex);
+          World& grown = *handle.world;
+          // Frames spread over [now, until] as a run spreads them over [from, until].
+          const double from = grown.time();
+          const double to = std::max(until, from);
+          for (int frame = 0; frame < frames; ++frame) {
+            const double t = frames == 1 ? to : from + (to - from) * frame / (frames - 1);
+            growTo(grown, t, handle.dt, handle.def.limits, checkInterrupt);
+            Scene scene;
+            draw(grown, handle.program->stem, drawing, scene);
+            glb.add(scene);
+            times.push_back(grown.time());
+          }
+        });
+        std::string bytes = glb.bytes();
+        return py::make_tuple(py::bytes(bytes), times);
+      },
+      py::arg("until"), py::arg("frames"), py::arg("sets"),
+      "Grows the world to `until`, drawing `frames` frames spread over [now, until]: (.glb bytes, frame times).");
+  world.def_property_readonly(
+      "_shown_sets", [](const WorldHandle& handle) { return shownSets(*handle.program->program); },
+      "The #interpret sets that draw a scene, else geometry.");
 }
 
 }  // namespace ontogen::python
