@@ -59,7 +59,7 @@ void addLimits(CLI::App& command, CommonOptions& options) {
             options.limits.maxMemoryBytes =
                 detail::wholeOrThrow("--max-memory", text, WholeRange::between(1, kMaxMemoryMiB)) << 20;
           },
-          "Stop if the pools and outputs pass this many MiB (default: half the machine's memory, here " +
+          "Stop if the pools and outputs pass this many MiB (default: half the memory this process may use, here " +
               std::to_string(ontogen::defaultMemoryLimitBytes() >> 20) + ")")
       ->type_name("MIB");
   addWholeOption(command, "--max-events", options.limits.maxEventsPerStep, WholeRange::atLeast(1),

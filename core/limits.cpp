@@ -1,5 +1,6 @@
 #include "core/limits.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,22 +27,104 @@ uint64_t physicalMemoryBytes() {
   return static_cast<uint64_t>(pages) * static_cast<uint64_t>(pageSize);
 }
 
-// The memory limit of this process's control group (cgroup v2), 0 for none: a container
-// may have far less than the machine.
-uint64_t controlGroupMemoryBytes() {
-  std::ifstream in("/sys/fs/cgroup/memory.max");
-  uint64_t bytes = 0;
-  if (!(in >> bytes)) return 0;  // "max", or no cgroup v2
-  return bytes;
+uint64_t addressSpaceBytes() {
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return 0;
+  return static_cast<uint64_t>(limit.rlim_cur);
+}
+
+// At or past this a cgroup v1 limit means none: "unlimited" is the largest page count,
+// 2^63 - 4096 with 4 KiB pages (less with larger pages), and no machine has 2^62 bytes.
+constexpr uint64_t kUnlimitedV1 = uint64_t{1} << 62;
+
+// Whether the comma-separated `list` names `name`.
+bool lists(const std::string& list, const std::string& name) {
+  for (size_t at = 0; at <= list.size();) {
+    size_t end = list.find(',', at);
+    if (end == std::string::npos) end = list.size();
+    if (list.compare(at, end - at, name) == 0) return true;
+    at = end + 1;
+  }
+  return false;
+}
+
+// The group of `controller` in `root`/proc/self/cgroup ("0::/a/b" for v2, whose
+// controllers field is empty; "4:memory:/a/b" or "4:cpu,memory:/a/b" for v1), empty when
+// the process is in none.
+std::string groupOf(const std::string& root, const std::string& controller) {
+  std::ifstream in(root + "/proc/self/cgroup");
+  for (std::string line; std::getline(in, line);) {
+    const size_t first = line.find(':');
+    const size_t second = first == std::string::npos ? first : line.find(':', first + 1);
+    if (second == std::string::npos) continue;
+    const std::string controllers = line.substr(first + 1, second - first - 1);
+    const bool match = controller.empty() ? controllers.empty() && line.compare(0, first, "0") == 0
+                                          : lists(controllers, controller);
+    if (match) return line.substr(second + 1);
+  }
+  return "";
+}
+
+// The least limit in `file` of the group `group` and its ancestors under `mount`, read
+// by `parse` (0: none). A container often mounts its own group as the root of the
+// hierarchy, where the group's path from /proc/self/cgroup does not exist: the mount's
+// own file is read too.
+template <class Parse>
+uint64_t leastLimit(const std::string& mount, std::string group, const std::string& file, Parse parse) {
+  uint64_t least = 0;
+  auto take = [&](const std::string& path) {
+    std::ifstream in(path);
+    std::string text;
+    if (!(in >> text)) return;
+    const uint64_t bytes = parse(text);
+    if (bytes > 0 && (least == 0 || bytes < least)) least = bytes;
+  };
+  while (!group.empty() && group != "/") {
+    take(mount + group + "/" + file);
+    const size_t slash = group.rfind('/');
+    group = slash == std::string::npos ? "" : group.substr(0, slash);
+  }
+  take(mount + "/" + file);
+  return least;
+}
+
+// A whole number of bytes, 0 for anything else ("max", "-1", junk, past 2^64).
+uint64_t parseBytes(const std::string& text) {
+  if (text.empty() || text.size() > 19 || text.find_first_not_of("0123456789") != std::string::npos) return 0;
+  return std::stoull(text);
 }
 }  // namespace
 
+uint64_t readControlGroupV2Bytes(const std::string& root) {
+  return leastLimit(root + "/sys/fs/cgroup", groupOf(root, ""), "memory.max", parseBytes);
+}
+
+uint64_t readControlGroupV1Bytes(const std::string& root) {
+  return leastLimit(root + "/sys/fs/cgroup/memory", groupOf(root, "memory"), "memory.limit_in_bytes",
+                    [](const std::string& text) {
+                      const uint64_t bytes = parseBytes(text);
+                      return bytes >= kUnlimitedV1 ? 0 : bytes;
+                    });
+}
+
+MemoryBounds readMemoryBounds(const std::string& root) {
+  return {physicalMemoryBytes(), readControlGroupV2Bytes(root), readControlGroupV1Bytes(root), addressSpaceBytes()};
+}
+
+uint64_t memoryAvailableBytes(const MemoryBounds& bounds) {
+  uint64_t least = 0;
+  for (const uint64_t bytes : {bounds.physical, bounds.controlGroupV2, bounds.controlGroupV1, bounds.addressSpace})
+    if (bytes > 0 && (least == 0 || bytes < least)) least = bytes;
+  return least;
+}
+
+uint64_t defaultMemoryLimitBytes(const MemoryBounds& bounds) {
+  const uint64_t memory = memoryAvailableBytes(bounds);
+  return memory == 0 ? uint64_t{8} << 30 : std::max<uint64_t>(memory / 2, uint64_t{1} << 20);
+}
+
 uint64_t defaultMemoryLimitBytes() {
-  static const uint64_t limit = [] {
-    uint64_t memory = physicalMemoryBytes();
-    if (const uint64_t group = controlGroupMemoryBytes(); group > 0 && (memory == 0 || group < memory)) memory = group;
-    return memory == 0 ? uint64_t{8} << 30 : std::max<uint64_t>(memory / 2, uint64_t{1} << 20);
-  }();
+  static const uint64_t limit = defaultMemoryLimitBytes(readMemoryBounds());
   return limit;
 }
 

@@ -10,11 +10,36 @@
 
 namespace ontogen {
 
-/// The memory limit a world gets when none is given: half the memory this machine (or
-/// the control group it runs in) has, so a runaway model stops before the machine swaps,
-/// leaving the other half to the outputs, the system and other programs. 8 GiB when the
-/// machine does not say.
+/// The memory limit a world gets when none is given: half the memory this process may
+/// use (memoryAvailableBytes()), so a runaway model stops before the machine swaps or the
+/// kernel kills it, leaving the other half to the outputs, the system and other programs.
+/// 8 GiB when nothing says.
 uint64_t defaultMemoryLimitBytes();
+
+/// What bounds the memory of this process, each 0 when it sets no bound.
+struct MemoryBounds {
+  uint64_t physical = 0;       ///< the machine's RAM (bytes)
+  uint64_t controlGroupV2 = 0;  ///< memory.max of the process's cgroup v2 and its ancestors
+  uint64_t controlGroupV1 = 0;  ///< memory.limit_in_bytes of its cgroup v1 memory group and its ancestors
+  uint64_t addressSpace = 0;   ///< RLIMIT_AS (soft)
+};
+
+/// The bounds as this machine gives them. `root` stands for `/` (tests give a folder of
+/// fake /proc/self/cgroup and /sys/fs/cgroup files); RLIMIT_AS is read from the process.
+MemoryBounds readMemoryBounds(const std::string& root = "/");
+/// The cgroup v2 limit below `root`: the least memory.max of the process's group (from
+/// `root`/proc/self/cgroup, line `0::/path`) and its ancestors under
+/// `root`/sys/fs/cgroup, 0 when all say `max` or there is none.
+uint64_t readControlGroupV2Bytes(const std::string& root);
+/// The cgroup v1 limit below `root`: the least memory.limit_in_bytes of the memory
+/// controller's group (line `N:memory:/path`) and its ancestors under
+/// `root`/sys/fs/cgroup/memory. 0 when there is none, or it is v1's "unlimited" (a page
+/// count near 2^63, 9223372036854771712 with 4 KiB pages).
+uint64_t readControlGroupV1Bytes(const std::string& root);
+/// The least of the bounds that are set (0 when none is).
+uint64_t memoryAvailableBytes(const MemoryBounds& bounds);
+/// Half of memoryAvailableBytes (at least 1 MiB), or 8 GiB when no bound is set.
+uint64_t defaultMemoryLimitBytes(const MemoryBounds& bounds);
 
 /// Growth limits of a world (and of all its nested systems together).
 struct WorldLimits {

@@ -138,9 +138,14 @@ TEST(RunFailure, RunningOutOfMemoryIsAMessageAndExitCode3) {
   std::string axiom;
   for (int i = 0; i < 1'000'000; ++i) axiom += " F(1)";
   const fs::path large = writeProgram(dir, "lsystem a {\n axiom" + axiom + "\n F(x) -> F(x)\n}\n", "large.cell");
+  // The address-space limit bounds the default memory limit (half of it, 146 MiB), so a
+  // program too large to check under it is stopped with the limit named, before the
+  // machine's memory runs out.
   const Result check = ontogen(dir, "check " + large.string(), "ulimit -v 300000; ");
   EXPECT_EQ(check.exitCode, 3) << check.err;
-  EXPECT_NE(check.err.find("ran out of memory"), std::string::npos) << check.err;
+  EXPECT_NE(check.err.find("past the memory limit of 146 MiB"), std::string::npos) << check.err;
+  const Result help = ontogen(dir, "run --help", "ulimit -v 300000; ");
+  EXPECT_NE(help.out.find(", here 146)"), std::string::npos) << help.out;
 }
 
 // Checking a program takes about 100 bytes a byte of text: a text that could not be

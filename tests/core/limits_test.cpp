@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -130,16 +131,90 @@ TEST(Limits, TheStepLimitCountsEveryStepOfTheWorld) {
   EXPECT_THROW(world.step(1), LimitError);
 }
 
-uint64_t expectedDefaultLimit() {
-  uint64_t memory = static_cast<uint64_t>(sysconf(_SC_PHYS_PAGES)) * static_cast<uint64_t>(sysconf(_SC_PAGE_SIZE));
-  std::ifstream group("/sys/fs/cgroup/memory.max");
-  if (uint64_t bytes = 0; group >> bytes && bytes < memory) memory = bytes;
-  return memory / 2;
+TEST(Limits, TheDefaultMemoryLimitIsHalfTheLeastBound) {
+  EXPECT_EQ(defaultMemoryLimitBytes(), defaultMemoryLimitBytes(readMemoryBounds()));
+  EXPECT_EQ(WorldLimits{}.maxMemoryBytes, defaultMemoryLimitBytes());
+  const uint64_t gib = uint64_t{1} << 30;
+  EXPECT_EQ(defaultMemoryLimitBytes(MemoryBounds{.physical = 16 * gib}), 8 * gib);
+  // Each bound, the least of them taken; 0 is no bound.
+  EXPECT_EQ(defaultMemoryLimitBytes(MemoryBounds{.physical = 16 * gib, .controlGroupV2 = 2 * gib}), gib);
+  EXPECT_EQ(defaultMemoryLimitBytes(MemoryBounds{.physical = 16 * gib, .controlGroupV1 = gib}), gib / 2);
+  EXPECT_EQ(defaultMemoryLimitBytes(MemoryBounds{.physical = 16 * gib, .addressSpace = 600 * (uint64_t{1} << 20)}),
+            300 * (uint64_t{1} << 20));
+  EXPECT_EQ(defaultMemoryLimitBytes(
+                MemoryBounds{.physical = 16 * gib, .controlGroupV2 = 4 * gib, .controlGroupV1 = 3 * gib, .addressSpace = 5 * gib}),
+            3 * gib / 2);
+  EXPECT_EQ(defaultMemoryLimitBytes(MemoryBounds{}), 8 * gib);  // nothing says
+  EXPECT_EQ(defaultMemoryLimitBytes(MemoryBounds{.addressSpace = 1000}), uint64_t{1} << 20);
 }
 
-TEST(Limits, TheDefaultMemoryLimitIsHalfTheMachine) {
-  EXPECT_EQ(defaultMemoryLimitBytes(), expectedDefaultLimit());
-  EXPECT_EQ(WorldLimits{}.maxMemoryBytes, defaultMemoryLimitBytes());
+// A folder standing for `/`: /proc/self/cgroup and the control groups' files.
+class FakeRoot {
+ public:
+  explicit FakeRoot(const std::string& name) : root_(std::filesystem::temp_directory_path() /
+                                                     ("ontogen_limits_" + name + "_" + std::to_string(getpid()))) {
+    std::filesystem::remove_all(root_);
+  }
+  ~FakeRoot() { std::filesystem::remove_all(root_); }
+  void write(const std::string& path, const std::string& text) const {
+    const std::filesystem::path file = root_ / path;
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+  }
+  std::string path() const { return root_.string(); }
+
+ private:
+  std::filesystem::path root_;
+};
+
+TEST(Limits, ControlGroupV2IsReadFromTheProcesssGroupAndItsAncestors) {
+  FakeRoot root("v2");
+  EXPECT_EQ(readControlGroupV2Bytes(root.path()), 0u);  // no cgroup at all
+  root.write("proc/self/cgroup", "0::/user.slice/job\n");
+  root.write("sys/fs/cgroup/memory.max", "max\n");
+  EXPECT_EQ(readControlGroupV2Bytes(root.path()), 0u);
+  root.write("sys/fs/cgroup/user.slice/job/memory.max", "1073741824\n");
+  EXPECT_EQ(readControlGroupV2Bytes(root.path()), 1073741824u);
+  root.write("sys/fs/cgroup/user.slice/memory.max", "536870912\n");  // a parent's limit binds too
+  EXPECT_EQ(readControlGroupV2Bytes(root.path()), 536870912u);
+  // A v1 memory line is not v2's.
+  EXPECT_EQ(readControlGroupV1Bytes(root.path()), 0u);
+}
+
+TEST(Limits, ControlGroupV2OfAContainerIsItsMountsOwnFile) {
+  FakeRoot root("v2_container");
+  // The group's path is not under the container's mount: its own group is the mount.
+  root.write("proc/self/cgroup", "0::/kubepods/pod1/abc\n");
+  root.write("sys/fs/cgroup/memory.max", "2147483648\n");
+  EXPECT_EQ(readControlGroupV2Bytes(root.path()), 2147483648u);
+}
+
+TEST(Limits, ControlGroupV1IsReadAndItsUnlimitedIsNoLimit) {
+  FakeRoot root("v1");
+  root.write("proc/self/cgroup", "9:name=systemd:/\n5:cpu,memory:/docker/abc\n3:cpuset:/\n0::/\n");
+  root.write("sys/fs/cgroup/memory/memory.limit_in_bytes", "9223372036854771712\n");
+  EXPECT_EQ(readControlGroupV1Bytes(root.path()), 0u);
+  root.write("sys/fs/cgroup/memory/docker/abc/memory.limit_in_bytes", "1073741824\n");
+  EXPECT_EQ(readControlGroupV1Bytes(root.path()), 1073741824u);
+  EXPECT_EQ(readControlGroupV2Bytes(root.path()), 0u);
+  // The container sees its group as the mount's root (the path above does not exist there).
+  FakeRoot container("v1_container");
+  container.write("proc/self/cgroup", "4:memory:/process_api/0ccd\n0::/\n");
+  container.write("sys/fs/cgroup/memory/memory.limit_in_bytes", "1073741824\n");
+  EXPECT_EQ(readControlGroupV1Bytes(container.path()), 1073741824u);
+  const MemoryBounds bounds = readMemoryBounds(container.path());
+  EXPECT_EQ(bounds.controlGroupV1, 1073741824u);
+  EXPECT_EQ(defaultMemoryLimitBytes(bounds), 536870912u);  // the machine has more than 1 GiB
+}
+
+TEST(Limits, ControlGroupFilesThatSayNothingAreNoLimit) {
+  FakeRoot root("junk");
+  root.write("proc/self/cgroup", "0::/a\n4:memory:/a\n");
+  root.write("sys/fs/cgroup/a/memory.max", "lots\n");
+  root.write("sys/fs/cgroup/memory/a/memory.limit_in_bytes", "-1\n");
+  root.write("sys/fs/cgroup/memory.max", "99999999999999999999999\n");
+  EXPECT_EQ(readControlGroupV2Bytes(root.path()), 0u);
+  EXPECT_EQ(readControlGroupV1Bytes(root.path()), 0u);
 }
 
 TEST(Limits, OutsideMemoryNamesWhatNeedsIt) {
