@@ -35,6 +35,13 @@ struct ChunkResult {
 
 }  // namespace
 
+uint64_t gridBytesPerSite(const Program& program, const SystemDefinition& system) {
+  uint64_t values = 0;
+  for (const MasterCell& master : program.masters) values = std::max<uint64_t>(values, master.stateCount());
+  const uint64_t cell = sizeof(CellRecord) + sizeof(uint32_t) + values * sizeof(double);
+  return sizeof(uint32_t) + sizeof(int64_t) + 3 * cell + (system.rates ? 8 * values * sizeof(double) : 0);
+}
+
 GridDevelopment::GridDevelopment(const Program& program, const SystemDefinition& system)
     : program_(&program), system_(&system), grid_(system.grid) {}
 
@@ -52,7 +59,7 @@ std::array<double, 3> GridDevelopment::positionOf(size_t i) const {
 void GridDevelopment::seed(StepContext& context) {
   const SystemDefinition& system = *system_;
   const uint32_t sites = grid_.siteCount();
-  checkGridMemory(sites, sizeof(CellRecord) + 2 * sizeof(uint32_t), context.limits, context.elsewhere.bytes);
+  checkGridMemory(sites, gridBytesPerSite(*program_, system), context.limits, context.elsewhere.bytes);
   // Which source decides each site: 0 .. axiom-1 are axiom cells, then placements.
   const int64_t axiomCount = static_cast<int64_t>(system.axiom.size());
   // In the pools' large blocks: at a million sites its memory goes on to serve the first

@@ -14,6 +14,13 @@
 
 namespace ontogen {
 
+/// Bytes a site of `system`'s grid takes at the peak of a step, for the memory limit
+/// before the grid is made: its index (4), the seeding's source (8), and three copies of
+/// a cell (its record, site and values: the pool's, the step's chunks' and the merged
+/// next word), with the integrator's stages when the system integrates rates (eight
+/// arrays of values at most, Dormand-Prince's).
+uint64_t gridBytesPerSite(const Program& program, const SystemDefinition& system);
+
 class GridDevelopment final : public Development {
  public:
   GridDevelopment(const Program& program, const SystemDefinition& system);

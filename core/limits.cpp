@@ -162,8 +162,8 @@ void checkOutsideMemory(const std::string& what, uint64_t bytes, uint64_t held, 
 
 void checkGridMemory(uint64_t sites, uint64_t bytesPerSite, const WorldLimits& limits, uint64_t held) {
   const uint64_t limit = limits.maxMemoryBytes;
-  // Twice: the grid is double buffered. Compared by division so that no product overflows.
-  if (held > limit || sites > (limit - held) / (2 * bytesPerSite)) [[unlikely]]
+  // Compared by division so that no product overflows.
+  if (held > limit || sites > (limit - held) / bytesPerSite) [[unlikely]]
     throw LimitError("the grid's " + std::to_string(sites) + " sites need more than the memory limit of " +
                      mebibytes(limit) + " MiB; raise it with --max-memory MIB");
 }

@@ -74,8 +74,8 @@ void checkMemoryLimit(uint64_t bytes, const WorldLimits& limits);
 /// Throws when something that is not a pool (`what`: "a 8192x8192 picture") would need
 /// `bytes` more, on top of `held` bytes already held, past the memory limit.
 void checkOutsideMemory(const std::string& what, uint64_t bytes, uint64_t held, const WorldLimits& limits);
-/// Throws when a pool of `sites` grid sites could not be held within the memory limit,
-/// with `held` bytes held elsewhere.
+/// Throws when a pool of `sites` grid sites of `bytesPerSite` bytes each (at the peak of a
+/// step) could not be held within the memory limit, with `held` bytes held elsewhere.
 void checkGridMemory(uint64_t sites, uint64_t bytesPerSite, const WorldLimits& limits, uint64_t held = 0);
 /// Throws when a step has had more than the allowed terminal events; `when` is the time
 /// of the last one (seconds).

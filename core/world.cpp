@@ -1,10 +1,12 @@
 #include "core/world.h"
 
+#include "core/finite_state.h"
 #include "core/grid_development.h"
 #include "core/linear_development.h"
 #include "core/parallel_for.h"
 #include "core/salts.h"
 #include "core/spatial_development.h"
+#include "pools/large_block_cache.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +15,9 @@
 namespace ontogen {
 
 World::World(std::shared_ptr<const Program> program, WorldDef def)
-    : program_(std::move(program)), def_(def), system_(program_->root) {
+    : program_(std::move(program)), def_(def), system_(program_->root), checksFinite_(checksFiniteState(*program_)) {
   def_.threads = resolveThreadCount(def_.threads);
+  limitLargeBlockCache(def_.limits.maxMemoryBytes / 8);
   if (const int master = rootSystem().master; master >= 0) cellState_ = program_->masters[master].defaults;
   WorldHeld tree;
   seedPool(tree);
@@ -28,6 +31,7 @@ World::World(const World& parent, const CellView& cell, WorldHeld* tree)
       cellId_(cell.id),
       cellBirth_(cell.birth),
       cellState_(cell.state, cell.state + program_->masters[cell.master].stateCount()),
+      checksFinite_(parent.checksFinite_),
       time_(parent.time_) {
   WorldHeld alone;
   seedPool(tree ? *tree : alone);
@@ -35,6 +39,10 @@ World::World(const World& parent, const CellView& cell, WorldHeld* tree)
 
 // The pool from its system's axiom (and placements), then the pools of its system cells.
 void World::seedPool(WorldHeld& tree) {
+  // Before the grid's arrays are made: a grid far too large stops with the limit named,
+  // not for want of the machine's memory.
+  if (const SystemDefinition& system = rootSystem(); system.poolKind == PoolKind::Grid)
+    checkGridMemory(system.grid.siteCount(), gridBytesPerSite(*program_, system), def_.limits, tree.bytes);
   development_ = makeDevelopment(*program_, rootSystem());
   pool_ = &development_->pool();
   updateAncestorValues();
@@ -43,6 +51,7 @@ void World::seedPool(WorldHeld& tree) {
   const WorldHeld own = heldHere();
   tree.cells += own.cells;
   tree.bytes += own.bytes;
+  checkTree(tree);
   answerQueries();
   if (def_.recordLineage && parent_)
     for (CellCursor cell = development_->pool().cursor(); !cell.done(); cell.next())
@@ -72,6 +81,7 @@ World::World(const World& other)
       cellBirth_(other.cellBirth_),
       cellState_(other.cellState_),
       ancestorValues_(other.ancestorValues_),
+      checksFinite_(other.checksFinite_),
       development_(other.development_->clone()),
       pool_(&development_->pool()),
       time_(other.time_),
@@ -95,6 +105,7 @@ World::World(World&& other) noexcept
       cellBirth_(other.cellBirth_),
       cellState_(std::move(other.cellState_)),
       ancestorValues_(std::move(other.ancestorValues_)),
+      checksFinite_(other.checksFinite_),
       children_(std::move(other.children_)),
       development_(std::move(other.development_)),
       pool_(other.pool_),
@@ -116,6 +127,7 @@ World& World::operator=(World&& other) noexcept {
   cellBirth_ = other.cellBirth_;
   cellState_ = std::move(other.cellState_);
   ancestorValues_ = std::move(other.ancestorValues_);
+  checksFinite_ = other.checksFinite_;
   children_ = std::move(other.children_);
   for (auto& [id, child] : children_) child->parent_ = this;
   development_ = std::move(other.development_);
@@ -173,6 +185,12 @@ WorldHeld World::held() const {
     total.bytes += nested.bytes;
   }
   return total;
+}
+
+void World::checkTree(const WorldHeld& tree) const {
+  if (!program_->hasSystemCells) return;  // one pool, which checks itself as it grows
+  checkTotalCellLimit(tree.cells, def_.limits);
+  checkMemoryLimit(tree.bytes, def_.limits);
 }
 
 uint64_t World::idSalt() const {
@@ -263,6 +281,7 @@ void World::developStep(double t1, bool stepRules, WorldHeld& tree) {
   const WorldHeld before = heldHere();
   StepContext context = stepContext({tree.cells - before.cells, tree.bytes - before.bytes});
   development_->step(context, t1, stepRules);
+  if (checksFinite_) checkFiniteState(*program_, *pool_, t1);
   const WorldHeld after = heldHere();
   tree = {tree.cells - before.cells + after.cells, tree.bytes - before.bytes + after.bytes};
   time_ = t1;

@@ -67,6 +67,13 @@ struct WorldDef {
 
 class World {
  public:
+  /// Bytes a world takes besides its pool's cells, counted with them against the memory
+  /// limit and in held(): its development's rule evaluator, rewriter, frames and empty
+  /// buffers, and its place among its parent's children. 65,535 nested worlds of a cell
+  /// each took 11 KB a world at their peak resident size (docs/LANGUAGE.md 5), while
+  /// their cells took 24 bytes.
+  static constexpr uint64_t kWorldBytes = uint64_t{12} << 10;
+
   World(std::shared_ptr<const Program> program, WorldDef def = {});
   /// The world of a system cell `cell` (state included) in `parent`'s pool, seeded from
   /// its system's axiom at the parent's current time. `tree`, when given, is what the
@@ -146,7 +153,10 @@ class World {
   void developChildren(double t1, bool stepRules, bool step, WorldHeld& tree);
   /// A step of the root world: what the world holds is counted once, then kept up to date.
   void developRootStep(double t1, bool stepRules);
-  WorldHeld heldHere() const { return {pool_->size(), pool_->bytes()}; }
+  WorldHeld heldHere() const { return {pool_->size(), pool_->bytes() + kWorldBytes}; }
+  /// A world with nested systems stops as soon as what it holds, `tree`, passes the cell
+  /// or memory limit, while its systems' pools are made (each makes its own).
+  void checkTree(const WorldHeld& tree) const;
   void updateAncestorValues();
   /// Writes the environment's answers into the query modules of this world's pool.
   void answerQueries();
@@ -169,6 +179,7 @@ class World {
   double cellBirth_ = 0;              ///< birth time of that cell (the root: 0)
   std::vector<double> cellState_;     ///< its state (systems have no rules: it stays as born)
   std::vector<double> ancestorValues_;
+  bool checksFinite_ = false;  ///< checksFiniteState(program): state is checked after each step
   /// Child worlds by the id of their system cell.
   std::unordered_map<uint64_t, std::unique_ptr<World>> children_;
   std::unique_ptr<Development> development_;  ///< made once; owns the pool

@@ -42,6 +42,22 @@ void checkRecursion(CompileContext& ctx) {
 
 }  // namespace
 
+namespace {
+// Whether `expr` names an infinity (`inf`, or a constant that is one) or writes a number
+// that is one: an infinite value it makes otherwise overflowed (`1e308 * 10`, `1 / 0`).
+bool readsInfinity(CompileContext& ctx, const ast::Expr& expr, Scope& scope) {
+  if (expr.kind == ast::Expr::Kind::Number) return std::isinf(expr.number);
+  if (expr.kind == ast::Expr::Kind::Name) {
+    DiagnosticSink quiet;  // its errors are the define's own, reported once
+    const std::optional<double> value = evaluateConstant(expr, ctx.constantLookup(scope), quiet, "a name");
+    return value && std::isinf(*value);
+  }
+  for (const ast::ExprPtr& arg : expr.args)
+    if (arg && readsInfinity(ctx, *arg, scope)) return true;
+  return false;
+}
+}  // namespace
+
 // `system`: index of the block holding the list, -1 for the top level.
 void compileDefines(CompileContext& ctx, const std::vector<ast::Define>& list, Scope& scope, int system) {
   for (const auto& define : list) {
@@ -65,6 +81,9 @@ void compileDefines(CompileContext& ctx, const std::vector<ast::Define>& list, S
     // `inf` is a constant a define may name (a lifetime that never ends), but NaN is
     // no value anything can use. Kept even so: its uses would each be an unknown name.
     if (std::isnan(*value)) ctx.sink.error(define.span, "the value of #define " + define.name + " is not a number (NaN)");
+    else if (std::isinf(*value) && given == ctx.overrides.end() && !readsInfinity(ctx, *define.value, scope))
+      ctx.sink.error(define.value->span, "the value of #define " + define.name +
+                                             " overflows to an infinity (past ±1.8e308); write inf if an infinity is meant");
     scope.constants.values[define.name] = *value;
     ctx.program->defines.push_back({define.name, *value, system, given != ctx.overrides.end(), define.span});
   }

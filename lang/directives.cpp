@@ -29,6 +29,8 @@ constexpr std::array<std::string_view, 3> kLookNames{"light", "dark", "paper"};
 // The interpretation sets (interpreters/set_registry.h, interpretationSetNames(); a test
 // keeps the two lists equal).
 constexpr std::array<std::string_view, 7> kSetNames{"geometry", "creature", "dynamics", "physics", "image", "music", "trace"};
+// What #allow accepts that is otherwise an error.
+constexpr std::array<std::string_view, 1> kAllowances{"nonfinite"};
 
 // The order is the one `unknown directive` lists and `ontogen help` prints.
 // Limits: ppq and the beats per bar are what a MIDI file can hold (a 15-bit division, a
@@ -165,6 +167,13 @@ const std::array kDirectives{
               .syntax = "#tolerance T",
               .doc = "integrate rate() adaptively (Dormand-Prince) to this absolute and relative error",
               .apply = [](const Value& v, Target& t) { t.program.rateTolerance = v.number; }},
+    Directive{.name = "allow",
+              .kind = Kind::Word,
+              .owner = Owner::World,
+              .words = kAllowances,
+              .syntax = "#allow WORD",
+              .doc = "accept what is otherwise an error: nonfinite, state that becomes an infinity or NaN",
+              .apply = [](const Value&, Target& t) { t.program.allowsNonfinite = true; }},
     Directive{.name = "music",
               .kind = Kind::Word,
               .owner = Owner::Music,

@@ -351,6 +351,9 @@ struct Program {
   /// #tolerance: integrate `rate` adaptively (Dormand-Prince) to this absolute and
   /// relative error; 0: classic Runge-Kutta 4, one step per world step.
   double rateTolerance = 0;
+  /// #allow nonfinite: state may become an infinity or NaN; otherwise such a value stops
+  /// the development (core/finite_state.h).
+  bool allowsNonfinite = false;
 
   FunctionTable functionTable() const { return FunctionTable{functionBodies}; }
   const SystemDefinition& rootSystem() const { return systems[root]; }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <iterator>
 #include <cstdlib>
 #include <map>
 #include <mutex>
@@ -21,6 +22,7 @@ struct Cache {
   std::multimap<size_t, void*> kept;        // size → block, waiting for reuse
   std::unordered_map<void*, size_t> inUse;  // block → its size, handed out
   uint64_t keptBytes = 0;
+  uint64_t budget = kLargeBlockCacheBytes;  // limitLargeBlockCache
   uint64_t reused = 0;
   uint64_t fresh = 0;
 };
@@ -91,12 +93,12 @@ void releaseLargeBlock(void* block) noexcept {
   const size_t size = found->second;
   state.inUse.erase(found);
   // Over budget: the smallest kept blocks go first, the largest are the costliest to fault in.
-  while (state.keptBytes + size > kLargeBlockCacheBytes && !state.kept.empty() && state.kept.begin()->first <= size) {
+  while (state.keptBytes + size > state.budget && !state.kept.empty() && state.kept.begin()->first <= size) {
     std::free(state.kept.begin()->second);
     state.keptBytes -= state.kept.begin()->first;
     state.kept.erase(state.kept.begin());
   }
-  if (state.keptBytes + size > kLargeBlockCacheBytes) return std::free(block);
+  if (state.keptBytes + size > state.budget) return std::free(block);
   state.kept.emplace(size, block);
   state.keptBytes += size;
 }
@@ -105,6 +107,19 @@ void trimLargeBlockCache() noexcept {
   Cache& state = cache();
   std::lock_guard lock(state.mutex);
   freeKept(state);
+}
+
+void limitLargeBlockCache(uint64_t bytes) noexcept {
+  Cache& state = cache();
+  std::lock_guard lock(state.mutex);
+  state.budget = std::min(state.budget, bytes);
+  // The largest go first: the fewest blocks to free.
+  while (state.keptBytes > state.budget && !state.kept.empty()) {
+    const auto largest = std::prev(state.kept.end());
+    std::free(largest->second);
+    state.keptBytes -= largest->first;
+    state.kept.erase(largest);
+  }
 }
 
 LargeBlockCacheStats largeBlockCacheStats() noexcept {

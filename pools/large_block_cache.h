@@ -40,6 +40,11 @@ void releaseLargeBlock(void* block) noexcept;
 /// Hands every kept block back to the system.
 void trimLargeBlockCache() noexcept;
 
+/// Keeps at most `bytes` from now on (never more than kLargeBlockCacheBytes), handing
+/// back what is kept beyond: kept blocks are resident memory that no pool counts, so a
+/// world under a memory limit keeps an eighth of it at most (core/world.cpp).
+void limitLargeBlockCache(uint64_t bytes) noexcept;
+
 struct LargeBlockCacheStats {
   uint64_t keptBytes = 0;  ///< held for reuse now
   uint64_t reused = 0;     ///< acquisitions served by a kept block

@@ -14,6 +14,12 @@ namespace {
 
 // %.*g, as printf writes it, without -0.
 void appendShort(std::string& text, double value, int precision) {
+  // Only a program that allows non-finite state has any (core/finite_state.h); NaN's sign
+  // means nothing, so it is `nan` alone.
+  if (std::isnan(value)) {
+    text += "nan";
+    return;
+  }
   if (value == 0) {
     text += '0';
     return;

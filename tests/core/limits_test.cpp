@@ -79,6 +79,52 @@ TEST(Limits, MemoryCountsEveryNestedPoolTogether) {
   EXPECT_LE(stopped, 11);
 }
 
+// Systems nested `depth` levels, each holding two of the next; the last holds a cell
+// without rules. 2^depth - 1 worlds.
+std::string nestedSystems(int depth) {
+  std::string text;
+  for (int i = 0; i + 1 < depth; ++i)
+    text += "system s" + std::to_string(i) + " { pool linear; axiom s" + std::to_string(i + 1) + " s" +
+            std::to_string(i + 1) + "; }\n";
+  return text + "system s" + std::to_string(depth - 1) + " { pool linear; axiom A; }\ncell A { }\n";
+}
+
+// What a world holds counts every world of the tree, not only their cells: 1023 worlds
+// hold 1534 cells (two system cells in each of 511 worlds, a cell in each of 512).
+TEST(Limits, NestedWorldsAreHeldWithTheirCells) {
+  World world(compileOrFail(nestedSystems(10)));
+  const WorldHeld held = world.held();
+  EXPECT_EQ(held.cells, 1534u);
+  EXPECT_EQ(held.bytes, 1023 * World::kWorldBytes + 1534 * sizeof(CellRecord));
+  world.advanceTo(2, 1);
+  EXPECT_EQ(world.totalCells(), 1534u);
+  EXPECT_EQ(world.held().bytes, held.bytes);
+}
+
+// 4095 worlds of a cell or two: 48 MiB, which passes 16 MiB while the worlds are made,
+// and 1000 cells after the first few hundred worlds.
+TEST(Limits, NestedWorldsStopAtTheLimitsAsTheyAreMade) {
+  auto program = compileOrFail(nestedSystems(12));
+  WorldDef def;
+  def.limits.maxMemoryBytes = 16 << 20;
+  try {
+    World world(program, def);
+    FAIL() << "4095 worlds made within 16 MiB";
+  } catch (const LimitError& error) {
+    EXPECT_NE(std::string(error.what()).find("passed 16 MiB, the memory limit; raise it with --max-memory"),
+              std::string::npos)
+        << error.what();
+  }
+  def = WorldDef{};
+  def.limits.maxCells = 1000;
+  try {
+    World world(program, def);
+    FAIL() << "6142 cells made within the limit of 1000";
+  } catch (const LimitError& error) {
+    EXPECT_NE(std::string(error.what()).find("past 1000 cells in all its systems"), std::string::npos) << error.what();
+  }
+}
+
 // The meter of a parallel step stops it as it passes the limit, and whether it stops does
 // not depend on the number of threads.
 TEST(Limits, ParallelStepsStopAtTheSameLimitOnAnyNumberOfThreads) {

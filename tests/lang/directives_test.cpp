@@ -109,7 +109,7 @@ std::string worldOf(const Program& program) {
   std::ostringstream out;
   out << program.seed << ' ' << program.hasSeed << ' ' << program.until << ' ' << program.dt << ' '
       << program.rateTolerance << ' ' << program.defines.size() << ' ' << program.from << ' '
-      << program.framesPerSecond << ' ' << program.speed << ' ' << program.look;
+      << program.framesPerSecond << ' ' << program.speed << ' ' << program.look << ' ' << program.allowsNonfinite;
   for (const std::string& set : program.interpretSets) out << ' ' << set;
   return out.str();
 }
@@ -222,9 +222,8 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   // docs/LANGUAGE.md section 6 quotes it.
   EXPECT_EQ(error.message,
             "unknown directive '#defne' (known: #define, #range, #angle, #yawangle, #length, #radius, #radians, "
-            "#degrees, #seed, #until, #from, #fps, #speed, #look, #interpret, #dt, #timestep, #tolerance, #music, #tempo, "
-            "#ppq, "
-            "#midiformat, #timesig, #track, #surface, #letters)");
+            "#degrees, #seed, #until, #from, #fps, #speed, #look, #interpret, #dt, #timestep, #tolerance, #allow, #music, "
+            "#tempo, #ppq, #midiformat, #timesig, #track, #surface, #letters)");
   for (const Directive& directive : directives()) {
     EXPECT_NE(error.message.find("#" + std::string(directive.name)), std::string::npos) << directive.name;
     const std::string misspelt = std::string(directive.name) + "s";
@@ -393,6 +392,26 @@ TEST(Directives, LanguageSection32ListsTheSameDirectives) {
   }
   EXPECT_EQ(grammar, table);
   EXPECT_EQ(rows, table);
+}
+
+
+// A #define whose arithmetic overflows is an error at its value; `inf` itself, or a
+// constant that is one, is a value a define may take (a lifetime that never ends).
+TEST(Directives, ADefineThatOverflowsIsAnErrorAtItsValue) {
+  auto overflow = compileText("#define K 1e308*10\nlsystem a { axiom A }\n");
+  ASSERT_EQ(overflow->sink.diagnostics().size(), 1u) << formatDiagnostics(overflow->sink);
+  const Diagnostic& error = overflow->sink.diagnostics()[0];
+  EXPECT_EQ(error.message,
+            "the value of #define K overflows to an infinity (past ±1.8e308); write inf if an infinity is meant");
+  EXPECT_EQ(error.span.line(), 1);
+  EXPECT_EQ(error.span.column(), 11);
+  auto divided = compileText("lsystem a {\n  #define Q 1 / 0\n  axiom A\n}\n");
+  ASSERT_EQ(divided->sink.diagnostics().size(), 1u) << formatDiagnostics(divided->sink);
+  EXPECT_EQ(divided->sink.diagnostics()[0].span.line(), 2);
+  for (const char* meant : {"#define L inf", "#define L -inf", "#define M inf\n#define L 2 * M"}) {
+    auto accepted = compileText(std::string(meant) + "\nlsystem a { axiom A }\n");
+    EXPECT_FALSE(accepted->sink.hasErrors()) << meant << "\n" << formatDiagnostics(accepted->sink);
+  }
 }
 
 }  // namespace

@@ -1,0 +1,172 @@
+// The growth limits from the command line, measured on the process: a model that passes
+// a limit stops with exit 3 and the limit named, and its peak resident size (ru_maxrss of
+// the child, a memory figure the kernel keeps) stays near the limit.
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// AddressSanitizer's shadow memory is part of the resident size: the sanitized build
+// checks the exit codes and messages, the plain build the sizes too.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitized = true;
+#elif defined(__has_feature)
+constexpr bool kAddressSanitized = __has_feature(address_sanitizer);
+#else
+constexpr bool kAddressSanitized = false;
+#endif
+
+struct Result {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+  uint64_t peakKib = 0;  ///< the child's peak resident size
+};
+
+fs::path scratch(const std::string& name) {
+  fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "limits_cli_test" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+fs::path writeProgram(const fs::path& dir, const std::string& text, const std::string& name = "program.cell") {
+  const fs::path path = dir / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Runs ontogen with `args` (no shell), its output in files of `dir`.
+Result ontogen(const fs::path& dir, std::vector<std::string> args) {
+  args.insert(args.begin(), ONTOGEN_EXECUTABLE);
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  Result result;
+  pid_t pid = 0;
+  if (posix_spawn(&pid, ONTOGEN_EXECUTABLE, &files, nullptr, argv.data(), environ) != 0) return result;
+  posix_spawn_file_actions_destroy(&files);
+  int status = 0;
+  rusage usage{};
+  if (wait4(pid, &status, 0, &usage) != pid) return result;
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = readFile(out);
+  result.err = readFile(err);
+  result.peakKib = static_cast<uint64_t>(usage.ru_maxrss);
+  return result;
+}
+
+// Systems nested `depth` levels, each holding two of the next: 2^depth - 1 worlds of a
+// cell or two (16 levels: 65,535 worlds, 98,302 cells).
+std::string nestedSystems(int depth) {
+  std::string text;
+  for (int i = 0; i + 1 < depth; ++i)
+    text += "system s" + std::to_string(i) + " { pool linear; axiom s" + std::to_string(i + 1) + " s" +
+            std::to_string(i + 1) + "; }\n";
+  return text + "system s" + std::to_string(depth - 1) + " { pool linear; axiom A; }\ncell A { }\n";
+}
+
+// Every pool at every depth counts: the worlds of 65,535 nested systems took 711 MB while
+// the limits saw 3 MiB of cells, and the cell limit was checked once all were made.
+TEST(LimitsCli, NestedSystemsStopAtTheLimitsAsTheyAreMade) {
+  const fs::path dir = scratch("nested");
+  const std::string program = writeProgram(dir, nestedSystems(16)).string();
+  const Result memory = ontogen(dir, {"run", program, "--format", "none", "--until", "2", "--max-memory", "100"});
+  EXPECT_EQ(memory.exitCode, 3) << memory.err;
+  EXPECT_NE(memory.err.find("passed 100 MiB, the memory limit; raise it with --max-memory MIB"), std::string::npos)
+      << memory.err;
+  if (!kAddressSanitized) {
+    EXPECT_LT(memory.peakKib, 125u * 1024) << "KiB at the peak";
+  }
+  const Result cells = ontogen(dir, {"run", program, "--format", "none", "--until", "2", "--max-cells", "1000"});
+  EXPECT_EQ(cells.exitCode, 3) << cells.err;
+  EXPECT_NE(cells.err.find("grew past 1000 cells in all its systems"), std::string::npos) << cells.err;
+  if (!kAddressSanitized) {
+    EXPECT_LT(cells.peakKib, 50u * 1024) << "KiB at the peak";
+  }
+  // Within the limits, --stats counts every world: 10 levels hold 1534 cells of 24 bytes
+  // (two system cells in each of 511 worlds, a cell in each of 512) and 1023 worlds of
+  // 12 KiB (World::kWorldBytes), 12.02 MiB.
+  const std::string smaller = writeProgram(dir, nestedSystems(10), "smaller.cell").string();
+  const Result all = ontogen(dir, {"run", smaller, "--format", "none", "--until", "2", "--stats"});
+  EXPECT_EQ(all.exitCode, 0) << all.err;
+  EXPECT_NE(all.out.find("cells 1534, steps 2,"), std::string::npos) << all.out;
+  EXPECT_NE(all.out.find(", held 12.0 MiB,"), std::string::npos) << all.out;
+}
+
+
+// State that becomes an infinity or NaN stops `word` and `run` with exit 3 at the rate,
+// and is printed only when the program allows it.
+TEST(LimitsCli, NonFiniteStateStopsAtTheRateUnlessAllowed) {
+  const fs::path dir = scratch("nonfinite");
+  const std::string body = "cell A(x = 1) {\n  rules { rate(x) = x * x * 100; }\n}\nsystem s { pool linear; axiom A; }\n";
+  const std::string program = writeProgram(dir, body).string();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"word", program, "--at", "5"},
+        std::vector<std::string>{"run", program, "--format", "none", "--until", "5"}}) {
+    const Result stopped = ontogen(dir, args);
+    EXPECT_EQ(stopped.exitCode, 3) << args[0] << "\n" << stopped.err;
+    EXPECT_NE(stopped.err.find(program + ":2:11: error: 'A' holds x = "), std::string::npos) << stopped.err;
+    EXPECT_NE(stopped.err.find("at t = 2, written by its rate"), std::string::npos) << stopped.err;
+    EXPECT_EQ(stopped.out.find("inf"), std::string::npos) << stopped.out;
+    EXPECT_EQ(stopped.out.find("nan"), std::string::npos) << stopped.out;
+  }
+  const std::string allowed = writeProgram(dir, "#allow nonfinite\n" + body, "allowed.cell").string();
+  const Result word = ontogen(dir, {"word", allowed, "--at", "5"});
+  EXPECT_EQ(word.exitCode, 0) << word.err;
+  EXPECT_EQ(word.out, "t = 5: A(nan)\n");
+  const Result overflow = ontogen(dir, {"check", writeProgram(dir, "#define K 1e308*10\n" + body, "k.cell").string()});
+  EXPECT_EQ(overflow.exitCode, 1) << overflow.err;
+  EXPECT_NE(overflow.err.find("k.cell:1:11: error: the value of #define K overflows to an infinity"), std::string::npos)
+      << overflow.err;
+}
+
+
+// A grid far too large stops before its arrays are made, with the limit named: 400 M
+// sites took 1.5 GB (its site index alone) before the check, or "the machine ran out of
+// memory" where there was less.
+TEST(LimitsCli, AGridTooLargeStopsBeforeItIsMade) {
+  const fs::path dir = scratch("grid");
+  const std::string program =
+      writeProgram(dir, "cell U(u = 1) { rules { rate(u) = -u; } }\nsystem g { pool grid(20000, 20000); fill U(1); }\n")
+          .string();
+  const Result result = ontogen(dir, {"run", program, "--format", "none", "--until", "2", "--max-memory", "100"});
+  EXPECT_EQ(result.exitCode, 3) << result.err;
+  EXPECT_NE(result.err.find("the grid's 400000000 sites need more than the memory limit of 100 MiB; raise it with "
+                            "--max-memory MIB"),
+            std::string::npos)
+      << result.err;
+  if (!kAddressSanitized) {
+    EXPECT_LT(result.peakKib, 125u * 1024) << "KiB at the peak";
+  }
+}
+
+}  // namespace
