@@ -16,6 +16,7 @@ std::unique_ptr<Development> makeDevelopment(const Program& program, const Syste
 }
 
 void checkGrowth(const StepContext& context, uint64_t cells, uint64_t bytes) {
+  checkCancelled(context.limits);
   checkCellLimit(cells, context.limits);
   if (context.elsewhere.cells > 0) checkTotalCellLimit(cells + context.elsewhere.cells, context.limits);
   checkMemoryLimit(bytes + context.elsewhere.bytes, context.limits);

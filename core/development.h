@@ -70,7 +70,8 @@ struct StepContext {
 
 /// Throws LimitError when a pool that holds `cells` cells and `bytes` bytes (its pool and
 /// the buffers of the step in progress), with what the rest of the world holds, passes
-/// the cell or memory limit. Pools call it as they make cells, not only between steps.
+/// the cell or memory limit, and GrowthCancelled when the growth was cancelled. Pools call
+/// it as they make cells, not only between steps.
 void checkGrowth(const StepContext& context, uint64_t cells, uint64_t bytes);
 
 /// Cells made between two growth checks of a pool: often enough that a step stops near

@@ -4,6 +4,7 @@
 // and never a run that goes on for ever. Pools check them as they make cells, within a
 // step, counting what the rest of the world holds too (StepContext::held).
 
+#include <atomic>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -56,6 +57,11 @@ struct WorldLimits {
   /// of a one-cell model take about 6 s, of a thousand-cell one hours; real runs take
   /// thousands.
   uint64_t maxSteps = 100'000'000;
+  /// Cooperative cancellation: when another thread sets it, growth stops with
+  /// GrowthCancelled at the next step and as pools make cells within a step (the world is
+  /// then left part-way through a step: read its statistics, do not grow it on). Owned by
+  /// the caller and outliving the growth; null: never cancelled.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 /// A limit was passed; the message names the limit and how to raise it.
@@ -63,6 +69,16 @@ struct LimitError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Growth was cancelled through WorldLimits::cancel: a stop asked for, not a failure.
+struct GrowthCancelled : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws GrowthCancelled when limits.cancel is set.
+inline void checkCancelled(const WorldLimits& limits) {
+  if (limits.cancel && limits.cancel->load(std::memory_order_relaxed)) [[unlikely]]
+    throw GrowthCancelled("the growth was cancelled");
+}
 /// Throws when `cells` cells in one pool pass the cell limit.
 void checkCellLimit(uint64_t cells, const WorldLimits& limits);
 /// Throws when `cells` cells in all the systems of a world pass the cell limit.

@@ -241,6 +241,7 @@ void World::advanceTo(double target, double dt) {
     double next = (k + 1) * dt;
     checkTimeAdvances(time_, next, dt);
     checkStepLimit(stats_.steps, 1, dt, target, def_.limits);
+    checkCancelled(def_.limits);
     if (next > target - timeTolerance(target)) {
       if (keepGrid && next > target + timeTolerance(target)) {
         // Integrating only up to the stop would split this step: keep the world as it is
@@ -266,6 +267,7 @@ void World::step(double dt) {
   returnToGrid();
   checkTimeAdvances(time_, time_ + dt, dt);
   checkStepLimit(stats_.steps, 1, dt, time_ + dt, def_.limits);
+  checkCancelled(def_.limits);
   developRootStep(time_ + dt, true);
 }
 

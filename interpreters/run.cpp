@@ -132,6 +132,10 @@ RunReport Run::execute() {
   } catch (const RunInterrupted& interrupted) {
     report.status = RunStatus::Interrupted;
     report.diagnostics.push_back(unlocated(Severity::Note, interrupted.what()));
+  } catch (const GrowthCancelled& cancelled) {
+    report.status = RunStatus::Interrupted;
+    report.diagnostics.push_back(unlocated(Severity::Note, cancelled.what()));
+    if (world_) report.diagnostics.back().time = world_->time();
   } catch (const std::bad_alloc&) {
     // The machine's memory is a limit too, one the limits did not foresee.
     report.status = RunStatus::ModelFailed;
@@ -260,6 +264,7 @@ void Run::develop(RunReport& report) {
       if (def_.frameDrawn) def_.frameDrawn(scene_);
     }
     if (def_.progress) def_.progress(frame + 1, frames);
+    if (def_.frameGrown) def_.frameGrown(world);
   }
   for (InterpretationSet* set : following)
     for (auto& path : set->endFrame()) report.files.push_back(std::move(path));

@@ -60,6 +60,9 @@ struct RunDef {
   /// Called after each frame that the sets drew into a scene, with that scene (valid
   /// during the call): what a sweep measures over the frames.
   std::function<void(const Scene&)> frameDrawn = {};
+  /// Called after each frame with the world at the frame's time (valid during the call):
+  /// what a viewer shows of a growth in progress.
+  std::function<void(const World&)> frameGrown = {};
 };
 
 enum class RunStatus {
@@ -67,7 +70,7 @@ enum class RunStatus {
   BadDefinition,  ///< an unknown set, a bad format or size: nothing was grown
   ModelFailed,    ///< the model failed or passed a growth limit while it ran
   OutputFailed,   ///< an output could not be written
-  Interrupted,    ///< a set was stopped from outside (live playback and Ctrl-C)
+  Interrupted,    ///< stopped from outside: a set (live playback and Ctrl-C), or WorldLimits::cancel
 };
 
 /// A problem found while running: an error that ended the run, or a set's warning.
