@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -25,8 +26,8 @@ namespace ontogen::app {
 namespace {
 volatile std::sig_atomic_t stopRequested = 0;
 
-// The first Ctrl-C stops the studio once the request or growth at hand is done (so no
-// output is left half-written); a second one ends it at once.
+// The first Ctrl-C stops the studio once the requests at hand are answered and the growth
+// at hand is cancelled (so no output is left half-written); a second one ends it at once.
 extern "C" void requestStop(int) {
   if (stopRequested) ::_exit(kExitInterrupted);
   stopRequested = 1;
@@ -87,10 +88,18 @@ int runStudio(const StudioOptions& options) {
   modelDef.until = options.until;
   modelDef.frames = options.frames;
   modelDef.work = work / "model";
+  // The interactive limits start far below the command line's, unless its flags set them;
+  // the command line's are the ceiling the page may raise them to.
+  const WorldLimits defaults;
+  if (options.common.limits.maxCells != defaults.maxCells) modelDef.maxCells = options.common.limits.maxCells;
+  if (options.common.limits.maxMemoryBytes != defaults.maxMemoryBytes)
+    modelDef.maxMemoryBytes = options.common.limits.maxMemoryBytes;
   studio::StudioModel model(modelDef);
 
   studio::GalleryDef galleryDef;
   galleryDef.program = modelDef.program;
+  galleryDef.program.limits.maxCells = std::min(modelDef.maxCells, defaults.maxCells);
+  galleryDef.program.limits.maxMemoryBytes = std::min(modelDef.maxMemoryBytes, defaults.maxMemoryBytes);
   galleryDef.until = options.until;
   galleryDef.seed = options.gallerySeed;
   galleryDef.constants = options.varyConstants;
@@ -110,7 +119,8 @@ int runStudio(const StudioOptions& options) {
     std::cerr << "ontogen: error: " << error.what() << " (--port N picks another; 0 a free one)\n";
     return kExitUsage;
   }
-  model.regrow();
+  model.start();
+  model.requestGrowth();
   if (studio::studioAssets().empty())
     std::cerr << "ontogen: warning: this build has no studio page (esbuild and three.js were missing at build "
                  "time; bash .ci/setup installs them); the page's routes answer all the same\n";

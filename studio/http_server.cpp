@@ -21,7 +21,8 @@ struct HttpServer::Impl {
   httplib::Server server;
   Handler handler;
   std::thread serving;
-  std::atomic<bool> ended{false};  // listening ended (or never began)
+  std::atomic<bool> ended{false};     // listening ended (or never began)
+  std::atomic<bool> stopping{false};  // streams end
 
   void answer(const httplib::Request& in, httplib::Response& out) {
     HttpRequest request;
@@ -35,7 +36,19 @@ struct HttpServer::Impl {
     // The page follows the model as it changes: no cache may answer for the server.
     out.set_header("Cache-Control", "no-store");
     for (const auto& [name, value] : response.headers) out.set_header(name, value);
-    out.set_content(response.body, response.contentType);
+    if (!response.stream) {
+      out.set_content(response.body, response.contentType);
+      return;
+    }
+    out.set_chunked_content_provider(
+        response.contentType, [this, stream = std::move(response.stream)](std::size_t, httplib::DataSink& sink) {
+          std::string next;
+          if (stopping || !stream(next) || stopping) {
+            sink.done();
+            return true;
+          }
+          return next.empty() || sink.write(next.data(), next.size());
+        });
   }
 };
 
@@ -86,6 +99,7 @@ void HttpServer::start() {
 }
 
 void HttpServer::stop() {
+  impl_->stopping = true;
   impl_->server.stop();
   if (impl_->serving.joinable()) impl_->serving.join();
 }

@@ -40,6 +40,11 @@ struct HttpResponse {
   std::string contentType = "text/plain; charset=utf-8";
   std::string body;
   std::vector<std::pair<std::string, std::string>> headers = {};  ///< more headers to send
+  /// A stream instead of a body (server-sent events): called again and again on the
+  /// connection's thread, it sets the next piece to send (it may wait for one, half a
+  /// second at most, so the server can stop) and returns false to end the stream. It
+  /// ends too when the page goes away or the server stops.
+  std::function<bool(std::string& next)> stream = {};
 };
 
 struct HttpServerDef {

@@ -1,7 +1,9 @@
 #include "studio/studio_model.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "interpreters/music/music_set.h"
@@ -13,9 +15,44 @@
 
 namespace ontogen::studio {
 
-StudioModel::StudioModel(StudioModelDef def) : def_(std::move(def)) {
-  // --define values given when the studio starts are where the sliders start.
-  overrides_ = def_.program.defines;
+namespace {
+// A number as a message shows it: six significant digits, as a slider's label does.
+std::string formatNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+}  // namespace
+
+struct StudioModel::Grown {
+  std::optional<std::string> text;  // empty: the file could not be read (the last text stays)
+  std::string stem;
+  std::optional<std::vector<StudioDefine>> defines;  // empty: the sliders stay as they are
+  std::vector<Diagnostic> diagnostics;
+  bool grew = false;  // a model grew: what follows is its
+  std::vector<StudioNote> notes;
+  std::shared_ptr<const std::string> glb;
+  double from = 0, until = 0;
+  uint64_t cells = 0;
+  bool stopped = false;
+};
+
+StudioModel::StudioModel(StudioModelDef def)
+    : def_(std::move(def)),
+      overrides_(def_.program.defines),  // --define values are where the sliders start
+      maxCells_(std::min(def_.maxCells, def_.program.limits.maxCells)),
+      maxMemoryBytes_(std::min(def_.maxMemoryBytes, def_.program.limits.maxMemoryBytes)) {}
+
+StudioModel::~StudioModel() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    quit_ = true;
+    pending_ = false;
+    cancel_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
 }
 
 std::optional<StudioModel::FileStamp> StudioModel::stampOf() const {
@@ -27,89 +64,258 @@ std::optional<StudioModel::FileStamp> StudioModel::stampOf() const {
   return FileStamp{time, size};
 }
 
+void StudioModel::changed() {
+  ++changes_;
+  changedSignal_.notify_all();
+}
+
+void StudioModel::start() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (started_) return;
+  started_ = true;
+  thread_ = std::thread([this] { work(); });
+}
+
+void StudioModel::requestGrowth() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    pending_ = true;
+    if (running_) cancel_ = true;  // a newer request makes the growth at hand stale
+    changed();
+  }
+  wake_.notify_all();
+}
+
 bool StudioModel::refresh() {
-  const std::optional<FileStamp> stamp = stampOf();
-  if (stamp == stamp_) return false;
-  // An editor that writes the file in pieces changes its stamp again: the next look
-  // grows the whole text.
-  regrow();
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    // An editor that writes the file in pieces changes its stamp again: the next look
+    // grows the whole text.
+    if (stampOf() == stamp_ || pending_) return false;
+  }
+  requestGrowth();
   return true;
 }
 
-bool StudioModel::setDefine(const std::string& name, double value) {
-  if (!std::isfinite(value)) return false;
-  bool known = false;
-  for (const StudioDefine& define : defines_) known = known || define.name == name;
-  if (!known) return false;
-  overrides_[name] = value;
-  regrow();
-  return true;
+void StudioModel::stop() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  pending_ = false;
+  if (running_) cancel_ = true;
+  changed();
+}
+
+bool StudioModel::waitIdle(std::chrono::milliseconds timeout) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return changedSignal_.wait_for(lock, timeout, [this] { return !pending_ && !running_; });
+}
+
+uint64_t StudioModel::changes() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return changes_;
+}
+
+uint64_t StudioModel::waitForChange(uint64_t seen, std::chrono::milliseconds timeout) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changedSignal_.wait_for(lock, timeout, [&] { return changes_ != seen; });
+  return changes_;
+}
+
+void StudioModel::work() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return pending_ || quit_; });
+    if (quit_) return;
+    lock.unlock();
+    growOnce();
+    lock.lock();
+  }
+}
+
+void StudioModel::regrow() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    pending_ = true;
+  }
+  growOnce();
+}
+
+void StudioModel::growOnce() {
+  const std::lock_guard<std::mutex> one(growing_);
+  std::map<std::string, double> overrides;
+  WorldLimits limits = def_.program.limits;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    // stop() since the growth was asked for takes it back.
+    if (!pending_ || quit_) return;
+    pending_ = false;
+    running_ = true;
+    cancel_ = false;
+    stamp_ = stampOf();
+    overrides = overrides_;
+    limits.maxCells = maxCells_;
+    limits.maxMemoryBytes = maxMemoryBytes_;
+    began_ = std::chrono::steady_clock::now();
+    growingCells_ = 0;
+    growingTime_ = 0;
+    changed();
+  }
+  limits.cancel = &cancel_;
+  Grown grown;
+  try {
+    grow(grown, overrides, limits);
+  } catch (const std::exception& error) {
+    grown.diagnostics.push_back({"error", 0, 0, error.what(), std::string("ontogen: error: ") + error.what() + "\n"});
+  }
+  const std::lock_guard<std::mutex> lock(mutex_);
+  ++version_;
+  wallSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - began_).count();
+  diagnostics_ = std::move(grown.diagnostics);
+  stopped_ = grown.stopped;
+  if (grown.text) {
+    text_ = std::move(*grown.text);
+    stem_ = std::move(grown.stem);
+  }
+  if (grown.defines) defines_ = std::move(*grown.defines);
+  if (grown.grew) {
+    notes_ = std::move(grown.notes);
+    glb_ = std::move(grown.glb);
+    from_ = grown.from;
+    until_ = grown.until;
+    cells_ = grown.cells;
+    ++modelVersion_;
+  }
+  running_ = false;
+  growingCells_ = 0;
+  growingTime_ = 0;
+  changed();
+}
+
+void StudioModel::setDefine(const std::string& name, double value) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (const StudioDefine& define : defines_) {
+    if (define.name != name) continue;
+    // The slider's range is the define's #range (or the gallery's default): a value
+    // past it is a request no page makes, and may grow a model past any use.
+    if (!(value >= define.low && value <= define.high))
+      throw std::invalid_argument(name + " = " + formatNumber(value) + " is outside its range [" +
+                                  formatNumber(define.low) + ", " + formatNumber(define.high) + "]");
+    overrides_[name] = value;
+    changed();
+    return;
+  }
+  throw std::invalid_argument("the program has no #define " + name);
+}
+
+void StudioModel::setLimits(uint64_t maxCells, uint64_t maxMemoryBytes) {
+  const WorldLimits& ceiling = def_.program.limits;
+  if (maxCells == 0 || maxCells > ceiling.maxCells)
+    throw std::invalid_argument("the cell limit is 1 to " + std::to_string(ceiling.maxCells) +
+                                " (--max-cells raises the ceiling)");
+  if (maxMemoryBytes < (uint64_t{1} << 20) || maxMemoryBytes > ceiling.maxMemoryBytes)
+    throw std::invalid_argument("the memory limit is 1 MiB to " + std::to_string(ceiling.maxMemoryBytes >> 20) +
+                                " MiB (--max-memory raises the ceiling)");
+  const std::lock_guard<std::mutex> lock(mutex_);
+  maxCells_ = maxCells;
+  maxMemoryBytes_ = maxMemoryBytes;
+  changed();
+}
+
+uint64_t StudioModel::version() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return version_;
+}
+uint64_t StudioModel::modelVersion() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return modelVersion_;
+}
+std::string StudioModel::glb() const {
+  std::shared_ptr<const std::string> glb;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    glb = glb_;
+  }
+  return glb ? *glb : std::string();
+}
+std::string StudioModel::text() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return text_;
+}
+std::string StudioModel::stem() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return stem_;
+}
+std::vector<StudioDefine> StudioModel::defines() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return defines_;
+}
+std::vector<StudioNote> StudioModel::notes() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return notes_;
 }
 
 std::map<std::string, double> StudioModel::defineValues() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
   std::map<std::string, double> values;
   for (const StudioDefine& define : defines_) values[define.name] = define.value;
   return values;
 }
 
-void StudioModel::regrow() {
-  const auto started = std::chrono::steady_clock::now();
-  ++version_;
-  diagnostics_.clear();
-  try {
-    grow();
-  } catch (const std::exception& error) {
-    diagnostics_.push_back({"error", 0, 0, error.what(), std::string("ontogen: error: ") + error.what() + "\n"});
-  }
-  wallSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-}
-
-void StudioModel::grow() {
-  stamp_ = stampOf();
+void StudioModel::grow(Grown& grown, const std::map<std::string, double>& overrides, const WorldLimits& limits) {
   const StudioSource read = readStudioSource(def_.program);
   if (!read.text) {
-    const std::string why = "cannot read or convert " + def_.program.file + (read.error.empty() ? "" : ": " + read.error);
-    diagnostics_.push_back({"error", 0, 0, why, "ontogen: error: " + why + "\n"});
+    const std::string why =
+        "cannot read or convert " + def_.program.file + (read.error.empty() ? "" : ": " + read.error);
+    grown.diagnostics.push_back({"error", 0, 0, why, "ontogen: error: " + why + "\n"});
     return;
   }
-  text_ = *read.text;
-  stem_ = std::filesystem::path(def_.program.file).stem().string();
+  grown.text = *read.text;
+  grown.stem = std::filesystem::path(def_.program.file).stem().string();
+  const std::string& text = *grown.text;
 
   // The sliders: one per define name the text writes, ranged as a variant's would be.
   std::vector<StudioDefine> defines;
   try {
-    const VariationSpace space(text_);
+    const VariationSpace space(text);
     for (const Gene& gene : space.genes()) {
       if (gene.kind != Gene::Kind::Define) continue;
       bool seen = false;
       for (const StudioDefine& define : defines) seen = seen || define.name == gene.name;
       if (seen) continue;
-      const auto given = overrides_.find(gene.name);
-      defines.push_back({gene.name, given != overrides_.end() ? given->second : gene.value, gene.value, gene.low,
+      const auto given = overrides.find(gene.name);
+      defines.push_back({gene.name, given != overrides.end() ? given->second : gene.value, gene.value, gene.low,
                          gene.high, gene.integer, static_cast<int>(gene.line)});
     }
   } catch (const std::invalid_argument&) {
     // The text does not lex: the compiler below says where.
   }
-  if (!defines.empty() || text_.find("#define") == std::string::npos) defines_ = std::move(defines);
+  if (!defines.empty() || text.find("#define") == std::string::npos) grown.defines = std::move(defines);
+  // The defines the compiler sees: this text's, or the last ones while it does not lex.
+  const std::vector<StudioDefine> sliders = grown.defines ? *grown.defines : this->defines();
 
   CompileOptions options;
   options.commandSets = commandSets();
   options.rootSystem = def_.program.system;
   options.maxSourceBytes = def_.program.maxSourceBytes;
-  for (const StudioDefine& define : defines_)
-    if (overrides_.count(define.name)) options.defines.push_back({define.name, overrides_.at(define.name)});
+  for (const StudioDefine& define : sliders)
+    if (overrides.count(define.name)) options.defines.push_back({define.name, overrides.at(define.name)});
   DiagnosticSink sink(def_.program.maxErrors);
-  std::shared_ptr<const Program> program = compileSource(read.name, text_, sink, options);
+  std::shared_ptr<const Program> program = compileSource(read.name, text, sink, options);
   for (const ontogen::Diagnostic& diagnostic : sink.diagnostics())
-    diagnostics_.push_back({severityName(diagnostic.severity), diagnostic.span.line(), diagnostic.span.column(),
+    grown.diagnostics.push_back({severityName(diagnostic.severity), diagnostic.span.line(), diagnostic.span.column(),
                             diagnostic.message, formatDiagnostic(diagnostic)});
   if (!program) return;
 
   RunDef run;
   run.program = program;
-  run.stem = stem_;
+  run.stem = grown.stem;
   run.world = worldDefOf(def_.program, *program);
+  run.world.limits = limits;
+  run.frameGrown = [this](const World& world) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    growingCells_ = world.totalCells();
+    growingTime_ = world.time();
+    changed();
+  };
   run.until = def_.until;
   run.step = def_.program.step;
   run.frames = def_.frames;
@@ -118,15 +324,16 @@ void StudioModel::grow() {
   run.setOptions.formats = "glb";
   run.out = def_.work / "model";
   std::filesystem::remove_all(run.out);
-  Run grown(std::move(run));
-  const RunReport report = grown.execute();
+  Run running(std::move(run));
+  const RunReport report = running.execute();
+  grown.stopped = report.status == RunStatus::Interrupted;
   for (const RunDiagnostic& diagnostic : report.diagnostics)
-    diagnostics_.push_back({severityName(diagnostic.severity), diagnostic.span.line(), diagnostic.span.column(),
+    grown.diagnostics.push_back({severityName(diagnostic.severity), diagnostic.span.line(), diagnostic.span.column(),
                             diagnostic.message, formatRunDiagnostic(diagnostic)});
   if (!report.ok()) return;
 
   std::vector<StudioNote> notes;
-  for (const std::unique_ptr<InterpretationSet>& set : grown.sets()) {
+  for (const std::unique_ptr<InterpretationSet>& set : running.sets()) {
     const auto* music = dynamic_cast<const MusicSet*>(set.get());
     if (!music) continue;
     const Score& score = music->score();
@@ -143,20 +350,21 @@ void StudioModel::grow() {
                        note.velocity});
     }
   }
-  notes_ = std::move(notes);
-  glb_ = readFileBytes(def_.work / "model" / (stem_ + ".glb"));
-  from_ = program->from;
-  until_ = def_.until.value_or(program->until);
-  cells_ = report.cells;
-  ++modelVersion_;
+  grown.notes = std::move(notes);
+  grown.glb = std::make_shared<const std::string>(readFileBytes(def_.work / "model" / (grown.stem + ".glb")));
+  grown.from = program->from;
+  grown.until = def_.until.value_or(program->until);
+  grown.cells = report.cells;
+  grown.grew = true;
 }
 
 nlohmann::json StudioModel::state() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
   nlohmann::json state = {{"version", version_},
                           {"modelVersion", modelVersion_},
                           {"file", def_.program.file},
                           {"stem", stem_},
-                          {"hasModel", !glb_.empty()},
+                          {"hasModel", glb_ && !glb_->empty()},
                           {"from", from_},
                           {"until", until_},
                           {"cells", cells_},
@@ -182,6 +390,16 @@ nlohmann::json StudioModel::state() const {
                        {"integer", d.integer},
                        {"line", d.line}});
   state["defines"] = defines;
+  state["stopped"] = stopped_;
+  state["growth"] = {
+      {"running", running_ || pending_},
+      {"cells", growingCells_},
+      {"time", growingTime_},
+      {"seconds", running_ ? std::chrono::duration<double>(std::chrono::steady_clock::now() - began_).count() : 0.0}};
+  state["limits"] = {{"maxCells", maxCells_},
+                     {"maxMemoryBytes", maxMemoryBytes_},
+                     {"ceilingCells", def_.program.limits.maxCells},
+                     {"ceilingMemoryBytes", def_.program.limits.maxMemoryBytes}};
   return state;
 }
 

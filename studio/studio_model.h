@@ -5,14 +5,28 @@
 // asks for: the .glb bytes, the diagnostics at their lines, the defines with the ranges
 // their sliders span (lang/variation.h), and the music set's notes in seconds.
 //
-// A growth that fails keeps the last model that grew: the page shows the diagnostics over
-// the old model, as an editor keeps the last good build while the text is broken.
+// Growth runs on a thread of the model's own (start()), never on the thread that asks
+// for it: the page is answered all the while from what the last growth published, and
+// sees the growth in progress (its cells and time, frame by frame). A newer request (a
+// saved file, a moved slider) cancels the growth at hand and grows again; stop() cancels
+// it and grows nothing. Cancelling is cooperative, through WorldLimits::cancel.
+//
+// A growth that fails or is stopped keeps the last model that grew: the page shows the
+// diagnostics over the old model, as an editor keeps the last good build while the text
+// is broken. Growth stays within interactive limits far below the command line's, which
+// the page shows and can raise (setLimits).
 
+#include <atomic>
+#include <condition_variable>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -21,11 +35,23 @@
 
 namespace ontogen::studio {
 
+/// Cells a studio's growth may make unless raised on the page: a tree of a million
+/// cells draws in a few seconds; a runaway rule reaches it in a few more steps, well
+/// before the command line's 100 M (about 5 GB) would stop it.
+inline constexpr uint64_t kStudioMaxCells = 1'000'000;
+/// Bytes a studio's growth may hold unless raised on the page: 1 GiB, a tenth of a
+/// small machine, while the browser and the editor hold the rest.
+inline constexpr uint64_t kStudioMaxMemoryBytes = uint64_t{1} << 30;
+
 struct StudioModelDef {
-  StudioProgramOptions program;  ///< the file, seed, limits, threads, define values to start from
+  /// The file, seed, threads, define values to start from; its limits are the ceiling
+  /// setLimits may raise the interactive ones to.
+  StudioProgramOptions program;
   std::optional<double> until;   ///< empty: the program's #until
   std::optional<int> frames;     ///< empty: the program's #fps, else kDefaultFrames
   std::filesystem::path work;    ///< a folder of the studio's own for the outputs
+  uint64_t maxCells = kStudioMaxCells;              ///< interactive limit, at most program.limits'
+  uint64_t maxMemoryBytes = kStudioMaxMemoryBytes;  ///< interactive limit, at most program.limits'
 };
 
 /// Frames of a model without #fps: enough to scrub through its growth smoothly.
@@ -51,34 +77,58 @@ struct StudioNote {
 class StudioModel {
  public:
   explicit StudioModel(StudioModelDef def);
+  /// Stops the growth at hand and the model's thread.
+  ~StudioModel();
+  StudioModel(const StudioModel&) = delete;
+  StudioModel& operator=(const StudioModel&) = delete;
 
-  /// Grows the model again when its file changed since the last growth (time or size or
-  /// text); true when it did.
+  // Every member below may be called from any thread.
+
+  /// Starts the model's growth thread; requests grow on it from then on.
+  void start();
+  /// Asks for a growth: cancels the one at hand, if any, and grows again on the model's
+  /// thread (which start() must have started).
+  void requestGrowth();
+  /// Asks for a growth when the file changed since the last growth began; true when it did.
   bool refresh();
-  /// Gives a define a value (clamped to nothing: any finite number) and grows again.
-  /// False, with nothing changed, when the program has no such define.
-  bool setDefine(const std::string& name, double value);
-  /// Reads, compiles and grows now.
+  /// Cancels the growth at hand and any asked for; the last model stays.
+  void stop();
+  /// Waits until no growth is asked for or running (or the timeout passes); true when so.
+  bool waitIdle(std::chrono::milliseconds timeout = std::chrono::minutes(10)) const;
+  /// Reads, compiles and grows now, on the calling thread (one growth at a time).
   void regrow();
 
-  /// Counts every growth, failed or not.
-  uint64_t version() const { return version_; }
+  /// Gives a define a value for the growths to come (call requestGrowth() to see it).
+  /// Throws std::invalid_argument, with nothing changed, when the program has no such
+  /// define or the value is outside the range its slider spans (its #range).
+  void setDefine(const std::string& name, double value);
+  /// Sets the interactive limits for the growths to come. Throws std::invalid_argument
+  /// when one is 0 or above the ceiling the studio was started with.
+  void setLimits(uint64_t maxCells, uint64_t maxMemoryBytes);
+
+  /// Counts every growth that ended, failed or not.
+  uint64_t version() const;
   /// Counts growths that gave a model: the version of glb().
-  uint64_t modelVersion() const { return modelVersion_; }
+  uint64_t modelVersion() const;
   /// The last model that grew, as the command line writes it; empty before one did.
-  const std::string& glb() const { return glb_; }
+  std::string glb() const;
   /// The program text read at the last growth.
-  const std::string& text() const { return text_; }
+  std::string text() const;
   /// The file's name without folder and extension: names the outputs.
-  const std::string& stem() const { return stem_; }
+  std::string stem() const;
   /// The values in effect for the defines the text writes.
   std::map<std::string, double> defineValues() const;
-  const std::vector<StudioDefine>& defines() const { return defines_; }
-  const std::vector<StudioNote>& notes() const { return notes_; }
+  std::vector<StudioDefine> defines() const;
+  std::vector<StudioNote> notes() const;
   const StudioModelDef& def() const { return def_; }
 
-  /// What the page polls: versions, diagnostics, defines, times, the source.
+  /// What the page shows: versions, diagnostics, defines, times, the source, the limits
+  /// and the growth in progress ("growth": running, cells, time, seconds).
   nlohmann::json state() const;
+  /// Counts changes of state(): each growth's start, frame and end, each setting.
+  uint64_t changes() const;
+  /// Waits until changes() differs from seen (or the timeout passes); returns changes().
+  uint64_t waitForChange(uint64_t seen, std::chrono::milliseconds timeout) const;
 
  private:
   struct Diagnostic {
@@ -91,23 +141,43 @@ class StudioModel {
     uintmax_t size = 0;
     bool operator==(const FileStamp&) const = default;
   };
+  // What one growth gives; published as a whole when it ends.
+  struct Grown;
   std::optional<FileStamp> stampOf() const;
-  void grow();
+  void work();
+  void growOnce();
+  void grow(Grown& grown, const std::map<std::string, double>& overrides, const WorldLimits& limits);
+  void changed();  // with mutex_ held
 
   StudioModelDef def_;
+  std::atomic<bool> cancel_{false};
+  std::mutex growing_;  // one growth at a time
+
+  mutable std::mutex mutex_;  // everything below
+  mutable std::condition_variable wake_;  // the model's thread: a growth asked for, or the end
+  mutable std::condition_variable changedSignal_;
+  std::thread thread_;
+  bool started_ = false, quit_ = false, pending_ = false, running_ = false;
+  uint64_t changes_ = 0;
   std::map<std::string, double> overrides_;  // from the sliders and --define
+  uint64_t maxCells_, maxMemoryBytes_;
   std::optional<FileStamp> stamp_;
   std::string text_;
   std::string stem_;
   std::vector<StudioDefine> defines_;
   std::vector<Diagnostic> diagnostics_;
   std::vector<StudioNote> notes_;
-  std::string glb_;
+  std::shared_ptr<const std::string> glb_;
   uint64_t version_ = 0;
   uint64_t modelVersion_ = 0;
   double from_ = 0, until_ = 0;
   uint64_t cells_ = 0;
   double wallSeconds_ = 0;
+  bool stopped_ = false;  // the last growth was cancelled
+  // The growth in progress.
+  std::chrono::steady_clock::time_point began_{};
+  uint64_t growingCells_ = 0;
+  double growingTime_ = 0;
 };
 
 }  // namespace ontogen::studio

@@ -23,9 +23,23 @@ nlohmann::json bodyOf(const HttpRequest& request) {
 }
 }  // namespace
 
-void StudioServer::idle() {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  model_.refresh();
+void StudioServer::idle() { model_.refresh(); }
+
+HttpResponse StudioServer::events() {
+  // Each change of the model's state is one event with the whole state (the growth in
+  // progress included); between them a comment every half second finds a page gone away.
+  HttpResponse response{200, "text/event-stream", ""};
+  response.stream = [this, seen = ~uint64_t{0}](std::string& chunk) mutable {
+    const uint64_t now = model_.waitForChange(seen, std::chrono::milliseconds(500));
+    if (now == seen) {
+      chunk = ":\n\n";
+      return true;
+    }
+    seen = now;
+    chunk = "data: " + model_.state().dump() + "\n\n";
+    return true;
+  };
+  return response;
 }
 
 void StudioServer::restartGallery() {
@@ -55,11 +69,12 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
         return {200, "text/plain; charset=utf-8",
                 "This build of ontogen has no studio page: it was built without esbuild and three.js (bash .ci/setup "
                 "installs them; then build again).\n"};
-      const std::lock_guard<std::mutex> lock(mutex_);
       if (path == "/api/state") return json(model_.state());
+      if (path == "/api/events") return events();
       if (path == "/model.glb") {
-        if (model_.glb().empty()) return error(404, "no model has grown yet (see the diagnostics)");
-        return {200, "model/gltf-binary", model_.glb()};
+        std::string glb = model_.glb();
+        if (glb.empty()) return error(404, "no model has grown yet (see the diagnostics)");
+        return {200, "model/gltf-binary", std::move(glb)};
       }
       if (path == "/api/notes") {
         nlohmann::json notes = nlohmann::json::array();
@@ -71,6 +86,9 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
                            {"velocity", note.velocity}});
         return json({{"modelVersion", model_.modelVersion()}, {"notes", notes}});
       }
+      // The gallery grows its variants on the request's thread, one request at a time;
+      // the model and its page go on meanwhile.
+      const std::lock_guard<std::mutex> lock(galleryMutex_);
       if (path == "/api/gallery") {
         if (!gallery_.ready() || galleryText_ != model_.text()) restartGallery();
         return json(gallery_.state());
@@ -87,7 +105,6 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
       return error(404, "no such page: " + path);
     }
     if (post) {
-      const std::lock_guard<std::mutex> lock(mutex_);
       const nlohmann::json body = bodyOf(request);
       if (body.is_discarded()) return error(400, "the request's body is not a JSON object");
       if (path == "/api/define") {
@@ -95,10 +112,23 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
           return error(400, "a define takes {\"name\": NAME, \"value\": NUMBER}");
         const double value = body["value"].get<double>();
         if (!std::isfinite(value)) return error(400, "a define's value must be finite");
-        if (!model_.setDefine(body["name"].get<std::string>(), value))
-          return error(422, "the program has no #define " + body["name"].get<std::string>());
+        model_.setDefine(body["name"].get<std::string>(), value);  // 422 when unknown or out of range
+        model_.requestGrowth();
         return json(model_.state());
       }
+      if (path == "/api/stop") {
+        model_.stop();
+        return json(model_.state());
+      }
+      if (path == "/api/limits") {
+        if (!body.contains("maxCells") || !body["maxCells"].is_number_unsigned() || !body.contains("maxMemoryMiB") ||
+            !body["maxMemoryMiB"].is_number_unsigned() || body["maxMemoryMiB"].get<uint64_t>() > (uint64_t{1} << 40))
+          return error(400, "limits take {\"maxCells\": N, \"maxMemoryMiB\": M}");
+        model_.setLimits(body["maxCells"].get<uint64_t>(), body["maxMemoryMiB"].get<uint64_t>() << 20);
+        model_.requestGrowth();
+        return json(model_.state());
+      }
+      const std::lock_guard<std::mutex> lock(galleryMutex_);
       if (path == "/api/breed") {
         if (!body.contains("picked") || !body["picked"].is_array()) return error(400, "breed takes {\"picked\": [K, ...]}");
         std::vector<int> picked;

@@ -7,7 +7,6 @@
 
 import { SceneView } from './scene_view.js';
 
-const pollMilliseconds = 200;
 const $ = (id) => document.getElementById(id);
 
 // What a test (or a curious user in the console) can read of the page.
@@ -20,6 +19,8 @@ const studio = {
   generation: 0,
   picked: new Set(),
   lastError: '',
+  events: 0,           // states the server pushed
+  growing: false,      // a growth is in progress
 };
 window.studio = studio;
 
@@ -117,12 +118,44 @@ function showDiagnostics(state) {
     source.append(text('span', line, 'line' + (found ? ' ' + found[0].severity : '')));
     if (found) for (const d of found) source.append(text('span', ' '.repeat(Math.max(d.column - 1, 0)) + '^ ' + d.message, 'note'));
   });
+}
+
+// Numbers as a person reads them: whole numbers grouped (1,048,576), others to four
+// significant digits (3.6, not 3.5999999999999996).
+const count = (n) => Math.round(n).toLocaleString('en-US');
+const decimal = (x) => String(Number(x.toPrecision(4)));
+
+function showStatus(state) {
   const status = $('status');
+  const growth = state.growth;
+  studio.growing = growth.running;
+  $('stop').disabled = !growth.running;
+  if (growth.running) {
+    status.dataset.state = 'growing';
+    status.textContent = `growing… ${count(growth.cells)} cells, t = ${decimal(growth.time)}`;
+    return;
+  }
   const errors = state.diagnostics.filter((d) => d.severity === 'error').length;
-  status.dataset.state = state.ok ? 'ok' : 'error';
-  status.textContent = state.ok
-    ? `grown in ${state.seconds.toFixed(2)} s: ${state.cells} cells at ${state.until} s`
-    : `${errors} error${errors === 1 ? '' : 's'}; showing the last model that grew`;
+  if (state.stopped) {
+    status.dataset.state = 'stopped';
+    status.textContent = 'stopped; showing the last model that grew';
+  } else if (state.ok) {
+    status.dataset.state = 'ok';
+    status.textContent = `grown in ${state.seconds.toFixed(2)} s: ${count(state.cells)} cells at ${decimal(state.until)} s`;
+  } else {
+    status.dataset.state = 'error';
+    status.textContent = `${errors} error${errors === 1 ? '' : 's'}; showing the last model that grew`;
+  }
+}
+
+// The interactive limits: the page shows them and may raise them up to the command line's.
+function showLimits(limits) {
+  const cells = $('max-cells');
+  const memory = $('max-memory');
+  cells.max = String(limits.ceilingCells);
+  memory.max = String(Math.floor(limits.ceilingMemoryBytes / 1048576));
+  if (document.activeElement !== cells) cells.value = String(limits.maxCells);
+  if (document.activeElement !== memory) memory.value = String(Math.floor(limits.maxMemoryBytes / 1048576));
 }
 
 let defineNames = '';
@@ -132,7 +165,7 @@ async function sendDefine(name, value) {
   if (defineSending.busy) { defineSending.pending = { name, value }; return; }
   defineSending.busy = true;
   try {
-    const response = await fetch('/api/define', { method: 'POST', body: JSON.stringify({ name, value }) });
+    const response = await post('/api/define', { name, value });
     const answer = await response.json();
     if (!response.ok) studio.lastError = answer.error;
     else await showState(answer);
@@ -205,6 +238,8 @@ async function loadModel(version) {
 
 let stateShown = { from: 0, until: 1 };
 async function showState(state) {
+  showStatus(state);
+  showLimits(state.limits);
   if (state.version === studio.version) return;
   studio.version = state.version;
   stateShown = state;
@@ -217,18 +252,32 @@ async function showState(state) {
     await loadModel(state.modelVersion);
 }
 
-async function poll() {
-  try {
-    const response = await fetch('/api/state');
-    await showState(await response.json());
-  } catch (error) {
-    studio.lastError = String(error);
-    $('status').dataset.state = 'error';
-    $('status').textContent = 'the studio does not answer (was it stopped?)';
-  }
-  setTimeout(poll, pollMilliseconds);
+// The server pushes its state at each change (server-sent events): a growth's start, each
+// of its frames, its end. EventSource connects again by itself after an interruption.
+const events = new EventSource('/api/events');
+let showing = Promise.resolve();
+events.onmessage = (message) => {
+  studio.events += 1;
+  const state = JSON.parse(message.data);
+  showing = showing.then(() => showState(state)).catch((error) => { studio.lastError = String(error); });
+};
+events.onerror = () => {
+  $('status').dataset.state = 'error';
+  $('status').textContent = 'the studio does not answer (was it stopped?)';
+};
+
+// Requests that change something.
+function post(path, body) {
+  return fetch(path, { method: 'POST', body: JSON.stringify(body) });
 }
-poll();
+
+$('stop').addEventListener('click', () => post('/api/stop', {}));
+$('limits-apply').addEventListener('click', async () => {
+  const response = await post('/api/limits', {
+    maxCells: Number($('max-cells').value), maxMemoryMiB: Number($('max-memory').value),
+  });
+  if (!response.ok) studio.lastError = (await response.json()).error;
+});
 
 // ---- evolution -------------------------------------------------------------------------
 function showGallery(gallery) {
@@ -258,7 +307,7 @@ function showGallery(gallery) {
     save.type = 'button';
     save.addEventListener('click', async (event) => {
       event.stopPropagation();
-      const answer = await (await fetch('/api/save', { method: 'POST', body: JSON.stringify({ index: variant.index }) })).json();
+      const answer = await (await post('/api/save', { index: variant.index })).json();
       $('saved').textContent = answer.path ? 'saved ' + answer.path : answer.error;
     });
     caption.append(save);
@@ -275,7 +324,7 @@ function showGallery(gallery) {
 
 async function galleryRequest(path, body) {
   $('generation').textContent = 'growing the variants…';
-  const response = await fetch(path, body === undefined ? {} : { method: 'POST', body: JSON.stringify(body) });
+  const response = await (body === undefined ? fetch(path) : post(path, body));
   const answer = await response.json();
   if (!response.ok) { $('generation').textContent = answer.error; return; }
   showGallery(answer);

@@ -11,6 +11,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -117,6 +119,50 @@ TEST(HttpServer, IdleConnectionsDoNotDelayARequest) {
   server.stop();
 }
 
+// A stream of events (server-sent events) goes on while other requests are answered, and
+// ends when the server stops.
+TEST(HttpServer, StreamsEventsWhileAnsweringOthersAndEndsThemWhenItStops) {
+  std::atomic<int> sent{0};
+  HttpServer server(HttpServerDef{}, [&sent](const HttpRequest& request) {
+    if (request.path != "/events") return echo(request);
+    HttpResponse response{200, "text/event-stream", ""};
+    response.stream = [&sent](std::string& next) {
+      const int n = ++sent;
+      if (n > 3) {  // nothing more to say: wait a while, as the studio waits for a change
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        next.clear();
+      } else {
+        next = "data: " + std::to_string(n) + "\n\n";
+      }
+      return true;
+    };
+    return response;
+  });
+  server.start();
+  const int client = connectTo(server.port());
+  ASSERT_GE(client, 0);
+  const std::string ask = "GET /events HTTP/1.1\r\nHost: here\r\n\r\n";
+  ::send(client, ask.data(), ask.size(), MSG_NOSIGNAL);
+  std::string stream;
+  char buffer[4096];
+  while (stream.find("data: 3\n\n") == std::string::npos) {
+    const ssize_t n = ::recv(client, buffer, sizeof buffer, 0);
+    ASSERT_GT(n, 0) << stream;
+    stream.append(buffer, static_cast<size_t>(n));
+  }
+  EXPECT_TRUE(stream.starts_with("HTTP/1.1 200 OK\r\n")) << stream;
+  EXPECT_NE(stream.find("Content-Type: text/event-stream"), std::string::npos) << stream;
+  EXPECT_NE(stream.find("data: 1\n\n"), std::string::npos) << stream;
+  const std::string other = exchange(server.port(), "GET /other HTTP/1.1\r\nConnection: close\r\n\r\n");
+  EXPECT_TRUE(other.starts_with("HTTP/1.1 200 OK\r\n")) << other;
+  server.stop();
+  // The stream has ended: what is left is its last chunk, then the end of the connection.
+  ssize_t n = 0;
+  while ((n = ::recv(client, buffer, sizeof buffer, 0)) > 0) stream.append(buffer, static_cast<size_t>(n));
+  EXPECT_EQ(n, 0);
+  ::close(client);
+}
+
 const char* kTree = R"(#define ANGLE 30
 #define LEN 1
 lsystem tree {
@@ -179,15 +225,23 @@ TEST_F(StudioFixture, ModelGrowsFollowsItsFileAndKeepsTheLastGoodModel) {
   EXPECT_FALSE(model.refresh());  // nothing changed
 
   const std::string firstGlb = model.glb();
-  EXPECT_FALSE(model.setDefine("NOPE", 1));
+  EXPECT_THROW(model.setDefine("NOPE", 1), std::invalid_argument);
+  // LEN's slider spans [0, 2] (twice the written value): past it is refused.
+  EXPECT_EQ(state["defines"][1]["high"], 2.0);
+  EXPECT_THROW(model.setDefine("LEN", 2.5), std::invalid_argument);
+  EXPECT_THROW(model.setDefine("LEN", -1), std::invalid_argument);
   EXPECT_EQ(model.version(), 1u);
-  ASSERT_TRUE(model.setDefine("LEN", 2));
+  model.setDefine("LEN", 2);
+  model.regrow();
   EXPECT_EQ(model.modelVersion(), 2u);
   EXPECT_NE(model.glb(), firstGlb);
   EXPECT_EQ(model.defineValues().at("LEN"), 2.0);
 
+  // From here the model grows on its own thread.
+  model.start();
   write(std::string(kTree) + "oops ->\n");
   EXPECT_TRUE(model.refresh());
+  ASSERT_TRUE(model.waitIdle());
   EXPECT_EQ(model.version(), 3u);
   EXPECT_EQ(model.modelVersion(), 2u);  // the last model that grew stays
   const nlohmann::json broken = model.state();
@@ -199,12 +253,85 @@ TEST_F(StudioFixture, ModelGrowsFollowsItsFileAndKeepsTheLastGoodModel) {
 
   write(kTree);
   EXPECT_TRUE(model.refresh());
+  ASSERT_TRUE(model.waitIdle());
   EXPECT_EQ(model.modelVersion(), 3u);
+}
+
+// Growth without end for a page: 50 M steps of 1,000 cells (minutes; the step limit is
+// 100 M). The growth is watched, answered about, stopped; the last model stays.
+std::string endless() {
+  std::string axiom;
+  for (int i = 0; i < 1000; ++i) axiom += " A";
+  return "lsystem endless {\n  #until 50000000\n  axiom" + axiom + "\n  A -> A\n}\n";
+}
+
+// Waits for a state in which `wanted` holds; the state then.
+nlohmann::json waitForState(const StudioModel& model, const std::function<bool(const nlohmann::json&)>& wanted) {
+  for (uint64_t seen = model.changes();; seen = model.waitForChange(seen, std::chrono::seconds(1))) {
+    nlohmann::json state = model.state();
+    if (wanted(state)) return state;
+  }
+}
+
+TEST_F(StudioFixture, AStopCancelsTheGrowthAtHandAndTheLastModelStays) {
+  StudioModel model(modelDef());
+  model.regrow();
+  ASSERT_EQ(model.modelVersion(), 1u);
+  model.start();
+  write(endless());
+  ASSERT_TRUE(model.refresh());
+  // The growth shows its progress frame by frame; the first at t = 0.
+  const nlohmann::json growing = waitForState(model, [](const nlohmann::json& state) {
+    return state["growth"]["running"].get<bool>() && state["growth"]["cells"].get<uint64_t>() > 0;
+  });
+  EXPECT_EQ(growing["growth"]["cells"], 1000);
+  EXPECT_EQ(growing["growth"]["time"], 0.0);
+  EXPECT_EQ(growing["version"], 1);  // the last growth's state, answered meanwhile
+  model.stop();
+  ASSERT_TRUE(model.waitIdle());
+  const nlohmann::json stopped = model.state();
+  EXPECT_TRUE(stopped["stopped"].get<bool>());
+  EXPECT_FALSE(stopped["growth"]["running"].get<bool>());
+  EXPECT_EQ(stopped["version"], 2);
+  EXPECT_EQ(stopped["modelVersion"], 1);  // the tree that grew before
+  ASSERT_EQ(stopped["diagnostics"].size(), 1u);
+  EXPECT_EQ(stopped["diagnostics"][0]["severity"], "note");
+  EXPECT_EQ(stopped["diagnostics"][0]["message"], "the growth was cancelled");
+
+  // A newer request cancels the growth at hand and grows the newer text.
+  model.requestGrowth();
+  waitForState(model, [](const nlohmann::json& state) { return state["growth"]["cells"].get<uint64_t>() > 0; });
+  write(kTree);
+  ASSERT_TRUE(model.refresh());
+  ASSERT_TRUE(model.waitIdle());
+  EXPECT_EQ(model.modelVersion(), 2u);
+  EXPECT_FALSE(model.state()["stopped"].get<bool>());
+}
+
+TEST_F(StudioFixture, InteractiveLimitsStopARunawayAndCanBeRaisedToTheCeiling) {
+  StudioModelDef def = modelDef();
+  def.program.limits.maxCells = 50'000;  // the ceiling, as --max-cells gives it
+  StudioModel model(def);
+  EXPECT_EQ(model.state()["limits"]["maxCells"], 50'000);  // the interactive default is above the ceiling
+  EXPECT_EQ(model.state()["limits"]["maxMemoryBytes"], kStudioMaxMemoryBytes);
+  EXPECT_THROW(model.setLimits(0, 64 << 20), std::invalid_argument);
+  EXPECT_THROW(model.setLimits(50'001, 64 << 20), std::invalid_argument);
+  EXPECT_THROW(model.setLimits(1000, 1000), std::invalid_argument);
+  model.setLimits(1000, 64 << 20);
+  write("lsystem runaway {\n  #until 40\n  axiom A\n  A -> F A A\n}\n");
+  model.regrow();
+  const nlohmann::json state = model.state();
+  EXPECT_FALSE(state["ok"].get<bool>());
+  ASSERT_FALSE(state["diagnostics"].empty());
+  EXPECT_NE(state["diagnostics"][0]["message"].get<std::string>().find("past 1000 cells"), std::string::npos)
+      << state.dump(2);
+  EXPECT_EQ(state["limits"]["maxCells"], 1000);
 }
 
 TEST_F(StudioFixture, RoutesAnswerThePage) {
   StudioModel model(modelDef());
   model.regrow();
+  model.start();
   Gallery gallery(galleryDef());
   StudioServer server(model, gallery);
   auto ask = [&](std::string method, std::string path, std::string body = "") {
@@ -225,9 +352,21 @@ TEST_F(StudioFixture, RoutesAnswerThePage) {
   EXPECT_EQ(ask("POST", "/api/define", "not json").status, 400);
   EXPECT_EQ(ask("POST", "/api/define", R"({"name": "LEN"})").status, 400);
   EXPECT_EQ(ask("POST", "/api/define", R"({"name": "NOPE", "value": 1})").status, 422);
+  EXPECT_EQ(ask("POST", "/api/define", R"({"name": "ANGLE", "value": 61})").status, 422);  // past its range
+  EXPECT_EQ(ask("POST", "/api/define", R"({"name": "ANGLE", "value": 1e308})").status, 422);
+  EXPECT_EQ(model.version(), 1u);
   const HttpResponse moved = ask("POST", "/api/define", R"({"name": "ANGLE", "value": 45})");
   EXPECT_EQ(moved.status, 200);
-  EXPECT_EQ(nlohmann::json::parse(moved.body)["modelVersion"], 2);
+  ASSERT_TRUE(model.waitIdle());
+  EXPECT_EQ(model.modelVersion(), 2u);
+  EXPECT_EQ(ask("POST", "/api/limits", R"({"maxCells": -1, "maxMemoryMiB": 64})").status, 400);
+  EXPECT_EQ(ask("POST", "/api/limits", R"({"maxCells": 0, "maxMemoryMiB": 64})").status, 422);
+  const HttpResponse limited = ask("POST", "/api/limits", R"({"maxCells": 5000, "maxMemoryMiB": 64})");
+  EXPECT_EQ(limited.status, 200);
+  EXPECT_EQ(nlohmann::json::parse(limited.body)["limits"]["maxMemoryBytes"], 64 << 20);
+  ASSERT_TRUE(model.waitIdle());
+  EXPECT_EQ(model.modelVersion(), 3u);
+  EXPECT_EQ(ask("POST", "/api/stop", "{}").status, 200);
   EXPECT_EQ(nlohmann::json::parse(ask("GET", "/api/notes").body)["notes"].size(), 0u);  // no music set
 
   const nlohmann::json first = nlohmann::json::parse(ask("GET", "/api/gallery").body);
