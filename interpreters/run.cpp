@@ -57,12 +57,18 @@ Run::Run(RunDef def) : def_(std::move(def)) {
     const double span = def_.until.value_or(def_.program->until) - def_.from.value_or(def_.program->from);
     const double frames = std::round(span / speed * def_.setOptions.framesPerSecond) + 1;
     if (frames > kMaxFrames) {
-      char text[200];
-      std::snprintf(text, sizeof text,
-                    "a speed of %g s a second over %g s at %g frames a second makes %.0f frames, more than %.0f: a "
-                    "larger --speed or a lower --fps",
-                    speed, span, def_.setOptions.framesPerSecond, frames, kMaxFrames);
-      setupErrors_.push_back(unlocated(Severity::Error, text));
+      // Every number in at most 15 significant digits: a speed of 1e-300 makes a count of
+      // frames 300 digits long, which %.0f would print in full.
+      auto number = [](const char* format, double value) {
+        char text[40];
+        std::snprintf(text, sizeof text, format, value);
+        return std::string(text);
+      };
+      setupErrors_.push_back(unlocated(
+          Severity::Error, "a speed of " + number("%g", speed) + " s a second over " + number("%g", span) + " s at " +
+                               number("%g", def_.setOptions.framesPerSecond) + " frames a second makes " +
+                               number("%.15g", frames) + " frames, more than " + number("%.15g", kMaxFrames) +
+                               ": a larger --speed or a lower --fps"));
     }
   }
   if (const std::string look = def_.look.value_or(def_.program->look); !look.empty()) {

@@ -343,7 +343,8 @@ void Turtle::execute(const TurtleCommand& command, std::span<const double> args,
       if (glm::length(t) == 0 && args[3] != 0) {
         ++warnings_.badArguments;
       } else {
-        tropism_ = args[3] == 0 ? glm::dvec3(0.0) : glm::normalize(t);
+        // T as given, not its direction: its length scales the bend, as in ABOP 2.4.
+        tropism_ = args[3] == 0 ? glm::dvec3(0.0) : t;
         tropismStrength_ = args[3];
       }
       break;

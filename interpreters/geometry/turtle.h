@@ -133,7 +133,7 @@ class Turtle {
   TurtleState state_;
   std::vector<TurtleState> stack_;
   TurtleWarnings warnings_;
-  glm::dvec3 tropism_{0.0};
+  glm::dvec3 tropism_{0.0};  // T as given: H turns by tropismStrength_ |H x T| radians
   double tropismStrength_ = 0;
   Environment environment_;
   bool environmentActive_ = false;

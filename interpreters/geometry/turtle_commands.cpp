@@ -52,8 +52,8 @@ constexpr std::array kCommands = {
                   "draw with palette colour i (0..15, taken modulo 16; default: the next "
                   "colour); `;` separates instructions, so colour has a name"},
     TurtleCommand{"tropism", TurtleOp::Tropism, 4, 4, "tropism(x, y, z, e)",
-                  "before each F, bend H towards the vector (x, y, z) by e |H x T| radians "
-                  "(ABOP 2.4); e = 0 turns tropism off"},
+                  "before each F, bend H towards the vector T = (x, y, z) by e |H x T| radians, T "
+                  "as given, not normalised (ABOP 2.4); e = 0 turns tropism off"},
     TurtleCommand{"circle", TurtleOp::Circle, 0, 1, "circle(n)",
                   "generalized cylinders from here use a circular cross-section of n points "
                   "(default 12, 3..1024)"},

@@ -46,6 +46,7 @@ void MusicSet::beginFrame(const FrameTarget& target) {
   seen_.clear();
   held_.clear();
   trackCells_ = {};
+  trackControlCells_ = {};
   wordTime_ = lastWordTime_ = 0;
 }
 
@@ -63,14 +64,18 @@ void MusicSet::executeCommand(int id, std::string_view command, std::span<const 
 
 void MusicSet::run(const MusicCommand& command, std::span<const double> args) {
   const MusicWarnings before = player_.warnings();
-  const size_t sounds = score_.notes.size() + score_.controls.size() + player_.heldCount();
+  const size_t notes = score_.notes.size() + player_.heldCount(), controls = score_.controls.size();
   try {
     player_.execute(command, args, score_);
   } catch (const MusicTimeError& late) {
     refuse(late.what());
   }
-  if (score_.notes.size() + score_.controls.size() + player_.heldCount() != sounds && !site_.cell.empty()) {
-    std::vector<std::string_view>& cells = trackCells_[static_cast<size_t>(player_.state().channel)];
+  // A track is named after the cells that play notes on it; a cell that only sets the
+  // program, a controller or the tempo names it only when no cell plays there.
+  const bool played = score_.notes.size() + player_.heldCount() != notes;
+  if ((played || score_.controls.size() != controls) && !site_.cell.empty()) {
+    const size_t channel = static_cast<size_t>(player_.state().channel);
+    std::vector<std::string_view>& cells = played ? trackCells_[channel] : trackControlCells_[channel];
     if (std::find(cells.begin(), cells.end(), site_.cell) == cells.end()) cells.push_back(site_.cell);
   }
   const MusicWarnings& after = player_.warnings();
@@ -151,7 +156,8 @@ void MusicSet::nameTracks() {
       score_.trackNames[channel] = def_.trackNames[channel];
       continue;
     }
-    const std::vector<std::string_view>& cells = trackCells_[channel];
+    const std::vector<std::string_view>& cells =
+        trackCells_[channel].empty() ? trackControlCells_[channel] : trackCells_[channel];
     std::string name;
     for (size_t i = 0; i < cells.size() && i < kNamedCells; ++i) name += (i ? ", " : "") + std::string(cells[i]);
     if (cells.size() > kNamedCells) name += " and " + std::to_string(cells.size() - kNamedCells) + " more";

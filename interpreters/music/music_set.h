@@ -104,7 +104,8 @@ class MusicSet final : public InterpretationSet {
   FrameTarget target_;
   ScoreOutput output_;  // writes and performs each finished score
   ScoreStreamer streamer_;
-  std::array<std::vector<std::string_view>, 16> trackCells_;  // per channel, in order of first sound
+  std::array<std::vector<std::string_view>, 16> trackCells_;  // per channel, cells that play notes, in order
+  std::array<std::vector<std::string_view>, 16> trackControlCells_;  // per channel, cells that send only controls
   // Developmental time:
   std::set<CellKey> played_;           // cells whose notes have sounded
   std::set<CellKey> seen_;             // cells of the current word

@@ -246,6 +246,17 @@ TEST_F(MusicCli, EachChannelsTrackIsNamedAfterTheCellsThatPlayOnIt) {
                                        "  interpret music Low { channel(1) pitch(36) note(2) }\n}\n";
   json duo = play((named / "duo.cell").string(), "named_tracks_out");
   EXPECT_EQ(duo["track_names"], (json{"duo", "Lead", "Bass line"}));
+  // A cell that only sets the program (or another controller) plays nothing: the track is
+  // named after the cells that play notes, and after it only on a channel where none do.
+  fs::path setup = scratch("setup_tracks");
+  std::ofstream(setup / "setup.cell") << "lsystem setup {\n  axiom Setup Lead Ctl\n"
+                                         "  interpret music Setup { program(11) }\n"
+                                         "  interpret music Lead { note(1) }\n"
+                                         "  interpret music Ctl { channel(2) program(40) }\n}\n";
+  json named_after_players = play((setup / "setup.cell").string(), "setup_tracks_out");
+  EXPECT_EQ(named_after_players["track_names"], (json{"setup", "Lead", "Ctl"}));
+  json koch = play(model("koch_melody.cell"), "koch_melody_tracks", "--until 1");
+  EXPECT_EQ(koch["track_names"], (json{"koch_melody", "F, +, -"}));
   // Format 0 has one track, named after the model.
   fs::path dir = scratch("one_track");
   std::ofstream(dir / "one.cell") << "#midiformat 0\nlsystem one { axiom A\n interpret music A { note(1) } }\n";

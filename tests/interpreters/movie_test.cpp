@@ -187,5 +187,18 @@ TEST(Movie, ASpeedThatMakesTooManyFramesIsRefused) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A speed far below any sensible one names the count of frames in a few digits, not the
+// 303 digits of 4 / 1e-300 * 25 written in full.
+TEST(Movie, ASpeedOfTinySecondsNamesItsFramesInAFewDigits) {
+  const fs::path out = fs::temp_directory_path() / ("ontogen_movie_tiny_" + std::to_string(::getpid()));
+  const RunReport report = kochMovie(out, 1e-300, 25);
+  EXPECT_EQ(report.status, RunStatus::BadDefinition);
+  ASSERT_EQ(report.diagnostics.size(), 1u);
+  EXPECT_EQ(report.diagnostics.front().message,
+            "a speed of 1e-300 s a second over 4 s at 25 frames a second makes 1e+302 frames, more than 1000000: "
+            "a larger --speed or a lower --fps");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace
 }  // namespace ontogen

@@ -78,6 +78,23 @@ TEST(TurtleEnvironmentTest, TropismBendsHeadingByStrengthTimesSine) {
   EXPECT_NEAR(glm::length(turtle.state().heading - glm::dvec3(0, 1, 0)), 0.0, 1e-6);
 }
 
+// ABOP 2.4: H turns by e |H x T| with T as given, so T's length scales the bend. With
+// H = +y and e = 0.1: T = (3, 0, 0) gives |H x T| = 3, a turn of 0.3 rad; T = (1, 0, 0)
+// 0.1 rad; T = (2, 2, 0), 45 degrees from H, |H x T| = 2 and 0.2 rad.
+TEST(TurtleEnvironmentTest, TropismBendsByTAsGivenNotByItsDirection) {
+  for (const auto& [t, radians] : {std::pair{glm::dvec3(3, 0, 0), 0.3}, std::pair{glm::dvec3(1, 0, 0), 0.1},
+                                   std::pair{glm::dvec3(2, 2, 0), 0.2}}) {
+    Turtle turtle;
+    Geometry geometry;
+    run(turtle, geometry, {{"tropism", {t.x, t.y, t.z, 0.1}}, {"F", {2}}});
+    EXPECT_NEAR(turtle.state().heading.x, std::sin(radians), 1e-12) << t.x << "," << t.y;
+    EXPECT_NEAR(turtle.state().heading.y, std::cos(radians), 1e-12) << t.x << "," << t.y;
+    // The segment is drawn along the bent heading: it ends 2 (sin, cos) from the origin.
+    EXPECT_NEAR(turtle.state().position.x, 2 * std::sin(radians), 1e-12);
+    EXPECT_NEAR(turtle.state().position.y, 2 * std::cos(radians), 1e-12);
+  }
+}
+
 TEST(TurtleEnvironmentTest, GeneralizedCylinderReplacesCylindersWithOneTube) {
   Turtle turtle;
   Geometry geometry;
