@@ -1,7 +1,10 @@
 """Builds the Python module ontogen: CMake builds the extension ontogen._ontogen with the
 libraries (-DONTOGEN_PYTHON=ON, without tests, benchmarks or the executable), setuptools
 installs it beside the package's Python files (python/ontogen/). CMAKE_ARGS adds CMake
-options; CMAKE_BUILD_PARALLEL_LEVEL sets the jobs (default: every core)."""
+options; CMAKE_BUILD_PARALLEL_LEVEL sets the jobs (default: every core).
+ONTOGEN_CMAKE_BUILD_DIR names a CMake build folder of this source already configured with
+-DONTOGEN_PYTHON=ON: the module is then built there, up to date or incrementally, and that
+folder's configuration is left as it is (CMAKE_ARGS does not apply)."""
 
 import os
 import pathlib
@@ -24,7 +27,10 @@ def version():
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
         target = pathlib.Path(self.get_ext_fullpath(ext.name)).resolve()
-        build = pathlib.Path(self.build_temp).resolve() / "cmake"
+        reused = os.environ.get("ONTOGEN_CMAKE_BUILD_DIR")
+        build = pathlib.Path(reused).resolve() if reused else pathlib.Path(self.build_temp).resolve() / "cmake"
+        if reused:
+            self.check_reused(build)
         configure = [
             "cmake", "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
             "-DONTOGEN_PYTHON=ON", f"-DPython_EXECUTABLE={sys.executable}",
@@ -32,7 +38,8 @@ class CMakeBuild(build_ext):
             "-DONTOGEN_LIVE_MIDI=OFF", "-DONTOGEN_MPI=OFF",
             *shlex.split(os.environ.get("CMAKE_ARGS", "")),
         ]
-        subprocess.run(configure, check=True)
+        if not reused:
+            subprocess.run(configure, check=True)
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
         subprocess.run(["cmake", "--build", str(build), "--target", "ontogen_python", "-j", jobs], check=True)
         built = sorted((build / "python" / "ontogen").glob("_ontogen*" + (".pyd" if os.name == "nt" else ".so")))
@@ -44,6 +51,21 @@ class CMakeBuild(build_ext):
         viewer = build / "python" / "ontogen" / "viewer.js"
         if viewer.exists():
             shutil.copyfile(viewer, target.parent / "viewer.js")
+
+    @staticmethod
+    def check_reused(build):
+        """A reused folder must be a build of this version of ontogen with the module on,
+        else the module installed would not be the one this source describes."""
+        cache = build / "CMakeCache.txt"
+        if not cache.is_file():
+            raise RuntimeError(f"ONTOGEN_CMAKE_BUILD_DIR={build}: no CMakeCache.txt there")
+        entries = dict(re.findall(r"^([A-Za-z_]+):[A-Z]+=(.*)$", cache.read_text(), re.M))
+        if entries.get("ONTOGEN_PYTHON", "").upper() not in ("ON", "TRUE", "1", "YES"):
+            raise RuntimeError(f"ONTOGEN_CMAKE_BUILD_DIR={build} is configured without -DONTOGEN_PYTHON=ON")
+        if entries.get("CMAKE_PROJECT_VERSION") != version():
+            raise RuntimeError(f"ONTOGEN_CMAKE_BUILD_DIR={build} builds ontogen "
+                               f"{entries.get('CMAKE_PROJECT_VERSION', '(unknown)')}, this source is {version()}")
+        print(f"building the module in {build}, a build of {entries.get('CMAKE_HOME_DIRECTORY', '(unknown)')}")
 
 
 setup(
