@@ -22,10 +22,12 @@ void Scene::append(const Scene& other) {
   const auto triangles = static_cast<uint32_t>(geometry.triangleCount());
   const auto segments = static_cast<uint32_t>(geometry.segmentCount());
   geometry.append(other.geometry);
-  for (SceneNode node : other.nodes) {
-    node.range.firstTriangle += triangles;
-    node.range.firstSegment += segments;
+  // Reserved: a plant's million nodes are copied once, not regrown.
+  nodes.reserve(nodes.size() + other.nodes.size());
+  for (const SceneNode& node : other.nodes) {
     nodes.push_back(node);
+    nodes.back().range.firstTriangle += triangles;
+    nodes.back().range.firstSegment += segments;
   }
   const int joints = static_cast<int>(skeleton.joints.size());
   for (SceneJoint joint : other.skeleton.joints) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "interpreters/formats/gltf_builder.h"
+#include "interpreters/formats/still_glb.h"
 
 namespace ontogen {
 
@@ -67,11 +68,15 @@ nlohmann::json jointExtras(const PartJoint& joint) {
   return extras;
 }
 
+// The radius of the tubes lines are written as, model units.
+double lineRadiusOf(const Box& bounds) {
+  const double diagonal = bounds.empty ? 0 : glm::length(bounds.max - bounds.min);
+  return diagonal > 0 ? diagonal * kLineRadiusFraction : 1e-3;
+}
+
 // The shapes as written: their lines made tubes of one width in the model's units.
 std::vector<std::vector<MeshBatch>> finalShapes(const SceneParts& parts) {
-  const Box& bounds = parts.bounds();
-  const double diagonal = bounds.empty ? 0 : glm::length(bounds.max - bounds.min);
-  const double radius = diagonal > 0 ? diagonal * kLineRadiusFraction : 1e-3;
+  const double radius = lineRadiusOf(parts.bounds());
   std::vector<std::vector<MeshBatch>> out;
   out.reserve(parts.shapes().size());
   for (const PartShape& shape : parts.shapes()) out.push_back(shapeWithTubes(shape, radius / shape.meanScale(), kTubeSides));
@@ -143,16 +148,83 @@ struct SkinnedBatch {
   std::vector<glm::vec2> cells;   // (cell number, birth) per vertex
 };
 
+// True when a joint stands in every frame, in the same place: a part that never moves.
+bool isStill(const Track& t) {
+  return !t.hidden && !changes(t.translations) && !changes(t.rotations, 4) && !changes(t.scales);
+}
+
+// The parts that never move, in world coordinates in one mesh of a primitive per colour,
+// each vertex with (cell number, birth) as the joints' are.
+void writeStillParts(const SceneParts& parts, const std::vector<std::vector<MeshBatch>>& shapes,
+                     const std::vector<uint32_t>& stillJoints, Builder& b, nlohmann::json& sceneNodes) {
+  if (stillJoints.empty()) return;
+  std::map<uint32_t, const PartPlacement*> placed;
+  for (const PartPlacement& p : parts.frames().front().placements) placed.try_emplace(p.joint, &p);
+  struct Batch {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<glm::vec2> texcoords, cells;
+    std::vector<uint32_t> indices;
+  };
+  std::map<uint32_t, Batch> world;  // by colour
+  for (uint32_t joint : stillJoints) {
+    const PartJoint& pj = parts.joints()[joint];
+    const PartPlacement& p = *placed.at(joint);
+    const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
+    for (const MeshBatch& batch : shapes[pj.shape]) {
+      if (batch.indices.empty()) continue;
+      Batch& into = world[batch.material];
+      const auto base = static_cast<uint32_t>(into.positions.size());
+      for (const glm::vec3& v : batch.positions) into.positions.emplace_back(p.translation + rotation * (glm::dvec3(v) * p.scale));
+      for (const glm::vec3& n : batch.normals) into.normals.emplace_back(rotation * glm::dvec3(n));
+      into.texcoords.insert(into.texcoords.end(), batch.texcoords.begin(), batch.texcoords.end());
+      into.cells.insert(into.cells.end(), batch.positions.size(),
+                        glm::vec2(static_cast<float>(pj.cellNumber), static_cast<float>(pj.birth)));
+      for (uint32_t index : batch.indices) into.indices.push_back(base + index);
+    }
+  }
+  if (world.empty()) return;
+  nlohmann::json primitives = nlohmann::json::array();
+  for (const auto& [material, batch] : world)
+    primitives.push_back({{"attributes",
+                           {{"POSITION", b.addVec3(batch.positions, kArrayBuffer, true)},
+                            {"NORMAL", b.addVec3(batch.normals, kArrayBuffer, false)},
+                            {"TEXCOORD_0", b.addVec2(batch.texcoords)},
+                            {"TEXCOORD_1", b.addVec2(batch.cells)}}},
+                          {"indices", b.addIndices(batch.indices)},
+                          {"material", b.materialOf(material)},
+                          {"mode", kTriangles}});
+  b.gltf["meshes"].push_back({{"name", "still"}, {"primitives", primitives}});
+  b.gltf["nodes"].push_back({{"name", "still"}, {"mesh", b.gltf["meshes"].size() - 1}});
+  sceneNodes.push_back(b.gltf["nodes"].size() - 1);
+}
+
 void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNodes) {
   const auto& joints = parts.joints();
-  const std::size_t count = joints.size();
-  if (count == 0) return;
+  if (joints.empty()) return;
   const std::vector<std::vector<MeshBatch>> shapes = finalShapes(parts);
   const std::vector<Track> tracks = tracksOf(parts);
+  // The joints that move are nodes (the k-th moving joint is node k); the others are
+  // written still.
+  std::vector<uint32_t> moving, stillJoints;
+  std::vector<std::size_t> slot(joints.size(), 0);
+  for (uint32_t j = 0; j < joints.size(); ++j) {
+    if (isStill(tracks[j])) {
+      stillJoints.push_back(j);
+    } else {
+      slot[j] = moving.size();
+      moving.push_back(j);
+    }
+  }
+  const std::size_t count = moving.size();
+  if (count == 0) {
+    writeStillParts(parts, shapes, stillJoints, b, sceneNodes);
+    return;
+  }
 
   // The joints under one root; their rest transform is their last frame's.
   nlohmann::json children = nlohmann::json::array();
-  for (std::size_t j = 0; j < count; ++j) {
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t j = moving[k];
     const Track& t = tracks[j];
     const std::size_t last = t.translations.size() - 1;
     nlohmann::json node = {{"name", jointName(joints[j])}, {"extras", jointExtras(joints[j])}};
@@ -163,7 +235,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
                         shortFloat(t.rotations[4 * last + 2]), shortFloat(t.rotations[4 * last + 3])};
     if (scale != glm::vec3(1.0f)) node["scale"] = {shortFloat(scale.x), shortFloat(scale.y), shortFloat(scale.z)};
     b.gltf["nodes"].push_back(node);
-    children.push_back(j);
+    children.push_back(k);
   }
   b.gltf["nodes"].push_back({{"name", "cells"}, {"children", children}});
   const std::size_t root = b.gltf["nodes"].size() - 1;
@@ -172,13 +244,14 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
   // The meshes: one per kJointsPerSkin joints, each with a skin of those joints.
   const std::size_t skins = (count + kJointsPerSkin - 1) / kJointsPerSkin;
   std::vector<nlohmann::json> primitives(skins, nlohmann::json::array());
-  const std::vector<std::vector<uint32_t>> instances = parts.jointsByShape();
+  std::vector<std::vector<uint32_t>> instances = parts.jointsByShape();
+  for (auto& of : instances) std::erase_if(of, [&](uint32_t j) { return isStill(tracks[j]); });
   std::vector<std::map<uint32_t, SkinnedBatch>> single(skins);  // by skin, then colour
   auto perVertex = [&](uint32_t joint, std::size_t vertices, std::vector<uint16_t>& jointsOut,
                        std::vector<glm::vec2>& cellsOut) {
     const PartJoint& pj = joints[joint];
     for (std::size_t v = 0; v < vertices; ++v) {
-      jointsOut.insert(jointsOut.end(), {static_cast<uint16_t>(joint % kJointsPerSkin), 0, 0, 0});
+      jointsOut.insert(jointsOut.end(), {static_cast<uint16_t>(slot[joint] % kJointsPerSkin), 0, 0, 0});
       cellsOut.emplace_back(static_cast<float>(pj.cellNumber), static_cast<float>(pj.birth));
     }
   };
@@ -188,7 +261,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
       const uint32_t joint = instances[s][0];
       for (const MeshBatch& batch : shapes[s]) {
         if (batch.indices.empty()) continue;
-        SkinnedBatch& into = single[joint / kJointsPerSkin][batch.material];
+        SkinnedBatch& into = single[slot[joint] / kJointsPerSkin][batch.material];
         const auto base = static_cast<uint32_t>(into.mesh.positions.size());
         into.mesh.positions.insert(into.mesh.positions.end(), batch.positions.begin(), batch.positions.end());
         into.mesh.normals.insert(into.mesh.normals.end(), batch.normals.begin(), batch.normals.end());
@@ -212,7 +285,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
         attributes["JOINTS_0"] = b.addVec4Integers(jointValues, gltf::kUnsignedByte, false, kJointPool);
         attributes["WEIGHTS_0"] = weights;
         attributes["TEXCOORD_1"] = b.addVec2(cells, kCellPool);
-        primitives[joint / kJointsPerSkin].push_back({{"attributes", attributes},
+        primitives[slot[joint] / kJointsPerSkin].push_back({{"attributes", attributes},
                                                        {"indices", indices},
                                                        {"material", b.materialOf(batch.material)},
                                                        {"mode", kTriangles}});
@@ -249,6 +322,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
         {{"name", name}, {"mesh", b.gltf["meshes"].size() - 1}, {"skin", b.gltf["skins"].size() - 1}});
     sceneNodes.push_back(b.gltf["nodes"].size() - 1);
   }
+  writeStillParts(parts, shapes, stillJoints, b, sceneNodes);
 
   // The animation: each joint keyed from its first frame to its last (and, for the
   // scale of a joint that appears or vanishes, the frames either side, where it is 0);
@@ -269,7 +343,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
     channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", path}}}});
   };
   for (std::size_t j = 0; j < count; ++j) {
-    const Track& t = tracks[j];
+    const Track& t = tracks[moving[j]];
     std::size_t first = 0, last = frames - 1;
     while (first < last && t.scales[first] == glm::vec3(0.0f)) ++first;
     while (last > first && t.scales[last] == glm::vec3(0.0f)) --last;
@@ -351,17 +425,54 @@ void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& scen
 
 }  // namespace
 
-void GlbAnimationWriter::addFrame(const Scene& scene) { parts_.addFrame(scene); }
+namespace {
+// What a kept scene holds, near enough for the memory limit.
+uint64_t sceneBytes(const Scene& scene) {
+  const Mesh& mesh = scene.geometry.mesh();
+  return mesh.positions.size() * sizeof(glm::dvec3) + mesh.normals.size() * sizeof(glm::dvec3) +
+         mesh.texcoords.size() * sizeof(glm::dvec2) + mesh.triangles.size() * sizeof(Triangle) +
+         scene.geometry.segments().size() * sizeof(Segment) + scene.nodes.size() * sizeof(SceneNode);
+}
+}  // namespace
 
-void GlbAnimationWriter::write(std::ostream& out) const {
+void GlbAnimationWriter::addFrame(const Scene& scene) {
+  if (frames_ == 0) {
+    first_ = scene;
+    firstBytes_ = sceneBytes(scene);
+  } else {
+    if (frames_ == 1) {
+      parts_.addFrame(first_);
+      first_ = Scene();
+      firstBytes_ = 0;
+    }
+    parts_.addFrame(scene);
+  }
+  ++frames_;
+}
+
+void GlbAnimationWriter::clear() {
+  parts_.clear();
+  first_ = Scene();
+  firstBytes_ = 0;
+  frames_ = 0;
+}
+
+void GlbAnimationWriter::write(std::ostream& out) const { writeWith(frames_ == 1 ? &first_ : nullptr, out); }
+
+void GlbAnimationWriter::writeFrame(const Scene& scene, std::ostream& out) { GlbAnimationWriter{}.writeWith(&scene, out); }
+
+void GlbAnimationWriter::writeWith(const Scene* still, std::ostream& out) const {
   Builder b;
   b.gltf["asset"] = {{"version", "2.0"}, {"generator", "ontogen"}};
   nlohmann::json sceneNodes = nlohmann::json::array();
-  if (parts_.joints().size() <= kMaxJoints)
+  const Box box = still != nullptr ? still->geometry.bounds() : parts_.bounds();
+  if (still != nullptr)
+    addStillScene(b, *still, lineRadiusOf(box), sceneNodes);
+  else if (parts_.joints().size() <= kMaxJoints)
     writeSkinned(parts_, b, sceneNodes);
   else
     writeFramePerNode(parts_, b, sceneNodes);
-  gltf::addCameraAndKeyLight(b, parts_.bounds(), sceneNodes);
+  gltf::addCameraAndKeyLight(b, box, sceneNodes);
   nlohmann::json scene = {{"name", "ontogen"}};
   if (!sceneNodes.empty()) scene["nodes"] = sceneNodes;  // glTF allows no empty list
   nlohmann::json extras = nlohmann::json::object();
@@ -369,7 +480,6 @@ void GlbAnimationWriter::write(std::ostream& out) const {
     extras["ontogen_time_start"] = timing.start;
     extras["ontogen_time_scale"] = timing.scale;
   }
-  const Box& box = parts_.bounds();
   if (!box.empty) extras["ontogen_bounds"] = {box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z};
   if (!extras.empty()) scene["extras"] = extras;
   // Pushed, not braced: `{scene}` is the object itself to some compilers (clang).

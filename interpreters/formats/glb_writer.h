@@ -68,21 +68,32 @@ inline constexpr double kMaxAnimationSeconds = 10;
 /// Collects frames and writes them as one .glb.
 class GlbAnimationWriter {
  public:
-  /// Adds a frame's scene (its geometry and nodes), shown from scene.time.
+  /// Adds a frame's scene (its geometry and nodes), shown from scene.time. The first is
+  /// kept as it is and taken into parts only when a second comes: a run of one frame is
+  /// written still (formats/still_glb.h) without being taken apart.
   void addFrame(const Scene& scene);
   /// Frames added so far.
-  std::size_t frameCount() const { return parts_.frames().size(); }
+  std::size_t frameCount() const { return frames_; }
   /// Removes every frame.
-  void clear() { parts_.clear(); }
+  void clear();
   /// Bytes the frames added so far hold (they are all written at the end).
-  uint64_t heldBytes() const { return parts_.heldBytes(); }
-  /// The parts the frames were taken into.
+  uint64_t heldBytes() const { return parts_.heldBytes() + firstBytes_; }
+  /// The parts the frames were taken into (empty while there is one frame).
   const SceneParts& parts() const { return parts_; }
   /// Writes the file. Stream errors are left in out's state.
   void write(std::ostream& out) const;
+  /// Writes the file of one frame, the bytes addFrame(scene) then write(out) give,
+  /// without keeping a copy of the scene.
+  static void writeFrame(const Scene& scene, std::ostream& out);
 
  private:
+  // Writes the still file of one scene, or (null) the frames taken into parts.
+  void writeWith(const Scene* still, std::ostream& out) const;
+
   SceneParts parts_;
+  Scene first_;             // the first frame, until a second comes
+  uint64_t firstBytes_ = 0; // what first_ holds
+  std::size_t frames_ = 0;
 };
 
 }  // namespace ontogen

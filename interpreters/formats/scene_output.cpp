@@ -189,7 +189,9 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
   // holds one (it fixes the skeleton; the frames before it, where the body had not grown
   // yet, are left out); any other as persistent parts (glb_writer.h).
   const bool skinned = skinnedGlb_.frameCount() > 0 || !scene.skeleton.empty();
-  if (def_.writeGlb) {
+  // A run of one frame is written from its scene at once, not kept (glb_writer.h).
+  const bool still = !skinned && target_.frameCount <= 1 && glb_.frameCount() == 0;
+  if (def_.writeGlb && !still) {
     if (skinned)
       skinnedGlb_.addFrame(scene);
     else
@@ -202,6 +204,8 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
       writeFileAtomically(path, [&](std::ostream& out) {
         if (skinned)
           skinnedGlb_.write(out);
+        else if (still)
+          GlbAnimationWriter::writeFrame(scene, out);
         else
           glb_.write(out);
       });

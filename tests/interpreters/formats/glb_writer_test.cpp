@@ -5,7 +5,9 @@
 // and light.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -25,6 +27,7 @@
 #include "interpreters/formats/glb_writer.h"
 #include "interpreters/formats/gltf_builder.h"
 #include "interpreters/formats/mesh_batches.h"
+#include "interpreters/formats/still_glb.h"
 #include "interpreters/geometry.h"
 #include "interpreters/palette.h"
 #include "interpreters/run.h"
@@ -182,8 +185,8 @@ TEST(Palette, LinearFromSrgbFollowsBothPiecesOfTheCurve) {
 }
 
 // A ball that moves and grows (cell 7) beside a turned rod that stays (cell 9), over
-// three frames: two joints, two shapes, the ball's translation and scale animated at the
-// frames' times, the rod unanimated.
+// three frames: two shapes, the ball a joint whose translation and scale are animated at
+// the frames' times, the rod, which never moves, in the still mesh in world coordinates.
 TEST(GlbWriter, EachCellsPartIsWrittenOnceAndMovedByItsJoint) {
   GlbAnimationWriter writer;
   const double times[3] = {1.0, 1.5, 2.5};
@@ -198,9 +201,10 @@ TEST(GlbWriter, EachCellsPartIsWrittenOnceAndMovedByItsJoint) {
   EXPECT_EQ(writer.parts().shapes().size(), 2u) << "the ball grows by a uniform scale: one shape";
   ASSERT_EQ(writer.parts().joints().size(), 2u);
   const Glb glb(written(writer));
-  const int ball = glb.node("Ball 7"), rod = glb.node("Rod 9");
+  const int ball = glb.node("Ball 7"), still = glb.node("still");
   ASSERT_GE(ball, 0);
-  ASSERT_GE(rod, 0);
+  ASSERT_GE(still, 0);
+  EXPECT_EQ(glb.node("Rod 9"), -1) << "a part that never moves is no joint";
   EXPECT_EQ(glb.json["nodes"][ball]["extras"]["id"], "7");
   EXPECT_EQ(glb.json["nodes"][ball]["extras"]["label"], "Ball");
   EXPECT_DOUBLE_EQ(glb.json["nodes"][ball]["extras"]["birth"].get<double>(), 1.75);
@@ -225,33 +229,44 @@ TEST(GlbWriter, EachCellsPartIsWrittenOnceAndMovedByItsJoint) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(s[3 * f + k], 0.5 + 0.25 * f, 1e-6);
   }
   EXPECT_TRUE(glb.channel(ball, "rotation").empty()) << "the ball does not turn";
-  for (const char* path : {"translation", "rotation", "scale"}) EXPECT_TRUE(glb.channel(rod, path).empty()) << path;
-  // The rod's rest transform: its centre, its cell's turn (90 degrees about z), its half length.
-  const auto& r = glb.json["nodes"][rod];
-  EXPECT_NEAR(r["translation"][0].get<double>(), 3, 1e-9);
-  EXPECT_NEAR(r["translation"][1].get<double>(), 1, 1e-9);
-  EXPECT_NEAR(r["rotation"][2].get<double>(), std::sin(M_PI / 4), 1e-7);  // floats
-  EXPECT_NEAR(r["rotation"][3].get<double>(), std::cos(M_PI / 4), 1e-7);
-  EXPECT_FALSE(r.contains("scale")) << "1, the default";
-  // One skin over both joints, its inverse bind matrices identities: shapes lie in their
-  // cells' frames.
+  // The rod in world coordinates: around x = 3, z = 0, of radius 0.1, from y = 0 to 2,
+  // each vertex with its cell (number 1, born at 2.25).
+  const auto& rod = glb.json["meshes"][glb.json["nodes"][still]["mesh"].get<int>()]["primitives"][0]["attributes"];
+  const std::vector<double> p = glb.values(rod["POSITION"].get<int>());
+  ASSERT_FALSE(p.empty());
+  for (std::size_t v = 0; v < p.size(); v += 3) {
+    EXPECT_LE(std::hypot(p[v] - 3, p[v + 2]), 0.1 + 1e-6) << v;
+    EXPECT_GE(p[v + 1], -1e-6);
+    EXPECT_LE(p[v + 1], 2 + 1e-6);
+  }
+  const auto& bounds = glb.json["accessors"][rod["POSITION"].get<int>()];
+  EXPECT_NEAR(bounds["min"][1].get<double>(), 0, 1e-6);
+  EXPECT_NEAR(bounds["max"][1].get<double>(), 2, 1e-6);
+  EXPECT_NEAR(bounds["max"][0].get<double>(), 3.1, 1e-6);
+  const std::vector<double> cells = glb.values(rod["TEXCOORD_1"].get<int>());
+  EXPECT_EQ(cells[0], 1);
+  EXPECT_EQ(cells[1], 2.25);
+  // One skin over the ball's joint, its inverse bind matrix the identity: shapes lie in
+  // their cells' frames.
   ASSERT_EQ(glb.json["skins"].size(), 1u);
-  EXPECT_EQ(glb.json["skins"][0]["joints"].size(), 2u);
+  EXPECT_EQ(glb.json["skins"][0]["joints"].size(), 1u);
   const std::vector<double> inverseBind = glb.values(glb.json["skins"][0]["inverseBindMatrices"].get<int>());
-  ASSERT_EQ(inverseBind.size(), 32u);
-  for (std::size_t k = 0; k < 32; ++k) EXPECT_EQ(inverseBind[k], k % 16 % 5 == 0 ? 1.0 : 0.0) << k;
-  EXPECT_EQ(glb.json["meshes"].size(), 1u);
+  ASSERT_EQ(inverseBind.size(), 16u);
+  for (std::size_t k = 0; k < 16; ++k) EXPECT_EQ(inverseBind[k], k % 5 == 0 ? 1.0 : 0.0) << k;
+  EXPECT_EQ(glb.json["meshes"].size(), 2u) << "the parts and the still mesh";
   EXPECT_EQ(glb.json["animations"].size(), 1u);
 }
 
 // A hundred cells drawing the same ball: the ball's vertices are written once, every
 // cell's primitive reuses them with its own joint.
 TEST(GlbWriter, AShapeManyCellsDrawIsWrittenOnce) {
-  SceneBuilder frame(0);
-  for (int c = 0; c < 100; ++c)
-    frame.cell(100 + c, "C", {0, 0, 0}, glm::dmat3(1.0), [&](Geometry& g) { g.addSphere({c % 10, c / 10, 0}, 0.4); });
   GlbAnimationWriter writer;
-  writer.addFrame(frame.scene);
+  for (int f = 0; f < 2; ++f) {  // two frames, the balls rising: animated parts
+    SceneBuilder frame(f);
+    for (int c = 0; c < 100; ++c)
+      frame.cell(100 + c, "C", {0, 0, 0}, glm::dmat3(1.0), [&](Geometry& g) { g.addSphere({c % 10, c / 10, f}, 0.4); });
+    writer.addFrame(frame.scene);
+  }
   EXPECT_EQ(writer.parts().shapes().size(), 1u);
   const std::string bytes = written(writer);
   const Glb glb(bytes);
@@ -283,15 +298,19 @@ TEST(GlbWriter, AShapeManyCellsDrawIsWrittenOnce) {
 
 // Lines become tubes whose radius is kLineRadiusFraction of the run's diagonal.
 TEST(GlbWriter, LinesAreTubesOfAFractionOfTheModelsSize) {
-  SceneBuilder frame(0);
-  frame.cell(1, "F", {0, 0, 0}, glm::dmat3(1.0), [](Geometry& g) { g.addSegment({0, 0, 0}, {30, 0, 0}); });
-  frame.cell(2, "F", {30, 0, 0}, turnedAboutZ(90), [](Geometry& g) { g.addSegment({30, 0, 0}, {30, 40, 0}); });
   GlbAnimationWriter writer;
-  writer.addFrame(frame.scene);
+  for (int f = 0; f < 2; ++f) {  // two frames, the lines moving up z: animated parts
+    SceneBuilder frame(f);
+    const glm::dvec3 up(0, 0, f);
+    frame.cell(1, "F", up, glm::dmat3(1.0), [&](Geometry& g) { g.addSegment(up, glm::dvec3(30, 0, 0) + up); });
+    frame.cell(2, "F", glm::dvec3(30, 0, 0) + up, turnedAboutZ(90),
+               [&](Geometry& g) { g.addSegment(glm::dvec3(30, 0, 0) + up, glm::dvec3(30, 40, 0) + up); });
+    writer.addFrame(frame.scene);
+  }
   const Glb glb(written(writer));
   for (const auto& p : glb.json["meshes"][0]["primitives"]) EXPECT_EQ(p["mode"], 4) << "triangles only";
   // In world units: joint scale times the shape's distance from its axis (its local x).
-  const double diagonal = 50;  // of the 30 x 40 box
+  const double diagonal = std::sqrt(30.0 * 30 + 40 * 40 + 1);  // of the 30 x 40 x 1 box
   for (const char* name : {"F 1", "F 2"}) {
     const int node = glb.node(name);
     ASSERT_GE(node, 0);
@@ -389,6 +408,136 @@ TEST(GlbWriter, ACameraFramesEveryFrameAndAKeyLightShines) {
             glb.json["extensionsUsed"].end());
 }
 
+// ---- Runs of one frame: still meshes -------------------------------------------------
+
+std::vector<std::string> nodeNames(const Glb& glb) {
+  std::vector<std::string> names;
+  for (const auto& node : glb.json["nodes"]) names.push_back(node.value("name", ""));
+  return names;
+}
+
+// A frame of a ball (cell 7), a line (cell 9, colour 3) and a sphere no node covers: one
+// mesh of one primitive per colour in world coordinates, nothing skinned or animated; the
+// triangles are the frame's, in its order; every vertex carries (cell number, birth).
+TEST(GlbWriter, ARunOfOneFrameIsOneStillMeshInWorldCoordinates) {
+  SceneBuilder frame(3);
+  frame.cell(7, "Ball", {1, 2, 0}, glm::dmat3(1.0), [](Geometry& g) { g.addSphere({1, 2, 0}, 0.5); });
+  frame.cell(9, "F", {3, 0, 0}, turnedAboutZ(90), [](Geometry& g) {
+    g.setMaterial(3);
+    g.addSegment({3, 0, 0}, {3, 2, 0});
+    g.setMaterial(0);
+  });
+  frame.scene.geometry.addSphere({-1, 0, 0}, 0.25);  // drawn between cells
+  GlbAnimationWriter writer;
+  writer.addFrame(frame.scene);
+  EXPECT_EQ(writer.frameCount(), 1u);
+  EXPECT_TRUE(writer.parts().joints().empty()) << "one frame is not taken apart";
+  const Glb glb(written(writer));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"still", "ontogen camera", "ontogen key light"}));
+  EXPECT_FALSE(glb.json.contains("skins"));
+  EXPECT_FALSE(glb.json.contains("animations"));
+  ASSERT_EQ(glb.json["meshes"].size(), 1u);
+  const auto& primitives = glb.json["meshes"][0]["primitives"];
+  ASSERT_EQ(primitives.size(), 2u);
+  // Colour 0: the frame's triangles, corner by corner.
+  const Mesh& mesh = frame.scene.geometry.mesh();
+  const auto& a = primitives[0]["attributes"];
+  const std::vector<double> positions = glb.values(a["POSITION"].get<int>());
+  const std::vector<double> cells = glb.values(a["TEXCOORD_1"].get<int>());
+  const std::vector<double> indices = glb.values(primitives[0]["indices"].get<int>());
+  ASSERT_EQ(indices.size(), 3 * mesh.triangles.size());
+  const std::size_t ballTriangles = frame.scene.nodes[0].range.triangleCount;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const auto v = static_cast<std::size_t>(indices[3 * t + k]);
+      const glm::dvec3 expected = mesh.positions[mesh.triangles[t].position[k]];
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(positions[3 * v + c], static_cast<float>(expected[c])) << t << " " << k;
+      // The ball is cell 0, born at 1.75; the sphere between cells is the rest, cell 2.
+      ASSERT_EQ(cells[2 * v], t < ballTriangles ? 0 : 2) << t;
+      ASSERT_EQ(cells[2 * v + 1], t < ballTriangles ? 1.75 : 0) << t;
+    }
+  }
+  EXPECT_EQ(glb.json["materials"][primitives[1]["material"].get<int>()]["name"], "ontogen_3");
+  // Colour 3: the line as a tube of kTubeSides sides around x = 3, z = 0, from y = 0 to 2,
+  // of radius kLineRadiusFraction of the frame's diagonal.
+  const Box& box = frame.scene.geometry.bounds();
+  const double radius = glm::length(box.max - box.min) * kLineRadiusFraction;
+  const std::vector<double> tube = glb.values(primitives[1]["attributes"]["POSITION"].get<int>());
+  ASSERT_EQ(tube.size(), 3u * 2 * kTubeSides);
+  EXPECT_EQ(glb.values(primitives[1]["indices"].get<int>()).size(), 3u * 2 * kTubeSides);
+  for (std::size_t v = 0; v < tube.size(); v += 3) {
+    EXPECT_NEAR(std::hypot(tube[v] - 3, tube[v + 2]), radius, 1e-6) << v;
+    EXPECT_NEAR(tube[v + 1], v % 6 == 0 ? 0 : 2, 1e-6) << v;
+  }
+  const std::vector<double> tubeCells = glb.values(primitives[1]["attributes"]["TEXCOORD_1"].get<int>());
+  EXPECT_EQ(tubeCells[0], 1);
+  EXPECT_EQ(tubeCells[1], 2.25);
+}
+
+// The tube's placement on a segment: its ends at the segment's, in every direction,
+// straight down included.
+TEST(GlbWriter, ATubeIsPlacedOnItsSegment) {
+  const glm::dvec3 starts[] = {{0, 0, 0}, {1, 2, 3}, {0, 5, 0}, {-2, 1, 4}};
+  const glm::dvec3 ends[] = {{0, 3, 0}, {4, -1, 3}, {0, 1, 0}, {-2, 1, -4}};
+  for (int k = 0; k < 4; ++k) {
+    const TubePlacement p = tubeOn(starts[k], ends[k], 0.1);
+    EXPECT_NEAR(glm::length(p.rotation), 1, 1e-15);
+    const glm::dvec3 top = p.translation + p.rotation * glm::dvec3(0, p.scale.y, 0);
+    const glm::dvec3 bottom = p.translation + p.rotation * glm::dvec3(0, -p.scale.y, 0);
+    EXPECT_NEAR(glm::length(top - ends[k]), 0, 1e-12) << k;
+    EXPECT_NEAR(glm::length(bottom - starts[k]), 0, 1e-12) << k;
+    EXPECT_EQ(p.scale.x, 0.1);
+    EXPECT_EQ(p.scale.z, 0.1);
+  }
+}
+
+// Past kMaxBakedLines segments, lines are instances of one tube (EXT_mesh_gpu_instancing):
+// a node per colour, each instance on its segment, with its cell.
+TEST(GlbWriter, ManyLinesAreInstancesOfOneTube) {
+  Scene scene;
+  const std::size_t count = kMaxBakedLines + 1;
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> drawn[2];
+  for (std::size_t k = 0; k < count; ++k) {
+    const uint32_t colour = k % 3 == 0 ? 2 : 0;
+    const glm::dvec3 a(static_cast<double>(k % 128), static_cast<double>(k / 128), 0);
+    const glm::dvec3 b = a + glm::dvec3(std::cos(0.1 * k), std::sin(0.1 * k), 0.5 * std::sin(0.7 * k));
+    scene.geometry.setMaterial(colour);
+    scene.geometry.addSegment(a, b);
+    drawn[colour == 2].emplace_back(a, b);
+  }
+  GlbAnimationWriter writer;
+  writer.addFrame(scene);
+  const Glb glb(written(writer));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"lines 0", "lines 2", "ontogen camera", "ontogen key light"}));
+  EXPECT_NE(std::find(glb.json["extensionsUsed"].begin(), glb.json["extensionsUsed"].end(), "EXT_mesh_gpu_instancing"),
+            glb.json["extensionsUsed"].end());
+  const Box& box = scene.geometry.bounds();
+  const double radius = glm::length(box.max - box.min) * kLineRadiusFraction;
+  for (int n = 0; n < 2; ++n) {
+    const auto& node = glb.json["nodes"][n];
+    const auto& attributes = node["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+    const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
+    const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
+    const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
+    const std::vector<double> cell = glb.values(attributes["_CELL"].get<int>());
+    ASSERT_EQ(t.size(), 3 * drawn[n].size());
+    ASSERT_EQ(cell.size(), 2 * drawn[n].size());
+    for (std::size_t i = 0; i < drawn[n].size(); ++i) {
+      const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
+      const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+      const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
+      ASSERT_NEAR(glm::length(middle + half - drawn[n][i].second), 0, 1e-5) << n << " " << i;
+      ASSERT_NEAR(glm::length(middle - half - drawn[n][i].first), 0, 1e-5) << n << " " << i;
+      ASSERT_NEAR(sc[3 * i], radius, 1e-6 * radius);
+      ASSERT_EQ(cell[2 * i], 0) << "no node: every segment is the rest's, cell 0";
+    }
+  }
+  // One tube, shared by both colours' meshes.
+  EXPECT_EQ(glb.json["meshes"][0]["primitives"][0]["attributes"], glb.json["meshes"][1]["primitives"][0]["attributes"]);
+  EXPECT_EQ(glb.values(glb.json["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()).size(),
+            3u * 2 * kTubeSides);
+}
+
 // ---- The models, through the Khronos validator and Blender --------------------------
 
 namespace fs = std::filesystem;
@@ -397,9 +546,11 @@ using testing_support::runCommand;
 // Runs a model into its own folder and returns the .glb's path. The folder is named by the
 // test too: ctest runs each test in its own process, two at a time, and a folder shared by
 // two tests would be removed by one while the other writes into it.
-fs::path runModel(const std::string& model, std::optional<int> frames, std::optional<double> until = {}) {
+fs::path runModel(const std::string& model, std::optional<int> frames, std::optional<double> until = {},
+                  const std::string& formats = "glb", unsigned threads = 1, const std::string& folder = "") {
   const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "glb_writer_test" /
-                       ::testing::UnitTest::GetInstance()->current_test_info()->name() / model;
+                       ::testing::UnitTest::GetInstance()->current_test_info()->name() /
+                       (folder.empty() ? model : folder);
   fs::remove_all(dir);
   DiagnosticSink sink;
   CompileOptions options;
@@ -412,7 +563,8 @@ fs::path runModel(const std::string& model, std::optional<int> frames, std::opti
   def.stem = fs::path(model).stem().string();
   def.frames = frames;
   def.until = until;
-  def.setOptions.formats = "glb";
+  def.setOptions.formats = formats;
+  def.world.threads = threads;
   def.out = dir;
   Run run(std::move(def));
   const RunReport report = run.execute();
@@ -429,7 +581,11 @@ std::string validatorModules() {
 struct Models {
   fs::path flower = runModel("flower.cell", 12);            // 12 frames over 10 s
   fs::path colony = runModel("colony.cell", 4, 10.0);       // 4 frames over 10 s: ~200 cells
-  fs::path koch = runModel("koch.cell", std::nullopt);      // n = 4: 625 lines, one frame
+  // One frame each, with the OBJ of the same frame: Koch at n = 4 (625 lines, baked) and
+  // n = 6 (15,625 lines, instanced), the cube of tubes (triangles).
+  fs::path koch = runModel("koch.cell", std::nullopt, std::nullopt, "glb,obj");
+  fs::path koch6 = runModel("koch.cell", std::nullopt, 6.0, "glb,obj", 1, "koch6");
+  fs::path cube = runModel("cube.cell", std::nullopt, std::nullopt, "glb,obj", 1, "cube");
 };
 const Models& models() {
   static const Models grown;
@@ -440,11 +596,124 @@ TEST(GlbModels, TheFlowerTheColonyAndKochPassTheKhronosValidator) {
   const std::string modules = validatorModules();
   ONTOGEN_REQUIRE_CHECKER(!modules.empty(), "gltf-validator not installed (bash .ci/setup installs it)");
   const fs::path script = fs::path(ONTOGEN_SOURCE_DIR) / "tests" / "interpreters" / "validate_gltf.js";
-  for (const fs::path& file : {models().flower, models().colony, models().koch}) {
+  for (const fs::path& file :
+       {models().flower, models().colony, models().koch, models().koch6, models().cube}) {
     auto [status, report] = runCommand("node '" + script.string() + "' '" + modules + "' '" + file.string() + "' 2>&1");
     EXPECT_EQ(status, 0) << file << ": " << report;
     EXPECT_NE(report.find("errors 0 warnings 0"), std::string::npos) << file << ": " << report;
   }
+}
+
+std::string fileBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+// An OBJ as ontogen writes it: its positions, and per material its faces' (v, vt, vn)
+// corners and its lines' vertices (1-based as written).
+struct Obj {
+  std::vector<glm::dvec3> positions;
+  std::map<std::string, std::vector<std::array<long, 3>>> corners;  // three per triangle
+  std::vector<std::pair<long, long>> lines;
+  explicit Obj(const fs::path& path) {
+    std::ifstream in(path);
+    std::string line, material;
+    while (std::getline(in, line)) {
+      std::istringstream words(line);
+      std::string tag;
+      words >> tag;
+      if (tag == "v") {
+        glm::dvec3 p;
+        words >> p.x >> p.y >> p.z;
+        positions.push_back(p);
+      } else if (tag == "usemtl") {
+        words >> material;
+      } else if (tag == "f") {
+        std::string corner;
+        while (words >> corner) {
+          std::array<long, 3> c{};
+          std::sscanf(corner.c_str(), "%ld/%ld/%ld", &c[0], &c[1], &c[2]);
+          corners[material].push_back(c);
+        }
+      } else if (tag == "l") {
+        long a = 0, b = 0;
+        words >> a >> b;
+        lines.emplace_back(a, b);
+      }
+    }
+  }
+};
+
+// A one-frame run of Koch's curve at n = 4: one still mesh (and the camera and light),
+// its tubes the OBJ's line segments, kTubeSides sides each.
+TEST(GlbModels, OneFrameOfKochIsOneStillMeshOfTheObjsLines) {
+  const Glb glb(fileBytes(models().koch));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"still", "ontogen camera", "ontogen key light"}));
+  EXPECT_FALSE(glb.json.contains("skins"));
+  EXPECT_FALSE(glb.json.contains("animations"));
+  const Obj obj(models().koch.parent_path() / "koch.obj");
+  ASSERT_EQ(obj.lines.size(), 625u);
+  const auto& primitive = glb.json["meshes"][0]["primitives"][0];
+  EXPECT_EQ(glb.json["accessors"][primitive["attributes"]["POSITION"].get<int>()]["count"].get<std::size_t>(),
+            obj.lines.size() * 2 * kTubeSides);
+  EXPECT_EQ(glb.json["accessors"][primitive["indices"].get<int>()]["count"].get<std::size_t>(),
+            obj.lines.size() * 2 * kTubeSides * 3);
+}
+
+// Koch's curve at n = 6 (15,625 lines): three nodes, instances of one tube, each on one
+// of the OBJ's segments, in its order; the same bytes on one thread and two.
+TEST(GlbModels, OneFrameOfKochAtSixIsInstancesOnTheObjsSegments) {
+  const std::string bytes = fileBytes(models().koch6);
+  const Glb glb(bytes);
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"lines 0", "ontogen camera", "ontogen key light"}));
+  EXPECT_FALSE(glb.json.contains("skins"));
+  EXPECT_FALSE(glb.json.contains("animations"));
+  const Obj obj(models().koch6.parent_path() / "koch.obj");
+  ASSERT_EQ(obj.lines.size(), 15625u);
+  const auto& attributes = glb.json["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+  const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
+  const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
+  const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
+  ASSERT_EQ(t.size(), 3 * obj.lines.size());
+  for (std::size_t i = 0; i < obj.lines.size(); ++i) {
+    const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
+    const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+    const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
+    // Koch's curve at n = 6 spans 729 units: floats hold it to about 1e-4.
+    ASSERT_NEAR(glm::length(middle - half - obj.positions[obj.lines[i].first - 1]), 0, 1e-3) << i;
+    ASSERT_NEAR(glm::length(middle + half - obj.positions[obj.lines[i].second - 1]), 0, 1e-3) << i;
+  }
+  const fs::path twoThreads = runModel("koch.cell", std::nullopt, 6.0, "glb", 2, "koch6_two_threads");
+  EXPECT_TRUE(fileBytes(twoThreads) == bytes) << "the same bytes on two threads";
+}
+
+// The cube of tubes in one frame: per colour, the OBJ's triangles corner by corner (the
+// same positions, in the same order) and as many vertices as the OBJ's distinct corners;
+// the same bytes on one thread and two.
+TEST(GlbModels, OneFrameOfTheCubeIsTheObjsTrianglesByValue) {
+  const std::string bytes = fileBytes(models().cube);
+  const Glb glb(bytes);
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"still", "ontogen camera", "ontogen key light"}));
+  const Obj obj(models().cube.parent_path() / "cube.obj");
+  const auto& primitives = glb.json["meshes"][0]["primitives"];
+  ASSERT_EQ(primitives.size(), obj.corners.size());
+  std::size_t p = 0;
+  for (const auto& [material, corners] : obj.corners) {
+    const auto& primitive = primitives[p++];
+    EXPECT_EQ(glb.json["materials"][primitive["material"].get<int>()]["name"], material);
+    const std::vector<double> positions = glb.values(primitive["attributes"]["POSITION"].get<int>());
+    const std::vector<double> indices = glb.values(primitive["indices"].get<int>());
+    ASSERT_EQ(indices.size(), corners.size()) << material;
+    std::set<std::array<long, 3>> distinct(corners.begin(), corners.end());
+    EXPECT_EQ(positions.size(), 3 * distinct.size()) << material;
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      const glm::dvec3& expected = obj.positions[corners[k][0] - 1];
+      const auto v = static_cast<std::size_t>(indices[k]);
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(positions[3 * v + c], expected[c], 1e-6) << material << " " << k;
+    }
+  }
+  const fs::path twoThreads = runModel("cube.cell", std::nullopt, std::nullopt, "glb", 2, "cube_two_threads");
+  EXPECT_TRUE(fileBytes(twoThreads) == bytes) << "the same bytes on two threads";
 }
 
 // What Blender 3.4 makes of the files (blender_glb.py): objects, actions, frame ranges,
@@ -511,7 +780,7 @@ TEST(GlbModels, BlenderImportsAFewObjectsWithOneActionAndRendersThePalette) {
   // Koch's curve: lines drawn as tubes, in palette colour 0 within 2 levels.
   const nlohmann::json& koch = reports["koch.glb"];
   EXPECT_GT(pixelsOf(koch, 0, 2), 96) << koch.dump();
-  EXPECT_EQ(koch["objects"]["MESH"], 3) << "625 joints: a mesh per 256";
+  EXPECT_EQ(koch["objects"]["MESH"], 1) << "one frame: one still mesh";
 }
 
 }  // namespace
