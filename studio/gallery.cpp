@@ -1,5 +1,6 @@
 #include "studio/gallery.h"
 
+#include <cctype>
 #include <stdexcept>
 
 #include "interpreters/output_file.h"
@@ -117,11 +118,25 @@ void Gallery::render(GalleryVariant& variant, int index) const {
   if (variant.png.empty()) variant.error = "the variant draws nothing to picture";
 }
 
+namespace {
+// A file name of letters, digits, '_', '-' and inner dots only: no separator, no "..", no
+// hidden file, so a saved variant lands in the save folder whatever its stem.
+std::string fileNamePart(const std::string& stem) {
+  std::string part;
+  for (const char c : stem) {
+    const bool plain = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+    if (part.empty() && c == '.') continue;
+    part += plain && !(c == '.' && part.back() == '.') ? c : '_';
+  }
+  return part.empty() ? std::string("variant") : part;
+}
+}  // namespace
+
 std::filesystem::path Gallery::save(int index) const {
   if (!space_ || index < 0 || index >= static_cast<int>(variants_.size()))
     throw std::invalid_argument("no variant " + std::to_string(index));
   const std::filesystem::path path =
-      def_.saveTo / (stem_ + "_g" + std::to_string(generation_) + "_v" + std::to_string(index) + ".cell");
+      def_.saveTo / (fileNamePart(stem_) + "_g" + std::to_string(generation_) + "_v" + std::to_string(index) + ".cell");
   const std::string& text = variants_[static_cast<std::size_t>(index)].text;
   writeFileAtomically(path, [&text](std::ostream& out) { out << text; });
   return path;

@@ -52,7 +52,8 @@ class Gallery {
   /// The next generation from the picked variants (indices into variants()); throws
   /// std::invalid_argument when none is picked or an index is out of range.
   void breed(const std::vector<int>& picked);
-  /// Writes a variant's program beside the others saved, named by generation and index;
+  /// Writes a variant's program beside the others saved, named by generation and index
+  /// (`STEM_gG_vK.cell` in GalleryDef::saveTo, the stem stripped of separators and "..");
   /// returns its path. Throws std::invalid_argument on a bad index, OutputError when it
   /// cannot be written.
   std::filesystem::path save(int index) const;

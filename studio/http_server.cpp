@@ -2,6 +2,7 @@
 
 #include <httplib.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -11,6 +12,44 @@
 namespace ontogen::studio {
 
 namespace {
+// The library's server, with the request loop of one connection open to answerBytes().
+struct LibraryServer : httplib::Server {
+  using httplib::Server::process_request;
+};
+
+// One connection's bytes in, the answer's bytes out.
+class BytesStream final : public httplib::Stream {
+ public:
+  explicit BytesStream(std::string_view in) : in_(in) {}
+  bool is_readable() const override { return true; }
+  bool is_writable() const override { return true; }
+  ssize_t read(char* into, size_t size) override {
+    const size_t n = std::min(size, in_.size());
+    std::copy_n(in_.data(), n, into);
+    in_.remove_prefix(n);
+    return static_cast<ssize_t>(n);
+  }
+  ssize_t write(const char* from, size_t size) override {
+    out_.append(from, size);
+    return static_cast<ssize_t>(size);
+  }
+  void get_remote_ip_and_port(std::string& ip, int& port) const override {
+    ip = "127.0.0.1";
+    port = 0;
+  }
+  void get_local_ip_and_port(std::string& ip, int& port) const override {
+    ip = "127.0.0.1";
+    port = 0;
+  }
+  socket_t socket() const override { return INVALID_SOCKET; }
+  bool atEnd() const { return in_.empty(); }
+  std::string& out() { return out_; }
+
+ private:
+  std::string_view in_;
+  std::string out_;
+};
+
 std::string lowerCase(std::string text) {
   for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return text;
@@ -18,8 +57,10 @@ std::string lowerCase(std::string text) {
 }  // namespace
 
 struct HttpServer::Impl {
-  httplib::Server server;
+  LibraryServer server;
   Handler handler;
+  uint16_t port = 0;
+  bool listening = false;
   std::thread serving;
   std::atomic<bool> ended{false};     // listening ended (or never began)
   std::atomic<bool> stopping{false};  // streams end
@@ -31,6 +72,7 @@ struct HttpServer::Impl {
     for (const auto& [name, value] : in.params) request.query.emplace(name, value);
     for (const auto& [name, value] : in.headers) request.headers.emplace(lowerCase(name), value);
     request.body = in.body;
+    request.port = port;
     HttpResponse response = handler(request);
     out.status = response.status;
     // The page follows the model as it changes: no cache may answer for the server.
@@ -75,7 +117,10 @@ HttpServer::HttpServer(const HttpServerDef& def, Handler handler) : impl_(std::m
     out.set_content("{\"error\": \"internal error\"}", "application/json");
   });
   // Loopback only: never reachable from another machine.
-  if (def.port == 0) {
+  impl_->listening = def.listen;
+  if (!def.listen) {
+    port_ = def.port;
+  } else if (def.port == 0) {
     const int port = server.bind_to_any_port("127.0.0.1");
     if (port <= 0) throw std::runtime_error("cannot listen on 127.0.0.1 at any port");
     port_ = static_cast<uint16_t>(port);
@@ -84,11 +129,13 @@ HttpServer::HttpServer(const HttpServerDef& def, Handler handler) : impl_(std::m
       throw std::runtime_error("cannot listen on 127.0.0.1:" + std::to_string(def.port) + " (is it taken?)");
     port_ = def.port;
   }
+  impl_->port = port_;
 }
 
 HttpServer::~HttpServer() { stop(); }
 
 void HttpServer::start() {
+  if (!impl_->listening) throw std::logic_error("a server that listens nowhere cannot start");
   if (impl_->serving.joinable()) return;
   impl_->serving = std::thread([impl = impl_.get()] {
     impl->server.listen_after_bind();
@@ -102,6 +149,17 @@ void HttpServer::stop() {
   impl_->stopping = true;
   impl_->server.stop();
   if (impl_->serving.joinable()) impl_->serving.join();
+}
+
+std::string HttpServer::answerBytes(std::string_view request) {
+  if (impl_->serving.joinable()) throw std::logic_error("answerBytes() on a server that is serving");
+  BytesStream stream(request);
+  // As the library answers a connection: requests one after another while it is kept alive.
+  for (int left = 5; left > 0 && !stream.atEnd(); --left) {
+    bool closed = false;
+    if (!impl_->server.process_request(stream, left == 1, closed, nullptr) || closed) break;
+  }
+  return std::move(stream.out());
 }
 
 }  // namespace ontogen::studio

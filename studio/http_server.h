@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct HttpRequest {
   std::map<std::string, std::string> query;    ///< decoded ?name=value pairs
   std::map<std::string, std::string> headers;  ///< by lower-case name; the first of repeated ones
   std::string body;
+  uint16_t port = 0;  ///< the port of 127.0.0.1 the server listens on, which the request came to
 
   /// The value of a header by its lower-case name; empty when absent.
   std::string header(const std::string& lowerCaseName) const {
@@ -49,6 +51,9 @@ struct HttpResponse {
 
 struct HttpServerDef {
   uint16_t port = 0;  ///< on 127.0.0.1; 0: a free port the system picks
+  /// false: listens nowhere, and answers only answerBytes() as if it listened at port
+  /// (the fuzz target of requests, tests/fuzz/fuzz_request.cpp).
+  bool listen = true;
   /// Connections answered at once; each open connection (an idle one too, until its
   /// time-out) holds a thread. A page opens at most six, a browser's limit.
   int threads = 48;
@@ -78,6 +83,12 @@ class HttpServer {
   void start();
   /// Stops listening, ends the streams of events and waits for the requests at hand.
   void stop();
+  /// The bytes the server answers to `request`, the bytes a client sent on one connection
+  /// before it closed: parsed and answered as over a socket (with keep-alive, at most five
+  /// requests), without one. Of a stream of events only the head is sent (the library
+  /// streams only while it listens). Only on a server that is not serving (start());
+  /// not thread-safe.
+  std::string answerBytes(std::string_view request);
 
  private:
   struct Impl;

@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
 #include "interpreters/output_file.h"
+#include "studio/request_guard.h"
 #include "studio/studio_assets.h"
 
 namespace ontogen::studio {
@@ -21,7 +23,22 @@ nlohmann::json bodyOf(const HttpRequest& request) {
   nlohmann::json body = nlohmann::json::parse(request.body, nullptr, false);
   return body.is_object() ? body : nlohmann::json(nlohmann::json::value_t::discarded);
 }
+
+
+// Where index.html takes the run's token (<meta name="ontogen-token">), which the page's
+// script sends back with each change.
+constexpr std::string_view kTokenPlaceholder = "ONTOGEN-PAGE-TOKEN";
 }  // namespace
+
+StudioServer::StudioServer(StudioModel& model, Gallery& gallery, StudioServerDef def)
+    : model_(model), gallery_(gallery), token_(def.token.empty() ? randomToken() : std::move(def.token)) {
+  for (const StudioAsset& asset : studioAssets()) {
+    if (asset.path != "/") continue;
+    page_ = std::string(asset.bytes);
+    for (std::size_t at; (at = page_.find(kTokenPlaceholder)) != std::string::npos;)
+      page_.replace(at, kTokenPlaceholder.size(), token_);
+  }
+}
 
 void StudioServer::idle() { model_.refresh(); }
 
@@ -60,11 +77,13 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
   const std::string& path = request.path;
   const bool get = request.method == "GET" || request.method == "HEAD";
   const bool post = request.method == "POST";
+  if (const std::string refusal = refusalOf(request, request.port, token_); !refusal.empty())
+    return error(403, refusal);
   try {
     if (get) {
       for (const StudioAsset& asset : studioAssets())
         if (asset.path == path || (path == "/index.html" && asset.path == "/"))
-          return {200, std::string(asset.contentType), std::string(asset.bytes)};
+          return {200, std::string(asset.contentType), asset.path == "/" ? page_ : std::string(asset.bytes)};
       if (path == "/" && studioAssets().empty())
         return {200, "text/plain; charset=utf-8",
                 "This build of ontogen has no studio page: it was built without esbuild and three.js (bash .ci/setup "
@@ -89,10 +108,7 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
       // The gallery grows its variants on the request's thread, one request at a time;
       // the model and its page go on meanwhile.
       const std::lock_guard<std::mutex> lock(galleryMutex_);
-      if (path == "/api/gallery") {
-        if (!gallery_.ready() || galleryText_ != model_.text()) restartGallery();
-        return json(gallery_.state());
-      }
+      if (path == "/api/gallery") return json(gallery_.state());
       if (path.starts_with("/gallery/") && path.ends_with(".png")) {
         const std::string number = path.substr(9, path.size() - 13);
         if (number.empty() || number.size() > 3 || number.find_first_not_of("0123456789") != std::string::npos)
@@ -129,6 +145,10 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
         return json(model_.state());
       }
       const std::lock_guard<std::mutex> lock(galleryMutex_);
+      if (path == "/api/gallery") {
+        if (!gallery_.ready() || galleryText_ != model_.text()) restartGallery();
+        return json(gallery_.state());
+      }
       if (path == "/api/breed") {
         if (!body.contains("picked") || !body["picked"].is_array()) return error(400, "breed takes {\"picked\": [K, ...]}");
         std::vector<int> picked;
@@ -141,7 +161,10 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
         return json(gallery_.state());
       }
       if (path == "/api/save") {
-        if (!body.contains("index") || !body["index"].is_number_integer()) return error(400, "save takes {\"index\": K}");
+        // The studio names the file (studio/gallery.h): a request picks a variant, never a
+        // name or a folder.
+        if (body.size() != 1 || !body.contains("index") || !body["index"].is_number_integer())
+          return error(400, "save takes {\"index\": K} alone: the studio names the file it writes");
         return json({{"path", gallery_.save(body["index"].get<int>()).string()}});
       }
       if (path == "/api/gallery/restart") {

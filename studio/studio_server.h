@@ -1,23 +1,27 @@
 #pragma once
 // What the studio's page can ask of it, over HTTP (studio/http_server.h):
 //
-//   GET  /, /studio.js, /studio.css   the page (studio/studio_assets.h)
+//   GET  /, /studio.js, /studio.css   the page (studio/studio_assets.h), the run's token written in
 //   GET  /api/state                   versions, diagnostics, defines, times, source, growth, limits (JSON)
 //   GET  /api/events                  the state again at each change, as server-sent events
 //   GET  /model.glb                   the last model that grew, as `ontogen run --format glb` writes it
 //   GET  /api/notes                   the music set's notes, in seconds (JSON)
+//   GET  /api/gallery                 the evolution gallery as it stands (JSON; generation 0 before one is made)
+//   GET  /gallery/K.png               the picture of variant K
 //   POST /api/define                  {"name": N, "value": V}: move a slider (within its range) and
 //                                     grow again; answers the state
 //   POST /api/stop                    cancel the growth at hand; the last model stays
 //   POST /api/limits                  {"maxCells": N, "maxMemoryMiB": M}: the interactive limits; grows again
-//   GET  /api/gallery                 the evolution gallery (JSON), made at the first ask
-//   GET  /gallery/K.png               the picture of variant K
+//   POST /api/gallery                 {}: the gallery, made at the first ask and again when the program changed
 //   POST /api/breed                   {"picked": [K, ...]}: the next generation
-//   POST /api/save                    {"index": K}: write variant K as a program; answers its path
+//   POST /api/save                    {"index": K}: write variant K as a program under a name the
+//                                     studio makes (no name or path is taken); answers its path
 //   POST /api/gallery/restart         a new gallery from the program with the sliders' values
 //
-// Errors are JSON {"error": message} with status 400 (a bad request) or 422 (a request the
-// model cannot follow).
+// Every request must be addressed to the studio (Host 127.0.0.1:PORT or localhost:PORT),
+// and every POST must come from its page (Origin) with the run's token (X-Ontogen-Token),
+// or it is refused with 403 (studio/request_guard.h). Other errors are JSON {"error":
+// message} with status 400 (a bad request) or 422 (a request the model cannot follow).
 
 #include <cstdint>
 #include <mutex>
@@ -29,9 +33,19 @@
 
 namespace ontogen::studio {
 
+struct StudioServerDef {
+  /// The token the page's changes carry (X-Ontogen-Token); empty: a new random one
+  /// (randomToken(), 256 bits), as each run of the studio makes.
+  std::string token;
+};
+
 class StudioServer {
  public:
-  StudioServer(StudioModel& model, Gallery& gallery) : model_(model), gallery_(gallery) {}
+  /// Throws std::runtime_error when no random token can be made.
+  StudioServer(StudioModel& model, Gallery& gallery, StudioServerDef def = {});
+
+  /// The run's token, which the page served at / holds.
+  const std::string& token() const { return token_; }
 
   /// Answers a request; called on many threads at once. The model grows on its own
   /// thread (StudioModel::start()); the gallery answers one request at a time.
@@ -45,6 +59,8 @@ class StudioServer {
 
   StudioModel& model_;
   Gallery& gallery_;
+  std::string token_;
+  std::string page_;  // index.html with the token written in
   std::string galleryText_;  // the model text the gallery started from
   std::mutex galleryMutex_;  // the gallery and galleryText_
 };

@@ -266,9 +266,16 @@ events.onerror = () => {
   $('status').textContent = 'the studio does not answer (was it stopped?)';
 };
 
-// Requests that change something.
+// Requests that change something, the only way the page makes one: they carry the token
+// the studio wrote into this page for its run, which other sites cannot read, so the
+// studio can tell its page's requests from theirs (studio/request_guard.h).
+const token = document.querySelector('meta[name="ontogen-token"]').content;
 function post(path, body) {
-  return fetch(path, { method: 'POST', body: JSON.stringify(body) });
+  return fetch(path, {
+    method: 'POST',
+    headers: { 'Content-Type': 'application/json', 'X-Ontogen-Token': token },
+    body: JSON.stringify(body),
+  });
 }
 
 $('stop').addEventListener('click', () => post('/api/stop', {}));
@@ -324,11 +331,11 @@ function showGallery(gallery) {
 
 async function galleryRequest(path, body) {
   $('generation').textContent = 'growing the variants…';
-  const response = await (body === undefined ? fetch(path) : post(path, body));
+  const response = await post(path, body);
   const answer = await response.json();
   if (!response.ok) { $('generation').textContent = answer.error; return; }
   showGallery(answer);
 }
-$('gallery-open').addEventListener('click', () => galleryRequest('/api/gallery'));
+$('gallery-open').addEventListener('click', () => galleryRequest('/api/gallery', {}));
 $('gallery-restart').addEventListener('click', () => galleryRequest('/api/gallery/restart', {}));
 $('breed').addEventListener('click', () => galleryRequest('/api/breed', { picked: [...studio.picked].sort((a, b) => a - b) }));

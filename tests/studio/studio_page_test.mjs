@@ -5,7 +5,8 @@
 // model stays, that a growth without end shows its progress, is answered about all the
 // while and stops with Stop, that a runaway stops at the interactive limit the page
 // shows, that the music set's notes reach the page and play with the animation, and that
-// the gallery breeds a generation whose variants can be saved as programs that grow.
+// the gallery breeds a generation whose variants can be saved as programs that grow, and
+// that the page's changes carry the token the studio wrote into it (others are refused).
 //
 //   node studio_page_test.mjs ONTOGEN_EXECUTABLE OUTPUT_DIR
 // Exit 0: passed; 1: failed; 77: a checker is missing (a failure when CI=true).
@@ -276,8 +277,14 @@ try {
     'every child descends from the picked');
   const distinct = new Set(second.variants.map((v) => JSON.stringify(v.values))).size;
   check(distinct >= 10, `the variants differ from one another (${distinct} distinct of 12)`);
-  const answer = await (await fetch(url + 'api/save', { method: 'POST', body: JSON.stringify({ index: 5 }) })).json();
-  check(typeof answer.path === 'string' && fs.existsSync(answer.path), `a variant saved as ${answer.path}`);
+  // Only the page saves: a request without its token (as another site's page would send)
+  // is refused; the page's save button is answered.
+  const refused = await fetch(url + 'api/save', { method: 'POST', body: JSON.stringify({ index: 5 }) });
+  check(refused.status === 403, `a save without the page's token is refused (${refused.status})`);
+  await page.click('#gallery .variant[data-index="5"] button');
+  await page.waitForFunction(() => /^saved /.test(document.getElementById('saved').textContent), null, { timeout: 20000 });
+  const answer = { path: (await page.textContent('#saved')).replace(/^saved /, '') };
+  check(answer.path === path.join(work, 'tree_g2_v5.cell') && fs.existsSync(answer.path), `a variant saved as ${answer.path}`);
   // 32 A, 31 F, 6 brackets and turns around each of the 31 branchings, and !: 250.
   const grown = spawnSync(executable, ['run', answer.path, '--format', 'none', '--stats'], { encoding: 'utf8' });
   check(grown.status === 0 && /cells 250,/.test(grown.stdout), `the saved variant grows alone (${grown.stdout.trim()})`);

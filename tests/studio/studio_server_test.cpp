@@ -4,14 +4,18 @@
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -22,6 +26,7 @@
 #include "lang/compiler.h"
 #include "studio/gallery.h"
 #include "studio/http_server.h"
+#include "studio/studio_assets.h"
 #include "studio/studio_model.h"
 #include "studio/studio_server.h"
 
@@ -42,11 +47,18 @@ std::string exchange(uint16_t port, const std::string& bytes) {
     return "connect failed";
   }
   // No half-close: the server would take it for a page gone away. The requests say
-  // `Connection: close`, or are bad ones the server closes after answering.
+  // `Connection: close`, or are bad ones the server closes after answering. An answer
+  // that does not end (a stream of events) is cut after 10 s.
+  const timeval wait{1, 0};
+  ::setsockopt(client, SOL_SOCKET, SO_RCVTIMEO, &wait, sizeof wait);
   ::send(client, bytes.data(), bytes.size(), MSG_NOSIGNAL);
   std::string answer;
   char buffer[4096];
-  for (ssize_t n; (n = ::recv(client, buffer, sizeof buffer, 0)) > 0;) answer.append(buffer, static_cast<size_t>(n));
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  for (ssize_t n; std::chrono::steady_clock::now() < end;) {
+    if ((n = ::recv(client, buffer, sizeof buffer, 0)) > 0) answer.append(buffer, static_cast<size_t>(n));
+    else if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) break;
+  }
   ::close(client);
   return answer;
 }
@@ -161,6 +173,40 @@ TEST(HttpServer, StreamsEventsWhileAnsweringOthersAndEndsThemWhenItStops) {
   while ((n = ::recv(client, buffer, sizeof buffer, 0)) > 0) stream.append(buffer, static_cast<size_t>(n));
   EXPECT_EQ(n, 0);
   ::close(client);
+}
+
+// The bytes of one connection answered without a socket (the fuzz target's way in): each
+// request kept alive answered in turn; of a stream of events only its head.
+TEST(HttpServer, AnswersTheBytesOfAConnectionWithoutListening) {
+  HttpServerDef def;
+  def.port = 8420;
+  def.listen = false;
+  int pieces = 0;
+  HttpServer server(def, [&pieces](const HttpRequest& request) {
+    if (request.path != "/events") {
+      HttpResponse response = echo(request);
+      response.body += " port " + std::to_string(request.port);
+      return response;
+    }
+    HttpResponse response{200, "text/event-stream", ""};
+    response.stream = [&pieces](std::string& next) {
+      next = "data: " + std::to_string(++pieces) + "\n\n";
+      return true;
+    };
+    return response;
+  });
+  EXPECT_EQ(server.port(), 8420);
+  EXPECT_THROW(server.start(), std::logic_error);
+  const std::string two = server.answerBytes(
+      "GET /a?g=1 HTTP/1.1\r\nHost: h\r\n\r\nPOST /b HTTP/1.1\r\nContent-Length: 2\r\n\r\nxy");
+  EXPECT_TRUE(two.starts_with("HTTP/1.1 200 OK\r\n")) << two;
+  EXPECT_NE(two.find("path /a q 1 host h body  port 8420HTTP/1.1 200 OK\r\n"), std::string::npos) << two;
+  EXPECT_TRUE(two.ends_with("path /b q  host  body xy port 8420")) << two;
+  EXPECT_TRUE(server.answerBytes("NONSENSE\r\n\r\n").starts_with("HTTP/1.1 400 "));
+  const std::string events = server.answerBytes("GET /events HTTP/1.1\r\n\r\n");
+  EXPECT_TRUE(events.starts_with("HTTP/1.1 200 OK\r\n")) << events;
+  EXPECT_NE(events.find("Content-Type: text/event-stream\r\n"), std::string::npos) << events;
+  EXPECT_EQ(pieces, 0);
 }
 
 const char* kTree = R"(#define ANGLE 30
@@ -334,11 +380,14 @@ TEST_F(StudioFixture, RoutesAnswerThePage) {
   model.start();
   Gallery gallery(galleryDef());
   StudioServer server(model, gallery);
+  // As the page asks: to the studio's address, its changes from its origin with the token.
   auto ask = [&](std::string method, std::string path, std::string body = "") {
     HttpRequest request;
     request.method = std::move(method);
     request.path = std::move(path);
     request.body = std::move(body);
+    request.port = 8420;
+    request.headers = {{"host", "127.0.0.1:8420"}, {"origin", "http://127.0.0.1:8420"}, {"x-ontogen-token", server.token()}};
     return server.handle(request);
   };
   const HttpResponse state = ask("GET", "/api/state");
@@ -369,7 +418,10 @@ TEST_F(StudioFixture, RoutesAnswerThePage) {
   EXPECT_EQ(ask("POST", "/api/stop", "{}").status, 200);
   EXPECT_EQ(nlohmann::json::parse(ask("GET", "/api/notes").body)["notes"].size(), 0u);  // no music set
 
-  const nlohmann::json first = nlohmann::json::parse(ask("GET", "/api/gallery").body);
+  // Only a POST makes the gallery; a GET answers it as it stands.
+  EXPECT_EQ(nlohmann::json::parse(ask("GET", "/api/gallery").body)["generation"], 0);
+  EXPECT_FALSE(gallery.ready());
+  const nlohmann::json first = nlohmann::json::parse(ask("POST", "/api/gallery", "{}").body);
   ASSERT_EQ(first["variants"].size(), 12u);
   EXPECT_EQ(first["generation"], 1);
   // The gallery starts from the sliders: variant 0 is the program as the page shows it.
@@ -394,6 +446,181 @@ TEST_F(StudioFixture, RoutesAnswerThePage) {
   ASSERT_TRUE(program) << text;
   EXPECT_EQ(program->defines[0].value, second["variants"][4]["values"][0].get<double>());
   EXPECT_EQ(program->defines[1].value, second["variants"][4]["values"][1].get<double>());
+}
+
+// The studio's own address and page over a real socket: what a browser sends for the
+// studio's page, for another site's page (a "simple" cross-site POST, no preflight) and
+// for a page of a site whose name was made to point at 127.0.0.1 (DNS rebinding).
+struct StudioOverHttp : StudioFixture {
+  std::unique_ptr<StudioModel> model;
+  std::unique_ptr<Gallery> gallery;
+  std::unique_ptr<StudioServer> studio;
+  std::unique_ptr<HttpServer> http;
+  std::string self;  // 127.0.0.1:PORT
+
+  void SetUp() override {
+    StudioFixture::SetUp();
+    model = std::make_unique<StudioModel>(modelDef());
+    model->regrow();
+    model->start();
+    GalleryDef def = galleryDef();
+    def.saveTo = folder / "saved";
+    fs::create_directories(def.saveTo);
+    gallery = std::make_unique<Gallery>(def);
+    gallery->reset(kTree, "tree");  // a gallery to save from
+    studio = std::make_unique<StudioServer>(*model, *gallery);
+    http = std::make_unique<HttpServer>(HttpServerDef{}, [this](const HttpRequest& r) { return studio->handle(r); });
+    http->start();
+    self = "127.0.0.1:" + std::to_string(http->port());
+  }
+  void TearDown() override {
+    http->stop();
+    StudioFixture::TearDown();
+  }
+  // The answer to a request with these header lines (each "Name: value"), whole.
+  std::string send(const std::string& method, const std::string& path, const std::vector<std::string>& headers,
+                   const std::string& body = "") {
+    std::string request = method + " " + path + " HTTP/1.1\r\n";
+    for (const std::string& header : headers) request += header + "\r\n";
+    if (method == "POST") request += "Content-Length: " + std::to_string(body.size()) + "\r\n";
+    return exchange(http->port(), request + "Connection: close\r\n\r\n" + body);
+  }
+  // What the studio's page sends for a change.
+  std::vector<std::string> page() const {
+    return {"Host: " + self, "Origin: http://" + self, "Content-Type: application/json", "X-Ontogen-Token: " + studio->token()};
+  }
+  // The programs in the test's folder, the save folder (saved/) among them.
+  std::set<fs::path> cellFiles() const {
+    std::set<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(folder))
+      if (entry.path().extension() == ".cell") files.insert(entry.path());
+    return files;
+  }
+};
+
+int statusOf(const std::string& answer) { return answer.size() > 12 ? std::atoi(answer.c_str() + 9) : 0; }
+
+TEST_F(StudioOverHttp, AForeignHostIsRefusedEvenToRead) {
+  const std::string own = send("GET", "/api/state", {"Host: " + self});
+  EXPECT_EQ(statusOf(own), 200) << own;
+  EXPECT_NE(own.find("lsystem tree"), std::string::npos);  // the program's source
+  EXPECT_EQ(statusOf(send("GET", "/api/state", {"Host: localhost:" + std::to_string(http->port())})), 200);
+  const std::string port = std::to_string(http->port());
+  for (const std::string& host : std::vector<std::string>{"Host: evil.example:" + port, "Host: attacker.com",
+                                  "Host: 127.0.0.1:" + std::to_string(http->port() + 1), "Host: 127.0.0.1",
+                                  "Host: 127.0.0.1:" + port + ".attacker.com", "X-No-Host: 1"}) {
+    for (const char* path : {"/api/state", "/", "/model.glb", "/api/events"}) {
+      const std::string answer = send("GET", path, {host});
+      EXPECT_EQ(statusOf(answer), 403) << host << " " << path << "\n" << answer;
+      EXPECT_EQ(answer.find("lsystem tree"), std::string::npos) << host;
+      EXPECT_NE(answer.find("the studio answers only requests to 127.0.0.1:" + port), std::string::npos) << answer;
+    }
+    std::vector<std::string> headers = page();
+    headers[0] = host;
+    EXPECT_EQ(statusOf(send("POST", "/api/stop", headers, "{}")), 403) << host;
+  }
+}
+
+TEST_F(StudioOverHttp, ACrossSiteSimplePostIsRefusedAndChangesNothing) {
+  const std::set<fs::path> before = cellFiles();
+  const uint64_t version = model->version();
+  for (const std::string& origin : {std::string("Origin: http://evil.example"), std::string("Origin: null"),
+                                    "Origin: https://" + self, "Origin: http://" + self + ".evil.example",
+                                    std::string("X-No-Origin: 1")}) {
+    for (const auto& [path, body] : std::vector<std::pair<std::string, std::string>>{
+             {"/api/save", R"({"index": 0})"},
+             {"/api/define", R"({"name": "ANGLE", "value": 45})"},
+             {"/api/breed", R"({"picked": [1]})"},
+             {"/api/limits", R"({"maxCells": 10, "maxMemoryMiB": 64})"},
+             {"/api/stop", "{}"}}) {
+      // As a form or fetch(..., {mode: "no-cors"}) of another site sends it: no preflight.
+      const std::string simple = send("POST", path, {"Host: " + self, origin, "Content-Type: text/plain"}, body);
+      EXPECT_EQ(statusOf(simple), 403) << origin << " " << path << "\n" << simple;
+      EXPECT_NE(simple.find("own page"), std::string::npos) << simple;
+      // Even with the token (were it ever to leak), another origin is refused.
+      std::vector<std::string> headers = page();
+      headers[1] = origin;
+      EXPECT_EQ(statusOf(send("POST", path, headers, body)), 403) << origin << " " << path;
+    }
+  }
+  EXPECT_EQ(cellFiles(), before);
+  EXPECT_EQ(gallery->generation(), 1);
+  EXPECT_EQ(model->version(), version);
+  EXPECT_EQ(model->defineValues().at("ANGLE"), 30.0);  // as written
+}
+
+TEST_F(StudioOverHttp, AChangeNeedsThePagesTokenAndIsAnsweredWithIt) {
+  const std::string token = studio->token();
+  ASSERT_EQ(token.size(), 64u);
+  std::string wrong = token;
+  wrong[17] = wrong[17] == '0' ? '1' : '0';
+  const std::string body = R"({"name": "ANGLE", "value": 45})";
+  const uint64_t version = model->version();
+  for (const std::string& given : {std::string(), "X-Ontogen-Token: " + wrong, "X-Ontogen-Token: " + token.substr(0, 63),
+                                   "X-Ontogen-Token: " + token + "0", std::string("X-Ontogen-Token: "),
+                                   "X-Ontogen-Token: " + studio->token().substr(0, 32)}) {
+    std::vector<std::string> headers = page();
+    headers[3] = given.empty() ? "X-Other: 1" : given;
+    const std::string refused = send("POST", "/api/define", headers, body);
+    EXPECT_EQ(statusOf(refused), 403) << given << "\n" << refused;
+    EXPECT_NE(refused.find("the page's token (X-Ontogen-Token)"), std::string::npos) << refused;
+  }
+  EXPECT_EQ(model->version(), version);
+  // The page's own request, from either of the studio's names.
+  const std::string accepted = send("POST", "/api/define", page(), body);
+  EXPECT_EQ(statusOf(accepted), 200) << accepted;
+  ASSERT_TRUE(model->waitIdle());
+  EXPECT_EQ(model->defineValues().at("ANGLE"), 45.0);
+  EXPECT_GT(model->version(), version);
+  const std::string local = "localhost:" + std::to_string(http->port());
+  const std::string other = send("POST", "/api/stop", {"Host: " + local, "Origin: http://" + local, "X-Ontogen-Token: " + token}, "{}");
+  EXPECT_EQ(statusOf(other), 200) << other;
+  // A different run has a different token; the page it serves holds its own.
+  EXPECT_NE(StudioServer(*model, *gallery).token(), token);
+  const std::string served = send("GET", "/", {"Host: " + self});
+  EXPECT_EQ(statusOf(served), 200);
+  if (!studioAssets().empty()) {
+    EXPECT_NE(served.find("<meta name=\"ontogen-token\" content=\"" + token + "\">"), std::string::npos) << served;
+    EXPECT_EQ(served.find("ONTOGEN-PAGE-TOKEN"), std::string::npos);
+  }
+}
+
+TEST_F(StudioOverHttp, TheStudioNamesWhatItSavesAndWritesNothingOutsideItsFolder) {
+  const std::set<fs::path> before = cellFiles();
+  for (const std::string& body :
+       {std::string(R"({"index": 0, "name": "../escaped.cell"})"), std::string(R"({"index": "../escaped.cell"})"),
+        std::string(R"({"index": 0, "path": "/tmp/escaped.cell"})"), std::string(R"({"name": "../../escaped.cell"})"),
+        std::string(R"({"index": 0, "file": "sub/escaped.cell"})"), std::string(R"({"index": 0.5})")}) {
+    const std::string answer = send("POST", "/api/save", page(), body);
+    EXPECT_EQ(statusOf(answer), 400) << body << "\n" << answer;
+  }
+  EXPECT_EQ(cellFiles(), before);
+  EXPECT_FALSE(fs::exists(folder / "escaped.cell"));
+  EXPECT_FALSE(fs::exists("/tmp/escaped.cell"));
+  const std::string saved = send("POST", "/api/save", page(), R"({"index": 3})");
+  ASSERT_EQ(statusOf(saved), 200) << saved;
+  EXPECT_NE(saved.find(nlohmann::json((folder / "saved" / "tree_g1_v3.cell").string()).dump()), std::string::npos)
+      << saved;
+  EXPECT_TRUE(fs::exists(folder / "saved" / "tree_g1_v3.cell"));
+}
+
+// The name a variant is saved under is the gallery's: a stem with separators or ".."
+// (from a file named so) still lands in the save folder.
+TEST_F(StudioFixture, ASavedVariantStaysInTheSaveFolderWhateverItsStem) {
+  GalleryDef def = galleryDef();
+  def.saveTo = folder / "saved" / "here";
+  fs::create_directories(def.saveTo);
+  Gallery gallery(def);
+  for (const std::string& stem : {std::string("../../escaped"), std::string("/etc/escaped"), std::string(".."),
+                                  std::string("a/../b"), std::string("..\\x")}) {
+    gallery.reset("#define A 1\nlsystem s {\n  #until 1\n  axiom F(A)\n}\n", stem);
+    const fs::path path = gallery.save(0);
+    EXPECT_EQ(path.parent_path(), folder / "saved" / "here") << stem << " -> " << path;
+    EXPECT_EQ(path.filename().string().find(".."), std::string::npos) << path;
+    EXPECT_NE(path.filename().string()[0], '.') << path;
+    EXPECT_TRUE(fs::exists(path)) << path;
+  }
+  EXPECT_FALSE(fs::exists(folder / "escaped_g1_v0.cell"));
 }
 
 TEST_F(StudioFixture, GalleryIsTheSameForTheSameSeedAndPicks) {
