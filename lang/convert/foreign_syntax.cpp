@@ -5,6 +5,7 @@
 #include <optional>
 #include <utility>
 
+#include "lang/convert/python_operators.h"
 #include "lang/program.h"
 
 namespace ontogen::convert {
@@ -500,12 +501,16 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
   if (std::optional<std::string> chosen = conditional(begin, end)) return *chosen;
   const bool python = dialect_ == Dialect::LPy;
   std::string out;
-  auto emit = [&](std::string_view token, bool glueLeft = false) {
+  // The tokens as written, for Python's operators the cell language spells otherwise.
+  std::vector<ExpressionToken> tokens;
+  uint32_t at = begin;
+  auto emit = [&](std::string_view token, bool glueLeft = false, uint32_t length = 0) {
+    tokens.push_back({std::string(token), at, at + (length ? length : static_cast<uint32_t>(token.size())), glueLeft});
     if (!out.empty() && !glueLeft && out.back() != '(' && out.back() != '!') out += ' ';
     out += token;
   };
-  auto code = [&](uint32_t at, uint32_t stop, const std::string& what) {
-    fail(at, stop,
+  auto code = [&](uint32_t from, uint32_t stop, const std::string& what) {
+    fail(from, stop,
          what + (python ? ": Python code, which ontogen convert does not translate (it reads L-Py's declarative "
                           "part: modules, productions with -->, conditions over arithmetic)"
                         : ": C code, which ontogen convert does not translate (it reads cpfg's productions, "
@@ -517,11 +522,11 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
   int depth = 0;
   auto closeNots = [&] {
     while (!notDepths.empty() && notDepths.back() == depth) {
+      tokens.push_back({")", at, at + 1, true});
       out += ")";
       notDepths.pop_back();
     }
   };
-  uint32_t at = begin;
   while (at < end) {
     const char c = text_[at];
     if (isSpace(c)) {
@@ -540,7 +545,7 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
           while (stop < end && std::isdigit(static_cast<unsigned char>(text_[stop]))) ++stop;
         }
       }
-      emit(text_.substr(at, stop - at));
+      emit(text_.substr(at, stop - at), false, stop - at);
       at = stop;
       continue;
     }
@@ -576,7 +581,9 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
           closeNots();
           name = name == "and" ? "&&" : "||";
         } else if (name == "not") {
-          emit("!(");
+          emit("!", false, 3);
+          tokens.push_back({"(", at, at + 3, true});
+          out += "(";
           notDepths.push_back(depth);
           at = stop;
           continue;
@@ -587,7 +594,7 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
         else if (name == "lambda" || name == "for" || name == "in" || name == "is")
           code(at, stop, "Python's " + shown(name));
       }
-      emit(name);
+      emit(name, false, stop - at);
       at = stop;
       continue;
     }
@@ -597,7 +604,9 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
       emit("^");
       at += 2;
     } else if (two("//")) {
-      code(at, at + 2, "Python's floor division '//' (write floor(a / b))");
+      if (!python) code(at, at + 2, "'//'");
+      emit("//");
+      at += 2;
     } else if (two("==") || two("!=") || two("<=") || two(">=") || two("&&") || two("||")) {
       emit(text_.substr(at, 2));
       at += 2;
@@ -631,6 +640,8 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
   depth = 0;
   closeNots();
   if (out.empty()) fail(begin, end, "expected an expression", false);
+  if (python)
+    if (std::optional<std::string> rewritten = pythonOperators(*this, tokens)) return *rewritten;
   return out;
 }
 

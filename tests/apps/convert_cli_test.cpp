@@ -145,6 +145,11 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
        "t = 1: A(2) A(2) G(1) B(2) K C(2) D(5) R T S T\n"
        "t = 2: F(3) [ +(3) ] E F(3) [ +(3) ] E G(1) B(1) K K C(4) D(9) R T T S T T\n"
        "t = 3: F(3) [ +(3) ] E F(3) [ +(3) ] E G(1) B(0) K K K C(8) D(9) R T T T S T T T\n"},
+      // Python's x % y has the sign of y, x // y floors, -5 < x < 0 chains: the words
+      // Python gives (C's fmod would give B(-1, ...) from t = 2 and no C).
+      {"python_operators.lpy", "1,4",
+       "t = 1: B(2, 1, -2) A(-1)\n"
+       "t = 4: B(2, 1, -2) C B(2, -1, -1) C B(2, -2, 0) B(2, -4, -3) A(-10)\n"},
       {"new_contexts.lpy", "1", "t = 1: B A S B A S C(1) B(2) M(1, 2, 3) H(4) E(4) H(11) F(5) G(6) H(0) K\n"},
   };
   for (const Case& c : cases) {

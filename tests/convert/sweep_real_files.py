@@ -46,7 +46,10 @@ def run(ontogen, command, path):
     except subprocess.TimeoutExpired:
         return None, "hang"
     err = done.stderr.decode(errors="replace")
-    first = next((l for l in err.splitlines() if ": error: " in l or ": warning: " in l), err.strip()[:200])
+    # The first error, else the first warning: a warning is no reason for a failure.
+    lines = err.splitlines()
+    first = next((l for l in lines if ": error: " in l), None) or next(
+        (l for l in lines if ": warning: " in l), err.strip()[:200])
     return done.returncode, first
 
 

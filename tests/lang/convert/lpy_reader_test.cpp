@@ -30,7 +30,37 @@ TEST(LPyReader, ConstantsModulesAndPythonExpressions) {
 TEST(LPyReader, ConditionalExpressionsBecomeIf) {
   auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: B(1)\nB(i) --> B(2 if i % 2 else 3)\n");
   ASSERT_EQ(c.error, "");
-  EXPECT_EQ(body(c.program), "  #angle 60\n  #until 1\n  axiom B(1)\n  B(i) -> B(if(i % 2, 2, 3))\n");
+  EXPECT_EQ(body(c.program),
+            "  #angle 60\n  #until 1\n  axiom B(1)\n  B(i) -> B(if(fmod(fmod(i, 2) + 2, 2), 2, 3))\n");
+}
+
+// Python's remainder has the sign of the divisor (the cell language's '%' is C's fmod),
+// '//' floors, and comparisons chain; the rest keeps its order and precedence.
+TEST(LPyReader, PythonsRemainderFloorDivisionAndChainedComparisons) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "Axiom: A(1)\nA(x) : 0 <= x < 5 == 1 or not x % 2 --> "
+                       "B(-x % 3 * 2, (x + 1) // -2 ** 2, f(x % y, 2) + 1, 2 ** -x % 4)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #angle 60\n  #until 1\n  axiom A(1)\n"
+            "  A(x) : (0 <= x && x < 5 && 5 == 1) || !(fmod(fmod(x, 2) + 2, 2)) -> "
+            "B(fmod(fmod(-x, 3) + 3, 3) * 2, floor((x + 1) / -2 ^ 2), f(fmod(fmod(x, y) + y, y), 2) + 1, "
+            "fmod(fmod(2 ^ -x, 4) + 4, 4))\n");
+  // A divisor, or the middle of a chain, that draws would be drawn again by each copy.
+  auto divisor = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(x) --> B(x % random.uniform(1, 2))\n");
+  EXPECT_EQ(divisor.line, 2);
+  EXPECT_EQ(divisor.column, 14);
+  EXPECT_TRUE(divisor.untranslatable);
+  EXPECT_NE(divisor.error.find("Python's '%' of a divisor that draws a random number"), std::string::npos)
+      << divisor.error;
+  auto chain = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(x) : 0 < random() < x --> B\n");
+  EXPECT_EQ(chain.line, 2);
+  EXPECT_EQ(chain.column, 21);
+  EXPECT_NE(chain.error.find("a chained comparison whose middle operand draws"), std::string::npos) << chain.error;
+  // The remainder of a dividend that draws is written once: translated.
+  auto dividend = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(x) --> B(random() % 1)\n");
+  ASSERT_EQ(dividend.error, "");
+  EXPECT_NE(dividend.program.find("B(fmod(fmod(uniform(), 1) + 1, 1))"), std::string::npos) << dividend.program;
 }
 
 TEST(LPyReader, NewContextsWildcardsAndAProduceBody) {

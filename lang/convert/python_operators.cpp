@@ -1,0 +1,186 @@
+#include "lang/convert/python_operators.h"
+
+#include <cctype>
+#include <string_view>
+
+#include "lang/convert/foreign_syntax.h"
+
+namespace ontogen::convert {
+
+namespace {
+
+bool isComparison(std::string_view op) {
+  return op == "<" || op == ">" || op == "<=" || op == ">=" || op == "==" || op == "!=";
+}
+
+// Whether text calls a function that draws a random number.
+bool drawsRandom(std::string_view text) {
+  for (std::string_view f : {"uniform(", "gaussian(", "ran(", "bernoulli("})
+    for (size_t at = text.find(f); at != std::string_view::npos; at = text.find(f, at + 1))
+      if (at == 0 || !(std::isalnum(static_cast<unsigned char>(text[at - 1])) || text[at - 1] == '_')) return true;
+  return false;
+}
+
+// A failed read: the expression is left to the compiler unless it holds an operator this
+// file must rewrite.
+struct Unreadable {};
+
+// Recursive descent with Python's precedences (loosest first): or, and, not, comparisons
+// (one level, chained), + -, * / // %, unary - + !, ** (written ^).
+class Reader {
+ public:
+  Reader(const ForeignSyntax& syntax, const std::vector<ExpressionToken>& tokens) : syntax_(syntax), tokens_(tokens) {}
+
+  std::string all() {
+    std::string text = disjunction();
+    if (at_ != tokens_.size()) throw Unreadable{};
+    return text;
+  }
+  bool changed() const { return changed_; }
+
+ private:
+  bool next(std::string_view text) const { return at_ < tokens_.size() && tokens_[at_].text == text; }
+  const ExpressionToken& take() {
+    if (at_ >= tokens_.size()) throw Unreadable{};
+    return tokens_[at_++];
+  }
+
+  std::string disjunction() {
+    std::string text = conjunction();
+    while (next("||")) {
+      ++at_;
+      text += " || " + conjunction();
+    }
+    return text;
+  }
+  std::string conjunction() {
+    std::string text = comparison();
+    while (next("&&")) {
+      ++at_;
+      text += " && " + comparison();
+    }
+    return text;
+  }
+  std::string comparison() {
+    std::string left = sum();
+    if (at_ >= tokens_.size() || !isComparison(tokens_[at_].text)) return left;
+    std::string chain;
+    size_t links = 0;
+    while (at_ < tokens_.size() && isComparison(tokens_[at_].text)) {
+      const ExpressionToken& op = take();
+      std::string right = sum();
+      // a < b < c is a < b and b < c: b is written twice.
+      if (links > 0 && drawsRandom(left))
+        syntax_.fail(op.begin, op.end,
+                     "a chained comparison whose middle operand draws a random number: the cell language would "
+                     "draw it twice; compare a local holding the draw");
+      chain += (links ? " && " : "") + left + " " + op.text + " " + right;
+      left = std::move(right);
+      ++links;
+    }
+    if (links == 1) return chain;
+    changed_ = true;
+    return "(" + chain + ")";
+  }
+  std::string sum() {
+    std::string text = term();
+    while (next("+") || next("-")) {
+      const std::string op = take().text;
+      text += " " + op + " " + term();
+    }
+    return text;
+  }
+  std::string term() {
+    std::string text = unary();
+    while (next("*") || next("/") || next("%") || next("//")) {
+      const ExpressionToken& op = take();
+      const std::string right = unary();
+      if (op.text == "%") {
+        // Python's remainder has the sign of the divisor: fmod(fmod(x, y) + y, y).
+        if (drawsRandom(right))
+          syntax_.fail(op.begin, op.end,
+                       "Python's '%' of a divisor that draws a random number: its remainder, which has the sign of "
+                       "the divisor, writes the divisor three times and the cell language would draw it anew each "
+                       "time; use a local holding the draw");
+        text = "fmod(fmod(" + text + ", " + right + ") + " + right + ", " + right + ")";
+        changed_ = true;
+      } else if (op.text == "//") {
+        text = "floor(" + text + " / " + right + ")";
+        changed_ = true;
+      } else {
+        text += " " + op.text + " " + right;
+      }
+    }
+    return text;
+  }
+  std::string unary() {
+    if (next("-") || next("+") || next("!")) {
+      const std::string op = take().text;
+      std::string operand = unary();
+      return op + (operand[0] == '-' || operand[0] == '+' ? " " : "") + operand;
+    }
+    return power();
+  }
+  std::string power() {
+    std::string base = primary();
+    if (next("^")) {
+      ++at_;
+      base += " ^ " + unary();
+    }
+    return base;
+  }
+  std::string primary() {
+    const ExpressionToken& token = take();
+    const char c = token.text.empty() ? '\0' : token.text[0];
+    if (c == '(') {
+      std::string inner = disjunction();
+      if (!next(")")) throw Unreadable{};
+      ++at_;
+      return "(" + inner + ")";
+    }
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return token.text;
+    if (!(std::isalpha(static_cast<unsigned char>(c)) || c == '_')) throw Unreadable{};
+    if (!(next("(") && tokens_[at_].glued)) return token.text;
+    ++at_;
+    std::string call = token.text + "(";
+    if (next(")")) {
+      ++at_;
+      return call + ")";
+    }
+    for (;;) {
+      call += disjunction();
+      if (next(")")) break;
+      if (!next(",")) throw Unreadable{};
+      ++at_;
+      call += ", ";
+    }
+    ++at_;
+    return call + ")";
+  }
+
+  const ForeignSyntax& syntax_;
+  const std::vector<ExpressionToken>& tokens_;
+  size_t at_ = 0;
+  bool changed_ = false;
+};
+
+}  // namespace
+
+std::optional<std::string> pythonOperators(const ForeignSyntax& syntax, const std::vector<ExpressionToken>& tokens) {
+  Reader reader(syntax, tokens);
+  try {
+    std::string text = reader.all();
+    if (reader.changed()) return text;
+    return std::nullopt;
+  } catch (const Unreadable&) {
+    for (const ExpressionToken& token : tokens)
+      if (token.text == "%" || token.text == "//")
+        syntax.fail(token.begin, token.end,
+                    "Python's '" + token.text +
+                        "' in an expression the converter cannot read around it: write its operands in parentheses",
+                    false);
+    return std::nullopt;
+  }
+}
+
+}  // namespace ontogen::convert
