@@ -497,6 +497,57 @@ std::optional<std::string> ForeignSyntax::conditional(uint32_t begin, uint32_t e
          ")";
 }
 
+std::string ForeignSyntax::inlined(const Function& function, uint32_t at, uint32_t open, uint32_t end,
+                                   uint32_t& stop) const {
+  const std::string name(text_.substr(at, open - at));
+  int depth = 0;
+  uint32_t close = open;
+  for (; close < end; ++close) {
+    if (text_[close] == '(') ++depth;
+    if (text_[close] == ')' && --depth == 0) break;
+  }
+  if (close >= end) fail(at, end, "the call of '" + name + "' has no closing ')'", false);
+  const Nested nested(*this, at, close + 1);
+  std::vector<std::pair<std::string, std::string>> arguments;
+  uint32_t a = open + 1, b = close;
+  trim(a, b);
+  for (uint32_t from = open + 1; a < b && from <= close;) {
+    const uint32_t comma = find(from, close, ",");
+    if (arguments.size() < function.parameters.size()) {
+      std::string value = expression(from, comma);
+      bool single = true;  // a name or a number needs no parentheses
+      for (char c : value) single = single && (isNameChar(c) || c == '.');
+      arguments.emplace_back(function.parameters[arguments.size()], single ? value : "(" + value + ")");
+    }
+    else
+      arguments.emplace_back("", "");
+    from = comma + 1;
+  }
+  if (arguments.size() != function.parameters.size())
+    fail(at, close + 1,
+         "the function '" + name + "' takes " + std::to_string(function.parameters.size()) +
+             " parameters; this call gives " + std::to_string(arguments.size()),
+         false);
+  const std::string body = expression(function.begin, function.end);
+  // An argument that draws a random number is drawn once by Python: it may be read once.
+  for (const auto& [parameter, value] : arguments) {
+    size_t uses = 0;
+    for (size_t k = body.find(parameter); k != std::string::npos; k = body.find(parameter, k + 1))
+      if ((k == 0 || !(isNameChar(body[k - 1]) || body[k - 1] == '.')) &&
+          (k + parameter.size() == body.size() || !isNameChar(body[k + parameter.size()])))
+        ++uses;
+    bool draws = false;
+    for (std::string_view f : {"uniform(", "gaussian(", "ran(", "bernoulli("})
+      draws = draws || value.find(f) != std::string::npos;
+    if (uses > 1 && draws)
+      fail(at, close + 1,
+           "an argument that draws a random number, read " + std::to_string(uses) + " times by '" + name +
+               "': the cell language would draw it anew each time; pass a local holding the draw");
+  }
+  stop = close + 1;
+  return "(" + substituted(body, arguments) + ")";
+}
+
 std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
   if (std::optional<std::string> chosen = conditional(begin, end)) return *chosen;
   const bool python = dialect_ == Dialect::LPy;
@@ -554,6 +605,21 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
       while (stop < end && (isNameChar(text_[stop]) || (python && text_[stop] == '.'))) ++stop;
       std::string name(text_.substr(at, stop - at));
       if (python) {
+        // import random as rd: rd.uniform is random.uniform.
+        if (const size_t dot = name.find('.'); dot != std::string::npos)
+          if (auto alias = moduleAliases.find(std::string_view(name).substr(0, dot)); alias != moduleAliases.end())
+            name = alias->second + name.substr(dot);
+        if (auto function = functions.find(name); function != functions.end()) {
+          uint32_t open = stop;
+          while (open < end && isSpace(text_[open])) ++open;
+          if (open < end && text_[open] == '(') {
+            uint32_t after = open;
+            const std::string value = inlined(function->second, at, open, end, after);
+            emit(value, false, after - at);
+            at = after;
+            continue;
+          }
+        }
         if (name.rfind("math.", 0) == 0) name = name.substr(5);  // math.sqrt is sqrt
         if (name.rfind("random.", 0) == 0) name = name.substr(7);  // random.uniform is uniform
         uint32_t next = stop;

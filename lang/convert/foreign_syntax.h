@@ -34,6 +34,16 @@ class ForeignSyntax {
   std::set<std::string, std::less<>> declaredNames;
   /// L-Py's `module A = F`: A is read as F.
   std::map<std::string, std::string, std::less<>> aliases;
+  /// L-Py's helper functions of one expression, `def f(x, y): return EXPR`: a call is
+  /// the expression with its parameters replaced by the call's arguments.
+  struct Function {
+    std::vector<std::string> parameters;
+    uint32_t begin = 0;  ///< the returned expression, bytes [begin, end) of the file
+    uint32_t end = 0;
+  };
+  std::map<std::string, Function, std::less<>> functions;
+  /// Python's `import random as rd`: rd. is read as random. (and likewise for math).
+  std::map<std::string, std::string, std::less<>> moduleAliases;
   /// Constructs converted with a loss (a drawing command ontogen's turtle has not), each
   /// label once, at its first place.
   mutable std::vector<ConvertWarning> warnings;
@@ -78,6 +88,9 @@ class ForeignSyntax {
   };
 
   std::optional<std::string> conditional(uint32_t begin, uint32_t end) const;
+  /// The call of a helper function whose name starts at `at` and whose '(' is at `open`,
+  /// within [at, end): its value, and in `stop` the offset after its ')'.
+  std::string inlined(const Function& function, uint32_t at, uint32_t open, uint32_t end, uint32_t& stop) const;
   std::string substituted(const std::string& expr, const std::vector<std::pair<std::string, std::string>>& locals) const;
   uint32_t block(uint32_t at, uint32_t end, const Statement& s, uint32_t statementBegin, uint32_t statementEnd,
                  std::vector<std::pair<std::string, std::string>>& locals) const;

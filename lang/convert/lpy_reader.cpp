@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstdlib>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -57,8 +58,13 @@ class LPyReader {
 
   LSystemFile read() {
     const std::vector<Line> lines = splitLines(clean_);
+    std::map<size_t, size_t> helpers = functions(lines);
     bool ended = false;
     for (size_t i = 0; i < lines.size(); ++i) {
+      if (auto helper = helpers.find(i); helper != helpers.end()) {
+        i = helper->second;
+        continue;
+      }
       const Line& line = lines[i];
       if (original_.substr(firstNonSpace(original_, line), kInitialisation.size()) == kInitialisation) {
         initialisation(lines, i + 1);
@@ -183,14 +189,36 @@ class LPyReader {
     return false;
   }
 
-  // `import math`, `from random import *`: the names these give are translated.
-  bool isImport(uint32_t begin, uint32_t end) const {
+  static bool isHook(std::string_view name) {
+    for (std::string_view hook : {"Start", "End", "StartEach", "EndEach", "StartInterpretation", "EndInterpretation",
+                                  "PostDraw", "__initialiseContext__"})
+      if (name == hook) return true;
+    return false;
+  }
+
+  // `import math`, `from random import *`, `import random as rd`: the names these give
+  // are translated.
+  bool isImport(uint32_t begin, uint32_t end) {
     const Line line{begin, end};
     for (std::string_view module : {"math", "random", "openalea.plantgl.all"}) {
       if (auto at = afterKeyword(clean_, line, "import")) {
         uint32_t a = *at, b = end;
         syntax_.trim(a, b);
         if (clean_.substr(a, b - a) == module) return true;
+        // import random as rd
+        if (module != "openalea.plantgl.all" && clean_.compare(a, module.size(), module) == 0 &&
+            a + module.size() < b && std::isspace(static_cast<unsigned char>(clean_[a + module.size()]))) {
+          if (auto as = afterKeyword(clean_, Line{static_cast<uint32_t>(a + module.size()), b}, "as")) {
+            uint32_t x = *as, y = b;
+            syntax_.trim(x, y);
+            bool isName = x < y;
+            for (uint32_t k = x; k < y; ++k) isName = isName && isNameChar(clean_[k]);
+            if (isName) {
+              syntax_.moduleAliases[std::string(clean_.substr(x, y - x))] = std::string(module);
+              return true;
+            }
+          }
+        }
       }
       if (auto at = afterKeyword(clean_, line, "from")) {
         uint32_t a = *at, b = end;
@@ -234,6 +262,66 @@ class LPyReader {
       return std::nullopt;  // read as Python: an error at the def
     }
     return last;
+  }
+
+  // The helper functions of one expression, `def f(x, y): return EXPR` on one line or
+  // with `return EXPR` alone on the lines below, before `endlsystem` or the editor's
+  // section: each is recorded for calls to be inlined (Python looks a function up when it
+  // is called, so it may be defined after its use). The first and last line of each.
+  std::map<size_t, size_t> functions(const std::vector<Line>& lines) {
+    std::map<size_t, size_t> found;
+    for (size_t i = 0; i < lines.size(); ++i) {
+      const Line& line = lines[i];
+      if (original_.substr(firstNonSpace(original_, line), kInitialisation.size()) == kInitialisation) break;
+      if (afterKeyword(clean_, line, "endlsystem")) break;
+      auto at = afterKeyword(clean_, line, "def");
+      if (!at) continue;
+      uint32_t a = *at, end = line.end;
+      while (a < end && std::isspace(static_cast<unsigned char>(clean_[a]))) ++a;
+      uint32_t stop = a;
+      while (stop < end && isNameChar(clean_[stop])) ++stop;
+      std::string name(clean_.substr(a, stop - a));
+      while (stop < end && std::isspace(static_cast<unsigned char>(clean_[stop]))) ++stop;
+      if (name.empty() || stop >= end || clean_[stop] != '(' || isHook(name)) continue;
+      uint32_t close = stop + 1;
+      while (close < end && clean_[close] != ')' && clean_[close] != '(') ++close;
+      if (close == end || clean_[close] != ')') continue;
+      ForeignSyntax::Function function;
+      bool plain = true;
+      for (uint32_t from = stop + 1; from < close;) {
+        const uint32_t comma = syntax_.find(from, close, ",");
+        uint32_t x = from, y = comma;
+        syntax_.trim(x, y);
+        bool isName = x < y && !std::isdigit(static_cast<unsigned char>(clean_[x]));
+        for (uint32_t k = x; k < y; ++k) isName = isName && isNameChar(clean_[k]);
+        plain = plain && isName;
+        if (isName) function.parameters.emplace_back(clean_.substr(x, y - x));
+        from = comma + 1;
+      }
+      uint32_t colon = close + 1;
+      while (colon < end && std::isspace(static_cast<unsigned char>(clean_[colon]))) ++colon;
+      if (!plain || colon >= end || clean_[colon] != ':') continue;
+      // The body: the rest of the line, or the indented lines below.
+      size_t last = i;
+      for (size_t k = i + 1; k < lines.size(); ++k) {
+        const uint32_t first = firstNonSpace(clean_, lines[k]);
+        if (first == lines[k].end) continue;
+        if (first == lines[k].begin) break;
+        last = k;
+      }
+      const std::vector<BodyLine> body = logicalLines(clean_, colon + 1, lines[last].end);
+      if (body.size() != 1) continue;
+      auto value = afterKeyword(clean_, Line{body[0].begin, body[0].end}, "return");
+      if (!value) continue;
+      uint32_t x = *value, y = body[0].end;
+      syntax_.trim(x, y);
+      if (x == y) continue;
+      function.begin = x;
+      function.end = y;
+      syntax_.functions[name] = std::move(function);
+      found[i] = last;
+    }
+    return found;
   }
 
   // `context().turtle.setAngleIncrement(A)` (or execContext(), or the editor's

@@ -132,6 +132,7 @@ class Reader {
   std::string primary() {
     const ExpressionToken& token = take();
     const char c = token.text.empty() ? '\0' : token.text[0];
+    if (c == '(' && token.text.size() > 1) return token.text;  // a helper function's value, inlined
     if (c == '(') {
       std::string inner = disjunction();
       if (!next(")")) throw Unreadable{};

@@ -150,6 +150,10 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
       {"python_operators.lpy", "1,4",
        "t = 1: B(2, 1, -2) A(-1)\n"
        "t = 4: B(2, 1, -2) C B(2, -1, -1) C B(2, -2, 0) B(2, -4, -3) A(-10)\n"},
+      // Helper functions inlined: alpha(n) = 30 - 10 n, long(n) = 2 - n / 4.
+      {"python_functions.lpy", "1,2",
+       "t = 1: F(1.75) [ +(20) A(2) ] [ -(20) A(2) ]\n"
+       "t = 2: F(1.75) [ +(20) F(1.5) [ +(10) A(3) ] [ -(10) A(3) ] ] [ -(20) F(1.5) [ +(10) A(3) ] [ -(10) A(3) ] ]\n"},
       {"new_contexts.lpy", "1", "t = 1: B A S B A S C(1) B(2) M(1, 2, 3) H(4) E(4) H(11) F(5) G(6) H(0) K\n"},
   };
   for (const Case& c : cases) {

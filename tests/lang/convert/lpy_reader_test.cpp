@@ -98,7 +98,7 @@ TEST(LPyReader, TheEditorsInitialisationSectionIsNotRead) {
 }
 
 TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
-  auto def = convertText(Dialect::LPy, "a.lpy", "Axiom: A\n\ndef f(x):\n    return x\n");
+  auto def = convertText(Dialect::LPy, "a.lpy", "Axiom: A\n\ndef f(x):\n    global y\n    return x\n");
   EXPECT_EQ(def.line, 3);
   EXPECT_EQ(def.column, 1);
   EXPECT_TRUE(def.untranslatable);
@@ -160,6 +160,42 @@ TEST(LPyReader, SeedAndPrintAtTheTopLevel) {
   auto c = convertText(Dialect::LPy, "a.lpy", "from random import seed\nseed(3)\nprint('hello')\nAxiom: A\n");
   ASSERT_EQ(c.error, "");
   EXPECT_NE(c.program.find("  #seed 3\n"), std::string::npos) << c.program;
+}
+
+}  // namespace
+}  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+// A helper function of one expression is inlined where it is called, its parameters
+// replaced by the call's arguments; it may be defined after its use, as Python allows.
+TEST(LPyReader, HelperFunctionsOfOneExpressionAreInlined) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "import random as rd\nAxiom: A(1)\nA(n) --> B(f(n + 1, 2) * g(), rd.uniform(0, n))\n"
+                       "def f(x, y): return x ** y % 3\ndef g():\n    return f(2, 1)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #angle 60\n  #until 1\n  axiom A(1)\n"
+            "  A(n) -> B((fmod(fmod((n + 1) ^ 2, 3) + 3, 3)) * ((fmod(fmod(2 ^ 1, 3) + 3, 3))), uniform(0, n))\n");
+  // A call with another number of arguments, and an argument that draws read twice.
+  auto count = convertText(Dialect::LPy, "a.lpy", "def f(x): return x\nAxiom: A(f(1, 2))\n");
+  EXPECT_EQ(count.line, 2);
+  EXPECT_EQ(count.column, 10);
+  EXPECT_NE(count.error.find("the function 'f' takes 1 parameters; this call gives 2"), std::string::npos)
+      << count.error;
+  auto twice = convertText(Dialect::LPy, "a.lpy", "def f(x): return x * x\nAxiom: A(f(random()))\n");
+  EXPECT_EQ(twice.line, 2);
+  EXPECT_EQ(twice.column, 10);
+  EXPECT_NE(twice.error.find("an argument that draws a random number, read 2 times by 'f'"), std::string::npos)
+      << twice.error;
+  // A function of more than a return, and a hook that returns, stay Python.
+  auto more = convertText(Dialect::LPy, "a.lpy", "def f(x):\n    y = x\n    return y\nAxiom: A\n");
+  EXPECT_EQ(more.line, 1);
+  EXPECT_NE(more.error.find("'def': Python code"), std::string::npos) << more.error;
+  auto hook = convertText(Dialect::LPy, "a.lpy", "def StartEach(): return 1\nAxiom: A\n");
+  EXPECT_EQ(hook.line, 1);
+  EXPECT_NE(hook.error.find("'def': Python code"), std::string::npos) << hook.error;
 }
 
 }  // namespace
