@@ -203,9 +203,39 @@ class CpfgReader {
     uint32_t stop = at;
     while (stop < end && (std::isalnum(static_cast<unsigned char>(clean_[stop])) || clean_[stop] == '_')) ++stop;
     if (stop == at) syntax_.fail(at, end, "expected a name after #define", false);
-    if (stop < end && clean_[stop] == '(')
-      syntax_.fail(at, end, "a #define with parameters is a C macro, which ontogen convert does not translate");
+    if (stop < end && clean_[stop] == '(') {
+      macro(std::string(clean_.substr(at, stop - at)), stop, end);
+      return;
+    }
     file_.defines.push_back({std::string(clean_.substr(at, stop - at)), syntax_.expression(stop, end), line_});
+  }
+
+  // `#define f(x, y) EXPR`, a C macro with parameters: inlined where it is used after
+  // this line (see ForeignSyntax::inlined for where C's textual replacement would read
+  // otherwise).
+  void macro(std::string name, uint32_t open, uint32_t end) {
+    uint32_t close = open + 1;
+    while (close < end && clean_[close] != ')' && clean_[close] != '(') ++close;
+    if (close == end || clean_[close] != ')') syntax_.fail(open, end, "the parameters of a macro without their ')'", false);
+    ForeignSyntax::Function function;
+    for (uint32_t from = open + 1; from < close;) {
+      uint32_t comma = from;
+      while (comma < close && clean_[comma] != ',') ++comma;
+      uint32_t a = from, b = comma;
+      syntax_.trim(a, b);
+      bool isName = a < b && !std::isdigit(static_cast<unsigned char>(clean_[a]));
+      for (uint32_t k = a; k < b; ++k)
+        isName = isName && (std::isalnum(static_cast<unsigned char>(clean_[k])) || clean_[k] == '_');
+      if (!isName) syntax_.fail(a, b, "a macro's parameter is a name", false);
+      function.parameters.emplace_back(clean_.substr(a, b - a));
+      from = comma + 1;
+    }
+    uint32_t a = close + 1, b = end;
+    syntax_.trim(a, b);
+    if (a == b) syntax_.fail(open, end, "a macro without a value: ontogen convert reads macros of one expression");
+    function.begin = a;
+    function.end = b;
+    syntax_.functions[std::move(name)] = std::move(function);
   }
 
   void symbols(StatementKind kind, uint32_t at, uint32_t end) {

@@ -497,8 +497,25 @@ std::optional<std::string> ForeignSyntax::conditional(uint32_t begin, uint32_t e
          ")";
 }
 
-std::string ForeignSyntax::inlined(const Function& function, uint32_t at, uint32_t open, uint32_t end,
-                                   uint32_t& stop) const {
+bool ForeignSyntax::atomic(uint32_t begin, uint32_t end) const {
+  trim(begin, end);
+  if (begin == end) return false;
+  uint32_t at = begin;
+  while (at < end && (isNameChar(text_[at]) || text_[at] == '.')) ++at;
+  if (at == end) return true;
+  while (at < end && isSpace(text_[at])) ++at;
+  if (at < end && text_[at] == '(' && (at == begin || isNameChar(text_[begin]))) {
+    int depth = 0;
+    for (uint32_t k = at; k < end; ++k) {
+      if (text_[k] == '(') ++depth;
+      if (text_[k] == ')' && --depth == 0) return k + 1 == end;
+    }
+  }
+  return false;
+}
+
+std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uint32_t at, uint32_t open,
+                                   uint32_t end, uint32_t& stop) const {
   const std::string name(text_.substr(at, open - at));
   int depth = 0;
   uint32_t close = open;
@@ -528,8 +545,47 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t at, uint32
          "the function '" + name + "' takes " + std::to_string(function.parameters.size()) +
              " parameters; this call gives " + std::to_string(arguments.size()),
          false);
+  // A C macro is replaced as text: its value is the same as that of the parenthesised
+  // expression only where each parameter and the body are single operands where they
+  // stand; elsewhere (#define sq(x) x*x with sq(a+1)) C reads another expression.
+  if (dialect_ == Dialect::Cpfg) {
+    auto previous = [&](uint32_t k, uint32_t from) {
+      while (k > from && isSpace(text_[k - 1])) --k;
+      return k == from ? '\0' : text_[k - 1];
+    };
+    auto following = [&](uint32_t k, uint32_t to) {
+      while (k < to && isSpace(text_[k])) ++k;
+      return k == to ? '\0' : text_[k];
+    };
+    auto alone = [](char before, char after) {
+      return (before == '\0' || before == '(' || before == ',') && (after == '\0' || after == ')' || after == ',');
+    };
+    if (!atomic(function.begin, function.end) && !alone(previous(at, begin), following(close + 1, end)))
+      fail(at, close + 1,
+           "the macro '" + name +
+               "' is replaced as text by C: its value, which is no single operand, would join the operators around "
+               "this call; put the macro's value in parentheses");
+    uint32_t from = open + 1;
+    for (const std::string& parameter : function.parameters) {
+      const uint32_t comma = find(from, close, ",");
+      if (!atomic(from, comma)) {
+        for (uint32_t k = function.begin; k < function.end; ++k) {
+          if (text_.compare(k, parameter.size(), parameter) != 0 || (k > 0 && isNameChar(text_[k - 1])) ||
+              (k + parameter.size() < text_.size() && isNameChar(text_[k + parameter.size()])))
+            continue;
+          const uint32_t after = k + static_cast<uint32_t>(parameter.size());
+          if (!alone(previous(k, function.begin), following(after, function.end)))
+            fail(from, comma,
+                 "the macro '" + name + "' is replaced as text by C: this argument, which is no single operand, "
+                 "would join the operators around '" + parameter + "' in its value; put the argument in parentheses");
+        }
+      }
+      from = comma + 1;
+    }
+  }
   const std::string body = expression(function.begin, function.end);
-  // An argument that draws a random number is drawn once by Python: it may be read once.
+  // An argument that draws a random number is drawn once by Python: it may be read once
+  // (a C macro draws it as often as its text names it, as the cell language does).
   for (const auto& [parameter, value] : arguments) {
     size_t uses = 0;
     for (size_t k = body.find(parameter); k != std::string::npos; k = body.find(parameter, k + 1))
@@ -539,7 +595,7 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t at, uint32
     bool draws = false;
     for (std::string_view f : {"uniform(", "gaussian(", "ran(", "bernoulli("})
       draws = draws || value.find(f) != std::string::npos;
-    if (uses > 1 && draws)
+    if (uses > 1 && draws && dialect_ == Dialect::LPy)  // C's macros draw again as cpfg does
       fail(at, close + 1,
            "an argument that draws a random number, read " + std::to_string(uses) + " times by '" + name +
                "': the cell language would draw it anew each time; pass a local holding the draw");
@@ -609,17 +665,19 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
         if (const size_t dot = name.find('.'); dot != std::string::npos)
           if (auto alias = moduleAliases.find(std::string_view(name).substr(0, dot)); alias != moduleAliases.end())
             name = alias->second + name.substr(dot);
-        if (auto function = functions.find(name); function != functions.end()) {
-          uint32_t open = stop;
-          while (open < end && isSpace(text_[open])) ++open;
-          if (open < end && text_[open] == '(') {
-            uint32_t after = open;
-            const std::string value = inlined(function->second, at, open, end, after);
-            emit(value, false, after - at);
-            at = after;
-            continue;
-          }
+      }
+      if (auto function = functions.find(name); function != functions.end()) {
+        uint32_t open = stop;
+        while (open < end && isSpace(text_[open])) ++open;
+        if (open < end && text_[open] == '(') {
+          uint32_t after = open;
+          const std::string value = inlined(function->second, begin, at, open, end, after);
+          emit(value, false, after - at);
+          at = after;
+          continue;
         }
+      }
+      if (python) {
         if (name.rfind("math.", 0) == 0) name = name.substr(5);  // math.sqrt is sqrt
         if (name.rfind("random.", 0) == 0) name = name.substr(7);  // random.uniform is uniform
         uint32_t next = stop;
@@ -681,6 +739,34 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
     } else if (c == '(') {
       // A call keeps its '(' on the name: f(x).
       const bool call = !out.empty() && (isNameChar(out.back()));
+      // A conditional inside parentheses, (c ? a : b) or f(a if c else b, 2): each
+      // argument read as an expression of its own, where conditionals are split off.
+      int inner = 0;
+      uint32_t close = at;
+      for (; close < end; ++close) {
+        if (text_[close] == '(') ++inner;
+        if (text_[close] == ')' && --inner == 0) break;
+      }
+      bool conditional = false;
+      if (close < end) {
+        if (!python) {
+          conditional = find(at + 1, close, "?") < close;
+        } else {
+          for (uint32_t k = find(at + 1, close, "if"); k < close && !conditional; k = find(k + 1, close, "if"))
+            conditional = !isNameChar(text_[k - 1]) && k + 2 < close && !isNameChar(text_[k + 2]);
+        }
+      }
+      if (conditional) {
+        std::string group = "(";
+        for (uint32_t from = at + 1; from <= close;) {
+          const uint32_t comma = find(from, close, ",");
+          group += (from > at + 1 ? ", " : "") + expression(from, comma);
+          from = comma + 1;
+        }
+        emit(group + ")", call, close + 1 - at);
+        at = close + 1;
+        continue;
+      }
       emit("(", call);
       ++depth;
       ++at;

@@ -34,8 +34,9 @@ class ForeignSyntax {
   std::set<std::string, std::less<>> declaredNames;
   /// L-Py's `module A = F`: A is read as F.
   std::map<std::string, std::string, std::less<>> aliases;
-  /// L-Py's helper functions of one expression, `def f(x, y): return EXPR`: a call is
-  /// the expression with its parameters replaced by the call's arguments.
+  /// L-Py's helper functions of one expression, `def f(x, y): return EXPR`, and cpfg's
+  /// macros with parameters, `#define f(x, y) EXPR`: a call is the expression with its
+  /// parameters replaced by the call's arguments.
   struct Function {
     std::vector<std::string> parameters;
     uint32_t begin = 0;  ///< the returned expression, bytes [begin, end) of the file
@@ -89,8 +90,12 @@ class ForeignSyntax {
 
   std::optional<std::string> conditional(uint32_t begin, uint32_t end) const;
   /// The call of a helper function whose name starts at `at` and whose '(' is at `open`,
-  /// within [at, end): its value, and in `stop` the offset after its ')'.
-  std::string inlined(const Function& function, uint32_t at, uint32_t open, uint32_t end, uint32_t& stop) const;
+  /// in the expression [begin, end): its value, and in `stop` the offset after its ')'.
+  std::string inlined(const Function& function, uint32_t begin, uint32_t at, uint32_t open, uint32_t end,
+                      uint32_t& stop) const;
+  /// Whether [begin, end) is one operand whatever surrounds it: a name, a number, a call
+  /// or a parenthesis.
+  bool atomic(uint32_t begin, uint32_t end) const;
   std::string substituted(const std::string& expr, const std::vector<std::pair<std::string, std::string>>& locals) const;
   uint32_t block(uint32_t at, uint32_t end, const Statement& s, uint32_t statementBegin, uint32_t statementEnd,
                  std::vector<std::pair<std::string, std::string>>& locals) const;

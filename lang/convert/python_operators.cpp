@@ -132,7 +132,7 @@ class Reader {
   std::string primary() {
     const ExpressionToken& token = take();
     const char c = token.text.empty() ? '\0' : token.text[0];
-    if (c == '(' && token.text.size() > 1) return token.text;  // a helper function's value, inlined
+    if (c == '(' && token.text.size() > 1) return token.text;  // read on its own: an inlined value, conditionals
     if (c == '(') {
       std::string inner = disjunction();
       if (!next(")")) throw Unreadable{};
@@ -141,6 +141,9 @@ class Reader {
     }
     if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') return token.text;
     if (!(std::isalpha(static_cast<unsigned char>(c)) || c == '_')) throw Unreadable{};
+    // A call whose arguments were read on their own (they hold conditionals).
+    if (at_ < tokens_.size() && tokens_[at_].glued && tokens_[at_].text.size() > 1 && tokens_[at_].text[0] == '(')
+      return token.text + tokens_[at_++].text;
     if (!(next("(") && tokens_[at_].glued)) return token.text;
     ++at_;
     std::string call = token.text + "(";

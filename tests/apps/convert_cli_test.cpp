@@ -138,6 +138,8 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
        "t = 1: B(1) B(4) A(1, 0)\nt = 2: B(0) B(3) A(2, 1)\nt = 3: C B(2) A(4, 3)\nt = 4: C B(1) A(8, 7)\n"},
       {"python_body.lpy", "1,2", "t = 1: A(1)\nt = 2: A(2)\n"},
       {"c_block.l", "1,2", "t = 1: A(2)\nt = 2: A(3)\n"},
+      // MAX(a,b) and HALF(x) replaced as C would: A(5), A(3) grow, A(1) fails MAX(1,2) > 2.
+      {"c_macro.l", "1,3", "t = 1: B(2.5) A(3)\nt = 3: B(2.5) B(1.5) C(1)\n"},
       {"continued.l", "1,2", "t = 1: B [ C ] A\nt = 2: B [ C ] B [ C ] A\n"},
       // Python bodies: if/elif/else, nproduce, locals, math, a word over lines, return,
       // and random choices of chance 1 and 0, as L-Py derives them.

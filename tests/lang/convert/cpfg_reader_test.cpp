@@ -77,9 +77,20 @@ TEST(CpfgReader, CCodeAndUnspellableModulesAreErrorsAtTheirPlace) {
   EXPECT_EQ(quote.column, 9);
   EXPECT_NE(quote.error.find("the module ''' of cpfg has no cell-language spelling"), std::string::npos) << quote.error;
 
-  auto macro = convertText(Dialect::Cpfg, "a.l", "#define SQ(x) x*x\nAxiom: A\n");
-  EXPECT_EQ(macro.line, 1);
-  EXPECT_NE(macro.error.find("C macro"), std::string::npos) << macro.error;
+  // C replaces a macro as text: SQ(a+1) is a+1*a+1 there, which the converter will not
+  // read as (a+1)*(a+1); nor 2*HALF(x) as 2*(x/2) where C reads 2*x/2 the same only by luck.
+  auto argument = convertText(Dialect::Cpfg, "a.l", "#define SQ(x) x*x\nAxiom: A(SQ(1+2))\n");
+  EXPECT_EQ(argument.line, 2);
+  EXPECT_EQ(argument.column, 13);
+  EXPECT_NE(argument.error.find("this argument, which is no single operand, would join the operators around 'x'"),
+            std::string::npos)
+      << argument.error;
+  auto value = convertText(Dialect::Cpfg, "a.l", "#define D(x) x-1\nAxiom: A(2*D(3))\n");
+  EXPECT_EQ(value.line, 2);
+  EXPECT_EQ(value.column, 12);
+  EXPECT_NE(value.error.find("its value, which is no single operand, would join the operators around this call"),
+            std::string::npos)
+      << value.error;
 
   auto pattern = convertText(Dialect::Cpfg, "a.l", "Axiom: A(3)\nA(x+1) --> B\n");
   EXPECT_EQ(pattern.line, 2);
@@ -169,6 +180,26 @@ TEST(CpfgReader, AssignmentBlocksAroundAConditionAreSubstituted) {
   EXPECT_EQ(code.line, 3);
   EXPECT_EQ(code.column, 6);
   EXPECT_NE(code.error.find("a statement other than an assignment in a C block"), std::string::npos) << code.error;
+}
+
+}  // namespace
+}  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+// cpfg's macros with parameters, inlined where C's textual replacement reads the same:
+// parameters that stand alone or in parentheses, values that are one operand, calls
+// alone between delimiters, single-operand arguments.
+TEST(CpfgReader, MacrosWithParametersAreInlined) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "#define MAX(a,b) (((a)>(b))?(a):(b))\n#define SQ(x) x*x\n#define W(x) 0.5*pow(x,2)\n"
+                       "Lsystem: 1\nAxiom: A(1)\nA(n) : MAX(n, 2) > 1 --> A(SQ(n), MAX(n+1,3)) B(W(n/2))\nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  axiom A(1)\n"
+            "  A(n) : ((if(((n) > (2)), (n), (2)))) > 1 -> A((n * n), ((if((((n + 1)) > (3)), ((n + 1)), (3))))) "
+            "B((0.5 * pow((n / 2), 2)))\n");
 }
 
 }  // namespace

@@ -200,3 +200,19 @@ TEST(LPyReader, HelperFunctionsOfOneExpressionAreInlined) {
 
 }  // namespace
 }  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+// A conditional inside parentheses or among a call's arguments is read as one of its own.
+TEST(LPyReader, ConditionalsInsideParentheses) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(x) --> B((1 if x > 0 else 2) + 1, max(0 if x else 1, 3))\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("B((if(x > 0, 1, 2)) + 1, max(if(x, 0, 1), 3))"), std::string::npos) << c.program;
+  auto cpfg = convertText(Dialect::Cpfg, "a.l", "Axiom: A(1)\nA(x) --> B(2 * (x > 0 ? 1 : 2), max(x ? 0 : 1, 3))\n");
+  ASSERT_EQ(cpfg.error, "");
+  EXPECT_NE(cpfg.program.find("B(2 * (if(x > 0, 1, 2)), max(if(x, 0, 1), 3))"), std::string::npos) << cpfg.program;
+}
+
+}  // namespace
+}  // namespace ontogen::convert
