@@ -601,7 +601,14 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
                "': the cell language would draw it anew each time; pass a local holding the draw");
   }
   stop = close + 1;
-  return "(" + substituted(body, arguments) + ")";
+  std::string value = "(" + substituted(body, arguments) + ")";
+  inlinedBytes_ += value.size();
+  if (inlinedBytes_ > kMaxInlinedBytes)
+    fail(at, stop,
+         "the calls of helper functions or macros write more than " + std::to_string(kMaxInlinedBytes >> 20) +
+             " MiB (calls within calls multiply)",
+         false);
+  return value;
 }
 
 std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
@@ -623,6 +630,10 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
                         : ": C code, which ontogen convert does not translate (it reads cpfg's productions, "
                           "conditions and expressions over arithmetic)"));
   };
+  // Whether a conditional may stand inside parentheses here (looked for once).
+  bool mayNestConditionals = false;
+  for (uint32_t k = begin; k < end && !mayNestConditionals; ++k)
+    mayNestConditionals = python ? text_.compare(k, 2, "if") == 0 && k + 2 <= end : text_[k] == '?';
   // Python's `not` binds looser than comparisons (`not x == 0` is `!(x == 0)`): its
   // operand runs to the next `and`, `or`, ',' or ')' at the same depth.
   std::vector<int> notDepths;
@@ -741,14 +752,18 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
       const bool call = !out.empty() && (isNameChar(out.back()));
       // A conditional inside parentheses, (c ? a : b) or f(a if c else b, 2): each
       // argument read as an expression of its own, where conditionals are split off.
+      if (depth >= kMaxConvertParentheses)
+        fail(at, at + 1,
+             "nested too deeply (more than " + std::to_string(kMaxConvertParentheses) + " parentheses)", false);
       int inner = 0;
       uint32_t close = at;
-      for (; close < end; ++close) {
-        if (text_[close] == '(') ++inner;
-        if (text_[close] == ')' && --inner == 0) break;
-      }
+      if (mayNestConditionals)
+        for (; close < end; ++close) {
+          if (text_[close] == '(') ++inner;
+          if (text_[close] == ')' && --inner == 0) break;
+        }
       bool conditional = false;
-      if (close < end) {
+      if (mayNestConditionals && close < end) {
         if (!python) {
           conditional = find(at + 1, close, "?") < close;
         } else {
@@ -757,6 +772,7 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
         }
       }
       if (conditional) {
+        const Nested nested(*this, at, close + 1);
         std::string group = "(";
         for (uint32_t from = at + 1; from <= close;) {
           const uint32_t comma = find(from, close, ",");

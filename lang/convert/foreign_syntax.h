@@ -104,12 +104,18 @@ class ForeignSyntax {
   std::string_view text_;
   mutable std::set<std::string, std::less<>> warned_;
   mutable int depth_ = 0;
+  mutable size_t inlinedBytes_ = 0;  // written by inlining helper functions and macros
 };
 
 /// Levels of conditionals (`c ? a : b`, `a if c else b`) and of L-Py's `or(...)` the
 /// converter reads inside one another. The compiler takes 200 levels of nesting, and each
 /// conditional becomes two (a call and its arguments); no model nests a tenth as deep.
 inline constexpr int kMaxConvertNesting = 64;
+/// Parentheses one expression nests (the compiler takes 200 levels).
+inline constexpr int kMaxConvertParentheses = 200;
+/// Bytes the calls of helper functions and macros of one file may write in all: calls
+/// within calls multiply, and no model writes a thousandth as much.
+inline constexpr size_t kMaxInlinedBytes = size_t{4} << 20;
 
 
 }  // namespace ontogen::convert

@@ -45,7 +45,23 @@ class Reader {
     return tokens_[at_++];
   }
 
+  // Parentheses and unary operators read within one another; deeper is left to the
+  // compiler, which refuses it at its place.
+  struct Deeper {
+    explicit Deeper(int& depth) : depth_(depth) {
+      if (++depth_ > kMaxConvertParentheses + 8) {
+        --depth_;
+        throw Unreadable{};
+      }
+    }
+    ~Deeper() { --depth_; }
+    Deeper(const Deeper&) = delete;
+    Deeper& operator=(const Deeper&) = delete;
+    int& depth_;
+  };
+
   std::string disjunction() {
+    const Deeper deeper(depth_);
     std::string text = conjunction();
     while (next("||")) {
       ++at_;
@@ -75,6 +91,7 @@ class Reader {
                      "a chained comparison whose middle operand draws a random number: the cell language would "
                      "draw it twice; compare a local holding the draw");
       chain += (links ? " && " : "") + left + " " + op.text + " " + right;
+      bounded(chain, op);
       left = std::move(right);
       ++links;
     }
@@ -82,6 +99,18 @@ class Reader {
     changed_ = true;
     return "(" + chain + ")";
   }
+  // The operands the rewrite writes again make text grow; no model's expression comes
+  // near the bound, and past it each step would copy more (a file of 1 MiB could take
+  // minutes).
+  void bounded(const std::string& text, const ExpressionToken& op) const {
+    constexpr size_t kMaxBytes = size_t{256} << 10;
+    if (text.size() > kMaxBytes)
+      syntax_.fail(op.begin, op.end,
+                   "this expression grows past " + std::to_string(kMaxBytes >> 10) +
+                       " KiB as Python's '%' and chained comparisons are written out",
+                   false);
+  }
+
   std::string sum() {
     std::string text = term();
     while (next("+") || next("-")) {
@@ -104,6 +133,7 @@ class Reader {
                        "time; use a local holding the draw");
         text = "fmod(fmod(" + text + ", " + right + ") + " + right + ", " + right + ")";
         changed_ = true;
+        bounded(text, op);
       } else if (op.text == "//") {
         text = "floor(" + text + " / " + right + ")";
         changed_ = true;
@@ -115,6 +145,7 @@ class Reader {
   }
   std::string unary() {
     if (next("-") || next("+") || next("!")) {
+      const Deeper deeper(depth_);
       const std::string op = take().text;
       std::string operand = unary();
       return op + (operand[0] == '-' || operand[0] == '+' ? " " : "") + operand;
@@ -165,6 +196,7 @@ class Reader {
   const ForeignSyntax& syntax_;
   const std::vector<ExpressionToken>& tokens_;
   size_t at_ = 0;
+  int depth_ = 0;
   bool changed_ = false;
 };
 
@@ -181,7 +213,7 @@ std::optional<std::string> pythonOperators(const ForeignSyntax& syntax, const st
       if (token.text == "%" || token.text == "//")
         syntax.fail(token.begin, token.end,
                     "Python's '" + token.text +
-                        "' in an expression the converter cannot read around it: write its operands in parentheses",
+                        "' in an expression the converter cannot read around it (malformed, or nested more than " + std::to_string(kMaxConvertParentheses) + " deep)",
                     false);
     return std::nullopt;
   }

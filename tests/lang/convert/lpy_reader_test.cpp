@@ -216,3 +216,34 @@ TEST(LPyReader, ConditionalsInsideParentheses) {
 
 }  // namespace
 }  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+// Text that nests or grows without bound is a located error, read in linear time.
+TEST(LPyReader, DeepParenthesesAndGrowingRewritesAreBounded) {
+  std::string deep = "Axiom: A(";
+  for (int k = 0; k < 300; ++k) deep += "(";
+  deep += "1 if x else 2";
+  for (int k = 0; k < 300; ++k) deep += ")";
+  auto parentheses = convertText(Dialect::LPy, "a.lpy", deep + ")\n");
+  EXPECT_EQ(parentheses.line, 1);
+  EXPECT_EQ(parentheses.column, 210);
+  EXPECT_NE(parentheses.error.find("nested too deeply (more than 200 parentheses)"), std::string::npos)
+      << parentheses.error;
+  std::string chain = "Axiom: A(";
+  for (int k = 0; k < 20000; ++k) chain += "x % ";
+  auto remainders = convertText(Dialect::LPy, "a.lpy", chain + "3)\n");
+  EXPECT_EQ(remainders.line, 1);
+  EXPECT_NE(remainders.error.find("this expression grows past 256 KiB"), std::string::npos) << remainders.error;
+  std::string calls;
+  for (int k = 0; k < 40; ++k)
+    calls += "def f" + std::to_string(k) + "(x): return f" + std::to_string(k + 1) + "(x) + f" +
+             std::to_string(k + 1) + "(x)\n";
+  auto inlined = convertText(Dialect::LPy, "a.lpy", calls + "def f40(x): return x\nAxiom: A(f0(1))\n");
+  EXPECT_NE(inlined.error.find("the calls of helper functions or macros write more than 4 MiB"), std::string::npos)
+      << inlined.error;
+}
+
+}  // namespace
+}  // namespace ontogen::convert
