@@ -1,7 +1,10 @@
 #include "lang/convert/cpfg_reader.h"
 
 #include <cctype>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
@@ -142,6 +145,7 @@ class CpfgReader {
         group(syntax_.expression(*at, stop));
         continue;
       }
+      if (auto at = afterKeyword(clean_, line, "start:"); at && startBlock(*at, end)) continue;
       if (codeBlock(line)) {
         syntax_.fail(begin, end,
                      "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code, which ontogen convert "
@@ -208,6 +212,58 @@ class CpfgReader {
       return;
     }
     file_.defines.push_back({std::string(clean_.substr(at, stop - at)), syntax_.expression(stop, end), line_});
+  }
+
+  // `Start: {a = 2; b = a / 2; srand(7);}`: assignments to variables nothing else in the
+  // file assigns are constants, `#define a 2`, and srand(N) the seed. False (the block is
+  // then C code) for anything else, or a variable assigned elsewhere too.
+  bool startBlock(uint32_t at, uint32_t end) {
+    uint32_t a = at, b = end;
+    syntax_.trim(a, b);
+    if (b - a < 2 || clean_[a] != '{' || clean_[b - 1] != '}') return false;
+    struct Assignment {
+      std::string name;
+      uint32_t begin, end;
+    };
+    std::vector<Assignment> assignments;
+    std::optional<std::pair<uint32_t, uint32_t>> seed;
+    auto isName = [&](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (uint32_t from = a + 1; from < b - 1;) {
+      uint32_t semi = from;
+      while (semi < b - 1 && clean_[semi] != ';') ++semi;
+      uint32_t x = from, y = semi;
+      syntax_.trim(x, y);
+      from = semi + 1;
+      if (x == y) continue;
+      uint32_t stop = x;
+      while (stop < y && isName(clean_[stop])) ++stop;
+      uint32_t op = stop;
+      while (op < y && std::isspace(static_cast<unsigned char>(clean_[op]))) ++op;
+      if (stop == x || std::isdigit(static_cast<unsigned char>(clean_[x])) || op >= y) return false;
+      const std::string name(clean_.substr(x, stop - x));
+      if (name == "srand" && clean_[op] == '(' && clean_[y - 1] == ')' && !seed) {
+        seed = std::make_pair(op + 1, y - 1);
+        continue;
+      }
+      if (clean_[op] != '=' || (op + 1 < y && clean_[op + 1] == '=')) return false;
+      for (const Assignment& other : assignments)
+        if (other.name == name) return false;
+      // Assigned anywhere else in the file: a variable, not a constant.
+      for (size_t k = clean_.find(name); k != std::string::npos; k = clean_.find(name, k + 1)) {
+        if ((k > 0 && isName(clean_[k - 1])) || (k + name.size() < clean_.size() && isName(clean_[k + name.size()])))
+          continue;
+        if (k >= a && k < b) continue;
+        size_t after = k + name.size();
+        while (after < clean_.size() && (clean_[after] == ' ' || clean_[after] == '\t')) ++after;
+        if (after < clean_.size() && clean_[after] == '=' && (after + 1 >= clean_.size() || clean_[after + 1] != '='))
+          return false;
+      }
+      assignments.push_back({name, op + 1, y});
+    }
+    for (const Assignment& assignment : assignments)
+      file_.defines.push_back({assignment.name, syntax_.expression(assignment.begin, assignment.end), line_});
+    if (seed) file_.seed = syntax_.expression(seed->first, seed->second);
+    return true;
   }
 
   // `#define f(x, y) EXPR`, a C macro with parameters: inlined where it is used after

@@ -140,6 +140,8 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
       {"c_block.l", "1,2", "t = 1: A(2)\nt = 2: A(3)\n"},
       // MAX(a,b) and HALF(x) replaced as C would: A(5), A(3) grow, A(1) fails MAX(1,2) > 2.
       {"c_macro.l", "1,3", "t = 1: B(2.5) A(3)\nt = 3: B(2.5) B(1.5) C(1)\n"},
+      // Start: {b = 1 - C; a = b / 2;} as constants: b = 0.5, a = 0.25.
+      {"c_start.l", "1,2", "t = 1: B(0.25) A(1.5)\nt = 2: B(0.25) B(0.25) A(2)\n"},
       {"continued.l", "1,2", "t = 1: B [ C ] A\nt = 2: B [ C ] B [ C ] A\n"},
       // Python bodies: if/elif/else, nproduce, locals, math, a word over lines, return,
       // and random choices of chance 1 and 0, as L-Py derives them.
