@@ -52,6 +52,9 @@ struct HingeRange {
 struct PlanLimb {
   glm::dvec3 start{0.0}, end{0.0};
   double radius = 0;  ///< model units, > 0
+  double density = 0;      ///< mass per cubic model unit; 0: the model's
+  bool cylinder = false;   ///< a flat-ended cylinder (a rod's segment), else a capsule
+  bool touches = true;     ///< collides with the ground
 };
 
 struct PlanBody {
@@ -63,6 +66,9 @@ struct PlanBody {
   glm::dmat3 orientation{1.0};  ///< world frame after it
   std::array<HingeRange, 3> ranges{};
   std::vector<PlanLimb> limbs;
+  double spring = 0;    ///< each hinge's rotational spring, torque per radian, its rest at angle 0; 0: none
+  double damping = -1;  ///< each hinge's damping, torque per radian a second; < 0: the servos' kd
+  bool driven = true;   ///< its hinges have position servos
 };
 
 struct BodyPlan {

@@ -112,8 +112,10 @@ std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view
       out += "<joint name=\"" + hingeName(index, dof) + "\" type=\"hinge\" axis=\"" + vector(hingeAxis(body.kind, dof)) +
              "\"";
       if (range.set) out += " limited=\"true\" range=\"" + number(range.lo) + " " + number(range.hi) + "\"";
+      if (body.spring > 0) out += " stiffness=\"" + number(body.spring) + "\"";
+      if (body.damping >= 0) out += " damping=\"" + number(body.damping) + "\"";
       out += "/>\n";
-      if (def.kp == 0) continue;
+      if (def.kp == 0 || !body.driven) continue;
       actuators += "    <position name=\"s" + std::to_string(index) + "_" + std::to_string(dof) + "\" joint=\"" +
                    hingeName(index, dof) + "\" kp=\"" + number(def.kp) + "\"";
       if (limited) actuators += " forcelimited=\"true\" forcerange=\"" + number(-def.torque) + " " + number(def.torque) + "\"";
@@ -123,9 +125,12 @@ std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view
     const glm::dmat3 inverse = glm::transpose(body.orientation);
     for (const PlanLimb& limb : body.limbs) {
       indent(out, depth + 1);
-      out += "<geom type=\"capsule\" size=\"" + number(limb.radius) + "\" fromto=\"" +
-             vector(inverse * (limb.start - body.position)) + " " + vector(inverse * (limb.end - body.position)) +
-             "\"/>\n";
+      out += std::string("<geom type=\"") + (limb.cylinder ? "cylinder" : "capsule") + "\" size=\"" +
+             number(limb.radius) + "\" fromto=\"" + vector(inverse * (limb.start - body.position)) + " " +
+             vector(inverse * (limb.end - body.position)) + "\"";
+      if (limb.density > 0) out += " density=\"" + number(limb.density) + "\"";
+      if (!limb.touches) out += " conaffinity=\"0\"";
+      out += "/>\n";
     }
     // A body that moves needs a mass: a small ball where it has no limb.
     if (body.limbs.empty() && body.kind != JointKind::Weld) {
