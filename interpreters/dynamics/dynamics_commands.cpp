@@ -16,6 +16,23 @@ constexpr std::array kCommands = {
                     "torque (> 0; default 4000)"},
     DynamicsCommand{"friction", DynamicsOp::Friction, 1, 1, "friction(mu)",
                     "the sliding friction between the limbs and the ground (>= 0; default 1)"},
+    DynamicsCommand{"gravity", DynamicsOp::Gravity, 1, 1, "gravity(g)",
+                    "gravity along -y, model units per second squared (>= 0; default 9.81)"},
+    DynamicsCommand{"rod", DynamicsOp::Rod, 2, 3, "rod(l, r[, rho])",
+                    "an elastic rod l long along H from the turtle, radius r, density rho (default: density's), "
+                    "hanging from the rod before it on its path (none: fixed at its base); the turtle moves to its "
+                    "tip. It bends in elastic's segments joined by springs of stiffness / segment length"},
+    DynamicsCommand{"stiffness", DynamicsOp::Stiffness, 1, 1, "stiffness(EI)",
+                    "the bending stiffness of the rods that follow on this path, EI (> 0; 0: rigid, the default; "
+                    "pushed with [)"},
+    DynamicsCommand{"elastic", DynamicsOp::Elastic, 1, 1, "elastic(n)",
+                    "the rods that follow on this path bend in n segments (1..64; default 4; pushed with [)"},
+    DynamicsCommand{"damping", DynamicsOp::Damping, 1, 1, "damping(beta)",
+                    "each rod spring's damping is its stiffness times beta seconds (>= 0; default 0.01)"},
+    DynamicsCommand{"wind", DynamicsOp::Wind, 3, 5, "wind(x, y, z[, gust, period])",
+                    "the air moves at (x, y, z) units a second, its speed varying by the fraction gust as "
+                    "sin(2 pi t / period) (default 0, 4 s): each rod segment feels the drag 1/2 rho_air Cd 2r h "
+                    "|v| v of the air's speed v across it relative to its own (rho_air 1.2, Cd 1.2)"},
 };
 
 }  // namespace

@@ -95,6 +95,11 @@ void DynamicsSet::beginWord(double time) {
   wordTime_ = time;
   wordTape_.clear();
   wordPhysics_ = def_.physics;
+  wordRods_.clear();
+  rodPath_ = {};
+  rodStack_.clear();
+  wordWind_ = {};
+  wordDamping_ = kRodDamping;
   starts_.clear();
   inner_.beginFrame(FrameTarget{{}, {}, 0, 1, time});
   inner_.beginWord(time);
@@ -102,6 +107,8 @@ void DynamicsSet::beginWord(double time) {
 
 void DynamicsSet::beginCell(const CellContext& cell) {
   inner_.beginCell(cell);
+  cellId_ = cell.id;
+  rodsInCell_ = 0;
   TapeEntry entry;
   entry.cell = true;
   entry.context = cell;
@@ -130,24 +137,17 @@ void DynamicsSet::executeCommand(int id, std::string_view command, std::span<con
       badArguments_.add(1, site_);
       return;
     }
-    PhysicsDef next = wordPhysics_;
-    switch (found.op) {
-      case DynamicsOp::Density: next.density = args[0]; break;
-      case DynamicsOp::Friction: next.friction = args[0]; break;
-      case DynamicsOp::Servo:
-        next.kp = args[0];
-        next.kd = args[1];
-        if (args.size() > 2) next.torque = args[2];
-        break;
-    }
-    if (physicsError(next) != nullptr) {
-      badArguments_.add(1, site_);
-      return;
-    }
-    wordPhysics_ = next;
+    runOwn(found.op, args);
     return;
   }
   const int creature = id - static_cast<int>(own.size());
+  // A branch keeps its rods' path: [ pushes the last rod and the rods' make, ] pops them.
+  const CreatureOp op = creatureCommands()[static_cast<std::size_t>(creature)].op;
+  if (op == CreatureOp::Push) rodStack_.push_back(rodPath_);
+  if (op == CreatureOp::Pop && !rodStack_.empty()) {
+    rodPath_ = rodStack_.back();
+    rodStack_.pop_back();
+  }
   inner_.locate(site_);
   runCreature(inner_, creature, args, starts_);
   TapeEntry entry;
@@ -155,6 +155,128 @@ void DynamicsSet::executeCommand(int id, std::string_view command, std::span<con
   entry.command = creature;
   entry.args.assign(args.begin(), args.end());
   wordTape_.push_back(std::move(entry));
+}
+
+void DynamicsSet::runOwn(DynamicsOp op, std::span<const double> args) {
+  PhysicsDef next = wordPhysics_;
+  bool bad = false;
+  switch (op) {
+    case DynamicsOp::Density: next.density = args[0]; break;
+    case DynamicsOp::Friction: next.friction = args[0]; break;
+    case DynamicsOp::Gravity: next.gravity = args[0]; break;
+    case DynamicsOp::Servo:
+      next.kp = args[0];
+      next.kd = args[1];
+      if (args.size() > 2) next.torque = args[2];
+      break;
+    case DynamicsOp::Stiffness:
+      bad = !(args[0] >= 0);
+      if (!bad) rodPath_.stiffness = args[0];
+      break;
+    case DynamicsOp::Elastic:
+      bad = !(args[0] >= 1 && args[0] <= 64);
+      if (!bad) rodPath_.segments = static_cast<int>(std::lround(args[0]));
+      break;
+    case DynamicsOp::Damping:
+      bad = !(args[0] >= 0);
+      if (!bad) wordDamping_ = args[0];
+      break;
+    case DynamicsOp::Wind: {
+      Air air;
+      air.speed = {args[0], args[1], args[2]};
+      if (args.size() > 3) air.gust = args[3];
+      if (args.size() > 4) air.period = args[4];
+      bad = !(air.period > 0);
+      if (!bad) wordWind_ = air;
+      break;
+    }
+    case DynamicsOp::Rod: {
+      RodSpec rod;
+      rod.length = args[0];
+      rod.radius = args[1];
+      rod.density = args.size() > 2 ? args[2] : wordPhysics_.density;
+      if (!(rod.length > 0) || !(rod.radius > 0) || !(rod.density > 0)) {
+        bad = true;
+        break;
+      }
+      // The cell's id and the rod's place among its rods: stable while the cell lives.
+      rod.id = cellId_ * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(++rodsInCell_);
+      rod.parent = rodPath_.rod;
+      rod.base = inner_.turtlePosition();
+      rod.frame = inner_.turtleFrame();
+      rod.stiffness = rodPath_.stiffness;
+      rod.segments = rodPath_.segments;
+      rodPath_.rod = static_cast<int>(wordRods_.size());
+      wordRods_.push_back(rod);
+      // The turtle moves to the rod's tip, in the word and in every replay of it.
+      const CreatureCommand* move = findCreatureCommand("f");
+      const int index = static_cast<int>(move - creatureCommands().data());
+      const std::array<double, 1> length{rod.length};
+      inner_.locate(site_);
+      runCreature(inner_, index, length, starts_);
+      TapeEntry entry;
+      entry.site = site_;
+      entry.command = index;
+      entry.args.assign(length.begin(), length.end());
+      wordTape_.push_back(std::move(entry));
+      break;
+    }
+  }
+  if (bad || physicsError(next) != nullptr) {
+    badArguments_.add(1, site_);
+    return;
+  }
+  wordPhysics_ = next;
+}
+
+void DynamicsSet::addRods(BodyPlan& plan, const std::vector<RodSpec>& rods) const {
+  std::vector<int> tipBody(rods.size(), -1);
+  for (std::size_t k = 0; k < rods.size(); ++k) {
+    const RodSpec& rod = rods[k];
+    int parent = rod.parent >= 0 ? tipBody[static_cast<std::size_t>(rod.parent)] : -1;
+    if (parent < 0) {
+      // A root rod is clamped at its base: a body fixed in the world.
+      PlanBody anchor;
+      anchor.id = rod.id ^ 0xA5A5A5A5A5A5A5A5ull;
+      anchor.kind = JointKind::Weld;
+      anchor.position = rod.base;
+      anchor.base = anchor.orientation = rod.frame;
+      parent = static_cast<int>(plan.bodies.size());
+      plan.bodies.push_back(anchor);
+    }
+    const glm::dvec3 along = rod.frame[0];
+    const glm::dvec3 tip = rod.base + rod.length * along;
+    auto limb = [&](const glm::dvec3& a, const glm::dvec3& b) {
+      return PlanLimb{a, b, rod.radius, rod.density, true, false};
+    };
+    std::vector<PlanLimb>& held = plan.bodies[static_cast<std::size_t>(parent)].limbs;
+    if (rod.stiffness <= 0) {
+      held.push_back(limb(rod.base, tip));
+      tipBody[k] = parent;
+      continue;
+    }
+    // As the elastic design model cuts it: n segments of h, a spring of EI / h at each
+    // segment's middle; the half segment at the base moves with what the rod hangs from.
+    const int n = rod.segments;
+    const double h = rod.length / n;
+    held.push_back(limb(rod.base, rod.base + h / 2 * along));
+    int previous = parent;
+    for (int i = 0; i < n; ++i) {
+      PlanBody body;
+      body.id = rod.id * 131 + static_cast<uint64_t>(i) + 1;
+      body.parent = previous;
+      body.kind = JointKind::Bend;
+      body.position = rod.base + (h / 2 + i * h) * along;
+      body.base = body.orientation = rod.frame;
+      body.limbs.push_back(limb(body.position, i + 1 == n ? tip : body.position + h * along));
+      body.spring = rod.stiffness / h;
+      body.damping = wordDamping_ * body.spring;
+      body.driven = false;
+      previous = static_cast<int>(plan.bodies.size());
+      plan.bodies.push_back(std::move(body));
+    }
+    tipBody[k] = previous;
+  }
 }
 
 void DynamicsSet::runCreature(CreatureSet& set, int command, std::span<const double> args,
@@ -224,11 +346,15 @@ void DynamicsSet::endWord() {
   tape_.swap(wordTape_);
   tapeTime_ = wordTime_;
   BodyPlan plan = planOf(inner_, starts_);
+  const std::size_t skeleton = plan.bodies.size();
+  if (skeleton == inner_.scene().skeleton.joints.size()) addRods(plan, wordRods_);
+  wind_ = wordWind_;
   const bool hasHinges = std::any_of(plan.bodies.begin(), plan.bodies.end(),
                                      [](const PlanBody& b) { return b.kind != JointKind::Weld; });
   const bool physicsChanged = wordPhysics_.density != physics_.density || wordPhysics_.friction != physics_.friction ||
                               wordPhysics_.kp != physics_.kp || wordPhysics_.kd != physics_.kd ||
-                              wordPhysics_.torque != physics_.torque;
+                              wordPhysics_.torque != physics_.torque || wordPhysics_.gravity != physics_.gravity ||
+                              wordDamping_ != damping_ || wordRods_.size() != rods_.size();
   if (!hasHinges) {
     sim_.reset();
     plan_ = {};
@@ -236,6 +362,9 @@ void DynamicsSet::endWord() {
   }
   if (!sim_ || !plan.sameStructure(plan_) || physicsChanged) {
     physics_ = wordPhysics_;
+    damping_ = wordDamping_;
+    rods_ = wordRods_;
+    skeletonBodies_ = skeleton;
     build(plan, wordTime_);
   }
 }
@@ -280,15 +409,54 @@ void DynamicsSet::build(const BodyPlan& plan, double time) {
       hinges_.push_back(hinge);
     }
   }
+  drags_.clear();
+  for (std::size_t b = skeletonBodies_; b < plan_.bodies.size(); ++b) {
+    const PlanBody& body = plan_.bodies[b];
+    if (body.kind == JointKind::Weld || bodyIds_[b] < 0 || body.limbs.empty()) continue;
+    const PlanLimb& own = body.limbs.front();
+    drags_.push_back({bodyIds_[b], own.radius, glm::length(own.end - own.start)});
+  }
+  // Each rod's tip: on the last body of its own, or on what it is welded to.
+  rodTipsAtRest_.clear();
+  for (const RodSpec& rod : rods_) {
+    const glm::dvec3 tip = rod.base + rod.length * rod.frame[0];
+    int holder = -1;
+    for (std::size_t b = skeletonBodies_; b < plan_.bodies.size(); ++b)
+      for (const PlanLimb& limb : plan_.bodies[b].limbs)
+        if (glm::length(limb.end - tip) < 1e-12 * std::max(1.0, rod.length)) holder = static_cast<int>(b);
+    rodTipsAtRest_.push_back({holder, tip});
+  }
   setControls(time);
   mj_forward(m, d);
+}
+
+void DynamicsSet::applyWind(double time) {
+  if (drags_.empty()) return;
+  const mjModel* m = sim_->model();
+  mjData* d = sim_->data();
+  const glm::dvec3 air = wind_.speed * (1 + wind_.gust * std::sin(2 * std::numbers::pi * time / wind_.period));
+  for (const Drag& drag : drags_) {
+    mjtNum* force = d->xfrc_applied + 6 * drag.body;
+    mjtNum velocity[6];
+    mj_objectVelocity(m, d, mjOBJ_BODY, drag.body, velocity, 0);
+    // The air across the segment, relative to its centre's motion.
+    const glm::dvec3 relative = air - glm::dvec3(velocity[3], velocity[4], velocity[5]);
+    const glm::dvec3 axis = frameOf(d, drag.body)[0];
+    const glm::dvec3 across = relative - glm::dot(relative, axis) * axis;
+    const glm::dvec3 pull =
+        0.5 * kAirDensity * kDragCoefficient * 2 * drag.radius * drag.length * glm::length(across) * across;
+    for (int k = 0; k < 3; ++k) {
+      force[k] = pull[k];
+      force[3 + k] = 0;
+    }
+  }
 }
 
 void DynamicsSet::setControls(double time) {
   replay(tape_, FrameTarget{{}, {}, 0, 1, time}, replay_, stepStarts_);
   const auto& joints = replay_.scene().skeleton.joints;
   // A tape that no longer makes the model's joints holds the controls as they are.
-  if (joints.size() != plan_.bodies.size() || stepStarts_.size() != joints.size()) return;
+  if (joints.size() != skeletonBodies_ || stepStarts_.size() != joints.size()) return;
   mjData* d = sim_->data();
   std::size_t body = plan_.bodies.size();
   std::array<double, 3> angles{};
@@ -311,6 +479,7 @@ void DynamicsSet::advanceTo(double time) {
   const double h = physics_.timestep;
   while (stepTime(steps_ + 1) <= time + 1e-9 * std::max(1.0, std::abs(time))) {
     setControls(stepTime(steps_));
+    applyWind(stepTime(steps_));
     sim_->step();
     ++steps_;
     stats_.simulatedTime += h;
@@ -373,7 +542,7 @@ void DynamicsSet::contribute(Scene& scene) {
     std::sort(contacts.begin(), contacts.end());
     contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
     draw_.setReposer([&](Skeleton& skeleton, std::vector<CreatureLimb>& limbs) {
-      if (skeleton.joints.size() != plan_.bodies.size()) return;
+      if (skeleton.joints.size() != skeletonBodies_) return;
       // Each joint to its body's place; its limbs move rigidly with it.
       std::vector<glm::dmat3> turns(skeleton.joints.size());
       std::vector<glm::dvec3> from(skeleton.joints.size());
@@ -407,6 +576,28 @@ void DynamicsSet::contribute(Scene& scene) {
   scene_.clear();
   draw_.contribute(scene_);
   scene_.time = time;
+
+  if (sim_) {
+    // The rods where the simulation has their bodies.
+    for (std::size_t b = skeletonBodies_; b < plan_.bodies.size(); ++b) {
+      const PlanBody& body = plan_.bodies[b];
+      const int id = bodyIds_[b];
+      if (id < 0) continue;
+      const glm::dmat3 turn = frameOf(s, id) * glm::transpose(body.orientation);
+      const glm::dvec3 at = positionOf(s, id);
+      scene_.geometry.setMaterial(3);
+      for (const PlanLimb& limb : body.limbs)
+        scene_.geometry.addCylinder(at + turn * (limb.start - body.position), at + turn * (limb.end - body.position),
+                                    limb.radius, false, turn * body.orientation[1]);
+    }
+    rodTips_.clear();
+    for (const auto& [holder, tip] : rodTipsAtRest_) {
+      if (holder < 0) continue;
+      const PlanBody& body = plan_.bodies[static_cast<std::size_t>(holder)];
+      const int id = bodyIds_[static_cast<std::size_t>(holder)];
+      rodTips_.push_back(positionOf(s, id) + frameOf(s, id) * glm::transpose(body.orientation) * (tip - body.position));
+    }
+  }
 
   if (sim_) {
     // Where the body is: its first root, its centre of mass, its lowest joint.
@@ -443,6 +634,14 @@ void DynamicsSet::contribute(Scene& scene) {
   }
   scene.time = time;
   scene.append(scene_);
+}
+
+std::vector<ServoTarget> DynamicsSet::targets() const {
+  std::vector<ServoTarget> out;
+  if (!sim_) return out;
+  for (const Hinge& hinge : hinges_)
+    if (hinge.actuator >= 0) out.push_back({hinge.body, hinge.dof, sim_->data()->ctrl[hinge.actuator]});
+  return out;
 }
 
 std::vector<std::filesystem::path> DynamicsSet::endFrame() {

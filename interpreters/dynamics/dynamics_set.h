@@ -31,6 +31,7 @@
 #include <glm/vec3.hpp>
 
 #include "interpreters/creature/creature_set.h"
+#include "interpreters/dynamics/dynamics_commands.h"
 #include "interpreters/dynamics/body_plan.h"
 #include "interpreters/dynamics/mjcf_builder.h"
 #include "interpreters/interpretation_set.h"
@@ -62,8 +63,21 @@ struct DynamicsStats {
   int instabilities = 0;      ///< times MuJoCo reset an unstable simulation
 };
 
+/// What a joint's servo is asked: the angle of one of its degrees of freedom in the
+/// kinematic pose (radians, as MuJoCo's hinge measures it).
+struct ServoTarget {
+  int joint = 0;  ///< in the skeleton's order
+  int dof = 0;
+  double angle = 0;
+};
+
 class DynamicsSet : public InterpretationSet {
  public:
+  /// The rods' springs' damping, times their stiffness, seconds, unless damping() says.
+  static constexpr double kRodDamping = 0.01;
+  /// The air's density and a rod's drag coefficient across the air (a long cylinder's).
+  static constexpr double kAirDensity = 1.2, kDragCoefficient = 1.2;
+
   /// Throws std::invalid_argument when def is out of range.
   explicit DynamicsSet(const DynamicsSetDef& def = {});
   ~DynamicsSet() override;
@@ -89,6 +103,10 @@ class DynamicsSet : public InterpretationSet {
   std::vector<SetWarning> takeWarnings() override;
 
   const DynamicsStats& stats() const { return stats_; }
+  /// The servos' targets at the start of the last step taken (none before a model exists).
+  std::vector<ServoTarget> targets() const;
+  /// The tip of each rod of the model (in the order the word drew them) at the last frame drawn.
+  const std::vector<glm::dvec3>& rodTips() const { return rodTips_; }
   /// The scene of the last frame drawn.
   const Scene& scene() const { return scene_; }
   /// The MJCF of the model at the first frame drawn, with its state as a keyframe ("" before).
@@ -114,7 +132,29 @@ class DynamicsSet : public InterpretationSet {
               std::vector<JointStart>& starts);
   void runCreature(CreatureSet& set, int command, std::span<const double> args, std::vector<JointStart>& starts);
   BodyPlan planOf(const CreatureSet& set, const std::vector<JointStart>& starts) const;
+  // A rod the word drew, and what a path's rods are made of ([ pushes it).
+  struct RodSpec {
+    uint64_t id = 0;
+    int parent = -1;  // index in the word's rods; -1: fixed at its base
+    glm::dvec3 base{0.0};
+    glm::dmat3 frame{1.0};
+    double length = 0, radius = 0, density = 0, stiffness = 0;
+    int segments = 4;
+  };
+  struct RodPath {
+    int rod = -1;
+    double stiffness = 0;
+    int segments = 4;
+  };
+  struct Air {
+    glm::dvec3 speed{0.0};
+    double gust = 0, period = 4;
+  };
+  void runOwn(DynamicsOp op, std::span<const double> args);
+  // Appends the rods' bodies to the plan (after the skeleton's).
+  void addRods(BodyPlan& plan, const std::vector<RodSpec>& rods) const;
   void build(const BodyPlan& plan, double time);
+  void applyWind(double time);
   void advanceTo(double time);
   void setControls(double time);
   double stepTime(long steps) const { return start_ + static_cast<double>(steps) * physics_.timestep; }
@@ -141,6 +181,21 @@ class DynamicsSet : public InterpretationSet {
     CreatureRange range;
   };
   std::vector<Hinge> hinges_;
+  std::vector<RodSpec> wordRods_, rods_;  // of the word being read; of the model's word
+  RodPath rodPath_;
+  std::vector<RodPath> rodStack_;
+  uint64_t cellId_ = 0;
+  int rodsInCell_ = 0;
+  Air wordWind_, wind_;
+  double wordDamping_ = kRodDamping, damping_ = kRodDamping;
+  std::size_t skeletonBodies_ = 0;  // the plan's bodies before its rods'
+  struct Drag {
+    int body = 0;  // MuJoCo's
+    double radius = 0, length = 0;
+  };
+  std::vector<Drag> drags_;
+  std::vector<std::pair<int, glm::dvec3>> rodTipsAtRest_;  // per rod: its plan body, its tip at rest
+  std::vector<glm::dvec3> rodTips_;
   std::vector<int> bodyIds_;   // MuJoCo's body of each plan body
   std::vector<int> planOfBody_;  // the plan body of each MuJoCo body (-1: the world)
   int groundGeom_ = -1;
