@@ -148,51 +148,62 @@ struct SkinnedBatch {
   std::vector<glm::vec2> cells;   // (cell number, birth) per vertex
 };
 
-// True when a joint stands in every frame, in the same place: a part that never moves.
-bool isStill(const Track& t) {
-  return !t.hidden && !changes(t.translations) && !changes(t.rotations, 4) && !changes(t.scales);
+// The frames [first, last] of a joint that is in each of them in one place and absent
+// from the others: a part that never moves while it shows. {1, 0} when it moves.
+std::pair<std::size_t, std::size_t> steadySpan(const Track& t) {
+  const std::pair<std::size_t, std::size_t> moves{1, 0};
+  if (changes(t.translations) || changes(t.rotations, 4)) return moves;
+  std::size_t first = 0, last = t.scales.size();
+  while (first < t.scales.size() && t.scales[first] == glm::vec3(0.0f)) ++first;
+  while (last > first && t.scales[last - 1] == glm::vec3(0.0f)) --last;
+  if (first >= last) return moves;
+  for (std::size_t f = first; f < last; ++f)
+    if (t.scales[f] != t.scales[first]) return moves;
+  return {first, last - 1};
+}
+
+// A shape placed in world coordinates, appended to a batch with its cell per vertex.
+void appendPlaced(MeshBatch& into, std::vector<glm::vec2>& cells, const MeshBatch& shape, const PartPlacement& p,
+                  const PartJoint& joint) {
+  const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
+  const auto base = static_cast<uint32_t>(into.positions.size());
+  for (const glm::vec3& v : shape.positions) into.positions.emplace_back(p.translation + rotation * (glm::dvec3(v) * p.scale));
+  for (const glm::vec3& n : shape.normals) into.normals.emplace_back(rotation * glm::dvec3(n));
+  into.texcoords.insert(into.texcoords.end(), shape.texcoords.begin(), shape.texcoords.end());
+  cells.insert(cells.end(), shape.positions.size(),
+               glm::vec2(static_cast<float>(joint.cellNumber), static_cast<float>(joint.birth)));
+  for (uint32_t index : shape.indices) into.indices.push_back(base + index);
 }
 
 // The parts that never move, in world coordinates in one mesh of a primitive per colour,
 // each vertex with (cell number, birth) as the joints' are.
 void writeStillParts(const SceneParts& parts, const std::vector<std::vector<MeshBatch>>& shapes,
-                     const std::vector<uint32_t>& stillJoints, Builder& b, nlohmann::json& sceneNodes) {
+                     const std::vector<uint32_t>& stillJoints, const std::vector<const PartPlacement*>& placed,
+                     Builder& b, nlohmann::json& sceneNodes) {
   if (stillJoints.empty()) return;
-  std::map<uint32_t, const PartPlacement*> placed;
-  for (const PartPlacement& p : parts.frames().front().placements) placed.try_emplace(p.joint, &p);
   struct Batch {
-    std::vector<glm::vec3> positions, normals;
-    std::vector<glm::vec2> texcoords, cells;
-    std::vector<uint32_t> indices;
+    MeshBatch mesh;
+    std::vector<glm::vec2> cells;
   };
   std::map<uint32_t, Batch> world;  // by colour
   for (uint32_t joint : stillJoints) {
     const PartJoint& pj = parts.joints()[joint];
-    const PartPlacement& p = *placed.at(joint);
-    const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
     for (const MeshBatch& batch : shapes[pj.shape]) {
       if (batch.indices.empty()) continue;
       Batch& into = world[batch.material];
-      const auto base = static_cast<uint32_t>(into.positions.size());
-      for (const glm::vec3& v : batch.positions) into.positions.emplace_back(p.translation + rotation * (glm::dvec3(v) * p.scale));
-      for (const glm::vec3& n : batch.normals) into.normals.emplace_back(rotation * glm::dvec3(n));
-      into.texcoords.insert(into.texcoords.end(), batch.texcoords.begin(), batch.texcoords.end());
-      into.cells.insert(into.cells.end(), batch.positions.size(),
-                        glm::vec2(static_cast<float>(pj.cellNumber), static_cast<float>(pj.birth)));
-      for (uint32_t index : batch.indices) into.indices.push_back(base + index);
+      appendPlaced(into.mesh, into.cells, batch, *placed[joint], pj);
     }
   }
   if (world.empty()) return;
   nlohmann::json primitives = nlohmann::json::array();
-  for (const auto& [material, batch] : world)
-    primitives.push_back({{"attributes",
-                           {{"POSITION", b.addVec3(batch.positions, kArrayBuffer, true)},
-                            {"NORMAL", b.addVec3(batch.normals, kArrayBuffer, false)},
-                            {"TEXCOORD_0", b.addVec2(batch.texcoords)},
-                            {"TEXCOORD_1", b.addVec2(batch.cells)}}},
-                          {"indices", b.addIndices(batch.indices)},
+  for (const auto& [material, batch] : world) {
+    nlohmann::json attributes = meshAttributes(b, batch.mesh);
+    attributes["TEXCOORD_1"] = b.addVec2(batch.cells);
+    primitives.push_back({{"attributes", attributes},
+                          {"indices", b.addIndices(batch.mesh.indices)},
                           {"material", b.materialOf(material)},
                           {"mode", kTriangles}});
+  }
   b.gltf["meshes"].push_back({{"name", "still"}, {"primitives", primitives}});
   b.gltf["nodes"].push_back({{"name", "still"}, {"mesh", b.gltf["meshes"].size() - 1}});
   sceneNodes.push_back(b.gltf["nodes"].size() - 1);
@@ -203,31 +214,60 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
   if (joints.empty()) return;
   const std::vector<std::vector<MeshBatch>> shapes = finalShapes(parts);
   const std::vector<Track> tracks = tracksOf(parts);
-  // The joints that move are nodes (the k-th moving joint is node k); the others are
-  // written still.
+  const std::size_t frames = parts.frames().size();
+  std::vector<const PartPlacement*> placed(joints.size(), nullptr);  // where each first stands
+  for (const PartFrame& frame : parts.frames())
+    for (const PartPlacement& p : frame.placements)
+      if (placed[p.joint] == nullptr) placed[p.joint] = &p;
+  // The joints that move are nodes (the k-th is node k). Those that never move while they
+  // show are written in world coordinates: in the still mesh when they show in every
+  // frame, else as one node per span of frames they show in, after the moving ones.
   std::vector<uint32_t> moving, stillJoints;
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<uint32_t>> steady;  // by span
   std::vector<std::size_t> slot(joints.size(), 0);
   for (uint32_t j = 0; j < joints.size(); ++j) {
-    if (isStill(tracks[j])) {
-      stillJoints.push_back(j);
-    } else {
+    const auto span = steadySpan(tracks[j]);
+    if (span.first > span.second) {
       slot[j] = moving.size();
       moving.push_back(j);
+    } else if (span.first == 0 && span.second + 1 == frames) {
+      stillJoints.push_back(j);
+    } else {
+      steady[span].push_back(j);
     }
   }
-  const std::size_t count = moving.size();
+  // A span's node is keyed like a joint that shows in those frames, at the origin.
+  std::vector<Track> spanTracks;
+  std::vector<nlohmann::json> spanNodes;
+  for (const auto& [span, members] : steady) {
+    Track t;
+    t.hidden = true;
+    for (std::size_t f = 0; f < frames; ++f) {
+      t.translations.emplace_back(0.0f);
+      t.rotations.insert(t.rotations.end(), {0.0f, 0.0f, 0.0f, 1.0f});
+      t.scales.emplace_back(f >= span.first && f <= span.second ? 1.0f : 0.0f);
+    }
+    spanTracks.push_back(std::move(t));
+    const std::string name = "frames " + std::to_string(span.first) + " to " + std::to_string(span.second);
+    spanNodes.push_back({{"name", name}, {"extras", {{"frames", {span.first, span.second}}, {"parts", members.size()}}}});
+  }
+  const std::size_t count = moving.size() + steady.size();
+  auto trackOf = [&](std::size_t k) -> const Track& {
+    return k < moving.size() ? tracks[moving[k]] : spanTracks[k - moving.size()];
+  };
   if (count == 0) {
-    writeStillParts(parts, shapes, stillJoints, b, sceneNodes);
+    writeStillParts(parts, shapes, stillJoints, placed, b, sceneNodes);
     return;
   }
 
   // The joints under one root; their rest transform is their last frame's.
   nlohmann::json children = nlohmann::json::array();
   for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t j = moving[k];
-    const Track& t = tracks[j];
+    const Track& t = trackOf(k);
     const std::size_t last = t.translations.size() - 1;
-    nlohmann::json node = {{"name", jointName(joints[j])}, {"extras", jointExtras(joints[j])}};
+    nlohmann::json node = k < moving.size()
+                              ? nlohmann::json{{"name", jointName(joints[moving[k]])}, {"extras", jointExtras(joints[moving[k]])}}
+                              : spanNodes[k - moving.size()];
     const glm::vec3 translation = t.translations[last], scale = t.scales[last];
     using gltf::shortFloat;
     node["translation"] = {shortFloat(translation.x), shortFloat(translation.y), shortFloat(translation.z)};
@@ -245,8 +285,25 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
   const std::size_t skins = (count + kJointsPerSkin - 1) / kJointsPerSkin;
   std::vector<nlohmann::json> primitives(skins, nlohmann::json::array());
   std::vector<std::vector<uint32_t>> instances = parts.jointsByShape();
-  for (auto& of : instances) std::erase_if(of, [&](uint32_t j) { return isStill(tracks[j]); });
+  std::vector<char> isMoving(joints.size(), 0);
+  for (uint32_t j : moving) isMoving[j] = 1;
+  for (auto& of : instances) std::erase_if(of, [&](uint32_t j) { return !isMoving[j]; });
   std::vector<std::map<uint32_t, SkinnedBatch>> single(skins);  // by skin, then colour
+  // The spans' parts, in world coordinates, skinned to their span's joint.
+  std::size_t spanSlot = moving.size();
+  for (const auto& [span, members] : steady) {
+    for (uint32_t joint : members) {
+      for (const MeshBatch& batch : shapes[joints[joint].shape]) {
+        if (batch.indices.empty()) continue;
+        SkinnedBatch& into = single[spanSlot / kJointsPerSkin][batch.material];
+        const std::size_t before = into.mesh.positions.size();
+        appendPlaced(into.mesh, into.cells, batch, *placed[joint], joints[joint]);
+        for (std::size_t v = before; v < into.mesh.positions.size(); ++v)
+          into.joints.insert(into.joints.end(), {static_cast<uint16_t>(spanSlot % kJointsPerSkin), 0, 0, 0});
+      }
+    }
+    ++spanSlot;
+  }
   auto perVertex = [&](uint32_t joint, std::size_t vertices, std::vector<uint16_t>& jointsOut,
                        std::vector<glm::vec2>& cellsOut) {
     const PartJoint& pj = joints[joint];
@@ -322,12 +379,11 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
         {{"name", name}, {"mesh", b.gltf["meshes"].size() - 1}, {"skin", b.gltf["skins"].size() - 1}});
     sceneNodes.push_back(b.gltf["nodes"].size() - 1);
   }
-  writeStillParts(parts, shapes, stillJoints, b, sceneNodes);
+  writeStillParts(parts, shapes, stillJoints, placed, b, sceneNodes);
 
   // The animation: each joint keyed from its first frame to its last (and, for the
   // scale of a joint that appears or vanishes, the frames either side, where it is 0);
   // before and after its keys a channel holds its first and last value.
-  const std::size_t frames = parts.frames().size();
   if (frames < 2) return;
   const Timing timing = timingOf(parts.frames());
   std::map<std::pair<std::size_t, std::size_t>, int> inputs;  // keys lo..hi -> accessor
@@ -343,7 +399,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
     channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", path}}}});
   };
   for (std::size_t j = 0; j < count; ++j) {
-    const Track& t = tracks[moving[j]];
+    const Track& t = trackOf(j);
     std::size_t first = 0, last = frames - 1;
     while (first < last && t.scales[first] == glm::vec3(0.0f)) ++first;
     while (last > first && t.scales[last] == glm::vec3(0.0f)) --last;

@@ -35,6 +35,10 @@
 //   ontogen_bounds (min and max of every frame, model units).
 // - A perspective camera framing every frame and a directional key light
 //   (gltf::addCameraAndKeyLight).
+// - Parts that never move while they show are no joints: those in every frame are written
+//   in world coordinates in a mesh "still"; the others in world coordinates skinned to
+//   one joint per span of frames they show in ("frames A to B", extras frames and
+//   parts), which a STEP scale shows in those frames.
 // With more than kMaxJoints joints each frame is instead
 // a node of its own, its parts placed in world coordinates, shown by a STEP scale
 // channel (1 in its frame, 0 otherwise); without animation the last frame shows.

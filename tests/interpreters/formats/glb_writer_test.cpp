@@ -333,11 +333,11 @@ TEST(GlbWriter, AShapeThatChangesSwitchesJoints) {
   GlbAnimationWriter writer;
   for (int f = 0; f < 4; ++f) {
     SceneBuilder frame(f);
-    frame.cell(5, "X", {0, 0, 0}, glm::dmat3(1.0), [&](Geometry& g) {
+    frame.cell(5, "X", {0, 0, 0}, glm::dmat3(1.0), [&](Geometry& g) {  // moving along x
       if (f < 2)
-        g.addSphere({0, 0, 0}, 1);
+        g.addSphere({f, 0, 0}, 1);
       else
-        g.addCylinder({0, 0, 0}, {1, 0, 0}, 0.2, true);
+        g.addCylinder({f, 0, 0}, {f + 1, 0, 0}, 0.2, true);
     });
     writer.addFrame(frame.scene);
   }
@@ -414,6 +414,46 @@ std::vector<std::string> nodeNames(const Glb& glb) {
   std::vector<std::string> names;
   for (const auto& node : glb.json["nodes"]) names.push_back(node.value("name", ""));
   return names;
+}
+
+// Cells that never move while they show, each over a span of frames (A in frame 0, B in
+// frames 1 and 2), beside one that moves (C): A and B are no joints of their own, but
+// their span's joint ("frames 0 to 0", "frames 1 to 2"), their parts in world
+// coordinates, shown by a STEP scale in their frames only.
+TEST(GlbWriter, PartsSteadyOverASpanOfFramesShareTheSpansJoint) {
+  GlbAnimationWriter writer;
+  for (int f = 0; f < 3; ++f) {
+    SceneBuilder frame(f);
+    if (f == 0) frame.cell(1, "A", {0, 0, 0}, glm::dmat3(1.0), [](Geometry& g) { g.addSphere({5, 0, 0}, 1); });
+    if (f > 0) {
+      frame.cell(2, "B", {0, 0, 0}, glm::dmat3(1.0), [](Geometry& g) { g.addSphere({0, 5, 0}, 1); });
+      frame.cell(4, "B", {0, 0, 0}, glm::dmat3(1.0), [](Geometry& g) { g.addSphere({0, 7, 0}, 1); });
+    }
+    frame.cell(3, "C", {0, 0, 0}, glm::dmat3(1.0), [&](Geometry& g) { g.addSphere({0, 0, f}, 0.5); });
+    writer.addFrame(frame.scene);
+  }
+  const Glb glb(written(writer));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"C 3", "frames 0 to 0", "frames 1 to 2", "cells", "parts",
+                                                      "ontogen camera", "ontogen key light"}));
+  ASSERT_EQ(glb.json["skins"].size(), 1u);
+  EXPECT_EQ(glb.json["skins"][0]["joints"], nlohmann::json({0, 1, 2}));
+  EXPECT_EQ(glb.json["nodes"][2]["extras"]["parts"], 2);
+  for (int f = 0; f < 3; ++f) {
+    EXPECT_EQ(glb.sample(1, "scale", f), f == 0 ? 1 : 0) << f;
+    EXPECT_EQ(glb.sample(2, "scale", f), f == 0 ? 0 : 1) << f;
+  }
+  // The spans' vertices lie where their spheres were drawn, skinned to their span.
+  std::map<int, Box> byJoint;
+  for (const auto& primitive : glb.json["meshes"][0]["primitives"]) {
+    const std::vector<double> p = glb.values(primitive["attributes"]["POSITION"].get<int>());
+    const std::vector<double> j = glb.values(primitive["attributes"]["JOINTS_0"].get<int>());
+    for (std::size_t v = 0; v < p.size() / 3; ++v) byJoint[static_cast<int>(j[4 * v])].add({p[3 * v], p[3 * v + 1], p[3 * v + 2]});
+  }
+  ASSERT_EQ(byJoint.size(), 3u);
+  EXPECT_NEAR(byJoint[1].min.x, 4, 1e-6);
+  EXPECT_NEAR(byJoint[1].max.x, 6, 1e-6);
+  EXPECT_NEAR(byJoint[2].min.y, 4, 1e-6);
+  EXPECT_NEAR(byJoint[2].max.y, 8, 1e-6);
 }
 
 // A frame of a ball (cell 7), a line (cell 9, colour 3) and a sphere no node covers: one
@@ -586,6 +626,9 @@ struct Models {
   fs::path koch = runModel("koch.cell", std::nullopt, std::nullopt, "glb,obj");
   fs::path koch6 = runModel("koch.cell", std::nullopt, 6.0, "glb,obj", 1, "koch6");
   fs::path cube = runModel("cube.cell", std::nullopt, std::nullopt, "glb,obj", 1, "cube");
+  // Koch grown to n = 4 over 5 frames, with each frame's OBJ: each frame's cells are new
+  // and never move.
+  fs::path kochFrames = runModel("koch.cell", 5, std::nullopt, "glb,obj", 1, "koch_frames");
 };
 const Models& models() {
   static const Models grown;
@@ -597,7 +640,7 @@ TEST(GlbModels, TheFlowerTheColonyAndKochPassTheKhronosValidator) {
   ONTOGEN_REQUIRE_CHECKER(!modules.empty(), "gltf-validator not installed (bash .ci/setup installs it)");
   const fs::path script = fs::path(ONTOGEN_SOURCE_DIR) / "tests" / "interpreters" / "validate_gltf.js";
   for (const fs::path& file :
-       {models().flower, models().colony, models().koch, models().koch6, models().cube}) {
+       {models().flower, models().colony, models().koch, models().koch6, models().cube, models().kochFrames}) {
     auto [status, report] = runCommand("node '" + script.string() + "' '" + modules + "' '" + file.string() + "' 2>&1");
     EXPECT_EQ(status, 0) << file << ": " << report;
     EXPECT_NE(report.find("errors 0 warnings 0"), std::string::npos) << file << ": " << report;
@@ -687,6 +730,18 @@ TEST(GlbModels, OneFrameOfKochAtSixIsInstancesOnTheObjsSegments) {
   EXPECT_TRUE(fileBytes(twoThreads) == bytes) << "the same bytes on two threads";
 }
 
+// Koch's curve grown over 5 frames: every cell shows in one frame and never moves, so
+// the run is five joints, one per frame (it was a joint per cell: 788 nodes), in one skin.
+TEST(GlbModels, KochGrownOverFramesIsAJointPerFrame) {
+  const Glb glb(fileBytes(models().kochFrames));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"frames 0 to 0", "frames 1 to 1", "frames 2 to 2", "frames 3 to 3",
+                                                      "frames 4 to 4", "cells", "parts", "ontogen camera",
+                                                      "ontogen key light"}));
+  EXPECT_EQ(glb.json["skins"].size(), 1u);
+  EXPECT_EQ(glb.json["nodes"][4]["extras"]["parts"], 625);
+  EXPECT_EQ(glb.json["animations"].size(), 1u);
+}
+
 // The cube of tubes in one frame: per colour, the OBJ's triangles corner by corner (the
 // same positions, in the same order) and as many vertices as the OBJ's distinct corners;
 // the same bytes on one thread and two.
@@ -762,7 +817,10 @@ TEST(GlbModels, BlenderImportsAFewObjectsWithOneActionAndRendersThePalette) {
   // vertex as the second UV map.
   const auto& props = flower["bone"]["props"];
   EXPECT_TRUE(props.contains("id") && props.contains("label") && props.contains("birth")) << flower["bone"].dump();
-  EXPECT_EQ(flower["bone"]["name"].get<std::string>(), props["label"].get<std::string>() + " " + props["id"].get<std::string>());
+  // (A cell's later shapes are joints of their own, named with " ~N".)
+  const std::string boneName = flower["bone"]["name"].get<std::string>();
+  const std::string labelAndId = props["label"].get<std::string>() + " " + props["id"].get<std::string>();
+  EXPECT_TRUE(boneName == labelAndId || boneName.rfind(labelAndId + " ~", 0) == 0) << boneName;
   EXPECT_EQ(flower["uv_maps"], nlohmann::json({"UVMap", "UVMap.001"}));
   EXPECT_DOUBLE_EQ(flower["scene_props"]["ontogen_time_scale"].get<double>(), 1.0);
   // The colony: its balls in the palette's colours (1, grown; 11, young) within 2 levels
@@ -781,6 +839,69 @@ TEST(GlbModels, BlenderImportsAFewObjectsWithOneActionAndRendersThePalette) {
   const nlohmann::json& koch = reports["koch.glb"];
   EXPECT_GT(pixelsOf(koch, 0, 2), 96) << koch.dump();
   EXPECT_EQ(koch["objects"]["MESH"], 1) << "one frame: one still mesh";
+}
+
+// The distance from p to the segment [a, b].
+double distanceToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 ab = b - a;
+  const double t = glm::dot(ab, ab) > 0 ? std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0, 1.0) : 0.0;
+  return glm::length(p - (a + t * ab));
+}
+
+// Koch's curve grown over 5 frames, its parts skinned to one joint per frame, through
+// Blender (blender_frames.py): at each of the action's five keys, the vertices Blender's
+// armature shows are those of that frame's joint, each on a tube of the documented radius
+// around a line of that frame's OBJ, both ends of every line reached, as many as the
+// OBJ's lines make; every other joint's vertices are scaled to its origin.
+TEST(GlbModels, BlenderShowsKochGrownOverFramesAsEachFramesObj) {
+  ONTOGEN_REQUIRE_CHECKER(runCommand("command -v blender >/dev/null 2>&1").first == 0, "Blender is missing");
+  const fs::path script = fs::path(ONTOGEN_SOURCE_DIR) / "tests" / "interpreters" / "formats" / "blender_frames.py";
+  auto [status, output] = runCommand("blender -b --factory-startup --python '" + script.string() + "' -- '" +
+                                     models().kochFrames.string() + "' 2>&1");
+  ASSERT_EQ(status, 0) << output;
+  std::vector<nlohmann::json> frames;
+  for (std::size_t at = output.find("ONTOGEN-FRAME "); at != std::string::npos; at = output.find("ONTOGEN-FRAME ", at + 1))
+    frames.push_back(nlohmann::json::parse(output.substr(at + 14, output.find('\n', at) - at - 14)));
+  ASSERT_EQ(frames.size(), 5u) << output;
+  std::vector<Obj> objs;
+  Box all;
+  for (int f = 0; f < 5; ++f) {
+    objs.emplace_back(models().kochFrames.parent_path() / ("koch_000" + std::to_string(f) + ".obj"));
+    for (const glm::dvec3& p : objs.back().positions) all.add(p);
+  }
+  const double radius = glm::length(all.max - all.min) * kLineRadiusFraction;
+  for (int f = 0; f < 5; ++f) {
+    const Obj& obj = objs[static_cast<std::size_t>(f)];
+    ASSERT_EQ(obj.lines.size(), static_cast<std::size_t>(std::pow(5, f)));
+    EXPECT_DOUBLE_EQ(frames[f]["time"].get<double>(), f);
+    const std::string shown = "frames " + std::to_string(f) + " to " + std::to_string(f);
+    ASSERT_EQ(frames[f]["bones"].size(), 5u) << frames[f].dump().substr(0, 400);
+    for (const auto& [bone, xyz] : frames[f]["bones"].items()) {
+      const std::vector<double> p = xyz.get<std::vector<double>>();
+      if (bone != shown) {
+        for (double c : p) ASSERT_NEAR(c, 0, 1e-6) << "frame " << f << ", " << bone << " is hidden at its origin";
+        continue;
+      }
+      ASSERT_EQ(p.size(), 3 * obj.lines.size() * 2 * kTubeSides) << bone;
+      std::vector<char> reachedA(obj.lines.size(), 0), reachedB(obj.lines.size(), 0);
+      for (std::size_t v = 0; v < p.size() / 3; ++v) {
+        const glm::dvec3 q(p[3 * v], p[3 * v + 1], p[3 * v + 2]);
+        // On some line's tube (at a corner it may lie nearer the next line, inside its
+        // tube's end). Koch's curve at n = 4 spans 81 units: floats hold it to about 1e-5.
+        bool onATube = false;
+        for (std::size_t l = 0; l < obj.lines.size(); ++l) {
+          const glm::dvec3& a = obj.positions[obj.lines[l].first - 1];
+          const glm::dvec3& b = obj.positions[obj.lines[l].second - 1];
+          onATube = onATube || std::abs(distanceToSegment(q, a, b) - radius) < 1e-4;
+          if (glm::length(q - a) < radius + 1e-4) reachedA[l] = 1;
+          if (glm::length(q - b) < radius + 1e-4) reachedB[l] = 1;
+        }
+        ASSERT_TRUE(onATube) << "frame " << f << ", vertex " << v << " at " << q.x << " " << q.y << " " << q.z;
+      }
+      for (std::size_t l = 0; l < obj.lines.size(); ++l)
+        ASSERT_TRUE(reachedA[l] && reachedB[l]) << "frame " << f << ", line " << l;
+    }
+  }
 }
 
 }  // namespace
