@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
@@ -370,6 +371,28 @@ void DynamicsSet::endWord() {
 }
 
 void DynamicsSet::build(const BodyPlan& plan, double time) {
+  // The bodies that persist keep their joints' positions and speeds, found by their ids.
+  struct Carried {
+    JointKind kind;
+    std::vector<mjtNum> qpos, qvel;
+  };
+  std::unordered_map<uint64_t, Carried> carried;
+  if (sim_) {
+    const mjModel* m = sim_->model();
+    const mjData* d = sim_->data();
+    for (std::size_t b = 0; b < plan_.bodies.size(); ++b) {
+      const int body = bodyIds_[b];
+      if (body < 0) continue;
+      Carried state{plan_.bodies[b].kind, {}, {}};
+      for (int j = m->body_jntadr[body]; j >= 0 && j < m->body_jntadr[body] + m->body_jntnum[body]; ++j) {
+        const int positions = m->jnt_type[j] == mjJNT_FREE ? 7 : m->jnt_type[j] == mjJNT_BALL ? 4 : 1;
+        const int speeds = m->jnt_type[j] == mjJNT_FREE ? 6 : m->jnt_type[j] == mjJNT_BALL ? 3 : 1;
+        state.qpos.insert(state.qpos.end(), d->qpos + m->jnt_qposadr[j], d->qpos + m->jnt_qposadr[j] + positions);
+        state.qvel.insert(state.qvel.end(), d->qvel + m->jnt_dofadr[j], d->qvel + m->jnt_dofadr[j] + speeds);
+      }
+      carried.emplace(plan_.bodies[b].id, std::move(state));
+    }
+  }
   plan_ = plan;
   mjcf_ = mjcfOf(plan_, physics_, target_.stem.empty() ? "dynamics" : target_.stem);
   if (scratch_) {
@@ -408,6 +431,25 @@ void DynamicsSet::build(const BodyPlan& plan, double time) {
       d->qpos[hinge.qpos] = angles[static_cast<std::size_t>(dof)];
       hinges_.push_back(hinge);
     }
+  }
+  // Carried over where a body of the same id and kind has the same joints.
+  for (std::size_t b = 0; b < plan_.bodies.size(); ++b) {
+    const int body = bodyIds_[b];
+    const auto found = carried.find(plan_.bodies[b].id);
+    if (body < 0 || found == carried.end() || found->second.kind != plan_.bodies[b].kind) continue;
+    std::size_t position = 0, speed = 0;
+    for (int j = m->body_jntadr[body]; j >= 0 && j < m->body_jntadr[body] + m->body_jntnum[body]; ++j) {
+      const int positions = m->jnt_type[j] == mjJNT_FREE ? 7 : m->jnt_type[j] == mjJNT_BALL ? 4 : 1;
+      const int speeds = m->jnt_type[j] == mjJNT_FREE ? 6 : m->jnt_type[j] == mjJNT_BALL ? 3 : 1;
+      if (position + static_cast<std::size_t>(positions) > found->second.qpos.size() ||
+          speed + static_cast<std::size_t>(speeds) > found->second.qvel.size())
+        break;
+      std::copy_n(found->second.qpos.begin() + static_cast<std::ptrdiff_t>(position), positions, d->qpos + m->jnt_qposadr[j]);
+      std::copy_n(found->second.qvel.begin() + static_cast<std::ptrdiff_t>(speed), speeds, d->qvel + m->jnt_dofadr[j]);
+      position += static_cast<std::size_t>(positions);
+      speed += static_cast<std::size_t>(speeds);
+    }
+    ++stats_.carried;
   }
   drags_.clear();
   for (std::size_t b = skeletonBodies_; b < plan_.bodies.size(); ++b) {

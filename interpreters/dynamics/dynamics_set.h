@@ -52,6 +52,7 @@ struct DynamicsSetDef {
 struct DynamicsStats {
   bool simulating = false;   ///< a model exists
   int rebuilds = 0;          ///< models made (the first counts)
+  int carried = 0;           ///< bodies whose state a rebuilt model took over from the one before
   double simulatedTime = 0;  ///< seconds stepped in all
   glm::dvec3 rootStart{0.0};  ///< the first root body's place at the first frame
   glm::dvec3 root{0.0};       ///< and at the last
