@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "lang/builtins.h"
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
 
@@ -211,7 +212,41 @@ class CpfgReader {
       macro(std::string(clean_.substr(at, stop - at)), stop, end);
       return;
     }
-    file_.defines.push_back({std::string(clean_.substr(at, stop - at)), syntax_.expression(stop, end), line_});
+    std::string name(clean_.substr(at, stop - at));
+    // Read as text where it stands among operators (ForeignSyntax::macros).
+    ForeignSyntax::Function macro;
+    macro.begin = stop;
+    macro.end = end;
+    macro.constant = namesConstantsOnly(stop, end);
+    if (macro.constant) file_.defines.push_back({name, syntax_.expression(stop, end), line_});
+    syntax_.macros[std::move(name)] = macro;
+  }
+
+  // Whether the names of [begin, end), other than those of calls, are constants: earlier
+  // #defines of constants and the cell language's own constants.
+  bool namesConstantsOnly(uint32_t begin, uint32_t end) const {
+    for (uint32_t at = begin; at < end;) {
+      const char c = clean_[at];
+      if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+        while (at < end && (std::isalnum(static_cast<unsigned char>(clean_[at])) || clean_[at] == '.')) ++at;
+        continue;
+      }
+      if (!(std::isalpha(static_cast<unsigned char>(c)) || c == '_')) {
+        ++at;
+        continue;
+      }
+      uint32_t stop = at;
+      while (stop < end && (std::isalnum(static_cast<unsigned char>(clean_[stop])) || clean_[stop] == '_')) ++stop;
+      const std::string_view name = std::string_view(clean_).substr(at, stop - at);
+      uint32_t next = stop;
+      while (next < end && std::isspace(static_cast<unsigned char>(clean_[next]))) ++next;
+      at = stop;
+      if (next < end && clean_[next] == '(') continue;  // a call
+      bool known = findConstant(name) != nullptr;
+      for (const Define& define : file_.defines) known = known || define.name == name;
+      if (!known) return false;
+    }
+    return true;
   }
 
   // `Start: {a = 2; b = a / 2; srand(7);}`: assignments to variables nothing else in the

@@ -549,14 +549,6 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
   // expression only where each parameter and the body are single operands where they
   // stand; elsewhere (#define sq(x) x*x with sq(a+1)) C reads another expression.
   if (dialect_ == Dialect::Cpfg) {
-    auto previous = [&](uint32_t k, uint32_t from) {
-      while (k > from && isSpace(text_[k - 1])) --k;
-      return k == from ? '\0' : text_[k - 1];
-    };
-    auto following = [&](uint32_t k, uint32_t to) {
-      while (k < to && isSpace(text_[k])) ++k;
-      return k == to ? '\0' : text_[k];
-    };
     auto alone = [](char before, char after) {
       return (before == '\0' || before == '(' || before == ',') && (after == '\0' || after == ')' || after == ',');
     };
@@ -611,8 +603,94 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
   return value;
 }
 
+char ForeignSyntax::previous(uint32_t at, uint32_t from) const {
+  while (at > from && isSpace(text_[at - 1])) --at;
+  return at == from ? '\0' : text_[at - 1];
+}
+
+char ForeignSyntax::following(uint32_t at, uint32_t to) const {
+  while (at < to && isSpace(text_[at])) ++at;
+  return at == to ? '\0' : text_[at];
+}
+
+bool ForeignSyntax::plainMacro(const Function& macro, int depth) const {
+  if (!atomic(macro.begin, macro.end)) return false;
+  uint32_t a = macro.begin, b = macro.end;
+  trim(a, b);
+  // A name that is itself a macro is as plain as that one's value.
+  if (auto inner = macros.find(text_.substr(a, b - a)); inner != macros.end())
+    return depth < kMaxConvertNesting && &inner->second != &macro && plainMacro(inner->second, depth + 1);
+  return true;
+}
+
+namespace {
+
+// The bytes [open, close] of a call's parentheses: the offset of its ')', or `end`.
+uint32_t closingParenthesis(std::string_view text, uint32_t open, uint32_t end) {
+  int depth = 0;
+  for (uint32_t at = open; at < end; ++at) {
+    if (text[at] == '(') ++depth;
+    if (text[at] == ')' && --depth == 0) return at;
+  }
+  return end;
+}
+
+bool drawsRandom(std::string_view text) {
+  for (std::string_view f : {"uniform(", "gaussian(", "ran(", "bernoulli("})
+    if (text.find(f) != std::string_view::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+std::optional<std::string> ForeignSyntax::degreeCall(const std::string& name, uint32_t at, uint32_t open,
+                                                     uint32_t end, uint32_t& stop) const {
+  const bool direct = name == "sin" || name == "cos" || name == "tan";
+  const bool inverse = name == "asin" || name == "acos" || name == "atan";
+  if (name == "atan2")
+    fail(at, open,
+         "cpfg's atan2, in degrees, whose arguments its evaluator takes in an order of its own: write "
+         "atan(y / x) with the quadrant's test");
+  if (!direct && !inverse) return std::nullopt;
+  const uint32_t close = closingParenthesis(text_, open, end);
+  if (close >= end) fail(at, end, "the call of '" + name + "' has no closing ')'", false);
+  const Nested nested(*this, at, close + 1);
+  const std::string x = expression(open + 1, close);
+  stop = close + 1;
+  // cpfg's angles are degrees (generate.c), the cell language's radians.
+  return direct ? name + "(rad(" + x + "))" : "deg(" + name + "(" + x + "))";
+}
+
+std::string ForeignSyntax::pythonRound(uint32_t at, uint32_t open, uint32_t end, uint32_t& stop) const {
+  const uint32_t close = closingParenthesis(text_, open, end);
+  if (close >= end) fail(at, end, "the call of 'round' has no closing ')'", false);
+  const Nested nested(*this, at, close + 1);
+  if (find(open + 1, close, ",") < close)
+    fail(at, close + 1,
+         "Python's round(x, n), to n decimals of x's exact binary value, has no cell-language counterpart; "
+         "round(x * 10 ** n) / 10 ** n is near it");
+  const std::string x = expression(open + 1, close);
+  stop = close + 1;
+  // Python 2 takes halves away from zero, as the cell language's round does.
+  if (python2) return "round(" + x + ")";
+  if (drawsRandom(x))
+    fail(at, close + 1,
+         "Python's round() of a value that draws a random number: Python 3 takes halves to the even "
+         "neighbour, which writes the value three times, and the cell language would draw it anew each time; "
+         "round a local holding the draw");
+  // Python 3 takes halves to the even neighbour (round(2.5) is 2): x / 2 is then no half.
+  return "if(fract(" + x + ") == 0.5, 2 * round((" + x + ") / 2), round(" + x + "))";
+}
+
 std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
-  if (std::optional<std::string> chosen = conditional(begin, end)) return *chosen;
+  return expression(begin, end, nullptr);
+}
+
+std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<ExpressionToken>* raw) const {
+  if (std::optional<std::string> chosen = conditional(begin, end)) {
+    if (raw) *raw = {ExpressionToken{*chosen, begin, end, false}};
+    return *chosen;
+  }
   const bool python = dialect_ == Dialect::LPy;
   std::string out;
   // The tokens as written, for Python's operators the cell language spells otherwise.
@@ -677,6 +755,38 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
           if (auto alias = moduleAliases.find(std::string_view(name).substr(0, dot)); alias != moduleAliases.end())
             name = alias->second + name.substr(dot);
       }
+      // cpfg's macro `#define X 1+2` among operators: its tokens, as C's replacement
+      // reads them (2*X is 2*1+2).
+      if (auto macro = macros.find(name); !python && macro != macros.end()) {
+        const char before = previous(at, begin), after = following(stop, end);
+        // In a macro's value being put in, "alone" is the place of the outer name.
+        const bool alone = !raw && (before == '\0' || before == '(' || before == ',') &&
+                           (after == '\0' || after == ')' || after == ',');
+        const bool plain = plainMacro(macro->second);
+        if (!macro->second.constant && (plain || alone)) {
+          const Nested nested(*this, at, stop);
+          emit("(" + expression(macro->second.begin, macro->second.end) + ")", false, stop - at);
+          at = stop;
+          continue;
+        }
+        if (!plain && !alone) {
+          if (find(macro->second.begin, macro->second.end, "?") < macro->second.end)
+            fail(at, stop,
+                 "the macro '" + name +
+                     "' is replaced as text by C: its value, a conditional c ? a : b, would take the operators "
+                     "around it into its condition and branches; put the macro's value in parentheses");
+          const Nested nested(*this, at, stop);
+          std::vector<ExpressionToken> inner;
+          expression(macro->second.begin, macro->second.end, &inner);
+          for (const ExpressionToken& token : inner) {
+            tokens.push_back({token.text, at, stop, token.glued});
+            if (!out.empty() && !token.glued && out.back() != '(' && out.back() != '!') out += ' ';
+            out += token.text;
+          }
+          at = stop;
+          continue;
+        }
+      }
       if (auto function = functions.find(name); function != functions.end()) {
         uint32_t open = stop;
         while (open < end && isSpace(text_[open])) ++open;
@@ -686,6 +796,19 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
           emit(value, false, after - at);
           at = after;
           continue;
+        }
+      }
+      if (!python) {
+        uint32_t open = stop;
+        while (open < end && isSpace(text_[open])) ++open;
+        if (open < end && text_[open] == '(') {
+          uint32_t after = open;
+          if (std::optional<std::string> call = degreeCall(name, at, open, end, after)) {
+            emit(*call, false, after - at);
+            at = after;
+            continue;
+          }
+          if (name == "fabs") name = "abs";
         }
       }
       if (python) {
@@ -703,6 +826,13 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
           };
           for (const auto& [pythonName, cell] : kCalls)
             if (name == pythonName) name = std::string(cell);
+          if (name == "round") {
+            uint32_t after = next;
+            const std::string value = pythonRound(at, next, end, after);
+            emit(value, false, after - at);
+            at = after;
+            continue;
+          }
           if (name == "float") {  // float(x) is x
             at = stop;
             continue;
@@ -793,6 +923,27 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
       ++at;
     } else if (std::string_view("+-*/%<>!^").find(c) != std::string_view::npos) {
       if (c == '^' && python) code(at, at + 1, "Python's '^' (exclusive or; a power is '**')");
+      // Python 2 divides truly where an operand is a float: a float literal beside the '/'.
+      auto floatLiteral = [](std::string_view token) {
+        return !token.empty() && (std::isdigit(static_cast<unsigned char>(token[0])) || token[0] == '.') &&
+               token.find_first_of(".eE") != std::string_view::npos;
+      };
+      auto literalAfter = [&] {
+        uint32_t k = at + 1;
+        while (k < end && isSpace(text_[k])) ++k;
+        uint32_t stop = k;
+        while (stop < end && (isNameChar(text_[stop]) || text_[stop] == '.')) ++stop;
+        return floatLiteral(text_.substr(k, stop - k));
+      };
+      if (c == '/' && python && python2 && !futureDivision &&
+          !(!tokens.empty() && floatLiteral(tokens.back().text)) && !literalAfter()) {
+        uint32_t line = 1;
+        for (uint32_t k = 0; k < *python2; ++k) line += text_[k] == '\n';
+        fail(at, at + 1,
+             "'/' in a file of Python 2 (line " + std::to_string(line) +
+                 "), where it floors between integers, which the converter cannot tell from other numbers: "
+                 "write '//' for a floor, or a float operand beside it (x / 2.0, x * 1.0 / y) for a quotient");
+      }
       emit(text_.substr(at, 1));
       ++at;
     } else if (c == '?' || c == ':') {
@@ -808,8 +959,11 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
   depth = 0;
   closeNots();
   if (out.empty()) fail(begin, end, "expected an expression", false);
-  if (python)
-    if (std::optional<std::string> rewritten = pythonOperators(*this, tokens)) return *rewritten;
+  if (raw) {
+    *raw = std::move(tokens);
+    return out;
+  }
+  if (std::optional<std::string> rewritten = foreignOperators(*this, tokens, dialect_)) return *rewritten;
   return out;
 }
 

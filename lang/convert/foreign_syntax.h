@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "lang/convert/lsystem_file.h"
+#include "lang/convert/python_operators.h"
 
 namespace ontogen::convert {
 
@@ -41,8 +42,22 @@ class ForeignSyntax {
     std::vector<std::string> parameters;
     uint32_t begin = 0;  ///< the returned expression, bytes [begin, end) of the file
     uint32_t end = 0;
+    /// A macro whose value names constants only: it is written as a #define, and read by
+    /// its name where C's replacement reads as its value. Otherwise (`#define L x*2`,
+    /// with x a parameter of the productions that use it) every use is the value.
+    bool constant = true;
   };
   std::map<std::string, Function, std::less<>> functions;
+  /// cpfg's macros without parameters, `#define X 1+2` (no parameters; the value at
+  /// [begin, end)): C replaces the name by the value's text, so where the name stands
+  /// among operators (`2*X` is 2*1+2) the value's tokens are put in, not its value.
+  std::map<std::string, Function, std::less<>> macros;
+  /// L-Py: where a file shows Python 2 (a print statement, `<>`, `xrange`, ...) and does
+  /// not import division from __future__: its `/` floors between integers, which the
+  /// converter cannot tell from a quotient, and its round() takes halves away from zero.
+  std::optional<uint32_t> python2;
+  /// `from __future__ import division`: a Python 2 file whose `/` is Python 3's.
+  bool futureDivision = false;
   /// Python's `import random as rd`: rd. is read as random. (and likewise for math).
   std::map<std::string, std::string, std::less<>> moduleAliases;
   /// Constructs converted with a loss (a drawing command ontogen's turtle has not), each
@@ -89,6 +104,21 @@ class ForeignSyntax {
   };
 
   std::optional<std::string> conditional(uint32_t begin, uint32_t end) const;
+  /// expression() that gives its tokens unrewritten in `raw` too (nullptr: not wanted).
+  std::string expression(uint32_t begin, uint32_t end, std::vector<ExpressionToken>* raw) const;
+  /// A macro whose value is one operand wherever its name stands: C's replacement reads
+  /// as its value.
+  bool plainMacro(const Function& macro, int depth = 0) const;
+  /// The character before `at` (after `from`) and from `at` on (before `to`) that is no
+  /// space, or '\0'.
+  char previous(uint32_t at, uint32_t from) const;
+  char following(uint32_t at, uint32_t to) const;
+  /// A call to one of cpfg's functions of angles in degrees (sin, cos, tan and their
+  /// inverses) as the cell language's, in radians; nullopt for other names.
+  std::optional<std::string> degreeCall(const std::string& name, uint32_t at, uint32_t open, uint32_t end,
+                                        uint32_t& stop) const;
+  /// Python's round(x): Python 3 takes halves to the even neighbour.
+  std::string pythonRound(uint32_t at, uint32_t open, uint32_t end, uint32_t& stop) const;
   /// The call of a helper function whose name starts at `at` and whose '(' is at `open`,
   /// in the expression [begin, end): its value, and in `stop` the offset after its ')'.
   std::string inlined(const Function& function, uint32_t begin, uint32_t at, uint32_t open, uint32_t end,

@@ -58,6 +58,7 @@ class LPyReader {
 
   LSystemFile read() {
     const std::vector<Line> lines = splitLines(clean_);
+    pythonVersion(lines);
     std::map<size_t, size_t> helpers = functions(lines);
     bool ended = false;
     for (size_t i = 0; i < lines.size(); ++i) {
@@ -189,6 +190,29 @@ class LPyReader {
     return false;
   }
 
+  // Python 2 shows in a print statement, `<>`, and names Python 3 dropped; its `/`
+  // floors between integers unless division comes from __future__, and its round()
+  // takes halves away from zero (ForeignSyntax::python2).
+  void pythonVersion(const std::vector<Line>& lines) {
+    for (const Line& line : lines) {
+      const uint32_t first = firstNonSpace(clean_, line);
+      const std::string_view text = std::string_view(clean_).substr(first, line.end - first);
+      if (text.rfind("from __future__ import", 0) == 0 && text.find("division") != std::string_view::npos)
+        syntax_.futureDivision = true;
+      if (syntax_.python2) continue;
+      if (text.rfind("print", 0) == 0 && text.size() > 5 && (text[5] == ' ' || text[5] == '\t' || text[5] == '"' ||
+                                                              text[5] == '\'')) {
+        size_t k = 5;
+        while (k < text.size() && (text[k] == ' ' || text[k] == '\t')) ++k;
+        if (k < text.size() && text[k] != '(' && text[k] != '=') syntax_.python2 = first;
+      }
+      for (std::string_view mark : {"<>", "xrange(", ".has_key(", ".iteritems(", ".itervalues(", ".iterkeys(",
+                                    "raw_input("})
+        if (!syntax_.python2 && text.find(mark) != std::string_view::npos)
+          syntax_.python2 = first + static_cast<uint32_t>(text.find(mark));
+    }
+  }
+
   static bool isHook(std::string_view name) {
     for (std::string_view hook : {"Start", "End", "StartEach", "EndEach", "StartInterpretation", "EndInterpretation",
                                   "PostDraw", "__initialiseContext__"})
@@ -200,6 +224,8 @@ class LPyReader {
   // are translated.
   bool isImport(uint32_t begin, uint32_t end) {
     const Line line{begin, end};
+    // from __future__ import division, print_function: Python 2 reading as 3 (pythonVersion).
+    if (clean_.compare(begin, 22, "from __future__ import") == 0) return true;
     for (std::string_view module : {"math", "random", "openalea.plantgl.all"}) {
       if (auto at = afterKeyword(clean_, line, "import")) {
         uint32_t a = *at, b = end;

@@ -26,10 +26,12 @@ bool drawsRandom(std::string_view text) {
 struct Unreadable {};
 
 // Recursive descent with Python's precedences (loosest first): or, and, not, comparisons
-// (one level, chained), + -, * / // %, unary - + !, ** (written ^).
+// (one level, chained), + -, * / // %, unary - + !, ** (written ^); or cpfg's: ||, &&,
+// == !=, < <= > >=, + -, * / %, ^ (left-associative), unary - + !.
 class Reader {
  public:
-  Reader(const ForeignSyntax& syntax, const std::vector<ExpressionToken>& tokens) : syntax_(syntax), tokens_(tokens) {}
+  Reader(const ForeignSyntax& syntax, const std::vector<ExpressionToken>& tokens, Dialect dialect)
+      : syntax_(syntax), tokens_(tokens), cpfg_(dialect == Dialect::Cpfg) {}
 
   std::string all() {
     std::string text = disjunction();
@@ -78,6 +80,7 @@ class Reader {
     return text;
   }
   std::string comparison() {
+    if (cpfg_) return cComparison();
     std::string left = sum();
     if (at_ >= tokens_.size() || !isComparison(tokens_[at_].text)) return left;
     std::string chain;
@@ -99,6 +102,43 @@ class Reader {
     changed_ = true;
     return "(" + chain + ")";
   }
+  // C's comparisons: equality binds looser than order, each left-associative, as the
+  // cell language reads them.
+  std::string cComparison() {
+    std::string text = cOrder();
+    while (next("==") || next("!=")) {
+      const std::string op = take().text;
+      text += " " + op + " " + cOrder();
+    }
+    return text;
+  }
+  std::string cOrder() {
+    std::string text = sum();
+    while (next("<") || next("<=") || next(">") || next(">=")) {
+      const std::string op = take().text;
+      text += " " + op + " " + sum();
+    }
+    return text;
+  }
+  // cpfg's ^ is left-associative and binds looser than the unary operators.
+  std::string cPower() {
+    std::string text = unary();
+    bool chained = false;
+    while (next("^")) {
+      ++at_;
+      const std::string right = unary();
+      const bool signed_ = text[0] == '-' || text[0] == '+' || text[0] == '!';
+      if (signed_ || chained) {
+        text = "(" + text + ")";
+        changed_ = true;
+      }
+      text += " ^ " + right;
+      chained = true;
+    }
+    return text;
+  }
+  std::string operand() { return cpfg_ ? cPower() : unary(); }
+
   // The operands the rewrite writes again make text grow; no model's expression comes
   // near the bound, and past it each step would copy more (a file of 1 MiB could take
   // minutes).
@@ -120,11 +160,15 @@ class Reader {
     return text;
   }
   std::string term() {
-    std::string text = unary();
+    std::string text = operand();
     while (next("*") || next("/") || next("%") || next("//")) {
       const ExpressionToken& op = take();
-      const std::string right = unary();
-      if (op.text == "%") {
+      const std::string right = operand();
+      if (op.text == "%" && cpfg_) {
+        // cpfg computes (int)x % (int)y: C's remainder has the sign of x, as fmod's.
+        text = "fmod(trunc(" + text + "), trunc(" + right + "))";
+        changed_ = true;
+      } else if (op.text == "%") {
         // Python's remainder has the sign of the divisor: fmod(fmod(x, y) + y, y).
         if (drawsRandom(right))
           syntax_.fail(op.begin, op.end,
@@ -150,7 +194,7 @@ class Reader {
       std::string operand = unary();
       return op + (operand[0] == '-' || operand[0] == '+' ? " " : "") + operand;
     }
-    return power();
+    return cpfg_ ? primary() : power();
   }
   std::string power() {
     std::string base = primary();
@@ -195,6 +239,7 @@ class Reader {
 
   const ForeignSyntax& syntax_;
   const std::vector<ExpressionToken>& tokens_;
+  const bool cpfg_;
   size_t at_ = 0;
   int depth_ = 0;
   bool changed_ = false;
@@ -202,17 +247,18 @@ class Reader {
 
 }  // namespace
 
-std::optional<std::string> pythonOperators(const ForeignSyntax& syntax, const std::vector<ExpressionToken>& tokens) {
-  Reader reader(syntax, tokens);
+std::optional<std::string> foreignOperators(const ForeignSyntax& syntax, const std::vector<ExpressionToken>& tokens,
+                                            Dialect dialect) {
+  Reader reader(syntax, tokens, dialect);
   try {
     std::string text = reader.all();
     if (reader.changed()) return text;
     return std::nullopt;
   } catch (const Unreadable&) {
     for (const ExpressionToken& token : tokens)
-      if (token.text == "%" || token.text == "//")
+      if (token.text == "%" || token.text == "//" || (dialect == Dialect::Cpfg && token.text == "^"))
         syntax.fail(token.begin, token.end,
-                    "Python's '" + token.text +
+                    std::string(dialect == Dialect::Cpfg ? "cpfg" : "Python") + "'s '" + token.text +
                         "' in an expression the converter cannot read around it (malformed, or nested more than " + std::to_string(kMaxConvertParentheses) + " deep)",
                     false);
     return std::nullopt;

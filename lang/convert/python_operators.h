@@ -1,6 +1,6 @@
 #pragma once
-// Python's operators whose meaning the cell language spells otherwise, in an L-Py
-// expression already read into cell-language tokens:
+// Operators whose meaning the cell language spells otherwise, in an expression already
+// read into cell-language tokens. Python's (L-Py):
 //
 //   x % y        Python's remainder takes the sign of y; the cell language's `%` is C's
 //                fmod, with the sign of x.  It becomes fmod(fmod(x, y) + y, y).
@@ -8,13 +8,23 @@
 //   a < b < c    a chain of comparisons: (a < b && b < c).  The cell language would read
 //                (a < b) < c.
 //
-// Everything else keeps the meaning the tokens have in order, since the two languages
-// agree on the other operators' precedences (docs/LANGUAGE.md 3.9).
+// cpfg's (its lsys_input.y and generate.c):
+//
+//   x % y        C's remainder of the operands cast to int: fmod(trunc(x), trunc(y)).
+//   -a ^ b       unary minus and ! bind tighter than ^: (-a) ^ b (the cell language reads
+//                -(a ^ b)).
+//   a ^ b ^ c    ^ is left-associative: (a ^ b) ^ c (the cell language's is right-).
+//
+// Everything else keeps the meaning the tokens have in order, since the languages agree
+// on the other operators' precedences (docs/LANGUAGE.md 3.9). So a cpfg macro's tokens
+// put in where its name stands read as C's textual replacement does.
 
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "lang/convert/lsystem_file.h"
 
 namespace ontogen::convert {
 
@@ -29,10 +39,12 @@ struct ExpressionToken {
   bool glued = false;  ///< written against the token before it: the '(' of a call
 };
 
-/// The expression `tokens` spell, rewritten where one of the operators above occurs;
-/// nullopt when none does (the tokens mean in the cell language what they meant in
-/// Python). An operand written more than once by the rewrite that draws a random number
-/// is a located error (each copy would draw anew). Throws ConvertError through `syntax`.
-std::optional<std::string> pythonOperators(const ForeignSyntax& syntax, const std::vector<ExpressionToken>& tokens);
+/// The expression `tokens` spell, rewritten where one of the operators above occurs in
+/// `dialect`; nullopt when none does (the tokens mean in the cell language what they
+/// meant in the file). An operand written more than once by the rewrite that draws a
+/// random number is a located error (each copy would draw anew). Throws ConvertError
+/// through `syntax`.
+std::optional<std::string> foreignOperators(const ForeignSyntax& syntax, const std::vector<ExpressionToken>& tokens,
+                                            Dialect dialect);
 
 }  // namespace ontogen::convert

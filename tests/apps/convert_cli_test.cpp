@@ -273,6 +273,51 @@ TEST(Convert, ErrorsInTheConvertedTextAreShownAtTheFilesLine) {
   EXPECT_EQ(result.err.find("(converted):"), std::string::npos) << result.err;
 }
 
+// A converted file never means something else: cpfg's macros are C's textual
+// replacement (2*X with X 1+2 is 4, not 6; a macro naming a parameter is its value
+// where it is used), its ^ binds looser than a unary minus and from the left, its % is
+// the remainder of ints, its angles are degrees. The word is what cpfg computes.
+TEST(Convert, CpfgExpressionsMeanWhatCpfgComputes) {
+  Result result = ontogen("word " + file("c_textual.l") + " --at 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 1: B(4, 3, 4, 6, 5, 6, 7, 0.666667) P(1, 4, 64, 0.5) M(1, -1) T(1, -1, 90, 45, 2)\n");
+  // A conditional's text would take the operators around it into its branches.
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "macro";
+  fs::create_directories(dir);
+  std::ofstream(dir / "conditional.l") << "#define C x>1?5:7\nLsystem: 1\nAxiom: A(3)\nA(x) --> B(C) B(2*C)\n";
+  Result refused = ontogen("convert " + (dir / "conditional.l").string());
+  EXPECT_EQ(refused.exitCode, 6) << refused.err;
+  EXPECT_NE(refused.err.find("conditional.l:4:19: error: the macro 'C' is replaced as text by C"), std::string::npos)
+      << refused.err;
+}
+
+// Python 3's round takes halves to the even neighbour, as L-Py computes it; a file of
+// Python 2 has its round (halves away from zero) and its '/', which floors between
+// integers: refused at its place unless a float stands beside it.
+TEST(Convert, LPyRoundAndDivisionMeanWhatPythonComputes) {
+  Result result = ontogen("word " + file("python_round.lpy") + " --at 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 1: B(2, 4, -2, 3, 0, 4, 8)\n");  // python3 -c 'print(round(2.5), ...)'
+  Result python2 = ontogen("convert " + file("python2_division.lpy"));
+  EXPECT_EQ(python2.exitCode, 6) << python2.err;
+  EXPECT_NE(python2.err.find("python2_division.lpy:7:52: error: '/' in a file of Python 2 (line 6)"),
+            std::string::npos)
+      << python2.err;
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "python2";
+  fs::create_directories(dir);
+  std::ofstream(dir / "floats.lpy") << "Axiom: A(5)\nproduction:\nA(x) :\n  print x\n"
+                                       "  produce B(x * 1.0 / 2, x // 2, round(x / 2.0))\n";
+  Result floats = ontogen("word " + (dir / "floats.lpy").string() + " --at 1");
+  ASSERT_EQ(floats.exitCode, 0) << floats.err;
+  EXPECT_EQ(floats.out, "t = 1: B(2.5, 2, 3)\n");  // Python 2's round(2.5) is 3.0
+  std::ofstream(dir / "future.lpy") << "from __future__ import division\nAxiom: A(5)\nproduction:\nA(x) :\n"
+                                       "  print x\n  produce B(x / 2)\n";
+  Result future = ontogen("word " + (dir / "future.lpy").string() + " --at 1");
+  ASSERT_EQ(future.exitCode, 0) << future.err;
+  EXPECT_EQ(future.out, "t = 1: B(2.5)\n");
+}
+
 TEST(Convert, OnlyReadsOtherToolsFiles) {
   Result result = ontogen("convert " + file("fig1_24d.cell"));
   EXPECT_EQ(result.exitCode, 2);
