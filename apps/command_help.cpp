@@ -7,6 +7,7 @@
 #include "apps/program_loader.h"
 #include "apps/text_mate_grammar.h"
 #include "interpreters/creature/creature_commands.h"
+#include "interpreters/dynamics/dynamics_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/physics/physics_commands.h"
@@ -106,6 +107,8 @@ int runHelp(const HelpOptions& options) {
   for (const CreatureCommand& command : creatureCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nPhysics commands (set 'physics', with every turtle command; SI units: m, kg, N):\n";
   for (const PhysicsCommand& command : physicsCommands()) printRow(command.signature, command.doc, kSignatureColumn);
+  std::cout << "\nDynamics commands (set 'dynamics', with every creature command; simulated on MuJoCo):\n";
+  for (const DynamicsCommand& command : dynamicsCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nPlayer commands (set 'music'; pitches in MIDI notes, times in beats):\n";
   for (const MusicCommand& command : musicCommands()) printRow(command.signature, command.doc, kSignatureColumn);
   std::cout << "\nFunctions:\n";

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "interpreters/creature/creature_commands.h"
+#include "interpreters/dynamics/dynamics_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/physics/physics_commands.h"
@@ -143,6 +144,7 @@ std::string textMateGrammar() {
       {"patterns", Json::array({commands(turtleCommands(), taken, "support.function.turtle.cell"),
                                 commands(creatureCommands(), taken, "support.function.creature.cell"),
                                 commands(physicsCommands(), taken, "support.function.physics.cell"),
+                                commands(dynamicsCommands(), taken, "support.function.dynamics.cell"),
                                 commands(musicCommands(), taken, "support.function.music.cell")})}};
   repository["operators"] = {
       {"patterns", Json::array({match("[-+*/%^<>=!&|~$@\\\\]+|≤|≥|≠", "keyword.operator.cell")})}};

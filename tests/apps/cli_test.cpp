@@ -245,6 +245,11 @@ TEST(Cli, HelpListsTheTables) {
   EXPECT_NE(result.out.find("besselj(n, x)"), std::string::npos);
   EXPECT_NE(result.out.find("--define NAME=VALUE"), std::string::npos);
   EXPECT_NE(result.out.find("cC(l, capped)"), std::string::npos);
+  // Every set's table, the dynamics set's among them.
+  const size_t dynamics = result.out.find("\nDynamics commands (set 'dynamics'");
+  ASSERT_NE(dynamics, std::string::npos);
+  EXPECT_NE(result.out.find("  wind(x, y, z[, gust, period])", dynamics), std::string::npos);
+  EXPECT_NE(result.out.find("  servo(kp, kd[, torque])", dynamics), std::string::npos);
   // The keyword table (lang/keywords.h), before the directives.
   const size_t keywords = result.out.find("\nKeywords");
   ASSERT_NE(keywords, std::string::npos);

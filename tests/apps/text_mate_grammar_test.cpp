@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "interpreters/dynamics/dynamics_commands.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
 #include "lang/builtins.h"
@@ -52,6 +53,7 @@ TEST(TextMateGrammar, ItIsATextMateGrammarHoldingEveryNameOfTheTables) {
       EXPECT_TRUE(holds(command.name)) << command.name;
     }
   }
+  for (const ontogen::DynamicsCommand& command : ontogen::dynamicsCommands()) EXPECT_TRUE(holds(command.name)) << command.name;
   for (const ontogen::TurtleCommand& command : ontogen::turtleCommands()) {
     if (std::isalpha(static_cast<unsigned char>(command.name[0]))) {
       EXPECT_TRUE(holds(command.name)) << command.name;
