@@ -128,12 +128,6 @@ bool changes(const std::vector<T>& values, std::size_t stride = 1) {
   return false;
 }
 
-nlohmann::json meshAttributes(Builder& b, const MeshBatch& batch) {
-  return {{"POSITION", b.addVec3(batch.positions, kArrayBuffer, true)},
-          {"NORMAL", b.addVec3(batch.normals, kArrayBuffer, false)},
-          {"TEXCOORD_0", b.addVec2(batch.texcoords)}};
-}
-
 // Weights (1, 0, 0, 0) for `vertices` vertices: the first joint slot carries each whole.
 int unitWeights(Builder& b, std::size_t vertices) {
   std::vector<uint16_t> weights(4 * vertices, 0);
@@ -196,14 +190,8 @@ void writeStillParts(const SceneParts& parts, const std::vector<std::vector<Mesh
   }
   if (world.empty()) return;
   nlohmann::json primitives = nlohmann::json::array();
-  for (const auto& [material, batch] : world) {
-    nlohmann::json attributes = meshAttributes(b, batch.mesh);
-    attributes["TEXCOORD_1"] = b.addVec2(batch.cells);
-    primitives.push_back({{"attributes", attributes},
-                          {"indices", b.addIndices(batch.mesh.indices)},
-                          {"material", b.materialOf(material)},
-                          {"mode", kTriangles}});
-  }
+  for (const auto& [material, batch] : world)
+    primitives.push_back(gltf::trianglePrimitive(b, batch.mesh, material, &batch.cells));
   b.gltf["meshes"].push_back({{"name", "still"}, {"primitives", primitives}});
   b.gltf["nodes"].push_back({{"name", "still"}, {"mesh", b.gltf["meshes"].size() - 1}});
   sceneNodes.push_back(b.gltf["nodes"].size() - 1);
@@ -331,7 +319,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
     // Written once, drawn by every joint of the shape.
     for (const MeshBatch& batch : shapes[s]) {
       if (batch.indices.empty()) continue;
-      const nlohmann::json shared = meshAttributes(b, batch);
+      const nlohmann::json shared = gltf::vertexAttributes(b, batch);
       const int indices = b.addIndices(batch.indices);
       const int weights = unitWeights(b, batch.positions.size());
       for (uint32_t joint : instances[s]) {
@@ -357,7 +345,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
   const int identityView = b.addView(identity.data(), identity.size() * sizeof(float), 0);
   for (std::size_t k = 0; k < skins; ++k) {
     for (auto& [material, batch] : single[k]) {
-      nlohmann::json attributes = meshAttributes(b, batch.mesh);
+      nlohmann::json attributes = gltf::vertexAttributes(b, batch.mesh);
       attributes["JOINTS_0"] = b.addVec4Integers(batch.joints, gltf::kUnsignedByte, false);
       attributes["WEIGHTS_0"] = unitWeights(b, batch.mesh.positions.size());
       attributes["TEXCOORD_1"] = b.addVec2(batch.cells);
@@ -451,11 +439,7 @@ void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& scen
       }
     }
     nlohmann::json primitives = nlohmann::json::array();
-    for (auto& [material, batch] : world)
-      primitives.push_back({{"attributes", meshAttributes(b, batch)},
-                            {"indices", b.addIndices(batch.indices)},
-                            {"material", b.materialOf(material)},
-                            {"mode", kTriangles}});
+    for (auto& [material, batch] : world) primitives.push_back(gltf::trianglePrimitive(b, batch, material));
     nlohmann::json node = {{"name", "frame " + std::to_string(f)}};
     if (!primitives.empty()) {
       b.gltf["meshes"].push_back({{"name", "frame " + std::to_string(f)}, {"primitives", primitives}});

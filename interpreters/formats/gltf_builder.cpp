@@ -99,6 +99,20 @@ int Builder::addIndices(const std::vector<uint32_t>& values) {
   return addAccessor({{"bufferView", view}, {"componentType", kUnsignedInt}, {"count", values.size()}, {"type", "SCALAR"}});
 }
 
+nlohmann::json vertexAttributes(Builder& b, const MeshBatch& batch) {
+  return {{"POSITION", b.addVec3(batch.positions, kArrayBuffer, true)},
+          {"NORMAL", b.addVec3(batch.normals, kArrayBuffer, false)},
+          {"TEXCOORD_0", b.addVec2(batch.texcoords)}};
+}
+
+nlohmann::json trianglePrimitive(Builder& b, const MeshBatch& batch, uint32_t material,
+                                 const std::vector<glm::vec2>* cells) {
+  nlohmann::json attributes = vertexAttributes(b, batch);
+  if (cells != nullptr) attributes["TEXCOORD_1"] = b.addVec2(*cells);
+  const int indices = b.addIndices(batch.indices);
+  return {{"attributes", attributes}, {"indices", indices}, {"material", b.materialOf(material)}, {"mode", kTriangles}};
+}
+
 int Builder::addScalars(const std::vector<float>& values) {
   int view = addView(values.data(), values.size() * sizeof(float), 0);
   float lo = values.front(), hi = values.front();

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "interpreters/formats/mesh_batches.h"
 #include "interpreters/geometry.h"
 
 namespace ontogen::gltf {
@@ -72,6 +73,16 @@ class Builder {
   std::map<uint32_t, int> materials_;  // palette index -> glTF material
   std::map<int, PoolData> pools_;
 };
+
+/// The accessors of a batch's vertices: POSITION (with bounds), NORMAL, TEXCOORD_0, added
+/// in that order.
+nlohmann::json vertexAttributes(Builder& builder, const MeshBatch& batch);
+
+/// A primitive of a batch's triangles in palette colour `material`: its vertexAttributes,
+/// `cells` (one (cell number, birth) per vertex) as TEXCOORD_1 when given, then its
+/// indices, added in that order.
+nlohmann::json trianglePrimitive(Builder& builder, const MeshBatch& batch, uint32_t material,
+                                 const std::vector<glm::vec2>* cells = nullptr);
 
 /// A 32-bit float as the double of its shortest decimal form, so that the JSON shows
 /// "0.70710677", not the float's exact value "0.7071067690849304" (which reads back to

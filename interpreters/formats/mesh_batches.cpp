@@ -7,24 +7,6 @@
 
 namespace ontogen {
 
-namespace {
-
-struct CornerKey {
-  uint32_t position, normal, texcoord;
-  bool operator==(const CornerKey&) const = default;
-};
-
-struct CornerHash {
-  std::size_t operator()(const CornerKey& k) const {
-    uint64_t h = k.position * 0x9E3779B97F4A7C15ull;
-    h ^= (k.normal + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full;
-    h ^= (k.texcoord + 0x85EBCA77C2B2AE63ull) * 0x165667B19E3779F9ull;
-    return static_cast<std::size_t>(h ^ (h >> 29));
-  }
-};
-
-}  // namespace
-
 std::vector<MeshBatch> batchByMaterial(const Geometry& geometry) {
   const Mesh& mesh = geometry.mesh();
   std::array<MeshBatch, kPaletteSize> all;
@@ -33,7 +15,7 @@ std::vector<MeshBatch> batchByMaterial(const Geometry& geometry) {
     const uint32_t m = t.material % kPaletteSize;
     MeshBatch& batch = all[m];
     for (int k = 0; k < 3; ++k) {
-      CornerKey key{t.position[k], t.normal[k], t.texcoord[k]};
+      const CornerKey key{t.position[k], t.normal[k], t.texcoord[k], 0};
       auto [it, inserted] = corners[m].try_emplace(key, static_cast<uint32_t>(batch.positions.size()));
       if (inserted) {
         batch.positions.emplace_back(mesh.positions[key.position]);

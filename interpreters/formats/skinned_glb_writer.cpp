@@ -208,14 +208,7 @@ void SkinnedGlbWriter::write(std::ostream& out) const {
   if (!unskinned.empty()) {
     nlohmann::json primitives = nlohmann::json::array();
     for (const MeshBatch& batch : batchByMaterial(unskinned)) {
-      if (!batch.indices.empty())
-        primitives.push_back({{"attributes",
-                               {{"POSITION", b.addVec3(batch.positions, gltf::kArrayBuffer, true)},
-                                {"NORMAL", b.addVec3(batch.normals, gltf::kArrayBuffer, false)},
-                                {"TEXCOORD_0", b.addVec2(batch.texcoords)}}},
-                              {"indices", b.addIndices(batch.indices)},
-                              {"material", b.materialOf(batch.material)},
-                              {"mode", gltf::kTriangles}});
+      if (!batch.indices.empty()) primitives.push_back(gltf::trianglePrimitive(b, batch, batch.material));
       if (!batch.lines.empty())
         primitives.push_back({{"attributes", {{"POSITION", b.addVec3(batch.lines, gltf::kArrayBuffer, true)}}},
                               {"material", b.materialOf(batch.material)},

@@ -17,29 +17,10 @@ namespace ontogen {
 
 namespace {
 
-using gltf::kArrayBuffer;
-
 // One colour's vertices, each with the cell that drew it.
 struct StillBatch {
-  std::vector<glm::vec3> positions, normals;
-  std::vector<glm::vec2> texcoords, cells;
-  std::vector<uint32_t> indices;
-};
-
-// A corner is shared by the triangles of one cell that use the same position, normal and
-// texture coordinate.
-struct CornerKey {
-  uint32_t position, normal, texcoord, cell;
-  bool operator==(const CornerKey&) const = default;
-};
-struct CornerHash {
-  std::size_t operator()(const CornerKey& k) const {
-    uint64_t h = k.position * 0x9E3779B97F4A7C15ull;
-    h ^= (k.normal + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full;
-    h ^= (k.texcoord + 0x85EBCA77C2B2AE63ull) * 0x165667B19E3779F9ull;
-    h ^= (k.cell + 0x27D4EB2F165667C5ull) * 0x94D049BB133111EBull;
-    return static_cast<std::size_t>(h ^ (h >> 29));
-  }
+  MeshBatch mesh;
+  std::vector<glm::vec2> cells;
 };
 
 // The unit tube: kTubeSides columns of two vertices (y = -1, 1), radial normals,
@@ -164,15 +145,15 @@ void addStillScene(gltf::Builder& b, const Scene& scene, double lineRadius, nloh
     auto& seen = corners[material];
     for (int k = 0; k < 3; ++k) {
       const CornerKey key{triangle.position[k], triangle.normal[k], triangle.texcoord[k], cells.ofTriangle[t]};
-      const auto [it, added] = seen.try_emplace(key, static_cast<uint32_t>(batch.positions.size()));
+      const auto [it, added] = seen.try_emplace(key, static_cast<uint32_t>(batch.mesh.positions.size()));
       if (added) {
-        batch.positions.emplace_back(mesh.positions[key.position]);
-        batch.normals.emplace_back(mesh.normals[key.normal]);
-        batch.texcoords.emplace_back(key.texcoord < mesh.texcoords.size() ? glm::vec2(mesh.texcoords[key.texcoord])
-                                                                          : glm::vec2(0.0f));
+        batch.mesh.positions.emplace_back(mesh.positions[key.position]);
+        batch.mesh.normals.emplace_back(mesh.normals[key.normal]);
+        batch.mesh.texcoords.emplace_back(key.texcoord < mesh.texcoords.size() ? glm::vec2(mesh.texcoords[key.texcoord])
+                                                                               : glm::vec2(0.0f));
         batch.cells.push_back(cellValue(cells, key.cell));
       }
-      batch.indices.push_back(it->second);
+      batch.mesh.indices.push_back(it->second);
     }
   }
   corners.clear();
@@ -203,49 +184,40 @@ void addStillScene(gltf::Builder& b, const Scene& scene, double lineRadius, nloh
       continue;
     }
     StillBatch& batch = still[material];
-    const auto base = static_cast<uint32_t>(batch.positions.size());
+    const auto base = static_cast<uint32_t>(batch.mesh.positions.size());
     const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
     for (std::size_t v = 0; v < tube.positions.size(); ++v) {
-      batch.positions.emplace_back(p.translation + rotation * (tube.positions[v] * p.scale));
-      batch.normals.emplace_back(rotation * tube.normals[v]);
-      batch.texcoords.push_back(tube.texcoords[v]);
+      batch.mesh.positions.emplace_back(p.translation + rotation * (tube.positions[v] * p.scale));
+      batch.mesh.normals.emplace_back(rotation * tube.normals[v]);
+      batch.mesh.texcoords.push_back(tube.texcoords[v]);
       batch.cells.push_back(cellValue(cells, cells.ofSegment[s]));
     }
-    for (uint32_t index : tube.indices) batch.indices.push_back(base + index);
+    for (uint32_t index : tube.indices) batch.mesh.indices.push_back(base + index);
   }
 
   if (!still.empty()) {
     nlohmann::json primitives = nlohmann::json::array();
-    for (const auto& [material, batch] : still) {
-      primitives.push_back({{"attributes",
-                             {{"POSITION", b.addVec3(batch.positions, kArrayBuffer, true)},
-                              {"NORMAL", b.addVec3(batch.normals, kArrayBuffer, false)},
-                              {"TEXCOORD_0", b.addVec2(batch.texcoords)},
-                              {"TEXCOORD_1", b.addVec2(batch.cells)}}},
-                            {"indices", b.addIndices(batch.indices)},
-                            {"material", b.materialOf(material)},
-                            {"mode", gltf::kTriangles}});
-    }
+    for (const auto& [material, batch] : still)
+      primitives.push_back(gltf::trianglePrimitive(b, batch.mesh, material, &batch.cells));
     b.gltf["meshes"].push_back({{"name", "still"}, {"primitives", primitives}});
     b.gltf["nodes"].push_back({{"name", "still"}, {"mesh", b.gltf["meshes"].size() - 1}});
     sceneNodes.push_back(b.gltf["nodes"].size() - 1);
   }
 
   if (instances.empty()) return;
-  // The tube once, drawn in each colour by a mesh of its own.
-  const std::vector<glm::vec3> positions(tube.positions.begin(), tube.positions.end());
-  const std::vector<glm::vec3> normals(tube.normals.begin(), tube.normals.end());
-  const nlohmann::json attributes = {{"POSITION", b.addVec3(positions, kArrayBuffer, true)},
-                                     {"NORMAL", b.addVec3(normals, kArrayBuffer, false)},
-                                     {"TEXCOORD_0", b.addVec2(tube.texcoords)}};
-  const int indices = b.addIndices(tube.indices);
+  // The tube once, drawn in each colour by a mesh of its own (the primitive's accessors
+  // shared, its material the colour's).
+  MeshBatch unit;
+  unit.positions.assign(tube.positions.begin(), tube.positions.end());
+  unit.normals.assign(tube.normals.begin(), tube.normals.end());
+  unit.texcoords = tube.texcoords;
+  unit.indices = tube.indices;
+  nlohmann::json primitive = gltf::trianglePrimitive(b, unit, instances.begin()->first);
   b.useExtension("EXT_mesh_gpu_instancing");
   for (const auto& [material, into] : instances) {
     const std::string name = "lines " + std::to_string(material);
-    nlohmann::json primitives = nlohmann::json::array();
-    primitives.push_back(
-        {{"attributes", attributes}, {"indices", indices}, {"material", b.materialOf(material)}, {"mode", gltf::kTriangles}});
-    b.gltf["meshes"].push_back({{"name", name}, {"primitives", primitives}});
+    primitive["material"] = b.materialOf(material);
+    b.gltf["meshes"].push_back({{"name", name}, {"primitives", nlohmann::json::array({primitive})}});
     const nlohmann::json instancing = {
         {"attributes",
          {{"TRANSLATION", b.addVec3(into.translations, 0, false)},
