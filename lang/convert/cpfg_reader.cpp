@@ -1,6 +1,8 @@
 #include "lang/convert/cpfg_reader.h"
 
+#include <algorithm>
 #include <cctype>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -133,6 +135,7 @@ class CpfgReader {
         Statement s;
         s.kind = StatementKind::Section;
         s.word = *section;
+        syntax_.inHomomorphism = *section == "homomorphism";
         file_.statements.push_back(std::move(s));
         continue;
       }
@@ -146,7 +149,14 @@ class CpfgReader {
         group(syntax_.expression(*at, stop));
         continue;
       }
-      if (auto at = afterKeyword(clean_, line, "start:"); at && startBlock(*at, end)) continue;
+      if (!stepBlocksRead_ && (afterKeyword(clean_, line, "start:") || afterKeyword(clean_, line, "starteach:") ||
+                               afterKeyword(clean_, line, "endeach:") || afterKeyword(clean_, line, "end:"))) {
+        stepBlocksRead_ = true;
+        stepBlocksOk_ = stepBlocks();
+      }
+      if (stepBlocksOk_ && (afterKeyword(clean_, line, "start:") || afterKeyword(clean_, line, "starteach:") ||
+                            afterKeyword(clean_, line, "endeach:") || afterKeyword(clean_, line, "end:")))
+        continue;
       if (codeBlock(line)) {
         syntax_.fail(begin, end,
                      "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code, which ontogen convert "
@@ -249,55 +259,223 @@ class CpfgReader {
     return true;
   }
 
-  // `Start: {a = 2; b = a / 2; srand(7);}`: assignments to variables nothing else in the
-  // file assigns are constants, `#define a 2`, and srand(N) the seed. False (the block is
-  // then C code) for anything else, or a variable assigned elsewhere too.
-  bool startBlock(uint32_t at, uint32_t end) {
-    uint32_t a = at, b = end;
-    syntax_.trim(a, b);
-    if (b - a < 2 || clean_[a] != '{' || clean_[b - 1] != '}') return false;
-    struct Assignment {
-      std::string name;
-      uint32_t begin, end;
-    };
+  // cpfg's blocks of C around the derivation: Start: runs once before it, StartEach: and
+  // EndEach: before and after each step, End: after it. The assignments in them that no
+  // production assigns are read (all of the file's blocks together, at the first):
+  //   Start: {a = 2; b = a / 2; srand(7);}   constants, #define a 2, and the seed;
+  //   Start: {n = A;} StartEach: {n = n + D;}  a counter: (A) + (D) * time at the
+  //                                            step fired at time (EndEach: time - 1);
+  //   StartEach: {p = EXPR;}                   its value at that step (EXPR of counters
+  //                                            and constants).
+  // printf(...) prints and changes no word. Anything else leaves every block C code.
+  struct Assignment {
+    std::string name;
+    uint32_t begin = 0, end = 0;  // the value
+  };
+  struct StepBlock {
+    bool seen = false;
+    uint32_t begin = 0, end = 0;  // the braces
     std::vector<Assignment> assignments;
     std::optional<std::pair<uint32_t, uint32_t>> seed;
-    auto isName = [&](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  };
+  enum Hook { kStart, kStartEach, kEndEach, kEnd, kHooks };
+
+  // The statements of `{ ... }` at [at, end).
+  bool readStepBlock(uint32_t at, uint32_t end, StepBlock& block) const {
+    uint32_t a = at, b = end;
+    syntax_.trim(a, b);
+    if (block.seen || b - a < 2 || clean_[a] != '{' || clean_[b - 1] != '}') return false;
+    block.seen = true;
+    block.begin = a;
+    block.end = b;
     for (uint32_t from = a + 1; from < b - 1;) {
       uint32_t semi = from;
-      while (semi < b - 1 && clean_[semi] != ';') ++semi;
+      for (char quote = 0; semi < b - 1 && (quote || clean_[semi] != ';'); ++semi)
+        if (clean_[semi] == '"') quote = quote ? 0 : '"';
       uint32_t x = from, y = semi;
       syntax_.trim(x, y);
       from = semi + 1;
       if (x == y) continue;
       uint32_t stop = x;
-      while (stop < y && isName(clean_[stop])) ++stop;
+      while (stop < y && isNameChar(clean_[stop])) ++stop;
       uint32_t op = stop;
       while (op < y && std::isspace(static_cast<unsigned char>(clean_[op]))) ++op;
       if (stop == x || std::isdigit(static_cast<unsigned char>(clean_[x])) || op >= y) return false;
       const std::string name(clean_.substr(x, stop - x));
-      if (name == "srand" && clean_[op] == '(' && clean_[y - 1] == ')' && !seed) {
-        seed = std::make_pair(op + 1, y - 1);
+      if (clean_[op] == '(' && clean_[y - 1] == ')') {
+        if (name == "printf") continue;
+        if (name != "srand" || block.seed) return false;
+        block.seed = std::make_pair(op + 1, y - 1);
         continue;
       }
       if (clean_[op] != '=' || (op + 1 < y && clean_[op + 1] == '=')) return false;
-      for (const Assignment& other : assignments)
-        if (other.name == name) return false;
-      // Assigned anywhere else in the file: a variable, not a constant.
-      for (size_t k = clean_.find(name); k != std::string::npos; k = clean_.find(name, k + 1)) {
-        if ((k > 0 && isName(clean_[k - 1])) || (k + name.size() < clean_.size() && isName(clean_[k + name.size()])))
-          continue;
-        if (k >= a && k < b) continue;
-        size_t after = k + name.size();
-        while (after < clean_.size() && (clean_[after] == ' ' || clean_[after] == '\t')) ++after;
-        if (after < clean_.size() && clean_[after] == '=' && (after + 1 >= clean_.size() || clean_[after + 1] != '='))
-          return false;
-      }
-      assignments.push_back({name, op + 1, y});
+      block.assignments.push_back({name, op + 1, y});
     }
-    for (const Assignment& assignment : assignments)
-      file_.defines.push_back({assignment.name, syntax_.expression(assignment.begin, assignment.end), line_});
-    if (seed) file_.seed = syntax_.expression(seed->first, seed->second);
+    return true;
+  }
+
+  static bool isNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+  // Whether `name` is assigned outside the blocks (in a production's block).
+  bool assignedElsewhere(const std::string& name, const StepBlock (&blocks)[kHooks]) const {
+    for (size_t k = clean_.find(name); k != std::string::npos; k = clean_.find(name, k + 1)) {
+      if ((k > 0 && isNameChar(clean_[k - 1])) || (k + name.size() < clean_.size() && isNameChar(clean_[k + name.size()])))
+        continue;
+      bool inside = false;
+      for (const StepBlock& block : blocks) inside = inside || (block.seen && k >= block.begin && k < block.end);
+      if (inside) continue;
+      size_t after = k + name.size();
+      while (after < clean_.size() && (clean_[after] == ' ' || clean_[after] == '\t')) ++after;
+      if (after < clean_.size() && clean_[after] == '=' && (after + 1 >= clean_.size() || clean_[after + 1] != '='))
+        return true;
+    }
+    return false;
+  }
+
+  // `name = name + D`, `name = name - D`, `name = D + name` with D constant: D, signed.
+  std::optional<std::string> increment(const Assignment& assignment) {
+    uint32_t a = assignment.begin, b = assignment.end;
+    syntax_.trim(a, b);
+    const std::string_view value = std::string_view(clean_).substr(a, b - a);
+    const std::string& name = assignment.name;
+    auto isNameAt = [&](size_t at) {
+      return value.compare(at, name.size(), name) == 0 &&
+             (at + name.size() == value.size() || !isNameChar(value[at + name.size()]));
+    };
+    if (isNameAt(0)) {
+      size_t op = name.size();
+      while (op < value.size() && std::isspace(static_cast<unsigned char>(value[op]))) ++op;
+      if (op >= value.size() || (value[op] != '+' && value[op] != '-')) return std::nullopt;
+      const uint32_t from = a + static_cast<uint32_t>(op) + 1;
+      if (syntax_.find(from, b, "+") < b || syntax_.find(from, b, "-") < b || !namesConstantsOnly(from, b))
+        return std::nullopt;
+      return std::string(value[op] == '-' ? "-" : "") + "(" + syntax_.expression(from, b) + ")";
+    }
+    // D + name
+    if (value.size() > name.size() && isNameAt(value.size() - name.size()) &&
+        !isNameChar(value[value.size() - name.size() - 1])) {
+      size_t op = value.size() - name.size();
+      while (op > 0 && std::isspace(static_cast<unsigned char>(value[op - 1]))) --op;
+      if (op == 0 || value[op - 1] != '+') return std::nullopt;
+      const uint32_t to = a + static_cast<uint32_t>(op) - 1;
+      if (syntax_.find(a, to, "+") < to || syntax_.find(a, to, "-") < to || !namesConstantsOnly(a, to))
+        return std::nullopt;
+      return "(" + syntax_.expression(a, to) + ")";
+    }
+    return std::nullopt;
+  }
+
+  // All of the file's step blocks read as above; false if any statement of them is
+  // otherwise (each block then stays C code, an error at its line).
+  bool stepBlocks() {
+    StepBlock blocks[kHooks];
+    static constexpr std::string_view kWords[kHooks] = {"start:", "starteach:", "endeach:", "end:"};
+    for (const Line& line : statementLines(clean_))
+      for (int hook = 0; hook < kHooks; ++hook)
+        if (auto at = afterKeyword(clean_, line, kWords[hook]))
+          if (!readStepBlock(*at, line.end, blocks[hook])) return false;
+    if (!blocks[kEnd].assignments.empty() || blocks[kStartEach].seed || blocks[kEndEach].seed) return false;
+    // Each name: the assignments of each block.
+    auto count = [](const StepBlock& block, const std::string& name) {
+      size_t n = 0;
+      for (const Assignment& assignment : block.assignments) n += assignment.name == name;
+      return n;
+    };
+    std::vector<std::string> names;
+    for (const StepBlock& block : blocks)
+      for (const Assignment& assignment : block.assignments)
+        if (std::find(names.begin(), names.end(), assignment.name) == names.end()) names.push_back(assignment.name);
+    for (const std::string& name : names)
+      if (assignedElsewhere(name, blocks) || count(blocks[kStart], name) > 1 || count(blocks[kStartEach], name) > 1 ||
+          count(blocks[kEndEach], name) > 1)
+        return false;
+    std::vector<Define> defines;
+    struct Counter {
+      std::string start, step;
+      bool atStart;  // incremented in StartEach:
+    };
+    std::map<std::string, Counter> counters;
+    const size_t defined = file_.defines.size();
+    for (const Assignment& assignment : blocks[kStart].assignments) {
+      const std::string& name = assignment.name;
+      const bool each = count(blocks[kStartEach], name) > 0, end = count(blocks[kEndEach], name) > 0;
+      if (!each && !end) {
+        file_.defines.push_back({name, syntax_.expression(assignment.begin, assignment.end), line_});
+        continue;
+      }
+      if (each && end) return false;
+      const StepBlock& block = blocks[each ? kStartEach : kEndEach];
+      const Assignment& change =
+          *std::find_if(block.assignments.begin(), block.assignments.end(), [&](const Assignment& x) { return x.name == name; });
+      std::optional<std::string> step = increment(change);
+      // A counter (not a value of StartEach: that reads the Start: value).
+      if (!step && each) continue;
+      if (!step || !namesConstantsOnly(assignment.begin, assignment.end)) {
+        file_.defines.resize(defined);
+        return false;
+      }
+      counters[name] = {syntax_.expression(assignment.begin, assignment.end), *step, each};
+    }
+    auto counterAt = [](const Counter& counter, bool after) {
+      return "(" + counter.start + ") + " + counter.step + " * " + (after ? "time" : "(time - 1)");
+    };
+    // Before StartEach: runs, each counter has its value of the step before.
+    for (const auto& [name, counter] : counters) syntax_.stepVariables[name] = {counterAt(counter, false), false};
+    for (const Assignment& assignment : blocks[kStartEach].assignments) {
+      const std::string& name = assignment.name;
+      if (auto counter = counters.find(name); counter != counters.end()) {
+        syntax_.stepVariables[name] = {counterAt(counter->second, true), false};
+        continue;
+      }
+      // A value of each step: of constants, counters and the values before it.
+      if (!valueOfStep(assignment)) {
+        file_.defines.resize(defined);
+        syntax_.stepVariables.clear();
+        return false;
+      }
+      syntax_.stepVariables[name] = {syntax_.expression(assignment.begin, assignment.end),
+                                     count(blocks[kEndEach], name) > 0};
+    }
+    for (const Assignment& assignment : blocks[kEndEach].assignments) {
+      if (counters.count(assignment.name)) {
+        syntax_.stepVariables[assignment.name].stepEnd = true;
+        continue;
+      }
+      if (count(blocks[kStartEach], assignment.name) == 0) {  // read before EndEach: assigns it
+        file_.defines.resize(defined);
+        syntax_.stepVariables.clear();
+        return false;
+      }
+    }
+    if (blocks[kStart].seed) file_.seed = syntax_.expression(blocks[kStart].seed->first, blocks[kStart].seed->second);
+    return true;
+  }
+
+  // Whether the value names constants, counters and values of the step only.
+  bool valueOfStep(const Assignment& assignment) const {
+    for (uint32_t at = assignment.begin; at < assignment.end;) {
+      const char c = clean_[at];
+      if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+        while (at < assignment.end && (isNameChar(clean_[at]) || clean_[at] == '.')) ++at;
+        continue;
+      }
+      if (!(std::isalpha(static_cast<unsigned char>(c)) || c == '_')) {
+        ++at;
+        continue;
+      }
+      uint32_t stop = at;
+      while (stop < assignment.end && isNameChar(clean_[stop])) ++stop;
+      const std::string_view name = std::string_view(clean_).substr(at, stop - at);
+      uint32_t next = stop;
+      while (next < assignment.end && std::isspace(static_cast<unsigned char>(clean_[next]))) ++next;
+      at = stop;
+      if (next < assignment.end && clean_[next] == '(') continue;  // a call
+      if (name == assignment.name) return false;
+      bool known = findConstant(name) != nullptr || syntax_.stepVariables.count(name) > 0 ||
+                   syntax_.macros.count(name) > 0;
+      for (const Define& define : file_.defines) known = known || define.name == name;
+      if (!known) return false;
+    }
     return true;
   }
 
@@ -347,6 +525,8 @@ class CpfgReader {
   ForeignSyntax syntax_;
   SourceRange line_;
   size_t stamped_ = 0;
+  bool stepBlocksRead_ = false;
+  bool stepBlocksOk_ = false;
 };
 
 }  // namespace

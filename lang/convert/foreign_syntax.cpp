@@ -755,6 +755,17 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
           if (auto alias = moduleAliases.find(std::string_view(name).substr(0, dot)); alias != moduleAliases.end())
             name = alias->second + name.substr(dot);
       }
+      // cpfg's variables of the blocks around each step, unless a parameter hides one.
+      if (auto variable = stepVariables.find(name); !python && variable != stepVariables.end() && !bound_.count(name)) {
+        if (variable->second.stepEnd && inHomomorphism)
+          fail(at, stop,
+               "the variable '" + name +
+                   "', which cpfg's EndEach: block changes after each step: after the last one, where the "
+                   "homomorphism reads it, it is one step on, which the converter does not write");
+        emit("(" + variable->second.value + ")", false, stop - at);
+        at = stop;
+        continue;
+      }
       // cpfg's macro `#define X 1+2` among operators: its tokens, as C's replacement
       // reads them (2*X is 2*1+2).
       if (auto macro = macros.find(name); !python && macro != macros.end()) {
@@ -1023,6 +1034,15 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   }
   checkPredecessor(predecessor.front(), predBegin, predEnd);
   s.predecessor = std::move(predecessor.front());
+  // The production's parameters hide cpfg's variables of the same name.
+  bound_.clear();
+  for (const std::vector<ModuleText>* modules : {&s.left, &s.right})
+    for (const ModuleText& m : *modules) bound_.insert(m.args.begin(), m.args.end());
+  bound_.insert(s.predecessor.args.begin(), s.predecessor.args.end());
+  struct Unbind {
+    std::set<std::string, std::less<>>& names;
+    ~Unbind() { names.clear(); }
+  } unbind{bound_};
   // cpfg's blocks around the condition, `{t = t - PL;} t > 0 {u = t / 2;}`: assignments
   // put in where they are read after them.
   std::vector<std::pair<std::string, std::string>> locals;
@@ -1076,6 +1096,36 @@ std::string ForeignSyntax::substituted(const std::string& expr,
   return result;
 }
 
+bool ForeignSyntax::bindsParameter(size_t at, std::string_view name) const {
+  // The statement's first line: cpfg continues a statement on lines that start with a tab.
+  size_t begin = text_.rfind('\n', at) == std::string_view::npos ? 0 : text_.rfind('\n', at) + 1;
+  while (begin >= 2 && text_[begin] == '\t') {
+    const size_t before = text_.rfind('\n', begin - 2);
+    begin = before == std::string_view::npos ? 0 : before + 1;
+  }
+  size_t arrow = text_.find("->", begin);
+  if (arrow == std::string_view::npos) return false;
+  // The head ends at the condition's ':' or the arrow; the statement must reach `at`.
+  size_t head = begin;
+  int depth = 0;
+  for (; head < arrow && !(depth == 0 && text_[head] == ':'); ++head) {
+    if (text_[head] == '\n' && (head + 1 >= text_.size() || text_[head + 1] != '\t')) return false;
+    if (text_[head] == '(') ++depth;
+    if (text_[head] == ')') --depth;
+  }
+  for (size_t k = arrow; k < at; ++k)
+    if (text_[k] == '\n' && (k + 1 >= text_.size() || text_[k + 1] != '\t')) return false;
+  depth = 0;
+  for (size_t k = begin; k < head; ++k) {
+    if (text_[k] == '(') ++depth;
+    if (text_[k] == ')') --depth;
+    if (depth > 0 && text_.compare(k, name.size(), name) == 0 && !isNameChar(text_[k - 1]) &&
+        (k + name.size() >= text_.size() || !isNameChar(text_[k + name.size()])))
+      return true;
+  }
+  return false;
+}
+
 // A block `{ name = expr; ... }` at `at` of a cpfg condition; the offset after its '}'.
 // A name that is no parameter of the production is a variable of the whole file in
 // cpfg: it is taken as the production's own only where every other line that reads it
@@ -1112,11 +1162,13 @@ uint32_t ForeignSyntax::block(uint32_t at, uint32_t end, const Statement& s, uin
     binds({s.predecessor});
     binds(s.right);
     if (!parameter) {
-      // Every other place of the name must be on a line that assigns it in a block.
+      // Every other place of the name must be on a line that assigns it in a block, or in
+      // a production that has a parameter of that name (its own).
       for (size_t k = text_.find(name); k != std::string_view::npos; k = text_.find(name, k + 1)) {
         if ((k > 0 && isNameChar(text_[k - 1])) || (k + name.size() < text_.size() && isNameChar(text_[k + name.size()])))
           continue;
         if (k >= statementBegin && k < statementEnd) continue;
+        if (bindsParameter(k, name)) continue;
         const size_t lineBegin = text_.rfind('\n', k) == std::string_view::npos ? 0 : text_.rfind('\n', k) + 1;
         size_t lineEnd = text_.find('\n', k);
         if (lineEnd == std::string_view::npos) lineEnd = text_.size();

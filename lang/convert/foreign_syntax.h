@@ -52,6 +52,18 @@ class ForeignSyntax {
   /// [begin, end)): C replaces the name by the value's text, so where the name stands
   /// among operators (`2*X` is 2*1+2) the value's tokens are put in, not its value.
   std::map<std::string, Function, std::less<>> macros;
+  /// cpfg's variables of the blocks around each step (Start:, StartEach:, EndEach:), each
+  /// read as a cell-language expression of `time` (the step a production fires at):
+  /// a counter `n = n + 1` is its value at that step. `stepEnd`: EndEach: changes it
+  /// after each step, so after the last one (where the homomorphism reads it) it is
+  /// one step on.
+  struct StepVariable {
+    std::string value;
+    bool stepEnd = false;
+  };
+  std::map<std::string, StepVariable, std::less<>> stepVariables;
+  /// The section being read is a homomorphism.
+  bool inHomomorphism = false;
   /// L-Py: where a file shows Python 2 (a print statement, `<>`, `xrange`, ...) and does
   /// not import division from __future__: its `/` floors between integers, which the
   /// converter cannot tell from a quotient, and its round() takes halves away from zero.
@@ -127,6 +139,9 @@ class ForeignSyntax {
   /// or a parenthesis.
   bool atomic(uint32_t begin, uint32_t end) const;
   std::string substituted(const std::string& expr, const std::vector<std::pair<std::string, std::string>>& locals) const;
+  /// Whether the statement of cpfg's file that holds byte `at` is a production with a
+  /// parameter `name` in its predecessor or contexts.
+  bool bindsParameter(size_t at, std::string_view name) const;
   uint32_t block(uint32_t at, uint32_t end, const Statement& s, uint32_t statementBegin, uint32_t statementEnd,
                  std::vector<std::pair<std::string, std::string>>& locals) const;
 
@@ -135,6 +150,7 @@ class ForeignSyntax {
   mutable std::set<std::string, std::less<>> warned_;
   mutable int depth_ = 0;
   mutable size_t inlinedBytes_ = 0;  // written by inlining helper functions and macros
+  mutable std::set<std::string, std::less<>> bound_;  // the parameters of the production being read
 };
 
 /// Levels of conditionals (`c ? a : b`, `a if c else b`) and of L-Py's `or(...)` the

@@ -292,6 +292,37 @@ TEST(Convert, CpfgExpressionsMeanWhatCpfgComputes) {
       << refused.err;
 }
 
+// cpfg's blocks around each step: a counter of StartEach: is its step (n = k at step
+// k), one of EndEach: the step before (m = 10 - (k - 1)), a value of StartEach: reads
+// them as they stand there (p = 2 * m + 1); a production's parameter x is its own
+// beside a block that assigns an x. The words as cpfg derives them, step by step.
+TEST(Convert, CpfgStepCountersGrowAsCpfgCountsTheSteps) {
+  Result result = ontogen("word " + file("c_step_blocks.l") + " --at 1,2,3,4");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 1: B(1, 10, 21) A(1)\n"
+            "t = 2: B(1, 10, 21) B(2, 9, 19) A(2)\n"
+            "t = 3: B(1, 10, 21) B(2, 9, 19) C(3, 8, 17) D(2)\n"
+            "t = 4: B(1, 10, 21) B(2, 9, 19) C(3, 8, 17) E(4)\n");
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "steps";
+  fs::create_directories(dir);
+  // After the last step the homomorphism reads n as it stands (2), but m one step on,
+  // which the converter refuses.
+  std::ofstream(dir / "after.l") << "Lsystem: 1\nderivation length: 2\nStart: {n = 0; m = 0;}\n"
+                                    "StartEach: {n = n + 1;}\nEndEach: {m = m + 1;}\nAxiom: A\nA --> A\n"
+                                    "homomorphism\nA --> B(n)\n";
+  Result after = ontogen("word --interpreted " + (dir / "after.l").string() + " --at 2");
+  ASSERT_EQ(after.exitCode, 0) << after.err;
+  EXPECT_EQ(after.out, "t = 2: B(2)\n");
+  std::ofstream(dir / "end.l") << "Lsystem: 1\nStart: {m = 0;}\nEndEach: {m = m + 1;}\nAxiom: A\n"
+                                  "homomorphism\nA --> C(m)\n";
+  Result end = ontogen("convert " + (dir / "end.l").string());
+  EXPECT_EQ(end.exitCode, 6) << end.err;
+  EXPECT_NE(end.err.find("end.l:6:9: error: the variable 'm', which cpfg's EndEach: block changes"),
+            std::string::npos)
+      << end.err;
+}
+
 // Python 3's round takes halves to the even neighbour, as L-Py computes it; a file of
 // Python 2 has its round (halves away from zero) and its '/', which floors between
 // integers: refused at its place unless a float stands beside it.

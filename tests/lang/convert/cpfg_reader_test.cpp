@@ -208,18 +208,19 @@ TEST(CpfgReader, MacrosWithParametersAreInlined) {
 namespace ontogen::convert {
 namespace {
 
-// A Start: block of constants is #defines and the seed; a variable that another
-// statement assigns is state between steps, and the block stays C code.
+// A Start: block of constants is #defines and the seed; a variable that a step block
+// changes otherwise than by a constant step is state between steps, and the blocks stay
+// C code.
 TEST(CpfgReader, AStartBlockOfConstants) {
   auto c = convertText(Dialect::Cpfg, "a.l", "Start: {b = 1 - C; a = b/2; srand(SEED);}\nAxiom: A(a)\n");
   ASSERT_EQ(c.error, "");
   EXPECT_EQ(body(c.program), "  #define b 1 - C\n  #define a b / 2\n  #seed SEED\n  axiom A(a)\n");
-  auto state = convertText(Dialect::Cpfg, "a.l", "Axiom: A\nStart: {n = 0;}\nEndEach: {n = n + 1;}\n");
+  auto state = convertText(Dialect::Cpfg, "a.l", "Axiom: A\nStart: {n = 0;}\nEndEach: {n = n * 2;}\n");
   EXPECT_EQ(state.line, 2);
   EXPECT_EQ(state.column, 1);
   EXPECT_TRUE(state.untranslatable);
   EXPECT_NE(state.error.find("a C block (Start:"), std::string::npos) << state.error;
-  auto call = convertText(Dialect::Cpfg, "a.l", "Axiom: A\nStart: {n = 0; printf(\"x\");}\n");
+  auto call = convertText(Dialect::Cpfg, "a.l", "Axiom: A\nStart: {n = 0; fclose(fp);}\n");
   EXPECT_EQ(call.line, 2);
   EXPECT_NE(call.error.find("a C block (Start:"), std::string::npos) << call.error;
 }
