@@ -103,6 +103,15 @@ void LinearDevelopment::seed(StepContext& context) {
   seedFromAxiom(pool_, context);
 }
 
+// A compact word's records take more than the word (36 bytes a module of one value
+// against about 14): they count before they are made, beside the word they are made from.
+void LinearDevelopment::storeRecords() {
+  if (!pool_.holdsCompactWord()) return;
+  pool_.ensureIds();
+  checkGrowth(*context_, pool_.size(), pool_.bytes() + pool_.recordBytes());
+  pool_.storeRecords();
+}
+
 void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
   context_ = &context;
   successors_.recordLineage(context.lineage);
@@ -114,7 +123,7 @@ void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
     context_ = nullptr;
     return;
   }
-  pool_.storeRecords();
+  storeRecords();
   if (system_.sampledRules && stepRules) applyStepRules(t);
   if (system_.rates)
     integrateAndExpire(t, t1);
@@ -151,7 +160,11 @@ void LinearDevelopment::expireCompact(double t, double t1) {
     const auto counts = parallel_.rewriteCompact(word, instant, activeGroup_, threads, nextWord_, fits, context_->seed,
                                                  context_->ancestors);
     if (!counts) {
-      pool_.storeRecords();
+      // The serial pass of records takes the word on: what was written of the next word
+      // goes first (at a limit of 200 MiB the runaway word held 67 MB of it beside the
+      // records made).
+      nextWord_ = pool_.emptyCompactWord();
+      storeRecords();
       expireUntil(t, t1);
       return;
     }
@@ -216,6 +229,17 @@ void LinearDevelopment::beginWord() {
   double cap = static_cast<double>(context_->limits.maxCells) + 16;
   double cells = std::min(pool_.size() * growth + 16, cap);
   double values = std::min(pool_.stateArena().size() * growth + 16, cap * std::max<size_t>(1, frame_.size()));
+  // And by the room the memory limit leaves: a word that outgrows it is copied as it
+  // grows, which emit() counts, while a reserve past the limit is memory the limit never
+  // saw (157 MB at a limit of 200 MiB, when the compact pass gave the runaway word up).
+  const uint64_t held = pool_.bytes() + context_->elsewhere.bytes;
+  const uint64_t limit = context_->limits.maxMemoryBytes;
+  const double room = limit > held ? static_cast<double>(limit - held) : 0.0;
+  const double wanted = cells * sizeof(CellRecord) + values * sizeof(double);
+  if (wanted > room) {
+    cells = std::max(16.0, cells * room / wanted);
+    values = std::max(16.0, values * room / wanted);
+  }
   nextCells_.reserve(static_cast<size_t>(cells));
   nextState_.reserve(static_cast<size_t>(values));
   outCells_ = &nextCells_;
@@ -235,6 +259,14 @@ void LinearDevelopment::finishWord() {
 void LinearDevelopment::emit(const CellRecord& cell, const double* values, uint32_t count) {
   CellRecord copy = cell;
   copy.state = static_cast<uint32_t>(outState_->size());
+  // An array that grows is copied into a buffer twice its size while the old one is
+  // still held: the copy counts before it is made, or a word near the limit would pass
+  // it by the size of its largest array at that instant (1.8 times the limit).
+  const bool cellsGrow = outCells_->size() == outCells_->capacity();
+  const bool stateGrows = outState_->capacity() - outState_->size() < count;
+  if (cellsGrow || stateGrows) [[unlikely]]
+    checkLimits((cellsGrow ? outCells_->size() * sizeof(CellRecord) : 0) +
+                (stateGrows ? outState_->size() * sizeof(double) : 0));
   if (count > 0) outState_->insert(outState_->end(), values, values + count);
   outCells_->push_back(copy);
   if (++sinceCheck_ >= checkInterval_) [[unlikely]]
@@ -243,11 +275,11 @@ void LinearDevelopment::emit(const CellRecord& cell, const double* values, uint3
 
 // Within a step the new word is being written beside the old one, and cells that expire
 // within the step wait on the work list: all of it counts, as it is made.
-void LinearDevelopment::checkLimits() {
+void LinearDevelopment::checkLimits(uint64_t copying) {
   sinceCheck_ = 0;
   const uint64_t cells = nextCells_.size() + work_.size() + expandedCells_.size();
   const uint64_t values = nextState_.size() + workState_.size() + expandedState_.size();
-  checkGrowth(*context_, cells, pool_.bytes() + cells * sizeof(CellRecord) + values * sizeof(double));
+  checkGrowth(*context_, cells, pool_.bytes() + cells * sizeof(CellRecord) + values * sizeof(double) + copying);
 }
 
 // The rule frame of lang/program.h: [state...] [internal state] [context...]. The

@@ -60,9 +60,13 @@ class LinearDevelopment final : public Development {
   void emitSuccessors(const CompiledRule& rule, const CellRecord& cell, const double* frame, double when,
                       BirthCause cause, const EvalContext& context);
   void emit(const CellRecord& cell, const double* values, uint32_t count);
+  /// Turns a compact word back into records, counted before they are made.
+  void storeRecords();
   void beginWord();
   void finishWord();
-  void checkLimits();
+  /// Checks the limits with what the word holds, and `copying` bytes more of an array
+  /// being copied as it grows.
+  void checkLimits(uint64_t copying = 0);
 
   const Program& program_;
   const SystemDefinition& system_;

@@ -69,7 +69,7 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
   // The neighbours of every cell, found in bucket order rather than cell by cell.
   if (aggregates_) pool_.neighbourTable(neighbourOffsets_, neighbourCells_);
   std::vector<ChunkResult> results;
-  GrowthMeter meter(context, WorldHeld{pool_.size(), pool_.bytes()});
+  GrowthMeter meter(context, WorldHeld{pool_.size(), pool_.bytes() + pool_.indexBytes()});
   runStepRules(program, context, view_, results,
                [&](ChunkResult& out, size_t, const CellView& cell, double* frame, const CompiledRule* action,
                    const EvalContext& evaluation, SuccessorWriter& successors) {
@@ -95,23 +95,40 @@ void SpatialDevelopment::applyStepRules(StepContext& context) {
 
   CellArray next;
   StateArray nextState;
-  size_t total = 0;
-  for (const ChunkResult& result : results) total += result.cells.size();
-  checkCellLimit(total, context.limits);
-  next.reserve(total);
+  size_t total = 0, values = 0;
+  uint64_t resultBytes = 0;
   for (const ChunkResult& result : results) {
+    total += result.cells.size();
+    values += result.state.size();
+    resultBytes += result.cells.capacity() * sizeof(CellRecord) + result.state.capacity() * sizeof(double);
+  }
+  checkCellLimit(total, context.limits);
+  // The merged word is written beside the chunks' results, the old word and its index:
+  // counted before it is made, as is the new index below (at a limit of 100 MiB a
+  // dividing colony peaked at 226 MB when both were counted after the fact).
+  checkGrowth(context, total,
+              pool_.bytes() + pool_.indexBytes() + resultBytes + total * sizeof(CellRecord) + values * sizeof(double));
+  next.reserve(total);
+  nextState.reserve(values);
+  for (ChunkResult& result : results) {
     const uint32_t base = static_cast<uint32_t>(nextState.size());
     nextState.insert(nextState.end(), result.state.begin(), result.state.end());
     for (CellRecord cell : result.cells) {
       cell.state += base;
       next.push_back(cell);
     }
+    // Each result goes as soon as it is merged.
+    result.cells = CellArray();
+    result.state = StateArray();
     context.stats.ruleFirings += result.firings;
     context.stats.cellsBorn += result.born;
     if (context.lineage) context.lineage->insert(context.lineage->end(), result.lineage.begin(), result.lineage.end());
   }
-  checkMemoryLimit(next.size() * sizeof(CellRecord) * 2 + nextState.size() * sizeof(double) * 2, context.limits);
   pool_.swapContents(next, nextState);
+  // The old word goes before the new index is made.
+  next = CellArray();
+  nextState = StateArray();
+  checkGrowth(context, total, pool_.bytes() + pool_.indexBytes() + total * SpatialPool::kIndexPeakBytesPerCell);
   pool_.index();
 }
 

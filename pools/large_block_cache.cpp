@@ -12,10 +12,16 @@
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace ontogen {
 
 namespace {
+
+// glibc's default mmap threshold (and trim threshold), 128 KiB.
+constexpr int kGlibcMmapThreshold = 128 << 10;
 
 struct Cache {
   std::mutex mutex;
@@ -110,6 +116,13 @@ void trimLargeBlockCache() noexcept {
 }
 
 void limitLargeBlockCache(uint64_t bytes) noexcept {
+#if defined(__GLIBC__)
+  // glibc raises its mmap threshold to the size of each mapped block freed (up to 32 MiB)
+  // and then keeps up to twice that of freed memory at the top of its heap: resident
+  // memory that no pool counts (a colony under a limit of 100 MiB peaked at 132 MiB, 96
+  // with the threshold fixed). Setting it fixes it at glibc's own first value.
+  mallopt(M_MMAP_THRESHOLD, kGlibcMmapThreshold);
+#endif
   Cache& state = cache();
   std::lock_guard lock(state.mutex);
   state.budget = std::min(state.budget, bytes);

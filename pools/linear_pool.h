@@ -46,6 +46,11 @@ class LinearPool final : public Pool {
   void storeCompactWord(uint64_t seedKey);
   /// Decodes the compact word into records and frees it.
   void storeRecords();
+  /// The bytes storeRecords makes: the records of the compact word and their values (0
+  /// for a pool of records).
+  size_t recordBytes() const {
+    return compact_ ? word_.size() * sizeof(CellRecord) + word_.valueCount() * sizeof(double) : 0;
+  }
 
   /// Computes the matching bracket of every `[` and `]` for the current cells.
   /// classOf[master] is the SymbolClass of each master. Call after the word changes and

@@ -93,6 +93,16 @@ void SpatialPool::index() {
   ++version_;
 }
 
+size_t SpatialPool::indexBytes() const {
+  // A hashed bucket is a node of the table (its key, range and link, about 40 bytes with
+  // the allocator's header) and a slot of its bucket array.
+  constexpr size_t kHashedBucketBytes = 40 + sizeof(void*);
+  return order_.capacity() * sizeof(uint32_t) + sorted_.capacity() * sizeof(sorted_[0]) +
+         start_.capacity() * sizeof(uint32_t) + buckets_.size() * kHashedBucketBytes +
+         buckets_.bucket_count() * sizeof(void*) + flat_.capacity() * sizeof(uint32_t) +
+         starts_.capacity() * sizeof(uint32_t);
+}
+
 template <typename Found>
 void SpatialPool::scanAround(const std::array<double, 3>& p, size_t self, Found&& found) const {
   const auto b = bucketOf(p);

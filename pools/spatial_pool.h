@@ -32,6 +32,13 @@ class SpatialPool final : public Pool {
   /// Rebuilds the buckets from the current positions (a new structure version: the
   /// neighbours may have changed). Call after positions or cells change.
   void index();
+  /// Bytes the index holds now: not in bytes(), and for a pool of small cells larger
+  /// than the cells themselves; the memory limit counts it.
+  size_t indexBytes() const;
+  /// At most the bytes index() holds at its peak, a cell: its scratch (24 bytes), order
+  /// (4) and positions (24), and the dense buckets with their scratch (36) or the hashed
+  /// ones (80 with the table's nodes).
+  static constexpr size_t kIndexPeakBytesPerCell = 136;
   /// Replaces `out` with the cells within the radius of cell i, other than i, in a
   /// fixed order (bucket by bucket, then pool order). Needs index().
   void neighbours(size_t i, std::vector<uint32_t>& out) const;
