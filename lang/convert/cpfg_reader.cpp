@@ -251,7 +251,11 @@ class CpfgReader {
       uint32_t next = stop;
       while (next < end && std::isspace(static_cast<unsigned char>(clean_[next]))) ++next;
       at = stop;
-      if (next < end && clean_[next] == '(') continue;  // a call
+      // A call; one that draws a random number is drawn anew where C puts the text.
+      if (next < end && clean_[next] == '(') {
+        if (name == "ran" || name == "nran" || name == "bran" || name == "biran" || name == "srand") return false;
+        continue;
+      }
       bool known = findConstant(name) != nullptr;
       for (const Define& define : file_.defines) known = known || define.name == name;
       if (!known) return false;

@@ -5,6 +5,7 @@
 #include <optional>
 #include <utility>
 
+#include "lang/compile_context.h"
 #include "lang/convert/python_operators.h"
 #include "lang/program.h"
 
@@ -161,6 +162,10 @@ std::string shown(std::string_view text) {
 }
 
 }  // namespace
+
+std::string cellName(std::string_view name) {
+  return detail::isReadOnlyName(name) ? std::string(name) + "_" : std::string(name);
+}
 
 ForeignSyntax::Nested::Nested(const ForeignSyntax& syntax, uint32_t begin, uint32_t end) : depth(syntax.depth_) {
   if (++depth > kMaxConvertNesting) {
@@ -421,7 +426,7 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
           if (dialect_ == Dialect::LPy && module.label == "*" && !skippedLabel)
             skippedLabel = true;
           else
-            module.args.emplace_back(name);
+            module.args.push_back(isNumber ? std::string(name) : cellName(name));
         } else {
           module.args.push_back(expression(a, b));
         }
@@ -820,6 +825,7 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
             continue;
           }
           if (name == "fabs") name = "abs";
+          if (name == "nran") name = "gaussian";  // cpfg's nran(mean, deviation)
         }
       }
       if (python) {
@@ -869,6 +875,11 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
           name = "0";
         else if (name == "lambda" || name == "for" || name == "in" || name == "is")
           code(at, stop, "Python's " + shown(name));
+      }
+      {
+        uint32_t next = stop;
+        while (next < end && isSpace(text_[next])) ++next;
+        if (next == end || text_[next] != '(') name = cellName(name);
       }
       emit(name, false, stop - at);
       at = stop;
@@ -1189,7 +1200,7 @@ uint32_t ForeignSyntax::block(uint32_t at, uint32_t end, const Statement& s, uin
       }
     }
     std::string value = substituted(expression(eq + 1, b), locals);
-    locals.emplace_back(name, "(" + value + ")");
+    locals.emplace_back(cellName(name), "(" + value + ")");
   }
   return close + 1;
 }

@@ -153,6 +153,11 @@ class ForeignSyntax {
   mutable std::set<std::string, std::less<>> bound_;  // the parameters of the production being read
 };
 
+/// A name of the other tool's file as the cell language may write it: the names of a
+/// cell's internal state (`age`, `time`, `status`, ...), which the cell language reads
+/// before a file's own names and refuses as parameters, get a trailing '_'.
+std::string cellName(std::string_view name);
+
 /// Levels of conditionals (`c ? a : b`, `a if c else b`) and of L-Py's `or(...)` the
 /// converter reads inside one another. The compiler takes 200 levels of nesting, and each
 /// conditional becomes two (a call and its arguments); no model nests a tenth as deep.

@@ -1,5 +1,7 @@
 #include "lang/convert/lsystem_file.h"
 
+#include "lang/convert/foreign_syntax.h"
+
 #include <cctype>
 #include <filesystem>
 
@@ -88,7 +90,7 @@ CellProgram writeCellProgram(const LSystemFile& file, std::string_view sourceNam
        std::string(dialectName(file.dialect)) + ")");
   line("lsystem " + file.name + " {");
   if (needsLetters(file)) line("  #letters");
-  for (const Define& define : file.defines) line("  #define " + define.name + " " + define.value, define.origin);
+  for (const Define& define : file.defines) line("  #define " + cellName(define.name) + " " + define.value, define.origin);
   if (file.angle) line("  #angle " + *file.angle);
   if (file.seed) line("  #seed " + *file.seed);
   if (file.derivationLength) line("  #until " + *file.derivationLength, file.derivationLengthOrigin);

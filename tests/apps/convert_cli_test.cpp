@@ -323,6 +323,23 @@ TEST(Convert, CpfgStepCountersGrowAsCpfgCountsTheSteps) {
       << end.err;
 }
 
+// A cpfg name that is a cell's internal state (a parameter `age`, a macro `time`) is
+// the file's own, not the cell's age or the clock: A(5) steps down by 2. nran(3, 0) is
+// cpfg's normal draw (deviation 0: 3); a macro that draws is drawn anew at each use, as
+// C puts its text there: C's two parameters differ.
+TEST(Convert, CpfgNamesOfTheCellsStateAreTheFilesOwn) {
+  Result result = ontogen("word " + file("c_names.l") + " --at 2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  ASSERT_EQ(result.out.rfind("t = 2: A(1) B(3) C(", 0), 0u) << result.out;
+  double a = -1, b = -1;
+  ASSERT_EQ(std::sscanf(result.out.c_str(), "t = 2: A(1) B(3) C(%lf, %lf)", &a, &b), 2) << result.out;
+  EXPECT_NE(a, b);
+  for (double x : {a, b}) {
+    EXPECT_GE(x, 0.0);
+    EXPECT_LT(x, 1.0);
+  }
+}
+
 // Python 3's round takes halves to the even neighbour, as L-Py computes it; a file of
 // Python 2 has its round (halves away from zero) and its '/', which floors between
 // integers: refused at its place unless a float stands beside it.
