@@ -3,6 +3,7 @@
 #include <string>
 #include <string_view>
 
+#include "apps/command_reference.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
 #include "apps/text_mate_grammar.h"
@@ -72,6 +73,10 @@ int runHelp(const HelpOptions& options) {
     std::cout << textMateGrammar();
     return kExitOk;
   }
+  if (options.reference) {
+    std::cout << commandReference();
+    return kExitOk;
+  }
   std::cout << "ontogen: grows cell-language programs and realises them as geometry, music and text.\n\n"
                "Commands:\n";
   constexpr std::pair<std::string_view, std::string_view> kUsage[] = {
@@ -87,6 +92,7 @@ int runHelp(const HelpOptions& options) {
       {"ontogen convert FILE.l|FILE.lpy", "print a cpfg or L-Py L-system as a cell-language program"},
       {"ontogen help", "this text"},
       {"ontogen help --grammar", "the cell language's TextMate grammar (JSON) for editors"},
+      {"ontogen help --reference", "the sets' commands as Markdown (docs/COMMANDS.md)"},
       {"ontogen --version", "the version"},
       {"ontogen COMMAND --help", "the options of a command"},
   };

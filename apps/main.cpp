@@ -320,6 +320,8 @@ int dispatch(int argc, char** argv) {
   auto* helpCommand = app.add_subcommand("help", "List commands, keywords, directives, set commands and functions");
   helpCommand->add_flag("--grammar", help.grammar,
                         "Print the cell language's TextMate grammar (JSON) for editors, made from the same tables");
+  helpCommand->add_flag("--reference", help.reference,
+                        "Print the sets' commands as Markdown (docs/COMMANDS.md), made from the same tables");
 
   try {
     app.parse(argc, argv);

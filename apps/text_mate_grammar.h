@@ -3,7 +3,7 @@
 // Sublime Text, Atom's successors and GitHub's Linguist read them), generated from the
 // tables `ontogen help` prints: the keywords (lang/keywords.h), the directives
 // (lang/directives.h), the built-in functions and constants (lang/builtins.h), the
-// commands of the turtle, creature, physics and music sets and the music set's scale
+// commands of the turtle, creature, dynamics, physics and music sets and the music set's scale
 // names. editors/vscode/syntaxes/cell.tmLanguage.json is a copy of its output
 // (tests/apps/text_mate_grammar_test.cpp keeps the two equal).
 //

@@ -1,6 +1,6 @@
 #pragma once
 // The image of a linear word under its L-system's homomorphism (L-Py's interpretation
-// rules, docs/LANGUAGE.md 4.8a): every module with homomorphism rules is rewritten by
+// rules, docs/LANGUAGE.md 4.9): every module with homomorphism rules is rewritten by
 // its first matching rule, and what that makes is rewritten in turn, at most the
 // system's homomorphismDepth rewrites deep. The image is made for interpretation only:
 // the developing word never changes. Modules of the image keep the birth time of the

@@ -1,5 +1,5 @@
 #pragma once
-// An L-system rule's context in a linear word (docs/LANGUAGE.md 3.6, 4.8): the left and
+// An L-system rule's context in a linear word (docs/LANGUAGE.md 3.7, 4.8): the left and
 // right context around a module of the word as it was, and the new left context `<<`
 // against the word being written. Productions, decomposition and homomorphism rules all
 // match through here, so a wildcard's number of parameters, `∅`, `[` and the names only

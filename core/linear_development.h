@@ -52,7 +52,7 @@ class LinearDevelopment final : public Development {
   bool matchContext(const CompiledRule& rule, size_t index, double* frame);
   const CompiledRule* chooseRule(const std::vector<CompiledRule>& rules, int64_t index, double* frame,
                                  RandomStream& random, const EvalContext& context);
-  /// The decomposition pass over the word just produced at `when` (docs/LANGUAGE.md 4.8a).
+  /// The decomposition pass over the word just produced at `when` (docs/LANGUAGE.md 4.9).
   void decomposeWord(double when);
   /// Emits `cell` decomposed: rewritten by its first matching decomposition rule, its
   /// successors decomposed in turn while `depth` ≤ the system's maximum depth.

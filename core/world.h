@@ -70,7 +70,7 @@ class World {
   /// Bytes a world takes besides its pool's cells, counted with them against the memory
   /// limit and in held(): its development's rule evaluator, rewriter, frames and empty
   /// buffers, and its place among its parent's children. 65,535 nested worlds of a cell
-  /// each took 11 KB a world at their peak resident size (docs/LANGUAGE.md 5), while
+  /// each took 11 KB a world at their peak resident size (docs/LANGUAGE.md 6), while
   /// their cells took 24 bytes.
   static constexpr uint64_t kWorldBytes = uint64_t{12} << 10;
 

@@ -1322,7 +1322,7 @@ class Parser {
 
   std::vector<Module> contextItems() {
     std::vector<Module> items;
-    // A new line at or left of the statement's column ends it (section 3.8).
+    // A new line at or left of the statement's column ends it (docs/LANGUAGE.md 3.9).
     while (!atStatementEnd() && (canStartModule() || check(TokenKind::Star) || check(TokenKind::EmptySet)) &&
            !check(TokenKind::Less) && !check(TokenKind::Greater))
       items.push_back(contextModule());

@@ -190,7 +190,7 @@ struct MasterCell {
   std::vector<CompiledRule> rules;          ///< evaluated once per step, in order
   std::vector<CompiledRule> terminalRules;  ///< evaluated when age reaches lifetime
   /// L-systems: rewrite the module right after the production step (decomposition) or
-  /// only for interpretation (homomorphism), in order, first match (docs/LANGUAGE.md 4.8a).
+  /// only for interpretation (homomorphism), in order, first match (docs/LANGUAGE.md 4.9).
   std::vector<CompiledRule> decompositionRules;
   std::vector<CompiledRule> homomorphismRules;
   std::vector<InterpretationBlock> interpretations;

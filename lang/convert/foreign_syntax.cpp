@@ -835,7 +835,7 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
         while (next < end && isSpace(text_[next])) ++next;
         if (next < end && text_[next] == '(') {
           // Python's functions as the cell language names them; random ones draw from
-          // ontogen's seeded streams (section 4.10).
+          // ontogen's seeded streams (docs/LANGUAGE.md 4.12).
           static constexpr std::pair<std::string_view, std::string_view> kCalls[] = {
               {"random", "uniform"}, {"gauss", "gaussian"},  {"normalvariate", "gaussian"},
               {"normal", "gaussian"}, {"int", "trunc"},      {"radians", "rad"},

@@ -16,7 +16,7 @@
 //   a ^ b ^ c    ^ is left-associative: (a ^ b) ^ c (the cell language's is right-).
 //
 // Everything else keeps the meaning the tokens have in order, since the languages agree
-// on the other operators' precedences (docs/LANGUAGE.md 3.9). So a cpfg macro's tokens
+// on the other operators' precedences (docs/LANGUAGE.md 3.11). So a cpfg macro's tokens
 // put in where its name stands read as C's textual replacement does.
 
 #include <cstdint>

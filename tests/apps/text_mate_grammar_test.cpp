@@ -12,8 +12,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "interpreters/creature/creature_commands.h"
 #include "interpreters/dynamics/dynamics_commands.h"
 #include "interpreters/music/music_commands.h"
+#include "interpreters/physics/physics_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
 #include "lang/builtins.h"
 #include "lang/directives.h"
@@ -55,6 +57,16 @@ TEST(TextMateGrammar, ItIsATextMateGrammarHoldingEveryNameOfTheTables) {
   }
   for (const ontogen::DynamicsCommand& command : ontogen::dynamicsCommands()) EXPECT_TRUE(holds(command.name)) << command.name;
   for (const ontogen::TurtleCommand& command : ontogen::turtleCommands()) {
+    if (std::isalpha(static_cast<unsigned char>(command.name[0]))) {
+      EXPECT_TRUE(holds(command.name)) << command.name;
+    }
+  }
+  for (const ontogen::CreatureCommand& command : ontogen::creatureCommands()) {
+    if (std::isalpha(static_cast<unsigned char>(command.name[0]))) {
+      EXPECT_TRUE(holds(command.name)) << command.name;
+    }
+  }
+  for (const ontogen::PhysicsCommand& command : ontogen::physicsCommands()) {
     if (std::isalpha(static_cast<unsigned char>(command.name[0]))) {
       EXPECT_TRUE(holds(command.name)) << command.name;
     }

@@ -105,6 +105,7 @@ const text = [
   '   over two lines */ axiom',
   '#surface 1 "bud.obj"',
   'cell Leg(g = 2) { interpret creature { hip(0.5, 1, 1, 1.5, 0) knee foot } }',
+  'cell Body { interpret dynamics { servo(5000, 100) wind(2, 0, 0) } }',
   '#colour 3',
 ];
 const lines = tokenize(text.join('\n'));
@@ -128,6 +129,8 @@ expectScope(lines, 'cell', 'storage.type.cell');
 check(!scopesAt(3, 9).includes('keyword.control.cell'), `the parameter g is no keyword (got ${scopesAt(3, 9).join(' ')})`);
 expectScope(lines, 'hip', 'support.function.creature.cell');
 expectScope(lines, 'knee', 'support.function.creature.cell');
+expectScope(lines, 'servo', 'support.function.dynamics.cell');
+expectScope(lines, 'wind', 'support.function.dynamics.cell');
 expectScope(lines, '#colour', 'invalid.illegal.directive.cell');
 
 console.log(failures === 0 ? 'grammar test: passed' : `grammar test: ${failures} failed`);

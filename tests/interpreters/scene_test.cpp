@@ -71,7 +71,7 @@ class MarkerSet final : public InterpretationSet {
   Scene drawn_;
 };
 
-// Homomorphism rules (docs/LANGUAGE.md 4.8a): the set draws the image, N -> F F, while
+// Homomorphism rules (docs/LANGUAGE.md 4.9): the set draws the image, N -> F F, while
 // the word keeps its N's; the image's F's stand where their N stands in the tree.
 TEST(Scene, TheGeometrySetDrawsTheHomomorphismsImage) {
   auto program = testing_support::compileOrFail("lsystem t {\n  axiom N [ + N ]\n  homomorphism:\n  N -> F F\n}");

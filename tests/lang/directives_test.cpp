@@ -219,7 +219,7 @@ TEST(Directives, AnUnknownNameIsRejectedWithTheTablesList) {
   EXPECT_EQ(error.span.line(), 1);
   EXPECT_EQ(error.span.column(), 1);
   // The list is the table, in its order; the text is pinned as the error table of
-  // docs/LANGUAGE.md section 6 quotes it.
+  // docs/LANGUAGE.md section 7 quotes it.
   EXPECT_EQ(error.message,
             "unknown directive '#defne' (known: #define, #range, #angle, #yawangle, #length, #radius, #radians, "
             "#degrees, #seed, #until, #from, #fps, #speed, #look, #interpret, #dt, #timestep, #tolerance, #allow, #music, "
