@@ -1,0 +1,119 @@
+// The dynamics set on models/creature.cell (SEGMENTS 6 and 64): ten simulated seconds of
+// walking under physics, against MuJoCo alone stepping the model the set writes
+// (`--format mjcf`) for as many steps, its servos held at the first frame's targets. The
+// difference is ontogen's coupling: the word's development, the kinematic gait replayed
+// at every step for the servos' targets, the wind, the contacts and measures read back.
+// The counter sim_s/s is simulated seconds per second of the process's processor time.
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include <mujoco/mujoco.h>
+
+#include "bench/bench_support.h"
+#include "interpreters/dynamics/mujoco_model.h"
+#include "interpreters/run.h"
+
+namespace ontogen::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kPeriod = 1.2;   // the gait's period: the runs start after its first cycle
+constexpr double kGrown = 1;      // when models/creature.cell's body appears and its simulation starts
+constexpr double kUntil = kPeriod + 10;
+constexpr double kSimulated = kUntil - kGrown;  // seconds simulated by each run
+
+// One run of the set from the end of the first cycle to 10 s later (the simulation starts
+// when the body appears), two frames, the given formats.
+RunReport runCreature(const Compiled& compiled, const std::string& formats, const fs::path& out) {
+  RunDef def;
+  def.program = compiled.program;
+  def.stem = "creature";
+  def.frames = 2;
+  def.from = kPeriod;
+  def.until = kUntil;
+  def.world = kBenchWorld;
+  def.world.threads = 1;
+  def.sets = {"dynamics"};
+  def.setOptions.formats = formats;
+  def.out = out;
+  Run run(std::move(def));
+  return run.execute();
+}
+
+Compiled compiledCreature(int segments) {
+  // As `--define SEGMENTS=N` does.
+  DiagnosticSink sink;
+  CompileOptions options;
+  options.commandSets = commandSets();
+  options.defines.push_back({"SEGMENTS", static_cast<double>(segments)});
+  const std::string path = std::string(ONTOGEN_SOURCE_DIR) + "/models/creature.cell";
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::shared_ptr<const Program> program = compileSource("models/creature.cell", text.str(), sink, options);
+  if (!program) return {nullptr, "models/creature.cell does not compile:\n" + formatDiagnostics(sink)};
+  return {std::move(program), {}};
+}
+
+void BM_DynamicsCreature(benchmark::State& state) {
+  const int segments = static_cast<int>(state.range(0));
+  const Compiled compiled = compiledCreature(segments);
+  if (!compiled.program) {
+    state.SkipWithError(compiled.error.c_str());
+    return;
+  }
+  const fs::path out = fs::temp_directory_path() / ("ontogen_dynamics_bench_" + std::to_string(segments));
+  for (auto _ : state) {
+    const RunReport report = runCreature(compiled, "joints", out);
+    if (!report.ok()) {
+      const std::string message =
+          "the run failed: " + (report.diagnostics.empty() ? std::string() : report.diagnostics[0].message);
+      state.SkipWithError(message.c_str());
+      break;
+    }
+  }
+  state.counters["sim_s/s"] = benchmark::Counter(kSimulated, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_DynamicsCreature)->Arg(6)->Arg(64)->Unit(benchmark::kMillisecond);
+
+// The same creature's model at the first frame, written by the set and stepped by MuJoCo
+// alone from its keyframe for as many steps as the run's simulation takes.
+void BM_MujocoAlone(benchmark::State& state) {
+  const int segments = static_cast<int>(state.range(0));
+  const Compiled compiled = compiledCreature(segments);
+  if (!compiled.program) {
+    state.SkipWithError(compiled.error.c_str());
+    return;
+  }
+  const fs::path out = fs::temp_directory_path() / ("ontogen_dynamics_bench_mjcf_" + std::to_string(segments));
+  fs::remove_all(out);
+  if (!runCreature(compiled, "mjcf", out).ok()) {
+    state.SkipWithError("the run that writes the MJCF failed");
+    return;
+  }
+  std::ifstream in(out / "creature.xml", std::ios::binary);
+  std::ostringstream mjcf;
+  mjcf << in.rdbuf();
+  MujocoModel model(mjcf.str());
+  const long steps = std::lround(kSimulated / model.model()->opt.timestep);
+  for (auto _ : state) {
+    mj_resetDataKeyframe(model.model(), model.data(), 0);
+    mj_forward(model.model(), model.data());
+    for (long n = 0; n < steps; ++n) model.step();
+    benchmark::DoNotOptimize(model.data()->qpos[0]);
+  }
+  if (!std::isfinite(model.data()->qpos[1])) state.SkipWithError("MuJoCo's state is not finite");
+  state.counters["sim_s/s"] = benchmark::Counter(kSimulated, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_MujocoAlone)->Arg(6)->Arg(64)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace ontogen::bench
