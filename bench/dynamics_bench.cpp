@@ -17,6 +17,7 @@
 #include <mujoco/mujoco.h>
 
 #include "bench/bench_support.h"
+#include "interpreters/dynamics/dynamics_set.h"
 #include "interpreters/dynamics/mujoco_model.h"
 #include "interpreters/run.h"
 
@@ -32,7 +33,8 @@ constexpr double kSimulated = kUntil - kGrown;  // seconds simulated by each run
 
 // One run of the set from the end of the first cycle to 10 s later (the simulation starts
 // when the body appears), two frames, the given formats.
-RunReport runCreature(const Compiled& compiled, const std::string& formats, const fs::path& out) {
+RunReport runCreature(const Compiled& compiled, const std::string& formats, const fs::path& out,
+                      int* rebuilds = nullptr) {
   RunDef def;
   def.program = compiled.program;
   def.stem = "creature";
@@ -45,7 +47,12 @@ RunReport runCreature(const Compiled& compiled, const std::string& formats, cons
   def.setOptions.formats = formats;
   def.out = out;
   Run run(std::move(def));
-  return run.execute();
+  const DynamicsSet* dynamics = nullptr;
+  for (const auto& set : run.sets())
+    if (const auto* found = dynamic_cast<const DynamicsSet*>(set.get())) dynamics = found;
+  RunReport report = run.execute();
+  if (rebuilds && dynamics) *rebuilds = dynamics->stats().rebuilds;
+  return report;
 }
 
 Compiled compiledCreature(int segments) {
@@ -71,8 +78,9 @@ void BM_DynamicsCreature(benchmark::State& state) {
     return;
   }
   const fs::path out = fs::temp_directory_path() / ("ontogen_dynamics_bench_" + std::to_string(segments));
+  int rebuilds = 0;
   for (auto _ : state) {
-    const RunReport report = runCreature(compiled, "joints", out);
+    const RunReport report = runCreature(compiled, "joints", out, &rebuilds);
     if (!report.ok()) {
       const std::string message =
           "the run failed: " + (report.diagnostics.empty() ? std::string() : report.diagnostics[0].message);
@@ -81,6 +89,7 @@ void BM_DynamicsCreature(benchmark::State& state) {
     }
   }
   state.counters["sim_s/s"] = benchmark::Counter(kSimulated, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["rebuilds"] = rebuilds;
 }
 BENCHMARK(BM_DynamicsCreature)->Arg(6)->Arg(64)->Unit(benchmark::kMillisecond);
 

@@ -566,10 +566,10 @@ TEST(DynamicsSet, TheWindyTreeSways) {
 }
 
 // models/windy_tree.cell with no wind settles under its weight where the physics set's
-// elastic design model (section 4.19, the same cut: 4 segments a rod, springs of EI / h at
-// their middles, large deflections) says it stands: each of the 15 rods' tips, grown and
-// simulated for 16 s with its damping, within 0.5 % of its statical sag and 1 um (the
-// sags are 1 to 4 cm but the trunk's, 9 um; measured within 0.011 %).
+// elastic design model (docs/LANGUAGE.md 5.6; the same cut: 4 segments a rod, springs of
+// EI / h at their middles, large deflections) says it stands: each of the 15 rods' tips,
+// grown and simulated for 16 s with its damping, within 0.5 % of its statical sag and
+// 1 um (the sags are 1 to 4 cm but the trunk's, 9 um; measured within 0.011 %).
 TEST(DynamicsSet, TheSettledTreeStandsWhereTheElasticStaticsPutIt) {
   std::vector<glm::dvec3> settled;
   WalkDef tree;
