@@ -14,17 +14,14 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include "tests/apps/ontogen_process.h"
 #include "tests/checkers.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
+using Result = ontogen::test::OntogenRun;
 
 fs::path scratch(const std::string& name) {
   fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "cli_test" / name;
@@ -40,22 +37,7 @@ std::string readFile(const fs::path& path) {
   return text.str();
 }
 
-Result ontogen(const std::string& args) {
-  // One file per process: ctest runs the tests of this file in parallel processes.
-  fs::path errFile = fs::path(ONTOGEN_BINARY_DIR) / "cli_test" / ("stderr_" + std::to_string(getpid()) + ".txt");
-  fs::create_directories(errFile.parent_path());
-  std::string command = std::string(ONTOGEN_EXECUTABLE) + " " + args + " 2>" + errFile.string();
-  Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.out.append(buffer.data(), n);
-  int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = readFile(errFile);
-  return result;
-}
+using ontogen::test::runOntogenShell;  // `ontogen ARGS` through the shell
 
 std::string model(const std::string& name) { return std::string(ONTOGEN_SOURCE_DIR) + "/models/" + name; }
 
@@ -68,7 +50,7 @@ fs::path writeProgram(const fs::path& dir, const std::string& text) {
 TEST(Cli, CheckAcceptsEveryModel) {
   for (const auto& entry : fs::directory_iterator(std::string(ONTOGEN_SOURCE_DIR) + "/models")) {
     if (entry.path().extension() != ".cell") continue;
-    Result result = ontogen("check " + entry.path().string());
+    Result result = runOntogenShell("check " + entry.path().string());
     EXPECT_EQ(result.exitCode, 0) << entry.path() << "\n" << result.err;
     EXPECT_NE(result.out.find(": ok"), std::string::npos);
   }
@@ -78,7 +60,7 @@ TEST(Cli, BadProgramGivesLocatedErrorsAndWritesNothing) {
   fs::path dir = scratch("bad");
   fs::path program = writeProgram(dir, "lsystem a {\n  axiom A(1)\n  A(x) -> A(y + 1)\n  A(x) -> B(sin())\n}\n");
   fs::path out = dir / "out";
-  Result result = ontogen("run " + program.string() + " --out " + out.string());
+  Result result = runOntogenShell("run " + program.string() + " --out " + out.string());
   EXPECT_EQ(result.exitCode, 1);
   EXPECT_NE(result.err.find(program.string() + ":3:13: error: unknown name 'y'\n  A(x) -> A(y + 1)\n            ^\n"),
             std::string::npos)
@@ -89,7 +71,7 @@ TEST(Cli, BadProgramGivesLocatedErrorsAndWritesNothing) {
 }
 
 TEST(Cli, WordJsonReproducesTable1OfPaper000) {
-  Result result = ontogen("word " + model("piston.cell") + " --at 0,0.04,1.04,4.04 --json");
+  Result result = runOntogenShell("word " + model("piston.cell") + " --at 0,0.04,1.04,4.04 --json");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   auto json = nlohmann::json::parse(result.out);
   ASSERT_EQ(json["times"].size(), 4u);
@@ -113,7 +95,7 @@ TEST(Cli, WordJsonReproducesTable1OfPaper000) {
 // rest keep the ids and births they got at t = 0.04. Nothing here may move when the
 // linear pool's storage changes (docs/COMPACT_WORDS.md, section 7, slice 0).
 TEST(Cli, WordJsonOfThePistonAt4_04IsPinned) {
-  Result result = ontogen("word " + model("piston.cell") + " --at 4.04 --json");
+  Result result = runOntogenShell("word " + model("piston.cell") + " --at 4.04 --json");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.out, R"JSON({"times": [
   {"t": 4.04, "cells": [
@@ -135,7 +117,7 @@ TEST(Cli, WordJsonOfThePistonAt4_04IsPinned) {
 }
 
 TEST(Cli, WordTextInTheStyleOfTable1) {
-  Result result = ontogen("word " + model("piston.cell") + " --at 1.04 --precision 3");
+  Result result = runOntogenShell("word " + model("piston.cell") + " --at 1.04 --precision 3");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.out,
             "t = 1.04: (mov(50), 1) !(10) cC(60, 1) (bend(0.253), 1) !(2) cC(200, 1) (turn(1.82), 1) f(50) "
@@ -144,7 +126,7 @@ TEST(Cli, WordTextInTheStyleOfTable1) {
 
 TEST(Cli, RunWritesOneNumberedOutputPerFrame) {
   fs::path out = scratch("frames");
-  Result result = ontogen("run " + model("piston.cell") + " --until 4 --frames 3 --interpret geometry,trace --format svg,obj --out " +
+  Result result = runOntogenShell("run " + model("piston.cell") + " --until 4 --frames 3 --interpret geometry,trace --format svg,obj --out " +
                           out.string() + " --stats");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   for (const char* name : {"piston_0000.svg", "piston_0001.obj", "piston_0002.txt"})
@@ -159,9 +141,9 @@ TEST(Cli, SameSeedSameOutputDifferentSeedDifferent) {
   fs::path dir = scratch("seed");
   fs::path program = writeProgram(dir, "lsystem s {\n  axiom A\n  A -> A B : 0.5\n  A -> B A : 0.5\n}\n");
   std::string word = "word " + program.string() + " --at 12 --json";
-  Result a = ontogen(word + " --seed 3");
-  Result b = ontogen(word + " --seed 3");
-  Result c = ontogen(word + " --seed 4");
+  Result a = runOntogenShell(word + " --seed 3");
+  Result b = runOntogenShell(word + " --seed 3");
+  Result c = runOntogenShell(word + " --seed 4");
   ASSERT_EQ(a.exitCode, 0) << a.err;
   EXPECT_EQ(a.out, b.out);
   EXPECT_NE(a.out, c.out);
@@ -170,14 +152,14 @@ TEST(Cli, SameSeedSameOutputDifferentSeedDifferent) {
 TEST(Cli, RunawayGrowthStopsWithTheLimitNamed) {
   fs::path dir = scratch("limit");
   fs::path program = writeProgram(dir, "lsystem s {\n  axiom A\n  A -> A A\n}\n");
-  Result result = ontogen("run " + program.string() + " --until 40 --max-cells 100000 --out " + (dir / "out").string());
+  Result result = runOntogenShell("run " + program.string() + " --until 40 --max-cells 100000 --out " + (dir / "out").string());
   EXPECT_EQ(result.exitCode, 3);
   EXPECT_NE(result.err.find("past 100000 cells"), std::string::npos) << result.err;
   EXPECT_NE(result.err.find("--max-cells"), std::string::npos) << result.err;
 }
 
 TEST(Cli, DefineSetsAProgramsDefine) {
-  Result result = ontogen("word " + model("piston.cell") + " --at 1.04 --precision 3 --define WR=100");
+  Result result = runOntogenShell("word " + model("piston.cell") + " --at 1.04 --precision 3 --define WR=100");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   // The wheel radius moves the piston, the crank's arm and the flywheel; bend reads it too.
   EXPECT_EQ(result.out,
@@ -186,7 +168,7 @@ TEST(Cli, DefineSetsAProgramsDefine) {
 }
 
 TEST(Cli, DefineRepeatsBeforeOrAfterTheFileAndTheLastValueWins) {
-  Result result = ontogen("word --define PR=20 --define WR=70 " + model("piston.cell") +
+  Result result = runOntogenShell("word --define PR=20 --define WR=70 " + model("piston.cell") +
                           " --at 1.04 --precision 3 --define WR=100 --define PL=-5.5");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.out.find("(mov(100), 1) !(20) cC(-5.5, 1)"), std::string::npos) << result.out;
@@ -201,7 +183,7 @@ TEST(Cli, DefineOfAnUnknownNameListsTheDefinedOnesAndExitsWith2) {
   for (const std::string& command :
        {"check " + file, "word " + file + " --at 1", "run " + file + " --out " + (dir / "out").string(),
         "timeline " + file + " --out " + (dir / "out.svg").string()}) {
-    Result result = ontogen(command);
+    Result result = runOntogenShell(command);
     EXPECT_EQ(result.exitCode, 2) << command << "\n" << result.err;
     EXPECT_EQ(result.err, expected) << command;
     EXPECT_EQ(result.out, "") << command;
@@ -211,36 +193,36 @@ TEST(Cli, DefineOfAnUnknownNameListsTheDefinedOnesAndExitsWith2) {
 }
 
 TEST(Cli, MalformedDefineExitsWith2) {
-  Result noEquals = ontogen("check " + model("piston.cell") + " --define WR");
+  Result noEquals = runOntogenShell("check " + model("piston.cell") + " --define WR");
   EXPECT_EQ(noEquals.exitCode, 2);
   EXPECT_EQ(noEquals.err, "ontogen: error: --define takes NAME=VALUE, as in --define WR=100, not 'WR'\n");
-  Result noName = ontogen("check " + model("piston.cell") + " --define =5");
+  Result noName = runOntogenShell("check " + model("piston.cell") + " --define =5");
   EXPECT_EQ(noName.exitCode, 2);
   EXPECT_NE(noName.err.find("--define takes NAME=VALUE"), std::string::npos) << noName.err;
   for (const char* value : {"abc", "", "1x", "pi", "nan", "inf", "1,5"}) {
-    Result bad = ontogen("check " + model("piston.cell") + " --define 'WR=" + value + "'");
+    Result bad = runOntogenShell("check " + model("piston.cell") + " --define 'WR=" + value + "'");
     EXPECT_EQ(bad.exitCode, 2) << value;
     EXPECT_EQ(bad.err, std::string("ontogen: error: --define WR=") + value + ": '" + value +
                            "' is not a number (VALUE is a number such as 100, -2.5 or 1e-3)\n");
   }
-  Result forms = ontogen("check " + model("piston.cell") + " --define WR=+5 --define KL=1e3 --define E=.5");
+  Result forms = runOntogenShell("check " + model("piston.cell") + " --define WR=+5 --define KL=1e3 --define E=.5");
   EXPECT_EQ(forms.exitCode, 0) << forms.err;
 }
 
 TEST(Cli, UnknownSystemIsABadCommandLine) {
-  Result result = ontogen("check " + model("piston.cell") + " --system wheel");
+  Result result = runOntogenShell("check " + model("piston.cell") + " --system wheel");
   EXPECT_EQ(result.exitCode, 2);
   EXPECT_EQ(result.err, "ontogen: error: no system named 'wheel' (the program has: piston)\n");
 }
 
 TEST(Cli, UsageErrorsExitWith2) {
-  EXPECT_EQ(ontogen("run /no/such/file.cell").exitCode, 2);
-  EXPECT_EQ(ontogen("frobnicate").exitCode, 2);
-  EXPECT_EQ(ontogen("run " + model("koch.cell") + " --interpret nonsense --out /tmp/x").exitCode, 2);
+  EXPECT_EQ(runOntogenShell("run /no/such/file.cell").exitCode, 2);
+  EXPECT_EQ(runOntogenShell("frobnicate").exitCode, 2);
+  EXPECT_EQ(runOntogenShell("run " + model("koch.cell") + " --interpret nonsense --out /tmp/x").exitCode, 2);
 }
 
 TEST(Cli, HelpListsTheTables) {
-  Result result = ontogen("help");
+  Result result = runOntogenShell("help");
   EXPECT_EQ(result.exitCode, 0);
   EXPECT_NE(result.out.find("besselj(n, x)"), std::string::npos);
   EXPECT_NE(result.out.find("--define NAME=VALUE"), std::string::npos);
@@ -260,14 +242,14 @@ TEST(Cli, HelpListsTheTables) {
 
 TEST(Cli, TimelineWritesTheTimeStateDiagram) {
   fs::path out = scratch("timeline") / "anabaena.svg";
-  Result result = ontogen("timeline " + model("anabaena.cell") + " --until 4 --out " + out.string());
+  Result result = runOntogenShell("timeline " + model("anabaena.cell") + " --until 4 --out " + out.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.out.find("19 cells over [0, 4]"), std::string::npos) << result.out;  // 1 + 2 + 3 + 5 + 8
   std::ifstream in(out);
   std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_NE(svg.find("</svg>"), std::string::npos);
-  EXPECT_EQ(ontogen("timeline " + model("anabaena.cell") + " --out " + (scratch("timeline") / "a.txt").string())
+  EXPECT_EQ(runOntogenShell("timeline " + model("anabaena.cell") + " --out " + (scratch("timeline") / "a.txt").string())
                 .exitCode,
             2);
 }
@@ -276,8 +258,8 @@ TEST(Cli, TimelineWritesTheTimeStateDiagram) {
 TEST(Cli, WordJsonIsTheSameOnOneThreadAndOnAll) {
   for (const char* name : {"heterocysts.cell", "colony.cell", "orchard.cell", "life.cell"}) {
     const std::string command = "word " + model(name) + " --at 3,12 --json --threads ";
-    Result one = ontogen(command + "1");
-    Result all = ontogen(command + "0");
+    Result one = runOntogenShell(command + "1");
+    Result all = runOntogenShell(command + "0");
     ASSERT_EQ(one.exitCode, 0) << name << ": " << one.err;
     ASSERT_EQ(all.exitCode, 0) << name << ": " << all.err;
     EXPECT_GT(one.out.size(), 200u) << name;
@@ -294,7 +276,7 @@ std::string program(const std::string& name) { return std::string(ONTOGEN_SOURCE
 
 TEST(Cli, DeclaredCellNamedInAnLsystemIsDrawnThroughItsInterpretBlock) {
   fs::path out = scratch("cell_in_lsystem");
-  Result result = ontogen("run " + program("cell_in_lsystem.cell") + " --format obj --out " + out.string());
+  Result result = runOntogenShell("run " + program("cell_in_lsystem.cell") + " --format obj --out " + out.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   std::string obj = readFile(out / "cell_in_lsystem.obj");
   // X(3) draws F(3) through its block, then F(1): one chain of two lines up to y = 4.
@@ -304,14 +286,14 @@ TEST(Cli, DeclaredCellNamedInAnLsystemIsDrawnThroughItsInterpretBlock) {
 
 TEST(Cli, RunWritesGlbAndPngByDefaultAndRejectsUnknownFormats) {
   fs::path out = scratch("default_formats");
-  Result result = ontogen("run " + model("horn_gc.cell") + " --size 64x48 --out " + out.string());
+  Result result = runOntogenShell("run " + model("horn_gc.cell") + " --size 64x48 --out " + out.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_TRUE(fs::exists(out / "horn_gc.glb"));
   EXPECT_TRUE(fs::exists(out / "horn_gc.png"));
-  Result bad = ontogen("run " + model("horn_gc.cell") + " --format glb,gltf --out " + out.string());
+  Result bad = runOntogenShell("run " + model("horn_gc.cell") + " --format glb,gltf --out " + out.string());
   EXPECT_EQ(bad.exitCode, 2) << bad.err;
   EXPECT_NE(bad.err.find("unknown format 'gltf'"), std::string::npos) << bad.err;
-  Result size = ontogen("run " + model("horn_gc.cell") + " --size big --out " + out.string());
+  Result size = runOntogenShell("run " + model("horn_gc.cell") + " --size big --out " + out.string());
   EXPECT_NE(size.exitCode, 0);
   EXPECT_NE(size.err.find("WIDTHxHEIGHT"), std::string::npos) << size.err;
 }
@@ -322,7 +304,7 @@ TEST(Cli, RunWritesGlbAndPngByDefaultAndRejectsUnknownFormats) {
 TEST(Cli, SpeedFpsAndLookReachTheMovieAndThePicture) {
   ONTOGEN_REQUIRE_CHECKER(std::system("command -v ffprobe >/dev/null 2>&1") == 0, "ffmpeg not installed");
   fs::path out = scratch("speed_fps_look");
-  Result result = ontogen("run " + model("koch.cell") + " --format mp4,png --speed 2 --fps 10 --size 32x32 --look dark --out " +
+  Result result = runOntogenShell("run " + model("koch.cell") + " --format mp4,png --speed 2 --fps 10 --size 32x32 --look dark --out " +
                           out.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
@@ -343,13 +325,13 @@ TEST(Cli, SpeedFpsAndLookReachTheMovieAndThePicture) {
 // of the OBJ is the y-up one turned a quarter about x.
 TEST(Cli, UpZWritesZUpObjAndBinaryPly) {
   fs::path out = scratch("up_z");
-  Result result = ontogen("run " + model("cube.cell") + " --format obj,ply --up z --out " + out.string());
+  Result result = runOntogenShell("run " + model("cube.cell") + " --format obj,ply --up z --out " + out.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const std::string ply = readFile(out / "cube.ply");
   EXPECT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\ncomment ontogen geometry, z up\n", 0), 0u) << ply.substr(0, 80);
   const std::string obj = readFile(out / "cube.obj");
   EXPECT_EQ(obj.rfind("# ontogen geometry, z up\n", 0), 0u) << obj.substr(0, 80);
-  Result plain = ontogen("run " + model("cube.cell") + " --format obj --out " + (out / "y").string());
+  Result plain = runOntogenShell("run " + model("cube.cell") + " --format obj --out " + (out / "y").string());
   ASSERT_EQ(plain.exitCode, 0) << plain.err;
   // The same vertices, turned: (x, y, z) -> (x, -z, y).
   auto vertices = [](const std::string& text) {
@@ -377,7 +359,7 @@ TEST(Cli, GeometryModelsRunAndWriteValidOutputs) {
   for (const char* name : {"horn_cylinders", "horn_gc", "cube", "replicator", "plant_ceiling", "flower", "piston",
                            "triangles", "triangles_attracted"}) {
     fs::path out = scratch(std::string("model_") + name);
-    Result result = ontogen("run " + model(std::string(name) + ".cell") + " --frames 3 --size 96x96 --format glb,png,obj --out " +
+    Result result = runOntogenShell("run " + model(std::string(name) + ".cell") + " --frames 3 --size 96x96 --format glb,png,obj --out " +
                             out.string());
     ASSERT_EQ(result.exitCode, 0) << name << ": " << result.err;
     EXPECT_TRUE(fs::exists(out / (std::string(name) + ".png"))) << name;
@@ -401,7 +383,7 @@ TEST(Cli, SurfaceFilesLoadRelativeToTheProgramAndBadOnesStopTheRun) {
   std::ofstream(dir / "shapes" / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   writeProgram(dir, "#surface 2 \"shapes/tri.obj\"\nlsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n"
                     "  interpret geometry { surface(2, 4) blend(1, 2, 0.5, 2, 0.5) }\n}\n");
-  Result good = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "out").string());
+  Result good = runOntogenShell("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "out").string());
   ASSERT_EQ(good.exitCode, 0) << good.err;
   const std::string obj = readFile(dir / "out" / "program.obj");
   EXPECT_NE(obj.find("v 4 0 0"), std::string::npos) << obj;  // scaled by 4
@@ -410,16 +392,16 @@ TEST(Cli, SurfaceFilesLoadRelativeToTheProgramAndBadOnesStopTheRun) {
   writeProgram(dir, "#surface 2 \"shapes/none.obj\"\nlsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n"
                     "  interpret geometry { surface(2) }\n}\n");
   // A file the run could not use is the program's error, found by check as by run.
-  Result missing = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());
+  Result missing = runOntogenShell("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());
   EXPECT_EQ(missing.exitCode, 1);
   EXPECT_NE(missing.err.find("program.cell:1:1: error: cannot read surface " + (dir / "shapes" / "none.obj").string()),
             std::string::npos)
       << missing.err;
   EXPECT_FALSE(fs::exists(dir / "bad" / "program.obj"));
-  EXPECT_EQ(ontogen("check " + (dir / "program.cell").string()).exitCode, 1);
+  EXPECT_EQ(runOntogenShell("check " + (dir / "program.cell").string()).exitCode, 1);
   std::ofstream(dir / "shapes" / "points.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
   writeProgram(dir, "lsystem s {\n  #surface 3 \"shapes/points.obj\"\n  axiom Leaf\n}\n");
-  Result faceless = ontogen("check " + (dir / "program.cell").string());
+  Result faceless = runOntogenShell("check " + (dir / "program.cell").string());
   EXPECT_EQ(faceless.exitCode, 1);
   EXPECT_NE(faceless.err.find("program.cell:2:3: error: " + (dir / "shapes" / "points.obj").string() +
                               ": no faces (an OBJ surface needs 'f' lines)"),
@@ -427,18 +409,18 @@ TEST(Cli, SurfaceFilesLoadRelativeToTheProgramAndBadOnesStopTheRun) {
       << faceless.err;
 
   writeProgram(dir, "lsystem s {\n  #until 1\n  axiom Leaf\n}\ncell Leaf {\n  interpret geometry { surface(5) }\n}\n");
-  Result undefined = ontogen("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());
+  Result undefined = runOntogenShell("run " + (dir / "program.cell").string() + " --format obj --out " + (dir / "bad").string());
   EXPECT_EQ(undefined.exitCode, 3);
   EXPECT_NE(undefined.err.find("surface 5 is not defined"), std::string::npos) << undefined.err;
   EXPECT_FALSE(fs::exists(dir / "bad" / "program.obj"));
 
   writeProgram(dir, "#surface 1.5 \"shapes/tri.obj\"\nlsystem s { axiom A }\n");
-  Result number = ontogen("check " + (dir / "program.cell").string());
+  Result number = runOntogenShell("check " + (dir / "program.cell").string());
   EXPECT_EQ(number.exitCode, 1);
   EXPECT_NE(number.err.find("program.cell:1:1: error: #surface takes a whole number 0 to 1023"), std::string::npos)
       << number.err;
   writeProgram(dir, "#surface 1\nlsystem s { axiom A }\n");
-  Result file = ontogen("check " + (dir / "program.cell").string());
+  Result file = runOntogenShell("check " + (dir / "program.cell").string());
   EXPECT_EQ(file.exitCode, 1);
   EXPECT_NE(file.err.find("program.cell:1:1: error: expected the OBJ file in double quotes after the surface number"),
             std::string::npos)
@@ -453,7 +435,7 @@ TEST(Cli, WordJsonGivesIdsAndParents) {
   fs::path program = writeProgram(dir, "system leaf { pool linear; axiom L; }\ncell L { }\n"
                                        "lsystem t {\n  axiom F(1) [ + F(2) ] F(3) (sw, 0) leaf\n"
                                        "  (sw, 1) -> =(su, 0)\n}\n");
-  Result result = ontogen("word " + program.string() + " --at 0,1.5 --json --system t");
+  Result result = runOntogenShell("word " + program.string() + " --at 0,1.5 --json --system t");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   nlohmann::json word = nlohmann::json::parse(result.out);
   const auto& cells = word["times"][0]["cells"];
@@ -477,10 +459,10 @@ TEST(Cli, WordJsonGivesIdsAndParents) {
 TEST(Cli, WordInterpretedPrintsTheHomomorphismsImage) {
   fs::path dir = scratch("interpreted");
   fs::path program = writeProgram(dir, "lsystem t {\n  axiom A\n  A -> A N\n  homomorphism:\n  N -> F\n}\n");
-  Result image = ontogen("word " + program.string() + " --at 0,2 --interpreted");
+  Result image = runOntogenShell("word " + program.string() + " --at 0,2 --interpreted");
   ASSERT_EQ(image.exitCode, 0) << image.err;
   EXPECT_EQ(image.out, "t = 0: A\nt = 2: A F F\n");
-  Result word = ontogen("word " + program.string() + " --at 2");
+  Result word = runOntogenShell("word " + program.string() + " --at 2");
   ASSERT_EQ(word.exitCode, 0) << word.err;
   EXPECT_EQ(word.out, "t = 2: A N N\n");
 }
@@ -504,7 +486,7 @@ TEST(Cli, HelpListsEveryDirective) {
   }
   ASSERT_GE(documented.size(), 17u) << section;
 
-  Result result = ontogen("help");
+  Result result = runOntogenShell("help");
   ASSERT_EQ(result.exitCode, 0);
   const size_t start = result.out.find("\nDirectives");
   ASSERT_NE(start, std::string::npos) << result.out;

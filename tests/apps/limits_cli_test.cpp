@@ -4,19 +4,12 @@
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-extern char** environ;
+#include "tests/apps/ontogen_process.h"
 
 namespace {
 
@@ -32,25 +25,13 @@ constexpr bool kAddressSanitized = __has_feature(address_sanitizer);
 constexpr bool kAddressSanitized = false;
 #endif
 
-struct Result {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-  uint64_t peakKib = 0;  ///< the child's peak resident size
-};
+using Result = ontogen::test::OntogenRun;
 
 fs::path scratch(const std::string& name) {
   fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "limits_cli_test" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 fs::path writeProgram(const fs::path& dir, const std::string& text, const std::string& name = "program.cell") {
@@ -61,27 +42,7 @@ fs::path writeProgram(const fs::path& dir, const std::string& text, const std::s
 
 // Runs ontogen with `args` (no shell), its output in files of `dir`.
 Result ontogen(const fs::path& dir, std::vector<std::string> args) {
-  args.insert(args.begin(), ONTOGEN_EXECUTABLE);
-  std::vector<char*> argv;
-  for (std::string& arg : args) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&files, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  Result result;
-  pid_t pid = 0;
-  if (posix_spawn(&pid, ONTOGEN_EXECUTABLE, &files, nullptr, argv.data(), environ) != 0) return result;
-  posix_spawn_file_actions_destroy(&files);
-  int status = 0;
-  rusage usage{};
-  if (wait4(pid, &status, 0, &usage) != pid) return result;
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = readFile(out);
-  result.err = readFile(err);
-  result.peakKib = static_cast<uint64_t>(usage.ru_maxrss);
-  return result;
+  return ontogen::test::runOntogen(dir, std::move(args));
 }
 
 // Systems nested `depth` levels, each holding two of the next: 2^depth - 1 worlds of a

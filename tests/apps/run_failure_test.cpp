@@ -5,31 +5,22 @@
 #include <gtest/gtest.h>
 
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
 #include <chrono>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
-extern char** environ;
+#include "tests/apps/ontogen_process.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
+using Result = ontogen::test::OntogenRun;
 
 fs::path scratch(const std::string& name) {
   fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "run_failure_test" / name;
@@ -38,28 +29,9 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // Runs `ontogen ARGS` through the shell, after `prefix` (e.g. a ulimit).
 Result ontogen(const fs::path& dir, const std::string& args, const std::string& prefix = "") {
-  const fs::path errFile = dir / "stderr.txt";
-  const std::string command =
-      prefix + std::string(ONTOGEN_EXECUTABLE) + " " + args + " 2>" + errFile.string();
-  Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = readFile(errFile);
-  return result;
+  return ontogen::test::runOntogenShell(args, prefix, dir);
 }
 
 // AddressSanitizer reserves terabytes of shadow address space at start-up and ends the
@@ -184,24 +156,10 @@ TEST(RunFailure, ASignalWhileWritingLeavesNoTemporaryFile) {
         dir, "lsystem big {\n  axiom A\n  A -> A A\n  interpret geometry A { F(1) + sphere(0.3) }\n}\n");
     const fs::path out = dir / "out";
     fs::create_directories(out);
-    std::vector<std::string> args = {ONTOGEN_EXECUTABLE, "run", program.string(), "--until", "13", "--format", "obj",
+    std::vector<std::string> args = {"run", program.string(), "--until", "13", "--format", "obj",
                                       "--out", out.string()};
-    std::vector<char*> argv;
-    for (std::string& arg : args) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    // The signals' default actions in the child, whatever this process inherited (a
-    // background job ignores SIGINT).
-    posix_spawnattr_t attributes;
-    posix_spawnattr_init(&attributes);
-    sigset_t defaults;
-    sigemptyset(&defaults);
-    sigaddset(&defaults, SIGINT);
-    sigaddset(&defaults, SIGTERM);
-    posix_spawnattr_setsigdefault(&attributes, &defaults);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
-    pid_t pid = 0;
-    ASSERT_EQ(posix_spawn(&pid, ONTOGEN_EXECUTABLE, nullptr, &attributes, argv.data(), environ), 0);
-    posix_spawnattr_destroy(&attributes);
+    const pid_t pid = ontogen::test::startOntogen(args);
+    ASSERT_GT(pid, 0);
     // Waits for the temporary to appear, then signals mid-write.
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
     bool writing = false;
@@ -229,22 +187,10 @@ TEST(RunFailure, ASignalWhileDrawingMp4FramesLeavesNoFrameFolder) {
         dir, "#until 100000\nlsystem movie {\n  axiom A\n  A -> A\n  interpret geometry A { F(1) }\n}\n", "movie.cell");
     const fs::path out = dir / "out";
     fs::create_directories(out);
-    std::vector<std::string> args = {ONTOGEN_EXECUTABLE, "run", program.string(), "--format", "mp4",
+    std::vector<std::string> args = {"run", program.string(), "--format", "mp4",
                                       "--size", "64x64", "--frames", "50000", "--out", out.string()};
-    std::vector<char*> argv;
-    for (std::string& arg : args) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    posix_spawnattr_t attributes;
-    posix_spawnattr_init(&attributes);
-    sigset_t defaults;
-    sigemptyset(&defaults);
-    sigaddset(&defaults, SIGINT);
-    sigaddset(&defaults, SIGTERM);
-    posix_spawnattr_setsigdefault(&attributes, &defaults);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
-    pid_t pid = 0;
-    ASSERT_EQ(posix_spawn(&pid, ONTOGEN_EXECUTABLE, nullptr, &attributes, argv.data(), environ), 0);
-    posix_spawnattr_destroy(&attributes);
+    const pid_t pid = ontogen::test::startOntogen(args);
+    ASSERT_GT(pid, 0);
     const fs::path frames = out / ".movie.mp4-frames";
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
     bool drawing = false;
