@@ -507,7 +507,7 @@ TEST(Cli, HelpListsEveryDirective) {
 // `ontogen help --reference` prints docs/COMMANDS.md as committed (the reference's own
 // test holds the file to the tables).
 TEST(Cli, HelpReferencePrintsTheCommittedCommandReference) {
-  Result result = ontogen("help --reference");
+  Result result = runOntogenShell("help --reference");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   std::ifstream in(std::string(ONTOGEN_SOURCE_DIR) + "/docs/COMMANDS.md", std::ios::binary);
   const std::string committed((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
