@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/world.h"
 #include "interpreters/set_registry.h"
@@ -31,24 +32,28 @@ struct Compiled {
   std::string error;                       ///< the formatted diagnostics when program is null
 };
 
-/// Compiles a program text the way `ontogen run` does (interpretation blocks checked).
-inline Compiled compileText(const std::string& name, std::string text) {
+/// Compiles a program text the way `ontogen run` does (interpretation blocks checked),
+/// with the defines as `--define NAME=VALUE` gives them.
+inline Compiled compileText(const std::string& name, std::string text,
+                            const std::vector<std::pair<std::string, double>>& defines = {}) {
   DiagnosticSink sink;
   CompileOptions options;
   options.commandSets = commandSets();
+  for (const auto& [define, value] : defines) options.defines.push_back({define, value});
   std::shared_ptr<const Program> program = compileSource(name, std::move(text), sink, options);
   if (!program) return {nullptr, name + " does not compile:\n" + formatDiagnostics(sink)};
   return {std::move(program), {}};
 }
 
 /// Compiles models/<name> from the source tree.
-inline Compiled compileModel(const std::string& name) {
+inline Compiled compileModel(const std::string& name,
+                             const std::vector<std::pair<std::string, double>>& defines = {}) {
   const std::string path = std::string(ONTOGEN_SOURCE_DIR) + "/models/" + name;
   std::ifstream in(path, std::ios::binary);
   if (!in) return {nullptr, "cannot read " + path};
   std::ostringstream text;
   text << in.rdbuf();
-  return compileText("models/" + name, text.str());
+  return compileText("models/" + name, text.str(), defines);
 }
 
 /// Processor time of the whole process so far, user and system (where the kernel zeroes

@@ -56,18 +56,7 @@ RunReport runCreature(const Compiled& compiled, const std::string& formats, cons
 }
 
 Compiled compiledCreature(int segments) {
-  // As `--define SEGMENTS=N` does.
-  DiagnosticSink sink;
-  CompileOptions options;
-  options.commandSets = commandSets();
-  options.defines.push_back({"SEGMENTS", static_cast<double>(segments)});
-  const std::string path = std::string(ONTOGEN_SOURCE_DIR) + "/models/creature.cell";
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  std::shared_ptr<const Program> program = compileSource("models/creature.cell", text.str(), sink, options);
-  if (!program) return {nullptr, "models/creature.cell does not compile:\n" + formatDiagnostics(sink)};
-  return {std::move(program), {}};
+  return compileModel("creature.cell", {{"SEGMENTS", static_cast<double>(segments)}});
 }
 
 void BM_DynamicsCreature(benchmark::State& state) {
