@@ -43,7 +43,6 @@ CreatureSetDef creatureDefOf(const DynamicsSetDef& def, LimbMeshing meshing) {
   return inner;
 }
 
-mjData* data(void* scratch) { return static_cast<mjData*>(scratch); }
 
 // World frame (columns H, L, U) of a MuJoCo body: its xmat, row-major.
 glm::dmat3 frameOf(const mjData* d, int body) {
@@ -79,9 +78,7 @@ DynamicsSet::DynamicsSet(const DynamicsSetDef& def)
   if (const char* error = physicsError(def.physics)) throw std::invalid_argument(error);
 }
 
-DynamicsSet::~DynamicsSet() {
-  if (scratch_) mj_deleteData(data(scratch_));
-}
+DynamicsSet::~DynamicsSet() = default;
 
 bool DynamicsSet::knows(std::string_view command) const {
   return findDynamicsCommand(command) != nullptr || findCreatureCommand(command) != nullptr;
@@ -394,15 +391,15 @@ void DynamicsSet::build(const BodyPlan& plan, double time) {
     }
   }
   plan_ = plan;
-  mjcf_ = mjcfOf(plan_, physics_, target_.stem.empty() ? "dynamics" : target_.stem);
-  if (scratch_) {
-    mj_deleteData(data(scratch_));
-    scratch_ = nullptr;
-  }
+  // The room only grows over a run: a model rebuilt as the body grows keeps what the
+  // steps before needed.
+  const MujocoRoom usual = usualRoom(plan_);
+  room_ = {std::max(room_.contacts, usual.contacts), std::max(room_.rows, usual.rows)};
+  mjcf_ = mjcfOf(plan_, physics_, target_.stem.empty() ? "dynamics" : target_.stem, room_);
   sim_ = std::make_unique<MujocoModel>(mjcf_);
+  countedInstabilities_ = 0;
   const mjModel* m = sim_->model();
   mjData* d = sim_->data();
-  scratch_ = mj_makeData(m);
   start_ = time;
   steps_ = 0;
   ++stats_.rebuilds;
@@ -514,6 +511,78 @@ void DynamicsSet::setControls(double time) {
   }
 }
 
+namespace {
+
+// What a step reads from the data besides the model: saved before a step, it lets the
+// step be taken again in another model of the same bodies.
+struct StepInputs {
+  std::vector<mjtNum> values;
+  mjWarningStat warnings[mjNWARNING];
+
+  // The arrays, in one order for saving and restoring.
+  template <typename Visit>
+  static void each(const mjModel* m, mjData* d, Visit visit) {
+    visit(&d->time, 1);
+    visit(d->qpos, m->nq);
+    visit(d->qvel, m->nv);
+    visit(d->act, m->na);
+    visit(d->ctrl, m->nu);
+    visit(d->qacc_warmstart, m->nv);
+    visit(d->qfrc_applied, m->nv);
+    visit(d->xfrc_applied, 6 * m->nbody);
+    visit(d->mocap_pos, 3 * m->nmocap);
+    visit(d->mocap_quat, 4 * m->nmocap);
+  }
+  void save(const mjModel* m, mjData* d) {
+    values.clear();
+    each(m, d, [&](mjtNum* array, int n) { values.insert(values.end(), array, array + n); });
+    std::copy_n(d->warning, mjNWARNING, warnings);
+  }
+  void restore(const mjModel* m, mjData* d) const {
+    std::size_t at = 0;
+    each(m, d, [&](mjtNum* array, int n) {
+      std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(at), n, array);
+      at += static_cast<std::size_t>(n);
+    });
+    std::copy_n(warnings, mjNWARNING, d->warning);
+  }
+};
+
+bool outOfRoom(const mjData* d) {
+  return d->warning[mjWARN_CONTACTFULL].number > 0 || d->warning[mjWARN_CNSTRFULL].number > 0;
+}
+
+}  // namespace
+
+void DynamicsSet::stepWithRoom() {
+  // MuJoCo drops the contacts and constraints it has no room for (and warns): the step is
+  // taken again, from the same inputs, in the same model with twice the room.
+  thread_local StepInputs inputs;
+  inputs.save(sim_->model(), sim_->data());
+  sim_->step();
+  while (outOfRoom(sim_->data())) {
+    const MujocoRoom more = doubled(room_);
+    if (more.contacts == room_.contacts && more.rows == room_.rows) {
+      crowded_.add(1, site_);
+      sim_->data()->warning[mjWARN_CONTACTFULL].number = 0;
+      sim_->data()->warning[mjWARN_CNSTRFULL].number = 0;
+      return;
+    }
+    room_ = more;
+    mjcf_ = mjcfOf(plan_, physics_, target_.stem.empty() ? "dynamics" : target_.stem, room_);
+    if (!firstMjcf_.empty()) {
+      // The written model keeps its keyframe; it gets the room the run needed.
+      const std::size_t from = firstMjcf_.find("<size "), to = firstMjcf_.find("/>", from);
+      if (from != std::string::npos && to != std::string::npos) firstMjcf_.replace(from, to + 2 - from, sizeElement(room_));
+    }
+    auto roomier = std::make_unique<MujocoModel>(mjcf_);
+    inputs.restore(roomier->model(), roomier->data());
+    sim_ = std::move(roomier);
+    ++stats_.roomGrowths;
+    sim_->step();
+  }
+}
+
 void DynamicsSet::advanceTo(double time) {
   if (!sim_) return;
   const mjModel* m = sim_->model();
@@ -522,7 +591,9 @@ void DynamicsSet::advanceTo(double time) {
   while (stepTime(steps_ + 1) <= time + 1e-9 * std::max(1.0, std::abs(time))) {
     setControls(stepTime(steps_));
     applyWind(stepTime(steps_));
-    sim_->step();
+    stepWithRoom();
+    d = sim_->data();
+    m = sim_->model();
     ++steps_;
     stats_.simulatedTime += h;
     // The servos' work and the ground contacts' sliding over the step.
@@ -541,15 +612,17 @@ void DynamicsSet::advanceTo(double time) {
       stats_.slip += std::hypot(point.x, point.z) * h;
     }
   }
-  if (const int bad = sim_->instabilities(); bad > stats_.instabilities) {
-    unstable_.add(static_cast<uint64_t>(bad - stats_.instabilities), site_);
-    stats_.instabilities = bad;
+  // Counted per model: a rebuilt model's data counts from 0 again.
+  if (const int bad = sim_->instabilities(); bad > countedInstabilities_) {
+    unstable_.add(static_cast<uint64_t>(bad - countedInstabilities_), site_);
+    stats_.instabilities += bad - countedInstabilities_;
+    countedInstabilities_ = bad;
   }
 }
 
 void DynamicsSet::stateAt(double time) {
   const mjModel* m = sim_->model();
-  mjData* s = data(scratch_);
+  mjData* s = sim_->scratch();
   mj_copyData(s, m, sim_->data());
   const double now = stepTime(steps_);
   if (time > now + 1e-12) {
@@ -574,7 +647,7 @@ void DynamicsSet::contribute(Scene& scene) {
   std::vector<int> contacts;
   if (sim_) {
     stateAt(time);
-    s = data(scratch_);
+    s = sim_->scratch();
     for (int c = 0; c < s->ncon; ++c) {
       const mjContact& contact = s->contact[c];
       if (contact.geom1 != groundGeom_ && contact.geom2 != groundGeom_) continue;
@@ -666,7 +739,7 @@ void DynamicsSet::contribute(Scene& scene) {
   if (first) {
     // The model as it stands at the first frame: its state as the keyframe MuJoCo resets to.
     const mjModel* m = sim_->model();
-    const mjData* d = data(scratch_);
+    const mjData* d = sim_->scratch();
     std::string key = "  <keyframe>\n    <key time=\"" + numbers(&d->time, 1) + "\" qpos=\"" + numbers(d->qpos, m->nq) +
                       "\" qvel=\"" + numbers(d->qvel, m->nv) + "\"";
     if (m->nu > 0) key += " ctrl=\"" + numbers(d->ctrl, m->nu) + "\"";
@@ -712,6 +785,8 @@ std::vector<SetWarning> DynamicsSet::takeWarnings() {
                                   " of its commands with bad arguments: values not finite or out of range (the first here)");
   unstable_.takeInto(out, "MuJoCo found the simulation unstable " + std::to_string(unstable_.count) +
                               " times and reset it: a smaller #timestep or weaker servos (the first here)");
+  crowded_.takeInto(out, "MuJoCo had no room for all contacts in " + std::to_string(crowded_.count) +
+                             " steps, even at the most room the set gives (2^28 constraint rows): it dropped some (the first here)");
   return out;
 }
 

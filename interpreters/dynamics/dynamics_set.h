@@ -62,6 +62,7 @@ struct DynamicsStats {
   double energy = 0;          ///< the servos' work, |torque x angular speed| summed over steps
   double slip = 0;            ///< distance contact points slid along the ground, summed
   int instabilities = 0;      ///< times MuJoCo reset an unstable simulation
+  int roomGrowths = 0;        ///< steps taken again with twice the contacts' and constraints' room
 };
 
 /// What a joint's servo is asked: the angle of one of its degrees of freedom in the
@@ -157,6 +158,8 @@ class DynamicsSet : public InterpretationSet {
   void build(const BodyPlan& plan, double time);
   void applyWind(double time);
   void advanceTo(double time);
+  // One step; taken again in a model with more room while MuJoCo had too little.
+  void stepWithRoom();
   void setControls(double time);
   double stepTime(long steps) const { return start_ + static_cast<double>(steps) * physics_.timestep; }
   // The state at `time` (not before the last step) in scratch_, its kinematics computed.
@@ -200,7 +203,8 @@ class DynamicsSet : public InterpretationSet {
   std::vector<int> bodyIds_;   // MuJoCo's body of each plan body
   std::vector<int> planOfBody_;  // the plan body of each MuJoCo body (-1: the world)
   int groundGeom_ = -1;
-  void* scratch_ = nullptr;  // mjData, the state a frame reads
+  MujocoRoom room_;
+  int countedInstabilities_ = 0;  // of sim_'s data, already in stats_
 
   FrameTarget target_;
   bool framed_ = false;
@@ -210,6 +214,7 @@ class DynamicsSet : public InterpretationSet {
   DynamicsStats stats_;
   WarningCounter badArguments_;
   WarningCounter unstable_;
+  WarningCounter crowded_;
 };
 
 }  // namespace ontogen

@@ -10,9 +10,8 @@ namespace ontogen {
 
 namespace {
 
-// MuJoCo sizes its contact buffers ahead: room for this many contacts per geom (a
-// capsule lying on a plane makes two).
-constexpr int kContactsPerGeom = 4;
+// A contact with friction in 3 dimensions takes 4 constraint rows (MuJoCo's pyramid).
+constexpr int kRowsPerContact = 4;
 
 std::string number(double v) {
   char text[32];
@@ -57,26 +56,47 @@ const char* physicsError(const PhysicsDef& def) {
 std::string bodyName(int body) { return "b" + std::to_string(body); }
 std::string hingeName(int body, int dof) { return "j" + std::to_string(body) + "_" + std::to_string(dof); }
 
+MujocoRoom usualRoom(const BodyPlan& plan) {
+  std::size_t limbs = 0, limits = 0;
+  for (const PlanBody& body : plan.bodies) {
+    limbs += body.limbs.size();
+    for (int dof = 0; dof < hingeCount(body.kind); ++dof) limits += body.ranges[static_cast<std::size_t>(dof)].set ? 1 : 0;
+  }
+  constexpr std::size_t kMost = 1 << 20;  // beyond this the plan is far past the set's limits
+  const std::size_t contacts = std::clamp<std::size_t>(limbs, 16, kMost);
+  return {static_cast<int>(contacts), static_cast<int>(std::min(kMost, kRowsPerContact * contacts + limits))};
+}
+
+MujocoRoom doubled(MujocoRoom room) {
+  constexpr int kMost = 1 << 28;
+  return {std::min(kMost, 2 * room.contacts), std::min(kMost, 2 * room.rows)};
+}
+
+std::string sizeElement(MujocoRoom room) {
+  return "<size nconmax=\"" + std::to_string(room.contacts) + "\" njmax=\"" + std::to_string(room.rows) + "\"/>";
+}
+
 std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name) {
+  return mjcfOf(plan, def, name, usualRoom(plan));
+}
+
+std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name, MujocoRoom room) {
   const auto& bodies = plan.bodies;
   std::vector<std::vector<int>> children(bodies.size());
   std::vector<int> roots;
-  std::size_t geoms = 1;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (bodies[i].parent >= 0)
       children[static_cast<std::size_t>(bodies[i].parent)].push_back(static_cast<int>(i));
     else
       roots.push_back(static_cast<int>(i));
-    geoms += std::max<std::size_t>(1, bodies[i].limbs.size());
   }
-  const std::size_t contacts = std::max<std::size_t>(100, kContactsPerGeom * geoms);
 
   std::string out;
   out += "<mujoco model=\"" + escaped(name) + "\">\n";
   out += "  <compiler angle=\"radian\" inertiafromgeom=\"true\"/>\n";
   out += "  <option timestep=\"" + number(def.timestep) + "\" gravity=\"0 " + number(-def.gravity) +
          " 0\" integrator=\"" + (def.rungeKutta ? "RK4" : "Euler") + "\"/>\n";
-  out += "  <size nconmax=\"" + std::to_string(contacts) + "\" njmax=\"" + std::to_string(6 * contacts) + "\"/>\n";
+  out += "  " + sizeElement(room) + "\n";
   // Limbs touch the ground and nothing else: contype 0 meets conaffinity 1 of the ground only.
   out += "  <default>\n    <geom contype=\"0\" conaffinity=\"1\" condim=\"3\" friction=\"" + number(def.friction) +
          " 0.005 0.0001\" density=\"" + number(def.density) + "\"/>\n";

@@ -35,7 +35,29 @@ const char* physicsError(const PhysicsDef& def);
 std::string bodyName(int body);
 std::string hingeName(int body, int dof);
 
-/// The MJCF text of the plan under def, its model named `name`.
+/// The room MuJoCo sets aside for contacts and constraint rows, its `<size nconmax njmax>`.
+/// MuJoCo 2.2 sizes each model's scratch memory by about 5 rows² doubles and clears it as
+/// it makes the model's data, so room costs time even when unused: a simulation starts
+/// with usualRoom() and grows the room when a step runs out of it (DynamicsSet).
+struct MujocoRoom {
+  int contacts = 0;
+  int rows = 0;
+};
+
+/// Room for about one ground contact per limb (a walking body touches the ground with a
+/// few of them) and a row for every hinge at its range's end: at least 16 contacts.
+MujocoRoom usualRoom(const BodyPlan& plan);
+
+/// The room twice over (each size doubled), for a step that ran out.
+MujocoRoom doubled(MujocoRoom room);
+
+/// The MJCF text of the plan under def, its model named `name`, with `room`.
+std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name, MujocoRoom room);
+
+/// The MJCF text with room usualRoom(plan).
 std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name);
+
+/// The MJCF's `<size .../>` element for `room` (as mjcfOf writes it, one line).
+std::string sizeElement(MujocoRoom room);
 
 }  // namespace ontogen

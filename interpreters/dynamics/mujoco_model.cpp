@@ -11,9 +11,16 @@ namespace {
 // library never prints, and the data counts them anyway.
 void dropWarning(const char*) {}
 
+// MuJoCo's default error handler exits the process; an exception leaves the choice to
+// the caller (the data it was stepping is then to be dropped).
+void throwError(const char* message) { throw MujocoError(std::string("MuJoCo failed: ") + message); }
+
 void installHandlers() {
   static std::once_flag once;
-  std::call_once(once, [] { mju_user_warning = dropWarning; });
+  std::call_once(once, [] {
+    mju_user_warning = dropWarning;
+    mju_user_error = throwError;
+  });
 }
 
 struct VfsDeleter {
@@ -45,7 +52,14 @@ MujocoModel::MujocoModel(std::string_view mjcf) {
   }
 }
 
+mjData* MujocoModel::scratch() {
+  if (!scratch_) scratch_ = mj_makeData(model_);
+  if (!scratch_) throw MujocoError("MuJoCo could not allocate the model's data");
+  return scratch_;
+}
+
 MujocoModel::~MujocoModel() {
+  if (scratch_) mj_deleteData(scratch_);
   if (data_) mj_deleteData(data_);
   if (model_) mj_deleteModel(model_);
 }

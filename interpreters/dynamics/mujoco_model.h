@@ -2,7 +2,7 @@
 // A MuJoCo model and its data, compiled from MJCF text in memory (MuJoCo's virtual file
 // system, so nothing touches the disk), owned together. MuJoCo's warnings are kept in
 // its data (mjData::warning) and never printed: the first use installs a handler that
-// drops its messages.
+// drops its messages. MuJoCo's errors (it would end the process) are thrown as MujocoError.
 
 #include <memory>
 #include <stdexcept>
@@ -28,6 +28,9 @@ class MujocoModel {
 
   mjModel* model() const { return model_; }
   mjData* data() const { return data_; }
+  /// A second data of the model, for states read beside the simulation's own; made on
+  /// first use (MuJoCo clears all of a data's memory as it makes one).
+  mjData* scratch();
   /// Steps once with the controls as they are.
   void step() { mj_step(model_, data_); }
   /// Times MuJoCo found the simulation unstable and reset it (mjWARN_BADQACC).
@@ -36,6 +39,7 @@ class MujocoModel {
  private:
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
+  mjData* scratch_ = nullptr;
 };
 
 }  // namespace ontogen

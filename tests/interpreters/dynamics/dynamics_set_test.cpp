@@ -410,6 +410,30 @@ TEST(DynamicsSet, ATippedPoleFallsAndALyingPoleOrAWalkerDoesNot) {
   }
 }
 
+// A raft of 12 limbs joined by hinges, lying on the ground: each capsule touches it at
+// both ends, 24 contacts, more than the room a model starts with (one contact a limb).
+// The steps that run out are taken again with twice the room, so no contact is dropped
+// and no part of the raft sinks (MuJoCo's soft contact lets it in by less than 2 mm).
+TEST(DynamicsSet, ABodyTouchingTheGroundEverywhereGetsTheRoomItsContactsNeed) {
+  std::string raft = "#define R 0.1\n#interpret dynamics\nsystem raft { pool linear; axiom Raft; }\n"
+                     "cell Raft { interpret dynamics { gait(1, 0.5, 0, 0, R) limb(0.3, R)";
+  for (int i = 1; i < 12; ++i) raft += " hinge(0) limb(0.3, R)";
+  raft += " } }\n";
+  int growths = 0;
+  WalkDef w;
+  w.model = "raft.cell";
+  w.text = raft;
+  w.until = 2;
+  w.frames = 5;
+  w.onFrame = [&](const DynamicsSet& set, double) { growths = set.stats().roomGrowths; };
+  const Walk lying = walk(w);
+  ASSERT_EQ(lying.frames().size(), 5u);
+  ASSERT_EQ(lying.joints().size(), 12u);
+  EXPECT_GE(growths, 1);
+  for (std::size_t f = 0; f < 5; ++f)
+    for (std::size_t j = 0; j < 12; ++j) EXPECT_NEAR(lying.at(f, j).y, 0.1, 2e-3) << "frame " << f << ", joint " << j;
+}
+
 // A reed: a horizontal cantilever of 10 elastic segments (rod(1, 0.01, 1000), EI 10),
 // weightless, in a steady wind of V across it, damped.
 constexpr const char* kReed = R"(
