@@ -482,7 +482,7 @@ std::optional<std::string> ForeignSyntax::conditional(uint32_t begin, uint32_t e
       if (text_[at] == ':' && open-- == 0) colon = at;
     }
     if (colon == end) fail(question, question + 1, "a '?' without its ':'", false);
-    return "if(" + expression(begin, question) + ", " + expression(question + 1, colon) + ", " +
+    return "if(" + condition(begin, question) + ", " + expression(question + 1, colon) + ", " +
            expression(colon + 1, end) + ")";
   }
   auto word = [&](uint32_t from, std::string_view name) {
@@ -498,7 +498,7 @@ std::optional<std::string> ForeignSyntax::conditional(uint32_t begin, uint32_t e
   const Nested nested(*this, ifAt, ifAt + 2);
   const uint32_t elseAt = word(ifAt + 2, "else");
   if (elseAt == end) fail(ifAt, ifAt + 2, "Python's 'if' without 'else' in an expression", false);
-  return "if(" + expression(ifAt + 2, elseAt) + ", " + expression(begin, ifAt) + ", " + expression(elseAt + 4, end) +
+  return "if(" + condition(ifAt + 2, elseAt) + ", " + expression(begin, ifAt) + ", " + expression(elseAt + 4, end) +
          ")";
 }
 
@@ -691,7 +691,13 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end) const {
   return expression(begin, end, nullptr);
 }
 
+std::string ForeignSyntax::condition(uint32_t begin, uint32_t end) const {
+  truthNext_ = true;
+  return expression(begin, end, nullptr);
+}
+
 std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<ExpressionToken>* raw) const {
+  const bool truth = std::exchange(truthNext_, false);
   if (std::optional<std::string> chosen = conditional(begin, end)) {
     if (raw) *raw = {ExpressionToken{*chosen, begin, end, false}};
     return *chosen;
@@ -894,6 +900,9 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
       if (!python) code(at, at + 2, "'//'");
       emit("//");
       at += 2;
+    } else if (two("<>")) {  // cpfg's and Python 2's other spelling of !=
+      emit("!=", false, 2);
+      at += 2;
     } else if (two("==") || two("!=") || two("<=") || two(">=") || two("&&") || two("||")) {
       emit(text_.substr(at, 2));
       at += 2;
@@ -985,7 +994,7 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
     *raw = std::move(tokens);
     return out;
   }
-  if (std::optional<std::string> rewritten = foreignOperators(*this, tokens, dialect_)) return *rewritten;
+  if (std::optional<std::string> rewritten = foreignOperators(*this, tokens, dialect_, truth)) return *rewritten;
   return out;
 }
 
@@ -1063,7 +1072,7 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
     const uint32_t post = find(a, b, "{");
     uint32_t x = a, y = post;
     trim(x, y);
-    if (x < y) s.condition = substituted(expression(x, y), locals);
+    if (x < y) s.condition = substituted(condition(x, y), locals);
     if (post < b && block(post, b, s, begin, end, locals) < b)
       fail(post, b, "a C block '{ ... }' in the condition: C code, which ontogen convert does not translate", false);
   }

@@ -81,6 +81,9 @@ class ForeignSyntax {
   std::vector<ModuleText> modules(uint32_t begin, uint32_t end, bool pattern) const;
   /// An expression of the dialect as a cell-language expression. Throws ConvertError.
   std::string expression(uint32_t begin, uint32_t end) const;
+  /// An expression of which only the truth is read (a production's condition, an if's
+  /// test): Python's `or` and `and` are the cell language's || and && there.
+  std::string condition(uint32_t begin, uint32_t end) const;
   /// The value of `maximum depth: N`: N, or kMaxRewriteDepth (the deepest the cell
   /// language takes) with a warning when N is a number above it; cpfg's files ask for up
   /// to 1000 where their homomorphisms recurse a few levels.
@@ -149,6 +152,7 @@ class ForeignSyntax {
   std::string_view text_;
   mutable std::set<std::string, std::less<>> warned_;
   mutable int depth_ = 0;
+  mutable bool truthNext_ = false;   // the next expression() is a condition()
   mutable size_t inlinedBytes_ = 0;  // written by inlining helper functions and macros
   mutable std::set<std::string, std::less<>> bound_;  // the parameters of the production being read
 };

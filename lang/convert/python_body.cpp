@@ -380,7 +380,8 @@ class BodyTranslator {
           // per test it appears in: two tests of one draw are not independent choices.
           std::vector<std::string> tests;
           for (const Branch& branch : stmt.branches)
-            if (branch.condEnd) tests.push_back(substitute(syntax_.expression(branch.condBegin, branch.condEnd), way, stmt));
+            if (branch.condEnd)
+              tests.push_back(substitute(syntax_.condition(branch.condBegin, branch.condEnd), way, stmt));
           for (size_t k = 0; k < stmt.branches.size(); ++k) {
             const Branch& branch = stmt.branches[k];
             Way next = way;
