@@ -4,6 +4,8 @@
 // conditions (C's in cpfg, Python's in L-Py), and productions
 // `left < predecessor > right : condition --> successors : probability`. Every position
 // is a byte offset into the whole file, so errors name the file, line and column.
+// Modules and productions are read in foreign_syntax.cpp, expressions in
+// foreign_expression.cpp; the predefined modules are foreign_vocabulary.h's table.
 
 #include <cstdint>
 #include <map>
