@@ -4,12 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
 #include "interpreters/music/music_set.h"
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
+#include "lang/source_reader.h"
 #include "lang/variation.h"
 #include "studio/file_bytes.h"
 
@@ -28,7 +30,9 @@ std::string formatNumber(double value) {
 struct StudioModel::Grown {
   std::optional<std::string> text;  // empty: the file could not be read (the last text stays)
   std::string stem;
+  std::string sourceName;
   std::optional<std::vector<StudioDefine>> defines;  // empty: the sliders stay as they are
+  std::vector<std::string> dropped;  // defines whose number the file changed: the page's value goes
   std::vector<Diagnostic> diagnostics;
   bool grew = false;  // a model grew: what follows is its
   std::vector<StudioNote> notes;
@@ -173,9 +177,11 @@ void StudioModel::growOnce() {
   stopped_ = grown.stopped;
   if (grown.text) {
     text_ = std::move(*grown.text);
+    sourceName_ = std::move(grown.sourceName);
     stem_ = std::move(grown.stem);
   }
   if (grown.defines) defines_ = std::move(*grown.defines);
+  for (const std::string& name : grown.dropped) overrides_.erase(name);
   if (grown.grew) {
     notes_ = std::move(grown.notes);
     glb_ = std::move(grown.glb);
@@ -204,6 +210,60 @@ void StudioModel::setDefine(const std::string& name, double value) {
     return;
   }
   throw std::invalid_argument("the program has no #define " + name);
+}
+
+std::string StudioModel::writeDefine(const std::string& name) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const auto given = overrides_.find(name);
+  if (given == overrides_.end()) throw std::invalid_argument("#define " + name + " has no value of the page's to write");
+  if (sourceName_ != def_.program.file)
+    throw std::invalid_argument("the program was converted from another tool's file; the studio writes only .cell files");
+  // The text the page shows must be the file's: an edit the studio has not read yet would
+  // be lost under the write.
+  const SourceText now = readSourceFile(def_.program.file, def_.program.maxSourceBytes);
+  if (!now.text || *now.text != text_)
+    throw std::invalid_argument(def_.program.file + " changed since it was read; write again once it has grown");
+  const VariationSpace space(text_);
+  Genome genome = space.original();
+  bool found = false;
+  for (std::size_t i = 0; i < space.genes().size(); ++i) {
+    if (space.genes()[i].kind != Gene::Kind::Define || space.genes()[i].name != name) continue;
+    genome.values[i] = given->second;
+    found = true;
+  }
+  if (!found) throw std::invalid_argument("the program writes no number for #define " + name);
+  const std::string text = space.programText(genome);
+  // Written beside the file and renamed over it, so no reader (the studio's own look at
+  // the file included) ever sees it half-written; the file keeps its permissions.
+  std::error_code error;
+  std::filesystem::path target = std::filesystem::canonical(def_.program.file, error);
+  if (error) target = def_.program.file;
+  const std::filesystem::path temporary = target.string() + ".ontogen-studio-write";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.close();
+    if (!out) {
+      std::filesystem::remove(temporary, error);
+      throw std::invalid_argument("cannot write " + temporary.string());
+    }
+  }
+  const auto permissions = std::filesystem::status(target, error).permissions();
+  if (!error) std::filesystem::permissions(temporary, permissions, error);
+  std::filesystem::rename(temporary, target, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw std::invalid_argument("cannot write " + target.string() + ": " + error.message());
+  }
+  overrides_.erase(given);
+  changed();
+  return def_.program.file;
+}
+
+void StudioModel::dropDefine(const std::string& name) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (overrides_.erase(name) == 0) throw std::invalid_argument("#define " + name + " has no value of the page's to drop");
+  changed();
 }
 
 void StudioModel::setLimits(uint64_t maxCells, uint64_t maxMemoryBytes) {
@@ -244,9 +304,19 @@ std::string StudioModel::stem() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return stem_;
 }
+std::vector<StudioDefine> StudioModel::definesInEffect() const {
+  std::vector<StudioDefine> defines = defines_;
+  for (StudioDefine& define : defines) {
+    const auto given = overrides_.find(define.name);
+    define.value = given != overrides_.end() ? given->second : define.written;
+    define.overridden = given != overrides_.end() && given->second != define.written;
+  }
+  return defines;
+}
+
 std::vector<StudioDefine> StudioModel::defines() const {
   const std::lock_guard<std::mutex> lock(mutex_);
-  return defines_;
+  return definesInEffect();
 }
 std::vector<StudioNote> StudioModel::notes() const {
   const std::lock_guard<std::mutex> lock(mutex_);
@@ -256,11 +326,11 @@ std::vector<StudioNote> StudioModel::notes() const {
 std::map<std::string, double> StudioModel::defineValues() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   std::map<std::string, double> values;
-  for (const StudioDefine& define : defines_) values[define.name] = define.value;
+  for (const StudioDefine& define : definesInEffect()) values[define.name] = define.value;
   return values;
 }
 
-void StudioModel::grow(Grown& grown, const std::map<std::string, double>& overrides, const WorldLimits& limits) {
+void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given, const WorldLimits& limits) {
   const StudioSource read = readStudioSource(def_.program);
   if (!read.text) {
     const std::string why =
@@ -269,10 +339,15 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& overri
     return;
   }
   grown.text = *read.text;
+  grown.sourceName = read.name;
   grown.stem = std::filesystem::path(def_.program.file).stem().string();
   const std::string& text = *grown.text;
 
   // The sliders: one per define name the text writes, ranged as a variant's would be.
+  // A define whose number the file changed since the last growth takes the file's: an
+  // edit of the file wins over a slider moved before it.
+  const std::vector<StudioDefine> before = this->defines();
+  std::map<std::string, double> overrides = given;
   std::vector<StudioDefine> defines;
   try {
     const VariationSpace space(text);
@@ -281,9 +356,11 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& overri
       bool seen = false;
       for (const StudioDefine& define : defines) seen = seen || define.name == gene.name;
       if (seen) continue;
-      const auto given = overrides.find(gene.name);
-      defines.push_back({gene.name, given != overrides.end() ? given->second : gene.value, gene.value, gene.low,
-                         gene.high, gene.integer, static_cast<int>(gene.line)});
+      for (const StudioDefine& old : before)
+        if (old.name == gene.name && old.written != gene.value && overrides.erase(gene.name))
+          grown.dropped.push_back(gene.name);
+      defines.push_back({gene.name, gene.value, gene.value, gene.low, gene.high, gene.integer,
+                         static_cast<int>(gene.line)});
     }
   } catch (const std::invalid_argument&) {
     // The text does not lex: the compiler below says where.
@@ -370,7 +447,8 @@ nlohmann::json StudioModel::state() const {
                           {"cells", cells_},
                           {"notes", notes_.size()},
                           {"seconds", wallSeconds_},
-                          {"source", text_}};
+                          {"source", text_},
+                          {"converted", !sourceName_.empty() && sourceName_ != def_.program.file}};
   nlohmann::json diagnostics = nlohmann::json::array();
   bool failed = false;
   for (const Diagnostic& d : diagnostics_) {
@@ -381,14 +459,15 @@ nlohmann::json StudioModel::state() const {
   state["ok"] = !failed;
   state["diagnostics"] = diagnostics;
   nlohmann::json defines = nlohmann::json::array();
-  for (const StudioDefine& d : defines_)
+  for (const StudioDefine& d : definesInEffect())
     defines.push_back({{"name", d.name},
                        {"value", d.value},
                        {"written", d.written},
                        {"low", d.low},
                        {"high", d.high},
                        {"integer", d.integer},
-                       {"line", d.line}});
+                       {"line", d.line},
+                       {"overridden", d.overridden}});
   state["defines"] = defines;
   state["stopped"] = stopped_;
   state["growth"] = {

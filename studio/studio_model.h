@@ -65,6 +65,9 @@ struct StudioDefine {
   double low = 0, high = 0;
   bool integer = false;
   int line = 0;
+  /// The page's value (a slider, or --define) is in effect, not the file's: the page
+  /// says so until it is written into the file (writeDefine) or dropped (dropDefine).
+  bool overridden = false;
 };
 
 /// A note of the music set, in seconds of the page's clock (developmental time for music
@@ -102,6 +105,16 @@ class StudioModel {
   /// Throws std::invalid_argument, with nothing changed, when the program has no such
   /// define or the value is outside the range its slider spans (its #range).
   void setDefine(const std::string& name, double value);
+  /// Writes the value a slider gave a define into the program file, in place of the number
+  /// each `#define NAME` writes (the rest of the file byte for byte as it was), so the file
+  /// says what the page shows; the page's value is then the file's. Returns the file's
+  /// path. Throws std::invalid_argument, with nothing written, when the define has no value
+  /// of the page's, the file is another tool's (converted when read), or the file changed
+  /// since the last growth read it (a newer text the page has not seen).
+  std::string writeDefine(const std::string& name);
+  /// Drops the value a slider gave a define: the file's is in effect again (call
+  /// requestGrowth() to see it). Throws std::invalid_argument when the define has none.
+  void dropDefine(const std::string& name);
   /// Sets the interactive limits for the growths to come. Throws std::invalid_argument
   /// when one is 0 or above the ceiling the studio was started with.
   void setLimits(uint64_t maxCells, uint64_t maxMemoryBytes);
@@ -116,7 +129,9 @@ class StudioModel {
   std::string text() const;
   /// The file's name without folder and extension: names the outputs.
   std::string stem() const;
-  /// The values in effect for the defines the text writes.
+  /// The values in effect for the defines the text writes. A slider's value stays in effect
+  /// over the file's until the file's own number for that define changes: an edit of the
+  /// define in the file drops it (the file is the source of truth).
   std::map<std::string, double> defineValues() const;
   std::vector<StudioDefine> defines() const;
   std::vector<StudioNote> notes() const;
@@ -148,6 +163,7 @@ class StudioModel {
   void growOnce();
   void grow(Grown& grown, const std::map<std::string, double>& overrides, const WorldLimits& limits);
   void changed();  // with mutex_ held
+  std::vector<StudioDefine> definesInEffect() const;  // with mutex_ held: the sliders' values in
 
   StudioModelDef def_;
   std::atomic<bool> cancel_{false};
@@ -163,6 +179,7 @@ class StudioModel {
   uint64_t maxCells_, maxMemoryBytes_;
   std::optional<FileStamp> stamp_;
   std::string text_;
+  std::string sourceName_;  // the text's name in diagnostics: the file's path unless converted
   std::string stem_;
   std::vector<StudioDefine> defines_;
   std::vector<Diagnostic> diagnostics_;

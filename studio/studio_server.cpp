@@ -132,6 +132,17 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
         model_.requestGrowth();
         return json(model_.state());
       }
+      if (path == "/api/define/write" || path == "/api/define/drop") {
+        if (body.size() != 1 || !body.contains("name") || !body["name"].is_string())
+          return error(400, "writing or dropping a define takes {\"name\": NAME}");
+        const std::string name = body["name"].get<std::string>();
+        nlohmann::json answer;
+        if (path == "/api/define/write") answer["path"] = model_.writeDefine(name);  // 422 when it cannot
+        else model_.dropDefine(name);
+        model_.requestGrowth();
+        answer["state"] = model_.state();
+        return json(answer);
+      }
       if (path == "/api/stop") {
         model_.stop();
         return json(model_.state());

@@ -10,6 +10,9 @@
 //   GET  /gallery/K.png               the picture of variant K
 //   POST /api/define                  {"name": N, "value": V}: move a slider (within its range) and
 //                                     grow again; answers the state
+//   POST /api/define/write            {"name": N}: write the slider's value into the file (as its
+//                                     number in each `#define N`); answers {"path", "state"}
+//   POST /api/define/drop             {"name": N}: drop the slider's value, the file's is in effect again
 //   POST /api/stop                    cancel the growth at hand; the last model stays
 //   POST /api/limits                  {"maxCells": N, "maxMemoryMiB": M}: the interactive limits; grows again
 //   POST /api/gallery                 {}: the gallery, made at the first ask and again when the program changed

@@ -198,16 +198,46 @@ function showDefines(state) {
         value.textContent = slider.value;
         sendDefine(d.name, Number(slider.value));
       });
-      row.append(text('label', d.name), slider, value);
+      // While the slider's value is not the file's, the row says so, with the file's
+      // number and one click to write the slider's into the file or to drop it.
+      const override = text('div', undefined, 'override');
+      override.dataset.override = d.name;
+      override.hidden = true;
+      const written = text('span', '');
+      const write = text('button', 'write to file');
+      write.type = 'button';
+      write.dataset.write = d.name;
+      write.addEventListener('click', () => defineAction('/api/define/write', d.name));
+      const drop = text('button', 'drop');
+      drop.type = 'button';
+      drop.dataset.drop = d.name;
+      drop.addEventListener('click', () => defineAction('/api/define/drop', d.name));
+      override.append(written, write, drop);
+      row.append(text('label', d.name), slider, value, override);
       box.append(row);
     }
   }
   for (const d of state.defines) {
     const slider = box.querySelector(`input[data-define="${d.name}"]`);
     const value = box.querySelector(`output[data-define-value="${d.name}"]`);
+    const override = box.querySelector(`div[data-override="${d.name}"]`);
     if (slider && document.activeElement !== slider) slider.value = String(d.value);
     if (value) value.textContent = String(Number(d.value.toPrecision(6)));
+    if (override) {
+      override.hidden = !d.overridden;
+      override.parentElement.classList.toggle('overridden', d.overridden);
+      override.firstChild.textContent = `overrides the file's ${Number(d.written.toPrecision(6))}`;
+      override.querySelector('button[data-write]').disabled = state.converted;
+    }
   }
+}
+
+async function defineAction(path, name) {
+  const response = await post(path, { name });
+  const answer = await response.json();
+  if (!response.ok) { studio.lastError = answer.error; $('define-error').textContent = answer.error; return; }
+  $('define-error').textContent = '';
+  await showState(answer.state);
 }
 
 let loadingModel = 0;
@@ -240,12 +270,12 @@ let stateShown = { from: 0, until: 1 };
 async function showState(state) {
   showStatus(state);
   showLimits(state.limits);
+  showDefines(state);  // a moved slider is marked as overriding the file at once
   if (state.version === studio.version) return;
   studio.version = state.version;
   stateShown = state;
   $('file').textContent = state.file;
   showDiagnostics(state);
-  showDefines(state);
   document.body.dataset.version = String(state.version);
   if (!state.hasModel && state.modelVersion > 0) $('no-model').hidden = false;
   if (state.hasModel && state.modelVersion !== studio.modelVersion && state.modelVersion !== loadingModel)

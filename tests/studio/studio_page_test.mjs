@@ -203,6 +203,28 @@ try {
   check(Math.abs(len.value - 2.4) < 1e-9, `the LEN slider set LEN to ${len.value}`);
   check(difference(afterSave, longer) > 1, `the LEN slider changes the picture (mean difference ${difference(afterSave, longer).toFixed(2)})`);
 
+  // The file is the source of truth: the slider's value is marked as overriding the file's
+  // number, with one click to drop it or to write it into the file.
+  const overrideShown = () => page.evaluate(() => {
+    const row = document.querySelector('#defines div[data-override="LEN"]');
+    return row && !row.hidden ? row.textContent : '';
+  });
+  const marked0 = await overrideShown();
+  check(/overrides the file's 1\.5/.test(marked0), `the moved slider says it overrides the file (${marked0})`);
+  await page.click('#defines button[data-drop="LEN"]');
+  await page.waitForSelector('body[data-model-version="4"]', { timeout: 20000 });
+  check(await overrideShown() === '' && await page.inputValue('#defines input[data-define="LEN"]') === '1.5',
+    'drop gives the file its say again (LEN back at 1.5, no mark)');
+  await page.locator('#defines input[data-define="LEN"]').fill('2.4');
+  await page.waitForSelector('body[data-model-version="5"]', { timeout: 20000 });
+  const moved = (await (await fetch(url + 'api/state')).json()).defines.find((d) => d.name === 'LEN').value;
+  await page.click('#defines button[data-write="LEN"]');
+  await page.waitForSelector('body[data-model-version="6"]', { timeout: 20000 });
+  const rewritten = fs.readFileSync(file, 'utf8');
+  check(Math.abs(moved - 2.4) < 1e-9 && rewritten === program(70, 1.5).replace('LEN 1.5', `LEN ${moved}`) &&
+    await overrideShown() === '',
+    `write to file writes the slider's value into the file (${rewritten.split('\n')[2]}) and the mark goes`);
+
   // Music: the notes of the music set reach the page and play as the animation plays.
   const notes = await (await fetch(url + 'api/notes')).json();
   // A note at the birth of every A (1 + 2 + ... + 32 by 5 s) and of every F (the music
@@ -220,10 +242,10 @@ try {
   const marked = await page.$$eval('#source .line.error', (lines) => lines.length);
   const diagnostic = await page.textContent('#diagnostics');
   check(marked === 1 && /tree\.cell:12:/.test(diagnostic), `the error is shown at its line (${diagnostic.split('\n')[0]})`);
-  check(await page.evaluate(() => window.studio.modelVersion) === 3, 'the last model that grew stays shown');
+  check(await page.evaluate(() => window.studio.modelVersion) === 6, 'the last model that grew stays shown');
   fs.writeFileSync(file, program(70, 1.5));
   await page.waitForFunction(() => document.getElementById('status').dataset.state === 'ok', null, { timeout: 20000 });
-  await page.waitForSelector('body[data-model-version="4"]', { timeout: 20000 });
+  await page.waitForSelector('body[data-model-version="7"]', { timeout: 20000 });
 
   // A growth without end (50 M steps of 1,000 cells: minutes): the page shows it growing,
   // the server answers the page and the state all the while, Stop ends it and the last
@@ -242,8 +264,8 @@ try {
   await page.click('#stop');
   await page.waitForFunction(() => document.getElementById('status').dataset.state === 'stopped', null, { timeout: 20000 });
   const stopped = await (await fetch(url + 'api/state')).json();
-  check(stopped.stopped && !stopped.growth.running && stopped.modelVersion === 4 &&
-    await page.evaluate(() => window.studio.modelVersion) === 4 && await page.isDisabled('#stop'),
+  check(stopped.stopped && !stopped.growth.running && stopped.modelVersion === 7 &&
+    await page.evaluate(() => window.studio.modelVersion) === 7 && await page.isDisabled('#stop'),
     `Stop ends the growth and the last model stays (${await page.textContent('#status')})`);
 
   // A runaway (the cells double each step) stops at the interactive limit the page shows.
@@ -255,7 +277,7 @@ try {
   const limited = await page.textContent('#diagnostics');
   check(/past 1000000 cells/.test(limited), `the runaway stops at the page's limit (${limited.split('\n')[0]})`);
   fs.writeFileSync(file, program(70, 1.5));
-  await page.waitForSelector('body[data-model-version="5"]', { timeout: 20000 });
+  await page.waitForSelector('body[data-model-version="8"]', { timeout: 20000 });
 
   // Evolution: a gallery of twelve, two picked, one generation bred.
   await page.click('#gallery-open');

@@ -303,6 +303,73 @@ TEST_F(StudioFixture, ModelGrowsFollowsItsFileAndKeepsTheLastGoodModel) {
   EXPECT_EQ(model.modelVersion(), 3u);
 }
 
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The file is the source of truth (README, "The studio"): a slider's value is marked as
+// overriding the file's number until it is written into the file or dropped, and an edit
+// of the define in the file wins over a slider moved before it.
+TEST_F(StudioFixture, ASlidersValueOverridesTheFileVisiblyUntilWrittenOrDropped) {
+  StudioModel model(modelDef());
+  model.regrow();
+  auto define = [&](const char* name) {
+    const nlohmann::json state = model.state();
+    for (const nlohmann::json& d : state["defines"])
+      if (d["name"] == name) return d;
+    return nlohmann::json();
+  };
+  EXPECT_FALSE(define("LEN")["overridden"].get<bool>());
+  EXPECT_THROW(model.writeDefine("LEN"), std::invalid_argument);  // nothing of the page's to write
+  EXPECT_THROW(model.dropDefine("LEN"), std::invalid_argument);
+
+  // Moved: the page's value is in effect and marked at once, before the growth.
+  model.setDefine("LEN", 1.75);
+  EXPECT_TRUE(define("LEN")["overridden"].get<bool>());
+  EXPECT_EQ(define("LEN")["value"], 1.75);
+  EXPECT_EQ(define("LEN")["written"], 1.0);
+  model.regrow();
+  const std::string longer = model.glb();
+  // Dropped: the file's number again.
+  model.dropDefine("LEN");
+  EXPECT_FALSE(define("LEN")["overridden"].get<bool>());
+  EXPECT_EQ(define("LEN")["value"], 1.0);
+  model.regrow();
+  EXPECT_NE(model.glb(), longer);
+
+  // Written: the file says 1.75 where it said 1, and nothing else of it changes.
+  model.setDefine("LEN", 1.75);
+  model.regrow();
+  EXPECT_EQ(model.writeDefine("LEN"), file.string());
+  std::string expected = kTree;
+  expected.replace(expected.find("LEN 1"), 5, "LEN 1.75");
+  EXPECT_EQ(readText(file), expected);
+  EXPECT_FALSE(define("LEN")["overridden"].get<bool>());
+  model.regrow();
+  EXPECT_EQ(define("LEN")["written"], 1.75);
+  EXPECT_EQ(model.glb(), longer);  // the same model, now from the file alone
+
+  // An edit of the file's ANGLE wins over the ANGLE slider; LEN's slider, whose number the
+  // edit left alone, stays.
+  model.setDefine("ANGLE", 45);
+  model.setDefine("LEN", 0.5);
+  model.regrow();
+  std::string edited = expected;
+  edited.replace(edited.find("ANGLE 30"), 8, "ANGLE 20");
+  write(edited);
+  model.regrow();
+  EXPECT_EQ(define("ANGLE")["value"], 20.0);
+  EXPECT_FALSE(define("ANGLE")["overridden"].get<bool>());
+  EXPECT_EQ(define("LEN")["value"], 0.5);
+  EXPECT_TRUE(define("LEN")["overridden"].get<bool>());
+  // A file changed since it was read is not written over: that edit would be lost.
+  write(edited + "// more\n");
+  EXPECT_THROW(model.writeDefine("LEN"), std::invalid_argument);
+  EXPECT_EQ(readText(file), edited + "// more\n");
+  EXPECT_FALSE(fs::exists(file.string() + ".ontogen-studio-write"));
+}
+
 // Growth without end for a page: 50 M steps of 1,000 cells (minutes; the step limit is
 // 100 M). The growth is watched, answered about, stopped; the last model stays.
 std::string endless() {
@@ -415,6 +482,21 @@ TEST_F(StudioFixture, RoutesAnswerThePage) {
   EXPECT_EQ(nlohmann::json::parse(limited.body)["limits"]["maxMemoryBytes"], 64 << 20);
   ASSERT_TRUE(model.waitIdle());
   EXPECT_EQ(model.modelVersion(), 3u);
+  // A slider's value written into the file or dropped (as the page's two buttons do).
+  EXPECT_EQ(ask("POST", "/api/define/write", R"({"name": "ANGLE", "path": "/tmp/x"})").status, 400);
+  EXPECT_EQ(ask("POST", "/api/define/drop", R"({"name": "LEN"})").status, 422);  // no slider value
+  const HttpResponse dropped = ask("POST", "/api/define/drop", R"({"name": "ANGLE"})");
+  EXPECT_EQ(dropped.status, 200);
+  EXPECT_EQ(nlohmann::json::parse(dropped.body)["state"]["defines"][0]["value"], 30.0);
+  ASSERT_TRUE(model.waitIdle());
+  ASSERT_EQ(ask("POST", "/api/define", R"({"name": "ANGLE", "value": 45})").status, 200);
+  ASSERT_TRUE(model.waitIdle());
+  const HttpResponse written = ask("POST", "/api/define/write", R"({"name": "ANGLE"})");
+  EXPECT_EQ(written.status, 200);
+  EXPECT_EQ(nlohmann::json::parse(written.body)["path"], file.string());
+  EXPECT_EQ(readText(file).substr(0, 16), "#define ANGLE 45");
+  ASSERT_TRUE(model.waitIdle());
+  EXPECT_EQ(model.modelVersion(), 6u);  // dropped, moved, written: three growths
   EXPECT_EQ(ask("POST", "/api/stop", "{}").status, 200);
   EXPECT_EQ(nlohmann::json::parse(ask("GET", "/api/notes").body)["notes"].size(), 0u);  // no music set
 
