@@ -370,6 +370,24 @@ TEST_F(StudioFixture, ASlidersValueOverridesTheFileVisiblyUntilWrittenOrDropped)
   EXPECT_FALSE(fs::exists(file.string() + ".ontogen-studio-write"));
 }
 
+// Another tool's file, converted when read, is never written over with cell-language text:
+// the slider's value can be dropped, not written.
+TEST_F(StudioFixture, ASlidersValueIsNotWrittenIntoAConvertedFile) {
+  StudioModelDef def = modelDef();
+  def.program.read = [](const std::string& path, uint64_t) {
+    return StudioSource{std::string(kTree), path + " (converted)", ""};
+  };
+  StudioModel model(def);
+  model.regrow();
+  ASSERT_EQ(model.modelVersion(), 1u) << model.state().dump(2);
+  EXPECT_TRUE(model.state()["converted"].get<bool>());
+  model.setDefine("LEN", 1.75);
+  EXPECT_THROW(model.writeDefine("LEN"), std::invalid_argument);
+  EXPECT_EQ(readText(file), kTree);
+  model.dropDefine("LEN");
+  EXPECT_EQ(model.defineValues().at("LEN"), 1.0);
+}
+
 // Growth without end for a page: 50 M steps of 1,000 cells (minutes; the step limit is
 // 100 M). The growth is watched, answered about, stopped; the last model stays.
 std::string endless() {
