@@ -159,6 +159,25 @@ void Geometry::append(const Geometry& other) {
   }
 }
 
+void Geometry::append(Geometry&& other) {
+  dropped_ += other.dropped_;
+  addMesh(other.mesh_, /*keepMaterials=*/true);
+  auto take = [](auto& into, auto& from) {
+    if (into.empty())
+      into.swap(from);
+    else
+      into.insert(into.end(), from.begin(), from.end());
+  };
+  take(segments_, other.segments_);
+  take(cylinders_, other.cylinders_);
+  take(discs_, other.discs_);
+  take(spheres_, other.spheres_);
+  if (!other.bounds_.empty) {
+    bounds_.add(other.bounds_.min);
+    bounds_.add(other.bounds_.max);
+  }
+}
+
 void Geometry::addSegment(const glm::dvec3& start, const glm::dvec3& end) {
   if (start == end) return;
   if (!drawable(start) || !drawable(end)) {

@@ -131,6 +131,10 @@ class Geometry {
   /// Appends everything of another frame's geometry (lines, primitives, mesh), each part
   /// keeping its colour.
   void append(const Geometry& other);
+  /// The same, taking other's primitives' buffers where this geometry has none of that
+  /// kind instead of copying them (its mesh is copied); other is left valid but
+  /// unspecified (clear it).
+  void append(Geometry&& other);
 
   /// The palette colour of everything added from now on.
   void setMaterial(uint32_t material) { material_ = material; }

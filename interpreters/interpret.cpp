@@ -101,6 +101,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
 
 void interpretWord(const World& world, InterpretationSet& set) {
   set.beginWord(world.time());
+  set.expectCells(world.rootPool().size());
   interpretPool(world, set);
   set.endWord();
 }

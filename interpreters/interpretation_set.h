@@ -130,6 +130,10 @@ class InterpretationSet {
   virtual std::string_view alsoReads() const { return {}; }
   /// Called by interpretWord before the first cell of a word, with the word's time.
   virtual void beginWord(double /*time*/) {}
+  /// Called by interpretWord after beginWord with the number of cells of the word's root
+  /// pool, so that a set can size what it records once (a hint: an image or nested pools
+  /// may hold more).
+  virtual void expectCells(std::size_t /*cells*/) {}
   /// Called by interpretWord before the instructions of each cell the set realises.
   virtual void beginCell(const CellContext& /*cell*/) {}
   /// True when the set reads CellContext::parent (finding parents costs a pass over the word).

@@ -2,6 +2,26 @@
 
 namespace ontogen {
 
+namespace {
+
+// Appends other's joints, skin (its triangles shifted by `triangles`) and contacts.
+void appendSkeleton(Skeleton& into, const Skeleton& other, uint32_t triangles) {
+  const int joints = static_cast<int>(into.joints.size());
+  for (SceneJoint joint : other.joints) {
+    if (joint.parent >= 0) joint.parent += joints;
+    into.joints.push_back(std::move(joint));
+  }
+  for (SkinRange range : other.skin) {
+    range.firstTriangle += triangles;
+    range.joint += joints;
+    into.skin.push_back(range);
+  }
+  into.simulated = into.simulated || other.simulated;
+  for (int contact : other.contacts) into.contacts.push_back(contact + joints);
+}
+
+}  // namespace
+
 const SceneNode* Scene::find(uint64_t id) const {
   for (const SceneNode& node : nodes)
     if (node.id == id) return &node;
@@ -29,18 +49,18 @@ void Scene::append(const Scene& other) {
     nodes.back().range.firstTriangle += triangles;
     nodes.back().range.firstSegment += segments;
   }
-  const int joints = static_cast<int>(skeleton.joints.size());
-  for (SceneJoint joint : other.skeleton.joints) {
-    if (joint.parent >= 0) joint.parent += joints;
-    skeleton.joints.push_back(std::move(joint));
+  appendSkeleton(skeleton, other.skeleton, triangles);
+}
+
+void Scene::append(Scene&& other) {
+  if (!nodes.empty() || !geometry.empty()) {
+    append(static_cast<const Scene&>(other));
+    return;
   }
-  for (SkinRange range : other.skeleton.skin) {
-    range.firstTriangle += triangles;
-    range.joint += joints;
-    skeleton.skin.push_back(range);
-  }
-  skeleton.simulated = skeleton.simulated || other.skeleton.simulated;
-  for (int contact : other.skeleton.contacts) skeleton.contacts.push_back(contact + joints);
+  // Nothing here to shift the nodes' ranges past: they are taken as they are.
+  geometry.append(std::move(other.geometry));
+  nodes.swap(other.nodes);
+  appendSkeleton(skeleton, other.skeleton, 0);
 }
 
 }  // namespace ontogen

@@ -90,6 +90,9 @@ struct Scene {
   void clear();
   /// Appends another scene's geometry and nodes (their ranges shifted to match).
   void append(const Scene& other);
+  /// The same, taking other's nodes and geometry buffers where this scene has none of
+  /// its own instead of copying them; other is left valid but unspecified (clear it).
+  void append(Scene&& other);
 };
 
 }  // namespace ontogen

@@ -2,9 +2,16 @@
 
 #include "interpreters/geometry/turtle_commands.h"
 
+#include <algorithm>
+#include <new>
 #include <stdexcept>
 
 namespace ontogen {
+
+namespace {
+// The most nodes expectCells reserves (2.8 GB of address space, touched only as written).
+constexpr std::size_t kMaxReservedNodes = std::size_t{1} << 24;
+}  // namespace
 
 GeometrySet::GeometrySet(const GeometrySetDef& def)
     : def_(def),
@@ -106,10 +113,22 @@ void GeometrySet::finishScene() {
   notDrawn_.add(scene_.geometry.dropped() - dropped, site_);
 }
 
+void GeometrySet::expectCells(std::size_t cells) {
+  if (!recordsNodes_ || cells <= scene_.nodes.capacity()) return;
+  // Reserved once, not grown by doubling: a plant's million nodes would otherwise be
+  // moved about twenty times into ever fresh pages. Only the nodes written are touched;
+  // an address space that refuses the reservation grows them as before.
+  try {
+    scene_.nodes.reserve(std::min<std::size_t>(cells, kMaxReservedNodes));
+  } catch (const std::bad_alloc&) {
+  }
+}
+
 void GeometrySet::contribute(Scene& scene) {
   finishScene();
   scene.time = scene_.time;
-  scene.append(scene_);
+  scene.append(std::move(scene_));
+  scene_.clear();
 }
 
 std::vector<std::filesystem::path> GeometrySet::endFrame() {

@@ -109,6 +109,63 @@ TEST(Scene, TwoSetsDrawIntoOneFrameAndTheOutputStageWritesIt) {
   EXPECT_EQ(lines, 6) << "three F's of the turtle and three markers";
 }
 
+// A set hands an empty scene its buffers and copies into one that holds something, its
+// nodes' ranges shifted past what is there: both give what copying gives, segments,
+// spheres' triangles, nodes and bounds alike, and the set draws its next frame afresh.
+TEST(Scene, ContributingTakesTheSetsBuffersOrCopiesThemAlike) {
+  auto program = testing_support::compileOrFail(
+      "lsystem t {\n  axiom F(1) [ + F(2) ] A F(3)\n  interpret geometry A { sphere(0.5) }\n}");
+  World world(program);
+  GeometrySet set(GeometrySetDef{.sceneNodes = true});
+  auto drawn = [&] {
+    set.beginFrame({});
+    interpretWord(world, set);
+  };
+  // The copy: another set's finished scene appended as a const scene.
+  GeometrySet other(GeometrySetDef{.sceneNodes = true});
+  other.beginFrame({});
+  interpretWord(world, other);
+  Scene finished;
+  other.contribute(finished);
+  Scene copied;
+  copied.append(static_cast<const Scene&>(finished));
+  drawn();
+  Scene taken;
+  set.contribute(taken);
+  ASSERT_GE(copied.nodes.size(), 3u);
+  ASSERT_GT(copied.geometry.triangleCount(), 0u);
+  auto same = [](const Scene& a, const Scene& b, std::size_t from) {
+    ASSERT_EQ(a.geometry.segmentCount(), b.geometry.segmentCount() - 3 * from);
+    for (std::size_t s = 0; s < a.geometry.segmentCount(); ++s) {
+      EXPECT_EQ(a.geometry.segments()[s].start, b.geometry.segments()[3 * from + s].start);
+      EXPECT_EQ(a.geometry.segments()[s].end, b.geometry.segments()[3 * from + s].end);
+    }
+    ASSERT_EQ(b.nodes.size(), a.nodes.size() * (from + 1));
+    const std::size_t triangles = from * a.geometry.triangleCount();
+    for (std::size_t n = 0; n < a.nodes.size(); ++n) {
+      const SceneNode& x = a.nodes[n];
+      const SceneNode& y = b.nodes[from * a.nodes.size() + n];
+      EXPECT_EQ(x.id, y.id);
+      EXPECT_EQ(x.label, y.label);
+      EXPECT_EQ(x.range.firstSegment + 3 * from, y.range.firstSegment);
+      EXPECT_EQ(x.range.firstTriangle + triangles, y.range.firstTriangle);
+      EXPECT_EQ(x.range.segmentCount, y.range.segmentCount);
+      EXPECT_EQ(x.range.triangleCount, y.range.triangleCount);
+    }
+    EXPECT_EQ(b.geometry.spheres().size(), a.geometry.spheres().size() * (from + 1));
+    EXPECT_EQ(b.geometry.triangleCount(), a.geometry.triangleCount() * (from + 1));
+  };
+  same(copied, taken, 0);
+  EXPECT_EQ(taken.geometry.bounds().min, copied.geometry.bounds().min);
+  EXPECT_EQ(taken.geometry.bounds().max, copied.geometry.bounds().max);
+  EXPECT_TRUE(set.scene().nodes.empty() && set.scene().geometry.empty()) << "the set's scene handed over";
+  // The next frame, into the scene that holds the first: copied after it.
+  drawn();
+  ASSERT_EQ(set.scene().nodes.size(), copied.nodes.size() - 1) << "drawn afresh (the last node closes at the end)";
+  set.contribute(taken);
+  same(copied, taken, 1);
+}
+
 // The compiler resolves every instruction to its set's command once: the interpreter hands
 // the set numbers, never a name to look up, for blocks and for symbols alike.
 class CountingSet final : public InterpretationSet {
