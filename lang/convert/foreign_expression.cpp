@@ -155,13 +155,19 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
   }
   stop = close + 1;
   std::string value = "(" + substituted(body, arguments) + ")";
-  inlinedBytes_ += value.size();
+  countInlined(value.size(), at, stop);
+  return value;
+}
+
+// Macros that name macros multiply as calls within calls do: #define M1 M0+M0 ... M40
+// would write 2^40 copies.
+void ForeignSyntax::countInlined(size_t bytes, uint32_t at, uint32_t stop) const {
+  inlinedBytes_ += bytes;
   if (inlinedBytes_ > kMaxInlinedBytes)
     fail(at, stop,
          "the calls of helper functions or macros write more than " + std::to_string(kMaxInlinedBytes >> 20) +
              " MiB (calls within calls multiply)",
          false);
-  return value;
 }
 
 char ForeignSyntax::previous(uint32_t at, uint32_t from) const {
@@ -343,7 +349,9 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
         const bool plain = plainMacro(macro->second);
         if (!macro->second.constant && (plain || alone)) {
           const Nested nested(*this, at, stop);
-          emit("(" + expression(macro->second.begin, macro->second.end) + ")", false, stop - at);
+          const std::string value = "(" + expression(macro->second.begin, macro->second.end) + ")";
+          countInlined(value.size(), at, stop);
+          emit(value, false, stop - at);
           at = stop;
           continue;
         }
@@ -356,6 +364,9 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
           const Nested nested(*this, at, stop);
           std::vector<ExpressionToken> inner;
           expression(macro->second.begin, macro->second.end, &inner);
+          size_t bytes = 0;
+          for (const ExpressionToken& token : inner) bytes += token.text.size() + 1;
+          countInlined(bytes, at, stop);
           for (const ExpressionToken& token : inner) {
             tokens.push_back({token.text, at, stop, token.glued});
             if (!out.empty() && !token.glued && out.back() != '(' && out.back() != '!') out += ' ';

@@ -140,6 +140,9 @@ class ForeignSyntax {
   /// in the expression [begin, end): its value, and in `stop` the offset after its ')'.
   std::string inlined(const Function& function, uint32_t begin, uint32_t at, uint32_t open, uint32_t end,
                       uint32_t& stop) const;
+  /// Counts `bytes` written by inlining a call or a macro at [at, stop); past
+  /// kMaxInlinedBytes in all, an error there.
+  void countInlined(size_t bytes, uint32_t at, uint32_t stop) const;
   /// Whether [begin, end) is one operand whatever surrounds it: a name, a number, a call
   /// or a parenthesis.
   bool atomic(uint32_t begin, uint32_t end) const;

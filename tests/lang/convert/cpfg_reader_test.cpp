@@ -227,3 +227,23 @@ TEST(CpfgReader, AStartBlockOfConstants) {
 
 }  // namespace
 }  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+// Macros whose values name macros twice double at each level, as C's replacement does:
+// 20 levels would write about 6 MiB, 64 levels 2^64 copies. They count against the same
+// bound as helper functions, a located error, read in linear time.
+TEST(CpfgReader, MacrosThatMultiplyAreBounded) {
+  std::string text = "#define M0 x\n";
+  for (int k = 1; k <= 20; ++k)
+    text += "#define M" + std::to_string(k) + " M" + std::to_string(k - 1) + "+M" + std::to_string(k - 1) + "\n";
+  auto c = convertText(Dialect::Cpfg, "a.l", text + "Lsystem: 1\nAxiom: A(1)\nA(x) --> A(M20)\nendlsystem\n");
+  EXPECT_EQ(c.program, "");
+  EXPECT_EQ(c.line, 13);  // the second M11 in M12's value, where the written text passes 4 MiB
+  EXPECT_EQ(c.column, 17);
+  EXPECT_EQ(c.error, "the calls of helper functions or macros write more than 4 MiB (calls within calls multiply)");
+}
+
+}  // namespace
+}  // namespace ontogen::convert
