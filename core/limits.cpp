@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -177,9 +179,11 @@ void checkEventLimit(uint64_t events, double when, const WorldLimits& limits) {
 
 void checkStepLimit(uint64_t steps, double more, double dt, double target, const WorldLimits& limits) {
   // `more` may be huge or infinite (a denormal step): compare as doubles.
-  if (!(static_cast<double>(steps) + more <= static_cast<double>(limits.maxSteps))) [[unlikely]]
+  const double total = static_cast<double>(steps) + more;
+  if (!(total <= static_cast<double>(limits.maxSteps))) [[unlikely]]
     throw LimitError("reaching t = " + number(target) + " in steps of " + number(dt) + " s takes " +
-                     number(static_cast<double>(steps) + more) + " steps, past the step limit of " +
+                     (std::isfinite(total) ? number(total) : "more than " + number(DBL_MAX)) +
+                     " steps, past the step limit of " +
                      std::to_string(limits.maxSteps) + "; use a larger --step, or raise it with --max-steps N");
 }
 

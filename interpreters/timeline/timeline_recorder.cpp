@@ -1,5 +1,9 @@
 #include "interpreters/timeline/timeline_recorder.h"
 
+#include <cmath>
+
+#include "core/limits.h"
+
 namespace ontogen {
 
 namespace {
@@ -71,6 +75,9 @@ Timeline recordTimeline(std::shared_ptr<const Program> program, const WorldDef& 
   World world(std::move(program), def);
   TimelineRecorder recorder(maxRows);
   recorder.sample(world);
+  // The time is advanced a step at a time, so each advance sees one step to come: the
+  // whole way is checked against the step limit first, or --until 1e9 runs for hours.
+  checkStepLimit(world.stats().steps, std::ceil((until - world.time()) / dt), dt, until, def.limits);
   while (world.time() < until - timeTolerance(until)) {
     world.advanceTo(std::min(until, world.time() + dt), dt);
     recorder.sample(world);

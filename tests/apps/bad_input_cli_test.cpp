@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,8 @@ TEST(BadInput, EveryNumericFlagRejectsWhatIsNotItsNumberWithOneShortLine) {
       {"run", {"--step 0", "--step: '0' is not a number > 0"}},
       {"run", {"--step 1e999", "--step: '1e999' is not a number > 0"}},
       {"word", {"--at nan", "--at: 'nan' is not a number ≥ 0"}},
+      {"statics", {"--at nan", "--at: 'nan' is not a number ≥ 0"}},
+      {"statics", {"--at inf", "--at: 'inf' is not a number ≥ 0"}},
       {"word", {"--at 1,inf", "--at: 'inf' is not a number ≥ 0"}},
       {"word", {"--at -1", "--at: '-1' is not a number ≥ 0"}},
       {"word", {"--at 1,,2", "--at: '1,,2' has an empty item: write the values with one comma between each"}},
@@ -69,6 +72,34 @@ TEST(BadInput, EveryNumericFlagRejectsWhatIsNotItsNumberWithOneShortLine) {
     EXPECT_EQ(result.err.substr(0, result.err.find('\n')), "ontogen: error: " + bad.message) << bad.args;
     EXPECT_LT(result.err.size(), 200u) << bad.args;
   }
+}
+
+// A value in range but far past what a run can do is refused at once, in a message of a
+// few significant digits: never hundreds of digits, an "inf", or hours of stepping first.
+TEST(BadInput, HugeValuesAreRefusedAtOnceInAFewDigits) {
+  const std::string piston = modelPath("piston.cell");
+  const fs::path svg = scratchDir("huge_values") / "t.svg";
+  const std::vector<std::pair<std::string, int>> cases = {
+      {"statics " + piston + " --at 1e300", 3},
+      {"statics " + piston + " --at 1e308 --json", 3},
+      {"word " + piston + " --at 1e300", 3},
+      {"run " + piston + " --until 1e300 --format none", 3},
+      {"run " + piston + " --step 1e-300 --until 1 --format none", 3},
+      {"run " + piston + " --speed 1e-300 --format none", 2},
+      {"timeline " + piston + " --out " + svg.string() + " --until 1e9", 3},
+  };
+  for (const auto& [args, exitCode] : cases) {
+    CliResult result = runOntogen(args, 20);
+    EXPECT_EQ(result.exitCode, exitCode) << args << "\n" << result.err;
+    // (after the line end that closes a progress line, where the error reaches main)
+    EXPECT_LE(result.err.find("ontogen: error: "), 1u) << args << "\n" << result.err;
+    EXPECT_LT(result.err.size(), 250u) << args << "\n" << result.err;
+    size_t run = 0, longest = 0;
+    for (char c : result.err) longest = std::max(longest, run = std::isdigit(static_cast<unsigned char>(c)) ? run + 1 : 0);
+    EXPECT_LE(longest, 9u) << args << "\n" << result.err;
+    for (const char* nonFinite : {"inf", "nan"}) EXPECT_EQ(result.err.find(nonFinite), std::string::npos) << result.err;
+  }
+  EXPECT_FALSE(fs::exists(svg));
 }
 
 TEST(BadInput, FlagsTakeTheEdgesOfTheirRanges) {
