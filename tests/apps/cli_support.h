@@ -1,25 +1,21 @@
 #pragma once
-// Running the ontogen executable from a test: its exit code, stdout and stderr.
+// Running the ontogen executable from a command-line test (through ontogen_process.h),
+// and the files such a test reads and writes.
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "tests/apps/ontogen_process.h"
+
 namespace ontogen::test {
 
 namespace fs = std::filesystem;
 
-struct CliResult {
-  int exitCode = -1;  ///< -1: killed by a signal (an abort), or could not start
-  std::string out;
-  std::string err;
-};
+/// How a run ended: its exit code (-1: killed by a signal, or could not start), stdout
+/// and stderr.
+using CliResult = OntogenRun;
 
 /// An empty folder of its own for a test, under the build tree.
 inline fs::path scratchDir(const std::string& name) {
@@ -36,23 +32,10 @@ inline std::string readWholeFile(const fs::path& path) {
   return text.str();
 }
 
-/// Runs `ontogen ARGS` through the shell (so ARGS may quote), within `timeoutSeconds`.
+/// Runs `ontogen ARGS` through the shell (so ARGS may quote and redirect), within
+/// `timeoutSeconds` (exit 124 past it), by the command-line tests' one spawner.
 inline CliResult runOntogen(const std::string& args, int timeoutSeconds = 60) {
-  // One file per process: ctest runs tests in parallel processes.
-  fs::path errFile = fs::path(ONTOGEN_BINARY_DIR) / "cli_test" / ("stderr_" + std::to_string(getpid()) + ".txt");
-  fs::create_directories(errFile.parent_path());
-  std::string command = "timeout " + std::to_string(timeoutSeconds) + " " + std::string(ONTOGEN_EXECUTABLE) + " " +
-                        args + " 2>" + errFile.string();
-  CliResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.out.append(buffer.data(), n);
-  int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = readWholeFile(errFile);
-  return result;
+  return runOntogenShell(args, "timeout " + std::to_string(timeoutSeconds) + " ");
 }
 
 inline std::string modelPath(const std::string& name) {

@@ -5,49 +5,20 @@
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
+
+#include "tests/apps/ontogen_process.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
+using Result = ontogen::test::OntogenRun;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-Result ontogen(const std::string& args) {
-  fs::path errFile =
-      fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / ("stderr_" + std::to_string(getpid()) + ".txt");
-  fs::create_directories(errFile.parent_path());
-  std::string command = std::string(ONTOGEN_EXECUTABLE) + " " + args + " 2>" + errFile.string();
-  Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.out.append(buffer.data(), n);
-  int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = readFile(errFile);
-  return result;
-}
+Result ontogen(const std::string& args) { return ontogen::test::runOntogenShell(args); }
 
 std::string file(const std::string& name) {
   return std::string(ONTOGEN_SOURCE_DIR) + "/tests/convert/" + name;

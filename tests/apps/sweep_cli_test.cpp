@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <set>
 #include <sstream>
@@ -71,10 +70,9 @@ std::string outputsOf(const fs::path& dir) {
 
 // `ontogen ARGS` as 3 MPI ranks on this machine; its exit code, its output in `log`.
 int runOnThreeRanks(const std::string& args, const fs::path& log) {
-  const std::string command = "timeout 120 mpirun --oversubscribe --allow-run-as-root -n 3 " +
-                              std::string(ONTOGEN_EXECUTABLE) + " " + args + " >" + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return runOntogenShell(args + " >" + log.string() + " 2>&1",
+                         "timeout 120 mpirun --oversubscribe --allow-run-as-root -n 3 ")
+      .exitCode;
 }
 
 const std::string kSweepFlags =
@@ -133,6 +131,16 @@ TEST(SweepCli, TheTableIsTheSameOnOneWorkerAllWorkersAndThreeRanks) {
   EXPECT_EQ(outputsOf(dir / "one"), outputsOf(ranks));
 }
 
+// The arguments of `sweep TREE FLAGS --out OUT`, FLAGS split at spaces (they hold no quotes),
+// for a sweep started without a shell.
+std::vector<std::string> sweepArguments(const fs::path& tree, const std::string& flags, const fs::path& out) {
+  std::vector<std::string> args{"sweep", tree.string()};
+  std::istringstream words(flags);
+  for (std::string word; words >> word;) args.push_back(word);
+  args.insert(args.end(), {"--out", out.string()});
+  return args;
+}
+
 // The kill comes while the sweep runs: each variant is made slower by a longer development.
 TEST(SweepCli, KilledMidwayAndResumedGivesTheIdenticalTable) {
   const fs::path dir = scratchDir("sweep_resume");
@@ -143,14 +151,8 @@ TEST(SweepCli, KilledMidwayAndResumedGivesTheIdenticalTable) {
   ASSERT_EQ(whole.exitCode, 0) << whole.err;
 
   const fs::path cut = dir / "cut";
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    const std::string command = std::string(ONTOGEN_EXECUTABLE) + " sweep " + tree.string() + flags + " --out " +
-                                cut.string() + " 2>/dev/null";
-    execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  const pid_t child = startOntogen(sweepArguments(tree, flags, cut));
+  ASSERT_GT(child, 0);
   // Killed (SIGKILL: nothing is written on the way out) once a few rows are journalled.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   size_t journalled = 0;
@@ -185,14 +187,8 @@ TEST(SweepCli, KilledMidwayAndResumedGivesTheIdenticalTable) {
 
   // Ctrl-C stops cleanly: what finished is in the table, the exit code is 130.
   const fs::path stopped = dir / "stopped";
-  const pid_t second = fork();
-  ASSERT_GE(second, 0);
-  if (second == 0) {
-    const std::string command = std::string(ONTOGEN_EXECUTABLE) + " sweep " + tree.string() + flags + " --out " +
-                                stopped.string() + " 2>/dev/null";
-    execl("/bin/sh", "sh", "-c", ("exec " + command).c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  const pid_t second = startOntogen(sweepArguments(tree, flags, stopped));
+  ASSERT_GT(second, 0);
   while (std::chrono::steady_clock::now() < deadline + std::chrono::seconds(60) &&
          lines(readWholeFile(stopped / "journal.jsonl")).size() < 1 + 2)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -241,15 +237,7 @@ TEST(SweepCli, AVariantPastMaxCellsIsAnErrorRow) {
 // `ontogen ARGS` in a pseudo-terminal (util-linux's script), as a user at a terminal runs
 // it: everything it printed to stdout and stderr, as the terminal received it.
 std::string inATerminal(const std::string& args) {
-  const std::string command = "timeout 60 script -qec \"" + std::string(ONTOGEN_EXECUTABLE) + " " + args +
-                              "\" /dev/null </dev/null 2>&1";
-  std::string output;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return output;
-  char buffer[4096];
-  for (size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
-  pclose(pipe);
-  return output;
+  return runOntogenShell(args + "\" /dev/null </dev/null 2>&1", "timeout 60 script -qec \"").out;
 }
 
 // The bar's drawings in `text` (each begins with a carriage return and the label): the
