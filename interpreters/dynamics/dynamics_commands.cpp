@@ -33,6 +33,9 @@ constexpr std::array kCommands = {
                     "the air moves at (x, y, z) units a second, its speed varying by the fraction gust as "
                     "sin(2 pi t / period) (default 0, 4 s): each rod segment feels the drag 1/2 rho_air Cd 2r h "
                     "|v| v of the air's speed v across it relative to its own (rho_air 1.2, Cd 1.2)"},
+    DynamicsCommand{"control", DynamicsOp::Control, 1, 1, "control(period)",
+                    "the servos' targets are the kinematic pose taken every period seconds of simulated time, "
+                    "on a grid from time 0, and followed linearly between (0 to 1; default 0.01; 0: at every step)"},
 };
 
 }  // namespace

@@ -98,6 +98,7 @@ void DynamicsSet::beginWord(double time) {
   rodStack_.clear();
   wordWind_ = {};
   wordDamping_ = kRodDamping;
+  wordControl_ = kControlPeriod;
   starts_.clear();
   inner_.beginFrame(FrameTarget{{}, {}, 0, 1, time});
   inner_.beginWord(time);
@@ -188,6 +189,10 @@ void DynamicsSet::runOwn(DynamicsOp op, std::span<const double> args) {
       if (!bad) wordWind_ = air;
       break;
     }
+    case DynamicsOp::Control:
+      bad = !(args[0] >= 0 && args[0] <= 1);
+      if (!bad) wordControl_ = args[0];
+      break;
     case DynamicsOp::Rod: {
       RodSpec rod;
       rod.length = args[0];
@@ -343,6 +348,8 @@ void DynamicsSet::endWord() {
   advanceTo(wordTime_);
   tape_.swap(wordTape_);
   tapeTime_ = wordTime_;
+  knotsStale_ = true;
+  control_ = wordControl_;
   BodyPlan plan = planOf(inner_, starts_);
   const std::size_t skeleton = plan.bodies.size();
   if (skeleton == inner_.scene().skeleton.joints.size()) addRods(plan, wordRods_);
@@ -398,6 +405,7 @@ void DynamicsSet::build(const BodyPlan& plan, double time) {
   mjcf_ = mjcfOf(plan_, physics_, target_.stem.empty() ? "dynamics" : target_.stem, room_);
   sim_ = std::make_unique<MujocoModel>(mjcf_);
   countedInstabilities_ = 0;
+  knotsStale_ = true;
   const mjModel* m = sim_->model();
   mjData* d = sim_->data();
   start_ = time;
@@ -491,12 +499,11 @@ void DynamicsSet::applyWind(double time) {
   }
 }
 
-void DynamicsSet::setControls(double time) {
+bool DynamicsSet::poseTargets(double time, std::vector<double>& out) {
   replay(tape_, FrameTarget{{}, {}, 0, 1, time}, replay_, stepStarts_);
   const auto& joints = replay_.scene().skeleton.joints;
-  // A tape that no longer makes the model's joints holds the controls as they are.
-  if (joints.size() != skeletonBodies_ || stepStarts_.size() != joints.size()) return;
-  mjData* d = sim_->data();
+  if (joints.size() != skeletonBodies_ || stepStarts_.size() != joints.size()) return false;
+  out.clear();
   std::size_t body = plan_.bodies.size();
   std::array<double, 3> angles{};
   for (const Hinge& hinge : hinges_) {
@@ -506,6 +513,44 @@ void DynamicsSet::setControls(double time) {
       angles = hingeAngles(plan_.bodies[body].kind, stepStarts_[body].base, joints[body].orientation);
     }
     double target = angles[static_cast<std::size_t>(hinge.dof)];
+    if (hinge.range.set) target = std::clamp(target, hinge.range.lo, hinge.range.hi);
+    out.push_back(target);
+  }
+  return true;
+}
+
+void DynamicsSet::setControls(double time) {
+  // A tape that no longer makes the model's joints holds the controls as they are.
+  mjData* d = sim_->data();
+  if (!(control_ > 0)) {
+    if (!poseTargets(time, atKnot_.targets)) return;
+    std::size_t i = 0;
+    for (const Hinge& hinge : hinges_)
+      if (hinge.actuator >= 0) d->ctrl[hinge.actuator] = atKnot_.targets[i++];
+    return;
+  }
+  // The pose is taken on a grid of knots from time 0, whatever the frames; the replay of
+  // the word, not MuJoCo, is then most of a step's cost when taken at every step.
+  const auto knot = static_cast<long>(std::floor(time / control_ + 1e-9));
+  if (knotsStale_ || knot != knot_) {
+    if (!knotsStale_ && knot == knot_ + 1) {
+      std::swap(atKnot_, atNextKnot_);
+    } else {
+      atKnot_.valid = poseTargets(static_cast<double>(knot) * control_, atKnot_.targets);
+    }
+    atNextKnot_.valid = poseTargets(static_cast<double>(knot + 1) * control_, atNextKnot_.targets);
+    knot_ = knot;
+    knotsStale_ = false;
+  }
+  if (!atKnot_.valid || !atNextKnot_.valid) return;
+  const double along = std::clamp((time - static_cast<double>(knot) * control_) / control_, 0.0, 1.0);
+  std::size_t i = 0;
+  for (const Hinge& hinge : hinges_) {
+    if (hinge.actuator < 0) continue;
+    const double from = atKnot_.targets[i], to = atNextKnot_.targets[i];
+    ++i;
+    // The short way round: a hinge's angle is read in (-pi, pi].
+    double target = from + std::remainder(to - from, 2 * std::numbers::pi) * along;
     if (hinge.range.set) target = std::clamp(target, hinge.range.lo, hinge.range.hi);
     d->ctrl[hinge.actuator] = target;
   }

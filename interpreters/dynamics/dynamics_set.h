@@ -79,6 +79,9 @@ class DynamicsSet : public InterpretationSet {
   static constexpr double kRodDamping = 0.01;
   /// The air's density and a rod's drag coefficient across the air (a long cylinder's).
   static constexpr double kAirDensity = 1.2, kDragCoefficient = 1.2;
+  /// How often, in seconds of simulated time, the servos' targets are taken from the
+  /// kinematic pose, unless control() says: they are followed linearly between.
+  static constexpr double kControlPeriod = 0.01;
 
   /// Throws std::invalid_argument when def is out of range.
   explicit DynamicsSet(const DynamicsSetDef& def = {});
@@ -161,6 +164,9 @@ class DynamicsSet : public InterpretationSet {
   // One step; taken again in a model with more room while MuJoCo had too little.
   void stepWithRoom();
   void setControls(double time);
+  // The servos' targets (one per actuated hinge, in hinges_' order) from the tape replayed
+  // at `time`; false when the tape no longer makes the model's joints.
+  bool poseTargets(double time, std::vector<double>& out);
   double stepTime(long steps) const { return start_ + static_cast<double>(steps) * physics_.timestep; }
   // The state at `time` (not before the last step) in scratch_, its kinematics computed.
   void stateAt(double time);
@@ -192,6 +198,16 @@ class DynamicsSet : public InterpretationSet {
   int rodsInCell_ = 0;
   Air wordWind_, wind_;
   double wordDamping_ = kRodDamping, damping_ = kRodDamping;
+  double wordControl_ = kControlPeriod, control_ = kControlPeriod;
+  // The targets at the control grid's knot before the last step and at the one after it
+  // (stale after a new tape or model).
+  struct Knot {
+    bool valid = false;
+    std::vector<double> targets;
+  };
+  long knot_ = 0;
+  bool knotsStale_ = true;
+  Knot atKnot_, atNextKnot_;
   std::size_t skeletonBodies_ = 0;  // the plan's bodies before its rods'
   struct Drag {
     int body = 0;  // MuJoCo's
