@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/limits.h"
 #include "interpreters/creature/creature_commands.h"
 #include "interpreters/dynamics/dynamics_commands.h"
 #include "interpreters/dynamics/mujoco_model.h"
@@ -375,6 +376,10 @@ void DynamicsSet::endWord() {
 }
 
 void DynamicsSet::build(const BodyPlan& plan, double time) {
+  if (const int depth = nestingDepth(plan); depth > kDeepestBodies)
+    throw LimitError("the dynamics set's body has " + std::to_string(depth) +
+                     " parts hanging one from another, and MuJoCo reads at most " + std::to_string(kDeepestBodies) +
+                     ": fewer segments a rod (elastic(n)), fewer rods on a path, or a shorter creature");
   // The bodies that persist keep their joints' positions and speeds, found by their ids.
   struct Carried {
     JointKind kind;

@@ -57,6 +57,13 @@ std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view
 /// The MJCF text with room usualRoom(plan).
 std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name);
 
+/// The most bodies MuJoCo 2.2 reads nested in one another: its XML reader (tinyxml2)
+/// stops at 100 elements deep, and a body's geoms and joints sit inside it.
+constexpr int kDeepestBodies = 96;
+
+/// The most bodies of the plan nested in one another (a root alone: 1; none: 0).
+int nestingDepth(const BodyPlan& plan);
+
 /// The MJCF's `<size .../>` element for `room` (as mjcfOf writes it, one line).
 std::string sizeElement(MujocoRoom room);
 

@@ -314,6 +314,34 @@ TEST(DynamicsSet, TheServosFollowThePoseTakenOnTheControlGrid) {
   EXPECT_GT(most, 1e-7);
 }
 
+// A plant whose parts hang from one another deeper than MuJoCo's reader nests bodies
+// (two rods of 64 segments, one from the other: 129 deep) ends the run at that limit, with
+// its message, not inside MuJoCo.
+TEST(DynamicsSet, APlantNestedDeeperThanMujocoReadsStopsAtTheLimit) {
+  DiagnosticSink sink;
+  CompileOptions options;
+  options.commandSets = commandSets();
+  RunDef def;
+  def.program = compileSource("deep.cell",
+                              "lsystem deep {\n  axiom stiffness(1) elastic(64) rod(1, 0.01) rod(1, 0.01)\n}\n",
+                              sink, options);
+  ASSERT_NE(def.program, nullptr) << formatDiagnostics(sink);
+  def.stem = "deep";
+  def.frames = 1;
+  def.until = 0.1;
+  def.sets = {"dynamics"};
+  def.setOptions.formats = "joints";
+  def.out = fs::path(ONTOGEN_BINARY_DIR) / "dynamics_set_test" / "deep";
+  fs::remove_all(def.out);
+  ontogen::Run run(std::move(def));
+  const RunReport report = run.execute();
+  EXPECT_EQ(report.status, RunStatus::ModelFailed);
+  ASSERT_FALSE(report.diagnostics.empty());
+  EXPECT_NE(report.diagnostics[0].message.find("129 parts hanging one from another"), std::string::npos)
+      << report.diagnostics[0].message;
+  EXPECT_NE(report.diagnostics[0].message.find("at most 96"), std::string::npos) << report.diagnostics[0].message;
+}
+
 // DIR/<model>.xml through MuJoCo's own loader: at its keyframe every body stands where the
 // first frame has its joint, and it steps as the same text compiled in memory does.
 TEST(DynamicsSet, TheWrittenMjcfIsTheFirstFramesModel) {

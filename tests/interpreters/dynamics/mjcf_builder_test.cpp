@@ -295,6 +295,44 @@ TEST(MjcfBuilder, ACantileverSwingsAtItsFirstNaturalFrequency) {
   EXPECT_NEAR(frequency / chain, 1, 0.003);
 }
 
+// Chains of `hinges` bodies each, each body turning about one hinge on the one before,
+// the first on the world.
+BodyPlan chains(int count, int hinges) {
+  BodyPlan plan;
+  for (int c = 0; c < count; ++c)
+    for (int i = 0; i < hinges; ++i) {
+      PlanBody body;
+      body.id = static_cast<uint64_t>(plan.bodies.size() + 1);
+      body.parent = i == 0 ? -1 : static_cast<int>(plan.bodies.size()) - 1;
+      body.kind = JointKind::Hinge;
+      body.position = {0.1 * i, 1, 0.5 * c};
+      body.base = body.orientation = kLevel;
+      body.limbs.push_back({body.position, body.position + glm::dvec3(0.1, 0, 0), 0.01});
+      plan.bodies.push_back(std::move(body));
+    }
+  return plan;
+}
+
+// Past 100 degrees of freedom a model asks for MuJoCo's conjugate-gradient solver, whose
+// cost grows more slowly with them than Newton's dense factorization.
+TEST(MjcfBuilder, ModelsPastAHundredDegreesOfFreedomUseTheConjugateGradientSolver) {
+  MujocoModel hundred(mjcfOf(chains(2, 50), {}, "chains"));
+  ASSERT_EQ(hundred.model()->nv, 100);
+  EXPECT_EQ(hundred.model()->opt.solver, mjSOL_NEWTON);
+  MujocoModel more(mjcfOf(chains(3, 34), {}, "chains"));
+  ASSERT_EQ(more.model()->nv, 102);
+  EXPECT_EQ(more.model()->opt.solver, mjSOL_CG);
+}
+
+// kDeepestBodies is MuJoCo's own bound: a chain that deep compiles, one body more does not.
+TEST(MjcfBuilder, TheDeepestNestingIsWhatMujocosReaderTakes) {
+  EXPECT_EQ(nestingDepth(chains(3, kDeepestBodies)), kDeepestBodies);
+  EXPECT_EQ(nestingDepth({}), 0);
+  MujocoModel deepest(mjcfOf(chains(1, kDeepestBodies), {}, "chain"));
+  EXPECT_EQ(deepest.model()->nbody, kDeepestBodies + 1);
+  EXPECT_THROW(MujocoModel(mjcfOf(chains(1, kDeepestBodies + 1), {}, "chain")), MujocoError);
+}
+
 TEST(MjcfBuilder, BadPhysicsIsNamed) {
   PhysicsDef def;
   EXPECT_EQ(physicsError(def), nullptr);
