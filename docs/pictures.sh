@@ -32,6 +32,7 @@ picture orchard 800x800
 picture colony 800x800
 picture statics_binary_tree 800x800 --define R=0.2 --view 35,20
 picture creature 640x400 --define SEGMENTS=6 --define DUTY=0.5
+picture windy_tree 400x400
 
 # The first picture of README.md: four models side by side.
 for name in flower orchard colony statics_binary_tree; do
@@ -52,3 +53,12 @@ ffmpeg -v error -y -i "$scratch/grow/flower.mp4" -i "$scratch/grow/orchard.mp4" 
 "$ontogen" run models/creature.cell --define SEGMENTS=6 --define DUTY=0.5 --format mp4 --size 640x400 \
   --out "$scratch/creature" 2>/dev/null
 cp "$scratch/creature/creature.mp4" docs/media/creature.mp4
+
+# Under physics (the dynamics set, MuJoCo): the creature walking six cycles, and the
+# sapling swaying in the gusts of models/windy_tree.cell.
+"$ontogen" run models/creature.cell --interpret dynamics --define SEGMENTS=6 --define DUTY=0.5 --until 8.4 \
+  --format png,mp4 --size 640x400 --out "$scratch/walker" 2>/dev/null
+cp "$scratch/walker/creature.png" docs/images/creature_dynamics.png
+cp "$scratch/walker/creature.mp4" docs/media/creature_dynamics.mp4
+"$ontogen" run models/windy_tree.cell --format mp4 --size 400x400 --out "$scratch/tree" 2>/dev/null
+cp "$scratch/tree/windy_tree.mp4" docs/media/windy_tree.mp4
