@@ -2,7 +2,9 @@
 // walking under physics, against MuJoCo alone stepping the model the set writes
 // (`--format mjcf`) for as many steps, its servos held at the first frame's targets. The
 // difference is ontogen's coupling: the word's development, the kinematic gait replayed
-// at every step for the servos' targets, the wind, the contacts and measures read back.
+// on the control grid for the servos' targets, the wind, the contacts and measures read
+// back, the model's builds. MuJoCo alone holds its servos at the first frame's targets: the
+// body stands where the set's walks, so its contacts differ.
 // The counter sim_s/s is simulated seconds per second of the process's processor time.
 
 #include <benchmark/benchmark.h>

@@ -206,6 +206,7 @@ void DynamicsSet::runOwn(DynamicsOp op, std::span<const double> args) {
       // The cell's id and the rod's place among its rods: stable while the cell lives.
       rod.id = cellId_ * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(++rodsInCell_);
       rod.parent = rodPath_.rod;
+      rod.joint = inner_.turtleJoint();
       rod.base = inner_.turtlePosition();
       rod.frame = inner_.turtleFrame();
       rod.stiffness = rodPath_.stiffness;
@@ -238,6 +239,9 @@ void DynamicsSet::addRods(BodyPlan& plan, const std::vector<RodSpec>& rods) cons
   for (std::size_t k = 0; k < rods.size(); ++k) {
     const RodSpec& rod = rods[k];
     int parent = rod.parent >= 0 ? tipBody[static_cast<std::size_t>(rod.parent)] : -1;
+    // A first rod drawn on a creature's body hangs from the joint's body (the skeleton's
+    // bodies come first in the plan, in its joints' order).
+    if (parent < 0 && rod.joint >= 0 && static_cast<std::size_t>(rod.joint) < plan.bodies.size()) parent = rod.joint;
     if (parent < 0) {
       // A root rod is clamped at its base: a body fixed in the world.
       PlanBody anchor;
@@ -473,9 +477,9 @@ void DynamicsSet::build(const BodyPlan& plan, double time) {
   for (const RodSpec& rod : rods_) {
     const glm::dvec3 tip = rod.base + rod.length * rod.frame[0];
     int holder = -1;
-    for (std::size_t b = skeletonBodies_; b < plan_.bodies.size(); ++b)
+    for (std::size_t b = 0; b < plan_.bodies.size(); ++b)
       for (const PlanLimb& limb : plan_.bodies[b].limbs)
-        if (glm::length(limb.end - tip) < 1e-12 * std::max(1.0, rod.length)) holder = static_cast<int>(b);
+        if (limb.cylinder && glm::length(limb.end - tip) < 1e-12 * std::max(1.0, rod.length)) holder = static_cast<int>(b);
     rodTipsAtRest_.push_back({holder, tip});
   }
   setControls(time);
@@ -743,8 +747,8 @@ void DynamicsSet::contribute(Scene& scene) {
   scene_.time = time;
 
   if (sim_) {
-    // The rods where the simulation has their bodies.
-    for (std::size_t b = skeletonBodies_; b < plan_.bodies.size(); ++b) {
+    // The rods where the simulation has their bodies (a creature's own limbs are drawn above).
+    for (std::size_t b = 0; b < plan_.bodies.size(); ++b) {
       const PlanBody& body = plan_.bodies[b];
       const int id = bodyIds_[b];
       if (id < 0) continue;
@@ -752,7 +756,8 @@ void DynamicsSet::contribute(Scene& scene) {
       const glm::dvec3 at = positionOf(s, id);
       scene_.geometry.setMaterial(3);
       for (const PlanLimb& limb : body.limbs)
-        scene_.geometry.addCylinder(at + turn * (limb.start - body.position), at + turn * (limb.end - body.position),
+        if (limb.cylinder)
+          scene_.geometry.addCylinder(at + turn * (limb.start - body.position), at + turn * (limb.end - body.position),
                                     limb.radius, false, turn * body.orientation[1]);
     }
     rodTips_.clear();

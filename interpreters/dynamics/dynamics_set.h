@@ -141,6 +141,7 @@ class DynamicsSet : public InterpretationSet {
   struct RodSpec {
     uint64_t id = 0;
     int parent = -1;  // index in the word's rods; -1: fixed at its base
+    int joint = -1;   // the creature's joint the turtle stood on, which a first rod hangs from; -1: none
     glm::dvec3 base{0.0};
     glm::dmat3 frame{1.0};
     double length = 0, radius = 0, density = 0, stiffness = 0;

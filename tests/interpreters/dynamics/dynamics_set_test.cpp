@@ -475,6 +475,37 @@ TEST(DynamicsSet, ATippedPoleFallsAndALyingPoleOrAWalkerDoesNot) {
   }
 }
 
+// Rods drawn on a creature's body hang from it: the tipped pole carrying a rigid rod of
+// 0.5 from its end topples with it, the rod's tip 2.5 from the pole's foot at every frame
+// and on the ground at the end; an elastic rod there (4 segments) falls with it too. Fixed
+// in the world instead, the rigid rod's tip would stay 2.46 up.
+TEST(DynamicsSet, RodsOnACreaturesBodyMoveWithIt) {
+  for (const std::string rod : {"rod(0.5, 0.05)", "stiffness(50) elastic(4) rod(0.5, 0.05)"}) {
+    std::string text = kPole;
+    text.replace(text.find("limb(2, R)"), 10, "limb(2, R) " + rod);
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> rootAndTip;
+    WalkDef pole;
+    pole.model = "pole.cell";
+    pole.text = text;
+    pole.from = 0;
+    pole.until = 4;
+    pole.frames = 5;
+    pole.onFrame = [&](const DynamicsSet& set, double) {
+      ASSERT_EQ(set.rodTips().size(), 1u);
+      ASSERT_FALSE(set.scene().skeleton.joints.empty());
+      rootAndTip.emplace_back(set.scene().skeleton.joints[0].position, set.rodTips()[0]);
+    };
+    walk(pole);
+    ASSERT_EQ(rootAndTip.size(), 5u) << rod;
+    EXPECT_NEAR(rootAndTip[0].second.y, 0.1 + 2.5 * std::cos(10 * std::numbers::pi / 180), 1e-6) << rod;
+    if (rod.rfind("rod", 0) == 0) {
+      for (const auto& [root, tip] : rootAndTip) EXPECT_NEAR(glm::length(tip - root), 2.5, 1e-6) << rod;
+    }
+    // Lying on the ground: the tip within its radius and a little sag of MuJoCo's soft contact.
+    EXPECT_LT(rootAndTip.back().second.y, 0.1) << rod;
+  }
+}
+
 // A raft of 12 limbs joined by hinges, lying on the ground: each capsule touches it at
 // both ends, 24 contacts, more than the room a model starts with (one contact a limb).
 // The steps that run out are taken again with twice the room, so no contact is dropped
