@@ -69,10 +69,11 @@ studio::StudioProgramOptions programOptionsOf(const CommonOptions& common) {
 }  // namespace
 
 int runStudio(const StudioOptions& options) {
-  // The program must load once before the page opens: a file that is no program, or a
-  // --define it lacks, is a bad command line. Later errors are shown in the page.
+  // The program is loaded once before the page opens: a file that is no program, or a
+  // --define it lacks, is a bad command line. A program with errors opens all the same,
+  // with its errors in the page (and on the terminal), to be mended there.
   LoadedProgram loaded = loadProgram(options.common);
-  if (!loaded.program) return loaded.exitCode;
+  if (!loaded.program && loaded.exitCode != kExitProgramError) return loaded.exitCode;
 
   const std::filesystem::path work = makeWorkFolder();
   struct RemoveWork {

@@ -11,6 +11,7 @@
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
+#include "lang/imports.h"
 #include "lang/source_reader.h"
 #include "lang/variation.h"
 #include "studio/file_bytes.h"
@@ -33,6 +34,8 @@ struct StudioModel::Grown {
   std::string sourceName;
   std::optional<std::vector<StudioDefine>> defines;  // empty: the sliders stay as they are
   std::vector<std::string> dropped;  // defines whose number the file changed: the page's value goes
+  std::vector<std::string> watched;  // imports and surfaces read
+  bool compiled = false;             // else the surfaces of the last growth stay watched
   std::vector<Diagnostic> diagnostics;
   bool grew = false;  // a model grew: what follows is its
   std::vector<StudioNote> notes;
@@ -59,11 +62,11 @@ StudioModel::~StudioModel() {
   if (thread_.joinable()) thread_.join();
 }
 
-std::optional<StudioModel::FileStamp> StudioModel::stampOf() const {
+std::optional<StudioModel::FileStamp> StudioModel::stampOf(const std::string& path) {
   std::error_code error;
-  const auto time = std::filesystem::last_write_time(def_.program.file, error);
+  const auto time = std::filesystem::last_write_time(path, error);
   if (error) return std::nullopt;
-  const auto size = std::filesystem::file_size(def_.program.file, error);
+  const auto size = std::filesystem::file_size(path, error);
   if (error) return std::nullopt;
   return FileStamp{time, size};
 }
@@ -95,7 +98,11 @@ bool StudioModel::refresh() {
     const std::lock_guard<std::mutex> lock(mutex_);
     // An editor that writes the file in pieces changes its stamp again: the next look
     // grows the whole text.
-    if (stampOf() == stamp_ || pending_) return false;
+    if (pending_) return false;
+    bool same = !stamps_.empty();  // before a growth, a file that exists is new
+    for (const auto& [path, stamp] : stamps_) same = same && stampOf(path) == stamp;
+    if (stamps_.empty() && !stampOf(def_.program.file)) same = true;
+    if (same) return false;
   }
   requestGrowth();
   return true;
@@ -154,7 +161,10 @@ void StudioModel::growOnce() {
     pending_ = false;
     running_ = true;
     cancel_ = false;
-    stamp_ = stampOf();
+    // Stamped before they are read: a save while the growth reads is seen by the next look.
+    stamps_.clear();
+    stamps_[def_.program.file] = stampOf(def_.program.file);
+    for (const std::string& path : watched_) stamps_[path] = stampOf(path);
     overrides = overrides_;
     limits.maxCells = maxCells_;
     limits.maxMemoryBytes = maxMemoryBytes_;
@@ -168,7 +178,8 @@ void StudioModel::growOnce() {
   try {
     grow(grown, overrides, limits);
   } catch (const std::exception& error) {
-    grown.diagnostics.push_back({"error", 0, 0, error.what(), std::string("ontogen: error: ") + error.what() + "\n"});
+    grown.diagnostics.push_back(
+        {"error", 0, 0, error.what(), std::string("ontogen: error: ") + error.what() + "\n", ""});
   }
   const std::lock_guard<std::mutex> lock(mutex_);
   ++version_;
@@ -181,6 +192,20 @@ void StudioModel::growOnce() {
     stem_ = std::move(grown.stem);
   }
   if (grown.defines) defines_ = std::move(*grown.defines);
+  if (grown.text) {
+    // A text that did not compile names no surfaces: those of the last growth stay watched.
+    if (!grown.compiled)
+      for (const std::string& path : watched_)
+        if (std::find(grown.watched.begin(), grown.watched.end(), path) == grown.watched.end())
+          grown.watched.push_back(path);
+    std::map<std::string, std::optional<FileStamp>> stamps{{def_.program.file, stamps_[def_.program.file]}};
+    for (const std::string& path : grown.watched) {
+      const auto known = stamps_.find(path);
+      stamps[path] = known != stamps_.end() ? known->second : stampOf(path);  // first read: stamped now
+    }
+    stamps_ = std::move(stamps);
+    watched_ = std::move(grown.watched);
+  }
   for (const std::string& name : grown.dropped) overrides_.erase(name);
   if (grown.grew) {
     notes_ = std::move(grown.notes);
@@ -304,6 +329,11 @@ std::string StudioModel::stem() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return stem_;
 }
+std::vector<std::string> StudioModel::watchedFiles() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return watched_;
+}
+
 std::vector<StudioDefine> StudioModel::definesInEffect() const {
   std::vector<StudioDefine> defines = defines_;
   for (StudioDefine& define : defines) {
@@ -335,7 +365,7 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
   if (!read.text) {
     const std::string why =
         "cannot read or convert " + def_.program.file + (read.error.empty() ? "" : ": " + read.error);
-    grown.diagnostics.push_back({"error", 0, 0, why, "ontogen: error: " + why + "\n"});
+    grown.diagnostics.push_back({"error", 0, 0, why, "ontogen: error: " + why + "\n", ""});
     return;
   }
   grown.text = *read.text;
@@ -376,11 +406,23 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
   for (const StudioDefine& define : sliders)
     if (overrides.count(define.name)) options.defines.push_back({define.name, overrides.at(define.name)});
   DiagnosticSink sink(def_.program.maxErrors);
-  std::shared_ptr<const Program> program = compileSource(read.name, text, sink, options);
+  // Parsed and compiled as compileSource does, keeping the files it read: each is watched,
+  // whether or not the program compiles.
+  ParsedProgram parsed =
+      parseWithImports(std::make_shared<const SourceFile>(read.name, text), sink, def_.program.maxSourceBytes);
+  for (std::size_t i = 1; i < parsed.sources.size(); ++i) grown.watched.push_back(parsed.sources[i]->name());
+  std::shared_ptr<const Program> program;
+  if (!sink.hasErrors()) program = compile(parsed.tree, parsed.sources, sink, options);
   for (const ontogen::Diagnostic& diagnostic : sink.diagnostics())
     grown.diagnostics.push_back({severityName(diagnostic.severity), diagnostic.span.line(), diagnostic.span.column(),
-                            diagnostic.message, formatDiagnostic(diagnostic)});
+                                 diagnostic.message, formatDiagnostic(diagnostic),
+                                 diagnostic.span.valid() ? diagnostic.span.file->name() : ""});
   if (!program) return;
+  grown.compiled = true;
+  for (const SystemDefinition& system : program->systems)
+    for (const SurfaceFile& surface : system.settings.surfaces)
+      if (std::find(grown.watched.begin(), grown.watched.end(), surface.path) == grown.watched.end())
+        grown.watched.push_back(surface.path);
 
   RunDef run;
   run.program = program;
@@ -406,7 +448,8 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
   grown.stopped = report.status == RunStatus::Interrupted;
   for (const RunDiagnostic& diagnostic : report.diagnostics)
     grown.diagnostics.push_back({severityName(diagnostic.severity), diagnostic.span.line(), diagnostic.span.column(),
-                            diagnostic.message, formatRunDiagnostic(diagnostic)});
+                                 diagnostic.message, formatRunDiagnostic(diagnostic),
+                                 diagnostic.span.valid() ? diagnostic.span.file->name() : ""});
   if (!report.ok()) return;
 
   std::vector<StudioNote> notes;
@@ -448,13 +491,15 @@ nlohmann::json StudioModel::state() const {
                           {"notes", notes_.size()},
                           {"seconds", wallSeconds_},
                           {"source", text_},
+                          {"sourceName", sourceName_},
                           {"converted", !sourceName_.empty() && sourceName_ != def_.program.file}};
   nlohmann::json diagnostics = nlohmann::json::array();
   bool failed = false;
   for (const Diagnostic& d : diagnostics_) {
     failed = failed || d.severity == "error";
     diagnostics.push_back(
-        {{"severity", d.severity}, {"line", d.line}, {"column", d.column}, {"message", d.message}, {"text", d.formatted}});
+        {{"severity", d.severity}, {"line", d.line}, {"column", d.column}, {"message", d.message}, {"text", d.formatted},
+         {"file", d.file}});
   }
   state["ok"] = !failed;
   state["diagnostics"] = diagnostics;

@@ -5,6 +5,11 @@
 // asks for: the .glb bytes, the diagnostics at their lines, the defines with the ranges
 // their sliders span (lang/variation.h), and the music set's notes in seconds.
 //
+// The model follows every file it reads: the program file, the files it imports (at any
+// depth) and the OBJ files its #surface directives name; a change of any of them grows it
+// again (refresh()). Each diagnostic names the file it belongs to, so the page marks in
+// the program only the program's own.
+//
 // Growth runs on a thread of the model's own (start()), never on the thread that asks
 // for it: the page is answered all the while from what the last growth published, and
 // sees the growth in progress (its cells and time, frame by frame). A newer request (a
@@ -92,7 +97,8 @@ class StudioModel {
   /// Asks for a growth: cancels the one at hand, if any, and grows again on the model's
   /// thread (which start() must have started).
   void requestGrowth();
-  /// Asks for a growth when the file changed since the last growth began; true when it did.
+  /// Asks for a growth when the program file, a file it imports or a #surface file it
+  /// names changed since the last growth read it; true when one did.
   bool refresh();
   /// Cancels the growth at hand and any asked for; the last model stays.
   void stop();
@@ -136,9 +142,14 @@ class StudioModel {
   std::vector<StudioDefine> defines() const;
   std::vector<StudioNote> notes() const;
   const StudioModelDef& def() const { return def_; }
+  /// The files besides the program file the last growth read and refresh() watches: its
+  /// imports (at any depth), then its #surface files.
+  std::vector<std::string> watchedFiles() const;
 
-  /// What the page shows: versions, diagnostics, defines, times, the source, the limits
-  /// and the growth in progress ("growth": running, cells, time, seconds).
+  /// What the page shows: versions, diagnostics (each with the "file" it belongs to),
+  /// defines, times, the source and "sourceName" (the name the program's own diagnostics
+  /// give as their file), the limits and the growth in progress ("growth": running, cells,
+  /// time, seconds).
   nlohmann::json state() const;
   /// Counts changes of state(): each growth's start, frame and end, each setting.
   uint64_t changes() const;
@@ -150,6 +161,7 @@ class StudioModel {
     std::string severity;
     int line = 0, column = 0;
     std::string message, formatted;
+    std::string file;  // the source it belongs to, as diagnostics name it; empty: none
   };
   struct FileStamp {
     std::filesystem::file_time_type time{};
@@ -158,7 +170,7 @@ class StudioModel {
   };
   // What one growth gives; published as a whole when it ends.
   struct Grown;
-  std::optional<FileStamp> stampOf() const;
+  static std::optional<FileStamp> stampOf(const std::string& path);
   void work();
   void growOnce();
   void grow(Grown& grown, const std::map<std::string, double>& overrides, const WorldLimits& limits);
@@ -177,7 +189,10 @@ class StudioModel {
   uint64_t changes_ = 0;
   std::map<std::string, double> overrides_;  // from the sliders and --define
   uint64_t maxCells_, maxMemoryBytes_;
-  std::optional<FileStamp> stamp_;
+  // The stamp of each file the last growth read (the program file's, its imports', its
+  // surfaces') as it was when that growth began or, for a file it read first, ended.
+  std::map<std::string, std::optional<FileStamp>> stamps_;
+  std::vector<std::string> watched_;  // the files besides the program file in stamps_
   std::string text_;
   std::string sourceName_;  // the text's name in diagnostics: the file's path unless converted
   std::string stem_;

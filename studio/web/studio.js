@@ -108,9 +108,11 @@ function showDiagnostics(state) {
   box.replaceChildren();
   if (state.diagnostics.length === 0) box.append(text('p', 'None.', 'quiet'));
   for (const d of state.diagnostics) box.append(text('pre', d.text, 'diagnostic ' + d.severity));
-  // The program with each diagnostic at its line.
+  // The program with each of its own diagnostics at its line; an imported file's are
+  // listed above with their file's name, never marked on the program's line of that number.
   const byLine = new Map();
-  for (const d of state.diagnostics) if (d.line > 0) byLine.set(d.line, [...(byLine.get(d.line) || []), d]);
+  for (const d of state.diagnostics)
+    if (d.line > 0 && d.file === state.sourceName) byLine.set(d.line, [...(byLine.get(d.line) || []), d]);
   const source = $('source');
   source.replaceChildren();
   state.source.split('\n').forEach((line, i) => {

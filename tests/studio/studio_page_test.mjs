@@ -159,6 +159,45 @@ try {
     await page.close();
   }
 
+  // A program that has errors when the studio starts opens with them. The error is in a
+  // file it imports: listed with that file's name and line, not marked on the program's
+  // line of that number. Mended in the import, the model grows; a save of the import
+  // alone grows it again.
+  {
+    const lib = path.join(work, 'lib.cell');
+    const uses = path.join(work, 'uses.cell');
+    fs.writeFileSync(lib, '#define TURN 30\n#define BAD 1 + * 2\n');
+    fs.writeFileSync(uses, 'import "lib.cell";\nlsystem uses {\n  #until 6\n  axiom F A\n  A -> +(TURN) F A\n}\n');
+    let opened = null;
+    try {
+      opened = await startStudio(uses, ['--frames', '7']);
+    } catch (error) {
+      check(false, `the studio opens a program that has errors (${String(error.message).split('\n')[0]})`);
+    }
+    if (opened) {
+      const page = await browser.newPage({ viewport: { width: 900, height: 700 } });
+      await page.goto(opened.url);
+      await page.waitForFunction(() => document.getElementById('status').dataset.state === 'error', null, { timeout: 20000 });
+      const listed = await page.textContent('#diagnostics');
+      const marked = await page.$$eval('#source .line.error', (lines) => lines.length);
+      check(listed.includes(`${lib}:2:`) && marked === 0,
+        `the studio opens with the import's error, listed with its file and line and marked on no line of the program (${listed.split('\n')[0]}; ${marked} marked)`);
+      fs.writeFileSync(lib, '#define TURN 30\n');
+      await page.waitForSelector('body[data-model-version="1"]', { timeout: 20000 });
+      await settle(page);
+      const mended = await picture(page);
+      const status = await page.textContent('#status');
+      check(/^grown in \d+\.\d\d s: [\d,]+ cells at 6 s$/.test(status), `the status reads as a person writes it (${status})`);
+      fs.writeFileSync(lib, '#define TURN 100\n');
+      await page.waitForSelector('body[data-model-version="2"]', { timeout: 20000 });
+      await settle(page);
+      const turned = await picture(page);
+      check(difference(mended, turned) > 0.1, `saving the import grows the model again (mean difference ${difference(mended, turned).toFixed(2)})`);
+      await page.close();
+      await stopStudio(opened);
+    }
+  }
+
   const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
   const pageErrors = [];
   page.on('pageerror', (error) => pageErrors.push(String(error)));

@@ -370,6 +370,64 @@ TEST_F(StudioFixture, ASlidersValueOverridesTheFileVisiblyUntilWrittenOrDropped)
   EXPECT_FALSE(fs::exists(file.string() + ".ontogen-studio-write"));
 }
 
+// Every file the program reads is watched: an import (at any depth) and a #surface file
+// grow the model again when they change, and an import's error names the import, at its
+// own line, not the program's line of that number.
+TEST_F(StudioFixture, ImportsAndSurfacesAreWatchedAndAnImportsErrorNamesItsFile) {
+  const fs::path lib = folder / "lib.cell";
+  const fs::path shape = folder / "shapes" / "tri.obj";
+  fs::create_directories(shape.parent_path());
+  auto rewrite = [&](const fs::path& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+    fs::last_write_time(path, fs::last_write_time(path) + std::chrono::seconds(++rewrites));
+  };
+  rewrite(lib, "#define TURN 30\n");
+  rewrite(shape, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write("import \"lib.cell\";\n#surface 2 \"shapes/tri.obj\"\nlsystem s {\n  #until 1\n"
+        "  axiom F(1) +(TURN) F(1) Leaf\n}\ncell Leaf {\n  interpret geometry { surface(2, 4) }\n}\n");
+  StudioModel model(modelDef());
+  model.regrow();
+  ASSERT_EQ(model.modelVersion(), 1u) << model.state().dump(2);
+  EXPECT_EQ(model.watchedFiles(), (std::vector<std::string>{lib.string(), shape.string()}));
+  EXPECT_FALSE(model.refresh());
+  std::string last = model.glb();
+
+  rewrite(lib, "#define TURN 60\n");
+  EXPECT_TRUE(model.refresh());
+  model.regrow();
+  ASSERT_EQ(model.modelVersion(), 2u) << model.state().dump(2);
+  EXPECT_NE(model.glb(), last);
+  last = model.glb();
+  EXPECT_FALSE(model.refresh());
+
+  rewrite(shape, "v 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n");
+  EXPECT_TRUE(model.refresh());
+  model.regrow();
+  ASSERT_EQ(model.modelVersion(), 3u) << model.state().dump(2);
+  EXPECT_NE(model.glb(), last);
+
+  // The import broken at its line 2: the diagnostic is the import's.
+  rewrite(lib, "#define TURN 60\n#define BAD 1 + * 2\n");
+  EXPECT_TRUE(model.refresh());
+  model.regrow();
+  const nlohmann::json state = model.state();
+  EXPECT_FALSE(state["ok"].get<bool>());
+  EXPECT_EQ(state["sourceName"], file.string());
+  ASSERT_FALSE(state["diagnostics"].empty());
+  const nlohmann::json& error = state["diagnostics"][0];
+  EXPECT_EQ(error["file"], lib.string()) << state["diagnostics"].dump(2);
+  EXPECT_EQ(error["line"], 2);
+  EXPECT_TRUE(error["text"].get<std::string>().starts_with(lib.string() + ":2:")) << error["text"];
+  EXPECT_EQ(model.modelVersion(), 3u);
+  // Still watched while the program does not compile, the surface too; mended, it grows.
+  EXPECT_EQ(model.watchedFiles(), (std::vector<std::string>{lib.string(), shape.string()}));
+  rewrite(lib, "#define TURN 60\n");
+  EXPECT_TRUE(model.refresh());
+  model.regrow();
+  EXPECT_EQ(model.modelVersion(), 4u) << model.state().dump(2);
+  EXPECT_TRUE(model.state()["ok"].get<bool>());
+}
+
 // Another tool's file, converted when read, is never written over with cell-language text:
 // the slider's value can be dropped, not written.
 TEST_F(StudioFixture, ASlidersValueIsNotWrittenIntoAConvertedFile) {
