@@ -15,6 +15,7 @@
 #include "apps/cli_values.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "interpreters/set_registry.h"
 #include "studio/gallery.h"
 #include "studio/http_server.h"
 #include "studio/studio_assets.h"
@@ -75,6 +76,15 @@ int runStudio(const StudioOptions& options) {
   LoadedProgram loaded = loadProgram(options.common);
   if (!loaded.program && loaded.exitCode != kExitProgramError) return loaded.exitCode;
 
+  const std::vector<std::string> known = interpretationSetNames();
+  for (const std::string& name : options.sets)
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string list;
+      for (const std::string& set : known) list += (list.empty() ? "" : ", ") + set;
+      std::cerr << "ontogen: error: --interpret: no set '" << name << "' (known: " << list << ")\n";
+      return kExitUsage;
+    }
+
   const std::filesystem::path work = makeWorkFolder();
   struct RemoveWork {
     std::filesystem::path folder;
@@ -88,6 +98,7 @@ int runStudio(const StudioOptions& options) {
   modelDef.program = programOptionsOf(options.common);
   modelDef.until = options.until;
   modelDef.frames = options.frames;
+  modelDef.sets = options.sets;
   modelDef.work = work / "model";
   // The interactive limits start far below the command line's, unless its flags set them;
   // the command line's are the ceiling the page may raise them to.

@@ -102,6 +102,7 @@ struct StudioOptions {
   uint64_t gallerySeed = 1;     ///< of the gallery's mutations
   bool varyConstants = false;   ///< the gallery varies numeric constants as well as defines
   std::string save;             ///< where saved variants go; empty: the program's folder
+  std::vector<std::string> sets;  ///< empty: the program's #interpret, else geometry
 };
 
 struct HelpOptions {

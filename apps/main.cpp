@@ -270,6 +270,10 @@ int dispatch(int argc, char** argv) {
   studioCommand->add_flag("--vary-constants", studio.varyConstants,
                           "The gallery varies the program's numeric constants as well as its #defines");
   studioCommand->add_option("--save", studio.save, "Folder saved variants go to (default: the program's folder)");
+  studioCommand->add_option("--interpret", studio.sets,
+                            "Interpretation sets, comma-separated, as run's: music sounds in the page (default: the "
+                            "program's #interpret, else geometry)")
+      ->delimiter(',');
 
   ConvertOptions convert;
   auto* convertCommand =

@@ -41,6 +41,7 @@ struct StudioModel::Grown {
   std::vector<StudioNote> notes;
   std::shared_ptr<const std::string> glb;
   double from = 0, until = 0;
+  std::vector<double> frames;  // the developmental time of each frame, in order
   uint64_t cells = 0;
   bool stopped = false;
 };
@@ -213,6 +214,7 @@ void StudioModel::growOnce() {
     from_ = grown.from;
     until_ = grown.until;
     cells_ = grown.cells;
+    frames_ = std::move(grown.frames);
     ++modelVersion_;
   }
   running_ = false;
@@ -429,7 +431,8 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
   run.stem = grown.stem;
   run.world = worldDefOf(def_.program, *program);
   run.world.limits = limits;
-  run.frameGrown = [this](const World& world) {
+  run.frameGrown = [this, &grown](const World& world) {
+    grown.frames.push_back(world.time());
     const std::lock_guard<std::mutex> lock(mutex_);
     growingCells_ = world.totalCells();
     growingTime_ = world.time();
@@ -439,7 +442,9 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
   run.step = def_.program.step;
   run.frames = def_.frames;
   if (!run.frames && program->framesPerSecond <= 0) run.frames = kDefaultStudioFrames;
-  run.sets = program->interpretSets.empty() ? std::vector<std::string>{"geometry"} : program->interpretSets;
+  run.sets = !def_.sets.empty()                   ? def_.sets
+             : !program->interpretSets.empty() ? program->interpretSets
+                                               : std::vector<std::string>{"geometry"};
   run.setOptions.formats = "glb";
   run.out = def_.work / "model";
   std::filesystem::remove_all(run.out);
@@ -458,10 +463,11 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
     if (!music) continue;
     const Score& score = music->score();
     // Music that follows the development has a beat a second of developmental time;
-    // a word read as a piece plays at its first tempo.
+    // a word read as a piece plays at its first tempo: a tempo() at its start, else #tempo.
     const bool developmental = music->def().time == MusicTime::Developmental;
-    const double secondsPerBeat = developmental || score.tempos.empty() ? (developmental ? 1.0 : 0.5)
-                                                                         : 60.0 / score.tempos.front().bpm;
+    const double bpm = !score.tempos.empty() && score.tempos.front().time <= 0 ? score.tempos.front().bpm
+                                                                               : music->def().file.tempo;
+    const double secondsPerBeat = developmental ? 1.0 : 60.0 / bpm;
     for (const ScoreNote& note : score.notes) {
       // A held note whose cell was gone before it sounded stays in the score with no
       // length; the MIDI file leaves it out, and so does the page.
@@ -488,6 +494,7 @@ nlohmann::json StudioModel::state() const {
                           {"from", from_},
                           {"until", until_},
                           {"cells", cells_},
+                          {"frames", frames_},
                           {"notes", notes_.size()},
                           {"seconds", wallSeconds_},
                           {"source", text_},

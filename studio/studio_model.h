@@ -54,6 +54,9 @@ struct StudioModelDef {
   StudioProgramOptions program;
   std::optional<double> until;   ///< empty: the program's #until
   std::optional<int> frames;     ///< empty: the program's #fps, else kDefaultFrames
+  /// The interpretation sets (`--interpret`); empty: the program's #interpret, else
+  /// geometry. The music set's notes sound in the page.
+  std::vector<std::string> sets;
   std::filesystem::path work;    ///< a folder of the studio's own for the outputs
   uint64_t maxCells = kStudioMaxCells;              ///< interactive limit, at most program.limits'
   uint64_t maxMemoryBytes = kStudioMaxMemoryBytes;  ///< interactive limit, at most program.limits'
@@ -146,7 +149,8 @@ class StudioModel {
   /// imports (at any depth), then its #surface files.
   std::vector<std::string> watchedFiles() const;
 
-  /// What the page shows: versions, diagnostics (each with the "file" it belongs to),
+  /// What the page shows: versions, the model's frames (their developmental times, which
+  /// Step goes through), diagnostics (each with the "file" it belongs to),
   /// defines, times, the source and "sourceName" (the name the program's own diagnostics
   /// give as their file), the limits and the growth in progress ("growth": running, cells,
   /// time, seconds).
@@ -203,6 +207,7 @@ class StudioModel {
   uint64_t version_ = 0;
   uint64_t modelVersion_ = 0;
   double from_ = 0, until_ = 0;
+  std::vector<double> frames_;
   uint64_t cells_ = 0;
   double wallSeconds_ = 0;
   bool stopped_ = false;  // the last growth was cancelled

@@ -45,7 +45,10 @@ export class SceneView {
     this.action = null;  // the clip's one action
     this.clipStart = 0;
     this.clipEnd = 0;
-    this.framed = false; // the camera is framed on the first model only, then kept
+    // Each new model is framed (the framing follows the growth) until the user turns or
+    // zooms the camera; frameAll() frames it and follows again.
+    this.following = true;
+    this.controls.addEventListener('start', () => { this.following = false; });
   }
 
   /// Parses a .glb's bytes (an ArrayBuffer); resolves to the glTF, not yet shown.
@@ -53,12 +56,20 @@ export class SceneView {
     return new GLTFLoader().parseAsync(bytes, '');
   }
 
-  /// Shows a parsed glTF in place of the model before, posed at time t.
-  show(gltf, t) {
+  /// Shows no model.
+  clear() {
     if (this.model) {
       this.scene.remove(this.model);
       this.model.traverse((o) => { if (o.geometry) o.geometry.dispose(); });
     }
+    this.model = null;
+    this.mixer = null;
+    this.action = null;
+  }
+
+  /// Shows a parsed glTF in place of the model before, posed at time t.
+  show(gltf, t) {
+    this.clear();
     this.model = gltf.scene;
     // The file's key light is in lux for Blender (thousands); the page has its own lights.
     const lights = [];
@@ -78,8 +89,15 @@ export class SceneView {
       this.clipStart = Math.min(...clip.tracks.map((track) => track.times[0]));
       this.clipEnd = clip.duration;
     }
-    if (!this.framed) { this.frame(); this.framed = true; }
+    if (this.following) this.frame();
     this.setTime(t);
+  }
+
+  /// Frames the model as a new one is, and frames each model to come until the user
+  /// turns the camera again.
+  frameAll() {
+    this.frame();
+    this.following = true;
   }
 
   /// Turns the camera to see the whole model at every time.

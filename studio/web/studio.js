@@ -15,7 +15,8 @@ const studio = {
   modelVersion: 0,     // of the model last loaded
   time: 0,             // developmental seconds shown
   playing: false,
-  notesPlayed: 0,
+  notesPlayed: 0,      // notes the animation passed
+  notesSounded: 0,     // of them, those the browser's audio played
   generation: 0,
   picked: new Set(),
   lastError: '',
@@ -56,6 +57,16 @@ function stopPlaying() {
   $('play').textContent = 'Play';
 }
 $('play').addEventListener('click', () => (studio.playing ? stopPlaying() : startPlaying()));
+// Rewind: the first frame; Step: the next frame of the model's (its developmental times,
+// as the server grew them), the last one at the end.
+let frameTimes = [];
+$('rewind').addEventListener('click', () => { stopPlaying(); setTime(Number(timeSlider.min)); });
+$('step').addEventListener('click', () => {
+  stopPlaying();
+  const next = frameTimes.find((t) => t > studio.time + 1e-9 * Math.max(1, Math.abs(t)));
+  setTime(next === undefined ? Number(timeSlider.max) : next);
+});
+$('frame-all').addEventListener('click', () => view.frameAll());
 
 // A plain voice per note: a triangle wave with a short attack and release, louder with
 // velocity, General MIDI's channel 10 (percussion) as a noise-like click.
@@ -74,6 +85,7 @@ function playNote(note, when) {
   oscillator.connect(gain).connect(audio.destination);
   oscillator.start(when);
   oscillator.stop(when + length + 0.02);
+  studio.notesSounded += 1;
 }
 
 function tick(now) {
@@ -243,27 +255,31 @@ async function defineAction(path, name) {
 }
 
 let loadingModel = 0;
-async function loadModel(version) {
+// A model that grew: its 3-D view (none for a model of music alone) and its notes. The
+// time slider spans the development, and the whole piece when its notes last longer (a
+// word read as a piece plays at its own tempo).
+async function loadModel(version, hasModel) {
   loadingModel = version;
-  const response = await fetch('/model.glb?v=' + version);
-  if (!response.ok) {
-    $('no-model').hidden = false;
-    return;
+  let gltf = null;
+  if (hasModel) {
+    const response = await fetch('/model.glb?v=' + version);
+    if (response.ok) gltf = await view.parse(await response.arrayBuffer());
   }
-  const bytes = await response.arrayBuffer();
-  const gltf = await view.parse(bytes);
-  if (loadingModel !== version) return;  // a newer model is on its way
-  $('no-model').hidden = true;
-  const grown = studio.time >= Number(timeSlider.max) || studio.modelVersion === 0;
-  timeSlider.min = String(stateShown.from);
-  timeSlider.max = String(Math.max(stateShown.until, stateShown.from));
-  timeSlider.step = String(Math.max((stateShown.until - stateShown.from) / 1000, 1e-6));
-  if (grown) studio.time = Number(timeSlider.max);  // a new model shows grown, unless scrubbed
-  view.show(gltf, studio.time);
-  setTime(studio.time);
   const notesAnswer = await (await fetch('/api/notes')).json();
+  if (loadingModel !== version) return;  // a newer model is on its way
   notes = notesAnswer.notes;
   $('note-count').textContent = notes.length ? `(${notes.length} notes)` : '(no music set)';
+  $('no-model').hidden = gltf !== null;
+  const grown = studio.time >= Number(timeSlider.max) || studio.modelVersion === 0;
+  const end = Math.max(stateShown.until, stateShown.from, ...notes.map((n) => n.start + n.duration));
+  timeSlider.min = String(stateShown.from);
+  timeSlider.max = String(end);
+  timeSlider.step = String(Math.max((end - stateShown.from) / 1000, 1e-6));
+  if (grown) studio.time = end;  // a new model shows grown, unless scrubbed
+  frameTimes = stateShown.frames || [];
+  if (gltf) view.show(gltf, studio.time);
+  else view.clear();
+  setTime(studio.time);
   studio.modelVersion = version;
   document.body.dataset.modelVersion = String(version);
 }
@@ -279,9 +295,8 @@ async function showState(state) {
   $('file').textContent = state.file;
   showDiagnostics(state);
   document.body.dataset.version = String(state.version);
-  if (!state.hasModel && state.modelVersion > 0) $('no-model').hidden = false;
-  if (state.hasModel && state.modelVersion !== studio.modelVersion && state.modelVersion !== loadingModel)
-    await loadModel(state.modelVersion);
+  if (state.modelVersion > 0 && state.modelVersion !== studio.modelVersion && state.modelVersion !== loadingModel)
+    await loadModel(state.modelVersion, state.hasModel);
 }
 
 // The server pushes its state at each change (server-sent events): a growth's start, each

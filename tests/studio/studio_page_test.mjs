@@ -156,6 +156,58 @@ try {
     await page.click('#play');
     check(zero < during[0] && during[0] < during[1] && during[1] < end,
       `Play shows the model growing (${zero}, ${during.join(', ')}, ${end} pixels drawn at 0, >3, >6, 10 s)`);
+
+    // Rewind goes to the first frame, Step on to the next of the 11 (one a second).
+    const press = async (button) => {
+      await page.click(button);
+      await settle(page);
+      return { time: await page.evaluate(() => window.studio.time), drawn: (await picture(page)).drawn };
+    };
+    await at(10);
+    const rewound = await press('#rewind');
+    const stepped = [await press('#step'), await press('#step'), await press('#step')];
+    for (let i = 0; i < 6; i += 1) await page.click('#step');
+    const nearEnd = await press('#step');
+    const pastEnd = await press('#step');
+    check(rewound.time === 0 && rewound.drawn === zero && stepped.map((s) => s.time).join() === '1,2,3' &&
+      zero < stepped[0].drawn && stepped[0].drawn < stepped[1].drawn && stepped[1].drawn < stepped[2].drawn &&
+      nearEnd.time === 10 && nearEnd.drawn === end && pastEnd.time === 10,
+      `Rewind and Step go through the frames (t = ${rewound.time}, ${stepped.map((s) => s.time).join(', ')} … ` +
+      `${nearEnd.time}, ${pastEnd.time}; ${rewound.drawn}, ${stepped.map((s) => s.drawn).join(', ')} … ${nearEnd.drawn} pixels)`);
+
+    // Frame all turns the camera back onto the whole model after the user zoomed away.
+    await page.mouse.move(400, 300);
+    for (let i = 0; i < 10; i += 1) await page.mouse.wheel(0, 400);
+    await settle(page);
+    const zoomedOut = (await picture(page)).drawn;
+    const reframed = await press('#frame-all');
+    check(zoomedOut < end * 0.8 && reframed.drawn === end,
+      `Frame all frames the model again (${end} pixels drawn, ${zoomedOut} zoomed out, ${reframed.drawn} framed)`);
+    // The framing follows the growth: twice as long a stem each step is framed whole,
+    // with nothing drawn at the canvas' edges (framed once, it would run off the view).
+    const edges = () => page.evaluate(() => {
+      const source = document.getElementById('canvas');
+      const full = document.createElement('canvas');
+      full.width = source.width;
+      full.height = source.height;
+      const context = full.getContext('2d');
+      context.drawImage(source, 0, 0);
+      const { data } = context.getImageData(0, 0, full.width, full.height);
+      let drawn = 0;
+      for (let y = 0; y < full.height; y += 1)
+        for (let x = 0; x < full.width; x += 1) {
+          if (x > 2 && y > 2 && x < full.width - 3 && y < full.height - 3) continue;
+          const i = (y * full.width + x) * 4;
+          if (Math.abs(data[i] - 42) + Math.abs(data[i + 1] - 45) + Math.abs(data[i + 2] - 51) > 24) drawn += 1;
+        }
+      return drawn;
+    });
+    fs.writeFileSync(growing, 'lsystem growing {\n  #angle 30\n  #until 10\n  axiom F A\n  A -> + F F F A\n}\n');
+    await page.waitForSelector('body[data-model-version="2"]', { timeout: 20000 });
+    await at(10);
+    const atEdges = await edges();
+    const longer = (await picture(page)).drawn;
+    check(atEdges === 0 && longer > 0, `a model that grew larger is framed whole (${longer} pixels drawn, ${atEdges} at the edges)`);
     await page.close();
   }
 
@@ -195,6 +247,42 @@ try {
       check(difference(mended, turned) > 0.1, `saving the import grows the model again (mean difference ${difference(mended, turned).toFixed(2)})`);
       await page.close();
       await stopStudio(opened);
+    }
+  }
+
+  // A melody that declares no #interpret, opened with `--interpret music`: no 3-D view,
+  // its notes in the page, the time slider as long as the piece (25 notes of half a beat
+  // at 160 a minute: 4.6875 s, past #until 2), and Play sounds every one.
+  {
+    const melody = path.join(work, 'melody.cell');
+    fs.writeFileSync(melody, 'lsystem melody {\n  #music sequential\n  #tempo 160\n  #until 2\n  axiom Setup F\n' +
+      '  interpret music Setup { program(11) scale(dorian) key(62) pitch(62) duration(0.5) velocity(90) }\n' +
+      '  F -> F + F - F - F + F\n}\n');
+    let heard = null;
+    try {
+      heard = await startStudio(melody, ['--interpret', 'music']);
+    } catch (error) {
+      check(false, `the studio takes --interpret (${String(error.message).split('\n')[0]})`);
+    }
+    const unknown = spawnSync(executable, ['studio', melody, '--port', '0', '--interpret', 'music,tune'],
+      { encoding: 'utf8', timeout: 20000 });
+    check(unknown.status === 2 && /--interpret: no set 'tune' \(known: .*music/.test(unknown.stderr),
+      `an unknown set is a bad command line (${unknown.status}: ${unknown.stderr.trim()})`);
+    if (heard) {
+      const page = await browser.newPage({ viewport: { width: 900, height: 700 } });
+      await page.goto(heard.url);
+      await page.waitForSelector('body[data-model-version="1"]', { timeout: 20000 });
+      const tune = (await (await fetch(heard.url + 'api/notes')).json()).notes;
+      const span = Number(await page.getAttribute('#time', 'max'));
+      check(tune.length === 25 && Math.abs(span - 4.6875) < 1e-9 && await page.isVisible('#no-model'),
+        `a model of music alone: ${tune.length} notes, the time slider ${span} s long, no 3-D view`);
+      await page.click('#rewind');
+      await page.click('#play');
+      await page.waitForFunction(() => !window.studio.playing, null, { timeout: 20000 });
+      const [passed, sounded] = await page.evaluate(() => [window.studio.notesPlayed, window.studio.notesSounded]);
+      check(passed === 25 && sounded === 25, `Play sounds the melody in the page (${sounded} of 25 notes)`);
+      await page.close();
+      await stopStudio(heard);
     }
   }
 

@@ -428,6 +428,37 @@ TEST_F(StudioFixture, ImportsAndSurfacesAreWatchedAndAnImportsErrorNamesItsFile)
   EXPECT_TRUE(model.state()["ok"].get<bool>());
 }
 
+// `--interpret music` on a program that declares no #interpret: the music set's notes,
+// in seconds of the score's tempo (25 half beats at 160 a minute), and no 3-D model.
+TEST_F(StudioFixture, TheSetsGivenAreTheOnesThatInterpret) {
+  write("lsystem melody {\n  #music sequential\n  #tempo 160\n  #until 2\n  axiom Setup F\n"
+        "  interpret music Setup { pitch(62) duration(0.5) }\n  F -> F + F - F - F + F\n}\n");
+  StudioModelDef def = modelDef();
+  StudioModel plain(def);
+  plain.regrow();
+  ASSERT_EQ(plain.modelVersion(), 1u) << plain.state().dump(2);
+  EXPECT_TRUE(plain.notes().empty());
+  EXPECT_FALSE(plain.glb().empty());
+  def.sets = {"music"};
+  StudioModel heard(def);
+  heard.regrow();
+  ASSERT_EQ(heard.modelVersion(), 1u) << heard.state().dump(2);
+  const std::vector<StudioNote> notes = heard.notes();
+  ASSERT_EQ(notes.size(), 25u);
+  EXPECT_EQ(notes.back().start, 24 * 0.5 * 60 / 160);
+  EXPECT_EQ(notes.back().duration, 0.5 * 60 / 160);
+  EXPECT_TRUE(heard.glb().empty());
+  EXPECT_FALSE(heard.state()["hasModel"].get<bool>());
+}
+
+// The frames the page steps through: --frames of them over [from, until], at the
+// developmental time each was grown to.
+TEST_F(StudioFixture, TheStateListsTheTimesOfTheFrames) {
+  StudioModel model(modelDef());
+  model.regrow();
+  EXPECT_EQ(model.state()["frames"], nlohmann::json::array({0.0, 1.0, 2.0, 3.0}));
+}
+
 // Another tool's file, converted when read, is never written over with cell-language text:
 // the slider's value can be dropped, not written.
 TEST_F(StudioFixture, ASlidersValueIsNotWrittenIntoAConvertedFile) {
