@@ -442,6 +442,19 @@ try {
   check(pageErrors.length === 0, `no script errors in the page (${pageErrors.join('; ')})`);
 } catch (error) {
   check(false, String(error && error.stack || error));
+  // What the page and the server knew when it failed.
+  try {
+    const pages = browser.contexts().flatMap((context) => context.pages());
+    for (const open of pages)
+      console.log('page', open.url(), await open.evaluate(() => JSON.stringify({
+        studio: { ...window.studio, picked: undefined }, body: document.body.dataset,
+        status: document.getElementById('status').textContent,
+        defineError: document.getElementById('define-error').textContent })));
+    const state = await (await fetch(url + 'api/state')).json();
+    console.log('state', JSON.stringify({ ...state, source: undefined }));
+  } catch (more) {
+    console.log('no more to say:', String(more));
+  }
 } finally {
   await browser.close();
   await stopStudio(studio);
