@@ -101,7 +101,11 @@ int runRun(const RunOptions& options) {
     std::cout << "time " << report.time << ", cells " << report.cells << ", steps " << stats.steps << ", events "
               << stats.events << ", cells born " << stats.cellsBorn << ", rule firings " << stats.ruleFirings
               << ", held " << formatMebibytes(report.held) << ", files " << report.files.size() << ", wall "
-              << report.wallSeconds << " s\n";
+              << report.wallSeconds << " s";
+    // Which ways the linear words were rewritten (core/rewrite_plan.h), when any was.
+    if (const std::string rewrites = formatRewriteCounts(stats.rewrites); !rewrites.empty())
+      std::cout << ", rewrites: " << rewrites;
+    std::cout << "\n";
   }
   if (growOnly) return kExitOk;
   std::cerr << "wrote " << report.files.size() << " file" << (report.files.size() == 1 ? "" : "s") << " to "

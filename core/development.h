@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/limits.h"
+#include "core/rewrite_plan.h"
 #include "core/successors.h"
 #include "lang/program.h"
 #include "pools/pool.h"
@@ -37,6 +38,8 @@ struct WorldStats {
   uint64_t rateEquations = 0;  ///< rate equations integrated in the last step
   uint64_t rewritesBySlices = 0;  ///< linear words rewritten by slices (core/parallel_rewrite.h)
   uint64_t stencilSteps = 0;      ///< rate steps of full grids taken as stencils (core/rate_stencil.h)
+  /// Linear words rewritten by each strategy, indexed by RewriteStrategy (core/rewrite_plan.h).
+  RewriteCounts rewrites{};
 };
 
 /// Cells and bytes held: by a pool, by a world and its nested systems, or by everything
@@ -66,6 +69,7 @@ struct StepContext {
   bool rewriteBySlices = true;  ///< WorldDef::rewriteBySlices
   bool rateStencils = true;     ///< WorldDef::rateStencils
   bool wordsWithoutIds = true;  ///< WorldDef::wordsWithoutIds
+  std::optional<RewriteStrategy> forcedRewrite = std::nullopt;  ///< WorldDef::testRewriteStrategy
 };
 
 /// Throws LimitError when a pool that holds `cells` cells and `bytes` bytes (its pool and

@@ -118,7 +118,9 @@ void LinearDevelopment::step(StepContext& context, double t1, bool stepRules) {
   double t = context.time;
   eventsThisStep_ = 0;
   activeGroup_ = activeGroup(program_, system_, t, context.seed);
-  if (compactWords_ && context.rewriteBySlices && !context.lineage) {
+  parallel_.force(context.forcedRewrite);
+  if (keepsWordCompact(parallel_.shape(compactWords_), context.rewriteBySlices, context.lineage != nullptr,
+                       context.forcedRewrite)) {
     expireCompact(t, t1);
     context_ = nullptr;
     return;
@@ -136,7 +138,8 @@ void LinearDevelopment::expireCompact(double t, double t1) {
   const double horizon = t1 + timeTolerance(t1);
   // A word rewritten by a table is written without ids, which its replay makes again if
   // a reader asks (core/table_replay.h). The pool keeps the replay, not this development.
-  parallel_.writeWithoutIds(context_->wordsWithoutIds);
+  parallel_.writeWithoutIds(
+      writesWordsWithoutIds(parallel_.shape(compactWords_), context_->wordsWithoutIds, context_->forcedRewrite));
   if (!parallel_.writesWithoutIds()) pool_.ensureIds();
   for (;;) {
     const double earliest = earliestDeath();
@@ -145,7 +148,6 @@ void LinearDevelopment::expireCompact(double t, double t1) {
     pool_.storeCompactWord(context_->idSalt);
     const CompactWord& word = pool_.compactWord();
     const size_t size = word.size();
-    const unsigned threads = size < ParallelRewrite::kMinimumCells ? 1 : std::max(1u, context_->threads);
     // The serial pass stops where a limit is passed and says so: a word that would pass
     // one is left to it.
     auto fits = [&](uint64_t modules, uint64_t events, uint64_t, uint64_t heldModules) {
@@ -157,8 +159,8 @@ void LinearDevelopment::expireCompact(double t, double t1) {
       }
       return true;
     };
-    const auto counts = parallel_.rewriteCompact(word, instant, activeGroup_, threads, nextWord_, fits, context_->seed,
-                                                 context_->ancestors);
+    const auto counts = parallel_.rewriteCompact(word, instant, activeGroup_, context_->threads, nextWord_, fits,
+                                                 context_->seed, context_->ancestors);
     if (!counts) {
       // The serial pass of records takes the word on: what was written of the next word
       // goes first (at a limit of 200 MiB the runaway word held 67 MB of it beside the
@@ -187,6 +189,7 @@ void LinearDevelopment::expireCompact(double t, double t1) {
     context_->stats.cellsBorn += counts->born;
     // As the records' pass counts it: a word large enough for slices.
     if (size >= ParallelRewrite::kMinimumCells) ++context_->stats.rewritesBySlices;
+    ++context_->stats.rewrites[static_cast<size_t>(parallel_.lastStrategy())];
     earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
     earliestVersion_ = pool_.structureVersion();
     // The old word is still held beside the new one until the next instant reuses it.
@@ -476,6 +479,7 @@ void LinearDevelopment::expireContextFree(double t1) {
     }
   }
   finishWord();
+  ++context_->stats.rewrites[static_cast<size_t>(RewriteStrategy::Serial)];
 }
 
 // With context, events are processed instant by instant: all cells that reach their
@@ -525,6 +529,7 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
       }
     }
     finishWord();
+    ++context_->stats.rewrites[static_cast<size_t>(RewriteStrategy::Serial)];
     if (system_.decomposes) decomposeWord(earliest);
   }
 }

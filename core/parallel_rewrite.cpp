@@ -583,6 +583,39 @@ void ParallelRewrite::flushBatch(const CompiledRule& rule, Batch& batch, uint64_
   batch.lanes = 0;
 }
 
+RewriteShape ParallelRewrite::shape(bool compact) const {
+  RewriteShape shape;
+  shape.compact = compact && appliesToCompactWords();
+  shape.contextFreeSlices = contextFree_;
+  shape.atInstantSlices = atInstants_;
+  shape.labelsOnly = allLabelsOnly_;
+  shape.inBatchesOrLabelsOnly = allInBatchesOrLabelsOnly_;
+  shape.byTable = byTable_;
+  shape.choiceVaries = anyChoiceVaries_;
+  shape.oneForOne = oneForOne_;
+  shape.withValues = withValues_;
+  shape.anyState = anyState_;
+  shape.batched = anyCompactBatched_;
+  return shape;
+}
+
+RewriteFacts ParallelRewrite::facts(RewritePass pass, size_t size, unsigned threads, const StepContext* context) const {
+  RewriteFacts facts;
+  facts.shape = shape(true);
+  facts.pass = pass;
+  facts.size = size;
+  facts.threads = threads;
+  if (context) {
+    facts.slices = context->rewriteBySlices;
+    facts.lineage = context->lineage != nullptr;
+  }
+  facts.withoutIds = withoutIds_;
+  facts.growthKnown = lastGrowth_.modules > 0;
+  facts.boundsMissed = boundsMissed_;
+  facts.forced = forced_;
+  return facts;
+}
+
 bool ParallelRewrite::rewriteContextFree(const LinearPool& pool, double horizon, StepContext& context,
                                          const double* parents, uint64_t& events, CellArray& cells, StateArray& state) {
   cells.clear();
@@ -601,12 +634,12 @@ bool ParallelRewrite::rewriteAtInstant(const LinearPool& pool, double instant, i
 
 bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context, uint64_t& events, CellArray& cells,
                               StateArray& state) {
-  const unsigned threads = context.threads;
   const size_t size = step.pool.size();
-  // On one thread the slices pay where nothing is evaluated cell by cell (two quick
-  // passes beat the general one); other words keep the serial pass there.
-  const bool quickOnOne = allLabelsOnly_ || (pass == Pass::ContextFree && allInBatchesOrLabelsOnly_);
-  if (!context.rewriteBySlices || (threads < 2 && !quickOnOne) || size < kMinimumCells || context.lineage) return false;
+  const RewritePlan plan = planRewrite(
+      facts(pass == Pass::ContextFree ? RewritePass::ContextFree : RewritePass::AtInstant, size, context.threads,
+            &context));
+  if (plan.strategy != RewriteStrategy::RecordSlices) return false;
+  const unsigned threads = plan.threads;
   while (workers_.size() < threads) workers_.push_back(std::make_unique<Worker>(program_));
   if (anyChoiceVaries_ && chosen_.size() < size) chosen_.resize(size);
   const size_t sliceCount = std::min<size_t>(size, size_t{threads} * kSlicesPerThread);
@@ -658,6 +691,7 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
   context.stats.events += totalEvents;
   context.stats.cellsBorn += totalBorn;
   ++context.stats.rewritesBySlices;
+  ++context.stats.rewrites[static_cast<size_t>(RewriteStrategy::RecordSlices)];
   return true;
 }
 
@@ -984,65 +1018,77 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   if (!word.holdsIds() && !withoutIds_)
     throw std::logic_error("ontogen: internal error: a compact word held without ids rewritten with ids");
   const size_t size = word.size();
-  threads = std::max(threads, 1u);
-  auto withLabels = [&](const auto& work) { return withLabelsOf(word, work); };
   next.clearWithBirthsOf(word);
   const double expectedBirth = earliestDeath_;  // the last rewrite's, at this word's first death
   earliestDeath_ = kForever;
-
-  // One thread: one pass, writing the next word as it goes, and asking `fits` on the way,
-  // for a small word, and for a large one whose choices vary with the context (a signal),
-  // where counting first would choose twice, or whose successors' values are evaluated
-  // (the parametric word), where counting first would walk the events twice. A large
-  // word's arrays are then reserved for the growth of the last rewrite, since growing them
-  // as it goes would hold a copy more (Koch at n = 10: 144 MB against 101 MB); with no
-  // growth to go by yet, the word is counted first, as by slices. Where every choice is
-  // fixed (Koch, Thue-Morse) counting is cheap, and writing in place beats appending
-  // (Koch: 72 against 81 ms).
-  // A word written without ids takes the table's walk at every size.
-  if (withoutIds_ && (threads == 1 || size < kMinimumCells))
-    return rewriteByTableAlone(word, horizon, next, fits, expectedBirth);
-  // A large word whose choices vary and whose modules each write one (the signal), on
-  // any number of threads: each thread writes its slice in place, in one pass. Its bounds:
-  // at most every module expires and gives birth to one. When they pass a limit, the
-  // passes below, which count as they go, decide.
-  const bool inPlace = anyChoiceVaries_ && !withValues_ && oneForOne_ && size >= kMinimumCells;
-  if (inPlace && (!fits || fits(size, size, size, size)))
-    return rewriteOneForOne(word, horizon, group, threads, next, seed, expectedBirth);
-  const bool onePass = anyChoiceVaries_ || anyCompactBatched_;
-  if (threads == 1 && (size < kMinimumCells || (onePass && lastGrowth_.modules > 0))) {
-    if (size >= kMinimumCells)
-      next.reserve(Growth::room(size, lastGrowth_.modules), Growth::room(word.runCount(), lastGrowth_.runs),
-                   withValues_ ? Growth::room(word.valueCount(), lastGrowth_.values) : 0);
-    SerialOut out{next, word};
-    bool refused = false;
-    auto stop = [&](const CompactCounts& sofar) {
-      refused = fits && !fits(next.size(), sofar.events, sofar.born, next.size());
-      return refused;
-    };
-    CompactEvaluation evaluation{seed, ancestors, {}};
-    const CompactCounts counts = withLabels([&](const auto& labels) {
-      return withValues_
-                 ? rewriteRangeWithValues(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, evaluation)
-                 : rewriteRange<false>(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, evaluation);
-    });
-    if (refused || (fits && !fits(next.size(), counts.events, counts.born, next.size()))) {
-      next.clear();
-      return std::nullopt;
+  RewriteFacts known = facts(RewritePass::Compact, size, threads, nullptr);
+  RewritePlan plan = planRewrite(known);
+  // In place, its bounds being at most every module expiring and giving birth to one.
+  // When they pass a limit, the strategies that count as they go decide.
+  if (plan.strategy == RewriteStrategy::OneForOne) {
+    if (!fits || fits(size, size, size, size)) {
+      ran_ = RewriteStrategy::OneForOne;
+      return rewriteOneForOne(word, horizon, group, plan.threads, next, seed, expectedBirth);
     }
-    next.finish();
-    lastGrowth_ = Growth::of(word, next);
-    return counts;
+    known.inPlaceRefused = true;
+    plan = planRewrite(known);
   }
+  ran_ = plan.strategy;
+  switch (plan.strategy) {
+    case RewriteStrategy::CompactSerial:
+      return rewriteSerially(word, horizon, group, next, fits, seed, ancestors);
+    case RewriteStrategy::TableAlone:
+      return rewriteByTableAlone(word, horizon, next, fits, expectedBirth);
+    case RewriteStrategy::Parts:
+      return rewriteInParts(word, horizon, group, plan.threads, next, fits, seed);
+    default:
+      return rewriteBySlices(word, horizon, group, plan.threads, next, fits, seed, ancestors, expectedBirth,
+                             plan.strategy == RewriteStrategy::TableBounds);
+  }
+}
 
-  if (threads == 1 && byTable_) return rewriteByTableAlone(word, horizon, next, fits, expectedBirth);
+// One pass on one thread, writing the next word as it goes and asking `fits` on the way.
+// A large word's arrays are reserved for the growth of the last rewrite, since growing
+// them as it goes would hold a copy more (Koch at n = 10: 144 MB against 101 MB).
+std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteSerially(const CompactWord& word,
+                                                                               double horizon, int group,
+                                                                               CompactWord& next,
+                                                                               const CompactFits& fits, uint64_t seed,
+                                                                               const double* ancestors) {
+  const size_t size = word.size();
+  auto withLabels = [&](const auto& work) { return withLabelsOf(word, work); };
+  if (size >= kMinimumCells)
+    next.reserve(Growth::room(size, lastGrowth_.modules), Growth::room(word.runCount(), lastGrowth_.runs),
+                 withValues_ ? Growth::room(word.valueCount(), lastGrowth_.values) : 0);
+  SerialOut out{next, word};
+  bool refused = false;
+  auto stop = [&](const CompactCounts& sofar) {
+    refused = fits && !fits(next.size(), sofar.events, sofar.born, next.size());
+    return refused;
+  };
+  CompactEvaluation evaluation{seed, ancestors, {}};
+  const CompactCounts counts = withLabels([&](const auto& labels) {
+    return withValues_
+               ? rewriteRangeWithValues(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, evaluation)
+               : rewriteRange<false>(word, 0, size, horizon, group, labels, out, stop, earliestDeath_, evaluation);
+  });
+  if (refused || (fits && !fits(next.size(), counts.events, counts.born, next.size()))) {
+    next.clear();
+    return std::nullopt;
+  }
+  next.finish();
+  lastGrowth_ = Growth::of(word, next);
+  return counts;
+}
 
-  // Several threads, choices that vary with the context (the signal), once the growth of
-  // a rewrite is known (parts are reserved by it): counting first would choose twice.
-  // Parts hold no state values (CompactWord::appendWord).
-  if (anyChoiceVaries_ && !anyState_ && lastGrowth_.modules > 0 && size >= kMinimumCells)
-    return rewriteInParts(word, horizon, group, threads, next, fits, seed);
-
+// Slices on several threads, or a large word counted first on one: every slice counts,
+// then writes in place (CompactWord::Slice); or, for the table's words, each is placed by
+// its bounds and written once.
+std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteBySlices(
+    const CompactWord& word, double horizon, int group, unsigned threads, CompactWord& next, const CompactFits& fits,
+    uint64_t seed, const double* ancestors, double expectedBirth, bool placeByBounds) {
+  const size_t size = word.size();
+  auto withLabels = [&](const auto& work) { return withLabelsOf(word, work); };
   const size_t sliceCount = std::max<size_t>(1, std::min<size_t>(size, size_t{threads} * kSlicesPerThread));
   auto everySlice = [&](const auto& work) { forEachIndex(sliceCount, threads, work); };
 
@@ -1059,7 +1105,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     joinWrittenSlices(word, next, slices, earliest, withoutIds_, threads);
     return std::optional<CompactCounts>(counts);
   };
-  bool byBounds = false;  // the slices were placed by their bounds, not counted
+  bool byBounds = false;  // the slices are being placed by their bounds, not counted
   auto pass = [&](size_t s) {
     CompactWord::Slice& out = slices[s];
     const bool writing = out.writing();
@@ -1097,7 +1143,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   // starts a run. Both hold in Koch and Thue-Morse at every step, and the count (a sixth
   // of the writing there) is saved. When a slice writes less, the word is written again
   // after counting, and this development counts from then on.
-  if (byTable_ && !boundsMissed_) {
+  if (placeByBounds) {
     std::vector<TableBound> bounds(sliceCount);
     everySlice([&](size_t s) {
       const size_t begin = size * s / sliceCount, end = size * (s + 1) / sliceCount;
@@ -1121,6 +1167,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
       const bool asBounded = std::all_of(slices.begin(), slices.end(),
                                          [](const CompactWord::Slice& slice) { return slice.wroteAsAssumed(); });
       if (asBounded) {
+        ran_ = RewriteStrategy::TableBounds;
         CompactCounts counts;
         for (const CompactCounts& slice : counted) {
           counts.events += slice.events;
@@ -1136,6 +1183,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
     }
   }
 
+  ran_ = RewriteStrategy::CompactSlices;
   everySlice(pass);
   CompactCounts counts;
   uint64_t modules = 0;

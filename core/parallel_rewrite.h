@@ -32,7 +32,8 @@
 // left in place and written when the batch is evaluated. A word whose choices vary with
 // the context is written in one pass too: where every rule writes one successor (a
 // signal), each thread's slice knows its place and is written in place; else each thread
-// writes a part of its own, copied into the word after.
+// writes a part of its own, copied into the word after. Which of these ways a word takes,
+// and on how many threads, planRewrite alone decides (core/rewrite_plan.h).
 
 #include <algorithm>
 #include <cstdint>
@@ -43,6 +44,7 @@
 #include <vector>
 
 #include "core/development.h"
+#include "core/rewrite_plan.h"
 #include "core/successors.h"
 #include "lang/program.h"
 #include "pools/compact_word.h"
@@ -57,6 +59,15 @@ class ParallelRewrite {
 
   bool appliesContextFree() const { return contextFree_; }
   bool appliesAtInstants() const { return atInstants_; }
+
+  /// What the rules allow, for planRewrite (core/rewrite_plan.h). `compact`: the
+  /// development may keep the word compact (appliesToCompactWords, and nothing else of
+  /// the system needs the records).
+  RewriteShape shape(bool compact) const;
+  /// For tests only (WorldDef::testRewriteStrategy): the strategy to take where it applies.
+  void force(std::optional<RewriteStrategy> strategy) { forced_ = strategy; }
+  /// The strategy that wrote the last compact word (rewriteCompact), after any fallback.
+  RewriteStrategy lastStrategy() const { return ran_; }
 
   /// The context-free pass of the step ending at `horizon`: rewrites `pool`'s word into
   /// `cells` and `state` (emptied first), with `parents` the me.parent value of each cell
@@ -102,8 +113,8 @@ class ParallelRewrite {
   /// figures than it accepted; it may be asked from several threads at once.
   using CompactFits = std::function<bool(uint64_t modules, uint64_t events, uint64_t born, uint64_t heldModules)>;
 
-  /// The pass of rewriteAtInstant on a compact word (docs/COMPACT_WORDS.md), on `threads`
-  /// threads by slices (CompactWord::Slice): writes `next` from `word`. Every cell whose
+  /// The pass of rewriteAtInstant on a compact word (docs/COMPACT_WORDS.md), on at most
+  /// `threads` threads by the strategy planRewrite picks: writes `next` from `word`. Every cell whose
   /// terminal age is at most `horizon` fires the rule it chooses, rule group `group` active,
   /// its context read in `word`, or renews itself; its successors are born at its terminal
   /// age, with the ids the other passes give them. Other cells are copied. Returns the
@@ -125,7 +136,7 @@ class ParallelRewrite {
   double earliestDeath() const { return earliestDeath_; }
 
   /// Words smaller than this go the serial way: threads would cost more than they save.
-  static constexpr size_t kMinimumCells = size_t{1} << 15;
+  static constexpr size_t kMinimumCells = kMinimumSliceCells;
 
  private:
   enum class Pass : uint8_t { ContextFree, AtInstant };
@@ -160,6 +171,8 @@ class ParallelRewrite {
     const double* parents;
   };
 
+  /// The facts of a rewrite of a word of `size` modules by `pass` on at most `threads`.
+  RewriteFacts facts(RewritePass pass, size_t size, unsigned threads, const StepContext* context) const;
   bool rewrite(Pass pass, const Step& step, StepContext& context, uint64_t& events, CellArray& cells,
                StateArray& state);
   void count(Pass pass, const Step& step, Slice& slice, Worker& worker);
@@ -259,6 +272,14 @@ class ParallelRewrite {
   /// growth kept for the next rewrite.
   void joinWrittenSlices(const CompactWord& word, CompactWord& next, std::span<CompactWord::Slice> slices,
                          std::span<const double> earliest, bool closeGaps, unsigned threads);
+  /// rewriteCompact on one thread in one pass, asking `fits` on the way (CompactSerial).
+  std::optional<CompactCounts> rewriteSerially(const CompactWord& word, double horizon, int group, CompactWord& next,
+                                               const CompactFits& fits, uint64_t seed, const double* ancestors);
+  /// rewriteCompact by slices on `threads`: placed by the table's bounds first when
+  /// `byBounds` (TableBounds), else counted then written (CompactSlices).
+  std::optional<CompactCounts> rewriteBySlices(const CompactWord& word, double horizon, int group, unsigned threads,
+                                               CompactWord& next, const CompactFits& fits, uint64_t seed,
+                                               const double* ancestors, double expectedBirth, bool byBounds);
   /// rewriteCompact on one thread for a word rewritten by the table: one pass, no count.
   /// `expectedBirth`: the birth most new modules will likely have.
   std::optional<CompactCounts> rewriteByTableAlone(const CompactWord& word, double horizon, CompactWord& next,
@@ -406,6 +427,8 @@ class ParallelRewrite {
   std::vector<std::unique_ptr<Worker>> workers_;
   size_t frameSize_ = 0;
   double earliestDeath_ = kForever;
+  std::optional<RewriteStrategy> forced_;
+  RewriteStrategy ran_ = RewriteStrategy::CompactSerial;
 };
 
 }  // namespace ontogen

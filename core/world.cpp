@@ -66,6 +66,7 @@ StepContext World::stepContext(const WorldHeld& elsewhere) {
   context.lineage = def_.recordLineage ? &lineage_ : nullptr;
   context.rewriteBySlices = def_.rewriteBySlices;
   context.wordsWithoutIds = def_.wordsWithoutIds;
+  context.forcedRewrite = def_.testRewriteStrategy;
   context.rateStencils = def_.rateStencils;
   context.idSalt = idSalt();
   context.systemCellId = parent_ ? idValue(cellId_) : -1;
@@ -332,6 +333,8 @@ void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tre
         stats_.crowded += child->stats_.crowded - before.crowded;
         stats_.rewritesBySlices += child->stats_.rewritesBySlices - before.rewritesBySlices;
         stats_.stencilSteps += child->stats_.stencilSteps - before.stencilSteps;
+        for (size_t k = 0; k < kRewriteStrategyCount; ++k)
+          stats_.rewrites[k] += child->stats_.rewrites[k] - before.rewrites[k];
       }
     } else {
       child = std::make_unique<World>(*this, cell.view(), &tree);

@@ -23,6 +23,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -60,6 +61,10 @@ struct WorldDef {
   /// (docs/COMPACT_WORDS.md, "Words without ids"). Off, every word holds its ids as it
   /// grows; readers see the same cells either way, which is what tests compare.
   bool wordsWithoutIds = true;
+  /// For tests only: rewrite linear words by this strategy wherever it applies
+  /// (core/rewrite_plan.h), so that a test runs each against the serial pass; where it does
+  /// not apply the usual plan is taken. WorldStats::rewrites says which ran.
+  std::optional<RewriteStrategy> testRewriteStrategy = std::nullopt;
   /// Answers the query modules (`?P(x, y, z)` ...) after seeding and after every step
   /// (core/environment_process.h); null: they keep their values. Shared by copies.
   std::shared_ptr<const EnvironmentProcess> environment = nullptr;

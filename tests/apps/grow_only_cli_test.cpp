@@ -33,6 +33,19 @@ TEST(GrowOnly, GrowsKochAndWritesNothing) {
   EXPECT_EQ(result.err.find("wrote"), std::string::npos) << result.err;
 }
 
+// --stats ends with the rewrites each strategy made (core/rewrite_plan.h): Koch's word
+// stays under 2^15 modules to generation 6, so on any thread count each of the six steps
+// walks it by its table on one thread.
+TEST(GrowOnly, StatisticsSayHowTheWordWasRewritten) {
+  for (const char* threads : {"1", "3"}) {
+    const CliResult result =
+        runOntogen("run " + modelPath("koch.cell") + " --until 6 --format none --stats --threads " + threads);
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_NE(result.out.find(" s, rewrites: table-alone 6\n"), std::string::npos)
+        << threads << " threads: " << result.out;
+  }
+}
+
 TEST(GrowOnly, StatisticsMatchARunThatDraws) {
   const fs::path dir = scratchDir("grow_only_same");
   const std::string model = modelPath("anabaena.cell");
