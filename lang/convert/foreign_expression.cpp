@@ -423,6 +423,19 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
             at = after;
             continue;
           }
+          if (name == "getIterationNb") {
+            uint32_t close = next + 1;
+            while (close < end && isSpace(text_[close])) ++close;
+            if (close == end || text_[close] != ')') code(at, close, "getIterationNb with arguments");
+            if (inHomomorphism)
+              fail(at, close + 1,
+                   "getIterationNb() in the interpretation, which L-Py reads after the last step: the converter does "
+                   "not write its value there");
+            const bool single = iterationNumber.find(' ') == std::string::npos;
+            emit(single ? iterationNumber : "(" + iterationNumber + ")", false, close + 1 - at);
+            at = close + 1;
+            continue;
+          }
           if (name == "float") {  // float(x) is x
             at = stop;
             continue;

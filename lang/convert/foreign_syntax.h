@@ -66,6 +66,10 @@ class ForeignSyntax {
   std::map<std::string, StepVariable, std::less<>> stepVariables;
   /// The section being read is a homomorphism.
   bool inHomomorphism = false;
+  /// What L-Py's `getIterationNb()` (the number of the step being derived, from 0) reads
+  /// as: `time - 1` in a production, whose `time` is the step it makes (from 1); the hooks
+  /// (lpy_hooks.h) set it to `time` for `use group:`, read at the start of the step.
+  std::string iterationNumber = "time - 1";
   /// L-Py: where a file shows Python 2 (a print statement, `<>`, `xrange`, ...) and does
   /// not import division from __future__: its `/` floors between integers, which the
   /// converter cannot tell from a quotient, and its round() takes halves away from zero.

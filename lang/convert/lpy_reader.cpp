@@ -1,5 +1,6 @@
 #include "lang/convert/lpy_reader.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <map>
@@ -8,6 +9,7 @@
 
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
+#include "lang/convert/lpy_hooks.h"
 #include "lang/convert/python_body.h"
 
 namespace ontogen::convert {
@@ -78,7 +80,7 @@ class LPyReader {
       line_ = {begin, end};
       const bool indented = begin > line.begin;
       if (ended || indented) python(begin, end);
-      if (auto last = quietHook(lines, i, begin, end)) {
+      if (auto last = hook(lines, i, begin, end)) {
         i = *last;
         continue;
       }
@@ -103,6 +105,7 @@ class LPyReader {
         continue;
       }
       if (auto section = sectionOf(line)) {
+        syntax_.inHomomorphism = *section == "homomorphism";
         add(StatementKind::Section, *section);
         continue;
       }
@@ -165,6 +168,7 @@ class LPyReader {
       { python(begin, end); }
     }
     stamp();
+    applyHooks();
     checkChoices();
     // L-Py derives once unless the file says otherwise.
     if (!file_.derivationLength) file_.derivationLength = "1";
@@ -213,13 +217,6 @@ class LPyReader {
     }
   }
 
-  static bool isHook(std::string_view name) {
-    for (std::string_view hook : {"Start", "End", "StartEach", "EndEach", "StartInterpretation", "EndInterpretation",
-                                  "PostDraw", "__initialiseContext__"})
-      if (name == hook) return true;
-    return false;
-  }
-
   // `import math`, `from random import *`, `import random as rd`: the names these give
   // are translated.
   bool isImport(uint32_t begin, uint32_t end) {
@@ -258,36 +255,94 @@ class LPyReader {
     return false;
   }
 
-  // L-Py's hooks `def Start():`, `End`, `StartEach`, `EndEach`, `StartInterpretation`
-  // whose body only prints, asserts or passes change nothing the converted block holds:
-  // they are read over. The index of the hook's last line.
-  std::optional<size_t> quietHook(const std::vector<Line>& lines, size_t i, uint32_t begin, uint32_t end) const {
+  // L-Py's hooks, `def StartEach():` and the like (lpy_hooks.h): recorded, and read
+  // when the whole file is. The index of the hook's last line.
+  std::optional<size_t> hook(const std::vector<Line>& lines, size_t i, uint32_t begin, uint32_t end) {
     auto at = afterKeyword(clean_, Line{begin, end}, "def");
     if (!at) return std::nullopt;
     uint32_t a = *at;
     while (a < end && std::isspace(static_cast<unsigned char>(clean_[a]))) ++a;
     uint32_t stop = a;
     while (stop < end && isNameChar(clean_[stop])) ++stop;
-    const std::string_view name = std::string_view(clean_).substr(a, stop - a);
-    if (name != "Start" && name != "End" && name != "StartEach" && name != "EndEach" && name != "StartInterpretation")
-      return std::nullopt;
-    const uint32_t colon = syntax_.find(stop, end, ":");
+    HookText hook;
+    hook.name = std::string(clean_.substr(a, stop - a));
+    if (!isLPyHook(hook.name)) return std::nullopt;
+    while (stop < end && std::isspace(static_cast<unsigned char>(clean_[stop]))) ++stop;
+    if (stop >= end || clean_[stop] != '(') return std::nullopt;
+    uint32_t close = stop + 1;
+    while (close < end && clean_[close] != ')' && clean_[close] != '(') ++close;
+    if (close == end || clean_[close] != ')') return std::nullopt;
+    const uint32_t colon = syntax_.find(close + 1, end, ":");
     if (colon == end) return std::nullopt;
+    for (uint32_t from = stop + 1; from < close;) {
+      const uint32_t comma = syntax_.find(from, close, ",");
+      uint32_t x = from, y = comma;
+      syntax_.trim(x, y);
+      if (x < y) hook.parameters.emplace_back(clean_.substr(x, y - x));
+      from = comma + 1;
+    }
+    hook.begin = begin;
+    hook.end = colon + 1;
     size_t last = i;
-    std::vector<BodyLine> body;
     for (size_t k = i + 1; k < lines.size(); ++k) {
       const uint32_t first = firstNonSpace(clean_, lines[k]);
       if (first == lines[k].end) continue;
       if (first == lines[k].begin) break;
       last = k;
     }
-    for (const BodyLine& line : logicalLines(clean_, colon + 1, lines[last].end)) {
-      const Line l{line.begin, line.end};
-      if (afterKeyword(clean_, l, "pass") || afterKeyword(clean_, l, "print") || afterKeyword(clean_, l, "assert"))
-        continue;
-      return std::nullopt;  // read as Python: an error at the def
-    }
+    hook.body = logicalLines(clean_, colon + 1, lines[last].end);
+    hooks_.push_back(std::move(hook));
     return last;
+  }
+
+  // What the hooks set, put into the block: their constants as #defines, the values of
+  // each step where the productions read them, the group, the seed.
+  void applyHooks() {
+    syntax_.inHomomorphism = false;  // the hooks run around the steps
+    std::map<std::string, std::string, std::less<>> initial;
+    for (const Define& d : file_.defines) initial[cellName(d.name)] = d.value;
+    const HookEffects effects = translateHooks(syntax_, clean_, hooks_, initial);
+    for (const auto& [key, value] : effects.defines) {
+      const std::string& name = key;
+      auto given = std::find_if(file_.defines.begin(), file_.defines.end(),
+                                [&](const Define& d) { return cellName(d.name) == name; });
+      if (given != file_.defines.end()) {
+        given->value = value.value;
+        given->origin = value.origin;
+      } else {
+        file_.defines.push_back({name, value.value, value.origin});
+      }
+    }
+    if (effects.useGroup) {
+      file_.useGroup = effects.useGroup->value;
+      file_.useGroupOrigin = effects.useGroup->origin;
+    }
+    if (effects.seed) file_.seed = effects.seed->value;
+    bool homomorphism = false;
+    for (Statement& s : file_.statements) {
+      if (s.kind == StatementKind::Section) homomorphism = s.word == "homomorphism";
+      if (s.kind != StatementKind::Production) continue;
+      if (effects.backward && (effects.backward->first ? s.leftArrow == "<<" : s.rightArrow == ">>"))
+        syntax_.fail(effects.backward->second.begin, effects.backward->second.end,
+                     std::string(effects.backward->first ? "backward()" : "forward()") +
+                         " on every step, where a production has a new context of the other direction (" +
+                         (effects.backward->first ? "<<" : ">>") +
+                         "): the block derives one way, right to left exactly when its productions use >>");
+      if (effects.stepValues.empty()) continue;
+      std::vector<std::string> bound;
+      for (const std::vector<ModuleText>* word : {&s.left, &s.right})
+        for (const ModuleText& m : *word) bound.insert(bound.end(), m.args.begin(), m.args.end());
+      bound.insert(bound.end(), s.predecessor.args.begin(), s.predecessor.args.end());
+      bool replaced = false;
+      s.condition = withHookValues(s.condition, effects.stepValues, bound, &replaced);
+      s.probability = withHookValues(s.probability, effects.stepValues, bound, &replaced);
+      for (ModuleText& m : s.successors)
+        for (std::string& arg : m.args) arg = withHookValues(arg, effects.stepValues, bound, &replaced);
+      if (replaced && homomorphism)
+        syntax_.fail(s.origin.begin, s.origin.end,
+                     "a global L-Py's StartEach() sets at each step, read in the interpretation: its value after "
+                     "the last step is not written");
+    }
   }
 
   // The helper functions of one expression, `def f(x, y): return EXPR` on one line or
@@ -308,7 +363,7 @@ class LPyReader {
       while (stop < end && isNameChar(clean_[stop])) ++stop;
       std::string name(clean_.substr(a, stop - a));
       while (stop < end && std::isspace(static_cast<unsigned char>(clean_[stop]))) ++stop;
-      if (name.empty() || stop >= end || clean_[stop] != '(' || isHook(name)) continue;
+      if (name.empty() || stop >= end || clean_[stop] != '(' || isLPyHook(name)) continue;
       uint32_t close = stop + 1;
       while (close < end && clean_[close] != ')' && clean_[close] != '(') ++close;
       if (close == end || clean_[close] != ')') continue;
@@ -622,6 +677,7 @@ class LPyReader {
   LSystemFile file_;
   SourceRange line_;
   size_t stamped_ = 0;
+  std::vector<HookText> hooks_;
 };
 
 }  // namespace

@@ -84,6 +84,8 @@ struct LSystemFile {
   std::optional<std::string> seed;
   std::optional<std::string> derivationLength;  ///< steps: `#until`
   SourceRange derivationLengthOrigin;
+  std::optional<std::string> useGroup;  ///< `use group:`, an expression of time
+  SourceRange useGroupOrigin;
   std::vector<ModuleText> axiom;
   SourceRange axiomOrigin;
   std::vector<Statement> statements;

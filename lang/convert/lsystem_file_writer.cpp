@@ -94,6 +94,7 @@ CellProgram writeCellProgram(const LSystemFile& file, std::string_view sourceNam
   if (file.angle) line("  #angle " + *file.angle);
   if (file.seed) line("  #seed " + *file.seed);
   if (file.derivationLength) line("  #until " + *file.derivationLength, file.derivationLengthOrigin);
+  if (file.useGroup) line("  use group: " + *file.useGroup, file.useGroupOrigin);
   if (!file.axiom.empty()) line("  axiom " + wordText(file.axiom), file.axiomOrigin);
   for (const Statement& statement : file.statements) line("  " + statementText(statement), statement.origin);
   line("}");

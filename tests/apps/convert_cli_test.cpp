@@ -294,6 +294,24 @@ TEST(Convert, CpfgStepCountersGrowAsCpfgCountsTheSteps) {
       << end.err;
 }
 
+// L-Py's hooks: Start's globals are constants (n = 3, not the file's 1); StartEach
+// chooses group 1 at steps 0 and 3 (getIterationNb() % 3 == 0), else group 2, counts k
+// from Start's 10 by 2 before each step and sets half = getIterationNb() // 2; B gets
+// an E at step 2; End only checks. The words are L-Py's: k is 12 at step 0, 18 at step 3.
+TEST(Convert, LPyHooksChooseGroupsAndSetValuesAsLPyRunsThem) {
+  Result result = ontogen("word " + file("lpy_hooks.lpy") + " --at 1,2,3,4");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 1: A B(3, 12)\n"
+            "t = 2: A C(14, 0) B(3, 12)\n"
+            "t = 3: A C(16, 1) C(14, 0) B(3, 12) E\n"
+            "t = 4: A B(3, 18) C(16, 1) C(14, 0) B(3, 12) E\n");
+  Result converted = ontogen("convert " + file("lpy_hooks.lpy"));
+  ASSERT_EQ(converted.exitCode, 0) << converted.err;
+  EXPECT_NE(converted.out.find("  use group: if(fmod(fmod(time, 3) + 3, 3) == 0, 1, 2)\n"), std::string::npos)
+      << converted.out;
+}
+
 // A cpfg name that is a cell's internal state (a parameter `age`, a macro `time`) is
 // the file's own, not the cell's age or the clock: A(5) steps down by 2. nran(3, 0) is
 // cpfg's normal draw (deviation 0: 3); a macro that draws is drawn anew at each use, as

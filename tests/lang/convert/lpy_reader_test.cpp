@@ -195,7 +195,9 @@ TEST(LPyReader, HelperFunctionsOfOneExpressionAreInlined) {
   EXPECT_NE(more.error.find("'def': Python code"), std::string::npos) << more.error;
   auto hook = convertText(Dialect::LPy, "a.lpy", "def StartEach(): return 1\nAxiom: A\n");
   EXPECT_EQ(hook.line, 1);
-  EXPECT_NE(hook.error.find("'def': Python code"), std::string::npos) << hook.error;
+  EXPECT_EQ(hook.column, 18);
+  EXPECT_NE(hook.error.find("'return', which gives L-Py a new word, in L-Py's StartEach()"), std::string::npos)
+      << hook.error;
 }
 
 }  // namespace

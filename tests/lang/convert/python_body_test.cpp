@@ -151,12 +151,24 @@ TEST(PythonBody, QuietHooksAndImportsAreReadOver) {
                        "import math\nfrom openalea.plantgl.all import *\ndef Start():\n  print('go')\n\n"
                        "def EndEach(lstring):\n  assert lstring == 'A'\n  pass\nAxiom: A\n");
   ASSERT_EQ(c.error, "");
-  auto hook = convertText(Dialect::LPy, "a.lpy", "def StartEach():\n  backward()\nAxiom: A\n");
-  EXPECT_EQ(hook.line, 1);
-  EXPECT_NE(hook.error.find("'def': Python code"), std::string::npos) << hook.error;
-  auto other = convertText(Dialect::LPy, "a.lpy", "import numpy\nAxiom: A\n");
-  EXPECT_EQ(other.line, 1);
-  EXPECT_NE(other.error.find("'import': Python code"), std::string::npos) << other.error;
+  // backward() on every step is the direction a block with >> derives in; with <<, the
+  // other direction, it is refused at the call.
+  auto hook = convertText(Dialect::LPy, "a.lpy", "def StartEach():\n  backward()\nAxiom: A B\nA >> B --> C\n");
+  EXPECT_EQ(hook.error, "");
+  auto other = convertText(Dialect::LPy, "a.lpy", "def StartEach():\n  backward()\nAxiom: A B\nA << B --> C\n");
+  EXPECT_EQ(other.line, 2);
+  EXPECT_EQ(other.column, 3);
+  EXPECT_NE(other.error.find("backward() on every step, where a production has a new context of the other"),
+            std::string::npos)
+      << other.error;
+  auto switched = convertText(Dialect::LPy, "a.lpy",
+                              "def StartEach():\n  if getIterationNb() > 2: backward()\nAxiom: A\n");
+  EXPECT_EQ(switched.line, 2);
+  EXPECT_NE(switched.error.find("a direction of derivation switched on one way of a test"), std::string::npos)
+      << switched.error;
+  auto numpy = convertText(Dialect::LPy, "a.lpy", "import numpy\nAxiom: A\n");
+  EXPECT_EQ(numpy.line, 1);
+  EXPECT_NE(numpy.error.find("'import': Python code"), std::string::npos) << numpy.error;
 }
 
 TEST(PythonBody, LogicalLinesJoinOpenParentheses) {

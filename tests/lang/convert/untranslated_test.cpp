@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "lang/convert/foreign_syntax.h"
 #include "tests/lang/convert/convert_test_support.h"
@@ -190,6 +191,62 @@ TEST(Untranslated, TheLinesOfTheConvertedTextKnowTheirOrigin) {
   const size_t define = result.program->find("#define N 2");
   d.span = SourceSpan{&converted, static_cast<uint32_t>(define), static_cast<uint32_t>(define + 1)};
   EXPECT_EQ(mapToOriginal(d, file, result.lineOrigins).span.line(), 1);
+}
+
+// L-Py's hooks: what the block cannot say is refused at its place in the hook, never
+// read over: a group kept from the step before, state from step to step, the word,
+// values set after each step, and Python the converter does not read.
+TEST(Untranslated, LPyHooksThatCarryStateAreRefusedAtTheirPlace) {
+  struct Case {
+    std::string text;
+    int line, column;
+    std::string message;
+  };
+  const std::string rest = "Axiom: A\nproduction:\nA --> B(g)\n";
+  for (const Case& k : std::vector<Case>{
+           {"def StartEach():\n  if getIterationNb() == 2: useGroup(1)\n", 2, 3,
+            "a way through the test that calls no useGroup, keeping the group of the step before"},
+           {"g = 1\ndef StartEach():\n  global g\n  g = g * 2\n", 4, 3,
+            "'g' set in L-Py's StartEach() from its own value of the step before"},
+           {"def StartEach():\n  global g\n  g += getIterationNb()\n", 3, 3,
+            "'g' set in L-Py's StartEach() from its own value of the step before"},
+           {"def EndEach():\n  global g\n  g = 2\n", 3, 3,
+            "'g' set in L-Py's EndEach(), after each step: state carried to the next step"},
+           {"def StartEach():\n  seed(3)\n", 2, 3, "a seed set again at each step in L-Py's StartEach()"},
+           {"def StartEach():\n  useGroup(getGroup() + 1)\n", 2, 12, "getGroup(), the group of the step before,"},
+           {"def EndEach(lstring):\n  global g\n  g = lstring\n", 3, 7, "the word or scene 'lstring' read"},
+           {"def End(lstring):\n  for m in lstring: print(m)\n", 2, 3, "'for' in L-Py's End()"},
+           {"def StartInterpretation():\n  produce F\n", 2, 3, "'produce' in L-Py's StartInterpretation()"},
+       }) {
+    auto c = convertText(Dialect::LPy, "a.lpy", k.text + rest);
+    EXPECT_EQ(c.program, "") << k.text;
+    EXPECT_EQ(c.line, k.line) << k.text << c.error;
+    EXPECT_EQ(c.column, k.column) << k.text << c.error;
+    EXPECT_TRUE(c.untranslatable) << k.text;
+    EXPECT_NE(c.error.find(k.message), std::string::npos) << k.text << c.error;
+  }
+  // A value of StartEach read by the interpretation, after the last step: refused there.
+  auto drawn = convertText(Dialect::LPy, "a.lpy",
+                           "def StartEach():\n  global g\n  g = getIterationNb()\nAxiom: A\n"
+                           "interpretation:\nA --> F(g)\n");
+  EXPECT_EQ(drawn.line, 6);
+  EXPECT_NE(drawn.error.find("read in the interpretation"), std::string::npos) << drawn.error;
+}
+
+// What the hooks say that the block can: Start's constants replace the file's, a value
+// of constants set at each step is a constant, and one of getIterationNb() is written
+// where a production reads it (time - 1: a production's time is the step it makes).
+TEST(Untranslated, LPyHooksConstantsAndValuesOfTheStep) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "g = 1\ndef Start():\n  global g\n  g = 2\n  seed(7)\n"
+                       "def StartEach():\n  global h, s\n  h = g + 1\n  s = getIterationNb() * 2\n"
+                       "  if s > 2:\n    useGroup(1)\n  else: useGroup(0)\n"
+                       "Axiom: A\nproduction:\nA(s) --> B(s, h)\nA --> B(s)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #define g 2\n  #define h g + 1\n  #angle 60\n  #seed 7\n  #until 1\n"
+            "  use group: if((time * 2) > 2, 1, 0)\n  axiom A\n  production:\n  A(s) -> B(s, h)\n"
+            "  A -> B(((time - 1) * 2))\n");
 }
 
 }  // namespace
