@@ -318,29 +318,38 @@ void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tre
   if (!program_->hasSystemCells) return;
   const Pool& pool = rootPool();
   std::unordered_map<uint64_t, std::unique_ptr<World>> next;
-  for (CellCursor cell = pool.cursor(); !cell.done(); cell.next()) {
-    if (program_->masters[cell.master()].system < 0) continue;
-    const uint64_t id = cell.id();
-    std::unique_ptr<World> child;
-    if (auto it = children_.find(id); it != children_.end()) {
-      child = std::move(it->second);
-      if (step) {
-        const WorldStats before = child->stats_;
-        child->developStep(t1, stepRules, tree);
-        stats_.events += child->stats_.events - before.events;
-        stats_.ruleFirings += child->stats_.ruleFirings - before.ruleFirings;
-        stats_.cellsBorn += child->stats_.cellsBorn - before.cellsBorn;
-        stats_.crowded += child->stats_.crowded - before.crowded;
-        stats_.rewritesBySlices += child->stats_.rewritesBySlices - before.rewritesBySlices;
-        stats_.stencilSteps += child->stats_.stencilSteps - before.stencilSteps;
-        for (size_t k = 0; k < kRewriteStrategyCount; ++k)
-          stats_.rewrites[k] += child->stats_.rewrites[k] - before.rewrites[k];
+  try {
+    for (CellCursor cell = pool.cursor(); !cell.done(); cell.next()) {
+      if (program_->masters[cell.master()].system < 0) continue;
+      const uint64_t id = cell.id();
+      std::unique_ptr<World> child;
+      if (auto it = children_.find(id); it != children_.end()) {
+        if (step) {
+          World& stepped = *it->second;
+          const WorldStats before = stepped.stats_;
+          stepped.developStep(t1, stepRules, tree);
+          stats_.events += stepped.stats_.events - before.events;
+          stats_.ruleFirings += stepped.stats_.ruleFirings - before.ruleFirings;
+          stats_.cellsBorn += stepped.stats_.cellsBorn - before.cellsBorn;
+          stats_.crowded += stepped.stats_.crowded - before.crowded;
+          stats_.rewritesBySlices += stepped.stats_.rewritesBySlices - before.rewritesBySlices;
+          stats_.stencilSteps += stepped.stats_.stencilSteps - before.stencilSteps;
+          for (size_t k = 0; k < kRewriteStrategyCount; ++k)
+            stats_.rewrites[k] += stepped.stats_.rewrites[k] - before.rewrites[k];
+        }
+        child = std::move(it->second);
+      } else {
+        child = std::make_unique<World>(*this, cell.view(), &tree);
+        stats_.cellsBorn += child->stats_.cellsBorn;
       }
-    } else {
-      child = std::make_unique<World>(*this, cell.view(), &tree);
-      stats_.cellsBorn += child->stats_.cellsBorn;
+      next.emplace(id, std::move(child));
     }
-    next.emplace(id, std::move(child));
+  } catch (...) {
+    // A child that failed (a limit, non-finite state) stops the run, which still counts
+    // the cells and bytes of every world: the children moved out go back.
+    for (auto& [id, child] : next)
+      if (auto it = children_.find(id); it != children_.end() && !it->second) it->second = std::move(child);
+    throw;
   }
   // The children whose cells are gone go, and what they held with them.
   for (const auto& [id, child] : children_) {

@@ -90,6 +90,17 @@ TEST(FiniteState, GridsAndNestedSystemsAreCheckedToo) {
   EXPECT_NE(nested.message.find("'A' holds x = inf"), std::string::npos) << nested.message;
 }
 
+// A nested system that stops the development leaves every world whole: the run still
+// counts their cells and bytes for its report (this read a null world, a segmentation
+// fault in `ontogen run`).
+TEST(FiniteState, AWorldStoppedByANestedSystemStillCountsEveryCell) {
+  World world(compileOrFail("system top { pool linear; axiom inner inner; }\nsystem inner { pool linear; axiom A; }\n"
+                            "cell A(x = 1) { rules { x = x * 1e300; } }\n"));
+  EXPECT_THROW(world.advanceTo(5, 1), ModelError);
+  EXPECT_EQ(world.totalCells(), 4u);  // two 'inner' cells, and the A of each
+  EXPECT_EQ(world.held().cells, 4u);
+}
+
 TEST(FiniteState, AProgramThatAllowsItDevelopsOn) {
   auto program = compileOrFail("#allow nonfinite\ncell A(x = 1) { rules { x = x * 1e300; } }\nsystem s { pool linear; axiom A; }\n");
   EXPECT_TRUE(program->allowsNonfinite);
