@@ -1,15 +1,18 @@
 #!/usr/bin/env python3
 """A mutation campaign against the ontogen executable (tests/fuzz/README.md).
 
-Makes mutants of the programs under models/ and tests/programs/ with the operators of
-issue 16 (tokens deleted, duplicated and swapped; huge, tiny and non-finite numbers;
-truncations; random bytes and invalid UTF-8; very deep nesting; device files and FIFOs
-as imports) and runs `ontogen check`, `ontogen word --json --at ...` and a short
-`ontogen run` on each, under a time limit. Each run is classified:
+Makes mutants of the programs under models/ and tests/programs/, and (half of them) of
+the cpfg (.l) and L-Py (.lpy) files under tests/convert/, with the operators of issue 16 (tokens
+deleted, duplicated and swapped; huge, tiny and non-finite numbers; truncations; random
+bytes and invalid UTF-8; very deep nesting; device files and FIFOs as imports, for a .l
+as its view file, and deep nesting again for a .lpy, which reads no other file) and runs `ontogen check`, `ontogen word --json --at ...` and a short
+`ontogen run` on each (a .l or .lpy `ontogen convert` first), under a time limit. Each
+run is classified:
 
   crash          ended by a signal, exit 70 (an internal error), or a sanitizer report
   hang           still running at the time limit
-  unlocated      exit 1 (errors in the program) without any FILE:LINE:COL: error
+  unlocated      exit 1 (errors in the program) or 6 (code the converter cannot
+                 translate) without any FILE:LINE:COL: error
   invalid JSON   `word --json` exited 0 and printed no valid JSON
 
 and the counts are printed as a Markdown table, with the mutants that failed kept in
@@ -106,10 +109,20 @@ def random_bytes(rng, text, _):
     return text[:at] + insert + text[at:]
 
 
-def deep_nesting(rng, text, _):
+def deep_nesting(rng, text, mutant):
     depth = rng.choice([100, 1000, 10000, 100000])
-    kind = rng.randrange(5)
     at = rng.randint(0, len(text))
+    if mutant['kind'] != '.cell':  # conditionals (C's or Python's) or parentheses for one of its numbers
+        if rng.random() < 0.5:
+            value = b'1?' * depth + b'1' + b':2' * depth if mutant['kind'] == '.l' else b'1 if 0 else ' * depth + b'2'
+        else:
+            value = b'(' * depth + b'1' + b')' * depth
+        numbers = list(NUMBER.finditer(text))
+        if not numbers:
+            return text
+        number = rng.choice(numbers)
+        return text[:number.start()] + value + text[number.end():]
+    kind = rng.randrange(5)
     if kind == 0:  # parentheses in an expression
         return b'#define DEEP ' + b'(' * depth + b'1' + b')' * depth + b'\n' + text
     if kind == 1:  # brackets in an axiom
@@ -122,8 +135,13 @@ def deep_nesting(rng, text, _):
     return text[:at] + b'{' * depth + text[at:]  # unbalanced braces
 
 
-def device_import(rng, text, fifo):
-    target = rng.choice(DEVICES + [fifo, fifo])
+def device_import(rng, text, mutant):
+    target = rng.choice(DEVICES + [mutant['fifo'], mutant['fifo']])
+    if mutant['kind'] == '.l':  # its view file is the device
+        mutant['view'] = target
+        return text
+    if mutant['kind'] == '.lpy':  # (it reads no other file)
+        return deep_nesting(rng, text, mutant)
     line = b'import "' + target.encode() + b'";\n'
     return line + text if rng.random() < 0.7 else text + b'\n' + line
 
@@ -143,12 +161,15 @@ LOCATED = re.compile(r'^[^\n]*:\d+:\d+: error: ', re.MULTILINE)
 SANITIZER = re.compile(r'AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer|runtime error: ')
 
 
+SUFFIXES = ('.cell', '.l', '.lpy')
+
+
 def sources():
     found = []
-    for folder in ('models', 'tests/programs'):
+    for folder in ('models', 'tests/programs', 'tests/convert'):
         for directory, _, files in os.walk(os.path.join(ROOT, folder)):
             for name in sorted(files):
-                if name.endswith('.cell'):
+                if name.endswith(SUFFIXES) and (folder == 'tests/convert') == (not name.endswith('.cell')):
                     found.append(os.path.join(directory, name))
     return sorted(found)
 
@@ -174,7 +195,7 @@ def classify(command_name, outcome, code, out, err):
         return 'crash'
     if outcome == 'timeout':
         return 'hang'
-    if code == 1 and not LOCATED.search(text):
+    if code in (1, 6) and not LOCATED.search(text):
         return 'unlocated'
     if command_name == 'word' and code == 0:
         try:
@@ -187,12 +208,15 @@ def classify(command_name, outcome, code, out, err):
 def campaign_one(job):
     index, operator_name, path, ontogen, timeout, work = job
     folder = os.path.join(work, 'm%05d' % index)
-    commands = {
+    commands = {}
+    if not path.endswith('.cell'):
+        commands['convert'] = [ontogen, 'convert', path]
+    commands.update({
         'check': [ontogen, 'check', path],
         'word': [ontogen, 'word', path, '--json', '--at', '0,1,2.5', '--max-cells', '100000'],
         'run': [ontogen, 'run', path, '--until', '2', '--frames', '2', '--format', 'glb,obj,ply,svg', '--size',
                 '64x64', '--max-cells', '100000', '--out', os.path.join(folder, 'out')],
-    }
+    })
     results = []
     for name, command in commands.items():
         outcome, code, out, err = run(command, folder, timeout)
@@ -213,6 +237,8 @@ def main():
     ontogen = os.path.abspath(args.ontogen)
     rng = random.Random(args.seed)
     programs = sources()
+    native = [path for path in programs if path.endswith('.cell')]
+    foreign = [path for path in programs if not path.endswith('.cell')]
     work = tempfile.mkdtemp(prefix='ontogen-mutants-')
     fifo = os.path.join(work, 'fifo.cell')
     os.mkfifo(fifo)
@@ -220,17 +246,26 @@ def main():
     try:
         for index in range(args.mutants):
             operator_name, operator = OPERATORS[index % len(OPERATORS)]
-            source = rng.choice(programs)
+            # Half the mutants are of .l and .lpy files, far fewer than the .cell programs.
+            source = rng.choice(foreign if foreign and rng.random() < 0.5 else native)
             with open(source, 'rb') as file:
                 text = file.read()
-            mutant = operator(rng, text, fifo)
+            # What an operator knows of the mutant beside its text, and may set ('view').
+            about = {'fifo': fifo, 'kind': os.path.splitext(source)[1]}
+            mutant = operator(rng, text, about)
             folder = os.path.join(work, 'm%05d' % index)
             os.makedirs(folder)
-            # Imports and #surface files relative to the program find those beside the original.
-            for entry in os.listdir(os.path.dirname(source)):
-                if not entry.endswith('.cell'):
-                    os.symlink(os.path.join(os.path.dirname(source), entry), os.path.join(folder, entry))
+            # Imports, #surface and view files relative to the program find those beside the
+            # original; a mutant that names a device as its view has that in its place.
             path = os.path.join(folder, os.path.basename(source))
+            view = os.path.splitext(path)[0] + '.v'
+            for entry in os.listdir(os.path.dirname(source)):
+                if not entry.endswith(SUFFIXES):
+                    os.symlink(os.path.join(os.path.dirname(source), entry), os.path.join(folder, entry))
+            if 'view' in about:
+                if os.path.lexists(view):
+                    os.remove(view)
+                os.symlink(about['view'], view)
             with open(path, 'wb') as file:
                 file.write(mutant)
             jobs.append((index, operator_name, path, ontogen, args.timeout, work))
@@ -252,17 +287,18 @@ def main():
         if failures:
             os.makedirs(args.keep, exist_ok=True)
         for index, operator_name, name, verdict, path, err in failures:
-            kept = os.path.join(args.keep, 'm%05d_%s.cell' % (index, name))
+            kept = os.path.join(args.keep, 'm%05d_%s%s' % (index, name, os.path.splitext(path)[1]))
             shutil.copyfile(path, kept)
             print('%s: %s %s (%s)\n%s' % (kept, name, verdict, operator_name,
                                           err.decode('utf-8', 'replace')[-600:]), file=sys.stderr)
 
-        print('Mutation campaign: %d mutants of %d programs (models/, tests/programs/), seed %d, '
-              '3 commands each (check; word --json --at 0,1,2.5; run --until 2), %g s limit per command.\n'
+        print('Mutation campaign: %d mutants of %d programs (models/, tests/programs/; .l and .lpy of '
+              'tests/convert/), seed %d, 3 commands each (check; word --json --at 0,1,2.5; run --until 2; '
+              'a .l or .lpy convert first), %g s limit per command.\n'
               % (args.mutants, len(programs), args.seed, args.timeout))
-        print('| operator | mutants | runs | exit 0 | exit 1 | exit 2 | exit 3 | exit 4 | crash | hang '
-              '| exit 1 unlocated | invalid JSON |')
-        print('|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|')
+        print('| operator | mutants | runs | exit 0 | exit 1 | exit 2 | exit 3 | exit 4 | exit 6 | crash | hang '
+              '| exit 1 or 6 unlocated | invalid JSON |')
+        print('|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|')
         total = collections.Counter()
         for operator_name, count in counts.items():
             total.update(count)
@@ -271,7 +307,7 @@ def main():
             print(row(operator_name, count))
         print(row('**all**', total))
         other = sorted(k for k in total if k.startswith('exit ') and k not in
-                       ('exit 0', 'exit 1', 'exit 2', 'exit 3', 'exit 4'))
+                       ('exit 0', 'exit 1', 'exit 2', 'exit 3', 'exit 4', 'exit 6'))
         if other:
             print('\nOther exits: ' + ', '.join('%s: %d' % (k, total[k]) for k in other))
         return 1 if failures else 0
@@ -280,7 +316,7 @@ def main():
 
 
 def row(name, count):
-    cells = [name, count['mutants'], count['runs']] + [count['exit %d' % c] for c in range(5)] + \
+    cells = [name, count['mutants'], count['runs']] + [count['exit %d' % c] for c in (0, 1, 2, 3, 4, 6)] + \
         [count['crash'], count['hang'], count['unlocated'], count['invalid JSON']]
     return '| ' + ' | '.join(str(c) for c in cells) + ' |'
 
