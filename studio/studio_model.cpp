@@ -42,6 +42,7 @@ struct StudioModel::Grown {
   std::shared_ptr<const std::string> glb;
   double from = 0, until = 0;
   std::vector<double> frames;  // the developmental time of each frame, in order
+  std::shared_ptr<const std::vector<std::string>> pictures;
   uint64_t cells = 0;
   bool stopped = false;
 };
@@ -215,6 +216,7 @@ void StudioModel::growOnce() {
     until_ = grown.until;
     cells_ = grown.cells;
     frames_ = std::move(grown.frames);
+    pictures_ = std::move(grown.pictures);
     ++modelVersion_;
   }
   running_ = false;
@@ -331,6 +333,11 @@ std::string StudioModel::stem() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return stem_;
 }
+std::string StudioModel::picture(std::size_t frame) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return pictures_ && frame < pictures_->size() ? (*pictures_)[frame] : std::string();
+}
+
 std::vector<std::string> StudioModel::watchedFiles() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return watched_;
@@ -478,6 +485,12 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
   }
   grown.notes = std::move(notes);
   grown.glb = std::make_shared<const std::string>(readFileBytes(def_.work / "model" / (grown.stem + ".glb")));
+  // The image set's pictures, a frame each in the order written (no other set writes
+  // PNG here: the studio asks for glb alone).
+  auto pictures = std::make_shared<std::vector<std::string>>();
+  for (const std::filesystem::path& path : report.files)
+    if (path.extension() == ".png") pictures->push_back(readFileBytes(path));
+  grown.pictures = std::move(pictures);
   grown.from = program->from;
   grown.until = def_.until.value_or(program->until);
   grown.cells = report.cells;
@@ -495,6 +508,7 @@ nlohmann::json StudioModel::state() const {
                           {"until", until_},
                           {"cells", cells_},
                           {"frames", frames_},
+                          {"pictures", pictures_ ? pictures_->size() : 0},
                           {"notes", notes_.size()},
                           {"seconds", wallSeconds_},
                           {"source", text_},

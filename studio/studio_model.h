@@ -134,6 +134,9 @@ class StudioModel {
   uint64_t modelVersion() const;
   /// The last model that grew, as the command line writes it; empty before one did.
   std::string glb() const;
+  /// The image set's picture of frame `frame` of the last model that grew (PNG bytes, one
+  /// a frame, as `ontogen run` writes them); empty when there is no such picture.
+  std::string picture(std::size_t frame) const;
   /// The program text read at the last growth.
   std::string text() const;
   /// The file's name without folder and extension: names the outputs.
@@ -150,10 +153,10 @@ class StudioModel {
   std::vector<std::string> watchedFiles() const;
 
   /// What the page shows: versions, the model's frames (their developmental times, which
-  /// Step goes through), diagnostics (each with the "file" it belongs to),
-  /// defines, times, the source and "sourceName" (the name the program's own diagnostics
-  /// give as their file), the limits and the growth in progress ("growth": running, cells,
-  /// time, seconds).
+  /// Step goes through) and how many of them the image set pictured ("pictures"),
+  /// diagnostics (each with the "file" it belongs to), defines, times, the source and
+  /// "sourceName" (the name the program's own diagnostics give as their file), the limits
+  /// and the growth in progress ("growth": running, cells, time, seconds).
   nlohmann::json state() const;
   /// Counts changes of state(): each growth's start, frame and end, each setting.
   uint64_t changes() const;
@@ -208,6 +211,7 @@ class StudioModel {
   uint64_t modelVersion_ = 0;
   double from_ = 0, until_ = 0;
   std::vector<double> frames_;
+  std::shared_ptr<const std::vector<std::string>> pictures_;  // the image set's, a frame each
   uint64_t cells_ = 0;
   double wallSeconds_ = 0;
   bool stopped_ = false;  // the last growth was cancelled

@@ -95,6 +95,14 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
         if (glb.empty()) return error(404, "no model has grown yet (see the diagnostics)");
         return {200, "model/gltf-binary", std::move(glb)};
       }
+      if (path.starts_with("/model/picture/") && path.ends_with(".png")) {
+        const std::string number = path.substr(15, path.size() - 19);
+        if (number.empty() || number.size() > 6 || number.find_first_not_of("0123456789") != std::string::npos)
+          return error(404, "no such picture");
+        std::string png = model_.picture(std::stoul(number));
+        if (png.empty()) return error(404, "the model has no picture of frame " + number);
+        return {200, "image/png", std::move(png)};
+      }
       if (path == "/api/notes") {
         nlohmann::json notes = nlohmann::json::array();
         for (const StudioNote& note : model_.notes())

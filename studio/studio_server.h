@@ -8,6 +8,7 @@
 //   GET  /api/notes                   the music set's notes, in seconds (JSON)
 //   GET  /api/gallery                 the evolution gallery as it stands (JSON; generation 0 before one is made)
 //   GET  /gallery/K.png               the picture of variant K
+//   GET  /model/picture/K.png         the image set's picture of the model's frame K
 //   POST /api/define                  {"name": N, "value": V}: move a slider (within its range) and
 //                                     grow again; answers the state
 //   POST /api/define/write            {"name": N}: write the slider's value into the file (as its

@@ -35,6 +35,19 @@ function setTime(t) {
   timeSlider.value = String(studio.time);
   $('time-value').textContent = studio.time.toFixed(2) + ' s';
   view.setTime(studio.time);
+  showPicture();
+}
+
+// The image set's pictures, one a frame: the one of the last frame at or before the time.
+let pictures = { count: 0, version: 0 };
+function showPicture() {
+  if (pictures.count === 0) return;
+  let frame = 0;
+  for (let k = 0; k < Math.min(frameTimes.length, pictures.count); k += 1)
+    if (frameTimes[k] <= studio.time + 1e-9 * Math.max(1, Math.abs(frameTimes[k]))) frame = k;
+  const source = `/model/picture/${frame}.png?v=${pictures.version}`;
+  if ($('picture').getAttribute('src') !== source) $('picture').src = source;
+  studio.pictureFrame = frame;
 }
 
 // ---- time and music --------------------------------------------------------------------
@@ -269,7 +282,9 @@ async function loadModel(version, hasModel) {
   if (loadingModel !== version) return;  // a newer model is on its way
   notes = notesAnswer.notes;
   $('note-count').textContent = notes.length ? `(${notes.length} notes)` : '(no music set)';
-  $('no-model').hidden = gltf !== null;
+  pictures = { count: stateShown.pictures || 0, version };
+  $('picture').hidden = pictures.count === 0;
+  $('no-model').hidden = gltf !== null || pictures.count > 0;
   const grown = studio.time >= Number(timeSlider.max) || studio.modelVersion === 0;
   const end = Math.max(stateShown.until, stateShown.from, ...notes.map((n) => n.start + n.duration));
   timeSlider.min = String(stateShown.from);

@@ -286,6 +286,43 @@ try {
     }
   }
 
+  // An image-set model (a grid that brightens each step) shows as its pictures, the one
+  // of the frame at the time scrubbed to.
+  {
+    const glow = path.join(work, 'glow.cell');
+    fs.writeFileSync(glow, '#until 3\n#interpret image\ncell C(v = 0) {\n  rules { v = v + 1; }\n' +
+      '  interpret image { range(0, 3) pixel(me.x, me.y, v) }\n}\nsystem glow {\n  pool grid(4, 4);\n  fill C(0);\n}\n');
+    const pictured = await startStudio(glow, ['--frames', '4']);
+    const page = await browser.newPage({ viewport: { width: 900, height: 700 } });
+    await page.goto(pictured.url);
+    await page.waitForSelector('body[data-model-version="1"]', { timeout: 20000 });
+    const shownAt = async (t) => {
+      await page.locator('#time').fill(String(t));
+      await page.waitForFunction(() => {
+        const image = document.getElementById('picture');
+        return image.complete && image.naturalWidth > 0 && image.src.includes(`/${window.studio.pictureFrame}.png`);
+      }, null, { timeout: 20000 });
+      return page.evaluate(() => {
+        const image = document.getElementById('picture');
+        const canvas = document.createElement('canvas');
+        canvas.width = image.naturalWidth;
+        canvas.height = image.naturalHeight;
+        const context = canvas.getContext('2d');
+        context.drawImage(image, 0, 0);
+        const [r, g, b] = context.getImageData(canvas.width >> 1, canvas.height >> 1, 1, 1).data;
+        return { frame: window.studio.pictureFrame, colour: `${r},${g},${b}` };
+      });
+    };
+    const shown = [await shownAt(3), await shownAt(0), await shownAt(1.5), await shownAt(3)];
+    check(await page.isVisible('#picture') && !(await page.isVisible('#no-model')) &&
+      shown.map((s) => s.frame).join() === '3,0,1,3' && shown[0].colour !== shown[1].colour &&
+      shown[1].colour !== shown[2].colour && shown[3].colour === shown[0].colour,
+      `an image model shows the picture of the frame at the time (frames ${shown.map((s) => s.frame).join(', ')}; ` +
+      `colours ${shown.map((s) => s.colour).join(' / ')})`);
+    await page.close();
+    await stopStudio(pictured);
+  }
+
   const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
   const pageErrors = [];
   page.on('pageerror', (error) => pageErrors.push(String(error)));

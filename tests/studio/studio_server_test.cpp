@@ -459,6 +459,39 @@ TEST_F(StudioFixture, TheStateListsTheTimesOfTheFrames) {
   EXPECT_EQ(model.state()["frames"], nlohmann::json::array({0.0, 1.0, 2.0, 3.0}));
 }
 
+// An image-set model: a picture of each frame, served for the page to show at its time.
+TEST_F(StudioFixture, AnImageModelsPicturesAreServedAFrameEach) {
+  write("#until 3\n#interpret image\ncell C(v = 0) {\n  rules { v = v + 1; }\n"
+        "  interpret image { range(0, 3) pixel(me.x, me.y, v) }\n}\n"
+        "system glow {\n  pool grid(4, 4);\n  fill C(0);\n}\n");
+  StudioModel model(modelDef());
+  model.regrow();
+  ASSERT_EQ(model.modelVersion(), 1u) << model.state().dump(2);
+  EXPECT_EQ(model.state()["pictures"], 4);
+  EXPECT_FALSE(model.state()["hasModel"].get<bool>());
+  for (std::size_t frame = 0; frame < 4; ++frame)
+    EXPECT_TRUE(model.picture(frame).starts_with("\x89PNG\r\n\x1a\n")) << frame;
+  EXPECT_NE(model.picture(0), model.picture(3));  // every site a colour darker at the start
+  EXPECT_TRUE(model.picture(4).empty());
+  Gallery gallery(galleryDef());
+  StudioServer server(model, gallery);
+  auto get = [&](std::string path) {
+    HttpRequest request;
+    request.method = "GET";
+    request.path = std::move(path);
+    request.port = 8420;
+    request.headers = {{"host", "127.0.0.1:8420"}};
+    return server.handle(request);
+  };
+  const HttpResponse last = get("/model/picture/3.png");
+  EXPECT_EQ(last.status, 200);
+  EXPECT_EQ(last.contentType, "image/png");
+  EXPECT_EQ(last.body, model.picture(3));
+  EXPECT_EQ(get("/model/picture/4.png").status, 404);
+  EXPECT_EQ(get("/model/picture/x.png").status, 404);
+  EXPECT_EQ(get("/model/picture/.png").status, 404);
+}
+
 // Another tool's file, converted when read, is never written over with cell-language text:
 // the slider's value can be dropped, not written.
 TEST_F(StudioFixture, ASlidersValueIsNotWrittenIntoAConvertedFile) {
