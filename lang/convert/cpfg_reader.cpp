@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <string>
@@ -149,6 +150,10 @@ class CpfgReader {
         group(syntax_.expression(*at, stop));
         continue;
       }
+      if (auto at = afterKeyword(clean_, line, "define:")) {
+        arrays(*at, end);
+        continue;
+      }
       if (!stepBlocksRead_ && (afterKeyword(clean_, line, "start:") || afterKeyword(clean_, line, "starteach:") ||
                                afterKeyword(clean_, line, "endeach:") || afterKeyword(clean_, line, "end:"))) {
         stepBlocksRead_ = true;
@@ -211,6 +216,66 @@ class CpfgReader {
     for (std::string_view word : {"start:", "end:", "starteach:", "endeach:", "{"})
       if (afterKeyword(clean_, line, word)) return true;
     return false;
+  }
+
+  // `Define: { array c[3] = {1, 3, 2}; array len[2] = {1, 0.85}; }`: arrays of constants
+  // (ForeignSyntax::arrays). C fills the elements an initialiser leaves out with 0.
+  void arrays(uint32_t at, uint32_t end) {
+    uint32_t open = at;
+    while (open < end && std::isspace(static_cast<unsigned char>(clean_[open]))) ++open;
+    if (open == end || clean_[open] != '{' || clean_[end - 1] != '}')
+      syntax_.fail(at, end, "expected a Define: block '{ ... }'", false);
+    for (uint32_t from = open + 1; from < end - 1;) {
+      uint32_t semicolon = from;
+      for (int depth = 0; semicolon < end - 1 && (depth > 0 || clean_[semicolon] != ';'); ++semicolon) {
+        if (clean_[semicolon] == '{') ++depth;
+        if (clean_[semicolon] == '}') --depth;
+      }
+      uint32_t a = from, b = semicolon;
+      syntax_.trim(a, b);
+      from = semicolon + 1;
+      if (a == b) continue;
+      array(a, b);
+    }
+  }
+
+  // `array NAME[N] = {v, ...}`.
+  void array(uint32_t a, uint32_t b) {
+    auto refuse = [&] {
+      syntax_.fail(a, b,
+                   "a statement of a Define: block other than an array of constants of one dimension, "
+                   "'array c[3] = {1, 3, 2}': C code, which ontogen convert does not translate");
+    };
+    auto at = afterKeyword(clean_, Line{a, b}, "array");
+    if (!at) refuse();
+    uint32_t x = *at;
+    while (x < b && std::isspace(static_cast<unsigned char>(clean_[x]))) ++x;
+    uint32_t stop = x;
+    while (stop < b && (std::isalnum(static_cast<unsigned char>(clean_[stop])) || clean_[stop] == '_')) ++stop;
+    const std::string name(clean_.substr(x, stop - x));
+    const uint32_t close = syntax_.find(stop, b, "]");
+    const uint32_t equals = syntax_.find(stop, b, "=");
+    if (name.empty() || stop >= b || clean_[stop] != '[' || close >= equals || equals == b) refuse();
+    uint32_t sa = stop + 1, sb = close;
+    syntax_.trim(sa, sb);
+    const std::string size(clean_.substr(sa, sb - sa));
+    char* last = nullptr;
+    const long count = std::strtol(size.c_str(), &last, 10);
+    if (size.empty() || last != size.c_str() + size.size() || count < 1 || count > 4096) refuse();
+    uint32_t va = equals + 1, vb = b;
+    syntax_.trim(va, vb);
+    if (va >= vb || clean_[va] != '{' || clean_[vb - 1] != '}') refuse();
+    std::vector<std::string> elements;
+    for (uint32_t from = va + 1; from < vb - 1;) {
+      const uint32_t comma = syntax_.find(from, vb - 1, ",");
+      if (!namesConstantsOnly(from, comma)) refuse();
+      elements.push_back(syntax_.expression(from, comma));
+      from = comma + 1;
+    }
+    if (elements.size() > static_cast<size_t>(count))
+      syntax_.fail(va, vb, "more values than the array '" + name + "' holds", false);
+    elements.resize(static_cast<size_t>(count), "0");
+    syntax_.arrays[name] = std::move(elements);
   }
 
   void define(uint32_t at, uint32_t end) {

@@ -376,6 +376,15 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
           continue;
         }
       }
+      if (auto array = arrays.find(name); !python && array != arrays.end()) {
+        uint32_t open = stop;
+        while (open < end && isSpace(text_[open])) ++open;
+        if (open < end && text_[open] == '[') {
+          emit(arrayElement(array->second, at, open, end, stop), false, stop - at);
+          at = stop;
+          continue;
+        }
+      }
       if (auto function = functions.find(name); function != functions.end()) {
         uint32_t open = stop;
         while (open < end && isSpace(text_[open])) ++open;
@@ -576,6 +585,31 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
   }
   if (std::optional<std::string> rewritten = foreignOperators(*this, tokens, dialect_, truth)) return *rewritten;
   return out;
+}
+
+// cpfg's `a[i]` of an array of a Define: block: C casts the index to int (towards 0);
+// the index is written once per element but the last, so it may not draw.
+std::string ForeignSyntax::arrayElement(const std::vector<std::string>& elements, uint32_t at, uint32_t open,
+                                        uint32_t end, uint32_t& stop) const {
+  int depth = 0;
+  uint32_t close = open;
+  for (; close < end; ++close) {
+    if (text_[close] == '[') ++depth;
+    if (text_[close] == ']' && --depth == 0) break;
+  }
+  if (close == end) fail(open, open + 1, "a '[' without its ']'", false);
+  if (close + 1 < end && text_[close + 1] == '[')
+    fail(at, close + 2, "an array of two dimensions: C code, which ontogen convert does not translate");
+  const std::string index = expression(open + 1, close);
+  if (drawsRandom(index) && elements.size() > 1)
+    fail(open + 1, close,
+         "an index that draws a random number: the converter writes it once per element, so it would be drawn "
+         "anew each time");
+  stop = close + 1;
+  std::string chain = elements.back();
+  for (size_t k = elements.size() - 1; k-- > 0;)
+    chain = "if(trunc(" + index + ") == " + std::to_string(k) + ", " + elements[k] + ", " + chain + ")";
+  return elements.size() > 1 ? chain : "(" + chain + ")";
 }
 
 }  // namespace ontogen::convert

@@ -64,6 +64,10 @@ class ForeignSyntax {
     bool stepEnd = false;
   };
   std::map<std::string, StepVariable, std::less<>> stepVariables;
+  /// cpfg's arrays of a `Define:` block, `array c[3] = {1, 3, 2};`: each element a
+  /// cell-language expression of constants. `c[i]` reads as a choice among them by the
+  /// index made whole, as C's cast does.
+  std::map<std::string, std::vector<std::string>, std::less<>> arrays;
   /// The section being read is a homomorphism.
   bool inHomomorphism = false;
   /// What L-Py's `getIterationNb()` (the number of the step being derived, from 0) reads
@@ -138,6 +142,10 @@ class ForeignSyntax {
   /// inverses) as the cell language's, in radians; nullopt for other names.
   std::optional<std::string> degreeCall(const std::string& name, uint32_t at, uint32_t open, uint32_t end,
                                         uint32_t& stop) const;
+  /// The element `[index]` of a cpfg array whose name starts at `at` and whose '[' is at
+  /// `open`; in `stop` the offset after its ']'.
+  std::string arrayElement(const std::vector<std::string>& elements, uint32_t at, uint32_t open, uint32_t end,
+                           uint32_t& stop) const;
   /// Python's round(x): Python 3 takes halves to the even neighbour.
   std::string pythonRound(uint32_t at, uint32_t open, uint32_t end, uint32_t& stop) const;
   /// The call of a helper function whose name starts at `at` and whose '(' is at `open`,

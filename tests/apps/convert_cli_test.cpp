@@ -312,6 +312,30 @@ TEST(Convert, LPyHooksChooseGroupsAndSetValuesAsLPyRunsThem) {
       << converted.out;
 }
 
+// cpfg's Define: arrays: color[n + 1.7] reads element 1 at n = 0 (C casts the index to
+// int), len[2] is 0 (an initialiser's missing elements). A Define: statement other than
+// an array of constants, and an index that draws, are refused at their place.
+TEST(Convert, CpfgDefineArraysAreReadAsCIndexesThem) {
+  Result result = ontogen("word " + file("c_define.l") + " --at 1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 1: B(1, 0.85, 3) A(1)\n"
+            "t = 2: B(1, 0.85, 3) B(3, 0, 2) A(2)\n");
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "define";
+  fs::create_directories(dir);
+  std::ofstream(dir / "int.l") << "Lsystem: 1\nDefine: { array c[2] = {1, 2}; int k; }\nAxiom: A\nA --> B(c[1])\n";
+  Result other = ontogen("convert " + (dir / "int.l").string());
+  EXPECT_EQ(other.exitCode, 6) << other.err;
+  EXPECT_NE(other.err.find("int.l:2:32: error: a statement of a Define: block other than an array of constants"),
+            std::string::npos)
+      << other.err;
+  std::ofstream(dir / "drawn.l") << "Lsystem: 1\nDefine: { array c[2] = {1, 2}; }\nAxiom: A\nA --> B(c[ran(2)])\n";
+  Result drawn = ontogen("convert " + (dir / "drawn.l").string());
+  EXPECT_EQ(drawn.exitCode, 6) << drawn.err;
+  EXPECT_NE(drawn.err.find("drawn.l:4:11: error: an index that draws a random number"), std::string::npos)
+      << drawn.err;
+}
+
 // A cpfg name that is a cell's internal state (a parameter `age`, a macro `time`) is
 // the file's own, not the cell's age or the clock: A(5) steps down by 2. nran(3, 0) is
 // cpfg's normal draw (deviation 0: 3); a macro that draws is drawn anew at each use, as
