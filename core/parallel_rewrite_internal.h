@@ -1,6 +1,6 @@
 #pragma once
-// What the records' slices (core/parallel_rewrite.cpp) and the compact word's strategies
-// (core/compact_rewrite.cpp) share, private to them: how many slices a thread takes, a
+// What the records' slices (core/record_slices_rewrite.cpp) and the compact word's strategies
+// (core/compact_rewrite.cpp and beside it) share, private to them: how many slices a thread takes, a
 // word's labels as they read them, and a rule's context of labels matched by position in
 // them (ParallelRewrite::LabelRule), the same way in both.
 
