@@ -3,7 +3,7 @@
 // them as identifiers where no keyword can stand, so `cell` or `pool` stay free as
 // module labels) and the names a program reads but never declares (`age`, `time`, `me`).
 // `ontogen help` prints it and the editors' grammar (apps/text_mate_grammar.h) colours
-// it; tests/lang/keywords_test.cpp holds it to the words lang/parser.cpp and
+// it; tests/lang/keywords_test.cpp holds it to the words lang/parser*.cpp and
 // lang/compile_context.cpp accept.
 
 #include <span>

@@ -1,4 +1,4 @@
-// What `#letters` costs (lang/parser.cpp, splitLetterRun): the bytes the parser allocates
+// What `#letters` costs (lang/parser_cells.cpp, splitLetterRun): the bytes the parser allocates
 // grow with the text, not with its square. A run of 32,000 letters once took 1 GB (each
 // piece copied the whole run's text). Counted by the bytes asked of operator new in this
 // executable, which holds this test alone.
