@@ -136,6 +136,10 @@ class Geometry {
   /// unspecified (clear it).
   void append(Geometry&& other);
 
+  /// Makes room for `count` lines in all without moving them again (a hint: more may be
+  /// added). Throws std::bad_alloc as a vector's reserve does.
+  void reserveSegments(std::size_t count) { segments_.reserve(count); }
+
   /// The palette colour of everything added from now on.
   void setMaterial(uint32_t material) { material_ = material; }
   /// The palette colour used now.

@@ -9,7 +9,8 @@
 namespace ontogen {
 
 namespace {
-// The most nodes expectCells reserves (2.8 GB of address space, touched only as written).
+// The most nodes (2.8 GB of address space) and lines (0.9 GB) expectCells reserves,
+// touched only as written.
 constexpr std::size_t kMaxReservedNodes = std::size_t{1} << 24;
 }  // namespace
 
@@ -114,6 +115,13 @@ void GeometrySet::finishScene() {
 }
 
 void GeometrySet::expectCells(std::size_t cells) {
+  // A line per cell: each F of a plant draws one, so a million lines are written once into
+  // room taken at once instead of copied about twenty times into ever fresh pages; the
+  // pages of cells that draw no line (turns, brackets) are never touched.
+  try {
+    scene_.geometry.reserveSegments(std::min<std::size_t>(cells, kMaxReservedNodes));
+  } catch (const std::bad_alloc&) {
+  }
   if (!recordsNodes_ || cells <= scene_.nodes.capacity()) return;
   // Reserved once, not grown by doubling: a plant's million nodes would otherwise be
   // moved about twenty times into ever fresh pages. Only the nodes written are touched;

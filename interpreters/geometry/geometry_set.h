@@ -53,7 +53,8 @@ class GeometrySet : public InterpretationSet {
   /// is asked for and ffmpeg is not installed.
   std::vector<std::filesystem::path> endFrame() override;
   bool drawsScene() const override { return true; }
-  /// Reserves a node per cell where the set records nodes.
+  /// Reserves a line per cell (the most a word of symbols draws), and a node per cell
+  /// where the set records nodes.
   void expectCells(std::size_t cells) override;
   /// Adds the frame's scene to `scene`, handing it the set's buffers when `scene` is empty
   /// (the set's own scene is then empty until its next frame).

@@ -166,6 +166,27 @@ TEST(Scene, ContributingTakesTheSetsBuffersOrCopiesThemAlike) {
   same(copied, taken, 1);
 }
 
+// A word's lines are written into room reserved once for the word (a line per cell at
+// most, for lines drawn by symbols), not into a vector regrown by doubling: ABOP Fig. 1.24
+// (d) at n = 12 draws a million lines, and each regrowth copied them into fresh pages.
+TEST(Scene, ASetsLinesGoIntoRoomReservedForTheWord) {
+  std::string axiom;
+  for (int i = 0; i < 100; ++i) axiom += " F(1) [ + ]";
+  auto program = testing_support::compileOrFail("lsystem t {\n  axiom" + axiom + "\n}");
+  World world(program);
+  const std::size_t cells = world.rootPool().size();
+  ASSERT_EQ(cells, 400u);
+  for (const bool nodes : {false, true}) {
+    GeometrySet set(GeometrySetDef{.sceneNodes = nodes});
+    set.beginFrame({});
+    interpretWord(world, set);
+    ASSERT_EQ(set.scene().geometry.segmentCount(), 100u);
+    // Grown by doubling, 100 lines would sit in room for 128.
+    EXPECT_GE(set.scene().geometry.segments().capacity(), cells) << "nodes " << nodes;
+    EXPECT_EQ(set.scene().geometry.segments()[99].start, glm::dvec3(0, 99, 0));
+  }
+}
+
 // The compiler resolves every instruction to its set's command once: the interpreter hands
 // the set numbers, never a name to look up, for blocks and for symbols alike.
 class CountingSet final : public InterpretationSet {
