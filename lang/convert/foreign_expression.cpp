@@ -136,7 +136,7 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
       from = comma + 1;
     }
   }
-  const std::string body = expression(function.begin, function.end);
+  const std::string body = function.translated ? *function.translated : expression(function.begin, function.end);
   // An argument that draws a random number is drawn once by Python: it may be read once
   // (a C macro draws it as often as its text names it, as the cell language does).
   for (const auto& [parameter, value] : arguments) {
@@ -376,7 +376,7 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
           continue;
         }
       }
-      if (auto array = arrays.find(name); !python && array != arrays.end()) {
+      if (auto array = arrays.find(name); array != arrays.end()) {
         uint32_t open = stop;
         while (open < end && isSpace(text_[open])) ++open;
         if (open < end && text_[open] == '[') {
@@ -587,8 +587,9 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
   return out;
 }
 
-// cpfg's `a[i]` of an array of a Define: block: C casts the index to int (towards 0);
-// the index is written once per element but the last, so it may not draw.
+// cpfg's `a[i]` of an array of a Define: block: C casts the index to int (towards 0).
+// Python's `a[i]` of a list of constants: an index from the end is negative. The index
+// is written once per element but the last, so it may not draw.
 std::string ForeignSyntax::arrayElement(const std::vector<std::string>& elements, uint32_t at, uint32_t open,
                                         uint32_t end, uint32_t& stop) const {
   int depth = 0;
@@ -607,8 +608,13 @@ std::string ForeignSyntax::arrayElement(const std::vector<std::string>& elements
          "anew each time");
   stop = close + 1;
   std::string chain = elements.back();
-  for (size_t k = elements.size() - 1; k-- > 0;)
-    chain = "if(trunc(" + index + ") == " + std::to_string(k) + ", " + elements[k] + ", " + chain + ")";
+  const bool python = dialect_ == Dialect::LPy;
+  const std::string read = python ? "(" + index + ")" : "trunc(" + index + ")";
+  for (size_t k = elements.size() - 1; k-- > 0;) {
+    std::string test = read + " == " + std::to_string(k);
+    if (python) test += " || " + read + " == " + std::to_string(static_cast<long>(k) - static_cast<long>(elements.size()));
+    chain = "if(" + test + ", " + elements[k] + ", " + chain + ")";
+  }
   return elements.size() > 1 ? chain : "(" + chain + ")";
 }
 

@@ -48,6 +48,9 @@ class ForeignSyntax {
     /// its name where C's replacement reads as its value. Otherwise (`#define L x*2`,
     /// with x a parameter of the productions that use it) every use is the value.
     bool constant = true;
+    /// L-Py's function of several lines (ifs, locals, returns), already translated: its
+    /// value as a cell-language expression of the parameters, read in place of [begin, end).
+    std::optional<std::string> translated;
   };
   std::map<std::string, Function, std::less<>> functions;
   /// cpfg's macros without parameters, `#define X 1+2` (no parameters; the value at

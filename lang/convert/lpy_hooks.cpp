@@ -70,10 +70,7 @@ class HookReader {
  public:
   HookReader(ForeignSyntax& syntax, std::string_view text, const HookText& hook)
       : syntax_(syntax), text_(text), hook_(hook) {
-    size_t at = 0;
-    body_ = block(hook.body, at, hook.body.empty() ? 0 : hook.body.front().indent);
-    if (at < hook.body.size())
-      syntax_.fail(hook.body[at].begin, hook.body[at].end, "unexpected indentation", false);
+    body_ = block(readPythonBlock(syntax_, text_, hook.body));
   }
 
   /// The state after the hook, `iteration` being what getIterationNb() reads as.
@@ -100,10 +97,7 @@ class HookReader {
   const std::optional<HookValue>& seed() const { return seed_; }
 
  private:
-  bool startsWith(uint32_t b, uint32_t e, std::string_view word) const {
-    if (e - b < word.size() || text_.compare(b, word.size(), word) != 0) return false;
-    return b + word.size() == e || !isNameChar(text_[b + word.size()]);
-  }
+  bool startsWith(uint32_t b, uint32_t e, std::string_view word) const { return startsWithKeyword(text_, b, e, word); }
 
   [[noreturn]] void refuse(uint32_t b, uint32_t e, const std::string& what) const {
     syntax_.fail(b, e,
@@ -113,61 +107,29 @@ class HookReader {
                      "(docs/LANGUAGE.md, Coming from cpfg, lpfg and L-Py)");
   }
 
-  Block block(const std::vector<BodyLine>& lines, size_t& at, int indent) {
+  // The hook's statements as this reader follows them.
+  Block block(const std::vector<PythonStatement>& statements) {
     Block result;
-    while (at < lines.size() && lines[at].indent >= indent) {
-      if (lines[at].indent > indent) syntax_.fail(lines[at].begin, lines[at].end, "unexpected indentation", false);
-      const BodyLine line = lines[at++];
-      uint32_t b = line.begin, e = line.end;
-      syntax_.trim(b, e);
-      if (startsWith(b, e, "elif") || startsWith(b, e, "else")) {
-        if (result.empty() || result.back()->kind != HookStmt::If || !result.back()->branches.back().testEnd)
-          syntax_.fail(b, e, "'elif' or 'else' without its 'if'", false);
-        Branch branch;
-        compound(b + 4, e, branch, lines, at, indent, startsWith(b, e, "else"));
-        result.back()->branches.push_back(std::move(branch));
-        continue;
-      }
+    for (const PythonStatement& read : statements) {
       auto stmt = std::make_unique<Stmt>();
-      stmt->begin = b;
-      stmt->end = e;
-      if (startsWith(b, e, "if")) {
+      stmt->begin = read.begin;
+      stmt->end = read.end;
+      if (read.isIf()) {
         stmt->kind = HookStmt::If;
-        Branch branch;
-        compound(b + 2, e, branch, lines, at, indent, false);
-        stmt->branches.push_back(std::move(branch));
+        for (const PythonBranch& way : read.branches) {
+          Branch branch;
+          branch.testBegin = way.testBegin;
+          branch.testEnd = way.testEnd;
+          branch.body = block(way.body);
+          stmt->branches.push_back(std::move(branch));
+        }
       } else {
-        simple(*stmt, b, e);
+        if (startsWith(read.begin, read.end, "if")) refuse(read.begin, read.end, "an 'if' on the line of a test");
+        simple(*stmt, read.begin, read.end);
       }
       result.push_back(std::move(stmt));
     }
     return result;
-  }
-
-  void compound(uint32_t b, uint32_t e, Branch& branch, const std::vector<BodyLine>& lines, size_t& at, int indent,
-                bool otherwise) {
-    const uint32_t colon = syntax_.find(b, e, ":");
-    if (colon == e) syntax_.fail(b, e, "expected ':' after the test", false);
-    uint32_t tb = b, te = colon;
-    syntax_.trim(tb, te);
-    if (otherwise != (tb == te)) syntax_.fail(b, colon + 1, otherwise ? "expected ':' after 'else'" : "expected a test before ':'", false);
-    if (!otherwise) {
-      branch.testBegin = tb;
-      branch.testEnd = te;
-    }
-    uint32_t sb = colon + 1, se = e;
-    syntax_.trim(sb, se);
-    if (sb < se) {
-      auto stmt = std::make_unique<Stmt>();
-      stmt->begin = sb;
-      stmt->end = se;
-      if (startsWith(sb, se, "if")) refuse(sb, se, "an 'if' on the line of a test");
-      simple(*stmt, sb, se);
-      branch.body.push_back(std::move(stmt));
-      return;
-    }
-    if (at >= lines.size() || lines[at].indent <= indent) syntax_.fail(b, e, "a test without a body", false);
-    branch.body = block(lines, at, lines[at].indent);
   }
 
   // The argument of NAME(...) filling the statement [b, e), or false.

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
@@ -165,6 +166,7 @@ class LPyReader {
         define(begin, end, "=");
         continue;
       }
+      if (tupleAssignment(begin, end)) continue;
       { python(begin, end); }
     }
     stamp();
@@ -345,18 +347,26 @@ class LPyReader {
     }
   }
 
-  // The helper functions of one expression, `def f(x, y): return EXPR` on one line or
-  // with `return EXPR` alone on the lines below, before `endlsystem` or the editor's
-  // section: each is recorded for calls to be inlined (Python looks a function up when it
+  // The helper functions, `def f(x, y): return EXPR` on one line or with `return EXPR`
+  // alone on the lines below, or a body of ifs, locals and returns
+  // (translatePythonFunction), before `endlsystem` or the editor's section: each is
+  // recorded for calls to be inlined (Python looks a function up when it
   // is called, so it may be defined after its use). The first and last line of each.
   std::map<size_t, size_t> functions(const std::vector<Line>& lines) {
     std::map<size_t, size_t> found;
+    struct Longer {
+      std::string name;
+      ForeignSyntax::Function function;
+      std::vector<BodyLine> body;
+    };
+    std::vector<Longer> longer;
     for (size_t i = 0; i < lines.size(); ++i) {
       const Line& line = lines[i];
       if (original_.substr(firstNonSpace(original_, line), kInitialisation.size()) == kInitialisation) break;
       if (afterKeyword(clean_, line, "endlsystem")) break;
       auto at = afterKeyword(clean_, line, "def");
-      if (!at) continue;
+      // A def indented is a class's method or a function's own: no helper of the file.
+      if (!at || firstNonSpace(clean_, line) != line.begin) continue;
       uint32_t a = *at, end = line.end;
       while (a < end && std::isspace(static_cast<unsigned char>(clean_[a]))) ++a;
       uint32_t stop = a;
@@ -391,16 +401,24 @@ class LPyReader {
         last = k;
       }
       const std::vector<BodyLine> body = logicalLines(clean_, colon + 1, lines[last].end);
-      if (body.size() != 1) continue;
-      auto value = afterKeyword(clean_, Line{body[0].begin, body[0].end}, "return");
-      if (!value) continue;
-      uint32_t x = *value, y = body[0].end;
-      syntax_.trim(x, y);
-      if (x == y) continue;
-      function.begin = x;
-      function.end = y;
-      syntax_.functions[name] = std::move(function);
       found[i] = last;
+      auto value = body.size() == 1 ? afterKeyword(clean_, Line{body[0].begin, body[0].end}, "return") : std::nullopt;
+      uint32_t x = value ? *value : 0, y = body.empty() ? 0 : body[0].end;
+      syntax_.trim(x, y);
+      if (value && x < y) {
+        function.begin = x;
+        function.end = y;
+        syntax_.functions[name] = std::move(function);
+        continue;
+      }
+      // Of several lines: translated when those of one line are all known (it may call them).
+      function.begin = line.begin;
+      function.end = line.end;
+      longer.push_back({std::move(name), std::move(function), body});
+    }
+    for (auto& [name, function, body] : longer) {
+      function.translated = translatePythonFunction(syntax_, clean_, body);
+      syntax_.functions[name] = std::move(function);
     }
     return found;
   }
@@ -587,8 +605,69 @@ class LPyReader {
     if (form == "=") {
       while (value < end && clean_[value] != '=') ++value;
       ++value;
+      uint32_t a = value, b = end;
+      syntax_.trim(a, b);
+      if (a < b && clean_[a] == '[' && clean_[b - 1] == ']' && syntax_.find(a + 1, b, "]") == b - 1) {
+        list(name, a, b);
+        return;
+      }
     }
     file_.defines.push_back({std::move(name), syntax_.expression(value, end), line_});
+  }
+
+  // `color = [1, 3, 2]`: a list of constants, which `color[i]` reads
+  // (ForeignSyntax::arrays); any other use of the list is Python the block cannot say.
+  void list(const std::string& name, uint32_t a, uint32_t b) {
+    std::vector<std::string> elements;
+    for (uint32_t from = a + 1; from < b - 1;) {
+      const uint32_t comma = syntax_.find(from, b - 1, ",");
+      uint32_t x = from, y = comma;
+      syntax_.trim(x, y);
+      if (x == y && comma == b - 1 && !elements.empty()) break;  // [1, 2,]
+      elements.push_back(syntax_.expression(from, comma));
+      from = comma + 1;
+    }
+    if (elements.empty()) syntax_.fail(a, b, "an empty list: Python code, which ontogen convert does not translate");
+    syntax_.arrays[name] = std::move(elements);
+  }
+
+  // `MAX_AGE, dr = 10, 0.02`: constants set together. Python computes the values first,
+  // so a value may not name a constant this line sets.
+  bool tupleAssignment(uint32_t begin, uint32_t end) {
+    const uint32_t equals = syntax_.find(begin, end, "=");
+    if (equals >= end || syntax_.find(begin, equals, ",") >= equals || clean_.compare(equals, 2, "==") == 0) return false;
+    std::vector<std::pair<uint32_t, uint32_t>> names, values;
+    for (auto [from, to, into] : {std::tuple{begin, equals, &names}, std::tuple{equals + 1, end, &values}}) {
+      for (uint32_t at = from; at <= to;) {
+        const uint32_t comma = syntax_.find(at, to, ",");
+        uint32_t x = at, y = comma;
+        syntax_.trim(x, y);
+        into->emplace_back(x, y);
+        at = comma + 1;
+      }
+    }
+    for (auto [x, y] : names) {
+      if (x == y || !(std::isalpha(static_cast<unsigned char>(clean_[x])) || clean_[x] == '_')) return false;
+      for (uint32_t k = x; k < y; ++k)
+        if (!isNameChar(clean_[k])) return false;
+    }
+    if (names.size() != values.size())
+      syntax_.fail(begin, end, "names and values of this assignment differ in number (a value that is a sequence): Python "
+                             "code, which ontogen convert does not translate");
+    for (size_t k = 0; k < names.size(); ++k) {
+      const std::string value = syntax_.expression(values[k].first, values[k].second);
+      for (auto [x, y] : names) {
+        const std::string other(clean_.substr(x, y - x));
+        for (size_t at = value.find(other); at != std::string::npos; at = value.find(other, at + 1))
+          if ((at == 0 || !isNameChar(value[at - 1])) &&
+              (at + other.size() == value.size() || !isNameChar(value[at + other.size()])))
+            syntax_.fail(values[k].first, values[k].second,
+                         "a value naming '" + other + "', which this line sets: Python computes every value first");
+      }
+      file_.defines.push_back({std::string(clean_.substr(names[k].first, names[k].second - names[k].first)), value,
+                               line_});
+    }
+    return true;
   }
 
   void declare(uint32_t at, uint32_t end) {

@@ -129,9 +129,7 @@ class BodyTranslator {
       : syntax_(syntax), text_(text), head_(head) {}
 
   std::vector<Statement> run(const std::vector<BodyLine>& lines) {
-    size_t at = 0;
-    Block body = block(lines, at, lines.empty() ? 0 : lines.front().indent);
-    if (at < lines.size()) syntax_.fail(lines[at].begin, lines[at].end, "unexpected indentation", false);
+    Block body = block(readPythonBlock(syntax_, text_, lines));
     std::vector<Frame> frames{{&body, 0}};
     follow(frames, Way{});
     return std::move(out_);
@@ -144,8 +142,7 @@ class BodyTranslator {
   };
 
   bool startsWith(uint32_t begin, uint32_t end, std::string_view word) const {
-    if (end - begin < word.size() || text_.compare(begin, word.size(), word) != 0) return false;
-    return begin + word.size() == end || !isNameChar(text_[begin + word.size()]);
+    return startsWithKeyword(text_, begin, end, word);
   }
 
   [[noreturn]] void python(uint32_t begin, uint32_t end, const std::string& what) const {
@@ -155,68 +152,29 @@ class BodyTranslator {
                      "else, produce, nproduce, assignments to locals, arithmetic, math and random functions)");
   }
 
-  // The statements of lines at `indent`, from `at`.
-  Block block(const std::vector<BodyLine>& lines, size_t& at, int indent) {
+  // The body's statements as this translator follows them.
+  Block block(const std::vector<PythonStatement>& statements) {
     Block result;
-    while (at < lines.size() && lines[at].indent >= indent) {
-      if (lines[at].indent > indent) syntax_.fail(lines[at].begin, lines[at].end, "unexpected indentation", false);
-      const BodyLine line = lines[at++];
-      uint32_t b = line.begin, e = line.end;
-      syntax_.trim(b, e);
-      if (startsWith(b, e, "elif") || startsWith(b, e, "else")) {
-        if (result.empty() || result.back()->kind != StmtKind::If || !result.back()->branches.back().condEnd)
-          syntax_.fail(b, e, "'elif' or 'else' without its 'if'", false);
-        Branch branch;
-        if (startsWith(b, e, "elif")) compound(b + 4, e, branch, lines, at, indent);
-        else compound(b + 4, e, branch, lines, at, indent, true);
-        result.back()->branches.push_back(std::move(branch));
-        continue;
-      }
+    for (const PythonStatement& read : statements) {
       auto stmt = std::make_unique<Stmt>();
-      stmt->begin = b;
-      stmt->end = e;
-      if (startsWith(b, e, "if")) {
+      stmt->begin = read.begin;
+      stmt->end = read.end;
+      if (read.isIf()) {
         stmt->kind = StmtKind::If;
-        Branch branch;
-        compound(b + 2, e, branch, lines, at, indent);
-        stmt->branches.push_back(std::move(branch));
+        for (const PythonBranch& way : read.branches) {
+          Branch branch;
+          branch.condBegin = way.testBegin;
+          branch.condEnd = way.testEnd;
+          branch.body = block(way.body);
+          stmt->branches.push_back(std::move(branch));
+        }
       } else {
-        simple(*stmt, b, e);
+        if (startsWith(read.begin, read.end, "if")) python(read.begin, read.end, "an 'if' on the line of a test");
+        simple(*stmt, read.begin, read.end);
       }
       result.push_back(std::move(stmt));
     }
     return result;
-  }
-
-  // `COND: statement` or `COND:` and an indented block; `otherwise`: an `else`.
-  void compound(uint32_t b, uint32_t e, Branch& branch, const std::vector<BodyLine>& lines, size_t& at, int indent,
-                bool otherwise = false) {
-    const uint32_t colon = syntax_.find(b, e, ":");
-    if (colon == e) syntax_.fail(b, e, "expected ':' after the test", false);
-    if (!otherwise) {
-      uint32_t cb = b, ce = colon;
-      syntax_.trim(cb, ce);
-      if (cb == ce) syntax_.fail(b, colon + 1, "expected a test before ':'", false);
-      branch.condBegin = cb;
-      branch.condEnd = ce;
-    } else {
-      uint32_t cb = b, ce = colon;
-      syntax_.trim(cb, ce);
-      if (cb != ce) syntax_.fail(cb, ce, "expected ':' after 'else'", false);
-    }
-    uint32_t sb = colon + 1, se = e;
-    syntax_.trim(sb, se);
-    if (sb < se) {
-      auto stmt = std::make_unique<Stmt>();
-      stmt->begin = sb;
-      stmt->end = se;
-      if (startsWith(sb, se, "if")) python(sb, se, "an 'if' on the line of a test");
-      simple(*stmt, sb, se);
-      branch.body.push_back(std::move(stmt));
-      return;
-    }
-    if (at >= lines.size() || lines[at].indent <= indent) syntax_.fail(b, e, "a test without a body", false);
-    branch.body = block(lines, at, lines[at].indent);
   }
 
   void simple(Stmt& stmt, uint32_t b, uint32_t e) {
@@ -434,39 +392,143 @@ class BodyTranslator {
   std::vector<Statement> out_;
 };
 
+// A helper function's body followed way by way to the value it returns.
+class FunctionTranslator {
+ public:
+  FunctionTranslator(const ForeignSyntax& syntax, std::string_view text) : syntax_(syntax), text_(text) {}
+
+  std::string run(const std::vector<BodyLine>& lines) {
+    const std::vector<PythonStatement> body = readPythonBlock(syntax_, text_, lines);
+    if (body.empty()) return "0";
+    last_ = body.back();
+    return value({{&body, 0}}, {});
+  }
+
+ private:
+  using Frames = std::vector<std::pair<const std::vector<PythonStatement>*, size_t>>;
+  struct Local {
+    std::string text;
+    bool random = false;
+    int reads = 0;
+  };
+  using Locals = std::map<std::string, Local>;
+
+  bool starts(const PythonStatement& s, std::string_view word) const {
+    return startsWithKeyword(text_, s.begin, s.end, word);
+  }
+
+  [[noreturn]] void python(const PythonStatement& s, const std::string& what) const {
+    syntax_.fail(s.begin, s.end,
+                 what +
+                     " in a helper function: Python which ontogen convert does not translate (it reads functions of "
+                     "if/elif/else, assignments to locals and return of a value)");
+  }
+
+  // The cell-language expression [b, e) with the locals put in.
+  std::string expression(uint32_t b, uint32_t e, Locals& locals, const PythonStatement& where, bool truth = false) const {
+    const std::string text = truth ? syntax_.condition(b, e) : syntax_.expression(b, e);
+    std::string result;
+    for (size_t i = 0; i < text.size();) {
+      const bool begins = (std::isalpha(static_cast<unsigned char>(text[i])) || text[i] == '_') &&
+                          (i == 0 || !(isNameChar(text[i - 1]) || text[i - 1] == '.'));
+      if (!begins) {
+        result += text[i++];
+        continue;
+      }
+      size_t stop = i;
+      while (stop < text.size() && isNameChar(text[stop])) ++stop;
+      const std::string name = text.substr(i, stop - i);
+      auto local = locals.find(name);
+      if (local == locals.end() || (stop < text.size() && text[stop] == '(')) {
+        result += name;
+      } else {
+        if (local->second.random && ++local->second.reads > 1)
+          syntax_.fail(where.begin, where.end,
+                       "the random value '" + name +
+                           "' read a second time: the cell language draws anew where it is written, so the values "
+                           "would differ");
+        result += local->second.text;
+      }
+      i = stop;
+    }
+    return result;
+  }
+
+  // The value returned from the statement `frames` stand at.
+  std::string value(Frames frames, Locals locals) {
+    if (++ways_ > kMaxBodyProductions)
+      syntax_.fail(last_.begin, last_.end,
+                   "this function has more than " + std::to_string(kMaxBodyProductions) + " ways through its tests",
+                   false);
+    while (!frames.empty()) {
+      auto& [block, next] = frames.back();
+      if (next >= block->size()) {
+        frames.pop_back();
+        continue;
+      }
+      const PythonStatement& s = (*block)[next++];
+      if (s.isIf()) {
+        std::vector<std::string> tests;
+        for (const PythonBranch& branch : s.branches)
+          if (branch.testEnd) tests.push_back(expression(branch.testBegin, branch.testEnd, locals, s, true));
+        const bool otherwise = !s.branches.back().testEnd;
+        std::string result = otherwise ? "" : value(frames, locals);
+        for (size_t k = s.branches.size(); k-- > 0;) {
+          Frames way = frames;
+          way.emplace_back(&s.branches[k].body, 0);
+          std::string taken = value(way, locals);
+          result = s.branches[k].testEnd ? "if(" + tests[k] + ", " + taken + ", " + result + ")" : taken;
+        }
+        return result;
+      }
+      const char first = text_[s.begin];
+      if (first == '"' || first == '\'' || starts(s, "pass") || starts(s, "print")) continue;
+      if (starts(s, "return")) {
+        uint32_t b = s.begin + 6, e = s.end;
+        syntax_.trim(b, e);
+        if (b == e || text_.substr(b, e - b) == "None") python(s, "a 'return' of no value");
+        return "(" + expression(b, e, locals, s) + ")";
+      }
+      // NAME = EXPR, NAME += EXPR ...
+      uint32_t at = s.begin;
+      while (at < s.end && isNameChar(text_[at])) ++at;
+      uint32_t op = at;
+      while (op < s.end && isSpace(text_[op])) ++op;
+      char kind = 0;
+      if (at > s.begin && !std::isdigit(static_cast<unsigned char>(text_[s.begin])) && op < s.end) {
+        if (text_[op] == '=' && (op + 1 >= s.end || text_[op + 1] != '='))
+          kind = '=';
+        else if (op + 1 < s.end && text_[op + 1] == '=' && std::string_view("+-*/").find(text_[op]) != std::string_view::npos)
+          kind = text_[op];
+      }
+      if (!kind) {
+        uint32_t stop = s.begin;
+        while (stop < s.end && isNameChar(text_[stop])) ++stop;
+        python(s, stop > s.begin ? "'" + std::string(text_.substr(s.begin, stop - s.begin)) + "'" : "this line");
+      }
+      const std::string name(text_.substr(s.begin, at - s.begin));
+      std::string v = expression(op + (kind == '=' ? 1 : 2), s.end, locals, s);
+      if (kind != '=') {
+        auto old = locals.find(name);
+        if (old == locals.end()) python(s, "'" + name + "' changed before it is set");
+        v = old->second.text + " " + kind + " (" + v + ")";
+      }
+      locals[name] = Local{"(" + v + ")", holdsRandom(v), 0};
+    }
+    syntax_.fail(last_.begin, last_.end, "a way through this helper function ends here and returns no value (None)");
+  }
+
+  const ForeignSyntax& syntax_;
+  std::string_view text_;
+  PythonStatement last_;  // the body's last statement, where a way without return ends
+  size_t ways_ = 0;
+};
+
 }  // namespace
 
-std::vector<BodyLine> logicalLines(std::string_view text, uint32_t begin, uint32_t end) {
-  std::vector<BodyLine> lines;
-  uint32_t at = begin;
-  while (at < end) {
-    uint32_t lineEnd = at;
-    while (lineEnd < end && text[lineEnd] != '\n') ++lineEnd;
-    uint32_t first = at;
-    int indent = 0;
-    while (first < lineEnd && (text[first] == ' ' || text[first] == '\t' || text[first] == '\r')) {
-      indent += text[first] == '\t' ? 8 - indent % 8 : text[first] == ' ' ? 1 : 0;
-      ++first;
-    }
-    if (first == lineEnd) {
-      at = lineEnd + 1;
-      continue;
-    }
-    // Continue while a parenthesis is open (brackets and braces are modules of a word).
-    int depth = 0;
-    uint32_t stop = first;
-    for (;;) {
-      for (; stop < end && text[stop] != '\n'; ++stop) {
-        if (text[stop] == '(') ++depth;
-        if (text[stop] == ')') --depth;
-      }
-      if (depth <= 0 || stop >= end) break;
-      ++stop;
-    }
-    lines.push_back({first, stop, indent});
-    at = stop + 1;
-  }
-  return lines;
+std::string translatePythonFunction(const ForeignSyntax& syntax, std::string_view text,
+                                    const std::vector<BodyLine>& lines) {
+  return FunctionTranslator(syntax, text).run(lines);
 }
 
 std::vector<Statement> translatePythonBody(const ForeignSyntax& syntax, std::string_view text,

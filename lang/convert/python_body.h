@@ -23,16 +23,9 @@
 
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/lsystem_file.h"
+#include "lang/convert/python_block.h"
 
 namespace ontogen::convert {
-
-/// One logical line of a body: bytes [begin, end) of the file (a line continued inside
-/// parentheses spans several), and its indentation in columns.
-struct BodyLine {
-  uint32_t begin = 0;
-  uint32_t end = 0;
-  int indent = 0;
-};
 
 /// Most productions one body becomes; more is a located error (a body of many tests in a
 /// row multiplies its ways, and no model writes a tenth as many).
@@ -44,8 +37,12 @@ inline constexpr size_t kMaxBodyProductions = 256;
 std::vector<Statement> translatePythonBody(const ForeignSyntax& syntax, std::string_view text,
                                            const Statement& head, const std::vector<BodyLine>& lines);
 
-/// The logical lines of [begin, end) of `text`: blank lines dropped, lines joined while
-/// parentheses or brackets are open or a line ends in a backslash.
-std::vector<BodyLine> logicalLines(std::string_view text, uint32_t begin, uint32_t end);
+/// The value of L-Py's helper function of several lines (`def f(x):` and a body of
+/// assignments to locals, if/elif/else and `return EXPR`, docstrings, `pass`, `print`)
+/// as one cell-language expression of its parameters: each way's returned value, joined
+/// by `if(test, yes, no)`. Throws ConvertError at other Python, at a way that returns no
+/// value, at a local holding a random draw read twice.
+std::string translatePythonFunction(const ForeignSyntax& syntax, std::string_view text,
+                                    const std::vector<BodyLine>& lines);
 
 }  // namespace ontogen::convert

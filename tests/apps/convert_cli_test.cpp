@@ -149,7 +149,7 @@ TEST(Convert, CodeItCannotTranslateIsAnErrorAtItsPlace) {
   };
   const Case cases[] = {
       {"python_code.lpy",
-       "python_code.lpy:4:1: error: ", "'def': Python code, which ontogen convert does not translate"},
+       "python_code.lpy:5:5: error: ", "'global' in a helper function: Python which ontogen convert does not translate"},
       {"python_loop.lpy",
        "python_loop.lpy:4:5: error: ", "'for': Python which ontogen convert does not translate"},
       {"c_code.l", "c_code.l:3:1: error: ", "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code"},
@@ -334,6 +334,24 @@ TEST(Convert, CpfgDefineArraysAreReadAsCIndexesThem) {
   EXPECT_EQ(drawn.exitCode, 6) << drawn.err;
   EXPECT_NE(drawn.err.find("drawn.l:4:11: error: an index that draws a random number"), std::string::npos)
       << drawn.err;
+}
+
+// L-Py's list of constants read by index (color[-1] from the end), `MAX_AGE, dr = 3, 0.5`
+// and a helper function of ifs, a local and returns: the words Python derives (t % 3
+// picks 1, 3, 2; -1 - t % 2 picks 2, 3; size(t) is t * 0.5 below 3, else 1.5).
+TEST(Convert, LPyListsTuplesAndFunctionsOfSeveralLinesMeanWhatPythonComputes) {
+  Result result = ontogen("word " + file("python_lists.lpy") + " --at 2,4");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 2: B(1, 2, 0) B(3, 3, 0.5) A(2)\n"
+            "t = 4: B(1, 2, 0) B(3, 3, 0.5) B(2, 2, 1) B(1, 3, 1.5) A(4)\n");
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "lists";
+  fs::create_directories(dir);
+  std::ofstream(dir / "swap.lpy") << "a = 1\nb = 2\na, b = b, a\nAxiom: A(a)\n";
+  Result swap = ontogen("convert " + (dir / "swap.lpy").string());
+  EXPECT_EQ(swap.exitCode, 6) << swap.err;
+  EXPECT_NE(swap.err.find("swap.lpy:3:8: error: a value naming 'b', which this line sets"), std::string::npos)
+      << swap.err;
 }
 
 // A cpfg name that is a cell's internal state (a parameter `age`, a macro `time`) is

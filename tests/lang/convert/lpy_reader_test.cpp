@@ -97,12 +97,40 @@ TEST(LPyReader, TheEditorsInitialisationSectionIsNotRead) {
   EXPECT_EQ(body(c.program), "  #angle 60\n  #until 1\n  axiom A\n");
 }
 
+// A function of several lines: each way's returned value, its locals put in, joined by
+// if(); docstrings, pass and print read over. A way that returns nothing, a random local
+// read twice and a loop are refused where they stand.
+TEST(LPyReader, HelperFunctionsOfSeveralLinesAreOneExpression) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "M = 5\ndef size(s, t):\n  \"\"\" the size \"\"\"\n  y = s * 2\n  if t < M:\n"
+                       "    y += t\n    return y / M\n  elif t == M: pass\n  else:\n    print(t)\n  return y\n"
+                       "Axiom: A(size(1, 2))\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #define M 5\n  #angle 60\n  #until 1\n"
+            "  axiom A((if(2 < M, (((1 * 2) + (2)) / M), if(2 == M, ((1 * 2)), ((1 * 2))))))\n");
+  auto none = convertText(Dialect::LPy, "a.lpy", "def f(x):\n  if x > 1:\n    return 2\n  x = 3\nAxiom: A(f(1))\n");
+  EXPECT_EQ(none.line, 4);
+  EXPECT_EQ(none.column, 3);
+  EXPECT_NE(none.error.find("a way through this helper function ends here and returns no value"), std::string::npos)
+      << none.error;
+  auto twice = convertText(Dialect::LPy, "a.lpy",
+                           "from random import *\ndef f(x):\n  r = random()\n  return r * r\nAxiom: A(f(1))\n");
+  EXPECT_EQ(twice.line, 4);
+  EXPECT_NE(twice.error.find("the random value 'r' read a second time"), std::string::npos) << twice.error;
+  auto loop = convertText(Dialect::LPy, "a.lpy",
+                          "def f(x):\n  for i in range(3):\n    x += i\n  return x\nAxiom: A(f(1))\n");
+  EXPECT_EQ(loop.line, 2);
+  EXPECT_EQ(loop.column, 3);
+  EXPECT_NE(loop.error.find("'for' in a helper function"), std::string::npos) << loop.error;
+}
+
 TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
   auto def = convertText(Dialect::LPy, "a.lpy", "Axiom: A\n\ndef f(x):\n    global y\n    return x\n");
-  EXPECT_EQ(def.line, 3);
-  EXPECT_EQ(def.column, 1);
+  EXPECT_EQ(def.line, 4);
+  EXPECT_EQ(def.column, 5);
   EXPECT_TRUE(def.untranslatable);
-  EXPECT_NE(def.error.find("'def': Python code"), std::string::npos) << def.error;
+  EXPECT_NE(def.error.find("'global' in a helper function: Python"), std::string::npos) << def.error;
 
   auto body = convertText(Dialect::LPy, "a.lpy", "Axiom: A\nA :\n    while True:\n        produce C\n");
   EXPECT_EQ(body.line, 3);
@@ -189,10 +217,7 @@ TEST(LPyReader, HelperFunctionsOfOneExpressionAreInlined) {
   EXPECT_EQ(twice.column, 10);
   EXPECT_NE(twice.error.find("an argument that draws a random number, read 2 times by 'f'"), std::string::npos)
       << twice.error;
-  // A function of more than a return, and a hook that returns, stay Python.
-  auto more = convertText(Dialect::LPy, "a.lpy", "def f(x):\n    y = x\n    return y\nAxiom: A\n");
-  EXPECT_EQ(more.line, 1);
-  EXPECT_NE(more.error.find("'def': Python code"), std::string::npos) << more.error;
+  // A hook that returns stays Python.
   auto hook = convertText(Dialect::LPy, "a.lpy", "def StartEach(): return 1\nAxiom: A\n");
   EXPECT_EQ(hook.line, 1);
   EXPECT_EQ(hook.column, 18);
