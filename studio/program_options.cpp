@@ -7,7 +7,7 @@ namespace ontogen::studio {
 StudioSource readStudioSource(const StudioProgramOptions& options) {
   if (options.read) return options.read(options.file, options.maxSourceBytes);
   SourceText read = readSourceFile(options.file, options.maxSourceBytes);
-  return {std::move(read.text), options.file, std::move(read.error)};
+  return {std::move(read.text), options.file, std::move(read.error), nullptr, {}};
 }
 
 WorldDef worldDefOf(const StudioProgramOptions& options, const Program& program) {

@@ -6,11 +6,14 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/limits.h"
 #include "core/world.h"
+#include "lang/convert/lsystem_file.h"
 #include "lang/diagnostics.h"
 #include "lang/program.h"
 #include "lang/source_reader.h"
@@ -22,6 +25,11 @@ struct StudioSource {
   std::optional<std::string> text;  ///< empty when it cannot be read
   std::string name;                 ///< names the text in diagnostics
   std::string error;                ///< why there is no text
+  /// A file of another tool (cpfg, L-Py) converted when read: the file itself, and for
+  /// each line of `text` the bytes of it the line was written from, so that diagnostics
+  /// are shown at the file's own lines (convert::mapToOriginal). Null: not converted.
+  std::shared_ptr<const SourceFile> original;
+  std::vector<convert::SourceRange> lineOrigins;
 };
 
 /// Reads the program file at path, at most maxBytes of it (with its imports).

@@ -11,6 +11,7 @@
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
+#include "lang/convert/convert.h"
 #include "lang/imports.h"
 #include "lang/source_reader.h"
 #include "lang/variation.h"
@@ -31,7 +32,9 @@ std::string formatNumber(double value) {
 struct StudioModel::Grown {
   std::optional<std::string> text;  // empty: the file could not be read (the last text stays)
   std::string stem;
-  std::string sourceName;
+  std::string sourceName;  // names the program's diagnostics the page marks at their lines
+  std::string shown;       // the text the page shows: the file's own, converted or not
+  bool converted = false;
   std::optional<std::vector<StudioDefine>> defines;  // empty: the sliders stay as they are
   std::vector<std::string> dropped;  // defines whose number the file changed: the page's value goes
   std::vector<std::string> watched;  // imports and surfaces read
@@ -111,10 +114,13 @@ bool StudioModel::refresh() {
 }
 
 void StudioModel::stop() {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  pending_ = false;
-  if (running_) cancel_ = true;
-  changed();
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    pending_ = false;
+    if (running_) cancel_ = true;
+    changed();
+  }
+  wake_.notify_all();
 }
 
 bool StudioModel::waitIdle(std::chrono::milliseconds timeout) const {
@@ -177,11 +183,28 @@ void StudioModel::growOnce() {
   }
   limits.cancel = &cancel_;
   Grown grown;
-  try {
-    grow(grown, overrides, limits);
-  } catch (const std::exception& error) {
-    grown.diagnostics.push_back(
-        {"error", 0, 0, error.what(), std::string("ontogen: error: ") + error.what() + "\n", ""});
+  for (int attempt = 0;; ++attempt) {
+    grown = Grown();
+    try {
+      grow(grown, overrides, limits);
+    } catch (const std::exception& error) {
+      grown.diagnostics.push_back(
+          {"error", 0, 0, error.what(), std::string("ontogen: error: ") + error.what() + "\n", ""});
+    }
+    // A text with errors may be a save caught half-written: an editor truncates the file,
+    // then writes it, or writes it in pieces. Its errors are shown only once the files
+    // held still a moment after the read; a file that changed meanwhile is read again.
+    if (grown.grew || grown.stopped || attempt >= kMaxRereads) break;
+    const Settling settling = settle();
+    if (settling == Settling::Changed) continue;
+    if (settling == Settling::Superseded) {
+      // A newer request grows the newer text: these errors may be of no text the user wrote.
+      const std::lock_guard<std::mutex> lock(mutex_);
+      running_ = false;
+      changed();
+      return;
+    }
+    break;
   }
   const std::lock_guard<std::mutex> lock(mutex_);
   ++version_;
@@ -191,6 +214,8 @@ void StudioModel::growOnce() {
   if (grown.text) {
     text_ = std::move(*grown.text);
     sourceName_ = std::move(grown.sourceName);
+    shown_ = std::move(grown.shown);
+    converted_ = grown.converted;
     stem_ = std::move(grown.stem);
   }
   if (grown.defines) defines_ = std::move(*grown.defines);
@@ -225,6 +250,22 @@ void StudioModel::growOnce() {
   changed();
 }
 
+StudioModel::Settling StudioModel::settle() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  // Cut short by a newer request, a stop or the end.
+  wake_.wait_for(lock, kSettleTime, [this] { return pending_ || quit_ || cancel_.load(); });
+  if (pending_ || quit_) return Settling::Superseded;
+  if (cancel_.load()) return Settling::Settled;
+  Settling settling = Settling::Settled;
+  for (auto& [path, stamp] : stamps_) {
+    const std::optional<FileStamp> now = stampOf(path);
+    if (now == stamp) continue;
+    settling = Settling::Changed;
+    stamp = now;  // stamped before it is read again
+  }
+  return settling;
+}
+
 void StudioModel::setDefine(const std::string& name, double value) {
   const std::lock_guard<std::mutex> lock(mutex_);
   for (const StudioDefine& define : defines_) {
@@ -245,7 +286,7 @@ std::string StudioModel::writeDefine(const std::string& name) {
   const std::lock_guard<std::mutex> lock(mutex_);
   const auto given = overrides_.find(name);
   if (given == overrides_.end()) throw std::invalid_argument("#define " + name + " has no value of the page's to write");
-  if (sourceName_ != def_.program.file)
+  if (converted_)
     throw std::invalid_argument("the program was converted from another tool's file; the studio writes only .cell files");
   // The text the page shows must be the file's: an edit the studio has not read yet would
   // be lost under the write.
@@ -378,7 +419,18 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
     return;
   }
   grown.text = *read.text;
-  grown.sourceName = read.name;
+  // A file of another tool is shown as it is, its diagnostics at its own lines.
+  grown.sourceName = read.original ? read.original->name() : read.name;
+  grown.shown = read.original ? read.original->text() : *read.text;
+  grown.converted = !read.name.empty() && read.name != def_.program.file;
+  auto placed = [&read](const ontogen::Diagnostic& diagnostic) {
+    const ontogen::Diagnostic at =
+        read.original && diagnostic.span.valid() && diagnostic.span.file->name() == read.name
+            ? convert::mapToOriginal(diagnostic, *read.original, read.lineOrigins)
+            : diagnostic;
+    return Diagnostic{severityName(at.severity), at.span.line(),        at.span.column(), at.message,
+                      formatDiagnostic(at),       at.span.valid() ? at.span.file->name() : ""};
+  };
   grown.stem = std::filesystem::path(def_.program.file).stem().string();
   const std::string& text = *grown.text;
 
@@ -422,10 +474,7 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
   for (std::size_t i = 1; i < parsed.sources.size(); ++i) grown.watched.push_back(parsed.sources[i]->name());
   std::shared_ptr<const Program> program;
   if (!sink.hasErrors()) program = compile(parsed.tree, parsed.sources, sink, options);
-  for (const ontogen::Diagnostic& diagnostic : sink.diagnostics())
-    grown.diagnostics.push_back({severityName(diagnostic.severity), diagnostic.span.line(), diagnostic.span.column(),
-                                 diagnostic.message, formatDiagnostic(diagnostic),
-                                 diagnostic.span.valid() ? diagnostic.span.file->name() : ""});
+  for (const ontogen::Diagnostic& diagnostic : sink.diagnostics()) grown.diagnostics.push_back(placed(diagnostic));
   if (!program) return;
   grown.compiled = true;
   for (const SystemDefinition& system : program->systems)
@@ -459,9 +508,10 @@ void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given,
   const RunReport report = running.execute();
   grown.stopped = report.status == RunStatus::Interrupted;
   for (const RunDiagnostic& diagnostic : report.diagnostics)
-    grown.diagnostics.push_back({severityName(diagnostic.severity), diagnostic.span.line(), diagnostic.span.column(),
-                                 diagnostic.message, formatRunDiagnostic(diagnostic),
-                                 diagnostic.span.valid() ? diagnostic.span.file->name() : ""});
+    grown.diagnostics.push_back(diagnostic.span.valid()
+                                    ? placed(ontogen::Diagnostic{diagnostic.severity, diagnostic.span, diagnostic.message})
+                                    : Diagnostic{severityName(diagnostic.severity), 0, 0, diagnostic.message,
+                                                 formatRunDiagnostic(diagnostic), ""});
   if (!report.ok()) return;
 
   std::vector<StudioNote> notes;
@@ -511,9 +561,9 @@ nlohmann::json StudioModel::state() const {
                           {"pictures", pictures_ ? pictures_->size() : 0},
                           {"notes", notes_.size()},
                           {"seconds", wallSeconds_},
-                          {"source", text_},
+                          {"source", shown_},
                           {"sourceName", sourceName_},
-                          {"converted", !sourceName_.empty() && sourceName_ != def_.program.file}};
+                          {"converted", converted_}};
   nlohmann::json diagnostics = nlohmann::json::array();
   bool failed = false;
   for (const Diagnostic& d : diagnostics_) {

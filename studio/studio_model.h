@@ -16,6 +16,11 @@
 // saved file, a moved slider) cancels the growth at hand and grows again; stop() cancels
 // it and grows nothing. Cancelling is cooperative, through WorldLimits::cancel.
 //
+// A text with errors may be a save caught half-written (an editor truncates the file, then
+// writes it, or writes it in pieces): its errors are shown only once the files it read
+// held still for a moment after the read, and a file that changed meanwhile is read again,
+// so a save never flashes errors of a text the user did not write.
+//
 // A growth that fails or is stopped keeps the last model that grew: the page shows the
 // diagnostics over the old model, as an editor keeps the last good build while the text
 // is broken. Growth stays within interactive limits far below the command line's, which
@@ -137,7 +142,7 @@ class StudioModel {
   /// The image set's picture of frame `frame` of the last model that grew (PNG bytes, one
   /// a frame, as `ontogen run` writes them); empty when there is no such picture.
   std::string picture(std::size_t frame) const;
-  /// The program text read at the last growth.
+  /// The program text read at the last growth (converted, for another tool's file).
   std::string text() const;
   /// The file's name without folder and extension: names the outputs.
   std::string stem() const;
@@ -154,8 +159,9 @@ class StudioModel {
 
   /// What the page shows: versions, the model's frames (their developmental times, which
   /// Step goes through) and how many of them the image set pictured ("pictures"),
-  /// diagnostics (each with the "file" it belongs to), defines, times, the source and
-  /// "sourceName" (the name the program's own diagnostics give as their file), the limits
+  /// diagnostics (each with the "file" it belongs to), defines, times, the "source" (the
+  /// file as written: another tool's file before its conversion, its diagnostics at its
+  /// own lines) and "sourceName" (the name its own diagnostics give as their file), the limits
   /// and the growth in progress ("growth": running, cells, time, seconds).
   nlohmann::json state() const;
   /// Counts changes of state(): each growth's start, frame and end, each setting.
@@ -178,6 +184,11 @@ class StudioModel {
   // What one growth gives; published as a whole when it ends.
   struct Grown;
   static std::optional<FileStamp> stampOf(const std::string& path);
+  // After a growth that failed: whether the files it read held still for kSettleTime.
+  enum class Settling { Settled, Changed, Superseded };
+  Settling settle();
+  static constexpr std::chrono::milliseconds kSettleTime{200};
+  static constexpr int kMaxRereads = 20;  // a file rewritten without end shows its errors
   void work();
   void growOnce();
   void grow(Grown& grown, const std::map<std::string, double>& overrides, const WorldLimits& limits);
@@ -201,7 +212,9 @@ class StudioModel {
   std::map<std::string, std::optional<FileStamp>> stamps_;
   std::vector<std::string> watched_;  // the files besides the program file in stamps_
   std::string text_;
-  std::string sourceName_;  // the text's name in diagnostics: the file's path unless converted
+  std::string sourceName_;  // names the program's own diagnostics: the file's path, converted or not
+  std::string shown_;       // the text the page shows: the file's own, before any conversion
+  bool converted_ = false;  // text_ is converted from another tool's file
   std::string stem_;
   std::vector<StudioDefine> defines_;
   std::vector<Diagnostic> diagnostics_;

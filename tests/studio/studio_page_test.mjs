@@ -34,8 +34,9 @@ try {
 }
 
 let failures = 0;
+const began = Date.now();
 function check(condition, message) {
-  console.log(`${condition ? 'ok  ' : 'FAIL'} ${message}`);
+  console.log(`${condition ? 'ok  ' : 'FAIL'} [${((Date.now() - began) / 1000).toFixed(1)} s] ${message}`);
   if (!condition) failures += 1;
   return condition;
 }

@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lang/compiler.h"
+#include "lang/convert/convert.h"
 #include "studio/gallery.h"
 #include "studio/http_server.h"
 #include "studio/studio_assets.h"
@@ -101,6 +102,24 @@ TEST(HttpServer, AnswersOverASocketAndRefusesBadRequests) {
   // A request cut short is never answered from half of it.
   const std::string cut = exchange(server.port(), "GET /cut HTTP/1.1\r\n");
   EXPECT_TRUE(cut.empty() || cut.starts_with("HTTP/1.1 400 ")) << cut;
+  server.stop();
+}
+
+// A body is sent as it is, even to a browser that accepts compression: compressing the
+// page's 650 KB script with brotli on every request held the page for seconds.
+TEST(HttpServer, SendsABodyUncompressed) {
+  std::string script(700'000, ' ');
+  for (std::size_t i = 0; i < script.size(); ++i) script[i] = "let a = 1; // page\n"[i % 19];
+  HttpServer server(HttpServerDef{}, [&script](const HttpRequest&) { return HttpResponse{200, "text/javascript", script}; });
+  server.start();
+  const std::string answer = exchange(
+      server.port(), "GET /studio.js HTTP/1.1\r\nAccept-Encoding: gzip, deflate, br\r\nConnection: close\r\n\r\n");
+  EXPECT_TRUE(answer.starts_with("HTTP/1.1 200 OK\r\n")) << answer.substr(0, 300);
+  const std::string head = answer.substr(0, answer.find("\r\n\r\n") + 4);
+  EXPECT_EQ(head.find("Content-Encoding"), std::string::npos) << head;
+  EXPECT_NE(head.find("Content-Length: 700000\r\n"), std::string::npos) << head;
+  EXPECT_NE(head.find("Content-Type: text/javascript\r\n"), std::string::npos) << head;
+  EXPECT_EQ(answer.substr(head.size()), script);
   server.stop();
 }
 
@@ -497,7 +516,7 @@ TEST_F(StudioFixture, AnImageModelsPicturesAreServedAFrameEach) {
 TEST_F(StudioFixture, ASlidersValueIsNotWrittenIntoAConvertedFile) {
   StudioModelDef def = modelDef();
   def.program.read = [](const std::string& path, uint64_t) {
-    return StudioSource{std::string(kTree), path + " (converted)", ""};
+    return StudioSource{std::string(kTree), path + " (converted)", "", nullptr, {}};
   };
   StudioModel model(def);
   model.regrow();
@@ -508,6 +527,69 @@ TEST_F(StudioFixture, ASlidersValueIsNotWrittenIntoAConvertedFile) {
   EXPECT_EQ(readText(file), kTree);
   model.dropDefine("LEN");
   EXPECT_EQ(model.defineValues().at("LEN"), 1.0);
+}
+
+// A save caught half-written (an editor truncates the file, then writes it): the errors of
+// the half the studio read are not shown; it reads the file again once it changed, and
+// shows the text the editor finished. A file that stays broken shows its errors.
+TEST_F(StudioFixture, ASaveCaughtHalfWrittenFlashesNoErrors) {
+  const std::string half = std::string(kTree).substr(0, std::string(kTree).size() / 2);
+  write(half);
+  StudioModelDef def = modelDef();
+  int reads = 0;
+  def.program.read = [&](const std::string& path, uint64_t) {
+    StudioSource read{readText(path), path, "", nullptr, {}};
+    if (++reads == 1) write(kTree);  // the editor finishes just after the studio read
+    return read;
+  };
+  StudioModel model(def);
+  model.regrow();
+  EXPECT_EQ(reads, 2);
+  EXPECT_EQ(model.version(), 1u);  // the half's errors were never published
+  EXPECT_EQ(model.modelVersion(), 1u) << model.state().dump(2);
+  EXPECT_TRUE(model.state()["ok"].get<bool>()) << model.state()["diagnostics"].dump(2);
+
+  write(half);
+  EXPECT_TRUE(model.refresh());
+  model.regrow();
+  EXPECT_EQ(reads, 3);
+  EXPECT_EQ(model.version(), 2u);
+  EXPECT_EQ(model.modelVersion(), 1u);
+  EXPECT_FALSE(model.state()["ok"].get<bool>());
+}
+
+// An L-Py file, converted as the command reads it: its diagnostics at the file's own
+// lines, and the page shows the file as written (the converted text is one line longer
+// at the top, so a line number of it would mark the wrong line).
+TEST_F(StudioFixture, AConvertedFilesErrorsAreAtItsOwnLines) {
+  const fs::path lpy = folder / "bad.lpy";
+  const std::string original =
+      "# a test\nAxiom: A(1)\nderivation length: 2\nproduction:\n\nA(x) --> F(x) A(y)\nendlsystem\n";
+  std::ofstream(lpy, std::ios::binary) << original;
+  StudioModelDef def = modelDef();
+  def.program.file = lpy.string();
+  def.program.read = [](const std::string& path, uint64_t maxBytes) {
+    auto source = std::make_shared<const SourceFile>(path, readText(path));
+    DiagnosticSink sink;
+    convert::ConvertResult converted = convert::convertFile(*source, convert::Dialect::LPy, "", sink, maxBytes);
+    return StudioSource{std::move(converted.program), path + " (converted)", "", source,
+                        std::move(converted.lineOrigins)};
+  };
+  StudioModel model(def);
+  model.regrow();
+  const nlohmann::json state = model.state();
+  EXPECT_TRUE(state["converted"].get<bool>());
+  EXPECT_EQ(state["source"], original);
+  EXPECT_EQ(state["sourceName"], lpy.string());
+  ASSERT_EQ(state["diagnostics"].size(), 1u) << state.dump(2);
+  const nlohmann::json& error = state["diagnostics"][0];
+  EXPECT_EQ(error["file"], lpy.string());
+  EXPECT_EQ(error["line"], 6);
+  EXPECT_EQ(error["column"], 1);
+  EXPECT_TRUE(error["text"].get<std::string>().starts_with(lpy.string() + ":6:1: error: unknown name 'y'"))
+      << error["text"];
+  EXPECT_NE(error["text"].get<std::string>().find("\nA(x) --> F(x) A(y)\n"), std::string::npos) << error["text"];
+  EXPECT_NE(model.text().find("A(x) -> F(x) A(y)"), std::string::npos);  // the converted text grows
 }
 
 // Growth without end for a page: 50 M steps of 1,000 cells (minutes; the step limit is
