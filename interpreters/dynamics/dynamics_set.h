@@ -25,6 +25,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/mat3x3.hpp>
@@ -159,6 +160,10 @@ class DynamicsSet : public InterpretationSet {
   void runOwn(DynamicsOp op, std::span<const double> args);
   // Appends the rods' bodies to the plan (after the skeleton's).
   void addRods(BodyPlan& plan, const std::vector<RodSpec>& rods) const;
+  // What a body of a model keeps into the next one (build), found by its id.
+  struct Carried;
+  // Each free joint of the new model from what its body, or one of its tree, kept.
+  void placeFreeBodies(const std::unordered_map<uint64_t, Carried>& carried);
   void build(const BodyPlan& plan, double time);
   void applyWind(double time);
   void advanceTo(double time);

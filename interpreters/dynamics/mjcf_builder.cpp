@@ -59,6 +59,7 @@ const char* physicsError(const PhysicsDef& def) {
 
 std::string bodyName(int body) { return "b" + std::to_string(body); }
 std::string hingeName(int body, int dof) { return "j" + std::to_string(body) + "_" + std::to_string(dof); }
+std::string freeName(int body) { return "free" + std::to_string(body); }
 
 MujocoRoom usualRoom(const BodyPlan& plan) {
   std::size_t limbs = 0, limits = 0;
@@ -76,13 +77,101 @@ MujocoRoom doubled(MujocoRoom room) {
   return {std::min(kMost, 2 * room.contacts), std::min(kMost, 2 * room.rows)};
 }
 
+Nesting nestingOf(const BodyPlan& plan, bool centred) {
+  const std::size_t n = plan.bodies.size();
+  Nesting out;
+  out.parent.assign(n, -1);
+  out.hinges.resize(n);
+  out.free.assign(n, false);
+  // A parent comes before its children in a plan; anything else hangs on the world.
+  std::vector<int> rootOf(n);
+  std::vector<std::vector<int>> neighbours(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int parent = plan.bodies[i].parent;
+    const int self = static_cast<int>(i);
+    out.hinges[i] = self;
+    out.free[i] = plan.bodies[i].kind == JointKind::Free;
+    rootOf[i] = self;
+    if (parent >= 0 && parent < self) {
+      out.parent[i] = parent;
+      rootOf[i] = rootOf[static_cast<std::size_t>(parent)];
+      neighbours[i].push_back(parent);
+      neighbours[static_cast<std::size_t>(parent)].push_back(self);
+    }
+  }
+  std::vector<int> frees(n, 0);  // free bodies per tree
+  for (std::size_t i = 0; i < n; ++i)
+    if (out.free[i]) ++frees[static_cast<std::size_t>(rootOf[i])];
+  std::vector<int> distance(n, -1), previous(n, -1);
+  // The body farthest from `from` in its tree (the lowest index among the farthest), its
+  // way back in `previous`.
+  auto farthest = [&](int from) {
+    std::vector<int> queue{from};
+    distance[static_cast<std::size_t>(from)] = 0;
+    previous[static_cast<std::size_t>(from)] = -1;
+    int far = from;
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const int at = queue[q];
+      const int d = distance[static_cast<std::size_t>(at)];
+      const int best = distance[static_cast<std::size_t>(far)];
+      if (d > best || (d == best && at < far)) far = at;
+      for (int next : neighbours[static_cast<std::size_t>(at)])
+        if (distance[static_cast<std::size_t>(next)] < 0) {
+          distance[static_cast<std::size_t>(next)] = d + 1;
+          previous[static_cast<std::size_t>(next)] = at;
+          queue.push_back(next);
+        }
+    }
+    for (int at : queue) distance[static_cast<std::size_t>(at)] = -1;
+    return far;
+  };
+  for (std::size_t r = 0; r < n && centred; ++r) {
+    const int root = static_cast<int>(r);
+    // Only a tree with one free body, its root, hangs from its centre.
+    if (out.parent[r] >= 0 || plan.bodies[r].kind != JointKind::Free || frees[r] != 1) continue;
+    const int end = farthest(farthest(root));
+    std::vector<int> longest;
+    for (int at = end; at >= 0; at = previous[static_cast<std::size_t>(at)]) longest.push_back(at);
+    const std::size_t length = longest.size();
+    const int centre = std::min(longest[(length - 1) / 2], longest[length / 2]);
+    // A body without limbs that carries no joint of its own would carry its child's
+    // hinges without mass: that tree stays as it is.
+    bool massive = true;
+    for (int at = centre; at != root; at = plan.bodies[static_cast<std::size_t>(at)].parent) {
+      const PlanBody& holder = plan.bodies[static_cast<std::size_t>(plan.bodies[static_cast<std::size_t>(at)].parent)];
+      if (hingeCount(plan.bodies[static_cast<std::size_t>(at)].kind) > 0 && holder.kind == JointKind::Weld &&
+          holder.limbs.empty())
+        massive = false;
+    }
+    if (!massive || centre == root) continue;
+    out.parent[static_cast<std::size_t>(centre)] = -1;
+    out.free[static_cast<std::size_t>(centre)] = true;
+    out.hinges[static_cast<std::size_t>(centre)] = -1;
+    for (int at = centre; at != root;) {
+      const int holder = plan.bodies[static_cast<std::size_t>(at)].parent;
+      out.parent[static_cast<std::size_t>(holder)] = at;
+      out.hinges[static_cast<std::size_t>(holder)] = at;
+      out.free[static_cast<std::size_t>(holder)] = false;
+      at = holder;
+    }
+  }
+  return out;
+}
+
 int nestingDepth(const BodyPlan& plan) {
-  // A parent comes before its children in a plan.
-  std::vector<int> depth(plan.bodies.size(), 1);
+  const Nesting nesting = nestingOf(plan);
+  std::vector<int> depth(plan.bodies.size(), 0);
   int deepest = 0;
   for (std::size_t i = 0; i < plan.bodies.size(); ++i) {
-    const int parent = plan.bodies[i].parent;
-    if (parent >= 0 && static_cast<std::size_t>(parent) < i) depth[i] = depth[static_cast<std::size_t>(parent)] + 1;
+    // Up to the first body whose depth is known, then down again.
+    std::vector<int> way;
+    int at = static_cast<int>(i);
+    while (at >= 0 && depth[static_cast<std::size_t>(at)] == 0) {
+      way.push_back(at);
+      at = nesting.parent[static_cast<std::size_t>(at)];
+    }
+    int d = at >= 0 ? depth[static_cast<std::size_t>(at)] : 0;
+    for (auto it = way.rbegin(); it != way.rend(); ++it) depth[static_cast<std::size_t>(*it)] = ++d;
     deepest = std::max(deepest, depth[i]);
   }
   return deepest;
@@ -97,12 +186,17 @@ std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view
 }
 
 std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name, MujocoRoom room) {
+  return mjcfOf(plan, def, name, room, nestingOf(plan));
+}
+
+std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name, MujocoRoom room,
+                   const Nesting& nesting) {
   const auto& bodies = plan.bodies;
   std::vector<std::vector<int>> children(bodies.size());
   std::vector<int> roots;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies[i].parent >= 0)
-      children[static_cast<std::size_t>(bodies[i].parent)].push_back(static_cast<int>(i));
+    if (nesting.parent[i] >= 0)
+      children[static_cast<std::size_t>(nesting.parent[i])].push_back(static_cast<int>(i));
     else
       roots.push_back(static_cast<int>(i));
   }
@@ -129,34 +223,56 @@ std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view
   // Depth first, so a body's children are written inside it.
   auto write = [&](auto&& self, int index, int depth) -> void {
     const PlanBody& body = bodies[static_cast<std::size_t>(index)];
-    // Placed in its parent's posed frame (its parent's hinges at their kinematic angles).
+    const int parent = nesting.parent[static_cast<std::size_t>(index)];
+    const int owner = nesting.hinges[static_cast<std::size_t>(index)];
+    // Placed in its parent's posed frame (every body's frame is its plan orientation at
+    // the hinges' kinematic angles): its base frame, the joints turning it from there.
     glm::dvec3 pos = body.position;
-    glm::dmat3 frame = body.base;
-    if (body.parent >= 0) {
-      const PlanBody& parent = bodies[static_cast<std::size_t>(body.parent)];
-      const glm::dmat3 inverse = glm::transpose(parent.orientation);
-      pos = inverse * (body.position - parent.position);
+    glm::dmat3 frame = owner == index ? body.base : body.orientation;
+    // A body hanging the other way round turns, from the child it hangs from, by that
+    // child's hinges backwards about the child's joint (at `anchor` in its own frame):
+    // with child = it * T * R(q), it = child * R(q)^-1 * T^-1, T^-1 = turn^T then -anchor.
+    glm::dvec3 anchor(0.0);
+    glm::dmat3 turn(1.0);
+    if (parent >= 0 && owner == parent) {
+      const PlanBody& child = bodies[static_cast<std::size_t>(parent)];
+      const glm::dmat3 inverse = glm::transpose(body.orientation);
+      anchor = inverse * (child.position - body.position);
+      turn = inverse * child.base;
+      frame = glm::transpose(turn);
+      pos = -(frame * anchor);
+    } else if (parent >= 0) {
+      const PlanBody& holder = bodies[static_cast<std::size_t>(parent)];
+      const glm::dmat3 inverse = glm::transpose(holder.orientation);
+      pos = inverse * (body.position - holder.position);
       frame = inverse * body.base;
     }
     indent(out, depth);
     out += "<body name=\"" + bodyName(index) + "\" pos=\"" + vector(pos) + "\" xyaxes=\"" + vector(frame[0]) + " " +
            vector(frame[1]) + "\">\n";
-    if (body.kind == JointKind::Free) {
+    if (nesting.free[static_cast<std::size_t>(index)]) {
       indent(out, depth + 1);
-      out += "<freejoint name=\"" + hingeName(index, 0) + "\"/>\n";
+      out += "<freejoint name=\"" + freeName(index) + "\"/>\n";
     }
-    for (int dof = 0; dof < hingeCount(body.kind); ++dof) {
-      const HingeRange& range = body.ranges[static_cast<std::size_t>(dof)];
+    const PlanBody* hinged = owner >= 0 ? &bodies[static_cast<std::size_t>(owner)] : nullptr;
+    const int count = hinged ? hingeCount(hinged->kind) : 0;
+    const bool backwards = owner != index;
+    for (int k = 0; k < count; ++k) {
+      // Backwards: the last hinge first, each about its axis turned into this frame and reversed.
+      const int dof = backwards ? count - 1 - k : k;
+      const glm::dvec3 axis = backwards ? -(turn * hingeAxis(hinged->kind, dof)) : hingeAxis(hinged->kind, dof);
+      const HingeRange& range = hinged->ranges[static_cast<std::size_t>(dof)];
       indent(out, depth + 1);
-      out += "<joint name=\"" + hingeName(index, dof) + "\" type=\"hinge\" axis=\"" + vector(hingeAxis(body.kind, dof)) +
-             "\"";
+      out += "<joint name=\"" + hingeName(owner, dof) + "\" type=\"hinge\"";
+      if (backwards) out += " pos=\"" + vector(anchor) + "\"";
+      out += " axis=\"" + vector(axis) + "\"";
       if (range.set) out += " limited=\"true\" range=\"" + number(range.lo) + " " + number(range.hi) + "\"";
-      if (body.spring > 0) out += " stiffness=\"" + number(body.spring) + "\"";
-      if (body.damping >= 0) out += " damping=\"" + number(body.damping) + "\"";
+      if (hinged->spring > 0) out += " stiffness=\"" + number(hinged->spring) + "\"";
+      if (hinged->damping >= 0) out += " damping=\"" + number(hinged->damping) + "\"";
       out += "/>\n";
-      if (def.kp == 0 || !body.driven) continue;
-      actuators += "    <position name=\"s" + std::to_string(index) + "_" + std::to_string(dof) + "\" joint=\"" +
-                   hingeName(index, dof) + "\" kp=\"" + number(def.kp) + "\"";
+      if (def.kp == 0 || !hinged->driven) continue;
+      actuators += "    <position name=\"s" + std::to_string(owner) + "_" + std::to_string(dof) + "\" joint=\"" +
+                   hingeName(owner, dof) + "\" kp=\"" + number(def.kp) + "\"";
       if (limited) actuators += " forcelimited=\"true\" forcerange=\"" + number(-def.torque) + " " + number(def.torque) + "\"";
       actuators += "/>\n";
     }

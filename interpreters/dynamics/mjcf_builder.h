@@ -9,6 +9,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "interpreters/dynamics/body_plan.h"
 
@@ -30,10 +31,12 @@ struct PhysicsDef {
 /// Why def is no physics, or null when it is.
 const char* physicsError(const PhysicsDef& def);
 
-/// The names MuJoCo knows the parts by: body "b<index>", hinge "j<index>_<dof>", its
-/// servo "s<index>_<dof>", the ground "ground".
+/// The names MuJoCo knows the parts by: body "b<index>", hinge "j<index>_<dof>" (the
+/// hinges of plan body index, wherever they are written), its servo "s<index>_<dof>", a
+/// free joint "free<index>" (of the body written at the centre), the ground "ground".
 std::string bodyName(int body);
 std::string hingeName(int body, int dof);
+std::string freeName(int body);
 
 /// The room MuJoCo sets aside for contacts and constraint rows, its `<size nconmax njmax>`.
 /// MuJoCo 2.2 sizes each model's scratch memory by about 5 rows² doubles and clears it as
@@ -51,8 +54,33 @@ MujocoRoom usualRoom(const BodyPlan& plan);
 /// The room twice over (each size doubled), for a step that ran out.
 MujocoRoom doubled(MujocoRoom room);
 
+/// How mjcfOf nests the plan's bodies. A free body's tree (a creature) hangs from the
+/// body at its centre, the middle of its longest chain of bodies, which carries the free
+/// joint: a chain of n bodies is then n/2 deep, not n, and MuJoCo's costs per step (its
+/// mass matrix's factor, products and solves, each a sum over every degree of freedom of
+/// those between it and the root) about halve. The bodies between the centre and the
+/// plan's root hang the other way round: each from its child in the plan, turned by that
+/// child's hinges taken backwards, so the hinges keep their angles, ranges, springs and
+/// servos and the model is the same mechanism. Other trees (clamped rods, hinged chains)
+/// hang as the plan has them.
+struct Nesting {
+  std::vector<int> parent;  ///< each body's parent as written; -1: the world
+  /// The plan body whose hinges each body carries: itself; for a body hanging the other
+  /// way round, the child it hangs from; -1 for a centre, whose plan parent carries them.
+  std::vector<int> hinges;
+  std::vector<bool> free;   ///< the body carries a free joint
+};
+
+/// The nesting of the plan as mjcfOf writes it; with `centred` false, as the plan has it
+/// (every body from its plan parent, a free joint at each free body).
+Nesting nestingOf(const BodyPlan& plan, bool centred = true);
+
 /// The MJCF text of the plan under def, its model named `name`, with `room`.
 std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name, MujocoRoom room);
+
+/// The MJCF text of the plan nested as `nesting` says (nestingOf's, centred or not).
+std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name, MujocoRoom room,
+                   const Nesting& nesting);
 
 /// The MJCF text with room usualRoom(plan).
 std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view name);
@@ -61,7 +89,8 @@ std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view
 /// stops at 100 elements deep, and a body's geoms and joints sit inside it.
 constexpr int kDeepestBodies = 96;
 
-/// The most bodies of the plan nested in one another (a root alone: 1; none: 0).
+/// The most bodies of the plan nested in one another as mjcfOf writes it (a root alone:
+/// 1; none: 0).
 int nestingDepth(const BodyPlan& plan);
 
 /// The MJCF's `<size .../>` element for `room` (as mjcfOf writes it, one line).
