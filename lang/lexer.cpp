@@ -124,7 +124,7 @@ class Lexer {
 
   char peek(size_t ahead = 0) const { return pos_ + ahead < text_.size() ? text_[pos_ + ahead] : '\0'; }
 
-  // Under #letters (lang/parser.cpp), ABOP's `]/////` is five rolls: a `//` that touches
+  // Under #letters (lang/parser_cells.cpp), ABOP's `]/////` is five rolls: a `//` that touches
   // the token before it is no comment. The lexer follows where #letters holds: after a
   // top-level one, or to the end of the block that holds it.
   void followNotation(const Token& token) {
