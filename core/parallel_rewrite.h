@@ -171,7 +171,8 @@ class ParallelRewrite {
     const double* parents;
   };
 
-  /// The facts of a rewrite of a word of `size` modules by `pass` on at most `threads`.
+  /// The facts of a rewrite of a word of `size` modules by `pass`, `threads` being the
+  /// world's (WorldDef::threads): how many the rewrite takes, planRewrite alone decides.
   RewriteFacts facts(RewritePass pass, size_t size, unsigned threads, const StepContext* context) const;
   bool rewrite(Pass pass, const Step& step, StepContext& context, uint64_t& events, CellArray& cells,
                StateArray& state);

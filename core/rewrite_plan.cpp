@@ -46,34 +46,33 @@ bool onOneThread(RewriteStrategy strategy) {
 }
 
 // What the development does unforced: the fastest strategy that applies, by the sizes
-// and threads the benchmarks of bench/ measured.
-RewritePlan choose(const RewriteFacts& facts) {
+// and threads the benchmarks of bench/ measured. A word smaller than kMinimumSliceCells
+// is planned as on one thread.
+RewriteStrategy choose(const RewriteFacts& facts) {
   const RewriteShape& shape = facts.shape;
-  const size_t size = facts.size;
-  const bool large = size >= kMinimumSliceCells;
-  const unsigned threads = large ? std::max(1u, facts.threads) : 1u;
+  const bool large = facts.size >= kMinimumSliceCells;
+  const bool oneThread = !large || facts.threads <= 1;
   if (facts.pass != RewritePass::Compact) {
     // On one thread the slices pay where nothing is evaluated cell by cell (two quick
     // passes beat the general one); other words keep the serial pass there.
     const bool quickOnOne = shape.labelsOnly || (facts.pass == RewritePass::ContextFree && shape.inBatchesOrLabelsOnly);
-    if (!facts.slices || !large || (threads < 2 && !quickOnOne) ||
-        !rewriteApplies(RewriteStrategy::RecordSlices, facts))
-      return {RewriteStrategy::Serial, 1};
-    return {RewriteStrategy::RecordSlices, threads};
+    if (!facts.slices || !large || (oneThread && !quickOnOne) || !rewriteApplies(RewriteStrategy::RecordSlices, facts))
+      return RewriteStrategy::Serial;
+    return RewriteStrategy::RecordSlices;
   }
   // A word written without ids takes the table's walk at every size on one thread.
-  if (facts.withoutIds && threads == 1) return {RewriteStrategy::TableAlone, 1};
+  if (facts.withoutIds && oneThread) return RewriteStrategy::TableAlone;
   // A large word whose modules each write one, on any number of threads: in place, in one pass.
-  if (large && rewriteApplies(RewriteStrategy::OneForOne, facts)) return {RewriteStrategy::OneForOne, threads};
+  if (large && rewriteApplies(RewriteStrategy::OneForOne, facts)) return RewriteStrategy::OneForOne;
   // One thread: one pass for a small word, and for a large one whose choices vary (counting
   // first would choose twice) or whose values are evaluated (it would walk the events
   // twice), once the growth to reserve by is known.
   const bool onePass = shape.choiceVaries || shape.batched;
-  if (threads == 1 && (!large || (onePass && facts.growthKnown))) return {RewriteStrategy::CompactSerial, 1};
-  if (threads == 1 && shape.byTable) return {RewriteStrategy::TableAlone, 1};
-  if (large && rewriteApplies(RewriteStrategy::Parts, facts)) return {RewriteStrategy::Parts, threads};
-  if (rewriteApplies(RewriteStrategy::TableBounds, facts)) return {RewriteStrategy::TableBounds, threads};
-  return {RewriteStrategy::CompactSlices, threads};
+  if (oneThread && (!large || (onePass && facts.growthKnown))) return RewriteStrategy::CompactSerial;
+  if (oneThread && shape.byTable) return RewriteStrategy::TableAlone;
+  if (large && rewriteApplies(RewriteStrategy::Parts, facts)) return RewriteStrategy::Parts;
+  if (rewriteApplies(RewriteStrategy::TableBounds, facts)) return RewriteStrategy::TableBounds;
+  return RewriteStrategy::CompactSlices;
 }
 
 }  // namespace
@@ -105,10 +104,11 @@ bool rewriteApplies(RewriteStrategy strategy, const RewriteFacts& facts) {
   return false;
 }
 
+// The one place the threads of a rewrite are decided: every thread the world has for a
+// strategy that splits the word (unforced, only a large word takes one), else one.
 RewritePlan planRewrite(const RewriteFacts& facts) {
-  if (facts.forced && rewriteApplies(*facts.forced, facts))
-    return {*facts.forced, onOneThread(*facts.forced) ? 1u : std::max(1u, facts.threads)};
-  return choose(facts);
+  const RewriteStrategy strategy = facts.forced && rewriteApplies(*facts.forced, facts) ? *facts.forced : choose(facts);
+  return {strategy, onOneThread(strategy) ? 1u : std::max(1u, facts.threads)};
 }
 
 bool keepsWordCompact(const RewriteShape& shape, bool slices, bool lineage,

@@ -84,13 +84,14 @@ struct RewriteFacts {
   std::optional<RewriteStrategy> forced;
 };
 
-/// A plan: the strategy, and the threads it runs on (1 for strategies of one thread).
+/// A plan: the strategy, and the threads it runs on: 1 for Serial, CompactSerial and
+/// TableAlone, the world's (RewriteFacts::threads) for the others.
 struct RewritePlan {
   RewriteStrategy strategy = RewriteStrategy::Serial;
   unsigned threads = 1;
 };
 
-/// Words smaller than this are rewritten on one thread: threads would cost more than they save.
+/// The unforced plan rewrites words smaller than this on one thread: threads would cost more than they save.
 inline constexpr size_t kMinimumSliceCells = size_t{1} << 15;
 
 /// Whether `strategy` can rewrite a word of these facts (what it needs of the rules and
@@ -98,7 +99,7 @@ inline constexpr size_t kMinimumSliceCells = size_t{1} << 15;
 bool rewriteApplies(RewriteStrategy strategy, const RewriteFacts& facts);
 
 /// The strategy for a word of these facts: the forced one where it applies, else the
-/// fastest that applies.
+/// fastest that applies; and its threads, decided here alone.
 RewritePlan planRewrite(const RewriteFacts& facts);
 
 /// Whether a development whose rules have `shape` keeps its word compact in this step

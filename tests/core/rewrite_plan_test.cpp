@@ -210,5 +210,29 @@ TEST(RewritePlan, TheUnforcedPlanFollowsTheFacts) {
   EXPECT_EQ(planRewrite(records).threads, 7u);
 }
 
+// The threads are decided once, by the strategy, forced or chosen: a strategy of one pass
+// on one thread takes one whatever the world has; the others take every thread the world
+// has, at any size once forced (a word of ten modules here).
+TEST(RewritePlan, AStrategyOfOneThreadTakesOneAndTheOthersTakeTheWorlds) {
+  for (unsigned threads : {1u, 2u, 7u}) {
+    for (size_t k = 0; k < kRewriteStrategyCount; ++k) {
+      const S strategy = static_cast<S>(k);
+      RewriteFacts facts = compactFacts(10, threads);
+      if (!rewritesCompactWords(strategy)) {
+        facts.pass = RewritePass::ContextFree;
+        facts.shape.contextFreeSlices = true;
+      }
+      facts.shape.byTable = facts.shape.choiceVaries = facts.shape.oneForOne = true;
+      facts.growthKnown = true;
+      facts.forced = strategy;
+      ASSERT_TRUE(rewriteApplies(strategy, facts)) << rewriteStrategyName(strategy);
+      const RewritePlan plan = planRewrite(facts);
+      EXPECT_EQ(plan.strategy, strategy);
+      const bool oneThread = strategy == S::Serial || strategy == S::CompactSerial || strategy == S::TableAlone;
+      EXPECT_EQ(plan.threads, oneThread ? 1u : threads) << rewriteStrategyName(strategy) << " on " << threads;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ontogen
