@@ -36,8 +36,7 @@ struct WorldStats {
   uint64_t cellsBorn = 0;
   uint64_t crowded = 0;        ///< grid successors that found no free site and were not born
   uint64_t rateEquations = 0;  ///< rate equations integrated in the last step
-  uint64_t rewritesBySlices = 0;  ///< linear words rewritten by slices (core/parallel_rewrite.h)
-  uint64_t stencilSteps = 0;      ///< rate steps of full grids taken as stencils (core/rate_stencil.h)
+  uint64_t stencilSteps = 0;   ///< rate steps of full grids taken as stencils (core/rate_stencil.h)
   /// Linear words rewritten by each strategy, indexed by RewriteStrategy (core/rewrite_plan.h).
   RewriteCounts rewrites{};
 };

@@ -147,7 +147,6 @@ void LinearDevelopment::expireCompact(double t, double t1) {
     const double instant = earliest + timeTolerance(earliest);
     pool_.storeCompactWord(context_->idSalt);
     const CompactWord& word = pool_.compactWord();
-    const size_t size = word.size();
     // The serial pass stops where a limit is passed and says so: a word that would pass
     // one is left to it.
     auto fits = [&](uint64_t modules, uint64_t events, uint64_t, uint64_t heldModules) {
@@ -187,8 +186,6 @@ void LinearDevelopment::expireCompact(double t, double t1) {
     eventsThisStep_ += counts->events;
     context_->stats.events += counts->events;
     context_->stats.cellsBorn += counts->born;
-    // As the records' pass counts it: a word large enough for slices.
-    if (size >= ParallelRewrite::kMinimumCells) ++context_->stats.rewritesBySlices;
     ++context_->stats.rewrites[static_cast<size_t>(parallel_.lastStrategy())];
     earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
     earliestVersion_ = pool_.structureVersion();

@@ -344,7 +344,6 @@ bool ParallelRewrite::rewrite(Pass pass, const Step& step, StepContext& context,
   events += totalEvents;
   context.stats.events += totalEvents;
   context.stats.cellsBorn += totalBorn;
-  ++context.stats.rewritesBySlices;
   ++context.stats.rewrites[static_cast<size_t>(RewriteStrategy::RecordSlices)];
   return true;
 }

@@ -332,7 +332,6 @@ void World::developChildren(double t1, bool stepRules, bool step, WorldHeld& tre
           stats_.ruleFirings += stepped.stats_.ruleFirings - before.ruleFirings;
           stats_.cellsBorn += stepped.stats_.cellsBorn - before.cellsBorn;
           stats_.crowded += stepped.stats_.crowded - before.crowded;
-          stats_.rewritesBySlices += stepped.stats_.rewritesBySlices - before.rewritesBySlices;
           stats_.stencilSteps += stepped.stats_.stencilSteps - before.stencilSteps;
           for (size_t k = 0; k < kRewriteStrategyCount; ++k)
             stats_.rewrites[k] += stepped.stats_.rewrites[k] - before.rewrites[k];

@@ -1,6 +1,7 @@
 // The rewriting by slices (core/parallel_rewrite.h) writes the word the one-pass serial
 // rewriting writes, bit for bit: records, ids, birth times, state values and statistics,
-// on any number of threads; and it is the pass taken for large words.
+// on any number of threads; and the world's statistics name the strategies the planner
+// took (core/rewrite_plan.h) on each thread count.
 
 #include <gtest/gtest.h>
 
@@ -71,22 +72,32 @@ void expectSameWords(const World& serial, const World& parallel, const std::stri
   }
 }
 
-bool bySlices(const Grown& grown) {
-  return grown.stats.rewritesBySlices > 0;
+// The strategies that rewrote the word and how often (core/rewrite_plan.h), as --stats
+// prints them: "serial 3, record-slices 13".
+std::string ran(const WorldStats& stats) {
+  return formatRewriteCounts(stats.rewrites);
+}
+std::string ran(const Grown& grown) {
+  return ran(grown.stats);
 }
 bool compact(const Grown& grown) {
   return grown.world->rootPool().holdsCompactWord();
 }
 
-// Grows `program` to `until` on each of `threadCounts` and expects `serial`'s word, events
-// and births; `taken(grown)` says whether the pass under test was taken.
+// A thread count and the strategies expected to rewrite the word on it.
+struct Route {
+  unsigned threads;
+  std::string strategies;
+};
+
+// Grows `program` to `until` on each route's thread count and expects `serial`'s word,
+// events and births, rewritten by the route's strategies.
 void expectTheSerialWordOnEveryThreadCount(const std::shared_ptr<const Program>& program, double until,
-                                           const Grown& serial, const std::vector<unsigned>& threadCounts,
-                                           bool (*taken)(const Grown&)) {
-  for (unsigned threads : threadCounts) {
-    const Grown grown = grow(program, until, threads);
-    EXPECT_TRUE(taken(grown)) << threads << " threads: the serial pass was taken";
-    expectSameWords(*serial.world, *grown.world, std::to_string(threads) + " threads");
+                                           const Grown& serial, const std::vector<Route>& routes) {
+  for (const Route& route : routes) {
+    const Grown grown = grow(program, until, route.threads);
+    EXPECT_EQ(ran(grown), route.strategies) << route.threads << " threads";
+    expectSameWords(*serial.world, *grown.world, std::to_string(route.threads) + " threads");
     EXPECT_EQ(grown.stats.events, serial.stats.events);
     EXPECT_EQ(grown.stats.cellsBorn, serial.stats.cellsBorn);
   }
@@ -97,10 +108,12 @@ TEST(ParallelRewrite, EveryKindOfSuccessorIsWrittenAsTheSerialPassWritesIt) {
   ASSERT_NE(program, nullptr);
   const Grown serial = grow(program, 16, 1, false);
   ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
-  EXPECT_EQ(serial.stats.rewritesBySlices, 0u);
+  EXPECT_EQ(ran(serial), "serial 16");
   // On one thread, a word whose rules draw and calculate keeps the serial pass.
-  EXPECT_EQ(grow(program, 16, 1).stats.rewritesBySlices, 0u);
-  expectTheSerialWordOnEveryThreadCount(program, 16, serial, {2, 3, 7}, bySlices);
+  EXPECT_EQ(ran(grow(program, 16, 1)), "serial 16");
+  expectTheSerialWordOnEveryThreadCount(
+      program, 16, serial,
+      {{2, "serial 14, record-slices 2"}, {3, "serial 14, record-slices 2"}, {7, "serial 14, record-slices 2"}});
 }
 
 // Masters whose one rule has no choice or calculation and whose successors' arguments are
@@ -123,8 +136,10 @@ TEST(ParallelRewrite, ArgumentsEvaluatedInBatchesEqualTheSerialPass) {
   ASSERT_NE(program, nullptr);
   const Grown serial = grow(program, 15, 1, false);
   ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
-  EXPECT_EQ(serial.stats.rewritesBySlices, 0u);
-  expectTheSerialWordOnEveryThreadCount(program, 15, serial, {1, 2, 3}, bySlices);
+  EXPECT_EQ(ran(serial), "serial 15");
+  expectTheSerialWordOnEveryThreadCount(
+      program, 15, serial,
+      {{1, "serial 13, record-slices 2"}, {2, "serial 13, record-slices 2"}, {3, "serial 13, record-slices 2"}});
 }
 
 // Words with state kept compact (ParallelRewrite::appliesToCompactWords): masters whose
@@ -167,7 +182,9 @@ TEST(ParallelRewrite, AWordWithStateIsKeptCompactAsTheSerialPassWritesIt) {
     expectSameWords(innerWorld(serial), innerWorld(grown), std::to_string(threads) + " threads");
     EXPECT_EQ(innerWorld(grown).stats().events, innerWorld(serial).stats().events);
     EXPECT_EQ(innerWorld(grown).stats().cellsBorn, innerWorld(serial).stats().cellsBorn);
-    EXPECT_GT(innerWorld(grown).stats().rewritesBySlices, 0u);
+    EXPECT_EQ(ran(innerWorld(grown).stats()),
+              threads == 1 ? "compact-serial 17" : "compact-serial 15, compact-slices 2")
+        << threads << " threads";
   }
   // A master that reads its place (me.x) or its parent keeps the records.
   for (const char* reads : {"me.x", "me.parent"}) {
@@ -189,7 +206,9 @@ TEST(ParallelRewrite, ABracketedWordWithoutContextIsKeptCompactAsTheSerialPassWr
   const Grown serial = grow(program, 9, 1, false);
   ASSERT_FALSE(serial.world->rootPool().holdsCompactWord());
   ASSERT_GT(serial.world->rootPool().size(), 2 * ParallelRewrite::kMinimumCells);
-  expectTheSerialWordOnEveryThreadCount(program, 9, serial, {1, 2, 3}, compact);
+  expectTheSerialWordOnEveryThreadCount(
+      program, 9, serial,
+      {{1, "table-alone 9"}, {2, "table-alone 8, table-bounds 1"}, {3, "table-alone 8, table-bounds 1"}});
   auto withContext = testing_support::compileOrFail("lsystem c {\n  axiom F [ F ] F\n  F < F -> F F\n}\n");
   ASSERT_NE(withContext, nullptr);
   EXPECT_FALSE(ParallelRewrite(*withContext, withContext->systems[withContext->root]).appliesToCompactWords());
@@ -199,21 +218,28 @@ TEST(ParallelRewrite, ABracketedWordWithoutContextIsKeptCompactAsTheSerialPassWr
 // word whose drawn rules have contexts): the compact pass draws from each cell's stream as
 // the records' passes do, so the words are the same, cell for cell.
 TEST(ParallelRewrite, ADrawAmongLabelOnlyRulesIsTheSerialPassesDraw) {
-  const std::vector<std::pair<std::string, double>> programs{
+  struct Case {
+    std::string text;
+    double until;
+    std::vector<Route> routes;
+  };
+  const std::vector<Case> programs{
       {"lsystem plant {\n  axiom F\n  F -> F [ + F ] F [ - F ] F : 0.33\n  F -> F [ + F ] F : 0.33\n"
        "  F -> F [ - F ] F : 0.34\n}\n",
-       11},
+       11,
+       {{1, "compact-serial 11"}, {2, "compact-serial 8, parts 3"}, {3, "compact-serial 8, parts 3"}}},
       {"lsystem drawn {\n  axiom a b a b b a\n  a < b -> a b : 0.5\n  a < b -> b : 0.25\n  b > a -> a b a : 2\n"
        "  b -> b a : 0.2\n  a -> a b : 0.6\n  a -> a : 0.4\n  a -> b : 0\n}\n",
-       14}};
-  for (const auto& [text, until] : programs) {
+       14,
+       {{1, "compact-serial 14"}, {2, "compact-serial 14"}, {3, "compact-serial 14"}}}};
+  for (const auto& [text, until, routes] : programs) {
     SCOPED_TRACE(text);
     auto program = testing_support::compileOrFail(text);
     ASSERT_NE(program, nullptr);
     ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesToCompactWords());
     const Grown serial = grow(program, until, 1, false);
     ASSERT_GT(serial.world->rootPool().size(), ParallelRewrite::kMinimumCells);
-    expectTheSerialWordOnEveryThreadCount(program, until, serial, {1, 2, 3}, compact);
+    expectTheSerialWordOnEveryThreadCount(program, until, serial, routes);
   }
 }
 
@@ -223,26 +249,29 @@ TEST(ParallelRewrite, ADrawAmongLabelOnlyRulesIsTheSerialPassesDraw) {
 // cell's frame (a draw in a condition among them).
 TEST(ParallelRewrite, AChoiceInAContextFreeWordIsTheSerialPassesChoice) {
   // The first draws by constant chances alone and evaluates its arguments in batches, so
-  // it takes the slices on one thread too; the second chooses in the cell's frame.
-  const std::vector<std::pair<std::string, std::vector<unsigned>>> programs{
+  // its word is kept compact; the second chooses in the cell's frame, by records' slices
+  // on several threads.
+  const std::vector<std::pair<std::string, std::vector<Route>>> programs{
       {"lsystem tree {\n  axiom A(1) B\n"
        "  A(s) -> F(s) [ + A(s * 0.8) ] [ - A(s * 0.8) ] : 0.6\n"
        "  A(s) -> F(s) A(s * 0.8) : 0.35\n  A(s) -> A(s) : 0\n  A(s) -> : 0.05\n"
        "  B -> B B : 0.5\n  B -> B\n  B -> F(2) : 0.5\n"
        "  F(x) -> F(x * 1.1)\n}\n",
-       {1, 2, 3}},
+       {{1, "compact-serial 22"},
+        {2, "compact-serial 21, compact-slices 1"},
+        {3, "compact-serial 21, compact-slices 1"}}},
       {"lsystem conditions {\n  axiom A(0) B(3)\n"
        "  A(t) : t < 3 -> A(t + 1) B(t)\n  A(t) : t >= 3 && uniform(0, 1) < 0.9 -> A(0) [ + A(1) ]\n"
        "  B(x) -> B(x + 1) : 0.3 + 0.1 * sin(x)\n  B(x) -> B(x) B(x * 0.5) : 0.7\n}\n",
-       {2, 3}}};
-  for (const auto& [text, threadCounts] : programs) {
+       {{1, "serial 22"}, {2, "serial 19, record-slices 3"}, {3, "serial 19, record-slices 3"}}}};
+  for (const auto& [text, routes] : programs) {
     SCOPED_TRACE(text);
     auto program = testing_support::compileOrFail(text);
     ASSERT_NE(program, nullptr);
     ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesContextFree());
     const Grown serial = grow(program, 22, 1, false);
     ASSERT_GT(serial.world->rootPool().size(), 2 * ParallelRewrite::kMinimumCells);
-    expectTheSerialWordOnEveryThreadCount(program, 22, serial, threadCounts, bySlices);
+    expectTheSerialWordOnEveryThreadCount(program, 22, serial, routes);
   }
 }
 
@@ -251,10 +280,10 @@ TEST(ParallelRewrite, KochOnTwoThreadsIsKochOnOne) {
   ASSERT_NE(program, nullptr);
   const Grown serial = grow(program, 8, 1, false);
   EXPECT_EQ(serial.world->rootPool().size(), 2u * 390625u - 1u);  // 2 * 5^8 - 1
-  for (unsigned threads : {1u, 2u}) {
-    // Koch's modules compare labels only: by slices on one thread too.
+  for (const Route& route : std::vector<Route>{{1, "table-alone 8"}, {2, "table-alone 7, table-bounds 1"}}) {
+    const unsigned threads = route.threads;
     const Grown sliced = grow(program, 8, threads);
-    EXPECT_GT(sliced.stats.rewritesBySlices, 0u) << threads << " threads";
+    EXPECT_EQ(ran(sliced), route.strategies) << threads << " threads";
     expectSameWords(*serial.world, *sliced.world, "Koch on " + std::to_string(threads) + " threads");
   }
 }
@@ -265,18 +294,22 @@ TEST(ParallelRewrite, ThueMorseAndParametricWordsAreWrittenAsTheSerialPassWrites
   struct Model {
     const char* name;
     const char* text;
-    std::vector<unsigned> threads;
+    std::vector<Route> routes;
   };
-  for (const Model& model : {Model{"Thue-Morse", testing_support::kThueMorse, {1, 2, 7}},
-                             Model{"parametric", testing_support::kParametric, {1, 2, 7}}}) {
+  // Both go by their table: walked alone on one thread; on more, the last step, 2^15
+  // modules at t = 15, is the first large enough for slices placed by the table's bounds.
+  const std::vector<Route> kByTable{
+      {1, "table-alone 16"}, {2, "table-alone 15, table-bounds 1"}, {7, "table-alone 15, table-bounds 1"}};
+  for (const Model& model : {Model{"Thue-Morse", testing_support::kThueMorse, kByTable},
+                             Model{"parametric", testing_support::kParametric, kByTable}}) {
     auto program = testing_support::compileOrFail(model.text, model.name);
     ASSERT_NE(program, nullptr);
     const Grown serial = grow(program, 16, 1, false);
     ASSERT_EQ(serial.world->rootPool().size(), 65536u) << model.name;
-    for (unsigned threads : model.threads) {
+    for (const Route& route : model.routes) {
+      const unsigned threads = route.threads;
       const Grown sliced = grow(program, 16, threads);
-      // 2^15 modules at t = 15: the last step is the first large enough for slices.
-      EXPECT_EQ(sliced.stats.rewritesBySlices, 1u) << model.name << " on " << threads << " threads";
+      EXPECT_EQ(ran(sliced), route.strategies) << model.name << " on " << threads << " threads";
       expectSameWords(*serial.world, *sliced.world,
                       std::string(model.name) + " on " + std::to_string(threads) + " threads");
       EXPECT_EQ(sliced.stats.cellsBorn, serial.stats.cellsBorn) << model.name;
@@ -305,8 +338,8 @@ TEST(ParallelRewrite, AWordRewrittenByATableIsWrittenAsTheSerialPassWritesIt) {
   ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).rewritesByTable());
   const Grown serial = grow(program, 12, 1, false);
   ASSERT_GT(serial.world->rootPool().size(), 100'000u);
-  expectTheSerialWordOnEveryThreadCount(program, 12, serial, {1, 2, 3}, compact);
-  for (unsigned threads : {1u, 2u}) EXPECT_GT(grow(program, 12, threads).stats.rewritesBySlices, 0u);
+  expectTheSerialWordOnEveryThreadCount(program, 12, serial,
+                                        {{1, "table-alone 20"}, {2, "compact-slices 20"}, {3, "compact-slices 20"}});
   // Koch and Thue-Morse go by the table; a successor that keeps the cell's id does not.
   for (const char* text : {kKoch, testing_support::kThueMorse}) {
     auto model = testing_support::compileOrFail(text);
@@ -333,9 +366,12 @@ TEST(ParallelRewrite, ARuleOfMoreSuccessorsThanARunHoldsIsWrittenAsTheSerialPass
   ASSERT_NE(program, nullptr);
   const Grown serial = grow(program, 3, 1, false);
   ASSERT_EQ(serial.world->rootPool().size(), 2u * (1 + 3 * kWideSuccessors)) << "W, then the x of each step";
-  for (unsigned threads : {1u, 2u, 3u}) {
+  for (const Route& route : std::vector<Route>{{1, "compact-serial 1, compact-slices 2"},
+                                               {2, "compact-serial 1, compact-slices 2"},
+                                               {3, "compact-serial 1, compact-slices 2"}}) {
+    const unsigned threads = route.threads;
     const Grown sliced = grow(program, 3, threads);
-    EXPECT_EQ(sliced.stats.rewritesBySlices, 2u) << threads << " threads";
+    EXPECT_EQ(ran(sliced), route.strategies) << threads << " threads";
     expectSameWords(*serial.world, *sliced.world, "wide rule on " + std::to_string(threads) + " threads");
   }
 }
@@ -351,12 +387,13 @@ TEST(ParallelRewrite, ALabelOnlyContextIsWrittenAsTheSerialPassWritesIt) {
   auto program = testing_support::compileOrFail(signalProgram(50'000));
   ASSERT_NE(program, nullptr);
   const Grown serial = grow(program, 40, 1, false);
-  EXPECT_EQ(serial.stats.rewritesBySlices, 0u);
+  EXPECT_EQ(ran(serial), "serial 40");
   // The signal has moved 40 places.
   EXPECT_EQ(program->masters[serial.world->rootPool().cellAt(40).master].label, "b");
-  for (unsigned threads : {1u, 2u, 5u}) {
+  for (const Route& route : std::vector<Route>{{1, "one-for-one 40"}, {2, "one-for-one 40"}, {5, "one-for-one 40"}}) {
+    const unsigned threads = route.threads;
     const Grown parallel = grow(program, 40, threads);
-    EXPECT_EQ(parallel.stats.rewritesBySlices, 40u) << threads << " threads";
+    EXPECT_EQ(ran(parallel), route.strategies) << threads << " threads";
     expectSameWords(*serial.world, *parallel.world, "signal on " + std::to_string(threads) + " threads");
     EXPECT_EQ(parallel.stats.events, serial.stats.events);
   }
@@ -380,10 +417,10 @@ TEST(ParallelRewrite, AOneForOneWordIsWrittenInPlaceAsTheSerialPassWritesIt) {
     auto program = testing_support::compileOrFail(text);
     ASSERT_NE(program, nullptr);
     const Grown serial = grow(program, 12, 1, false);
-    for (unsigned threads : {2u, 3u}) {
+    for (unsigned threads : {1u, 2u, 3u}) {
       const Grown parallel = grow(program, 12, threads);
       EXPECT_TRUE(compact(parallel)) << threads << " threads";
-      EXPECT_EQ(parallel.stats.rewritesBySlices, 12u) << threads << " threads";
+      EXPECT_EQ(ran(parallel), "one-for-one 12") << threads << " threads";
       expectSameWords(*serial.world, *parallel.world, name + " on " + std::to_string(threads) + " threads");
       EXPECT_EQ(parallel.stats.events, serial.stats.events);
       EXPECT_EQ(parallel.stats.cellsBorn, serial.stats.cellsBorn);
@@ -424,7 +461,9 @@ TEST(ParallelRewrite, ModulesKeptOrRenewedTogetherAreWrittenAsTheSerialPassWrite
   EXPECT_EQ(a.birth, 3.0);
   EXPECT_GT(b.birth, 3.0);
   EXPECT_LT(b.birth, 3.0 + 1e-9);
-  expectTheSerialWordOnEveryThreadCount(program, 3.5, serial, {1, 2, 3}, compact);
+  expectTheSerialWordOnEveryThreadCount(
+      program, 3.5, serial,
+      {{1, "compact-serial 3"}, {2, "compact-serial 1, parts 2"}, {3, "compact-serial 1, parts 2"}});
 }
 
 // Labels only, with two modules of left context, right context, the wildcard and the
@@ -447,7 +486,7 @@ TEST(ParallelRewrite, LabelContextsInPlainAndBranchedWordsAreWrittenAsTheSerialP
     ASSERT_GE(serial.world->rootPool().size(), ParallelRewrite::kMinimumCells);
     for (unsigned threads : {1u, 2u, 3u}) {
       const Grown parallel = grow(program, 12, threads);
-      EXPECT_EQ(parallel.stats.rewritesBySlices, 12u) << threads << " threads";
+      EXPECT_EQ(ran(parallel), branches ? "record-slices 12" : "one-for-one 12") << threads << " threads";
       expectSameWords(
           *serial.world, *parallel.world,
           std::string(branches ? "branched" : "plain") + " word on " + std::to_string(threads) + " threads");
@@ -521,9 +560,9 @@ TEST(ParallelRewrite, ContextWithChoicesIsWrittenAsTheSerialPassWritesIt) {
   ASSERT_NE(program, nullptr);
   const Grown serial = grow(program, 25, 1, false);
   ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
-  for (unsigned threads : {2u, 3u}) {
+  for (unsigned threads : {1u, 2u, 3u}) {
     const Grown parallel = grow(program, 25, threads);
-    EXPECT_GT(parallel.stats.rewritesBySlices, 0u) << threads << " threads";
+    EXPECT_EQ(ran(parallel), threads == 1 ? "serial 25" : "serial 21, record-slices 4") << threads << " threads";
     expectSameWords(*serial.world, *parallel.world, "context with choices on " + std::to_string(threads) + " threads");
     EXPECT_EQ(parallel.stats.cellsBorn, serial.stats.cellsBorn);
   }
@@ -539,7 +578,7 @@ TEST(ParallelRewrite, ChoicesAndStepsWhereSuccessorsExpireTakeTheSerialPass) {
 })");
   ASSERT_NE(stochastic, nullptr);
   const Grown chosen = grow(stochastic, 17, 2);
-  EXPECT_EQ(chosen.stats.rewritesBySlices, 0u);
+  EXPECT_EQ(ran(chosen), "compact-serial 17");
   expectSameWords(*grow(stochastic, 17, 1, false).world, *chosen.world, "stochastic");
 
   // Steps of 2 s over lifetimes of 1 s: successors expire within the step. A word of
@@ -554,7 +593,7 @@ TEST(ParallelRewrite, ChoicesAndStepsWhereSuccessorsExpireTakeTheSerialPass) {
     world.advanceTo(8, 2.0);
     EXPECT_EQ(world.rootPool().holdsCompactWord(), compact);
     EXPECT_EQ(world.rootPool().size(), 2u * 390625u - 1u);
-    EXPECT_EQ(world.stats().rewritesBySlices, compact ? 1u : 0u) << "compact " << compact;  // 7 to 8
+    EXPECT_EQ(ran(world.stats()), compact ? "table-alone 7, table-bounds 1" : "serial 4") << "compact " << compact;
     expectSameWords(*serial.world, world, compact ? "compact Koch in steps of 2" : "Koch in steps of 2");
   }
 }
@@ -581,7 +620,10 @@ TEST(ParallelRewrite, ALimitIsReportedAsTheSerialPassReportsIt) {
         try {
           if (limit > 100'000u) {  // n = 8 by the table (from 156,249 modules)
             world.advanceTo(8, 1.0);
-            EXPECT_EQ(world.stats().rewritesBySlices, slices ? 1u : 0u);
+            EXPECT_EQ(ran(world.stats()), !slices        ? "serial 8"
+                                          : threads == 1 ? "table-alone 8"
+                                                         : "table-alone 7, table-bounds 1")
+                << threads << " threads, slices " << slices;
           }
           world.advanceTo(10, 1.0);
           ADD_FAILURE() << "no limit on " << threads << " threads";
@@ -609,7 +651,10 @@ TEST(ParallelRewrite, ALimitPassedInTheMiddleOfAOnePassWordIsReportedAsTheSerial
       world.advanceTo(19, 1.0);  // b a ... a: 2^(n - 1) + 1 modules at n
       ASSERT_EQ(world.rootPool().size(), 262'145u);
       EXPECT_EQ(world.rootPool().holdsCompactWord(), slices);
-      EXPECT_EQ(world.stats().rewritesBySlices, slices ? 3u : 0u);  // from 2^15 + 1 .. 2^17 + 1 modules
+      EXPECT_EQ(ran(world.stats()), !slices        ? "serial 19"
+                                    : threads == 1 ? "compact-serial 19"
+                                                   : "compact-serial 16, parts 3")
+          << threads << " threads, slices " << slices;
       try {
         world.advanceTo(20, 1.0);
         ADD_FAILURE() << "no limit on " << threads << " threads";

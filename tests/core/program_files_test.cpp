@@ -2,6 +2,8 @@
 // written in the file as comments:
 //   // expect-word T: WORD        the derivation word at time T (6 significant digits)
 //   // expect-image T: WORD       the word as interpretation reads it at T (after homomorphism rules)
+//   // expect-rewrites T: COUNTS  the strategies that rewrote the word by T and how often, as
+//                                 run --stats prints them ("compact-serial 2"; core/rewrite_plan.h)
 //   // expect-error L:C: TEXT     an error at line L, column C whose message contains TEXT
 //   // expect-run-error: TEXT     developing on past the last expected word (1000 s) fails with TEXT
 //   // expect-warning L:C: TEXT   a warning at line L, column C whose message contains TEXT
@@ -20,20 +22,23 @@
 #include <string_view>
 #include <sstream>
 
+#include "core/rewrite_plan.h"
 #include "core/word.h"
-#include "interpreters/text/word_text.h"
 #include "core/world.h"
 #include "interpreters/set_registry.h"
+#include "interpreters/text/word_text.h"
 #include "lang/compiler.h"
 
 namespace ontogen {
 namespace {
 
-// A word expected at a time: the developing word, or the image interpretation reads.
+// What is expected at a time: the developing word, the image interpretation reads, or
+// the strategies that rewrote the word so far.
 struct ExpectedWord {
+  enum Kind { Word, Image, Rewrites };
   double time = 0;
   std::string text;
-  bool image = false;
+  Kind kind = Word;
 };
 
 struct Expectations {
@@ -80,10 +85,13 @@ Expectations expectationsOf(const std::string& text) {
   while (std::getline(lines, line)) {
     if (auto wordLine = after(line, "expect-word ")) {
       auto [time, word] = splitAtColon(*wordLine);
-      result.words.push_back({std::stod(time), word, false});
+      result.words.push_back({std::stod(time), word, ExpectedWord::Word});
     } else if (auto imageLine = after(line, "expect-image ")) {
       auto [time, word] = splitAtColon(*imageLine);
-      result.words.push_back({std::stod(time), word, true});
+      result.words.push_back({std::stod(time), word, ExpectedWord::Image});
+    } else if (auto rewritesLine = after(line, "expect-rewrites ")) {
+      auto [time, counts] = splitAtColon(*rewritesLine);
+      result.words.push_back({std::stod(time), counts, ExpectedWord::Rewrites});
     } else if (auto errorLine = after(line, "expect-error ")) {
       auto [line_, tail] = splitAtColon(*errorLine);
       auto [column, message] = splitAtColon(tail);
@@ -159,10 +167,13 @@ TEST_P(ProgramFile, BehavesAsWritten) {
   World world(program, def);
   double step = expected.step.value_or(program->dt);
   try {
-    for (const auto& [time, word, image] : expected.words) {
+    for (const auto& [time, what, kind] : expected.words) {
       world.advanceTo(time, step);
-      EXPECT_EQ(formatWord(image ? captureInterpretedWord(world) : captureWord(world)), word)
-          << (image ? "the image " : "") << "at t = " << time;
+      if (kind == ExpectedWord::Rewrites)
+        EXPECT_EQ(formatRewriteCounts(world.stats().rewrites), what) << "the rewrites by t = " << time;
+      else
+        EXPECT_EQ(formatWord(kind == ExpectedWord::Image ? captureInterpretedWord(world) : captureWord(world)), what)
+            << (kind == ExpectedWord::Image ? "the image " : "") << "at t = " << time;
     }
     if (!expected.runError.empty()) {
       world.advanceTo(world.time() + 1000, step);

@@ -40,6 +40,12 @@ const char* kKoch = R"(lsystem koch {
   F -> F + F - F - F + F
 })";
 
+// The strategies that rewrote the word and how often (core/rewrite_plan.h), as --stats
+// prints them.
+std::string ran(const World& world) {
+  return formatRewriteCounts(world.stats().rewrites);
+}
+
 World growing(const std::shared_ptr<const Program>& program, unsigned threads, bool withoutIds) {
   WorldDef def;
   def.seed = 5;
@@ -95,12 +101,14 @@ TEST(WordsWithoutIds, ATimedWordReadsAsTheWordGrownWithIdsOnEveryThreadCount) {
   reference.advanceTo(9, 1.0);
   ASSERT_GT(reference.rootPool().size(), 200'000u);
   ASSERT_TRUE(reference.rootPool().holdsIds());
+  EXPECT_EQ(ran(reference), "table-alone 23");
   for (unsigned threads : {1u, 2u, 3u}) {
     World world = growing(program, threads, true);
     world.advanceTo(9, 1.0);
     const Pool& pool = world.rootPool();
     ASSERT_TRUE(pool.holdsCompactWord());
     EXPECT_FALSE(pool.holdsIds()) << threads << " threads";
+    EXPECT_EQ(ran(world), threads == 1 ? "table-alone 23" : "compact-slices 23") << threads << " threads";
     // Runs split where the birth changes, not at every event, and keep no key.
     EXPECT_LT(pool.compactWord().runCount(), reference.rootPool().compactWord().runCount()) << threads << " threads";
     EXPECT_LT(pool.bytes(), reference.rootPool().bytes() / 2) << threads << " threads";
@@ -148,7 +156,7 @@ TEST(WordsWithoutIds, ThueMorseBySlicesTakesARunASlice) {
       world.advanceTo(t, 1.0);
       ASSERT_TRUE(world.rootPool().compactWord().indexAgrees()) << threads << " threads, t = " << t;
     }
-    EXPECT_GT(world.stats().rewritesBySlices, 0u);
+    EXPECT_EQ(ran(world), threads == 1 ? "table-alone 18" : "table-alone 15, table-bounds 3") << threads << " threads";
     EXPECT_LE(world.rootPool().compactWord().runCount(), 4u * threads) << threads << " threads";
     EXPECT_TRUE(world.rootPool().compactWord().indexAgrees()) << threads << " threads";
     EXPECT_EQ(world.stats().events, reference.stats().events) << threads << " threads";
@@ -266,7 +274,7 @@ TEST(WordsWithoutIds, AWordWithValuesComputesThemAsTheInterpreterDoes) {
     const Pool& pool = world.rootPool();
     ASSERT_TRUE(pool.holdsCompactWord()) << what;
     EXPECT_FALSE(pool.holdsIds()) << what;
-    EXPECT_GT(world.stats().rewritesBySlices, 0u) << what;
+    EXPECT_EQ(ran(world), threads == 1 ? "table-alone 35" : "compact-slices 35") << what;
     EXPECT_TRUE(pool.compactWord().indexAgrees()) << what;
     EXPECT_EQ(world.stats().events, reference.stats().events) << what;
     EXPECT_EQ(world.stats().cellsBorn, reference.stats().cellsBorn) << what;
@@ -322,7 +330,7 @@ TEST(WordsWithoutIds, ModulesOfOneValueComputeTheirSuccessorsValuesAsTheInterpre
       expectSameValues(reference.rootPool().stateArena(), world.rootPool().compactWord().values(), what);
     }
     EXPECT_GT(world.rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
-    EXPECT_GT(world.stats().rewritesBySlices, 0u);
+    EXPECT_EQ(ran(world), threads == 1 ? "table-alone 10" : "table-alone 9, table-bounds 1") << threads << " threads";
     expectSameCells(reference.rootPool(), world.rootPool(), std::to_string(threads) + " threads");
   }
 }
@@ -382,6 +390,8 @@ TEST(WordsWithoutIds, ATimelessModuleWithAnAgeIsWrittenFromTheReplayedWord) {
   world.advanceTo(16, 1.0);
   ASSERT_GT(world.rootPool().size(), ParallelRewrite::kMinimumCells);
   ASSERT_FALSE(world.rootPool().holdsIds());
+  EXPECT_EQ(ran(reference), "compact-serial 14, table-alone 2");
+  EXPECT_EQ(ran(world), "table-alone 16");
   const std::string expected = formatWord(captureWord(reference), 9);
   EXPECT_NE(expected.find("(I, 16.5)"), std::string::npos) << "the axiom's I, kept";
   EXPECT_EQ(wordText(world, false), expected);
