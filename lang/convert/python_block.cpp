@@ -87,6 +87,21 @@ bool startsWithKeyword(std::string_view text, uint32_t begin, uint32_t end, std:
   return begin + word.size() == end || !chars::isNameChar(text[begin + word.size()]);
 }
 
+std::optional<PythonAssignment> readAssignment(std::string_view text, uint32_t begin, uint32_t end) {
+  uint32_t at = begin;
+  while (at < end && chars::isNameChar(text[at])) ++at;
+  if (at == begin || !chars::isLetter(text[begin])) return std::nullopt;
+  uint32_t op = at;
+  while (op < end && chars::isSpace(text[op])) ++op;
+  char kind = 0;
+  if (op < end && text[op] == '=' && (op + 1 >= end || text[op + 1] != '='))
+    kind = '=';
+  else if (op + 1 < end && text[op + 1] == '=' && std::string_view("+-*/").find(text[op]) != std::string_view::npos)
+    kind = text[op];
+  if (!kind) return std::nullopt;
+  return PythonAssignment{std::string(text.substr(begin, at - begin)), kind, op + (kind == '=' ? 1u : 2u)};
+}
+
 std::vector<PythonStatement> readPythonBlock(const ForeignSyntax& syntax, std::string_view text,
                                              const std::vector<BodyLine>& lines) {
   return BlockReader(syntax, text, lines).read();

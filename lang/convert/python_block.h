@@ -5,6 +5,8 @@
 // statement, which the reader of a body or a hook tells apart by what it may say.
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -49,6 +51,16 @@ struct PythonStatement {
 /// opens, an `elif`/`else` without its `if`, a test without ':' or without a body.
 std::vector<PythonStatement> readPythonBlock(const ForeignSyntax& syntax, std::string_view text,
                                              const std::vector<BodyLine>& lines);
+
+/// A simple statement `NAME = VALUE` or `NAME op= VALUE` (op one of + - * /).
+struct PythonAssignment {
+  std::string name;
+  char op = '=';            ///< '=', or the operator of an augmented assignment
+  uint32_t valueBegin = 0;  ///< the value is [valueBegin, the statement's end), untrimmed
+};
+
+/// The assignment the statement [begin, end) of `text` is, or nullopt.
+std::optional<PythonAssignment> readAssignment(std::string_view text, uint32_t begin, uint32_t end);
 
 /// Whether [begin, end) of `text` starts with the keyword `word` (followed by no name
 /// character).

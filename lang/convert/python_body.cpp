@@ -3,7 +3,6 @@
 #include <cctype>
 #include <cstdlib>
 #include <map>
-#include <memory>
 #include <optional>
 #include <string>
 
@@ -18,24 +17,15 @@ bool isSpace(char c) {
   return std::isspace(static_cast<unsigned char>(c)) != 0;
 }
 
-// One statement of a body.
-struct Stmt;
-using Block = std::vector<std::unique_ptr<Stmt>>;
+// What a simple statement of a body does.
+enum class StmtKind { Produce, NProduce, Assign, Pass, Return };
 
-struct Branch {
-  uint32_t condBegin = 0, condEnd = 0;  // empty: `else`
-  Block body;
-};
-
-enum class StmtKind { Produce, NProduce, Assign, If, Pass, Return };
-
-struct Stmt {
+// A simple statement of a body as the translator reads it.
+struct Simple {
   StmtKind kind = StmtKind::Pass;
-  uint32_t begin = 0, end = 0;          // the whole statement's line
-  uint32_t argBegin = 0, argEnd = 0;    // Produce, NProduce: the word; Assign: the value
-  std::string name;                     // Assign: the local
-  char op = '=';                        // Assign: '=', or '+' '-' '*' '/' of an augmented one
-  std::vector<Branch> branches;         // If
+  uint32_t argBegin = 0, argEnd = 0;  // Produce, NProduce: the word; Assign: the value
+  std::string name;                   // Assign: the local
+  char op = '=';                      // Assign: '=', or '+' '-' '*' '/' of an augmented one
 };
 
 // A local's value as cell-language text, and whether it holds a random draw.
@@ -129,7 +119,10 @@ class BodyTranslator {
       : syntax_(syntax), text_(text), head_(head) {}
 
   std::vector<Statement> run(const std::vector<BodyLine>& lines) {
-    Block body = block(readPythonBlock(syntax_, text_, lines));
+    const std::vector<PythonStatement> body = readPythonBlock(syntax_, text_, lines);
+    // Every statement is read before any is followed, so Python after a `produce` is
+    // refused like Python before it.
+    check(body);
     std::vector<Frame> frames{{&body, 0}};
     follow(frames, Way{});
     return std::move(out_);
@@ -137,7 +130,7 @@ class BodyTranslator {
 
  private:
   struct Frame {
-    const Block* block;
+    const std::vector<PythonStatement>* block;
     size_t next;
   };
 
@@ -152,32 +145,20 @@ class BodyTranslator {
                      "else, produce, nproduce, assignments to locals, arithmetic, math and random functions)");
   }
 
-  // The body's statements as this translator follows them.
-  Block block(const std::vector<PythonStatement>& statements) {
-    Block result;
-    for (const PythonStatement& read : statements) {
-      auto stmt = std::make_unique<Stmt>();
-      stmt->begin = read.begin;
-      stmt->end = read.end;
-      if (read.isIf()) {
-        stmt->kind = StmtKind::If;
-        for (const PythonBranch& way : read.branches) {
-          Branch branch;
-          branch.condBegin = way.testBegin;
-          branch.condEnd = way.testEnd;
-          branch.body = block(way.body);
-          stmt->branches.push_back(std::move(branch));
-        }
-      } else {
-        if (startsWith(read.begin, read.end, "if")) python(read.begin, read.end, "an 'if' on the line of a test");
-        simple(*stmt, read.begin, read.end);
+  void check(const std::vector<PythonStatement>& statements) const {
+    for (const PythonStatement& stmt : statements) {
+      if (!stmt.isIf()) {
+        simple(stmt);
+        continue;
       }
-      result.push_back(std::move(stmt));
+      for (const PythonBranch& branch : stmt.branches) check(branch.body);
     }
-    return result;
   }
 
-  void simple(Stmt& stmt, uint32_t b, uint32_t e) {
+  Simple simple(const PythonStatement& read) const {
+    const uint32_t b = read.begin, e = read.end;
+    if (startsWith(b, e, "if")) python(b, e, "an 'if' on the line of a test");
+    Simple stmt;
     auto leading = [&](std::string_view keyword, StmtKind kind) {
       if (!startsWith(b, e, keyword)) return false;
       stmt.kind = kind;
@@ -192,44 +173,27 @@ class BodyTranslator {
       }
       return true;
     };
-    if (leading("produce", StmtKind::Produce) || leading("nproduce", StmtKind::NProduce)) return;
+    if (leading("produce", StmtKind::Produce) || leading("nproduce", StmtKind::NProduce)) return stmt;
     // print(...) writes to the terminal, which changes no word.
-    if (startsWith(b, e, "print")) {
-      stmt.kind = StmtKind::Pass;
-      return;
-    }
+    if (startsWith(b, e, "print")) return stmt;
     if (startsWith(b, e, "pass")) {
       if (e != b + 4) python(b, e, "this line");
-      stmt.kind = StmtKind::Pass;
-      return;
+      return stmt;
     }
     if (startsWith(b, e, "return")) {
       uint32_t rb = b + 6, re = e;
       syntax_.trim(rb, re);
       if (rb != re && text_.substr(rb, re - rb) != "None") python(b, e, "a 'return' of a value");
       stmt.kind = StmtKind::Return;
-      return;
+      return stmt;
     }
-    // NAME = EXPR, NAME += EXPR ...
-    uint32_t at = b;
-    while (at < e && isNameChar(text_[at])) ++at;
-    if (at > b && !std::isdigit(static_cast<unsigned char>(text_[b]))) {
-      uint32_t op = at;
-      while (op < e && isSpace(text_[op])) ++op;
-      char kind = 0;
-      if (op < e && text_[op] == '=' && (op + 1 >= e || text_[op + 1] != '='))
-        kind = '=';
-      else if (op + 1 < e && text_[op + 1] == '=' && std::string_view("+-*/").find(text_[op]) != std::string_view::npos &&
-               !(text_[op] == '/' && op > 0 && text_[op - 1] == '/'))
-        kind = text_[op];
-      if (kind) {
-        stmt.kind = StmtKind::Assign;
-        stmt.name = std::string(text_.substr(b, at - b));
-        stmt.op = kind;
-        stmt.argBegin = op + (kind == '=' ? 1 : 2);
-        stmt.argEnd = e;
-        return;
-      }
+    if (std::optional<PythonAssignment> assignment = readAssignment(text_, b, e)) {
+      stmt.kind = StmtKind::Assign;
+      stmt.name = std::move(assignment->name);
+      stmt.op = assignment->op;
+      stmt.argBegin = assignment->valueBegin;
+      stmt.argEnd = e;
+      return stmt;
     }
     uint32_t stop = b;
     while (stop < e && isNameChar(text_[stop])) ++stop;
@@ -237,7 +201,7 @@ class BodyTranslator {
   }
 
   // A cell-language expression with the way's locals put in.
-  std::string substitute(const std::string& expr, Way& way, const Stmt& where) const {
+  std::string substitute(const std::string& expr, Way& way, const PythonStatement& where) const {
     if (auto whole = way.locals.find(expr); whole != way.locals.end()) {
       // An argument that is a local alone takes its value without parentheses.
       std::string value = substitute(" " + expr, way, where);
@@ -273,12 +237,12 @@ class BodyTranslator {
     return result;
   }
 
-  std::vector<ModuleText> word(const Stmt& stmt, Way& way) const {
+  std::vector<ModuleText> word(const Simple& stmt, const PythonStatement& where, Way& way) const {
     std::vector<ModuleText> modules;
     if (stmt.argBegin < stmt.argEnd && !(stmt.argEnd == stmt.argBegin + 1 && text_[stmt.argBegin] == '*'))
       modules = syntax_.modules(stmt.argBegin, stmt.argEnd, false);
     for (ModuleText& module : modules)
-      for (std::string& arg : module.args) arg = substitute(arg, way, stmt);
+      for (std::string& arg : module.args) arg = substitute(arg, way, where);
     return modules;
   }
 
@@ -309,7 +273,29 @@ class BodyTranslator {
         frames.pop_back();
         continue;
       }
-      const Stmt& stmt = *(*frame.block)[frame.next++];
+      const PythonStatement& read = (*frame.block)[frame.next++];
+      if (read.isIf()) {
+        // Each branch continues with what follows the `if`. A random value is counted once
+        // per test it appears in: two tests of one draw are not independent choices.
+        std::vector<std::string> tests;
+        for (const PythonBranch& branch : read.branches)
+          if (branch.testEnd)
+            tests.push_back(substitute(syntax_.condition(branch.testBegin, branch.testEnd), way, read));
+        for (size_t k = 0; k < read.branches.size(); ++k) {
+          const PythonBranch& branch = read.branches[k];
+          Way next = way;
+          for (size_t j = 0; j < k; ++j) negate(next, tests[j]);
+          if (branch.testEnd) holds(next, tests[k], branch);
+          std::vector<Frame> more = frames;
+          more.push_back({&branch.body, 0});
+          follow(std::move(more), std::move(next));
+          if (!branch.testEnd) return;
+        }
+        // No `else`: the way where every test fails goes on after the `if`.
+        for (const std::string& t : tests) negate(way, t);
+        continue;
+      }
+      const Simple stmt = simple(read);
       switch (stmt.kind) {
         case StmtKind::Pass:
           break;
@@ -317,13 +303,13 @@ class BodyTranslator {
           frames.clear();
           break;
         case StmtKind::Produce:
-          emit(way, word(stmt, way), false);
+          emit(way, word(stmt, read, way), false);
           return;
         case StmtKind::NProduce:
-          for (ModuleText& m : word(stmt, way)) way.produced.push_back(std::move(m));
+          for (ModuleText& m : word(stmt, read, way)) way.produced.push_back(std::move(m));
           break;
         case StmtKind::Assign: {
-          std::string value = substitute(syntax_.expression(stmt.argBegin, stmt.argEnd), way, stmt);
+          std::string value = substitute(syntax_.expression(stmt.argBegin, stmt.argEnd), way, read);
           if (stmt.op != '=') {
             auto old = way.locals.find(stmt.name);
             const std::string before = old != way.locals.end() ? old->second.text : stmt.name;
@@ -331,27 +317,6 @@ class BodyTranslator {
           }
           way.locals[stmt.name] = Value{"(" + value + ")", holdsRandom(value)};
           way.randomUses.erase(stmt.name);
-          break;
-        }
-        case StmtKind::If: {
-          // Each branch continues with what follows the `if`. A random value is counted once
-          // per test it appears in: two tests of one draw are not independent choices.
-          std::vector<std::string> tests;
-          for (const Branch& branch : stmt.branches)
-            if (branch.condEnd)
-              tests.push_back(substitute(syntax_.condition(branch.condBegin, branch.condEnd), way, stmt));
-          for (size_t k = 0; k < stmt.branches.size(); ++k) {
-            const Branch& branch = stmt.branches[k];
-            Way next = way;
-            for (size_t j = 0; j < k; ++j) negate(next, tests[j]);
-            if (branch.condEnd) holds(next, tests[k], branch);
-            std::vector<Frame> more = frames;
-            more.push_back({&branch.body, 0});
-            follow(std::move(more), std::move(next));
-            if (!branch.condEnd) return;
-          }
-          // No `else`: the way where every test fails goes on after the `if`.
-          for (const std::string& t : tests) negate(way, t);
           break;
         }
       }
@@ -366,14 +331,14 @@ class BodyTranslator {
     }
   }
 
-  void holds(Way& way, const std::string& test, const Branch& branch) const {
+  void holds(Way& way, const std::string& test, const PythonBranch& branch) const {
     if (!holdsRandom(test)) {
       way.conditions.push_back(test);
       return;
     }
     std::optional<std::string> chance = chanceOf(test);
     if (!chance)
-      syntax_.fail(branch.condBegin, branch.condEnd,
+      syntax_.fail(branch.testBegin, branch.testEnd,
                    "a test of a random value other than a uniform draw compared with a chance (random() < p): the "
                    "cell language draws anew where a value is written, so it cannot follow this test");
     way.weights.push_back(*chance);
@@ -489,25 +454,15 @@ class FunctionTranslator {
         if (b == e || text_.substr(b, e - b) == "None") python(s, "a 'return' of no value");
         return "(" + expression(b, e, locals, s) + ")";
       }
-      // NAME = EXPR, NAME += EXPR ...
-      uint32_t at = s.begin;
-      while (at < s.end && isNameChar(text_[at])) ++at;
-      uint32_t op = at;
-      while (op < s.end && isSpace(text_[op])) ++op;
-      char kind = 0;
-      if (at > s.begin && !std::isdigit(static_cast<unsigned char>(text_[s.begin])) && op < s.end) {
-        if (text_[op] == '=' && (op + 1 >= s.end || text_[op + 1] != '='))
-          kind = '=';
-        else if (op + 1 < s.end && text_[op + 1] == '=' && std::string_view("+-*/").find(text_[op]) != std::string_view::npos)
-          kind = text_[op];
-      }
-      if (!kind) {
+      const std::optional<PythonAssignment> assignment = readAssignment(text_, s.begin, s.end);
+      if (!assignment) {
         uint32_t stop = s.begin;
         while (stop < s.end && isNameChar(text_[stop])) ++stop;
         python(s, stop > s.begin ? "'" + std::string(text_.substr(s.begin, stop - s.begin)) + "'" : "this line");
       }
-      const std::string name(text_.substr(s.begin, at - s.begin));
-      std::string v = expression(op + (kind == '=' ? 1 : 2), s.end, locals, s);
+      const std::string& name = assignment->name;
+      const char kind = assignment->op;
+      std::string v = expression(assignment->valueBegin, s.end, locals, s);
       if (kind != '=') {
         auto old = locals.find(name);
         if (old == locals.end()) python(s, "'" + name + "' changed before it is set");
