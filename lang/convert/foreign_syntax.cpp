@@ -375,15 +375,8 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   }
   checkPredecessor(predecessor.front(), predBegin, predEnd);
   s.predecessor = std::move(predecessor.front());
-  // The production's parameters hide cpfg's variables of the same name.
-  bound_.clear();
-  for (const std::vector<ModuleText>* modules : {&s.left, &s.right})
-    for (const ModuleText& m : *modules) bound_.insert(m.args.begin(), m.args.end());
-  bound_.insert(s.predecessor.args.begin(), s.predecessor.args.end());
-  struct Unbind {
-    std::set<std::string, std::less<>>& names;
-    ~Unbind() { names.clear(); }
-  } unbind{bound_};
+  // The production's parameters hide the globals of the same name.
+  const Scope scope(*this, parametersOf(s));
   // cpfg's blocks around the condition, `{t = t - PL;} t > 0 {u = t / 2;}`: assignments
   // put in where they are read after them.
   std::vector<std::pair<std::string, std::string>> locals;
@@ -435,6 +428,17 @@ std::string ForeignSyntax::substituted(const std::string& expr,
     i = stop;
   }
   return result;
+}
+
+ForeignSyntax::Scope::Scope(const ForeignSyntax& syntax, std::set<std::string, std::less<>> names)
+    : syntax_(syntax), saved_(std::exchange(syntax.bound_, std::move(names))) {}
+
+std::set<std::string, std::less<>> parametersOf(const Statement& production) {
+  std::set<std::string, std::less<>> names;
+  for (const std::vector<ModuleText>* modules : {&production.left, &production.right})
+    for (const ModuleText& m : *modules) names.insert(m.args.begin(), m.args.end());
+  names.insert(production.predecessor.args.begin(), production.predecessor.args.end());
+  return names;
 }
 
 bool ForeignSyntax::bindsParameter(size_t at, std::string_view name) const {

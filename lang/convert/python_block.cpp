@@ -102,6 +102,16 @@ std::optional<PythonAssignment> readAssignment(std::string_view text, uint32_t b
   return PythonAssignment{std::string(text.substr(begin, at - begin)), kind, op + (kind == '=' ? 1u : 2u)};
 }
 
+std::set<std::string, std::less<>> assignedNames(std::string_view text, const std::vector<PythonStatement>& statements) {
+  std::set<std::string, std::less<>> names;
+  for (const PythonStatement& stmt : statements) {
+    if (std::optional<PythonAssignment> assignment = readAssignment(text, stmt.begin, stmt.end))
+      names.insert(std::move(assignment->name));
+    for (const PythonBranch& branch : stmt.branches) names.merge(assignedNames(text, branch.body));
+  }
+  return names;
+}
+
 std::vector<PythonStatement> readPythonBlock(const ForeignSyntax& syntax, std::string_view text,
                                              const std::vector<BodyLine>& lines) {
   return BlockReader(syntax, text, lines).read();

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +62,10 @@ struct PythonAssignment {
 
 /// The assignment the statement [begin, end) of `text` is, or nullopt.
 std::optional<PythonAssignment> readAssignment(std::string_view text, uint32_t begin, uint32_t end);
+
+/// The names `statements` assign on any of their ways: Python's locals of a body, which
+/// hide the file's globals of the same name wherever the body reads them.
+std::set<std::string, std::less<>> assignedNames(std::string_view text, const std::vector<PythonStatement>& statements);
 
 /// Whether [begin, end) of `text` starts with the keyword `word` (followed by no name
 /// character).

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 namespace ontogen::convert {
@@ -120,6 +121,10 @@ class BodyTranslator {
 
   std::vector<Statement> run(const std::vector<BodyLine>& lines) {
     const std::vector<PythonStatement> body = readPythonBlock(syntax_, text_, lines);
+    // The head's parameters and the body's locals hide the file's globals of their names.
+    std::set<std::string, std::less<>> names = parametersOf(head_);
+    names.merge(assignedNames(text_, body));
+    const ForeignSyntax::Scope scope(syntax_, std::move(names));
     // Every statement is read before any is followed, so Python after a `produce` is
     // refused like Python before it.
     check(body);
@@ -362,9 +367,13 @@ class FunctionTranslator {
  public:
   FunctionTranslator(const ForeignSyntax& syntax, std::string_view text) : syntax_(syntax), text_(text) {}
 
-  std::string run(const std::vector<BodyLine>& lines) {
+  std::string run(const std::vector<std::string>& parameters, const std::vector<BodyLine>& lines) {
     const std::vector<PythonStatement> body = readPythonBlock(syntax_, text_, lines);
     if (body.empty()) return "0";
+    // Its parameters and locals hide the file's globals of their names.
+    std::set<std::string, std::less<>> names = assignedNames(text_, body);
+    names.insert(parameters.begin(), parameters.end());
+    const ForeignSyntax::Scope scope(syntax_, std::move(names));
     last_ = body.back();
     return value({{&body, 0}}, {});
   }
@@ -482,8 +491,8 @@ class FunctionTranslator {
 }  // namespace
 
 std::string translatePythonFunction(const ForeignSyntax& syntax, std::string_view text,
-                                    const std::vector<BodyLine>& lines) {
-  return FunctionTranslator(syntax, text).run(lines);
+                                    const std::vector<std::string>& parameters, const std::vector<BodyLine>& lines) {
+  return FunctionTranslator(syntax, text).run(parameters, lines);
 }
 
 std::vector<Statement> translatePythonBody(const ForeignSyntax& syntax, std::string_view text,

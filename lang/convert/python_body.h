@@ -19,6 +19,7 @@
 // unchanged). Any other Python is an error at its place.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "lang/convert/foreign_syntax.h"
@@ -43,6 +44,6 @@ std::vector<Statement> translatePythonBody(const ForeignSyntax& syntax, std::str
 /// by `if(test, yes, no)`. Throws ConvertError at other Python, at a way that returns no
 /// value, at a local holding a random draw read twice.
 std::string translatePythonFunction(const ForeignSyntax& syntax, std::string_view text,
-                                    const std::vector<BodyLine>& lines);
+                                    const std::vector<std::string>& parameters, const std::vector<BodyLine>& lines);
 
 }  // namespace ontogen::convert

@@ -354,6 +354,38 @@ TEST(Convert, LPyListsTuplesAndFunctionsOfSeveralLinesMeanWhatPythonComputes) {
       << swap.err;
 }
 
+// A name Python finds first is the one read: a production's parameter, a helper
+// function's parameter and a local of a body hide L-Py's list of the same name, and each
+// holds a number in the cell language, of which an element cannot be read: a located
+// error, never the list's element. Where no parameter hides it, the list is read.
+TEST(Convert, LPyParametersAndLocalsHideAListOfTheSameName) {
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "hidden";
+  fs::create_directories(dir);
+  const std::string list = "pts = [5, 7]\nAxiom: P(1)\nderivation length: 1\nproduction:\n";
+  std::ofstream(dir / "global.lpy") << list << "P(x) --> F(pts[x])\n";
+  Result global = ontogen("word " + (dir / "global.lpy").string() + " --at 1");
+  ASSERT_EQ(global.exitCode, 0) << global.err;
+  EXPECT_EQ(global.out, "t = 1: F(7)\n");
+  const struct {
+    const char* name;
+    const char* text;
+    const char* where;
+  } hidden[] = {
+      {"parameter.lpy", "P(pts) --> F(pts[0])\n", "parameter.lpy:5:14: error: "},
+      {"body.lpy", "P(pts) :\n  produce F(pts[1])\n", "body.lpy:6:13: error: "},
+      {"local.lpy", "P(x) :\n  pts = x * 2\n  produce F(pts[1])\n", "local.lpy:7:13: error: "},
+      {"function.lpy", "def first(pts): return pts[0]\nP(x) --> F(first(x))\n", "function.lpy:5:24: error: "},
+  };
+  for (const auto& h : hidden) {
+    std::ofstream(dir / h.name) << list << h.text;
+    Result result = ontogen("word " + (dir / h.name).string() + " --at 1");
+    EXPECT_EQ(result.exitCode, 6) << h.name << "\n" << result.out << result.err;
+    EXPECT_NE(result.err.find(std::string(h.where) + "an element of 'pts', which here is a parameter or local"),
+              std::string::npos)
+        << result.err;
+  }
+}
+
 // A cpfg name that is a cell's internal state (a parameter `age`, a macro `time`) is
 // the file's own, not the cell's age or the clock: A(5) steps down by 2. nran(3, 0) is
 // cpfg's normal draw (deviation 0: 3); a macro that draws is drawn anew at each use, as
