@@ -40,6 +40,9 @@ class BlockReader {
       stmt.end = e;
       if (starts(b, e, "if")) {
         stmt.branches.push_back(compound(b + 2, e, indent, false));
+      } else if (starts(b, e, "for") && opensBody(b, e, indent)) {
+        stmt.loop = true;
+        stmt.branches.push_back(compound(b + 3, e, indent, false));
       } else if (e > b && text_[e - 1] == ':' && at_ < lines_.size() && lines_[at_].indent > indent) {
         // `for`, `while`, `with`, `try` ...: the lines of its block are its own, so that the
         // reader refuses the statement at its keyword.
@@ -48,6 +51,14 @@ class BlockReader {
       result.push_back(std::move(stmt));
     }
     return result;
+  }
+
+  // Whether the line [b, e) at `indent` has a ':' followed by a statement on it or by an
+  // indented block below.
+  bool opensBody(uint32_t b, uint32_t e, int indent) const {
+    const uint32_t colon = syntax_.find(b, e, ":");
+    if (colon == e) return false;
+    return colon + 1 < e || (at_ < lines_.size() && lines_[at_].indent > indent);
   }
 
   // `TEST: statement` or `TEST:` and an indented block; `otherwise`: an `else`.
@@ -107,6 +118,11 @@ std::set<std::string, std::less<>> assignedNames(std::string_view text, const st
   for (const PythonStatement& stmt : statements) {
     if (std::optional<PythonAssignment> assignment = readAssignment(text, stmt.begin, stmt.end))
       names.insert(std::move(assignment->name));
+    if (stmt.isFor()) {
+      uint32_t at = stmt.branches.front().testBegin;
+      while (at < stmt.branches.front().testEnd && chars::isNameChar(text[at])) ++at;
+      names.emplace(text.substr(stmt.branches.front().testBegin, at - stmt.branches.front().testBegin));
+    }
     for (const PythonBranch& branch : stmt.branches) names.merge(assignedNames(text, branch.body));
   }
   return names;

@@ -7,6 +7,9 @@
 #include <set>
 #include <string>
 
+#include "lang/convert/python_loop.h"
+#include "lang/convert/written_number.h"
+
 namespace ontogen::convert {
 
 namespace {
@@ -137,6 +140,8 @@ class BodyTranslator {
   struct Frame {
     const std::vector<PythonStatement>* block;
     size_t next;
+    const PythonStatement* loop = nullptr;  // the `for` whose body this is
+    size_t turn = 0;
   };
 
   bool startsWith(uint32_t begin, uint32_t end, std::string_view word) const {
@@ -150,14 +155,27 @@ class BodyTranslator {
                      "else, produce, nproduce, assignments to locals, arithmetic, math and random functions)");
   }
 
-  void check(const std::vector<PythonStatement>& statements) const {
+  void check(const std::vector<PythonStatement>& statements) {
     for (const PythonStatement& stmt : statements) {
-      if (!stmt.isIf()) {
+      if (stmt.isFor()) loops_.emplace(&stmt, readRangeLoop(syntax_, text_, stmt));
+      if (!stmt.isIf() && !stmt.isFor()) {
         simple(stmt);
         continue;
       }
       for (const PythonBranch& branch : stmt.branches) check(branch.body);
     }
+  }
+
+  // The loop's variable takes its value of turn `turn`.
+  void startTurn(Way& way, const PythonStatement& loop, size_t turn) {
+    if (++turns_ > kMaxLoopTurns)
+      syntax_.fail(loop.begin, loop.branches.front().testEnd,
+                   "the loops of this body turn more than " + std::to_string(kMaxLoopTurns) +
+                       " times in all (over every way through its tests); write it as several productions");
+    const LoopTurns& turns = loops_.at(&loop);
+    const std::string& value = turns.values[turn];
+    way.locals[turns.name] = Value{value.front() == '-' ? "(" + value + ")" : value, false};
+    way.randomUses.erase(turns.name);
   }
 
   Simple simple(const PythonStatement& read) const {
@@ -272,32 +290,58 @@ class BodyTranslator {
   }
 
   void follow(std::vector<Frame> frames, Way way) {
+    // Ways that produce nothing give no production, so the bound on productions does not
+    // bound them: tests in a row double the ways with or without a production.
+    if (++ways_ > kMaxBodyWays)
+      syntax_.fail(head_.origin.begin, head_.origin.end,
+                   "this body has more than " + std::to_string(kMaxBodyWays) +
+                       " ways through its tests; write it as several productions",
+                   false);
     while (!frames.empty()) {
       Frame& frame = frames.back();
       if (frame.next >= frame.block->size()) {
+        if (frame.loop && frame.turn + 1 < loops_.at(frame.loop).values.size()) {
+          frame.next = 0;
+          startTurn(way, *frame.loop, ++frame.turn);
+          continue;
+        }
         frames.pop_back();
         continue;
       }
       const PythonStatement& read = (*frame.block)[frame.next++];
+      if (read.isFor()) {
+        if (loops_.at(&read).values.empty()) continue;
+        startTurn(way, read, 0);
+        frames.push_back({&read.branches.front().body, 0, &read, 0});
+        continue;
+      }
       if (read.isIf()) {
         // Each branch continues with what follows the `if`. A random value is counted once
-        // per test it appears in: two tests of one draw are not independent choices.
+        // per test it appears in: two tests of one draw are not independent choices. A test
+        // of written numbers alone (a loop's turn, `i == 0`) is decided here.
         std::vector<std::string> tests;
-        for (const PythonBranch& branch : read.branches)
-          if (branch.testEnd)
-            tests.push_back(substitute(syntax_.condition(branch.testBegin, branch.testEnd), way, read));
+        std::vector<std::optional<bool>> decided;
+        for (const PythonBranch& branch : read.branches) {
+          if (!branch.testEnd) continue;
+          tests.push_back(substitute(syntax_.condition(branch.testBegin, branch.testEnd), way, read));
+          std::optional<double> value = holdsRandom(tests.back()) ? std::nullopt : writtenNumber(tests.back());
+          decided.push_back(value ? std::optional<bool>(*value != 0) : std::nullopt);
+        }
         for (size_t k = 0; k < read.branches.size(); ++k) {
           const PythonBranch& branch = read.branches[k];
+          if (branch.testEnd && decided[k] == false) continue;
           Way next = way;
-          for (size_t j = 0; j < k; ++j) negate(next, tests[j]);
-          if (branch.testEnd) holds(next, tests[k], branch);
+          for (size_t j = 0; j < k; ++j)
+            if (!decided[j]) negate(next, tests[j]);
+          if (branch.testEnd && !decided[k]) holds(next, tests[k], branch);
           std::vector<Frame> more = frames;
           more.push_back({&branch.body, 0});
           follow(std::move(more), std::move(next));
-          if (!branch.testEnd) return;
+          if (!branch.testEnd || decided[k] == true) return;
         }
         // No `else`: the way where every test fails goes on after the `if`.
-        for (const std::string& t : tests) negate(way, t);
+        for (size_t j = 0; j < tests.size(); ++j)
+          if (!decided[j]) negate(way, tests[j]);
         continue;
       }
       const Simple stmt = simple(read);
@@ -360,6 +404,9 @@ class BodyTranslator {
   std::string_view text_;
   const Statement& head_;
   std::vector<Statement> out_;
+  std::map<const PythonStatement*, LoopTurns> loops_;  // the turns of each `for`, read by check()
+  size_t turns_ = 0;                                   // turns of loops followed so far
+  size_t ways_ = 0;                                    // ways followed so far
 };
 
 // A helper function's body followed way by way to the value it returns.

@@ -31,6 +31,9 @@ namespace ontogen::convert {
 /// Most productions one body becomes; more is a located error (a body of many tests in a
 /// row multiplies its ways, and no model writes a tenth as many).
 inline constexpr size_t kMaxBodyProductions = 256;
+/// Most ways through one body's tests the converter follows, those that give no
+/// production among them (a way that neither produces nor chooses gives none).
+inline constexpr size_t kMaxBodyWays = 16 * kMaxBodyProductions;
 
 /// The productions `head` (its contexts and predecessor read, no successors) becomes with
 /// the body `lines`. A way that produces nothing and chooses nothing gives no production

@@ -151,7 +151,7 @@ TEST(Convert, CodeItCannotTranslateIsAnErrorAtItsPlace) {
       {"python_code.lpy",
        "python_code.lpy:5:5: error: ", "'global' in a helper function: Python which ontogen convert does not translate"},
       {"python_loop.lpy",
-       "python_loop.lpy:4:5: error: ", "'for': Python which ontogen convert does not translate"},
+       "python_loop.lpy:4:20: error: ", "a range over a value that is no written number: the converter writes out"},
       {"c_code.l", "c_code.l:3:1: error: ", "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code"},
       {"c_condition.l", "c_condition.l:4:20: error: ", "a statement other than an assignment in a C block: C code"},
   };
@@ -352,6 +352,17 @@ TEST(Convert, LPyListsTuplesAndFunctionsOfSeveralLinesMeanWhatPythonComputes) {
   EXPECT_EQ(swap.exitCode, 6) << swap.err;
   EXPECT_NE(swap.err.find("swap.lpy:3:8: error: a value naming 'b', which this line sets"), std::string::npos)
       << swap.err;
+}
+
+// L-Py's `for i in range(...)` over written numbers in a production body, written out
+// turn by turn: the words L-Py derives (i is 0, 1, 2 and B is drawn at i == 1; j counts
+// down 4, 2; i is 2 after its loop). A loop over a parameter is refused at its range.
+TEST(Convert, LPyLoopsOverRangesOfNumbersAreWrittenOutTurnByTurn) {
+  Result result = ontogen("word " + file("python_range.lpy") + " --at 1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 1: F(2) F(3) [ + B(2) ] F(4) C(4) C(2) A(4)\n"
+            "t = 2: F(2) F(3) [ + B(2) ] F(4) C(4) C(2) F(4) F(5) [ + B(4) ] F(6) C(4) C(2) A(6)\n");
 }
 
 // A name Python finds first is the one read: a production's parameter, a helper

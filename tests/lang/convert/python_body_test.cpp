@@ -57,6 +57,17 @@ TEST(PythonBody, AWayWithoutProduceGivesItsNProducedWordOrNothing) {
             "  A(x) : x > 1 -> F B\n  A(x) : !(x > 1) -> F\n  C(x) : !(x > 1) -> D\n  E(x) : x > 1 -> B\n");
 }
 
+// `for i in range(...)` over written numbers is written out turn by turn; a test of the
+// turn alone is decided there (i == 0 holds on the first turn only), a test of a
+// parameter splits the way as any test does; an empty range turns no time.
+TEST(PythonBody, LoopsOverWrittenRangesAreWrittenOutTurnByTurn) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  for i in range(2):\n    if i == 0: nproduce F\n    elif x > i: nproduce G(i)\n"
+                           "  for k in range(0): nproduce H\n  produce B(-i)\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program), "  A(x) : x > 1 -> F G(1) B(- 1)\n  A(x) : !(x > 1) -> F B(- 1)\n");
+}
+
 TEST(PythonBody, OneLineAndParenthesisedWords) {
   auto c = convertText(Dialect::LPy, "a.lpy", lpy("A(x) : produce B(x)\nB(x) :\n  produce (C\n    D(x)  # d\n  )\n"));
   ASSERT_EQ(c.error, "");
@@ -127,7 +138,15 @@ TEST(PythonBody, OtherPythonIsALocatedError) {
     const char* message;
   };
   const Case cases[] = {
-      {"A(x) :\n  for i in range(3):\n    nproduce F\n  produce B\n", 6, 3, "'for': Python which ontogen"},
+      {"A(x) :\n  for i in [1, 2]:\n    nproduce F\n  produce B\n", 6, 12, "a 'for' over other than range(...)"},
+      {"A(x) :\n  for i in range(x):\n    nproduce F\n  produce B\n", 6, 18, "a range over a value that is no written"},
+      {"A(x) :\n  for i in range(1, 2.5):\n    nproduce F\n", 6, 21, "a range over a number that is not whole"},
+      {"A(x) :\n  for i in range(0, 3, 0): nproduce F\n", 6, 17, "range() with a step of 0"},
+      {"A(x) :\n  for i in range(300): nproduce F\n", 6, 12, "a range of more than 256 turns"},
+      {"A(x) :\n  for i in range(20):\n    for j in range(20): nproduce F\n", 7, 5,
+       "the loops of this body turn more than 256 times in all"},
+      {"A(x) :\n  for i in range(3):\n    break\n", 7, 5, "'break': Python which ontogen"},
+      {"A(x) :\n  for (i, j) in range(3): nproduce F\n", 6, 3, "a 'for' over other than one name"},
       {"A(x) :\n  while x > 1:\n    produce B\n", 6, 3, "'while': Python which ontogen"},
       {"A(x) :\n  global n\n  produce B\n", 6, 3, "'global': Python which ontogen"},
       {"A(x) :\n  return [B]\n", 6, 3, "a 'return' of a value"},
