@@ -165,6 +165,17 @@ TEST(PythonBody, OtherPythonIsALocatedError) {
   }
 }
 
+// Tests in a row double the ways through a body whether or not they produce: 13 give
+// 8192, past the bound, where each way was followed before.
+TEST(PythonBody, WaysThatProduceNothingAreBoundedToo) {
+  std::string body = "A(x) :\n";
+  for (int k = 0; k < 13; ++k) body += "  if x > " + std::to_string(k) + ": pass\n";
+  auto c = convertText(Dialect::LPy, "a.lpy", lpy(body));
+  EXPECT_EQ(c.program, "");
+  EXPECT_EQ(c.line, 5);
+  EXPECT_NE(c.error.find("this body has more than 4096 ways through its tests"), std::string::npos) << c.error;
+}
+
 TEST(PythonBody, QuietHooksAndImportsAreReadOver) {
   auto c = convertText(Dialect::LPy, "a.lpy",
                        "import math\nfrom openalea.plantgl.all import *\ndef Start():\n  print('go')\n\n"
