@@ -477,16 +477,21 @@ bool ForeignSyntax::bindsParameter(size_t at, std::string_view name) const {
 // assigns it in a block of its own.
 uint32_t ForeignSyntax::block(uint32_t at, uint32_t end, const Statement& s, uint32_t statementBegin,
                               uint32_t statementEnd, std::vector<std::pair<std::string, std::string>>& locals) const {
-  uint32_t close = at + 1;
-  while (close < end && text_[close] != '}' && text_[close] != '{') ++close;
-  if (close >= end || text_[close] != '}') fail(at, at + 1, "a C block '{' without its '}'", false);
+  uint32_t close = at;
+  for (int depth = 0; close < end; ++close) {
+    if (text_[close] == '{') ++depth;
+    if (text_[close] == '}' && --depth == 0) break;
+  }
+  if (close >= end) fail(at, at + 1, "a C block '{' without its '}'", false);
   auto code = [&](uint32_t a, uint32_t b, const std::string& what) {
     fail(a, b, what + ": C code, which ontogen convert does not translate (it reads blocks of assignments "
                       "name = expression; before and after a condition)");
   };
+  // The statements end at ';', and at the braces of a compound statement within the
+  // block, `{{ y = 1; }}`, whose assignments are the block's in their order.
   for (uint32_t from = at + 1; from < close;) {
     uint32_t semi = from;
-    while (semi < close && text_[semi] != ';') ++semi;
+    while (semi < close && text_[semi] != ';' && text_[semi] != '{' && text_[semi] != '}') ++semi;
     uint32_t a = from, b = semi;
     trim(a, b);
     from = semi + 1;

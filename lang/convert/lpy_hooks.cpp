@@ -98,10 +98,16 @@ class HookReader {
                      "(docs/LANGUAGE.md, Coming from cpfg, lpfg and L-Py)");
   }
 
-  // Every statement is read before any is followed, so that one no way reaches is refused too.
+  // Every statement is read before any is followed, so that one no way reaches is refused
+  // too; an `assert` is a warning at its place, once.
   void check(const std::vector<PythonStatement>& statements) const {
     for (const PythonStatement& stmt : statements) {
       if (!stmt.isIf()) {
+        if (startsWith(stmt.begin, stmt.end, "assert"))
+          syntax_.warnings.push_back({SourceRange{stmt.begin, stmt.end},
+                                      "'assert' in L-Py's " + hook_.name +
+                                          "() is not checked: the converted block runs on where L-Py stops at an "
+                                          "assertion that fails"});
         simple(stmt);
         continue;
       }

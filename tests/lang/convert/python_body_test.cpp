@@ -201,6 +201,20 @@ TEST(PythonBody, QuietHooksAndImportsAreReadOver) {
   EXPECT_NE(numpy.error.find("'import': Python code"), std::string::npos) << numpy.error;
 }
 
+// An `assert` in a hook is not checked by the converted block: a warning at each one,
+// where it was read over in silence.
+TEST(PythonBody, AnAssertInAHookIsAWarningAtItsPlace) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "def Start():\n  assert 1 > 0\ndef EndEach(lstring):\n  if getIterationNb() > 1:\n"
+                       "    assert lstring == 'A'\n  pass\nAxiom: A\n");
+  ASSERT_EQ(c.error, "");
+  ASSERT_EQ(c.warnings.size(), 2u);
+  EXPECT_EQ(c.warnings[0],
+            "2:3: 'assert' in L-Py's Start() is not checked: the converted block runs on where L-Py stops at an "
+            "assertion that fails");
+  EXPECT_EQ(c.warnings[1].substr(0, 36), "5:5: 'assert' in L-Py's EndEach() is");
+}
+
 TEST(PythonBody, LogicalLinesJoinOpenParentheses) {
   const std::string text = "a(1,\n  2)\n\n  b [\nc\n";
   const std::vector<BodyLine> lines = logicalLines(text, 0, static_cast<uint32_t>(text.size()));
