@@ -125,8 +125,9 @@ class BodyTranslator {
   std::vector<Statement> run(const std::vector<BodyLine>& lines) {
     const std::vector<PythonStatement> body = readPythonBlock(syntax_, text_, lines);
     // The head's parameters and the body's locals hide the file's globals of their names.
+    assigned_ = assignedNames(text_, body);
     std::set<std::string, std::less<>> names = parametersOf(head_);
-    names.merge(assignedNames(text_, body));
+    names.insert(assigned_.begin(), assigned_.end());
     const ForeignSyntax::Scope scope(syntax_, std::move(names));
     // Every statement is read before any is followed, so Python after a `produce` is
     // refused like Python before it.
@@ -199,6 +200,22 @@ class BodyTranslator {
     if (leading("produce", StmtKind::Produce) || leading("nproduce", StmtKind::NProduce)) return stmt;
     // print(...) writes to the terminal, which changes no word.
     if (startsWith(b, e, "print")) return stmt;
+    // `global n` where the body only reads n: Python reads the global anyway.
+    if (startsWith(b, e, "global")) {
+      for (uint32_t at = b + 6; at < e;) {
+        while (at < e && !isNameChar(text_[at])) ++at;
+        uint32_t stop = at;
+        while (stop < e && isNameChar(text_[stop])) ++stop;
+        const std::string_view name = text_.substr(at, stop - at);
+        if (!name.empty() && assigned_.count(name))
+          syntax_.fail(b, e,
+                       "'" + std::string(name) +
+                           "' declared global and set in a production body: state carried from production to "
+                           "production, which the converter does not write");
+        at = stop;
+      }
+      return stmt;
+    }
     if (startsWith(b, e, "pass")) {
       if (e != b + 4) python(b, e, "this line");
       return stmt;
@@ -407,6 +424,7 @@ class BodyTranslator {
   std::map<const PythonStatement*, LoopTurns> loops_;  // the turns of each `for`, read by check()
   size_t turns_ = 0;                                   // turns of loops followed so far
   size_t ways_ = 0;                                    // ways followed so far
+  std::set<std::string, std::less<>> assigned_;        // the names the body sets
 };
 
 // A helper function's body followed way by way to the value it returns.

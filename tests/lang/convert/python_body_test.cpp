@@ -68,6 +68,14 @@ TEST(PythonBody, LoopsOverWrittenRangesAreWrittenOutTurnByTurn) {
   EXPECT_EQ(rules(c.program), "  A(x) : x > 1 -> F G(1) B(- 1)\n  A(x) : !(x > 1) -> F B(- 1)\n");
 }
 
+// `global n` in a body that only reads n changes nothing: Python reads the global
+// anyway. A global the body sets is state between productions, refused (above).
+TEST(PythonBody, AGlobalOnlyReadIsReadOver) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "n = 2\n" + lpy("A(x) :\n  global n\n  produce B(x * n)\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program), "  A(x) -> B(x * n)\n");
+}
+
 TEST(PythonBody, OneLineAndParenthesisedWords) {
   auto c = convertText(Dialect::LPy, "a.lpy", lpy("A(x) : produce B(x)\nB(x) :\n  produce (C\n    D(x)  # d\n  )\n"));
   ASSERT_EQ(c.error, "");
@@ -148,7 +156,7 @@ TEST(PythonBody, OtherPythonIsALocatedError) {
       {"A(x) :\n  for i in range(3):\n    break\n", 7, 5, "'break': Python which ontogen"},
       {"A(x) :\n  for (i, j) in range(3): nproduce F\n", 6, 3, "a 'for' over other than one name"},
       {"A(x) :\n  while x > 1:\n    produce B\n", 6, 3, "'while': Python which ontogen"},
-      {"A(x) :\n  global n\n  produce B\n", 6, 3, "'global': Python which ontogen"},
+      {"A(x) :\n  global n, m\n  m += 1\n  produce B\n", 6, 3, "'m' declared global and set in a production body"},
       {"A(x) :\n  return [B]\n", 6, 3, "a 'return' of a value"},
       {"A(x) :\n  produce B(randint(1, 3))\n", 6, 13, "Python's 'randint'"},
       {"A(x) :\n  a, b = 1, 2\n  produce B\n", 6, 3, "'a': Python which ontogen"},
