@@ -143,6 +143,7 @@ class BodyTranslator {
     size_t next;
     const PythonStatement* loop = nullptr;  // the `for` whose body this is
     size_t turn = 0;
+    std::vector<std::string> values = {};  // the values its variable takes
   };
 
   bool startsWith(uint32_t begin, uint32_t end, std::string_view word) const {
@@ -167,16 +168,16 @@ class BodyTranslator {
     }
   }
 
-  // The loop's variable takes its value of turn `turn`.
-  void startTurn(Way& way, const PythonStatement& loop, size_t turn) {
+  // The loop's variable takes its value of the frame's turn.
+  void startTurn(Way& way, const Frame& frame) {
     if (++turns_ > kMaxLoopTurns)
-      syntax_.fail(loop.begin, loop.branches.front().testEnd,
+      syntax_.fail(frame.loop->begin, frame.loop->branches.front().testEnd,
                    "the loops of this body turn more than " + std::to_string(kMaxLoopTurns) +
                        " times in all (over every way through its tests); write it as several productions");
-    const LoopTurns& turns = loops_.at(&loop);
-    const std::string& value = turns.values[turn];
-    way.locals[turns.name] = Value{value.front() == '-' ? "(" + value + ")" : value, false};
-    way.randomUses.erase(turns.name);
+    const std::string& name = loops_.at(frame.loop).name;
+    const std::string& value = frame.values[frame.turn];
+    way.locals[name] = Value{value.front() == '-' ? "(" + value + ")" : value, false};
+    way.randomUses.erase(name);
   }
 
   Simple simple(const PythonStatement& read) const {
@@ -317,9 +318,10 @@ class BodyTranslator {
     while (!frames.empty()) {
       Frame& frame = frames.back();
       if (frame.next >= frame.block->size()) {
-        if (frame.loop && frame.turn + 1 < loops_.at(frame.loop).values.size()) {
+        if (frame.loop && frame.turn + 1 < frame.values.size()) {
           frame.next = 0;
-          startTurn(way, *frame.loop, ++frame.turn);
+          ++frame.turn;
+          startTurn(way, frame);
           continue;
         }
         frames.pop_back();
@@ -327,9 +329,15 @@ class BodyTranslator {
       }
       const PythonStatement& read = (*frame.block)[frame.next++];
       if (read.isFor()) {
-        if (loops_.at(&read).values.empty()) continue;
-        startTurn(way, read, 0);
-        frames.push_back({&read.branches.front().body, 0, &read, 0});
+        // The range's arguments with the way's locals put in: a local or an outer loop's
+        // variable holding a written number is one.
+        const RangeLoop& loop = loops_.at(&read);
+        std::vector<std::string> arguments;
+        for (const auto& [x, y] : loop.arguments) arguments.push_back(substitute(syntax_.expression(x, y), way, read));
+        std::vector<std::string> values = loopTurns(syntax_, loop, arguments);
+        if (values.empty()) continue;
+        frames.push_back({&read.branches.front().body, 0, &read, 0, std::move(values)});
+        startTurn(way, frames.back());
         continue;
       }
       if (read.isIf()) {
@@ -421,7 +429,7 @@ class BodyTranslator {
   std::string_view text_;
   const Statement& head_;
   std::vector<Statement> out_;
-  std::map<const PythonStatement*, LoopTurns> loops_;  // the turns of each `for`, read by check()
+  std::map<const PythonStatement*, RangeLoop> loops_;  // each `for` as check() read it
   size_t turns_ = 0;                                   // turns of loops followed so far
   size_t ways_ = 0;                                    // ways followed so far
   std::set<std::string, std::less<>> assigned_;        // the names the body sets

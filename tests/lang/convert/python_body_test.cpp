@@ -66,6 +66,13 @@ TEST(PythonBody, LoopsOverWrittenRangesAreWrittenOutTurnByTurn) {
                            "  for k in range(0): nproduce H\n  produce B(-i)\n"));
   ASSERT_EQ(c.error, "");
   EXPECT_EQ(rules(c.program), "  A(x) : x > 1 -> F G(1) B(- 1)\n  A(x) : !(x > 1) -> F B(- 1)\n");
+  // The range of an inner loop over the outer one's variable, and over a local holding a
+  // written number, is read at the turn.
+  auto nested = convertText(Dialect::LPy, "a.lpy",
+                            lpy("A(x) :\n  n = 2\n  for i in range(n + 1):\n    for j in range(i, 0, -1): "
+                                "nproduce F(i, j)\n  produce B\n"));
+  ASSERT_EQ(nested.error, "");
+  EXPECT_EQ(rules(nested.program), "  A(x) -> F(1, 1) F(2, 2) F(2, 1) B\n");
 }
 
 // `global n` in a body that only reads n changes nothing: Python reads the global
@@ -149,7 +156,7 @@ TEST(PythonBody, OtherPythonIsALocatedError) {
       {"A(x) :\n  for i in [1, 2]:\n    nproduce F\n  produce B\n", 6, 12, "a 'for' over other than range(...)"},
       {"A(x) :\n  for i in range(x):\n    nproduce F\n  produce B\n", 6, 18, "a range over a value that is no written"},
       {"A(x) :\n  for i in range(1, 2.5):\n    nproduce F\n", 6, 21, "a range over a number that is not whole"},
-      {"A(x) :\n  for i in range(0, 3, 0): nproduce F\n", 6, 17, "range() with a step of 0"},
+      {"A(x) :\n  for i in range(0, 3, 0): nproduce F\n", 6, 12, "range() with a step of 0"},
       {"A(x) :\n  for i in range(300): nproduce F\n", 6, 12, "a range of more than 256 turns"},
       {"A(x) :\n  for i in range(20):\n    for j in range(20): nproduce F\n", 7, 5,
        "the loops of this body turn more than 256 times in all"},
