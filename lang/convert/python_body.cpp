@@ -447,12 +447,20 @@ class FunctionTranslator {
     std::set<std::string, std::less<>> names = assignedNames(text_, body);
     names.insert(parameters.begin(), parameters.end());
     const ForeignSyntax::Scope scope(syntax_, std::move(names));
+    parameters_.insert(parameters.begin(), parameters.end());
     last_ = body.back();
     return value({{&body, 0}}, {});
   }
 
  private:
-  using Frames = std::vector<std::pair<const std::vector<PythonStatement>*, size_t>>;
+  struct Frame {
+    const std::vector<PythonStatement>* block;
+    size_t next;
+    const PythonStatement* loop = nullptr;  // the `for` whose body this is
+    size_t turn = 0;
+    std::vector<std::string> values = {};  // the values its variable takes
+  };
+  using Frames = std::vector<Frame>;
   struct Local {
     std::string text;
     bool random = false;
@@ -468,7 +476,8 @@ class FunctionTranslator {
     syntax_.fail(s.begin, s.end,
                  what +
                      " in a helper function: Python which ontogen convert does not translate (it reads functions of "
-                     "if/elif/else, assignments to locals and return of a value)");
+                     "if/elif/else, assignments to locals, loops over ranges of written numbers and return of a "
+                     "value)");
   }
 
   // The cell-language expression [b, e) with the locals put in.
@@ -508,12 +517,29 @@ class FunctionTranslator {
                    "this function has more than " + std::to_string(kMaxBodyProductions) + " ways through its tests",
                    false);
     while (!frames.empty()) {
-      auto& [block, next] = frames.back();
-      if (next >= block->size()) {
+      Frame& frame = frames.back();
+      if (frame.next >= frame.block->size()) {
+        if (frame.loop && frame.turn + 1 < frame.values.size()) {
+          frame.next = 0;
+          ++frame.turn;
+          startTurn(locals, frame);
+          continue;
+        }
         frames.pop_back();
         continue;
       }
-      const PythonStatement& s = (*block)[next++];
+      const PythonStatement& s = (*frame.block)[frame.next++];
+      if (s.isFor()) {
+        // Written out turn by turn, as in a production body (python_loop.h).
+        const RangeLoop loop = readRangeLoop(syntax_, text_, s);
+        std::vector<std::string> arguments;
+        for (const auto& [x, y] : loop.arguments) arguments.push_back(expression(x, y, locals, s));
+        std::vector<std::string> values = loopTurns(syntax_, loop, arguments);
+        if (values.empty()) continue;
+        frames.push_back({&s.branches.front().body, 0, &s, 0, std::move(values)});
+        startTurn(locals, frames.back());
+        continue;
+      }
       if (s.isIf()) {
         std::vector<std::string> tests;
         for (const PythonBranch& branch : s.branches)
@@ -522,7 +548,7 @@ class FunctionTranslator {
         std::string result = otherwise ? "" : value(frames, locals);
         for (size_t k = s.branches.size(); k-- > 0;) {
           Frames way = frames;
-          way.emplace_back(&s.branches[k].body, 0);
+          way.push_back({&s.branches[k].body, 0});
           std::string taken = value(way, locals);
           result = s.branches[k].testEnd ? "if(" + tests[k] + ", " + taken + ", " + result + ")" : taken;
         }
@@ -547,18 +573,31 @@ class FunctionTranslator {
       std::string v = expression(assignment->valueBegin, s.end, locals, s);
       if (kind != '=') {
         auto old = locals.find(name);
-        if (old == locals.end()) python(s, "'" + name + "' changed before it is set");
-        v = old->second.text + " " + kind + " (" + v + ")";
+        if (old == locals.end() && !parameters_.count(name)) python(s, "'" + name + "' changed before it is set");
+        v = (old == locals.end() ? name : old->second.text) + " " + kind + " (" + v + ")";
       }
       locals[name] = Local{"(" + v + ")", holdsRandom(v), 0};
     }
     syntax_.fail(last_.begin, last_.end, "a way through this helper function ends here and returns no value (None)");
   }
 
+  // The loop's variable takes its value of the frame's turn.
+  void startTurn(Locals& locals, const Frame& frame) {
+    if (++turns_ > kMaxLoopTurns)
+      syntax_.fail(frame.loop->begin, frame.loop->branches.front().testEnd,
+                   "the loops of this function turn more than " + std::to_string(kMaxLoopTurns) +
+                       " times in all (over every way through its tests)");
+    std::string name = readRangeLoop(syntax_, text_, *frame.loop).name;
+    const std::string& value = frame.values[frame.turn];
+    locals[std::move(name)] = Local{value.front() == '-' ? "(" + value + ")" : value, false, 0};
+  }
+
   const ForeignSyntax& syntax_;
   std::string_view text_;
   PythonStatement last_;  // the body's last statement, where a way without return ends
   size_t ways_ = 0;
+  size_t turns_ = 0;  // turns of loops followed so far
+  std::set<std::string, std::less<>> parameters_;
 };
 
 }  // namespace

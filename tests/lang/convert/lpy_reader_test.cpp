@@ -99,7 +99,7 @@ TEST(LPyReader, TheEditorsInitialisationSectionIsNotRead) {
 
 // A function of several lines: each way's returned value, its locals put in, joined by
 // if(); docstrings, pass and print read over. A way that returns nothing, a random local
-// read twice and a loop are refused where they stand.
+// read twice, a loop over a parameter and a while are refused where they stand.
 TEST(LPyReader, HelperFunctionsOfSeveralLinesAreOneExpression) {
   auto c = convertText(Dialect::LPy, "a.lpy",
                        "M = 5\ndef size(s, t):\n  \"\"\" the size \"\"\"\n  y = s * 2\n  if t < M:\n"
@@ -119,10 +119,25 @@ TEST(LPyReader, HelperFunctionsOfSeveralLinesAreOneExpression) {
   EXPECT_EQ(twice.line, 4);
   EXPECT_NE(twice.error.find("the random value 'r' read a second time"), std::string::npos) << twice.error;
   auto loop = convertText(Dialect::LPy, "a.lpy",
-                          "def f(x):\n  for i in range(3):\n    x += i\n  return x\nAxiom: A(f(1))\n");
+                          "def f(x):\n  for i in range(x):\n    x += i\n  return x\nAxiom: A(f(1))\n");
   EXPECT_EQ(loop.line, 2);
-  EXPECT_EQ(loop.column, 3);
-  EXPECT_NE(loop.error.find("'for' in a helper function"), std::string::npos) << loop.error;
+  EXPECT_EQ(loop.column, 18);
+  EXPECT_NE(loop.error.find("a range over a value that is no written number"), std::string::npos) << loop.error;
+  auto other = convertText(Dialect::LPy, "a.lpy", "def f(x):\n  while x > 1:\n    x -= 1\n  return x\nAxiom: A(f(3))\n");
+  EXPECT_EQ(other.line, 2);
+  EXPECT_NE(other.error.find("'while' in a helper function"), std::string::npos) << other.error;
+}
+
+// A loop over a range of written numbers in a helper function is written out turn by
+// turn, as in a production body; a parameter may be changed as a local.
+TEST(LPyReader, HelperFunctionsLoopOverRangesOfWrittenNumbers) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "def f(x):\n  s = 0\n  for i in range(1, 4):\n    s += i * x\n  x *= 2\n  return s + x\n"
+                       "Axiom: A(f(2))\n");
+  ASSERT_EQ(c.error, "");
+  // 2 + 4 + 6 + 4: 16, as Python computes f(2).
+  EXPECT_EQ(body(c.program),
+            "  #angle 60\n  #until 1\n  axiom A(((((((0) + (1 * 2)) + (2 * 2)) + (3 * 2)) + (2 * (2)))))\n");
 }
 
 TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
