@@ -44,8 +44,8 @@ class BlockReader {
         stmt.loop = true;
         stmt.branches.push_back(compound(b + 3, e, indent, false));
       } else if (e > b && text_[e - 1] == ':' && at_ < lines_.size() && lines_[at_].indent > indent) {
-        // `for`, `while`, `with`, `try` ...: the lines of its block are its own, so that the
-        // reader refuses the statement at its keyword.
+        // `while`, `with`, `try` ... (and a `for` whose header has no ':'): the lines of its
+        // block are its own, so that the reader refuses the statement at its keyword.
         while (at_ < lines_.size() && lines_[at_].indent > indent) ++at_;
       }
       result.push_back(std::move(stmt));
@@ -118,10 +118,11 @@ std::set<std::string, std::less<>> assignedNames(std::string_view text, const st
   for (const PythonStatement& stmt : statements) {
     if (std::optional<PythonAssignment> assignment = readAssignment(text, stmt.begin, stmt.end))
       names.insert(std::move(assignment->name));
-    if (stmt.isFor()) {
-      uint32_t at = stmt.branches.front().testBegin;
-      while (at < stmt.branches.front().testEnd && chars::isNameChar(text[at])) ++at;
-      names.emplace(text.substr(stmt.branches.front().testBegin, at - stmt.branches.front().testBegin));
+    if (stmt.isFor()) {  // the loop's variable
+      const PythonBranch& header = stmt.branches.front();
+      uint32_t at = header.testBegin;
+      while (at < header.testEnd && chars::isNameChar(text[at])) ++at;
+      if (at > header.testBegin) names.emplace(text.substr(header.testBegin, at - header.testBegin));
     }
     for (const PythonBranch& branch : stmt.branches) names.merge(assignedNames(text, branch.body));
   }
