@@ -146,6 +146,26 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
   } else {
     body = expression(function.begin, function.end);
   }
+  // A Python function reads the globals of the file; written into the caller, a name the
+  // caller binds (a production's parameter, a body's local) would read the caller's.
+  if (dialect_ == Dialect::LPy) {
+    for (size_t i = 0; i < body.size();) {
+      if (!isLetter(body[i]) || (i > 0 && (isNameChar(body[i - 1]) || body[i - 1] == '.'))) {
+        ++i;
+        continue;
+      }
+      size_t nameEnd = i;
+      while (nameEnd < body.size() && isNameChar(body[nameEnd])) ++nameEnd;
+      const std::string global = body.substr(i, nameEnd - i);
+      bool parameter = false;
+      for (const std::string& p : function.parameters) parameter = parameter || p == global || cellName(p) == global;
+      if (!parameter && (nameEnd >= body.size() || body[nameEnd] != '(') && bound_.count(global))
+        fail(at, close + 1,
+             "'" + name + "' reads the global " + shown(global) +
+                 ", which is a parameter or local here: written into this production, it would read that instead");
+      i = nameEnd;
+    }
+  }
   // An argument that draws a random number is drawn once by Python: it may be read once
   // (a C macro draws it as often as its text names it, as the cell language does).
   for (const auto& [parameter, value] : arguments) {

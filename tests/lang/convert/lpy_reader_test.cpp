@@ -140,6 +140,28 @@ TEST(LPyReader, HelperFunctionsLoopOverRangesOfWrittenNumbers) {
             "  #angle 60\n  #until 1\n  axiom A(((((((0) + (1 * 2)) + (2 * 2)) + (3 * 2)) + (2 * (2)))))\n");
 }
 
+// A helper function reads the file's globals, whatever its caller binds: where a
+// production's parameter or a body's local has the name of a global the function reads,
+// writing the function's value into the production would read the parameter (L-Py's
+// f(2) is 7 here, not 3), so it is refused at the call. A name the function binds
+// itself is its own.
+TEST(LPyReader, AHelperFunctionReadsTheGlobalsNotItsCallersNames) {
+  const std::string functions = "n = 5\ndef f(x): return x + n\ndef g(x):\n  n = 1\n  return x + n\n"
+                                "Axiom: A(1)\nproduction:\n";
+  auto parameter = convertText(Dialect::LPy, "a.lpy", functions + "A(n) --> B(f(2))\n");
+  EXPECT_EQ(parameter.line, 8);
+  EXPECT_EQ(parameter.column, 12);
+  EXPECT_NE(parameter.error.find("'f' reads the global 'n', which is a parameter or local here"), std::string::npos)
+      << parameter.error;
+  auto local = convertText(Dialect::LPy, "a.lpy", functions + "A(x) :\n  n = x\n  produce B(f(2))\n");
+  EXPECT_EQ(local.line, 10);
+  EXPECT_EQ(local.column, 13);
+  EXPECT_NE(local.error.find("'f' reads the global 'n'"), std::string::npos) << local.error;
+  auto own = convertText(Dialect::LPy, "a.lpy", functions + "A(n) --> B(g(2))\nC(x) --> D(f(x))\n");
+  ASSERT_EQ(own.error, "");
+  EXPECT_NE(own.program.find("A(n) -> B(((2 + (1))))\n  C(x) -> D((x + n))"), std::string::npos) << own.program;
+}
+
 TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
   auto def = convertText(Dialect::LPy, "a.lpy", "Axiom: A\n\ndef f(x):\n    global y\n    return x\n");
   EXPECT_EQ(def.line, 4);
