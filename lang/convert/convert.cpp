@@ -20,8 +20,11 @@ ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_v
                           uint64_t maxBytes) {
   ConvertResult result;
   try {
-    const LSystemFile read =
+    LSystemFile read =
         dialect == Dialect::Cpfg ? readCpfg(file.text(), file.name(), view) : readLPy(file.text(), file.name());
+    // In the file's order: the readers find some (the hooks') before others above them.
+    std::stable_sort(read.warnings.begin(), read.warnings.end(),
+                     [](const ConvertWarning& a, const ConvertWarning& b) { return a.at.begin < b.at.begin; });
     for (const ConvertWarning& warning : read.warnings)
       sink.warning(SourceSpan{&file, warning.at.begin, warning.at.end}, warning.message);
     CellProgram program = writeCellProgram(read, std::filesystem::path(file.name()).filename().string());

@@ -136,7 +136,36 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
       from = comma + 1;
     }
   }
-  const std::string body = function.translated ? *function.translated : expression(function.begin, function.end);
+  std::string body;
+  if (function.translated) {
+    body = *function.translated;
+  } else if (dialect_ == Dialect::LPy) {
+    // A Python function reads its own parameters, not the caller's, over the globals.
+    const Scope scope(*this, {function.parameters.begin(), function.parameters.end()});
+    body = expression(function.begin, function.end);
+  } else {
+    body = expression(function.begin, function.end);
+  }
+  // A Python function reads the globals of the file; written into the caller, a name the
+  // caller binds (a production's parameter, a body's local) would read the caller's.
+  if (dialect_ == Dialect::LPy) {
+    for (size_t i = 0; i < body.size();) {
+      if (!isLetter(body[i]) || (i > 0 && (isNameChar(body[i - 1]) || body[i - 1] == '.'))) {
+        ++i;
+        continue;
+      }
+      size_t nameEnd = i;
+      while (nameEnd < body.size() && isNameChar(body[nameEnd])) ++nameEnd;
+      const std::string global = body.substr(i, nameEnd - i);
+      bool parameter = false;
+      for (const std::string& p : function.parameters) parameter = parameter || p == global || cellName(p) == global;
+      if (!parameter && (nameEnd >= body.size() || body[nameEnd] != '(') && bound_.count(global))
+        fail(at, close + 1,
+             "'" + name + "' reads the global " + shown(global) +
+                 ", which is a parameter or local here: written into this production, it would read that instead");
+      i = nameEnd;
+    }
+  }
   // An argument that draws a random number is drawn once by Python: it may be read once
   // (a C macro draws it as often as its text names it, as the cell language does).
   for (const auto& [parameter, value] : arguments) {
@@ -380,6 +409,12 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
         uint32_t open = stop;
         while (open < end && isSpace(text_[open])) ++open;
         if (open < end && text_[open] == '[') {
+          // A parameter or local of the same name is the one read, a number here.
+          if (bound_.count(name) || bound_.count(cellName(name)))
+            fail(at, stop,
+                 "an element of " + shown(name) +
+                     ", which here is a parameter or local (it hides the file's list or array of that name) and "
+                     "holds one number in the cell language");
           emit(arrayElement(array->second, at, open, end, stop), false, stop - at);
           at = stop;
           continue;

@@ -375,15 +375,8 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   }
   checkPredecessor(predecessor.front(), predBegin, predEnd);
   s.predecessor = std::move(predecessor.front());
-  // The production's parameters hide cpfg's variables of the same name.
-  bound_.clear();
-  for (const std::vector<ModuleText>* modules : {&s.left, &s.right})
-    for (const ModuleText& m : *modules) bound_.insert(m.args.begin(), m.args.end());
-  bound_.insert(s.predecessor.args.begin(), s.predecessor.args.end());
-  struct Unbind {
-    std::set<std::string, std::less<>>& names;
-    ~Unbind() { names.clear(); }
-  } unbind{bound_};
+  // The production's parameters hide the globals of the same name.
+  const Scope scope(*this, parametersOf(s));
   // cpfg's blocks around the condition, `{t = t - PL;} t > 0 {u = t / 2;}`: assignments
   // put in where they are read after them.
   std::vector<std::pair<std::string, std::string>> locals;
@@ -437,6 +430,17 @@ std::string ForeignSyntax::substituted(const std::string& expr,
   return result;
 }
 
+ForeignSyntax::Scope::Scope(const ForeignSyntax& syntax, std::set<std::string, std::less<>> names)
+    : syntax_(syntax), saved_(std::exchange(syntax.bound_, std::move(names))) {}
+
+std::set<std::string, std::less<>> parametersOf(const Statement& production) {
+  std::set<std::string, std::less<>> names;
+  for (const std::vector<ModuleText>* modules : {&production.left, &production.right})
+    for (const ModuleText& m : *modules) names.insert(m.args.begin(), m.args.end());
+  names.insert(production.predecessor.args.begin(), production.predecessor.args.end());
+  return names;
+}
+
 bool ForeignSyntax::bindsParameter(size_t at, std::string_view name) const {
   // The statement's first line: cpfg continues a statement on lines that start with a tab.
   size_t begin = text_.rfind('\n', at) == std::string_view::npos ? 0 : text_.rfind('\n', at) + 1;
@@ -473,16 +477,21 @@ bool ForeignSyntax::bindsParameter(size_t at, std::string_view name) const {
 // assigns it in a block of its own.
 uint32_t ForeignSyntax::block(uint32_t at, uint32_t end, const Statement& s, uint32_t statementBegin,
                               uint32_t statementEnd, std::vector<std::pair<std::string, std::string>>& locals) const {
-  uint32_t close = at + 1;
-  while (close < end && text_[close] != '}' && text_[close] != '{') ++close;
-  if (close >= end || text_[close] != '}') fail(at, at + 1, "a C block '{' without its '}'", false);
+  uint32_t close = at;
+  for (int depth = 0; close < end; ++close) {
+    if (text_[close] == '{') ++depth;
+    if (text_[close] == '}' && --depth == 0) break;
+  }
+  if (close >= end) fail(at, at + 1, "a C block '{' without its '}'", false);
   auto code = [&](uint32_t a, uint32_t b, const std::string& what) {
     fail(a, b, what + ": C code, which ontogen convert does not translate (it reads blocks of assignments "
                       "name = expression; before and after a condition)");
   };
+  // The statements end at ';', and at the braces of a compound statement within the
+  // block, `{{ y = 1; }}`, whose assignments are the block's in their order.
   for (uint32_t from = at + 1; from < close;) {
     uint32_t semi = from;
-    while (semi < close && text_[semi] != ';') ++semi;
+    while (semi < close && text_[semi] != ';' && text_[semi] != '{' && text_[semi] != '}') ++semi;
     uint32_t a = from, b = semi;
     trim(a, b);
     from = semi + 1;

@@ -89,6 +89,21 @@ class ForeignSyntax {
   /// label once, at its first place.
   mutable std::vector<ConvertWarning> warnings;
 
+  /// While it lives, `names` are the names in scope that hide the file's globals of the
+  /// same name (cpfg's variables, cpfg's arrays, L-Py's lists): a production's parameters,
+  /// or an L-Py helper function's parameters, or those and a Python body's locals.
+  class Scope {
+   public:
+    Scope(const ForeignSyntax& syntax, std::set<std::string, std::less<>> names);
+    ~Scope() { syntax_.bound_ = std::move(saved_); }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+
+   private:
+    const ForeignSyntax& syntax_;
+    std::set<std::string, std::less<>> saved_;
+  };
+
   /// The modules of text [begin, end); `pattern`: a predecessor or context, whose
   /// parameters are names. Throws ConvertError.
   std::vector<ModuleText> modules(uint32_t begin, uint32_t end, bool pattern) const;
@@ -174,13 +189,17 @@ class ForeignSyntax {
   mutable int depth_ = 0;
   mutable bool truthNext_ = false;   // the next expression() is a condition()
   mutable size_t inlinedBytes_ = 0;  // written by inlining helper functions and macros
-  mutable std::set<std::string, std::less<>> bound_;  // the parameters of the production being read
+  mutable std::set<std::string, std::less<>> bound_;  // the names of the Scope being read
 };
 
 /// A name of the other tool's file as the cell language may write it: the names of a
 /// cell's internal state (`age`, `time`, `status`, ...), which the cell language reads
 /// before a file's own names and refuses as parameters, get a trailing '_'.
 std::string cellName(std::string_view name);
+
+/// The parameters a production binds: its predecessor's and contexts' (as cellName
+/// spells them).
+std::set<std::string, std::less<>> parametersOf(const Statement& production);
 
 /// Levels of conditionals (`c ? a : b`, `a if c else b`) and of L-Py's `or(...)` the
 /// converter reads inside one another. The compiler takes 200 levels of nesting, and each

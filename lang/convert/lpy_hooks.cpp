@@ -1,6 +1,5 @@
 #include "lang/convert/lpy_hooks.h"
 
-#include <memory>
 #include <set>
 #include <utility>
 
@@ -15,24 +14,16 @@ using chars::isNameChar;
 using chars::isSpace;
 using chars::shown;
 
-enum class HookStmt { If, Global, Assign, UseGroup, Seed, Backward, Forward, Nothing };
+// What a simple statement of a hook does.
+enum class HookStmt { Global, Assign, UseGroup, Seed, Backward, Forward, Nothing };
 
-struct Stmt;
-using Block = std::vector<std::unique_ptr<Stmt>>;
-
-struct Branch {
-  uint32_t testBegin = 0, testEnd = 0;  // empty: `else`
-  Block body;
-};
-
-struct Stmt {
+// A simple statement of a hook as the reader reads it.
+struct Simple {
   HookStmt kind = HookStmt::Nothing;
-  uint32_t begin = 0, end = 0;
   uint32_t argBegin = 0, argEnd = 0;  // Assign: the value; UseGroup, Seed: the argument
   std::string name;                   // Assign: the name assigned
   char op = '=';                      // Assign: '=', or '+' '-' '*' '/' of an augmented one
   std::vector<std::string> names;     // Global
-  std::vector<Branch> branches;       // If
 };
 
 // The values a hook has set so far, on one way through it.
@@ -69,8 +60,8 @@ std::string bare(std::string text) {
 class HookReader {
  public:
   HookReader(ForeignSyntax& syntax, std::string_view text, const HookText& hook)
-      : syntax_(syntax), text_(text), hook_(hook) {
-    body_ = block(readPythonBlock(syntax_, text_, hook.body));
+      : syntax_(syntax), text_(text), hook_(hook), body_(readPythonBlock(syntax_, text_, hook.body)) {
+    check(body_);
   }
 
   /// The state after the hook, `iteration` being what getIterationNb() reads as.
@@ -107,33 +98,25 @@ class HookReader {
                      "(docs/LANGUAGE.md, Coming from cpfg, lpfg and L-Py)");
   }
 
-  // The hook's statements as this reader follows them.
-  Block block(const std::vector<PythonStatement>& statements) {
-    Block result;
-    for (const PythonStatement& read : statements) {
-      auto stmt = std::make_unique<Stmt>();
-      stmt->begin = read.begin;
-      stmt->end = read.end;
-      if (read.isIf()) {
-        stmt->kind = HookStmt::If;
-        for (const PythonBranch& way : read.branches) {
-          Branch branch;
-          branch.testBegin = way.testBegin;
-          branch.testEnd = way.testEnd;
-          branch.body = block(way.body);
-          stmt->branches.push_back(std::move(branch));
-        }
-      } else {
-        if (startsWith(read.begin, read.end, "if")) refuse(read.begin, read.end, "an 'if' on the line of a test");
-        simple(*stmt, read.begin, read.end);
+  // Every statement is read before any is followed, so that one no way reaches is refused
+  // too; an `assert` is a warning at its place, once.
+  void check(const std::vector<PythonStatement>& statements) const {
+    for (const PythonStatement& stmt : statements) {
+      if (!stmt.isIf()) {
+        if (startsWith(stmt.begin, stmt.end, "assert"))
+          syntax_.warnings.push_back({SourceRange{stmt.begin, stmt.end},
+                                      "'assert' in L-Py's " + hook_.name +
+                                          "() is not checked: the converted block runs on where L-Py stops at an "
+                                          "assertion that fails"});
+        simple(stmt);
+        continue;
       }
-      result.push_back(std::move(stmt));
+      for (const PythonBranch& branch : stmt.branches) check(branch.body);
     }
-    return result;
   }
 
   // The argument of NAME(...) filling the statement [b, e), or false.
-  bool call(Stmt& stmt, uint32_t b, uint32_t e, std::string_view name) const {
+  bool call(Simple& stmt, uint32_t b, uint32_t e, std::string_view name) const {
     if (!startsWith(b, e, name)) return false;
     uint32_t open = b + static_cast<uint32_t>(name.size());
     while (open < e && isSpace(text_[open])) ++open;
@@ -149,10 +132,13 @@ class HookReader {
     return true;
   }
 
-  void simple(Stmt& stmt, uint32_t b, uint32_t e) {
+  Simple simple(const PythonStatement& read) const {
+    const uint32_t b = read.begin, e = read.end;
+    if (startsWith(b, e, "if")) refuse(b, e, "an 'if' on the line of a test");
+    Simple stmt;
     // What changes no word: the terminal, checks, the viewer's frames.
     for (std::string_view word : {"pass", "print", "assert", "frameDisplay"})
-      if (startsWith(b, e, word)) return;
+      if (startsWith(b, e, word)) return stmt;
     if (startsWith(b, e, "global")) {
       stmt.kind = HookStmt::Global;
       for (uint32_t at = b + 6; at < e;) {
@@ -162,42 +148,30 @@ class HookReader {
         if (stop > at) stmt.names.emplace_back(text_.substr(at, stop - at));
         at = stop;
       }
-      return;
+      return stmt;
     }
     if (call(stmt, b, e, "useGroup")) {
       stmt.kind = HookStmt::UseGroup;
-      return;
+      return stmt;
     }
     if (call(stmt, b, e, "seed") || call(stmt, b, e, "random.seed")) {
       stmt.kind = HookStmt::Seed;
-      return;
+      return stmt;
     }
     if (call(stmt, b, e, "backward") || call(stmt, b, e, "forward")) {
       stmt.kind = startsWith(b, e, "backward") ? HookStmt::Backward : HookStmt::Forward;
       if (stmt.argBegin != stmt.argEnd) refuse(b, e, "a direction with an argument");
-      return;
+      return stmt;
     }
     if (startsWith(b, e, "return")) refuse(b, e, "'return', which gives L-Py a new word,");
-    // NAME = EXPR, NAME += EXPR ...
-    uint32_t at = b;
-    while (at < e && isNameChar(text_[at])) ++at;
-    if (at > b && isLetter(text_[b])) {
-      uint32_t op = at;
-      while (op < e && isSpace(text_[op])) ++op;
-      char kind = 0;
-      if (op < e && text_[op] == '=' && (op + 1 >= e || text_[op + 1] != '='))
-        kind = '=';
-      else if (op + 1 < e && text_[op + 1] == '=' && std::string_view("+-*/").find(text_[op]) != std::string_view::npos)
-        kind = text_[op];
-      if (kind) {
-        stmt.kind = HookStmt::Assign;
-        stmt.name = std::string(text_.substr(b, at - b));
-        stmt.op = kind;
-        stmt.argBegin = op + (kind == '=' ? 1 : 2);
-        stmt.argEnd = e;
-        syntax_.trim(stmt.argBegin, stmt.argEnd);
-        return;
-      }
+    if (std::optional<PythonAssignment> assignment = readAssignment(text_, b, e)) {
+      stmt.kind = HookStmt::Assign;
+      stmt.name = std::move(assignment->name);
+      stmt.op = assignment->op;
+      stmt.argBegin = assignment->valueBegin;
+      stmt.argEnd = e;
+      syntax_.trim(stmt.argBegin, stmt.argEnd);
+      return stmt;
     }
     uint32_t stop = b;
     while (stop < e && (isNameChar(text_[stop]) || text_[stop] == '.')) ++stop;
@@ -216,79 +190,80 @@ class HookReader {
     return withHookValues(text, values, {});
   }
 
-  void follow(const Block& block, State& state, int depth) {
-    for (const std::unique_ptr<Stmt>& stmt : block) {
-      const SourceRange at{stmt->begin, stmt->end};
-      switch (stmt->kind) {
+  void follow(const std::vector<PythonStatement>& block, State& state, int depth) {
+    for (const PythonStatement& read : block) {
+      const SourceRange at{read.begin, read.end};
+      if (read.isIf()) {
+        std::vector<std::string> tests;
+        std::vector<State> ways;
+        for (const PythonBranch& branch : read.branches) {
+          if (branch.testEnd) tests.push_back(value(branch.testBegin, branch.testEnd, state, true));
+          State way = state;
+          follow(branch.body, way, depth + 1);
+          ways.push_back(std::move(way));
+        }
+        // Without `else`, the way where every test fails keeps the state as it was.
+        State merged = read.branches.back().testEnd ? state : ways.back();
+        for (size_t k = tests.size(); k-- > 0;) {
+          const State& taken = ways[k];
+          for (const auto& [name, v] : taken.values) {
+            const auto other = merged.values.find(name);
+            const std::string otherwise = other != merged.values.end() ? other->second : name;
+            if (otherwise != v) merged.values[name] = "if(" + tests[k] + ", " + v + ", " + otherwise + ")";
+            merged.origins[name] = taken.origins.at(name);
+          }
+          for (const auto& [name, v] : merged.values)
+            if (!taken.values.count(name)) merged.values[name] = "if(" + tests[k] + ", " + name + ", " + v + ")";
+          if (taken.group || merged.group) {
+            std::optional<std::string> before = state.group ? state.group : groupBefore_;
+            const std::optional<std::string> yes = taken.group ? taken.group : before;
+            const std::optional<std::string> no = merged.group ? merged.group : before;
+            if (!yes || !no)
+              refuse(read.begin, read.end,
+                     "a way through the test that calls no useGroup, keeping the group of the step before "
+                     "(the block's use group: is a value of the step alone; call useGroup on every way),");
+            merged.group = *yes == *no ? *yes : "if(" + tests[k] + ", " + *yes + ", " + *no + ")";
+            merged.groupOrigin = at;
+          }
+        }
+        state = std::move(merged);
+        continue;
+      }
+      const Simple stmt = simple(read);
+      switch (stmt.kind) {
         case HookStmt::Nothing:
           break;
         case HookStmt::Global:
-          globals_.insert(stmt->names.begin(), stmt->names.end());
+          globals_.insert(stmt.names.begin(), stmt.names.end());
           break;
         case HookStmt::UseGroup:
-          state.group = value(stmt->argBegin, stmt->argEnd, state);
+          state.group = value(stmt.argBegin, stmt.argEnd, state);
           state.groupOrigin = at;
           break;
         case HookStmt::Seed:
-          if (hook_.name != "Start") refuse(stmt->begin, stmt->end, "a seed set again at each step");
-          if (depth > 0) refuse(stmt->begin, stmt->end, "a seed set on one way of a test");
-          seed_ = HookValue{value(stmt->argBegin, stmt->argEnd, state), at};
+          if (hook_.name != "Start") refuse(read.begin, read.end, "a seed set again at each step");
+          if (depth > 0) refuse(read.begin, read.end, "a seed set on one way of a test");
+          seed_ = HookValue{value(stmt.argBegin, stmt.argEnd, state), at};
           break;
         case HookStmt::Backward:
         case HookStmt::Forward:
-          if (depth > 0) refuse(stmt->begin, stmt->end, "a direction of derivation switched on one way of a test");
-          direction_ = std::make_pair(stmt->kind == HookStmt::Backward, at);
+          if (depth > 0) refuse(read.begin, read.end, "a direction of derivation switched on one way of a test");
+          direction_ = std::make_pair(stmt.kind == HookStmt::Backward, at);
           break;
         case HookStmt::Assign: {
-          const std::string name = cellName(stmt->name);
-          std::string v = value(stmt->argBegin, stmt->argEnd, state);
-          if (stmt->op != '=') {
+          const std::string name = cellName(stmt.name);
+          std::string v = value(stmt.argBegin, stmt.argEnd, state);
+          if (stmt.op != '=') {
             const auto old = state.values.find(name);
             const bool first = old == state.values.end();
             const std::string before = first ? name : old->second;
             const std::string step = "(" + v + ")";
-            v = before + " " + stmt->op + " " + step;
-            if (first && depth == 0 && (stmt->op == '+' || stmt->op == '-') && globals_.count(stmt->name))
-              counters_[stmt->name] = {stmt->op, step, "(" + v + ")", at};
+            v = before + " " + stmt.op + " " + step;
+            if (first && depth == 0 && (stmt.op == '+' || stmt.op == '-') && globals_.count(stmt.name))
+              counters_[stmt.name] = {stmt.op, step, "(" + v + ")", at};
           }
           state.values[name] = "(" + v + ")";
           state.origins[name] = at;
-          break;
-        }
-        case HookStmt::If: {
-          std::vector<std::string> tests;
-          std::vector<State> ways;
-          for (const Branch& branch : stmt->branches) {
-            if (branch.testEnd) tests.push_back(value(branch.testBegin, branch.testEnd, state, true));
-            State way = state;
-            follow(branch.body, way, depth + 1);
-            ways.push_back(std::move(way));
-          }
-          // Without `else`, the way where every test fails keeps the state as it was.
-          State merged = stmt->branches.back().testEnd ? state : ways.back();
-          for (size_t k = tests.size(); k-- > 0;) {
-            const State& taken = ways[k];
-            for (const auto& [name, v] : taken.values) {
-              const auto other = merged.values.find(name);
-              const std::string otherwise = other != merged.values.end() ? other->second : name;
-              if (otherwise != v) merged.values[name] = "if(" + tests[k] + ", " + v + ", " + otherwise + ")";
-              merged.origins[name] = taken.origins.at(name);
-            }
-            for (const auto& [name, v] : merged.values)
-              if (!taken.values.count(name)) merged.values[name] = "if(" + tests[k] + ", " + name + ", " + v + ")";
-            if (taken.group || merged.group) {
-              std::optional<std::string> before = state.group ? state.group : groupBefore_;
-              const std::optional<std::string> yes = taken.group ? taken.group : before;
-              const std::optional<std::string> no = merged.group ? merged.group : before;
-              if (!yes || !no)
-                refuse(stmt->begin, stmt->end,
-                       "a way through the test that calls no useGroup, keeping the group of the step before "
-                       "(the block's use group: is a value of the step alone; call useGroup on every way),");
-              merged.group = *yes == *no ? *yes : "if(" + tests[k] + ", " + *yes + ", " + *no + ")";
-              merged.groupOrigin = at;
-            }
-          }
-          state = std::move(merged);
           break;
         }
       }
@@ -298,7 +273,7 @@ class HookReader {
   ForeignSyntax& syntax_;
   std::string_view text_;
   const HookText& hook_;
-  Block body_;
+  std::vector<PythonStatement> body_;
   std::set<std::string> globals_;
   std::map<std::string, Counter> counters_;
   std::optional<std::pair<bool, SourceRange>> direction_;

@@ -12,7 +12,8 @@
 //     global k; k += 1                a counter, or a value of getIterationNb():
 //                                     an expression of `time` where it is read
 //
-// `print`, `pass`, `assert` and `frameDisplay` change no word and are read over;
+// `print`, `pass` and `frameDisplay` change no word and are read over, `assert` with a
+// warning at its place (the block does not check it);
 // `seed(N)` in `Start` is the block's seed; `backward()` and `forward()` called on every
 // step are the direction the block's `>>` or `<<` already gives. Anything else in a hook
 // is a located error: state carried from step to step (a value that reads its value of

@@ -417,7 +417,7 @@ class LPyReader {
       longer.push_back({std::move(name), std::move(function), body});
     }
     for (auto& [name, function, body] : longer) {
-      function.translated = translatePythonFunction(syntax_, clean_, body);
+      function.translated = translatePythonFunction(syntax_, clean_, function.parameters, body);
       syntax_.functions[name] = std::move(function);
     }
     return found;

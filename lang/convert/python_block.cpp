@@ -40,14 +40,25 @@ class BlockReader {
       stmt.end = e;
       if (starts(b, e, "if")) {
         stmt.branches.push_back(compound(b + 2, e, indent, false));
+      } else if (starts(b, e, "for") && opensBody(b, e, indent)) {
+        stmt.loop = true;
+        stmt.branches.push_back(compound(b + 3, e, indent, false));
       } else if (e > b && text_[e - 1] == ':' && at_ < lines_.size() && lines_[at_].indent > indent) {
-        // `for`, `while`, `with`, `try` ...: the lines of its block are its own, so that the
-        // reader refuses the statement at its keyword.
+        // `while`, `with`, `try` ... (and a `for` whose header has no ':'): the lines of its
+        // block are its own, so that the reader refuses the statement at its keyword.
         while (at_ < lines_.size() && lines_[at_].indent > indent) ++at_;
       }
       result.push_back(std::move(stmt));
     }
     return result;
+  }
+
+  // Whether the line [b, e) at `indent` has a ':' followed by a statement on it or by an
+  // indented block below.
+  bool opensBody(uint32_t b, uint32_t e, int indent) const {
+    const uint32_t colon = syntax_.find(b, e, ":");
+    if (colon == e) return false;
+    return colon + 1 < e || (at_ < lines_.size() && lines_[at_].indent > indent);
   }
 
   // `TEST: statement` or `TEST:` and an indented block; `otherwise`: an `else`.
@@ -85,6 +96,37 @@ class BlockReader {
 bool startsWithKeyword(std::string_view text, uint32_t begin, uint32_t end, std::string_view word) {
   if (end - begin < word.size() || text.compare(begin, word.size(), word) != 0) return false;
   return begin + word.size() == end || !chars::isNameChar(text[begin + word.size()]);
+}
+
+std::optional<PythonAssignment> readAssignment(std::string_view text, uint32_t begin, uint32_t end) {
+  uint32_t at = begin;
+  while (at < end && chars::isNameChar(text[at])) ++at;
+  if (at == begin || !chars::isLetter(text[begin])) return std::nullopt;
+  uint32_t op = at;
+  while (op < end && chars::isSpace(text[op])) ++op;
+  char kind = 0;
+  if (op < end && text[op] == '=' && (op + 1 >= end || text[op + 1] != '='))
+    kind = '=';
+  else if (op + 1 < end && text[op + 1] == '=' && std::string_view("+-*/").find(text[op]) != std::string_view::npos)
+    kind = text[op];
+  if (!kind) return std::nullopt;
+  return PythonAssignment{std::string(text.substr(begin, at - begin)), kind, op + (kind == '=' ? 1u : 2u)};
+}
+
+std::set<std::string, std::less<>> assignedNames(std::string_view text, const std::vector<PythonStatement>& statements) {
+  std::set<std::string, std::less<>> names;
+  for (const PythonStatement& stmt : statements) {
+    if (std::optional<PythonAssignment> assignment = readAssignment(text, stmt.begin, stmt.end))
+      names.insert(std::move(assignment->name));
+    if (stmt.isFor()) {  // the loop's variable
+      const PythonBranch& header = stmt.branches.front();
+      uint32_t at = header.testBegin;
+      while (at < header.testEnd && chars::isNameChar(text[at])) ++at;
+      if (at > header.testBegin) names.emplace(text.substr(header.testBegin, at - header.testBegin));
+    }
+    for (const PythonBranch& branch : stmt.branches) names.merge(assignedNames(text, branch.body));
+  }
+  return names;
 }
 
 std::vector<PythonStatement> readPythonBlock(const ForeignSyntax& syntax, std::string_view text,

@@ -3,9 +3,12 @@
 #include <cctype>
 #include <cstdlib>
 #include <map>
-#include <memory>
 #include <optional>
+#include <set>
 #include <string>
+
+#include "lang/convert/python_loop.h"
+#include "lang/convert/written_number.h"
 
 namespace ontogen::convert {
 
@@ -18,24 +21,15 @@ bool isSpace(char c) {
   return std::isspace(static_cast<unsigned char>(c)) != 0;
 }
 
-// One statement of a body.
-struct Stmt;
-using Block = std::vector<std::unique_ptr<Stmt>>;
+// What a simple statement of a body does.
+enum class StmtKind { Produce, NProduce, Assign, Pass, Return };
 
-struct Branch {
-  uint32_t condBegin = 0, condEnd = 0;  // empty: `else`
-  Block body;
-};
-
-enum class StmtKind { Produce, NProduce, Assign, If, Pass, Return };
-
-struct Stmt {
+// A simple statement of a body as the translator reads it.
+struct Simple {
   StmtKind kind = StmtKind::Pass;
-  uint32_t begin = 0, end = 0;          // the whole statement's line
-  uint32_t argBegin = 0, argEnd = 0;    // Produce, NProduce: the word; Assign: the value
-  std::string name;                     // Assign: the local
-  char op = '=';                        // Assign: '=', or '+' '-' '*' '/' of an augmented one
-  std::vector<Branch> branches;         // If
+  uint32_t argBegin = 0, argEnd = 0;  // Produce, NProduce: the word; Assign: the value
+  std::string name;                   // Assign: the local
+  char op = '=';                      // Assign: '=', or '+' '-' '*' '/' of an augmented one
 };
 
 // A local's value as cell-language text, and whether it holds a random draw.
@@ -129,7 +123,15 @@ class BodyTranslator {
       : syntax_(syntax), text_(text), head_(head) {}
 
   std::vector<Statement> run(const std::vector<BodyLine>& lines) {
-    Block body = block(readPythonBlock(syntax_, text_, lines));
+    const std::vector<PythonStatement> body = readPythonBlock(syntax_, text_, lines);
+    // The head's parameters and the body's locals hide the file's globals of their names.
+    assigned_ = assignedNames(text_, body);
+    std::set<std::string, std::less<>> names = parametersOf(head_);
+    names.insert(assigned_.begin(), assigned_.end());
+    const ForeignSyntax::Scope scope(syntax_, std::move(names));
+    // Every statement is read before any is followed, so Python after a `produce` is
+    // refused like Python before it.
+    check(body);
     std::vector<Frame> frames{{&body, 0}};
     follow(frames, Way{});
     return std::move(out_);
@@ -137,8 +139,11 @@ class BodyTranslator {
 
  private:
   struct Frame {
-    const Block* block;
+    const std::vector<PythonStatement>* block;
     size_t next;
+    const PythonStatement* loop = nullptr;  // the `for` whose body this is
+    size_t turn = 0;
+    std::vector<std::string> values = {};  // the values its variable takes
   };
 
   bool startsWith(uint32_t begin, uint32_t end, std::string_view word) const {
@@ -152,32 +157,33 @@ class BodyTranslator {
                      "else, produce, nproduce, assignments to locals, arithmetic, math and random functions)");
   }
 
-  // The body's statements as this translator follows them.
-  Block block(const std::vector<PythonStatement>& statements) {
-    Block result;
-    for (const PythonStatement& read : statements) {
-      auto stmt = std::make_unique<Stmt>();
-      stmt->begin = read.begin;
-      stmt->end = read.end;
-      if (read.isIf()) {
-        stmt->kind = StmtKind::If;
-        for (const PythonBranch& way : read.branches) {
-          Branch branch;
-          branch.condBegin = way.testBegin;
-          branch.condEnd = way.testEnd;
-          branch.body = block(way.body);
-          stmt->branches.push_back(std::move(branch));
-        }
-      } else {
-        if (startsWith(read.begin, read.end, "if")) python(read.begin, read.end, "an 'if' on the line of a test");
-        simple(*stmt, read.begin, read.end);
+  void check(const std::vector<PythonStatement>& statements) {
+    for (const PythonStatement& stmt : statements) {
+      if (stmt.isFor()) loops_.emplace(&stmt, readRangeLoop(syntax_, text_, stmt));
+      if (!stmt.isIf() && !stmt.isFor()) {
+        simple(stmt);
+        continue;
       }
-      result.push_back(std::move(stmt));
+      for (const PythonBranch& branch : stmt.branches) check(branch.body);
     }
-    return result;
   }
 
-  void simple(Stmt& stmt, uint32_t b, uint32_t e) {
+  // The loop's variable takes its value of the frame's turn.
+  void startTurn(Way& way, const Frame& frame) {
+    if (++turns_ > kMaxLoopTurns)
+      syntax_.fail(frame.loop->begin, frame.loop->branches.front().testEnd,
+                   "the loops of this body turn more than " + std::to_string(kMaxLoopTurns) +
+                       " times in all (over every way through its tests); write it as several productions");
+    const std::string& name = loops_.at(frame.loop).name;
+    const std::string& value = frame.values[frame.turn];
+    way.locals[name] = Value{value.front() == '-' ? "(" + value + ")" : value, false};
+    way.randomUses.erase(name);
+  }
+
+  Simple simple(const PythonStatement& read) const {
+    const uint32_t b = read.begin, e = read.end;
+    if (startsWith(b, e, "if")) python(b, e, "an 'if' on the line of a test");
+    Simple stmt;
     auto leading = [&](std::string_view keyword, StmtKind kind) {
       if (!startsWith(b, e, keyword)) return false;
       stmt.kind = kind;
@@ -192,44 +198,43 @@ class BodyTranslator {
       }
       return true;
     };
-    if (leading("produce", StmtKind::Produce) || leading("nproduce", StmtKind::NProduce)) return;
+    if (leading("produce", StmtKind::Produce) || leading("nproduce", StmtKind::NProduce)) return stmt;
     // print(...) writes to the terminal, which changes no word.
-    if (startsWith(b, e, "print")) {
-      stmt.kind = StmtKind::Pass;
-      return;
+    if (startsWith(b, e, "print")) return stmt;
+    // `global n` where the body only reads n: Python reads the global anyway.
+    if (startsWith(b, e, "global")) {
+      for (uint32_t at = b + 6; at < e;) {
+        while (at < e && !isNameChar(text_[at])) ++at;
+        uint32_t stop = at;
+        while (stop < e && isNameChar(text_[stop])) ++stop;
+        const std::string_view name = text_.substr(at, stop - at);
+        if (!name.empty() && assigned_.count(name))
+          syntax_.fail(b, e,
+                       "'" + std::string(name) +
+                           "' declared global and set in a production body: state carried from production to "
+                           "production, which the converter does not write");
+        at = stop;
+      }
+      return stmt;
     }
     if (startsWith(b, e, "pass")) {
       if (e != b + 4) python(b, e, "this line");
-      stmt.kind = StmtKind::Pass;
-      return;
+      return stmt;
     }
     if (startsWith(b, e, "return")) {
       uint32_t rb = b + 6, re = e;
       syntax_.trim(rb, re);
       if (rb != re && text_.substr(rb, re - rb) != "None") python(b, e, "a 'return' of a value");
       stmt.kind = StmtKind::Return;
-      return;
+      return stmt;
     }
-    // NAME = EXPR, NAME += EXPR ...
-    uint32_t at = b;
-    while (at < e && isNameChar(text_[at])) ++at;
-    if (at > b && !std::isdigit(static_cast<unsigned char>(text_[b]))) {
-      uint32_t op = at;
-      while (op < e && isSpace(text_[op])) ++op;
-      char kind = 0;
-      if (op < e && text_[op] == '=' && (op + 1 >= e || text_[op + 1] != '='))
-        kind = '=';
-      else if (op + 1 < e && text_[op + 1] == '=' && std::string_view("+-*/").find(text_[op]) != std::string_view::npos &&
-               !(text_[op] == '/' && op > 0 && text_[op - 1] == '/'))
-        kind = text_[op];
-      if (kind) {
-        stmt.kind = StmtKind::Assign;
-        stmt.name = std::string(text_.substr(b, at - b));
-        stmt.op = kind;
-        stmt.argBegin = op + (kind == '=' ? 1 : 2);
-        stmt.argEnd = e;
-        return;
-      }
+    if (std::optional<PythonAssignment> assignment = readAssignment(text_, b, e)) {
+      stmt.kind = StmtKind::Assign;
+      stmt.name = std::move(assignment->name);
+      stmt.op = assignment->op;
+      stmt.argBegin = assignment->valueBegin;
+      stmt.argEnd = e;
+      return stmt;
     }
     uint32_t stop = b;
     while (stop < e && isNameChar(text_[stop])) ++stop;
@@ -237,7 +242,7 @@ class BodyTranslator {
   }
 
   // A cell-language expression with the way's locals put in.
-  std::string substitute(const std::string& expr, Way& way, const Stmt& where) const {
+  std::string substitute(const std::string& expr, Way& way, const PythonStatement& where) const {
     if (auto whole = way.locals.find(expr); whole != way.locals.end()) {
       // An argument that is a local alone takes its value without parentheses.
       std::string value = substitute(" " + expr, way, where);
@@ -273,12 +278,12 @@ class BodyTranslator {
     return result;
   }
 
-  std::vector<ModuleText> word(const Stmt& stmt, Way& way) const {
+  std::vector<ModuleText> word(const Simple& stmt, const PythonStatement& where, Way& way) const {
     std::vector<ModuleText> modules;
     if (stmt.argBegin < stmt.argEnd && !(stmt.argEnd == stmt.argBegin + 1 && text_[stmt.argBegin] == '*'))
       modules = syntax_.modules(stmt.argBegin, stmt.argEnd, false);
     for (ModuleText& module : modules)
-      for (std::string& arg : module.args) arg = substitute(arg, way, stmt);
+      for (std::string& arg : module.args) arg = substitute(arg, way, where);
     return modules;
   }
 
@@ -303,13 +308,68 @@ class BodyTranslator {
   }
 
   void follow(std::vector<Frame> frames, Way way) {
+    // Ways that produce nothing give no production, so the bound on productions does not
+    // bound them: tests in a row double the ways with or without a production.
+    if (++ways_ > kMaxBodyWays)
+      syntax_.fail(head_.origin.begin, head_.origin.end,
+                   "this body has more than " + std::to_string(kMaxBodyWays) +
+                       " ways through its tests; write it as several productions",
+                   false);
     while (!frames.empty()) {
       Frame& frame = frames.back();
       if (frame.next >= frame.block->size()) {
+        if (frame.loop && frame.turn + 1 < frame.values.size()) {
+          frame.next = 0;
+          ++frame.turn;
+          startTurn(way, frame);
+          continue;
+        }
         frames.pop_back();
         continue;
       }
-      const Stmt& stmt = *(*frame.block)[frame.next++];
+      const PythonStatement& read = (*frame.block)[frame.next++];
+      if (read.isFor()) {
+        // The range's arguments with the way's locals put in: a local or an outer loop's
+        // variable holding a written number is one.
+        const RangeLoop& loop = loops_.at(&read);
+        std::vector<std::string> arguments;
+        for (const auto& [x, y] : loop.arguments) arguments.push_back(substitute(syntax_.expression(x, y), way, read));
+        std::vector<std::string> values = loopTurns(syntax_, loop, arguments);
+        if (values.empty()) continue;
+        frames.push_back({&read.branches.front().body, 0, &read, 0, std::move(values)});
+        startTurn(way, frames.back());
+        continue;
+      }
+      if (read.isIf()) {
+        // Each branch continues with what follows the `if`. A random value is counted once
+        // per test it appears in: two tests of one draw are not independent choices. A test
+        // of written numbers alone (a loop's turn, `i == 0`) is decided here.
+        std::vector<std::string> tests;
+        std::vector<std::optional<bool>> decided;
+        for (const PythonBranch& branch : read.branches) {
+          if (!branch.testEnd) continue;
+          tests.push_back(substitute(syntax_.condition(branch.testBegin, branch.testEnd), way, read));
+          std::optional<double> value = holdsRandom(tests.back()) ? std::nullopt : writtenNumber(tests.back());
+          decided.push_back(value ? std::optional<bool>(*value != 0) : std::nullopt);
+        }
+        for (size_t k = 0; k < read.branches.size(); ++k) {
+          const PythonBranch& branch = read.branches[k];
+          if (branch.testEnd && decided[k] == false) continue;
+          Way next = way;
+          for (size_t j = 0; j < k; ++j)
+            if (!decided[j]) negate(next, tests[j]);
+          if (branch.testEnd && !decided[k]) holds(next, tests[k], branch);
+          std::vector<Frame> more = frames;
+          more.push_back({&branch.body, 0});
+          follow(std::move(more), std::move(next));
+          if (!branch.testEnd || decided[k] == true) return;
+        }
+        // No `else`: the way where every test fails goes on after the `if`.
+        for (size_t j = 0; j < tests.size(); ++j)
+          if (!decided[j]) negate(way, tests[j]);
+        continue;
+      }
+      const Simple stmt = simple(read);
       switch (stmt.kind) {
         case StmtKind::Pass:
           break;
@@ -317,13 +377,13 @@ class BodyTranslator {
           frames.clear();
           break;
         case StmtKind::Produce:
-          emit(way, word(stmt, way), false);
+          emit(way, word(stmt, read, way), false);
           return;
         case StmtKind::NProduce:
-          for (ModuleText& m : word(stmt, way)) way.produced.push_back(std::move(m));
+          for (ModuleText& m : word(stmt, read, way)) way.produced.push_back(std::move(m));
           break;
         case StmtKind::Assign: {
-          std::string value = substitute(syntax_.expression(stmt.argBegin, stmt.argEnd), way, stmt);
+          std::string value = substitute(syntax_.expression(stmt.argBegin, stmt.argEnd), way, read);
           if (stmt.op != '=') {
             auto old = way.locals.find(stmt.name);
             const std::string before = old != way.locals.end() ? old->second.text : stmt.name;
@@ -331,27 +391,6 @@ class BodyTranslator {
           }
           way.locals[stmt.name] = Value{"(" + value + ")", holdsRandom(value)};
           way.randomUses.erase(stmt.name);
-          break;
-        }
-        case StmtKind::If: {
-          // Each branch continues with what follows the `if`. A random value is counted once
-          // per test it appears in: two tests of one draw are not independent choices.
-          std::vector<std::string> tests;
-          for (const Branch& branch : stmt.branches)
-            if (branch.condEnd)
-              tests.push_back(substitute(syntax_.condition(branch.condBegin, branch.condEnd), way, stmt));
-          for (size_t k = 0; k < stmt.branches.size(); ++k) {
-            const Branch& branch = stmt.branches[k];
-            Way next = way;
-            for (size_t j = 0; j < k; ++j) negate(next, tests[j]);
-            if (branch.condEnd) holds(next, tests[k], branch);
-            std::vector<Frame> more = frames;
-            more.push_back({&branch.body, 0});
-            follow(std::move(more), std::move(next));
-            if (!branch.condEnd) return;
-          }
-          // No `else`: the way where every test fails goes on after the `if`.
-          for (const std::string& t : tests) negate(way, t);
           break;
         }
       }
@@ -366,14 +405,14 @@ class BodyTranslator {
     }
   }
 
-  void holds(Way& way, const std::string& test, const Branch& branch) const {
+  void holds(Way& way, const std::string& test, const PythonBranch& branch) const {
     if (!holdsRandom(test)) {
       way.conditions.push_back(test);
       return;
     }
     std::optional<std::string> chance = chanceOf(test);
     if (!chance)
-      syntax_.fail(branch.condBegin, branch.condEnd,
+      syntax_.fail(branch.testBegin, branch.testEnd,
                    "a test of a random value other than a uniform draw compared with a chance (random() < p): the "
                    "cell language draws anew where a value is written, so it cannot follow this test");
     way.weights.push_back(*chance);
@@ -390,6 +429,10 @@ class BodyTranslator {
   std::string_view text_;
   const Statement& head_;
   std::vector<Statement> out_;
+  std::map<const PythonStatement*, RangeLoop> loops_;  // each `for` as check() read it
+  size_t turns_ = 0;                                   // turns of loops followed so far
+  size_t ways_ = 0;                                    // ways followed so far
+  std::set<std::string, std::less<>> assigned_;        // the names the body sets
 };
 
 // A helper function's body followed way by way to the value it returns.
@@ -397,15 +440,27 @@ class FunctionTranslator {
  public:
   FunctionTranslator(const ForeignSyntax& syntax, std::string_view text) : syntax_(syntax), text_(text) {}
 
-  std::string run(const std::vector<BodyLine>& lines) {
+  std::string run(const std::vector<std::string>& parameters, const std::vector<BodyLine>& lines) {
     const std::vector<PythonStatement> body = readPythonBlock(syntax_, text_, lines);
     if (body.empty()) return "0";
+    // Its parameters and locals hide the file's globals of their names.
+    std::set<std::string, std::less<>> names = assignedNames(text_, body);
+    names.insert(parameters.begin(), parameters.end());
+    const ForeignSyntax::Scope scope(syntax_, std::move(names));
+    parameters_.insert(parameters.begin(), parameters.end());
     last_ = body.back();
     return value({{&body, 0}}, {});
   }
 
  private:
-  using Frames = std::vector<std::pair<const std::vector<PythonStatement>*, size_t>>;
+  struct Frame {
+    const std::vector<PythonStatement>* block;
+    size_t next;
+    const PythonStatement* loop = nullptr;  // the `for` whose body this is
+    size_t turn = 0;
+    std::vector<std::string> values = {};  // the values its variable takes
+  };
+  using Frames = std::vector<Frame>;
   struct Local {
     std::string text;
     bool random = false;
@@ -421,7 +476,8 @@ class FunctionTranslator {
     syntax_.fail(s.begin, s.end,
                  what +
                      " in a helper function: Python which ontogen convert does not translate (it reads functions of "
-                     "if/elif/else, assignments to locals and return of a value)");
+                     "if/elif/else, assignments to locals, loops over ranges of written numbers and return of a "
+                     "value)");
   }
 
   // The cell-language expression [b, e) with the locals put in.
@@ -461,12 +517,29 @@ class FunctionTranslator {
                    "this function has more than " + std::to_string(kMaxBodyProductions) + " ways through its tests",
                    false);
     while (!frames.empty()) {
-      auto& [block, next] = frames.back();
-      if (next >= block->size()) {
+      Frame& frame = frames.back();
+      if (frame.next >= frame.block->size()) {
+        if (frame.loop && frame.turn + 1 < frame.values.size()) {
+          frame.next = 0;
+          ++frame.turn;
+          startTurn(locals, frame);
+          continue;
+        }
         frames.pop_back();
         continue;
       }
-      const PythonStatement& s = (*block)[next++];
+      const PythonStatement& s = (*frame.block)[frame.next++];
+      if (s.isFor()) {
+        // Written out turn by turn, as in a production body (python_loop.h).
+        const RangeLoop loop = readRangeLoop(syntax_, text_, s);
+        std::vector<std::string> arguments;
+        for (const auto& [x, y] : loop.arguments) arguments.push_back(expression(x, y, locals, s));
+        std::vector<std::string> values = loopTurns(syntax_, loop, arguments);
+        if (values.empty()) continue;
+        frames.push_back({&s.branches.front().body, 0, &s, 0, std::move(values)});
+        startTurn(locals, frames.back());
+        continue;
+      }
       if (s.isIf()) {
         std::vector<std::string> tests;
         for (const PythonBranch& branch : s.branches)
@@ -475,7 +548,7 @@ class FunctionTranslator {
         std::string result = otherwise ? "" : value(frames, locals);
         for (size_t k = s.branches.size(); k-- > 0;) {
           Frames way = frames;
-          way.emplace_back(&s.branches[k].body, 0);
+          way.push_back({&s.branches[k].body, 0});
           std::string taken = value(way, locals);
           result = s.branches[k].testEnd ? "if(" + tests[k] + ", " + taken + ", " + result + ")" : taken;
         }
@@ -489,46 +562,49 @@ class FunctionTranslator {
         if (b == e || text_.substr(b, e - b) == "None") python(s, "a 'return' of no value");
         return "(" + expression(b, e, locals, s) + ")";
       }
-      // NAME = EXPR, NAME += EXPR ...
-      uint32_t at = s.begin;
-      while (at < s.end && isNameChar(text_[at])) ++at;
-      uint32_t op = at;
-      while (op < s.end && isSpace(text_[op])) ++op;
-      char kind = 0;
-      if (at > s.begin && !std::isdigit(static_cast<unsigned char>(text_[s.begin])) && op < s.end) {
-        if (text_[op] == '=' && (op + 1 >= s.end || text_[op + 1] != '='))
-          kind = '=';
-        else if (op + 1 < s.end && text_[op + 1] == '=' && std::string_view("+-*/").find(text_[op]) != std::string_view::npos)
-          kind = text_[op];
-      }
-      if (!kind) {
+      const std::optional<PythonAssignment> assignment = readAssignment(text_, s.begin, s.end);
+      if (!assignment) {
         uint32_t stop = s.begin;
         while (stop < s.end && isNameChar(text_[stop])) ++stop;
         python(s, stop > s.begin ? "'" + std::string(text_.substr(s.begin, stop - s.begin)) + "'" : "this line");
       }
-      const std::string name(text_.substr(s.begin, at - s.begin));
-      std::string v = expression(op + (kind == '=' ? 1 : 2), s.end, locals, s);
+      const std::string& name = assignment->name;
+      const char kind = assignment->op;
+      std::string v = expression(assignment->valueBegin, s.end, locals, s);
       if (kind != '=') {
         auto old = locals.find(name);
-        if (old == locals.end()) python(s, "'" + name + "' changed before it is set");
-        v = old->second.text + " " + kind + " (" + v + ")";
+        if (old == locals.end() && !parameters_.count(name)) python(s, "'" + name + "' changed before it is set");
+        v = (old == locals.end() ? name : old->second.text) + " " + kind + " (" + v + ")";
       }
       locals[name] = Local{"(" + v + ")", holdsRandom(v), 0};
     }
     syntax_.fail(last_.begin, last_.end, "a way through this helper function ends here and returns no value (None)");
   }
 
+  // The loop's variable takes its value of the frame's turn.
+  void startTurn(Locals& locals, const Frame& frame) {
+    if (++turns_ > kMaxLoopTurns)
+      syntax_.fail(frame.loop->begin, frame.loop->branches.front().testEnd,
+                   "the loops of this function turn more than " + std::to_string(kMaxLoopTurns) +
+                       " times in all (over every way through its tests)");
+    std::string name = readRangeLoop(syntax_, text_, *frame.loop).name;
+    const std::string& value = frame.values[frame.turn];
+    locals[std::move(name)] = Local{value.front() == '-' ? "(" + value + ")" : value, false, 0};
+  }
+
   const ForeignSyntax& syntax_;
   std::string_view text_;
   PythonStatement last_;  // the body's last statement, where a way without return ends
   size_t ways_ = 0;
+  size_t turns_ = 0;  // turns of loops followed so far
+  std::set<std::string, std::less<>> parameters_;
 };
 
 }  // namespace
 
 std::string translatePythonFunction(const ForeignSyntax& syntax, std::string_view text,
-                                    const std::vector<BodyLine>& lines) {
-  return FunctionTranslator(syntax, text).run(lines);
+                                    const std::vector<std::string>& parameters, const std::vector<BodyLine>& lines) {
+  return FunctionTranslator(syntax, text).run(parameters, lines);
 }
 
 std::vector<Statement> translatePythonBody(const ForeignSyntax& syntax, std::string_view text,

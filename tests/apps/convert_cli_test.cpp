@@ -151,7 +151,7 @@ TEST(Convert, CodeItCannotTranslateIsAnErrorAtItsPlace) {
       {"python_code.lpy",
        "python_code.lpy:5:5: error: ", "'global' in a helper function: Python which ontogen convert does not translate"},
       {"python_loop.lpy",
-       "python_loop.lpy:4:5: error: ", "'for': Python which ontogen convert does not translate"},
+       "python_loop.lpy:4:20: error: ", "a range over a value that is no written number: the converter writes out"},
       {"c_code.l", "c_code.l:3:1: error: ", "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code"},
       {"c_condition.l", "c_condition.l:4:20: error: ", "a statement other than an assignment in a C block: C code"},
   };
@@ -352,6 +352,49 @@ TEST(Convert, LPyListsTuplesAndFunctionsOfSeveralLinesMeanWhatPythonComputes) {
   EXPECT_EQ(swap.exitCode, 6) << swap.err;
   EXPECT_NE(swap.err.find("swap.lpy:3:8: error: a value naming 'b', which this line sets"), std::string::npos)
       << swap.err;
+}
+
+// L-Py's `for i in range(...)` over written numbers in a production body, written out
+// turn by turn: the words L-Py derives (i is 0, 1, 2 and B is drawn at i == 1; j counts
+// down 4, 2; i is 2 after its loop). A loop over a parameter is refused at its range.
+TEST(Convert, LPyLoopsOverRangesOfNumbersAreWrittenOutTurnByTurn) {
+  Result result = ontogen("word " + file("python_range.lpy") + " --at 1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 1: F(2) F(3) [ + B(2) ] F(4) C(4) C(2) A(4)\n"
+            "t = 2: F(2) F(3) [ + B(2) ] F(4) C(4) C(2) F(4) F(5) [ + B(4) ] F(6) C(4) C(2) A(6)\n");
+}
+
+// A name Python finds first is the one read: a production's parameter, a helper
+// function's parameter and a local of a body hide L-Py's list of the same name, and each
+// holds a number in the cell language, of which an element cannot be read: a located
+// error, never the list's element. Where no parameter hides it, the list is read.
+TEST(Convert, LPyParametersAndLocalsHideAListOfTheSameName) {
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "hidden";
+  fs::create_directories(dir);
+  const std::string list = "pts = [5, 7]\nAxiom: P(1)\nderivation length: 1\nproduction:\n";
+  std::ofstream(dir / "global.lpy") << list << "P(x) --> F(pts[x])\n";
+  Result global = ontogen("word " + (dir / "global.lpy").string() + " --at 1");
+  ASSERT_EQ(global.exitCode, 0) << global.err;
+  EXPECT_EQ(global.out, "t = 1: F(7)\n");
+  const struct {
+    const char* name;
+    const char* text;
+    const char* where;
+  } hidden[] = {
+      {"parameter.lpy", "P(pts) --> F(pts[0])\n", "parameter.lpy:5:14: error: "},
+      {"body.lpy", "P(pts) :\n  produce F(pts[1])\n", "body.lpy:6:13: error: "},
+      {"local.lpy", "P(x) :\n  pts = x * 2\n  produce F(pts[1])\n", "local.lpy:7:13: error: "},
+      {"function.lpy", "def first(pts): return pts[0]\nP(x) --> F(first(x))\n", "function.lpy:5:24: error: "},
+  };
+  for (const auto& h : hidden) {
+    std::ofstream(dir / h.name) << list << h.text;
+    Result result = ontogen("word " + (dir / h.name).string() + " --at 1");
+    EXPECT_EQ(result.exitCode, 6) << h.name << "\n" << result.out << result.err;
+    EXPECT_NE(result.err.find(std::string(h.where) + "an element of 'pts', which here is a parameter or local"),
+              std::string::npos)
+        << result.err;
+  }
 }
 
 // A cpfg name that is a cell's internal state (a parameter `age`, a macro `time`) is

@@ -182,6 +182,26 @@ TEST(CpfgReader, AssignmentBlocksAroundAConditionAreSubstituted) {
   EXPECT_NE(code.error.find("a statement other than an assignment in a C block"), std::string::npos) << code.error;
 }
 
+// A compound statement inside a block, `{{ y = 1; }}`, holds assignments as the block
+// does; an `if` with its own block is a statement other than an assignment, refused at
+// the `if`; a '{' that no '}' closes is refused at the '{'.
+TEST(CpfgReader, BlocksWithinABlockAreItsStatements) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "Lsystem: 1\nAxiom: A(3)\nA(x) : {{ y = x + 1; { z = y * 2; } }} y > 1 --> B(y, z)\n"
+                       "endlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  axiom A(3)\n  A(x) : (x + 1) > 1 -> B((x + 1), ((x + 1) * 2))\n");
+  auto test = convertText(Dialect::Cpfg, "a.l",
+                          "Lsystem: 1\nAxiom: A(3)\nA(x) : { if (x > 0) { y = 1; } } 1 --> B(y)\nendlsystem\n");
+  EXPECT_EQ(test.line, 3);
+  EXPECT_EQ(test.column, 10);
+  EXPECT_NE(test.error.find("a statement other than an assignment in a C block"), std::string::npos) << test.error;
+  auto open = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A(3)\nA(x) : {{ y = 1; } 1 --> B(y)\nendlsystem\n");
+  EXPECT_EQ(open.line, 3);
+  EXPECT_EQ(open.column, 8);
+  EXPECT_NE(open.error.find("a C block '{' without its '}'"), std::string::npos) << open.error;
+}
+
 }  // namespace
 }  // namespace ontogen::convert
 

@@ -99,7 +99,7 @@ TEST(LPyReader, TheEditorsInitialisationSectionIsNotRead) {
 
 // A function of several lines: each way's returned value, its locals put in, joined by
 // if(); docstrings, pass and print read over. A way that returns nothing, a random local
-// read twice and a loop are refused where they stand.
+// read twice, a loop over a parameter and a while are refused where they stand.
 TEST(LPyReader, HelperFunctionsOfSeveralLinesAreOneExpression) {
   auto c = convertText(Dialect::LPy, "a.lpy",
                        "M = 5\ndef size(s, t):\n  \"\"\" the size \"\"\"\n  y = s * 2\n  if t < M:\n"
@@ -119,10 +119,47 @@ TEST(LPyReader, HelperFunctionsOfSeveralLinesAreOneExpression) {
   EXPECT_EQ(twice.line, 4);
   EXPECT_NE(twice.error.find("the random value 'r' read a second time"), std::string::npos) << twice.error;
   auto loop = convertText(Dialect::LPy, "a.lpy",
-                          "def f(x):\n  for i in range(3):\n    x += i\n  return x\nAxiom: A(f(1))\n");
+                          "def f(x):\n  for i in range(x):\n    x += i\n  return x\nAxiom: A(f(1))\n");
   EXPECT_EQ(loop.line, 2);
-  EXPECT_EQ(loop.column, 3);
-  EXPECT_NE(loop.error.find("'for' in a helper function"), std::string::npos) << loop.error;
+  EXPECT_EQ(loop.column, 18);
+  EXPECT_NE(loop.error.find("a range over a value that is no written number"), std::string::npos) << loop.error;
+  auto other = convertText(Dialect::LPy, "a.lpy", "def f(x):\n  while x > 1:\n    x -= 1\n  return x\nAxiom: A(f(3))\n");
+  EXPECT_EQ(other.line, 2);
+  EXPECT_NE(other.error.find("'while' in a helper function"), std::string::npos) << other.error;
+}
+
+// A loop over a range of written numbers in a helper function is written out turn by
+// turn, as in a production body; a parameter may be changed as a local.
+TEST(LPyReader, HelperFunctionsLoopOverRangesOfWrittenNumbers) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "def f(x):\n  s = 0\n  for i in range(1, 4):\n    s += i * x\n  x *= 2\n  return s + x\n"
+                       "Axiom: A(f(2))\n");
+  ASSERT_EQ(c.error, "");
+  // 2 + 4 + 6 + 4: 16, as Python computes f(2).
+  EXPECT_EQ(body(c.program),
+            "  #angle 60\n  #until 1\n  axiom A(((((((0) + (1 * 2)) + (2 * 2)) + (3 * 2)) + (2 * (2)))))\n");
+}
+
+// A helper function reads the file's globals, whatever its caller binds: where a
+// production's parameter or a body's local has the name of a global the function reads,
+// writing the function's value into the production would read the parameter (L-Py's
+// f(2) is 7 here, not 3), so it is refused at the call. A name the function binds
+// itself is its own.
+TEST(LPyReader, AHelperFunctionReadsTheGlobalsNotItsCallersNames) {
+  const std::string functions = "n = 5\ndef f(x): return x + n\ndef g(x):\n  n = 1\n  return x + n\n"
+                                "Axiom: A(1)\nproduction:\n";
+  auto parameter = convertText(Dialect::LPy, "a.lpy", functions + "A(n) --> B(f(2))\n");
+  EXPECT_EQ(parameter.line, 8);
+  EXPECT_EQ(parameter.column, 12);
+  EXPECT_NE(parameter.error.find("'f' reads the global 'n', which is a parameter or local here"), std::string::npos)
+      << parameter.error;
+  auto local = convertText(Dialect::LPy, "a.lpy", functions + "A(x) :\n  n = x\n  produce B(f(2))\n");
+  EXPECT_EQ(local.line, 10);
+  EXPECT_EQ(local.column, 13);
+  EXPECT_NE(local.error.find("'f' reads the global 'n'"), std::string::npos) << local.error;
+  auto own = convertText(Dialect::LPy, "a.lpy", functions + "A(n) --> B(g(2))\nC(x) --> D(f(x))\n");
+  ASSERT_EQ(own.error, "");
+  EXPECT_NE(own.program.find("A(n) -> B(((2 + (1))))\n  C(x) -> D((x + n))"), std::string::npos) << own.program;
 }
 
 TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {

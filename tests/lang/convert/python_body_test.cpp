@@ -57,6 +57,32 @@ TEST(PythonBody, AWayWithoutProduceGivesItsNProducedWordOrNothing) {
             "  A(x) : x > 1 -> F B\n  A(x) : !(x > 1) -> F\n  C(x) : !(x > 1) -> D\n  E(x) : x > 1 -> B\n");
 }
 
+// `for i in range(...)` over written numbers is written out turn by turn; a test of the
+// turn alone is decided there (i == 0 holds on the first turn only), a test of a
+// parameter splits the way as any test does; an empty range turns no time.
+TEST(PythonBody, LoopsOverWrittenRangesAreWrittenOutTurnByTurn) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  for i in range(2):\n    if i == 0: nproduce F\n    elif x > i: nproduce G(i)\n"
+                           "  for k in range(0): nproduce H\n  produce B(-i)\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program), "  A(x) : x > 1 -> F G(1) B(- 1)\n  A(x) : !(x > 1) -> F B(- 1)\n");
+  // The range of an inner loop over the outer one's variable, and over a local holding a
+  // written number, is read at the turn.
+  auto nested = convertText(Dialect::LPy, "a.lpy",
+                            lpy("A(x) :\n  n = 2\n  for i in range(n + 1):\n    for j in range(i, 0, -1): "
+                                "nproduce F(i, j)\n  produce B\n"));
+  ASSERT_EQ(nested.error, "");
+  EXPECT_EQ(rules(nested.program), "  A(x) -> F(1, 1) F(2, 2) F(2, 1) B\n");
+}
+
+// `global n` in a body that only reads n changes nothing: Python reads the global
+// anyway. A global the body sets is state between productions, refused (above).
+TEST(PythonBody, AGlobalOnlyReadIsReadOver) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "n = 2\n" + lpy("A(x) :\n  global n\n  produce B(x * n)\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program), "  A(x) -> B(x * n)\n");
+}
+
 TEST(PythonBody, OneLineAndParenthesisedWords) {
   auto c = convertText(Dialect::LPy, "a.lpy", lpy("A(x) : produce B(x)\nB(x) :\n  produce (C\n    D(x)  # d\n  )\n"));
   ASSERT_EQ(c.error, "");
@@ -127,9 +153,17 @@ TEST(PythonBody, OtherPythonIsALocatedError) {
     const char* message;
   };
   const Case cases[] = {
-      {"A(x) :\n  for i in range(3):\n    nproduce F\n  produce B\n", 6, 3, "'for': Python which ontogen"},
+      {"A(x) :\n  for i in [1, 2]:\n    nproduce F\n  produce B\n", 6, 12, "a 'for' over other than range(...)"},
+      {"A(x) :\n  for i in range(x):\n    nproduce F\n  produce B\n", 6, 18, "a range over a value that is no written"},
+      {"A(x) :\n  for i in range(1, 2.5):\n    nproduce F\n", 6, 21, "a range over a number that is not whole"},
+      {"A(x) :\n  for i in range(0, 3, 0): nproduce F\n", 6, 12, "range() with a step of 0"},
+      {"A(x) :\n  for i in range(300): nproduce F\n", 6, 12, "a range of more than 256 turns"},
+      {"A(x) :\n  for i in range(20):\n    for j in range(20): nproduce F\n", 7, 5,
+       "the loops of this body turn more than 256 times in all"},
+      {"A(x) :\n  for i in range(3):\n    break\n", 7, 5, "'break': Python which ontogen"},
+      {"A(x) :\n  for (i, j) in range(3): nproduce F\n", 6, 3, "a 'for' over other than one name"},
       {"A(x) :\n  while x > 1:\n    produce B\n", 6, 3, "'while': Python which ontogen"},
-      {"A(x) :\n  global n\n  produce B\n", 6, 3, "'global': Python which ontogen"},
+      {"A(x) :\n  global n, m\n  m += 1\n  produce B\n", 6, 3, "'m' declared global and set in a production body"},
       {"A(x) :\n  return [B]\n", 6, 3, "a 'return' of a value"},
       {"A(x) :\n  produce B(randint(1, 3))\n", 6, 13, "Python's 'randint'"},
       {"A(x) :\n  a, b = 1, 2\n  produce B\n", 6, 3, "'a': Python which ontogen"},
@@ -144,6 +178,17 @@ TEST(PythonBody, OtherPythonIsALocatedError) {
     EXPECT_EQ(c.column, k.column) << k.body << c.error;
     EXPECT_NE(c.error.find(k.message), std::string::npos) << k.body << c.error;
   }
+}
+
+// Tests in a row double the ways through a body whether or not they produce: 13 give
+// 8192, past the bound, where each way was followed before.
+TEST(PythonBody, WaysThatProduceNothingAreBoundedToo) {
+  std::string body = "A(x) :\n";
+  for (int k = 0; k < 13; ++k) body += "  if x > " + std::to_string(k) + ": pass\n";
+  auto c = convertText(Dialect::LPy, "a.lpy", lpy(body));
+  EXPECT_EQ(c.program, "");
+  EXPECT_EQ(c.line, 5);
+  EXPECT_NE(c.error.find("this body has more than 4096 ways through its tests"), std::string::npos) << c.error;
 }
 
 TEST(PythonBody, QuietHooksAndImportsAreReadOver) {
@@ -169,6 +214,20 @@ TEST(PythonBody, QuietHooksAndImportsAreReadOver) {
   auto numpy = convertText(Dialect::LPy, "a.lpy", "import numpy\nAxiom: A\n");
   EXPECT_EQ(numpy.line, 1);
   EXPECT_NE(numpy.error.find("'import': Python code"), std::string::npos) << numpy.error;
+}
+
+// An `assert` in a hook is not checked by the converted block: a warning at each one,
+// where it was read over in silence.
+TEST(PythonBody, AnAssertInAHookIsAWarningAtItsPlace) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "def Start():\n  assert 1 > 0\ndef EndEach(lstring):\n  if getIterationNb() > 1:\n"
+                       "    assert lstring == 'A'\n  pass\nAxiom: A\n");
+  ASSERT_EQ(c.error, "");
+  ASSERT_EQ(c.warnings.size(), 2u);
+  EXPECT_EQ(c.warnings[0],
+            "2:3: 'assert' in L-Py's Start() is not checked: the converted block runs on where L-Py stops at an "
+            "assertion that fails");
+  EXPECT_EQ(c.warnings[1].substr(0, 36), "5:5: 'assert' in L-Py's EndEach() is");
 }
 
 TEST(PythonBody, LogicalLinesJoinOpenParentheses) {
