@@ -39,8 +39,13 @@ void Gallery::reset(const std::string& text, const std::string& stem) {
     GalleryVariant& variant = variants_[static_cast<std::size_t>(i)];
     // The first stays the program as written, so every gallery shows where it started.
     variant.genome = i == 0 || space_->genes().empty() ? original : space_->mutate(original, seedOf(i, kMutationSalt));
-    render(variant, i);
   }
+  startGeneration();
+}
+
+void Gallery::startGeneration() {
+  ++epoch_;
+  for (GalleryVariant& variant : variants_) variant.text = space_->programText(variant.genome);
 }
 
 void Gallery::breed(const std::vector<int>& picked) {
@@ -67,35 +72,58 @@ void Gallery::breed(const std::vector<int>& picked) {
       child.genome = space_->genes().empty() ? mixed : space_->mutate(mixed, seedOf(i, kMutationSalt));
       child.parents = a == b ? std::vector<int>{a} : std::vector<int>{a, b};
     }
-    render(child, i);
   }
+  startGeneration();
 }
 
-void Gallery::render(GalleryVariant& variant, int index) const {
-  variant.text = space_->programText(variant.genome);
-  variant.png.clear();
-  variant.error.clear();
+std::optional<GalleryTask> Gallery::nextTask() const {
+  for (std::size_t i = 0; i < variants_.size(); ++i)
+    if (!variants_[i].grown) return GalleryTask{epoch_, static_cast<int>(i), variants_[i].text, stem_};
+  return std::nullopt;
+}
+
+int Gallery::grown() const {
+  int count = 0;
+  for (const GalleryVariant& variant : variants_) count += variant.grown ? 1 : 0;
+  return count;
+}
+
+void Gallery::keep(const GalleryTask& task, GalleryPicture picture) {
+  if (task.epoch != epoch_ || task.index < 0 || task.index >= static_cast<int>(variants_.size())) return;
+  GalleryVariant& variant = variants_[static_cast<std::size_t>(task.index)];
+  variant.png = std::move(picture.png);
+  variant.error = std::move(picture.error);
+  variant.grown = true;
+}
+
+void Gallery::growAll() {
+  while (const std::optional<GalleryTask> task = nextTask()) keep(*task, grow(*task));
+}
+
+GalleryPicture Gallery::grow(const GalleryTask& task, const std::atomic<bool>* cancel) const {
+  GalleryPicture picture;
   DiagnosticSink sink(1);
   CompileOptions options;
   options.commandSets = commandSets();
   options.rootSystem = def_.program.system;
   options.maxSourceBytes = def_.program.maxSourceBytes;
-  const std::string name = (def_.saveTo / (stem_ + ".cell")).string();
+  const std::string name = (def_.saveTo / (task.stem + ".cell")).string();
   std::shared_ptr<const Program> program;
   try {
-    program = compileSource(name, variant.text, sink, options);
+    program = compileSource(name, task.text, sink, options);
   } catch (const std::exception& error) {
-    variant.error = error.what();
-    return;
+    picture.error = error.what();
+    return picture;
   }
   if (!program) {
-    variant.error = sink.diagnostics().empty() ? "the variant does not compile" : sink.diagnostics().front().message;
-    return;
+    picture.error = sink.diagnostics().empty() ? "the variant does not compile" : sink.diagnostics().front().message;
+    return picture;
   }
   RunDef run;
   run.program = program;
   run.stem = "variant";
   run.world = worldDefOf(def_.program, *program);
+  run.world.limits.cancel = cancel;
   run.until = def_.until;
   run.step = def_.program.step;
   run.frames = 1;
@@ -105,17 +133,18 @@ void Gallery::render(GalleryVariant& variant, int index) const {
   run.setOptions.formats = "png";
   run.setOptions.render.width = def_.thumbnailSide;
   run.setOptions.render.height = def_.thumbnailSide;
-  run.out = def_.work / ("variant" + std::to_string(index));
+  run.out = def_.work / ("variant" + std::to_string(task.index));
   std::filesystem::remove_all(run.out);
   Run grown(std::move(run));
   const RunReport report = grown.execute();
   if (!report.ok()) {
-    variant.error = report.diagnostics.empty() ? "the variant failed" : report.diagnostics.front().message;
-    return;
+    picture.error = report.diagnostics.empty() ? "the variant failed" : report.diagnostics.front().message;
+    return picture;
   }
   for (const std::filesystem::path& file : report.files)
-    if (file.extension() == ".png") variant.png = readFileBytes(file);
-  if (variant.png.empty()) variant.error = "the variant draws nothing to picture";
+    if (file.extension() == ".png") picture.png = readFileBytes(file);
+  if (picture.png.empty()) picture.error = "the variant draws nothing to picture";
+  return picture;
 }
 
 namespace {
@@ -143,7 +172,12 @@ std::filesystem::path Gallery::save(int index) const {
 }
 
 nlohmann::json Gallery::state() const {
-  nlohmann::json state = {{"generation", generation_}, {"seed", def_.seed}};
+  const int grownSoFar = grown();
+  nlohmann::json state = {{"generation", generation_},
+                          {"epoch", epoch_},
+                          {"seed", def_.seed},
+                          {"grown", grownSoFar},
+                          {"growing", grownSoFar < static_cast<int>(variants_.size())}};
   nlohmann::json genes = nlohmann::json::array();
   if (space_)
     for (const Gene& gene : space_->genes())
@@ -156,6 +190,7 @@ nlohmann::json Gallery::state() const {
     variants.push_back({{"index", i},
                         {"values", variant.genome.values},
                         {"parents", variant.parents},
+                        {"grown", variant.grown},
                         {"picture", !variant.png.empty()},
                         {"error", variant.error}});
   }

@@ -8,7 +8,13 @@
 //
 // Breeding keeps the picked variants (elitism) and fills the rest of the next generation
 // with children: uniform crossover of two picked parents, in turn, then a mutation.
+//
+// Making a generation (reset, breed) only decides its variants' programs, which is quick;
+// growing and picturing them is separate, one variant at a time (growNext), so that the
+// studio grows them off the request's thread (studio/gallery_grower.h) and the page shows
+// each picture as it comes. growAll() grows them all at once.
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -37,21 +43,54 @@ struct GalleryDef {
 struct GalleryVariant {
   Genome genome;
   std::string text;          ///< the variant's program
-  std::string png;           ///< its picture; empty when it failed
+  bool grown = false;        ///< it was grown and pictured (or failed): png or error holds the outcome
+  std::string png;           ///< its picture; empty when it failed or is not grown yet
   std::string error;         ///< why it failed (the first diagnostic), empty when it grew
   std::vector<int> parents;  ///< indices in the previous generation; empty in the first
+};
+
+/// A variant still to grow: what growing it needs, taken from the gallery so that it can
+/// grow while the gallery is read (and made anew) elsewhere.
+struct GalleryTask {
+  uint64_t epoch = 0;  ///< of the generation it belongs to (Gallery::epoch())
+  int index = 0;
+  std::string text;
+  std::string stem;  ///< of the studio's file, which names the variant's program in its messages
+};
+
+/// What growing a variant gave: its picture, or why it has none.
+struct GalleryPicture {
+  std::string png;
+  std::string error;
 };
 
 class Gallery {
  public:
   explicit Gallery(GalleryDef def);
 
-  /// Starts again from a program text: generation 1, mutations of the text's own values.
-  /// Throws std::invalid_argument when the text does not lex.
+  /// Starts again from a program text: generation 1, mutations of the text's own values,
+  /// none grown yet. Throws std::invalid_argument when the text does not lex.
   void reset(const std::string& text, const std::string& stem);
-  /// The next generation from the picked variants (indices into variants()); throws
-  /// std::invalid_argument when none is picked or an index is out of range.
+  /// The next generation from the picked variants (indices into variants()), none grown
+  /// yet; a variant need not be grown to be picked. Throws std::invalid_argument when none
+  /// is picked or an index is out of range.
   void breed(const std::vector<int>& picked);
+
+  /// The first variant of this generation not grown yet; none when all are.
+  std::optional<GalleryTask> nextTask() const;
+  /// Grows a task's variant and pictures it, as `--format png` would. Reads only the
+  /// gallery's settings, never its variants, so it may run while they change; `cancel`
+  /// (may be null) stops the growth from another thread, which then gives an error.
+  GalleryPicture grow(const GalleryTask& task, const std::atomic<bool>* cancel = nullptr) const;
+  /// Keeps what grow() gave; ignored when the task's generation has been replaced since.
+  void keep(const GalleryTask& task, GalleryPicture picture);
+  /// Grows every variant of this generation not grown yet, one after the other.
+  void growAll();
+  /// Counts a generation anew at each reset and breed: what tells a task of a replaced
+  /// generation from one of this.
+  uint64_t epoch() const { return epoch_; }
+  /// Variants of this generation grown so far.
+  int grown() const;
   /// Writes a variant's program beside the others saved, named by generation and index
   /// (`STEM_gG_vK.cell` in GalleryDef::saveTo, the stem stripped of separators and "..");
   /// returns its path. Throws std::invalid_argument on a bad index, OutputError when it
@@ -62,17 +101,20 @@ class Gallery {
   const std::vector<GalleryVariant>& variants() const { return variants_; }
   bool ready() const { return space_ != nullptr; }
   const VariationSpace& space() const { return *space_; }
-  /// Generation, genes and variants (without pictures: /gallery/N.png serves them).
+  /// Generation, genes, variants (without pictures: /gallery/N.png serves them), and how
+  /// far the generation's growth is: "grown" variants of the "variants", "growing" while
+  /// some are not.
   nlohmann::json state() const;
 
  private:
-  void render(GalleryVariant& variant, int index) const;
   uint64_t seedOf(int index, uint64_t salt) const;
+  void startGeneration();
 
   GalleryDef def_;
   std::unique_ptr<VariationSpace> space_;
   std::string stem_;
   int generation_ = 0;
+  uint64_t epoch_ = 0;
   std::vector<GalleryVariant> variants_;
 };
 

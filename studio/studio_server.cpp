@@ -31,7 +31,10 @@ constexpr std::string_view kTokenPlaceholder = "ONTOGEN-PAGE-TOKEN";
 }  // namespace
 
 StudioServer::StudioServer(StudioModel& model, Gallery& gallery, StudioServerDef def)
-    : model_(model), gallery_(gallery), token_(def.token.empty() ? randomToken() : std::move(def.token)) {
+    : model_(model),
+      gallery_(gallery),
+      token_(def.token.empty() ? randomToken() : std::move(def.token)),
+      grower_(gallery) {
   for (const StudioAsset& asset : studioAssets()) {
     if (asset.path != "/") continue;
     page_ = std::string(asset.bytes);
@@ -71,6 +74,7 @@ void StudioServer::restartGallery() {
   }
   gallery_.reset(space.programText(genome), model_.stem());
   galleryText_ = model_.text();
+  grower_.wake();
 }
 
 HttpResponse StudioServer::handle(const HttpRequest& request) {
@@ -113,9 +117,7 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
                            {"velocity", note.velocity}});
         return json({{"modelVersion", model_.modelVersion()}, {"notes", notes}});
       }
-      // The gallery grows its variants on the request's thread, one request at a time;
-      // the model and its page go on meanwhile.
-      const std::lock_guard<std::mutex> lock(galleryMutex_);
+      const auto lock = grower_.lock();
       if (path == "/api/gallery") return json(gallery_.state());
       if (path.starts_with("/gallery/") && path.ends_with(".png")) {
         const std::string number = path.substr(9, path.size() - 13);
@@ -163,7 +165,7 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
         model_.requestGrowth();
         return json(model_.state());
       }
-      const std::lock_guard<std::mutex> lock(galleryMutex_);
+      const auto lock = grower_.lock();
       if (path == "/api/gallery") {
         if (!gallery_.ready() || galleryText_ != model_.text()) restartGallery();
         return json(gallery_.state());
@@ -177,6 +179,7 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
         }
         if (!gallery_.ready()) restartGallery();
         gallery_.breed(picked);
+        grower_.wake();
         return json(gallery_.state());
       }
       if (path == "/api/save") {

@@ -17,21 +17,27 @@
 //   POST /api/stop                    cancel the growth at hand; the last model stays
 //   POST /api/limits                  {"maxCells": N, "maxMemoryMiB": M}: the interactive limits; grows again
 //   POST /api/gallery                 {}: the gallery, made at the first ask and again when the program changed
-//   POST /api/breed                   {"picked": [K, ...]}: the next generation
+//   POST /api/breed                   {"picked": [K, ...]}: the next generation (a variant need not be
+//                                     grown to be picked)
 //   POST /api/save                    {"index": K}: write variant K as a program under a name the
 //                                     studio makes (no name or path is taken); answers its path
 //   POST /api/gallery/restart         a new gallery from the program with the sliders' values
+//
+// The three that make a generation answer at once, before its variants grow: they grow on
+// a thread of their own (studio/gallery_grower.h), and /api/gallery tells how far
+// ("grown", "growing"), while the model, its page and the gallery's own requests go on.
 //
 // Every request must be addressed to the studio (Host 127.0.0.1:PORT or localhost:PORT),
 // and every POST must come from its page (Origin) with the run's token (X-Ontogen-Token),
 // or it is refused with 403 (studio/request_guard.h). Other errors are JSON {"error":
 // message} with status 400 (a bad request) or 422 (a request the model cannot follow).
 
+#include <chrono>
 #include <cstdint>
-#include <mutex>
 #include <string>
 
 #include "studio/gallery.h"
+#include "studio/gallery_grower.h"
 #include "studio/http_server.h"
 #include "studio/studio_model.h"
 
@@ -52,8 +58,10 @@ class StudioServer {
   const std::string& token() const { return token_; }
 
   /// Answers a request; called on many threads at once. The model grows on its own
-  /// thread (StudioModel::start()); the gallery answers one request at a time.
+  /// thread (StudioModel::start()), the gallery's variants on another.
   HttpResponse handle(const HttpRequest& request);
+  /// Waits until the gallery's generation is grown, or the time is up (false).
+  bool waitForGallery(std::chrono::milliseconds timeout) { return grower_.waitGrown(timeout); }
   /// Called now and then: asks the model to grow again when its file changed.
   void idle();
 
@@ -65,8 +73,8 @@ class StudioServer {
   Gallery& gallery_;
   std::string token_;
   std::string page_;  // index.html with the token written in
-  std::string galleryText_;  // the model text the gallery started from
-  std::mutex galleryMutex_;  // the gallery and galleryText_
+  std::string galleryText_;  // the model text the gallery started from; under grower_.lock()
+  GalleryGrower grower_;     // grows the gallery's variants; its lock guards the gallery
 };
 
 }  // namespace ontogen::studio

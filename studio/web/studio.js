@@ -18,6 +18,8 @@ const studio = {
   notesPlayed: 0,      // notes the animation passed
   notesSounded: 0,     // of them, those the browser's audio played
   generation: 0,
+  galleryEpoch: 0,     // of the generation shown (each reset and breed makes a new one)
+  galleryGrown: 0,     // of its variants, those grown when it was shown
   picked: new Set(),
   lastError: '',
   events: 0,           // states the server pushed
@@ -349,23 +351,35 @@ $('limits-apply').addEventListener('click', async () => {
 });
 
 // ---- evolution -------------------------------------------------------------------------
+// A generation is answered before its variants grow (they grow on the studio's gallery
+// thread): the page shows it at once and asks again until every variant is pictured.
 function showGallery(gallery) {
+  if (gallery.epoch !== studio.galleryEpoch) {
+    studio.galleryEpoch = gallery.epoch;
+    studio.picked.clear();
+  }
   studio.generation = gallery.generation;
-  studio.picked.clear();
-  $('generation').textContent = `generation ${gallery.generation}`;
-  $('breed').disabled = true;
+  studio.galleryGrown = gallery.grown;
+  $('generation').textContent = gallery.growing
+    ? `generation ${gallery.generation}: ${gallery.grown} of ${gallery.variants.length} grown`
+    : `generation ${gallery.generation}`;
+  $('breed').disabled = studio.picked.size === 0;
   $('gallery-restart').disabled = false;
   document.body.dataset.generation = String(gallery.generation);
+  document.body.dataset.galleryGrown = gallery.growing ? '' : String(gallery.generation);
   const box = $('gallery');
   box.replaceChildren();
   for (const variant of gallery.variants) {
     const card = text('div', undefined, 'variant');
     card.dataset.index = String(variant.index);
+    card.classList.toggle('picked', studio.picked.has(variant.index));
     if (variant.picture) {
       const image = document.createElement('img');
-      image.src = `/gallery/${variant.index}.png?g=${gallery.generation}`;
+      image.src = `/gallery/${variant.index}.png?e=${gallery.epoch}`;
       image.alt = `variant ${variant.index}`;
       card.append(image);
+    } else if (!variant.grown) {
+      card.append(text('div', 'growing…', 'pending'));
     } else {
       card.append(text('div', variant.error, 'failed'));
     }
@@ -391,12 +405,28 @@ function showGallery(gallery) {
   }
 }
 
+// Asks how far the generation of `epoch` has grown until it has, showing each new
+// picture; stops when another generation replaced it (its own request follows that one).
+async function followGallery(epoch) {
+  for (;;) {
+    await new Promise((resolve) => setTimeout(resolve, 250));
+    if (studio.galleryEpoch !== epoch) return;
+    const response = await fetch('/api/gallery');
+    if (!response.ok) return;
+    const gallery = await response.json();
+    if (gallery.epoch !== epoch) return;
+    if (gallery.grown !== studio.galleryGrown || !gallery.growing) showGallery(gallery);
+    if (!gallery.growing) return;
+  }
+}
+
 async function galleryRequest(path, body) {
-  $('generation').textContent = 'growing the variants…';
+  $('generation').textContent = 'making the variants…';
   const response = await post(path, body);
   const answer = await response.json();
   if (!response.ok) { $('generation').textContent = answer.error; return; }
   showGallery(answer);
+  if (answer.growing) followGallery(answer.epoch);
 }
 $('gallery-open').addEventListener('click', () => galleryRequest('/api/gallery', {}));
 $('gallery-restart').addEventListener('click', () => galleryRequest('/api/gallery/restart', {}));

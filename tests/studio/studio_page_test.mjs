@@ -447,6 +447,10 @@ try {
   // Evolution: a gallery of twelve, two picked, one generation bred.
   await page.click('#gallery-open');
   await page.waitForSelector('body[data-generation="1"]', { timeout: 60000 });
+  const answered = await (await fetch(url + 'api/gallery')).json();
+  check(answered.generation === 1 && answered.variants.length === 12,
+    `the first generation holds 12 variants (${answered.grown} grown when asked)`);
+  await page.waitForSelector('body[data-gallery-grown="1"]', { timeout: 120000 });
   await page.waitForFunction(() => [...document.querySelectorAll('#gallery img')].every((i) => i.complete && i.naturalWidth > 0), null, { timeout: 20000 });
   const firstGeneration = await (await fetch(url + 'api/gallery')).json();
   check(firstGeneration.variants.length === 12 && firstGeneration.variants.every((v) => v.picture),
@@ -454,7 +458,9 @@ try {
   await page.click('#gallery .variant[data-index="3"]');
   await page.click('#gallery .variant[data-index="7"]');
   await page.click('#breed');
-  await page.waitForSelector('body[data-generation="2"]', { timeout: 60000 });
+  await page.waitForSelector('body[data-gallery-grown="2"]', { timeout: 120000 });
+  await page.waitForFunction(() => [...document.querySelectorAll('#gallery img')].length === 12 &&
+    [...document.querySelectorAll('#gallery img')].every((i) => i.complete && i.naturalWidth > 0), null, { timeout: 20000 });
   await page.screenshot({ path: path.join(outputDir, 'studio_gallery.png'), fullPage: true });
   const second = await (await fetch(url + 'api/gallery')).json();
   const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);

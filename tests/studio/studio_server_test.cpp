@@ -730,6 +730,7 @@ TEST_F(StudioFixture, RoutesAnswerThePage) {
   EXPECT_EQ(first["generation"], 1);
   // The gallery starts from the sliders: variant 0 is the program as the page shows it.
   EXPECT_EQ(first["variants"][0]["values"], nlohmann::json::array({45.0, 1.0}));
+  ASSERT_TRUE(server.waitForGallery(std::chrono::minutes(5)));
   EXPECT_EQ(ask("GET", "/gallery/0.png").contentType, "image/png");
   EXPECT_TRUE(ask("GET", "/gallery/0.png").body.starts_with("\x89PNG"));
   EXPECT_EQ(ask("GET", "/gallery/12.png").status, 404);
@@ -908,6 +909,56 @@ TEST_F(StudioOverHttp, TheStudioNamesWhatItSavesAndWritesNothingOutsideItsFolder
   EXPECT_TRUE(fs::exists(folder / "saved" / "tree_g1_v3.cell"));
 }
 
+// A request that makes a generation is answered before its variants grow: they grow one
+// after the other on the gallery's own thread, and a generation made meanwhile replaces
+// the one growing, whose pictures are never shown as the new one's.
+TEST_F(StudioFixture, AGalleryGrowsOffTheRequestsThreadAndANewGenerationReplacesTheOneGrowing) {
+  StudioModel model(modelDef());
+  model.regrow();
+  Gallery gallery(galleryDef());
+  auto server = std::make_unique<StudioServer>(model, gallery);
+  auto ask = [&](std::string method, std::string path, std::string body = "") {
+    HttpRequest request;
+    request.method = std::move(method);
+    request.path = std::move(path);
+    request.body = std::move(body);
+    request.port = 8420;
+    request.headers = {{"host", "127.0.0.1:8420"}, {"origin", "http://127.0.0.1:8420"}, {"x-ontogen-token", server->token()}};
+    return server->handle(request);
+  };
+  const nlohmann::json first = nlohmann::json::parse(ask("POST", "/api/gallery", "{}").body);
+  ASSERT_EQ(first["variants"].size(), 12u);
+  EXPECT_EQ(first["grown"], 0);  // answered before any variant grew
+  EXPECT_EQ(first["growing"], true);
+  for (const nlohmann::json& variant : first["variants"]) {
+    EXPECT_EQ(variant["grown"], false);
+    EXPECT_EQ(variant["picture"], false);
+  }
+  // Picked before it has grown: a variant's values are known at once.
+  const nlohmann::json second = nlohmann::json::parse(ask("POST", "/api/breed", R"({"picked": [3]})").body);
+  EXPECT_EQ(second["generation"], 2);
+  EXPECT_EQ(second["grown"], 0);
+  EXPECT_EQ(second["variants"][0]["values"], first["variants"][3]["values"]);
+  ASSERT_TRUE(server->waitForGallery(std::chrono::minutes(5)));
+  const nlohmann::json grown = nlohmann::json::parse(ask("GET", "/api/gallery").body);
+  EXPECT_EQ(grown["generation"], 2);
+  EXPECT_EQ(grown["epoch"], second["epoch"]);
+  EXPECT_EQ(grown["grown"], 12);
+  EXPECT_EQ(grown["growing"], false);
+  // Each picture is its own variant's, grown again here on this thread.
+  Gallery again(galleryDef());
+  for (int i = 0; i < 12; ++i) {
+    const GalleryVariant& variant = gallery.variants()[static_cast<std::size_t>(i)];
+    ASSERT_TRUE(variant.grown);
+    ASSERT_FALSE(variant.png.empty()) << variant.error;
+    EXPECT_EQ(ask("GET", "/gallery/" + std::to_string(i) + ".png").body, variant.png);
+    EXPECT_EQ(again.grow(GalleryTask{0, i, variant.text, "tree"}).png, variant.png) << "variant " << i;
+  }
+  // A studio closed while its gallery grows cancels the variant growing and ends.
+  EXPECT_EQ(nlohmann::json::parse(ask("POST", "/api/gallery/restart", "{}").body)["grown"], 0);
+  server.reset();
+}
+
 // The name a variant is saved under is the gallery's: a stem with separators or ".."
 // (from a file named so) still lands in the save folder.
 TEST_F(StudioFixture, ASavedVariantStaysInTheSaveFolderWhateverItsStem) {
@@ -932,6 +983,8 @@ TEST_F(StudioFixture, GalleryIsTheSameForTheSameSeedAndPicks) {
   a.reset(kTree, "tree");
   b.reset(kTree, "tree");
   c.reset(kTree, "tree");
+  a.growAll();
+  b.growAll();
   std::vector<Genome> genomesA, genomesC;
   for (std::size_t i = 0; i < a.variants().size(); ++i) {
     EXPECT_EQ(a.variants()[i].genome, b.variants()[i].genome);
