@@ -239,16 +239,17 @@ std::vector<std::vector<MeshBatch>> surfacesOf(const SceneParts& parts) {
 // one radius.
 using SpanLines = std::map<std::pair<std::size_t, std::size_t>, std::map<uint32_t, TubeInstances>>;
 
-void addSpanLines(const SceneParts& parts, uint32_t joint, const PartPlacement& p,
-                  std::pair<std::size_t, std::size_t> span, double radius, SpanLines& into) {
-  const PartJoint& pj = parts.joints()[joint];
+// A placed part's lines, in world coordinates, added by colour to `into`.
+void addPlacedLines(const SceneParts& parts, const PartPlacement& p, double radius,
+                    std::map<uint32_t, TubeInstances>& into) {
+  const PartJoint& pj = parts.joints()[p.joint];
   const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
   const glm::vec2 cell(static_cast<float>(pj.cellNumber), static_cast<float>(pj.birth));
   for (const MeshBatch& batch : parts.shapes()[pj.shape].batches) {
     for (std::size_t k = 0; k + 1 < batch.lines.size(); k += 2) {
       const glm::dvec3 a = p.translation + rotation * (glm::dvec3(batch.lines[k]) * p.scale);
       const glm::dvec3 z = p.translation + rotation * (glm::dvec3(batch.lines[k + 1]) * p.scale);
-      if (a != z) into[span][batch.material].add(a, z, radius, cell);
+      if (a != z) into[batch.material].add(a, z, radius, cell);
     }
   }
 }
@@ -294,9 +295,9 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
   const std::vector<std::vector<MeshBatch>>& steadyShapes = instanced ? surfaces : shapes;
   if (instanced) {
     const double radius = lineRadiusOf(parts.bounds());
-    for (uint32_t j : stillJoints) addSpanLines(parts, j, *placed[j], {0, frames - 1}, radius, spanLines);
+    for (uint32_t j : stillJoints) addPlacedLines(parts, *placed[j], radius, spanLines[{0, frames - 1}]);
     for (const auto& [span, members] : steady)
-      for (uint32_t j : members) addSpanLines(parts, j, *placed[j], span, radius, spanLines);
+      for (uint32_t j : members) addPlacedLines(parts, *placed[j], radius, spanLines[span]);
     std::erase_if(steady, [&](const auto& entry) {
       return std::none_of(entry.second.begin(), entry.second.end(),
                           [&](uint32_t j) { return !steadyShapes[joints[j].shape].empty(); });
@@ -503,15 +504,25 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
   finish();
 }
 
-// Beyond kMaxJoints: a node per frame, its parts in world coordinates.
+// Beyond kMaxJoints: a node per frame, its parts in world coordinates; past
+// kMaxBakedLines lines in the run, each frame's lines are instances of one tube in
+// nodes under the frame's ("lines <colour> frame <f>").
 void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& sceneNodes) {
-  const std::vector<std::vector<MeshBatch>> shapes = finalShapes(parts);
   const auto& frames = parts.frames();
   const std::size_t count = frames.size();
-  const std::size_t first = b.gltf["nodes"].is_array() ? b.gltf["nodes"].size() : 0;
+  std::size_t lines = 0;
+  for (const PartFrame& frame : frames)
+    for (const PartPlacement& p : frame.placements) lines += lineCount(parts.shapes()[parts.joints()[p.joint].shape]);
+  const bool instanced = lines > kMaxBakedLines;
+  const std::vector<std::vector<MeshBatch>> shapes = instanced ? surfacesOf(parts) : finalShapes(parts);
+  const double radius = lineRadiusOf(parts.bounds());
+  TubeInstancer instancer(b);
+  std::vector<std::size_t> frameNodes;
   for (std::size_t f = 0; f < count; ++f) {
     std::map<uint32_t, MeshBatch> world;
+    std::map<uint32_t, TubeInstances> tubes;
     for (const PartPlacement& p : frames[f].placements) {
+      if (instanced) addPlacedLines(parts, p, radius, tubes);
       const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
       for (const MeshBatch& batch : shapes[parts.joints()[p.joint].shape]) {
         if (batch.indices.empty()) continue;
@@ -531,9 +542,14 @@ void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& scen
       b.gltf["meshes"].push_back({{"name", "frame " + std::to_string(f)}, {"primitives", primitives}});
       node["mesh"] = b.gltf["meshes"].size() - 1;
     }
+    nlohmann::json children = nlohmann::json::array();
+    for (const auto& [material, instances] : tubes)
+      children.push_back(instancer.addNode(material, instances, "lines " + std::to_string(material) + " frame " + std::to_string(f)));
+    if (!children.empty()) node["children"] = children;
     if (count > 1 && f + 1 != count) node["scale"] = {0.0, 0.0, 0.0};
     b.gltf["nodes"].push_back(node);
-    sceneNodes.push_back(first + f);
+    frameNodes.push_back(b.gltf["nodes"].size() - 1);
+    sceneNodes.push_back(frameNodes.back());
   }
   if (count < 2) return;
   const Timing timing = timingOf(frames);
@@ -544,7 +560,7 @@ void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& scen
   for (std::size_t f = 0; f < count; ++f) {
     for (std::size_t k = 0; k < count; ++k) scales[k] = glm::vec3(k == f ? 1.0f : 0.0f);
     samplers.push_back({{"input", input}, {"output", b.addVec3(scales, 0, false)}, {"interpolation", "STEP"}});
-    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", first + f}, {"path", "scale"}}}});
+    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", frameNodes[f]}, {"path", "scale"}}}});
   }
   b.gltf["animations"].push_back({{"name", "development"}, {"samplers", samplers}, {"channels", channels}});
 }

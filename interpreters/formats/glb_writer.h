@@ -44,7 +44,9 @@
 //   shown by a STEP scale of its own; a span left without a surface is no joint.
 // With more than kMaxJoints joints each frame is instead
 // a node of its own, its parts placed in world coordinates, shown by a STEP scale
-// channel (1 in its frame, 0 otherwise); without animation the last frame shows.
+// channel (1 in its frame, 0 otherwise); without animation the last frame shows. Past
+// kMaxBakedLines lines in the run, a frame's lines are instances of one tube in nodes
+// under its node ("lines <colour> frame <f>").
 
 #include <cstdint>
 #include <ostream>

@@ -687,6 +687,8 @@ struct Models {
   fs::path kochFrames = runModel("koch.cell", 5, std::nullopt, "glb,obj", 1, "koch_frames");
   // And to n = 6 over 7 frames: 19,531 lines, more than kMaxBakedLines.
   fs::path kochFrames6 = runModel("koch.cell", 7, 6.0, "glb,obj", 1, "koch_frames6");
+  // And to n = 7 over 8 frames: 97,656 parts, more than kMaxJoints.
+  fs::path kochFrames7 = runModel("koch.cell", 8, 7.0, "glb,obj", 1, "koch_frames7");
 };
 const Models& models() {
   static const Models grown;
@@ -699,7 +701,7 @@ TEST(GlbModels, TheFlowerTheColonyAndKochPassTheKhronosValidator) {
   const fs::path script = fs::path(ONTOGEN_SOURCE_DIR) / "tests" / "interpreters" / "validate_gltf.js";
   for (const fs::path& file :
        {models().flower, models().colony, models().koch, models().koch6, models().cube, models().kochFrames,
-        models().kochFrames6}) {
+        models().kochFrames6, models().kochFrames7}) {
     auto [status, report] = runCommand("node '" + script.string() + "' '" + modules + "' '" + file.string() + "' 2>&1");
     EXPECT_EQ(status, 0) << file << ": " << report;
     EXPECT_NE(report.find("errors 0 warnings 0"), std::string::npos) << file << ": " << report;
@@ -835,6 +837,44 @@ TEST(GlbModels, KochGrownOverFramesPastTheBakedLinesIsInstancesPerFrame) {
   }
   EXPECT_EQ(lines, 19'531u);
   // 48 bytes an instance, and the JSON.
+  EXPECT_LT(bytes.size(), 48 * lines + 64 * 1024);
+}
+
+// Koch's curve grown to n = 7 over 8 frames (97,656 parts, more than kMaxJoints): a node
+// per frame, shown (STEP scale) at its time only, whose lines are instances of one tube
+// in a node under it, each on one of that frame's OBJ segments. Baked, each line took
+// 832 bytes: 68.8 MB.
+TEST(GlbModels, KochGrownPastTheJointsIsANodePerFrameOfInstancedLines) {
+  const std::string bytes = fileBytes(models().kochFrames7);
+  const Glb glb(bytes);
+  std::vector<std::string> names;
+  for (int f = 0; f < 8; ++f) names.insert(names.end(), {"lines 0 frame " + std::to_string(f), "frame " + std::to_string(f)});
+  names.insert(names.end(), {"ontogen camera", "ontogen key light"});
+  EXPECT_EQ(nodeNames(glb), names);
+  std::size_t lines = 0;
+  for (int f = 0; f < 8; ++f) {
+    const Obj obj(models().kochFrames7.parent_path() / ("koch_000" + std::to_string(f) + ".obj"));
+    ASSERT_EQ(obj.lines.size(), static_cast<std::size_t>(std::pow(5, f)));
+    lines += obj.lines.size();
+    const int frame = 2 * f + 1;
+    EXPECT_EQ(glb.json["nodes"][frame]["children"], nlohmann::json({frame - 1}));
+    EXPECT_FALSE(glb.json["nodes"][frame].contains("mesh")) << "Koch draws lines alone";
+    for (int g = 0; g < 8; ++g) EXPECT_EQ(glb.sample(frame, "scale", g), f == g ? 1 : 0) << "frame " << f << " at " << g;
+    const auto& attributes = glb.json["nodes"][frame - 1]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+    const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
+    const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
+    const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
+    ASSERT_EQ(t.size(), 3 * obj.lines.size()) << f;
+    for (std::size_t i = 0; i < obj.lines.size(); ++i) {
+      const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
+      const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+      const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
+      // Koch's curve at n = 7 spans 2187 units: floats hold it to about 3e-4.
+      ASSERT_NEAR(glm::length(middle - half - obj.positions[obj.lines[i].first - 1]), 0, 3e-3) << f << " " << i;
+      ASSERT_NEAR(glm::length(middle + half - obj.positions[obj.lines[i].second - 1]), 0, 3e-3) << f << " " << i;
+    }
+  }
+  EXPECT_EQ(lines, 97'656u);
   EXPECT_LT(bytes.size(), 48 * lines + 64 * 1024);
 }
 
