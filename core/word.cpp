@@ -82,8 +82,8 @@ bool labelsAlone(const World& world, bool visitorReadsIds) {
   std::vector<uint8_t> needsIds(masters.size());
   for (size_t m = 0; m < masters.size(); ++m) {
     const MasterCell& master = masters[m];
-    needsIds[m] = master.system >= 0 || master.developmentFunction >= 0 ||
-                  (master.timedNotation && master.lifetime == kForever);
+    needsIds[m] =
+        master.system >= 0 || master.developmentFunction >= 0 || (master.timedNotation && master.lifetime == kForever);
   }
   return readableAsHeld(world, needsIds);
 }

@@ -19,7 +19,9 @@ namespace {
 class CommandsOfMasters {
  public:
   CommandsOfMasters(const Program& program, const InterpretationSet& set)
-      : program_(program), set_(set), setIndex_(program.commandSetIndex(set.name())),
+      : program_(program),
+        set_(set),
+        setIndex_(program.commandSetIndex(set.name())),
         known_(setIndex_ < 0 ? program.masters.size() : 0, -1) {}
   int operator()(uint32_t m) {
     if (setIndex_ >= 0) return program_.masters[m].commandIds[setIndex_];

@@ -291,7 +291,8 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
     for (uint32_t j : members) steadyLines += lineCount(parts.shapes()[joints[j].shape]);
   const bool instanced = steadyLines > kMaxBakedLines;
   SpanLines spanLines;
-  const std::vector<std::vector<MeshBatch>> surfaces = instanced ? surfacesOf(parts) : std::vector<std::vector<MeshBatch>>{};
+  const std::vector<std::vector<MeshBatch>> surfaces =
+      instanced ? surfacesOf(parts) : std::vector<std::vector<MeshBatch>>{};
   const std::vector<std::vector<MeshBatch>>& steadyShapes = instanced ? surfaces : shapes;
   if (instanced) {
     const double radius = lineRadiusOf(parts.bounds());
@@ -544,7 +545,8 @@ void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& scen
     }
     nlohmann::json children = nlohmann::json::array();
     for (const auto& [material, instances] : tubes)
-      children.push_back(instancer.addNode(material, instances, "lines " + std::to_string(material) + " frame " + std::to_string(f)));
+      children.push_back(
+          instancer.addNode(material, instances, "lines " + std::to_string(material) + " frame " + std::to_string(f)));
     if (!children.empty()) node["children"] = children;
     if (count > 1 && f + 1 != count) node["scale"] = {0.0, 0.0, 0.0};
     b.gltf["nodes"].push_back(node);

@@ -224,14 +224,14 @@ std::size_t TubeInstancer::addNode(uint32_t material, const TubeInstances& insta
   nlohmann::json primitive = primitive_;
   primitive["material"] = b.materialOf(material);
   b.gltf["meshes"].push_back({{"name", name}, {"primitives", nlohmann::json::array({primitive})}});
-  const nlohmann::json instancing = {
-      {"attributes",
-       {{"TRANSLATION", b.addVec3(instances.translations, 0, false)},
-        {"ROTATION", b.addFloats(instances.rotations, "VEC4", instances.size(), 0)},
-        {"SCALE", b.addVec3(instances.scales, 0, false)},
-        {"_CELL", b.addFloats(instances.cells, "VEC2", instances.size(), 0)}}}};
-  b.gltf["nodes"].push_back(
-      {{"name", name}, {"mesh", b.gltf["meshes"].size() - 1}, {"extensions", {{"EXT_mesh_gpu_instancing", instancing}}}});
+  const nlohmann::json instancing = {{"attributes",
+                                      {{"TRANSLATION", b.addVec3(instances.translations, 0, false)},
+                                       {"ROTATION", b.addFloats(instances.rotations, "VEC4", instances.size(), 0)},
+                                       {"SCALE", b.addVec3(instances.scales, 0, false)},
+                                       {"_CELL", b.addFloats(instances.cells, "VEC2", instances.size(), 0)}}}};
+  b.gltf["nodes"].push_back({{"name", name},
+                             {"mesh", b.gltf["meshes"].size() - 1},
+                             {"extensions", {{"EXT_mesh_gpu_instancing", instancing}}}});
   return b.gltf["nodes"].size() - 1;
 }
 

@@ -699,9 +699,8 @@ TEST(GlbModels, TheFlowerTheColonyAndKochPassTheKhronosValidator) {
   const std::string modules = validatorModules();
   ONTOGEN_REQUIRE_CHECKER(!modules.empty(), "gltf-validator not installed (bash .ci/setup installs it)");
   const fs::path script = fs::path(ONTOGEN_SOURCE_DIR) / "tests" / "interpreters" / "validate_gltf.js";
-  for (const fs::path& file :
-       {models().flower, models().colony, models().koch, models().koch6, models().cube, models().kochFrames,
-        models().kochFrames6, models().kochFrames7}) {
+  for (const fs::path& file : {models().flower, models().colony, models().koch, models().koch6, models().cube,
+                               models().kochFrames, models().kochFrames6, models().kochFrames7}) {
     auto [status, report] = runCommand("node '" + script.string() + "' '" + modules + "' '" + file.string() + "' 2>&1");
     EXPECT_EQ(status, 0) << file << ": " << report;
     EXPECT_NE(report.find("errors 0 warnings 0"), std::string::npos) << file << ": " << report;
@@ -848,7 +847,8 @@ TEST(GlbModels, KochGrownPastTheJointsIsANodePerFrameOfInstancedLines) {
   const std::string bytes = fileBytes(models().kochFrames7);
   const Glb glb(bytes);
   std::vector<std::string> names;
-  for (int f = 0; f < 8; ++f) names.insert(names.end(), {"lines 0 frame " + std::to_string(f), "frame " + std::to_string(f)});
+  for (int f = 0; f < 8; ++f)
+    names.insert(names.end(), {"lines 0 frame " + std::to_string(f), "frame " + std::to_string(f)});
   names.insert(names.end(), {"ontogen camera", "ontogen key light"});
   EXPECT_EQ(nodeNames(glb), names);
   std::size_t lines = 0;
@@ -859,7 +859,8 @@ TEST(GlbModels, KochGrownPastTheJointsIsANodePerFrameOfInstancedLines) {
     const int frame = 2 * f + 1;
     EXPECT_EQ(glb.json["nodes"][frame]["children"], nlohmann::json({frame - 1}));
     EXPECT_FALSE(glb.json["nodes"][frame].contains("mesh")) << "Koch draws lines alone";
-    for (int g = 0; g < 8; ++g) EXPECT_EQ(glb.sample(frame, "scale", g), f == g ? 1 : 0) << "frame " << f << " at " << g;
+    for (int g = 0; g < 8; ++g)
+      EXPECT_EQ(glb.sample(frame, "scale", g), f == g ? 1 : 0) << "frame " << f << " at " << g;
     const auto& attributes = glb.json["nodes"][frame - 1]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
     const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
     const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
