@@ -77,22 +77,15 @@ void stream(const World& world, Cursor cell, SourceOf&& sourceOf, bool interpret
 // timeless (such a module keeps no birth of its own in a word without ids:
 // docs/COMPACT_WORDS.md, "Timeless modules join runs").
 bool labelsAlone(const World& world, bool visitorReadsIds) {
-  const Pool& pool = world.rootPool();
-  if (visitorReadsIds || !pool.holdsCompactWord() || pool.holdsIds()) return false;
+  if (visitorReadsIds) return false;
   const std::vector<MasterCell>& masters = world.program().masters;
-  std::vector<size_t> readingIds;
+  std::vector<uint8_t> needsIds(masters.size());
   for (size_t m = 0; m < masters.size(); ++m) {
     const MasterCell& master = masters[m];
-    if (master.system >= 0 || master.developmentFunction >= 0 || (master.timedNotation && master.lifetime == kForever))
-      readingIds.push_back(m);
+    needsIds[m] =
+        master.system >= 0 || master.developmentFunction >= 0 || (master.timedNotation && master.lifetime == kForever);
   }
-  if (readingIds.empty()) return true;
-  // The root system is a master too, and most such masters are in no word: count them.
-  const CompactWord& word = pool.compactWord();
-  if (word.wideLabels() || masters.size() > 256) return false;
-  std::vector<uint64_t> counts(masters.size());
-  countLabels(word.labels8().data(), word.size(), masters.size(), counts.data());
-  return std::all_of(readingIds.begin(), readingIds.end(), [&counts](size_t m) { return counts[m] == 0; });
+  return readableAsHeld(world, needsIds);
 }
 
 // The world's own word (not a homomorphism's image) to `visitor`.
@@ -131,6 +124,21 @@ class WordCollector final : public WordVisitor {
 };
 
 }  // namespace
+
+bool readableAsHeld(const World& world, std::span<const uint8_t> needsIds) {
+  const Pool& pool = world.rootPool();
+  const size_t masters = world.program().masters.size();
+  if (!pool.holdsCompactWord() || pool.holdsIds() || needsIds.size() != masters) return false;
+  if (std::none_of(needsIds.begin(), needsIds.end(), [](uint8_t needs) { return needs != 0; })) return true;
+  // The root system is a master too, and most such masters are in no word: count them.
+  const CompactWord& word = pool.compactWord();
+  if (word.wideLabels() || masters > 256) return false;
+  std::vector<uint64_t> counts(masters);
+  countLabels(word.labels8().data(), word.size(), masters, counts.data());
+  for (size_t m = 0; m < masters; ++m)
+    if (needsIds[m] && counts[m] > 0) return false;
+  return true;
+}
 
 void visitWord(const World& world, WordVisitor& visitor) { streamPool(world, false, visitor); }
 

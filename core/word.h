@@ -61,6 +61,12 @@ class WordVisitor {
   virtual bool readsIds() const { return true; }
 };
 
+/// Whether the world's root word is held without ids (Pool::holdsIds) and no cell of it
+/// is of a master m with needsIds[m] set (one entry per master): a reader that reads the
+/// ids of those masters' cells alone may then walk the word as it is held
+/// (pools/label_cursor.h), without the replay that makes its ids again.
+bool readableAsHeld(const World& world, std::span<const uint8_t> needsIds);
+
 /// Streams the world's cells in pool order to `visitor`.
 void visitWord(const World& world, WordVisitor& visitor);
 /// Does now what visitWord would do first and may fail: the root pool's word held without

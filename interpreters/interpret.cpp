@@ -6,10 +6,57 @@
 #include "core/homomorphism.h"
 #include "core/parents.h"
 #include "core/salts.h"
+#include "core/word.h"
+#include "pools/label_cursor.h"
 
 namespace ontogen {
 
 namespace {
+
+// Whether the set runs a command of each master: its number in the set's table (the
+// compiler resolved it, Program::commandSets), -2 by name (a set the compiler did not
+// know, asked once per master), -1 none.
+class CommandsOfMasters {
+ public:
+  CommandsOfMasters(const Program& program, const InterpretationSet& set)
+      : program_(program),
+        set_(set),
+        setIndex_(program.commandSetIndex(set.name())),
+        known_(setIndex_ < 0 ? program.masters.size() : 0, -1) {}
+  int operator()(uint32_t m) {
+    if (setIndex_ >= 0) return program_.masters[m].commandIds[setIndex_];
+    int8_t& knows = known_[m];
+    if (knows < 0) knows = set_.knows(program_.masters[m].command) ? 1 : 0;
+    return knows ? -2 : -1;
+  }
+
+ private:
+  const Program& program_;
+  const InterpretationSet& set_;
+  int setIndex_;
+  std::vector<int8_t> known_;
+};
+
+// A word held without ids that nothing reads ids of (readableAsHeld), walked as it is
+// held: no replay makes its ids again. Each cell runs its symbol's command, if the set
+// has one, with its parameters (no master in the word develops them); a cell gets the
+// birth of its run (docs/COMPACT_WORDS.md, "Timeless modules join runs").
+void interpretAsHeld(const World& world, InterpretationSet& set, CommandsOfMasters& commandOf) {
+  const Program& program = world.program();
+  for (LabelCursor cursor(world.rootPool().compactWord()); !cursor.done(); cursor.next()) {
+    const uint32_t m = cursor.master();
+    const int id = commandOf(m);
+    if (id == -1) continue;
+    const MasterCell& master = program.masters[m];
+    const std::span<const double> params(cursor.state(), master.stateCount());
+    set.beginCell({0, kNoParent, cursor.birth(), master.lifetime, world.time(), master.label});
+    set.locate({master.span, master.label, world.time()});
+    if (id >= 0)
+      set.executeCommand(id, master.command, params);
+    else
+      set.execute(master.command, params);
+  }
+}
 
 // One pool, then (recursively) the pools of its system cells.
 void interpretPool(const World& world, InterpretationSet& set) {
@@ -19,10 +66,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
   std::vector<double> frame;
   std::vector<double> args;
   std::vector<double> developed;
-  // Commands were resolved by the compiler for the sets it knew (Program::commandSets);
-  // for another set, whether it knows each master's command is asked once per master.
-  const int setIndex = program.commandSetIndex(set.name());
-  std::vector<int8_t> known(setIndex < 0 ? program.masters.size() : 0, -1);
+  CommandsOfMasters commandOf(program, set);
   // An L-system with homomorphism rules is interpreted through its image (the word
   // itself does not change); parents, positions and nested pools are the source's.
   std::optional<HomomorphismImage> image;
@@ -40,6 +84,10 @@ void interpretPool(const World& world, InterpretationSet& set) {
     readsId[m] = set.wantsIds() || master.interpretation(set.name()) ||
                  (!set.alsoReads().empty() && master.interpretation(set.alsoReads())) ||
                  master.developmentFunction >= 0 || master.system >= 0;
+  }
+  if (!image && !readsParent && !set.wantsIds() && readableAsHeld(world, readsId)) {
+    interpretAsHeld(world, set, commandOf);
+    return;
   }
   for (CellCursor cursor = image ? image->cursor() : pool.cursor(); !cursor.done(); cursor.next()) {
     const uint32_t label = cursor.master();
@@ -70,14 +118,7 @@ void interpretPool(const World& world, InterpretationSet& set) {
           set.execute(instruction.command, args);
       }
     } else {
-      int id = -1;  // the command's number in the set, -2: by name, -1: not the set's
-      if (setIndex >= 0) {
-        id = master.commandIds[setIndex];
-      } else {
-        int8_t& knows = known[cell.master];
-        if (knows < 0) knows = set.knows(master.command) ? 1 : 0;
-        id = knows ? -2 : -1;
-      }
+      const int id = commandOf(cell.master);
       if (id != -1) {
         world.developedValues(cell, developed);
         set.beginCell({cell.id, parent, cell.birth, master.lifetime, world.time(), master.label});

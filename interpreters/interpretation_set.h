@@ -140,6 +140,10 @@ class InterpretationSet {
   virtual bool wantsParents() const { return false; }
   /// False when the set never reads CellContext::id: a compact word then does not compute
   /// the id of a cell nothing else reads it of (a hash a module; docs/COMPACT_WORDS.md).
+  /// A word grown without ids is then walked as it is held, without the replay that makes
+  /// its ids again, when nothing else reads them (parents, a homomorphism, interpretation
+  /// blocks, development functions, nested pools): CellContext::id is 0 and the birth of
+  /// a timeless module that of the run it joined ("Words without ids" there).
   virtual bool wantsIds() const { return true; }
   /// Called by interpretWord after the last cell of a word.
   virtual void endWord() {}

@@ -197,6 +197,63 @@ void writeStillParts(const SceneParts& parts, const std::vector<std::vector<Mesh
   sceneNodes.push_back(b.gltf["nodes"].size() - 1);
 }
 
+// A frame span's track: at the origin, shown (scale 1) in frames [first, last] only.
+Track spanTrack(std::pair<std::size_t, std::size_t> span, std::size_t frames) {
+  Track t;
+  t.hidden = true;
+  for (std::size_t f = 0; f < frames; ++f) {
+    t.translations.emplace_back(0.0f);
+    t.rotations.insert(t.rotations.end(), {0.0f, 0.0f, 0.0f, 1.0f});
+    t.scales.emplace_back(f >= span.first && f <= span.second ? 1.0f : 0.0f);
+  }
+  return t;
+}
+
+std::string spanName(std::pair<std::size_t, std::size_t> span) {
+  return "frames " + std::to_string(span.first) + " to " + std::to_string(span.second);
+}
+
+std::size_t lineCount(const PartShape& shape) {
+  std::size_t lines = 0;
+  for (const MeshBatch& batch : shape.batches) lines += batch.lines.size() / 2;
+  return lines;
+}
+
+// The shapes' surfaces alone, their lines left out (written as instances).
+std::vector<std::vector<MeshBatch>> surfacesOf(const SceneParts& parts) {
+  std::vector<std::vector<MeshBatch>> out;
+  out.reserve(parts.shapes().size());
+  for (const PartShape& shape : parts.shapes()) {
+    out.emplace_back();
+    for (const MeshBatch& batch : shape.batches) {
+      if (batch.indices.empty()) continue;
+      out.back().push_back(batch);
+      out.back().back().lines.clear();
+    }
+  }
+  return out;
+}
+
+// The lines of parts that never move while they show, by their span of frames (the
+// whole run for parts in every frame), then colour: in world coordinates, as tubes of
+// one radius.
+using SpanLines = std::map<std::pair<std::size_t, std::size_t>, std::map<uint32_t, TubeInstances>>;
+
+// A placed part's lines, in world coordinates, added by colour to `into`.
+void addPlacedLines(const SceneParts& parts, const PartPlacement& p, double radius,
+                    std::map<uint32_t, TubeInstances>& into) {
+  const PartJoint& pj = parts.joints()[p.joint];
+  const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
+  const glm::vec2 cell(static_cast<float>(pj.cellNumber), static_cast<float>(pj.birth));
+  for (const MeshBatch& batch : parts.shapes()[pj.shape].batches) {
+    for (std::size_t k = 0; k + 1 < batch.lines.size(); k += 2) {
+      const glm::dvec3 a = p.translation + rotation * (glm::dvec3(batch.lines[k]) * p.scale);
+      const glm::dvec3 z = p.translation + rotation * (glm::dvec3(batch.lines[k + 1]) * p.scale);
+      if (a != z) into[batch.material].add(a, z, radius, cell);
+    }
+  }
+}
+
 void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNodes) {
   const auto& joints = parts.joints();
   if (joints.empty()) return;
@@ -224,27 +281,97 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
       steady[span].push_back(j);
     }
   }
+  // Past kMaxBakedLines lines in the parts that never move, their lines are instances
+  // of one tube, as in a run of one frame (formats/still_glb.h), a node per span and
+  // colour shown by its span's scale; their surfaces stay where they were, and a span
+  // left without a surface is no joint.
+  std::size_t steadyLines = 0;
+  for (uint32_t j : stillJoints) steadyLines += lineCount(parts.shapes()[joints[j].shape]);
+  for (const auto& [span, members] : steady)
+    for (uint32_t j : members) steadyLines += lineCount(parts.shapes()[joints[j].shape]);
+  const bool instanced = steadyLines > kMaxBakedLines;
+  SpanLines spanLines;
+  const std::vector<std::vector<MeshBatch>> surfaces =
+      instanced ? surfacesOf(parts) : std::vector<std::vector<MeshBatch>>{};
+  const std::vector<std::vector<MeshBatch>>& steadyShapes = instanced ? surfaces : shapes;
+  if (instanced) {
+    const double radius = lineRadiusOf(parts.bounds());
+    for (uint32_t j : stillJoints) addPlacedLines(parts, *placed[j], radius, spanLines[{0, frames - 1}]);
+    for (const auto& [span, members] : steady)
+      for (uint32_t j : members) addPlacedLines(parts, *placed[j], radius, spanLines[span]);
+    std::erase_if(steady, [&](const auto& entry) {
+      return std::none_of(entry.second.begin(), entry.second.end(),
+                          [&](uint32_t j) { return !steadyShapes[joints[j].shape].empty(); });
+    });
+  }
   // A span's node is keyed like a joint that shows in those frames, at the origin.
   std::vector<Track> spanTracks;
   std::vector<nlohmann::json> spanNodes;
   for (const auto& [span, members] : steady) {
-    Track t;
-    t.hidden = true;
-    for (std::size_t f = 0; f < frames; ++f) {
-      t.translations.emplace_back(0.0f);
-      t.rotations.insert(t.rotations.end(), {0.0f, 0.0f, 0.0f, 1.0f});
-      t.scales.emplace_back(f >= span.first && f <= span.second ? 1.0f : 0.0f);
-    }
-    spanTracks.push_back(std::move(t));
-    const std::string name = "frames " + std::to_string(span.first) + " to " + std::to_string(span.second);
-    spanNodes.push_back({{"name", name}, {"extras", {{"frames", {span.first, span.second}}, {"parts", members.size()}}}});
+    spanTracks.push_back(spanTrack(span, frames));
+    spanNodes.push_back(
+        {{"name", spanName(span)}, {"extras", {{"frames", {span.first, span.second}}, {"parts", members.size()}}}});
   }
   const std::size_t count = moving.size() + steady.size();
   auto trackOf = [&](std::size_t k) -> const Track& {
     return k < moving.size() ? tracks[moving[k]] : spanTracks[k - moving.size()];
   };
+  // The animation: each node keyed from its first frame to its last (and, for the scale
+  // of a node that appears or vanishes, the frames either side, where it is 0); before
+  // and after its keys a channel holds its first and last value.
+  const Timing timing = timingOf(parts.frames());
+  std::map<std::pair<std::size_t, std::size_t>, int> inputs;  // keys lo..hi -> accessor
+  auto inputOf = [&](std::size_t lo, std::size_t hi) {
+    auto [it, added] = inputs.try_emplace({lo, hi}, 0);
+    if (added) it->second = b.addScalars(std::vector<float>(timing.keys.begin() + lo, timing.keys.begin() + hi + 1));
+    return it->second;
+  };
+  nlohmann::json samplers = nlohmann::json::array();
+  nlohmann::json channels = nlohmann::json::array();
+  auto channel = [&](int input, int output, std::size_t node, const char* path, const char* interpolation) {
+    samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolation}});
+    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", path}}}});
+  };
+  auto key = [&](const Track& t, std::size_t node) {
+    std::size_t first = 0, last = frames - 1;
+    while (first < last && t.scales[first] == glm::vec3(0.0f)) ++first;
+    while (last > first && t.scales[last] == glm::vec3(0.0f)) --last;
+    auto slice = [&](const auto& values, std::size_t lo, std::size_t hi, std::size_t stride) {
+      using Values = std::decay_t<decltype(values)>;
+      return Values(values.begin() + lo * stride, values.begin() + (hi + 1) * stride);
+    };
+    const auto translations = slice(t.translations, first, last, 1);
+    const auto rotations = slice(t.rotations, first, last, 4);
+    if (changes(translations))
+      channel(inputOf(first, last), b.addVec3(translations, 0, false, kTrackPool), node, "translation", "LINEAR");
+    if (changes(rotations, 4))
+      channel(inputOf(first, last), b.addFloats(rotations, "VEC4", last - first + 1, 0, kTrackPool), node, "rotation",
+              "LINEAR");
+    const std::size_t lo = first > 0 ? first - 1 : 0, hi = last + 1 < frames ? last + 1 : last;
+    const auto scales = slice(t.scales, lo, hi, 1);
+    if (changes(scales))
+      channel(inputOf(lo, hi), b.addVec3(scales, 0, false, kTrackPool), node, "scale", t.hidden ? "STEP" : "LINEAR");
+  };
+  auto finish = [&] {
+    writeStillParts(parts, steadyShapes, stillJoints, placed, b, sceneNodes);
+    // The instanced lines: in every frame, or shown by their span's scale.
+    TubeInstancer instancer(b);
+    for (const auto& [span, colours] : spanLines) {
+      const bool always = span.first == 0 && span.second + 1 == frames;
+      for (const auto& [material, lines] : colours) {
+        const std::string name = "lines " + std::to_string(material) + (always ? "" : " " + spanName(span));
+        const std::size_t node = instancer.addNode(material, lines, name);
+        sceneNodes.push_back(node);
+        if (always) continue;
+        if (span.second + 1 != frames) b.gltf["nodes"][node]["scale"] = {0.0, 0.0, 0.0};
+        key(spanTrack(span, frames), node);
+      }
+    }
+    if (!channels.empty())
+      b.gltf["animations"].push_back({{"name", "development"}, {"samplers", samplers}, {"channels", channels}});
+  };
   if (count == 0) {
-    writeStillParts(parts, shapes, stillJoints, placed, b, sceneNodes);
+    finish();
     return;
   }
 
@@ -281,7 +408,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
   std::size_t spanSlot = moving.size();
   for (const auto& [span, members] : steady) {
     for (uint32_t joint : members) {
-      for (const MeshBatch& batch : shapes[joints[joint].shape]) {
+      for (const MeshBatch& batch : steadyShapes[joints[joint].shape]) {
         if (batch.indices.empty()) continue;
         SkinnedBatch& into = single[spanSlot / kJointsPerSkin][batch.material];
         const std::size_t before = into.mesh.positions.size();
@@ -367,46 +494,7 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
         {{"name", name}, {"mesh", b.gltf["meshes"].size() - 1}, {"skin", b.gltf["skins"].size() - 1}});
     sceneNodes.push_back(b.gltf["nodes"].size() - 1);
   }
-  writeStillParts(parts, shapes, stillJoints, placed, b, sceneNodes);
-
-  // The animation: each joint keyed from its first frame to its last (and, for the
-  // scale of a joint that appears or vanishes, the frames either side, where it is 0);
-  // before and after its keys a channel holds its first and last value.
-  if (frames < 2) return;
-  const Timing timing = timingOf(parts.frames());
-  std::map<std::pair<std::size_t, std::size_t>, int> inputs;  // keys lo..hi -> accessor
-  auto inputOf = [&](std::size_t lo, std::size_t hi) {
-    auto [it, added] = inputs.try_emplace({lo, hi}, 0);
-    if (added) it->second = b.addScalars(std::vector<float>(timing.keys.begin() + lo, timing.keys.begin() + hi + 1));
-    return it->second;
-  };
-  nlohmann::json samplers = nlohmann::json::array();
-  nlohmann::json channels = nlohmann::json::array();
-  auto channel = [&](int input, int output, std::size_t node, const char* path, const char* interpolation) {
-    samplers.push_back({{"input", input}, {"output", output}, {"interpolation", interpolation}});
-    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", path}}}});
-  };
-  for (std::size_t j = 0; j < count; ++j) {
-    const Track& t = trackOf(j);
-    std::size_t first = 0, last = frames - 1;
-    while (first < last && t.scales[first] == glm::vec3(0.0f)) ++first;
-    while (last > first && t.scales[last] == glm::vec3(0.0f)) --last;
-    auto slice = [&](const auto& values, std::size_t lo, std::size_t hi, std::size_t stride) {
-      using Values = std::decay_t<decltype(values)>;
-      return Values(values.begin() + lo * stride, values.begin() + (hi + 1) * stride);
-    };
-    const auto translations = slice(t.translations, first, last, 1);
-    const auto rotations = slice(t.rotations, first, last, 4);
-    if (changes(translations))
-      channel(inputOf(first, last), b.addVec3(translations, 0, false, kTrackPool), j, "translation", "LINEAR");
-    if (changes(rotations, 4))
-      channel(inputOf(first, last), b.addFloats(rotations, "VEC4", last - first + 1, 0, kTrackPool), j, "rotation",
-              "LINEAR");
-    const std::size_t lo = first > 0 ? first - 1 : 0, hi = last + 1 < frames ? last + 1 : last;
-    const auto scales = slice(t.scales, lo, hi, 1);
-    if (changes(scales))
-      channel(inputOf(lo, hi), b.addVec3(scales, 0, false, kTrackPool), j, "scale", t.hidden ? "STEP" : "LINEAR");
-  }
+  for (std::size_t j = 0; j < count; ++j) key(trackOf(j), j);
   // The root's scale, 1 at the first and the last key: the action Blender makes spans
   // the whole run even where the first or last frames move nothing.
   const int ends = b.addScalars({timing.keys.front(), timing.keys.back()});
@@ -414,18 +502,28 @@ void writeSkinned(const SceneParts& parts, Builder& b, nlohmann::json& sceneNode
                       {"output", b.addVec3({glm::vec3(1.0f), glm::vec3(1.0f)}, 0, false)},
                       {"interpolation", "LINEAR"}});
   channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", root}, {"path", "scale"}}}});
-  b.gltf["animations"].push_back({{"name", "development"}, {"samplers", samplers}, {"channels", channels}});
+  finish();
 }
 
-// Beyond kMaxJoints: a node per frame, its parts in world coordinates.
+// Beyond kMaxJoints: a node per frame, its parts in world coordinates; past
+// kMaxBakedLines lines in the run, each frame's lines are instances of one tube in
+// nodes under the frame's ("lines <colour> frame <f>").
 void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& sceneNodes) {
-  const std::vector<std::vector<MeshBatch>> shapes = finalShapes(parts);
   const auto& frames = parts.frames();
   const std::size_t count = frames.size();
-  const std::size_t first = b.gltf["nodes"].is_array() ? b.gltf["nodes"].size() : 0;
+  std::size_t lines = 0;
+  for (const PartFrame& frame : frames)
+    for (const PartPlacement& p : frame.placements) lines += lineCount(parts.shapes()[parts.joints()[p.joint].shape]);
+  const bool instanced = lines > kMaxBakedLines;
+  const std::vector<std::vector<MeshBatch>> shapes = instanced ? surfacesOf(parts) : finalShapes(parts);
+  const double radius = lineRadiusOf(parts.bounds());
+  TubeInstancer instancer(b);
+  std::vector<std::size_t> frameNodes;
   for (std::size_t f = 0; f < count; ++f) {
     std::map<uint32_t, MeshBatch> world;
+    std::map<uint32_t, TubeInstances> tubes;
     for (const PartPlacement& p : frames[f].placements) {
+      if (instanced) addPlacedLines(parts, p, radius, tubes);
       const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
       for (const MeshBatch& batch : shapes[parts.joints()[p.joint].shape]) {
         if (batch.indices.empty()) continue;
@@ -445,9 +543,15 @@ void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& scen
       b.gltf["meshes"].push_back({{"name", "frame " + std::to_string(f)}, {"primitives", primitives}});
       node["mesh"] = b.gltf["meshes"].size() - 1;
     }
+    nlohmann::json children = nlohmann::json::array();
+    for (const auto& [material, instances] : tubes)
+      children.push_back(
+          instancer.addNode(material, instances, "lines " + std::to_string(material) + " frame " + std::to_string(f)));
+    if (!children.empty()) node["children"] = children;
     if (count > 1 && f + 1 != count) node["scale"] = {0.0, 0.0, 0.0};
     b.gltf["nodes"].push_back(node);
-    sceneNodes.push_back(first + f);
+    frameNodes.push_back(b.gltf["nodes"].size() - 1);
+    sceneNodes.push_back(frameNodes.back());
   }
   if (count < 2) return;
   const Timing timing = timingOf(frames);
@@ -458,7 +562,7 @@ void writeFramePerNode(const SceneParts& parts, Builder& b, nlohmann::json& scen
   for (std::size_t f = 0; f < count; ++f) {
     for (std::size_t k = 0; k < count; ++k) scales[k] = glm::vec3(k == f ? 1.0f : 0.0f);
     samplers.push_back({{"input", input}, {"output", b.addVec3(scales, 0, false)}, {"interpolation", "STEP"}});
-    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", first + f}, {"path", "scale"}}}});
+    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", frameNodes[f]}, {"path", "scale"}}}});
   }
   b.gltf["animations"].push_back({{"name", "development"}, {"samplers", samplers}, {"channels", channels}});
 }

@@ -38,10 +38,15 @@
 // - Parts that never move while they show are no joints: those in every frame are written
 //   in world coordinates in a mesh "still"; the others in world coordinates skinned to
 //   one joint per span of frames they show in ("frames A to B", extras frames and
-//   parts), which a STEP scale shows in those frames.
+//   parts), which a STEP scale shows in those frames. Past kMaxBakedLines lines in such
+//   parts, their lines are instances of one tube (formats/still_glb.h), a node per span
+//   and colour ("lines <colour> frames A to B", or "lines <colour>" in every frame)
+//   shown by a STEP scale of its own; a span left without a surface is no joint.
 // With more than kMaxJoints joints each frame is instead
 // a node of its own, its parts placed in world coordinates, shown by a STEP scale
-// channel (1 in its frame, 0 otherwise); without animation the last frame shows.
+// channel (1 in its frame, 0 otherwise); without animation the last frame shows. Past
+// kMaxBakedLines lines in the run, a frame's lines are instances of one tube in nodes
+// under its node ("lines <colour> frame <f>").
 
 #include <cstdint>
 #include <ostream>

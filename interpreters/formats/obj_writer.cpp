@@ -2,6 +2,9 @@
 
 #include <charconv>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <memory>
 #include <set>
 #include <string>
 
@@ -15,19 +18,71 @@ namespace {
 // 10 keeps a 1 km model exact to the micrometre.
 constexpr int kDigits = 10;
 
-void writeNumber(std::ostream& out, double value) {
-  char buffer[32];
-  auto end = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general,
-                           kDigits).ptr;
-  std::string_view text(buffer, end - buffer);
-  out << (text == "-0" ? std::string_view("0") : text);
-}
+// The file's text, formatted into a buffer and handed to the stream in large writes:
+// through the stream's operator<<, every number and space of a large OBJ cost a sentry
+// and a virtual call, more time than the turtle that drew it.
+class ObjText {
+ public:
+  explicit ObjText(std::ostream& out) : out_(out) {}
+  ObjText(const ObjText&) = delete;
+  ObjText& operator=(const ObjText&) = delete;
+  ~ObjText() { flush(); }
 
-void writeVector(std::ostream& out, const char* tag, const glm::dvec3& v) {
+  ObjText& operator<<(char c) {
+    room(1);
+    buffer_[used_++] = c;
+    return *this;
+  }
+  ObjText& operator<<(std::string_view text) {
+    if (text.size() > kSize) {
+      flush();
+      out_.write(text.data(), static_cast<std::streamsize>(text.size()));
+      return *this;
+    }
+    room(text.size());
+    std::memcpy(buffer_ + used_, text.data(), text.size());
+    used_ += text.size();
+    return *this;
+  }
+  ObjText& operator<<(const char* text) { return *this << std::string_view(text); }
+  ObjText& operator<<(std::size_t value) {
+    room(kNumber);
+    used_ = static_cast<std::size_t>(std::to_chars(buffer_ + used_, buffer_ + kSize, value).ptr - buffer_);
+    return *this;
+  }
+  ObjText& operator<<(uint32_t value) { return *this << static_cast<std::size_t>(value); }
+  /// kDigits significant digits, shortest form; -0 as 0.
+  void number(double value) {
+    room(kNumber);
+    char* at = buffer_ + used_;
+    char* end = std::to_chars(at, buffer_ + kSize, value, std::chars_format::general, kDigits).ptr;
+    if (end - at == 2 && at[0] == '-' && at[1] == '0') {
+      at[0] = '0';
+      end = at + 1;
+    }
+    used_ = static_cast<std::size_t>(end - buffer_);
+  }
+  void flush() {
+    if (used_ > 0) out_.write(buffer_, static_cast<std::streamsize>(used_));
+    used_ = 0;
+  }
+
+ private:
+  static constexpr std::size_t kSize = 1 << 16;
+  static constexpr std::size_t kNumber = 32;  // the longest number written, and more
+  void room(std::size_t bytes) {
+    if (used_ + bytes > kSize) flush();
+  }
+  std::ostream& out_;
+  char buffer_[kSize];
+  std::size_t used_ = 0;
+};
+
+void writeVector(ObjText& out, const char* tag, const glm::dvec3& v) {
   out << tag;
   for (int i = 0; i < 3; ++i) {
     out << ' ';
-    writeNumber(out, v[i]);
+    out.number(v[i]);
   }
   out << '\n';
 }
@@ -54,23 +109,27 @@ void writeObj(const Geometry& geometry, std::ostream& out, std::string_view mtlN
   writeObjWith(geometry, out, mtlName.empty() ? std::string_view("ontogen.mtl") : mtlName, up);
 }
 
-void writeMtl(const Geometry& geometry, std::ostream& out) {
+void writeMtl(const Geometry& geometry, std::ostream& stream) {
+  const auto text = std::make_unique<ObjText>(stream);
+  ObjText& out = *text;
   out << "# ontogen materials: the palette colours the model uses\n";
   for (uint32_t material : usedMaterials(geometry)) {
     Color c = paletteColor(material);
-    out << "newmtl " << materialName(material) << "\nKd ";
-    writeNumber(out, c.r);
+    out << "newmtl " << std::string_view(materialName(material)) << "\nKd ";
+    out.number(c.r);
     out << ' ';
-    writeNumber(out, c.g);
+    out.number(c.g);
     out << ' ';
-    writeNumber(out, c.b);
+    out.number(c.b);
     out << "\nKa 0 0 0\nKs 0 0 0\nd 1\nillum 1\n";
   }
 }
 
 namespace {
 
-void writeObjWith(const Geometry& geometry, std::ostream& out, std::string_view mtlName, UpAxis up) {
+void writeObjWith(const Geometry& geometry, std::ostream& stream, std::string_view mtlName, UpAxis up) {
+  const auto text = std::make_unique<ObjText>(stream);  // 64 KiB: not on the stack
+  ObjText& out = *text;
   const bool materials = !mtlName.empty();
   const Mesh& mesh = geometry.mesh();
   const std::vector<Segment>& segments = geometry.segments();
@@ -110,9 +169,9 @@ void writeObjWith(const Geometry& geometry, std::ostream& out, std::string_view 
   }
   for (const glm::dvec2& t : mesh.texcoords) {
     out << "vt ";
-    writeNumber(out, t.x);
+    out.number(t.x);
     out << ' ';
-    writeNumber(out, t.y);
+    out.number(t.y);
     out << '\n';
   }
   // 1-based index of each segment's first vertex, in the order written above.
@@ -123,7 +182,7 @@ void writeObjWith(const Geometry& geometry, std::ostream& out, std::string_view 
     ++last;
   }
   for (uint32_t material : usedMaterials(geometry)) {
-    out << "usemtl " << materialName(material) << '\n';
+    out << "usemtl " << std::string_view(materialName(material)) << '\n';
     for (const Triangle& t : mesh.triangles) {
       if (t.material % kPaletteSize != material) continue;
       out << 'f';

@@ -162,27 +162,16 @@ void addStillScene(gltf::Builder& b, const Scene& scene, double lineRadius, nloh
   const Tube tube = unitTube();
   const auto& segments = g.segments();
   const bool instanced = segments.size() > kMaxBakedLines;
-  struct Instances {
-    std::vector<glm::vec3> translations, scales;
-    std::vector<float> rotations;  // x, y, z, w
-    std::vector<float> cells;  // cell number, birth
-  };
-  std::map<uint32_t, Instances> instances;  // by palette colour
+  std::map<uint32_t, TubeInstances> instances;  // by palette colour
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const Segment& segment = segments[s];
     if (segment.start == segment.end) continue;  // draws nothing
-    const TubePlacement p = tubeOn(segment.start, segment.end, lineRadius);
     const uint32_t material = segment.material % kPaletteSize;
     if (instanced) {
-      Instances& into = instances[material];
-      into.translations.emplace_back(p.translation);
-      into.scales.emplace_back(p.scale);
-      into.rotations.insert(into.rotations.end(), {static_cast<float>(p.rotation.x), static_cast<float>(p.rotation.y),
-                                                   static_cast<float>(p.rotation.z), static_cast<float>(p.rotation.w)});
-      const glm::vec2 cell = cellValue(cells, cells.ofSegment[s]);
-      into.cells.insert(into.cells.end(), {cell.x, cell.y});
+      instances[material].add(segment.start, segment.end, lineRadius, cellValue(cells, cells.ofSegment[s]));
       continue;
     }
+    const TubePlacement p = tubeOn(segment.start, segment.end, lineRadius);
     StillBatch& batch = still[material];
     const auto base = static_cast<uint32_t>(batch.mesh.positions.size());
     const glm::dmat3 rotation = glm::mat3_cast(p.rotation);
@@ -204,31 +193,46 @@ void addStillScene(gltf::Builder& b, const Scene& scene, double lineRadius, nloh
     sceneNodes.push_back(b.gltf["nodes"].size() - 1);
   }
 
-  if (instances.empty()) return;
-  // The tube once, drawn in each colour by a mesh of its own (the primitive's accessors
-  // shared, its material the colour's).
-  MeshBatch unit;
-  unit.positions.assign(tube.positions.begin(), tube.positions.end());
-  unit.normals.assign(tube.normals.begin(), tube.normals.end());
-  unit.texcoords = tube.texcoords;
-  unit.indices = tube.indices;
-  nlohmann::json primitive = gltf::trianglePrimitive(b, unit, instances.begin()->first);
-  b.useExtension("EXT_mesh_gpu_instancing");
-  for (const auto& [material, into] : instances) {
-    const std::string name = "lines " + std::to_string(material);
-    primitive["material"] = b.materialOf(material);
-    b.gltf["meshes"].push_back({{"name", name}, {"primitives", nlohmann::json::array({primitive})}});
-    const nlohmann::json instancing = {
-        {"attributes",
-         {{"TRANSLATION", b.addVec3(into.translations, 0, false)},
-          {"ROTATION", b.addFloats(into.rotations, "VEC4", into.translations.size(), 0)},
-          {"SCALE", b.addVec3(into.scales, 0, false)},
-          {"_CELL", b.addFloats(into.cells, "VEC2", into.translations.size(), 0)}}}};
-    b.gltf["nodes"].push_back({{"name", name},
-                               {"mesh", b.gltf["meshes"].size() - 1},
-                               {"extensions", {{"EXT_mesh_gpu_instancing", instancing}}}});
-    sceneNodes.push_back(b.gltf["nodes"].size() - 1);
+  TubeInstancer instancer(b);
+  for (const auto& [material, into] : instances)
+    sceneNodes.push_back(instancer.addNode(material, into, "lines " + std::to_string(material)));
+}
+
+void TubeInstances::add(const glm::dvec3& a, const glm::dvec3& b, double radius, const glm::vec2& cell) {
+  const TubePlacement p = tubeOn(a, b, radius);
+  translations.emplace_back(p.translation);
+  scales.emplace_back(p.scale);
+  rotations.insert(rotations.end(), {static_cast<float>(p.rotation.x), static_cast<float>(p.rotation.y),
+                                     static_cast<float>(p.rotation.z), static_cast<float>(p.rotation.w)});
+  cells.insert(cells.end(), {cell.x, cell.y});
+}
+
+// The tube once, drawn in each colour by a mesh of its own (the primitive's accessors
+// shared, its material the colour's).
+std::size_t TubeInstancer::addNode(uint32_t material, const TubeInstances& instances, const std::string& name) {
+  gltf::Builder& b = builder_;
+  if (primitive_.is_null()) {
+    const Tube tube = unitTube();
+    MeshBatch unit;
+    unit.positions.assign(tube.positions.begin(), tube.positions.end());
+    unit.normals.assign(tube.normals.begin(), tube.normals.end());
+    unit.texcoords = tube.texcoords;
+    unit.indices = tube.indices;
+    primitive_ = gltf::trianglePrimitive(b, unit, material);
+    b.useExtension("EXT_mesh_gpu_instancing");
   }
+  nlohmann::json primitive = primitive_;
+  primitive["material"] = b.materialOf(material);
+  b.gltf["meshes"].push_back({{"name", name}, {"primitives", nlohmann::json::array({primitive})}});
+  const nlohmann::json instancing = {{"attributes",
+                                      {{"TRANSLATION", b.addVec3(instances.translations, 0, false)},
+                                       {"ROTATION", b.addFloats(instances.rotations, "VEC4", instances.size(), 0)},
+                                       {"SCALE", b.addVec3(instances.scales, 0, false)},
+                                       {"_CELL", b.addFloats(instances.cells, "VEC2", instances.size(), 0)}}}};
+  b.gltf["nodes"].push_back({{"name", name},
+                             {"mesh", b.gltf["meshes"].size() - 1},
+                             {"extensions", {{"EXT_mesh_gpu_instancing", instancing}}}});
+  return b.gltf["nodes"].size() - 1;
 }
 
 }  // namespace ontogen

@@ -17,9 +17,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
@@ -45,6 +47,30 @@ struct TubePlacement {
 
 /// The placement of the tube on a -> b (a != b).
 TubePlacement tubeOn(const glm::dvec3& a, const glm::dvec3& b, double radius);
+
+/// Lines of one palette colour as instances of the unit tube (EXT_mesh_gpu_instancing):
+/// per instance its placement (TRANSLATION, ROTATION, SCALE) and its cell (_CELL).
+struct TubeInstances {
+  std::vector<glm::vec3> translations, scales;
+  std::vector<float> rotations;  ///< x, y, z, w per instance
+  std::vector<float> cells;      ///< cell number, birth (seconds) per instance
+  std::size_t size() const { return translations.size(); }
+  /// Adds the tube of `radius` on a -> b (a != b), drawn by `cell`.
+  void add(const glm::dvec3& a, const glm::dvec3& b, double radius, const glm::vec2& cell);
+};
+
+/// Writes nodes of instanced tubes into a builder, the unit tube's accessors once for all.
+class TubeInstancer {
+ public:
+  explicit TubeInstancer(gltf::Builder& builder) : builder_(builder) {}
+  /// Adds a mesh of the tube in colour `material` and a node `name` that instances it;
+  /// returns the node's index.
+  std::size_t addNode(uint32_t material, const TubeInstances& instances, const std::string& name);
+
+ private:
+  gltf::Builder& builder_;
+  nlohmann::json primitive_;  // the unit tube's, made at the first node
+};
 
 /// Adds the still mesh (and the instanced lines) of a scene's geometry to the builder,
 /// their nodes to sceneNodes; lines become tubes of `lineRadius` (model units).

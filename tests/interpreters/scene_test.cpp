@@ -187,6 +187,44 @@ TEST(Scene, ASetsLinesGoIntoRoomReservedForTheWord) {
   }
 }
 
+// A word grown without ids (docs/COMPACT_WORDS.md, "Words without ids") is drawn as it is
+// held when the set reads no ids and nothing else does (parents, a homomorphism,
+// interpretation blocks, development functions, nested pools): the pool's replay, which
+// makes the ids again and costs several times the derivation, does not run.
+TEST(Scene, AWordGrownWithoutIdsIsDrawnWithoutMakingItsIdsAgain) {
+  auto program = testing_support::compileOrFail("lsystem koch {\n  #angle 90\n  axiom F\n  F -> F + F - F - F + F\n}");
+  auto drawn = [&](bool withoutIds, bool nodes) {
+    WorldDef def;
+    def.wordsWithoutIds = withoutIds;
+    auto world = std::make_unique<World>(program, def);
+    world->advanceTo(7, 1);
+    EXPECT_EQ(world->rootPool().holdsIds(), !withoutIds) << "grown " << (withoutIds ? "without" : "with") << " ids";
+    GeometrySet set(GeometrySetDef{.sceneNodes = nodes});
+    set.beginFrame({});
+    interpretWord(*world, set);
+    EXPECT_EQ(world->rootPool().holdsIds(), !withoutIds || nodes)
+        << (nodes ? "a set that records nodes reads ids: they are made again"
+                  : "a set that reads no ids draws the word as it is held");
+    Scene scene;
+    set.contribute(scene);
+    return scene;
+  };
+  const Scene asHeld = drawn(true, false);
+  const Scene withIds = drawn(false, false);
+  const Scene replayed = drawn(true, true);
+  ASSERT_EQ(asHeld.geometry.segmentCount(), 78'125u) << "5^7 lines";
+  for (const Scene* other : {&withIds, &replayed}) {
+    ASSERT_EQ(other->geometry.segmentCount(), asHeld.geometry.segmentCount());
+    for (std::size_t i = 0; i < asHeld.geometry.segmentCount(); ++i) {
+      const Segment& a = asHeld.geometry.segments()[i];
+      const Segment& b = other->geometry.segments()[i];
+      ASSERT_TRUE(a.start == b.start && a.end == b.end && a.material == b.material) << "line " << i;
+    }
+  }
+  EXPECT_NEAR(glm::length(asHeld.geometry.segments().back().end - glm::dvec3(0, 2187, 0)), 0, 1e-6)
+      << "3^7 units along the first heading";
+}
+
 // The compiler resolves every instruction to its set's command once: the interpreter hands
 // the set numbers, never a name to look up, for blocks and for symbols alike.
 class CountingSet final : public InterpretationSet {

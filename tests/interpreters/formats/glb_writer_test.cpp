@@ -578,6 +578,62 @@ TEST(GlbWriter, ManyLinesAreInstancesOfOneTube) {
             3u * 2 * kTubeSides);
 }
 
+// Past kMaxBakedLines lines in parts that never move, the lines are instances of one
+// tube: those of cells in both frames in a node "lines 0" shown throughout, those of
+// cells new in the second frame in "lines 0 frames 1 to 1", shown (STEP scale) in it
+// only; each instance on its segment in world coordinates. A ball that moves stays a
+// joint, the only one: spans left without a surface are none.
+TEST(GlbWriter, ManyLinesThatNeverMoveAreInstancesShownInTheirFrames) {
+  const std::size_t perFrame = kMaxBakedLines / 2 + 1;
+  auto lineOf = [](uint64_t id) {
+    const glm::dvec3 a(static_cast<double>(id % 64), static_cast<double>(id / 64), 0);
+    return std::pair{a, a + glm::dvec3(std::cos(0.1 * id), std::sin(0.1 * id), 0.25)};
+  };
+  GlbAnimationWriter writer;
+  for (int f = 0; f < 2; ++f) {
+    SceneBuilder frame(f);
+    for (uint64_t id = 1; id <= perFrame * (f + 1); ++id) {
+      const auto [a, b] = lineOf(id);
+      frame.cell(id, "F", a, glm::dmat3(1.0), [&](Geometry& g) { g.addSegment(a, b); });
+    }
+    frame.cell(9999, "Ball", {0, 0, 0}, glm::dmat3(1.0), [&](Geometry& g) { g.addSphere({f, 0, 0}, 0.5); });
+    writer.addFrame(frame.scene);
+  }
+  const Glb glb(written(writer));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"Ball 9999", "cells", "parts", "lines 0", "lines 0 frames 1 to 1",
+                                                      "ontogen camera", "ontogen key light"}));
+  ASSERT_EQ(glb.json["skins"].size(), 1u);
+  EXPECT_EQ(glb.json["skins"][0]["joints"], nlohmann::json({0}));
+  const double radius = glm::length(writer.parts().bounds().max - writer.parts().bounds().min) * kLineRadiusFraction;
+  for (int n : {3, 4}) {
+    const auto& attributes = glb.json["nodes"][n]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+    const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
+    const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
+    const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
+    const std::vector<double> cell = glb.values(attributes["_CELL"].get<int>());
+    ASSERT_EQ(t.size(), 3 * perFrame) << n;
+    for (std::size_t i = 0; i < perFrame; ++i) {
+      const uint64_t id = (n == 3 ? 1 : perFrame + 1) + i;
+      const auto [a, b] = lineOf(id);
+      const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
+      const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+      const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
+      ASSERT_NEAR(glm::length(middle - half - a), 0, 1e-5) << n << " " << i;
+      ASSERT_NEAR(glm::length(middle + half - b), 0, 1e-5) << n << " " << i;
+      ASSERT_NEAR(sc[3 * i], radius, 1e-6 * radius);
+      ASSERT_EQ(cell[2 * i + 1], static_cast<float>(0.25 * static_cast<double>(id))) << "the cell's birth";
+    }
+  }
+  EXPECT_TRUE(glb.channel(3, "scale").empty()) << "shown throughout";
+  std::string interpolation;
+  EXPECT_EQ(glb.channel(4, "scale", &interpolation), (std::vector<double>{0, 0, 0, 1, 1, 1}));
+  EXPECT_EQ(interpolation, "STEP");
+  EXPECT_EQ(glb.sample(4, "scale", 0), 0);
+  EXPECT_EQ(glb.sample(4, "scale", 1), 1);
+  EXPECT_FALSE(glb.json["nodes"][4].contains("scale")) << "its rest is the last frame, where it shows";
+  EXPECT_FALSE(glb.channel(0, "translation").empty()) << "the ball moves";
+}
+
 // ---- The models, through the Khronos validator and Blender --------------------------
 
 namespace fs = std::filesystem;
@@ -629,6 +685,10 @@ struct Models {
   // Koch grown to n = 4 over 5 frames, with each frame's OBJ: each frame's cells are new
   // and never move.
   fs::path kochFrames = runModel("koch.cell", 5, std::nullopt, "glb,obj", 1, "koch_frames");
+  // And to n = 6 over 7 frames: 19,531 lines, more than kMaxBakedLines.
+  fs::path kochFrames6 = runModel("koch.cell", 7, 6.0, "glb,obj", 1, "koch_frames6");
+  // And to n = 7 over 8 frames: 97,656 parts, more than kMaxJoints.
+  fs::path kochFrames7 = runModel("koch.cell", 8, 7.0, "glb,obj", 1, "koch_frames7");
 };
 const Models& models() {
   static const Models grown;
@@ -639,8 +699,8 @@ TEST(GlbModels, TheFlowerTheColonyAndKochPassTheKhronosValidator) {
   const std::string modules = validatorModules();
   ONTOGEN_REQUIRE_CHECKER(!modules.empty(), "gltf-validator not installed (bash .ci/setup installs it)");
   const fs::path script = fs::path(ONTOGEN_SOURCE_DIR) / "tests" / "interpreters" / "validate_gltf.js";
-  for (const fs::path& file :
-       {models().flower, models().colony, models().koch, models().koch6, models().cube, models().kochFrames}) {
+  for (const fs::path& file : {models().flower, models().colony, models().koch, models().koch6, models().cube,
+                               models().kochFrames, models().kochFrames6, models().kochFrames7}) {
     auto [status, report] = runCommand("node '" + script.string() + "' '" + modules + "' '" + file.string() + "' 2>&1");
     EXPECT_EQ(status, 0) << file << ": " << report;
     EXPECT_NE(report.find("errors 0 warnings 0"), std::string::npos) << file << ": " << report;
@@ -740,6 +800,83 @@ TEST(GlbModels, KochGrownOverFramesIsAJointPerFrame) {
   EXPECT_EQ(glb.json["skins"].size(), 1u);
   EXPECT_EQ(glb.json["nodes"][4]["extras"]["parts"], 625);
   EXPECT_EQ(glb.json["animations"].size(), 1u);
+}
+
+// Koch's curve grown to n = 6 over 7 frames (19,531 lines, none moving while it shows):
+// no skin, a node per frame of instances of one tube, each on one of that frame's OBJ
+// segments in its order, shown (STEP scale) at that frame's time only. Baked, each line
+// took 832 bytes: 18.8 MB.
+TEST(GlbModels, KochGrownOverFramesPastTheBakedLinesIsInstancesPerFrame) {
+  const std::string bytes = fileBytes(models().kochFrames6);
+  const Glb glb(bytes);
+  std::vector<std::string> names;
+  for (int f = 0; f < 7; ++f) names.push_back("lines 0 frames " + std::to_string(f) + " to " + std::to_string(f));
+  names.insert(names.end(), {"ontogen camera", "ontogen key light"});
+  EXPECT_EQ(nodeNames(glb), names);
+  EXPECT_FALSE(glb.json.contains("skins"));
+  std::size_t lines = 0;
+  for (int f = 0; f < 7; ++f) {
+    const Obj obj(models().kochFrames6.parent_path() / ("koch_000" + std::to_string(f) + ".obj"));
+    ASSERT_EQ(obj.lines.size(), static_cast<std::size_t>(std::pow(5, f)));
+    lines += obj.lines.size();
+    const auto& attributes = glb.json["nodes"][f]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+    const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
+    const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
+    const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
+    ASSERT_EQ(t.size(), 3 * obj.lines.size()) << f;
+    for (std::size_t i = 0; i < obj.lines.size(); ++i) {
+      const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
+      const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+      const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
+      // Koch's curve at n = 6 spans 729 units: floats hold it to about 1e-4.
+      ASSERT_NEAR(glm::length(middle - half - obj.positions[obj.lines[i].first - 1]), 0, 1e-3) << f << " " << i;
+      ASSERT_NEAR(glm::length(middle + half - obj.positions[obj.lines[i].second - 1]), 0, 1e-3) << f << " " << i;
+    }
+    for (int g = 0; g < 7; ++g) EXPECT_EQ(glb.sample(f, "scale", g), f == g ? 1 : 0) << "node " << f << " at " << g;
+  }
+  EXPECT_EQ(lines, 19'531u);
+  // 48 bytes an instance, and the JSON.
+  EXPECT_LT(bytes.size(), 48 * lines + 64 * 1024);
+}
+
+// Koch's curve grown to n = 7 over 8 frames (97,656 parts, more than kMaxJoints): a node
+// per frame, shown (STEP scale) at its time only, whose lines are instances of one tube
+// in a node under it, each on one of that frame's OBJ segments. Baked, each line took
+// 832 bytes: 68.8 MB.
+TEST(GlbModels, KochGrownPastTheJointsIsANodePerFrameOfInstancedLines) {
+  const std::string bytes = fileBytes(models().kochFrames7);
+  const Glb glb(bytes);
+  std::vector<std::string> names;
+  for (int f = 0; f < 8; ++f)
+    names.insert(names.end(), {"lines 0 frame " + std::to_string(f), "frame " + std::to_string(f)});
+  names.insert(names.end(), {"ontogen camera", "ontogen key light"});
+  EXPECT_EQ(nodeNames(glb), names);
+  std::size_t lines = 0;
+  for (int f = 0; f < 8; ++f) {
+    const Obj obj(models().kochFrames7.parent_path() / ("koch_000" + std::to_string(f) + ".obj"));
+    ASSERT_EQ(obj.lines.size(), static_cast<std::size_t>(std::pow(5, f)));
+    lines += obj.lines.size();
+    const int frame = 2 * f + 1;
+    EXPECT_EQ(glb.json["nodes"][frame]["children"], nlohmann::json({frame - 1}));
+    EXPECT_FALSE(glb.json["nodes"][frame].contains("mesh")) << "Koch draws lines alone";
+    for (int g = 0; g < 8; ++g)
+      EXPECT_EQ(glb.sample(frame, "scale", g), f == g ? 1 : 0) << "frame " << f << " at " << g;
+    const auto& attributes = glb.json["nodes"][frame - 1]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+    const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
+    const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
+    const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
+    ASSERT_EQ(t.size(), 3 * obj.lines.size()) << f;
+    for (std::size_t i = 0; i < obj.lines.size(); ++i) {
+      const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
+      const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+      const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
+      // Koch's curve at n = 7 spans 2187 units: floats hold it to about 3e-4.
+      ASSERT_NEAR(glm::length(middle - half - obj.positions[obj.lines[i].first - 1]), 0, 3e-3) << f << " " << i;
+      ASSERT_NEAR(glm::length(middle + half - obj.positions[obj.lines[i].second - 1]), 0, 3e-3) << f << " " << i;
+    }
+  }
+  EXPECT_EQ(lines, 97'656u);
+  EXPECT_LT(bytes.size(), 48 * lines + 64 * 1024);
 }
 
 // The cube of tubes in one frame: per colour, the OBJ's triangles corner by corner (the

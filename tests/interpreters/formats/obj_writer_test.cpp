@@ -163,6 +163,30 @@ TEST(ObjWriterTest, CountsMatchTheGeometryAndTheHeader) {
   EXPECT_NE(obj.lines[3].first, obj.lines[2].second);
 }
 
+// The text of a file many times larger than the writer's buffer, line for line as printf
+// writes it (%.10g, -0 as 0): numbers and lines are never cut where the buffer is handed
+// to the stream.
+TEST(ObjWriterTest, ALargeFileIsWrittenAsPrintfWouldWriteIt) {
+  Geometry geometry;
+  std::string expected = "# ontogen geometry\n# 40000 vertices, 0 normals, 0 triangles, 20000 line segments\n";
+  std::string lines;
+  auto number = [](double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.10g", value);
+    return std::string(buffer) == "-0" ? std::string("0") : std::string(buffer);
+  };
+  for (int i = 0; i < 20'000; ++i) {
+    const glm::dvec3 a(std::sin(0.37 * i) * 1e3, -std::cos(1.3 * i) / 7, i % 5 == 0 ? -0.0 : i * 1e-7);
+    const glm::dvec3 b = a + glm::dvec3(1.0 / 3, 2e12, -1e-300);
+    geometry.addSegment(a, b);
+    for (const glm::dvec3& v : {a, b}) expected += "v " + number(v.x) + " " + number(v.y) + " " + number(v.z) + "\n";
+    lines += "l " + std::to_string(2 * i + 1) + " " + std::to_string(2 * i + 2) + "\n";
+  }
+  expected += lines;
+  ASSERT_GT(expected.size(), std::size_t{1} << 20);
+  EXPECT_TRUE(objOf(geometry) == expected);
+}
+
 TEST(ObjWriterTest, FacesWindOutwardsAgreeingWithTheirNormals) {
   Geometry geometry = draw({{"&", {25}}, {"!", {2}}, {"cC", {5, 1}}, {"f", {10}},
                             {"sphere", {3}}, {"f", {10}}, {"disc", {1, 4}}});
