@@ -158,7 +158,9 @@ class World {
   void developChildren(double t1, bool stepRules, bool step, WorldHeld& tree);
   /// A step of the root world: what the world holds is counted once, then kept up to date.
   void developRootStep(double t1, bool stepRules);
-  WorldHeld heldHere() const { return {pool_->size(), pool_->bytes() + kWorldBytes}; }
+  /// What this world holds besides its nested systems: its pool, what its development
+  /// keeps between steps (the previous word) and its own kWorldBytes.
+  WorldHeld heldHere() const { return {pool_->size(), development_->heldBytes() + kWorldBytes}; }
   /// A world with nested systems stops as soon as what it holds, `tree`, passes the cell
   /// or memory limit, while its systems' pools are made (each makes its own).
   void checkTree(const WorldHeld& tree) const;
