@@ -125,6 +125,14 @@ ProgramText readProgramText(const std::string& path, uint64_t maxBytes, const Wo
   return result;
 }
 
+studio::StudioReader studioReader(const WorldLimits& limits) {
+  return [limits](const std::string& path, uint64_t maxBytes) {
+    ProgramText read = readProgramText(path, maxBytes, limits);  // says why on stderr too
+    return studio::StudioSource{std::move(read.text), read.name, std::move(read.error), std::move(read.original),
+                                std::move(read.lineOrigins)};
+  };
+}
+
 Diagnostic inOriginal(const Diagnostic& diagnostic, const ProgramText& text) {
   if (!text.converted || !text.original || !diagnostic.span.valid() || diagnostic.span.file->name() != text.name)
     return diagnostic;

@@ -12,6 +12,7 @@
 #include "lang/diagnostics.h"
 #include "lang/program.h"
 #include "lang/source_reader.h"
+#include "studio/program_options.h"
 
 namespace ontogen::app {
 
@@ -64,6 +65,10 @@ Diagnostic inOriginal(const Diagnostic& diagnostic, const ProgramText& text);
 /// conversion writes.
 ProgramText readProgramText(const std::string& path, uint64_t maxBytes = kDefaultMaxSourceBytes,
                             const WorldLimits& limits = WorldLimits{});
+
+/// The studio's reader of its program file (studio/program_options.h): readProgramText
+/// held to the command line's `limits`, as every command reads its file.
+studio::StudioReader studioReader(const WorldLimits& limits);
 
 /// Reads and compiles the program file of `options` with its --system and --define. On
 /// failure prints the diagnostics (or the I/O error) to stderr and returns no program.

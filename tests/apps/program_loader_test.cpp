@@ -1,6 +1,6 @@
 // Reading a program for the commands (apps/program_loader.h): a file of another tool is
 // held to the source and memory limits before it is converted, as a cell-language file is
-// before it is checked.
+// before it is checked, and the studio reads through the same limits.
 
 #include <gtest/gtest.h>
 
@@ -80,6 +80,23 @@ TEST(ProgramLoader, AViewFileCountsWithItsFile) {
   EXPECT_EQ(memory.exitCode, kExitModelError);
   EXPECT_EQ(memory.error, "checking the " + std::to_string(both) + " bytes of '" + path.string() +
                               "' needs about 147 MiB, past the memory limit of 140 MiB; raise it with --max-memory MIB");
+}
+
+// The studio reads its file through the command line's limits: a file of another tool
+// that grows past them while the studio watches it is refused, and says why.
+TEST(ProgramLoader, TheStudioReadsThroughTheSameLimits) {
+  const fs::path dir = scratch("studio");
+  const fs::path path = write(dir / "grown.lpy", "Axiom: F\nderivation length: 1\nproduction:\nF --> FF\nendlsystem\n");
+  const studio::StudioReader read = studioReader(memoryLimit(100));
+  const studio::StudioSource before = read(path.string(), kDefaultMaxSourceBytes);
+  ASSERT_TRUE(before.text) << before.error;
+  ASSERT_TRUE(before.original);
+  EXPECT_EQ(before.original->name(), path.string());
+  write(path, cpfgWithAxiomOf(10'000'000));
+  const studio::StudioSource after = read(path.string(), kDefaultMaxSourceBytes);
+  EXPECT_FALSE(after.text);
+  EXPECT_NE(after.error.find("past the memory limit of 100 MiB; raise it with --max-memory MIB"), std::string::npos)
+      << after.error;
 }
 
 }  // namespace
