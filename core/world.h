@@ -106,7 +106,8 @@ class World {
   const World* parent() const { return parent_; }
   /// Cells in this world's pool and in all nested pools.
   uint64_t totalCells() const;
-  /// Cells and bytes of this world's pool and of all nested pools.
+  /// Cells and bytes of this world's pool and of all nested pools, and the bytes of the
+  /// copy of the world kept at the last grid instant while a stop lies between two.
   WorldHeld held() const;
   /// Bytes the world's owner holds for it outside the pools (a run's frames, a picture),
   /// counted against the memory limit as the pools grow.

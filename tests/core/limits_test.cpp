@@ -102,6 +102,20 @@ TEST(Limits, NestedWorldsCountThePreviousWordTheyKeep) {
   EXPECT_EQ(world.held().bytes, World::kWorldBytes + 2 * sizeof(CellRecord) + nested->held().bytes);
 }
 
+// A world that integrates rates and stops between two grid instants keeps a copy of
+// itself as it was at the last one (the next advance starts from there): its bytes count
+// in held(), and so against the memory limit, but not its cells.
+TEST(Limits, TheCopyKeptAtTheLastGridInstantIsHeld) {
+  World world(compileOrFail("cell A(x = 1) { rules { rate(x) = -x; } }\nsystem s { pool linear; axiom A A A; }\n"));
+  const WorldHeld alone = world.held();
+  EXPECT_EQ(alone.bytes, World::kWorldBytes + 3 * (sizeof(CellRecord) + sizeof(double)));
+  world.advanceTo(2, 1);
+  EXPECT_EQ(world.held().bytes, alone.bytes);
+  world.advanceTo(2.5, 1);  // between the instants 2 and 3
+  EXPECT_EQ(world.held().cells, 3u);
+  EXPECT_EQ(world.held().bytes, 2 * alone.bytes);
+}
+
 // Systems nested `depth` levels, each holding two of the next; the last holds a cell
 // without rules. 2^depth - 1 worlds.
 std::string nestedSystems(int depth) {
