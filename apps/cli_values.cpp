@@ -4,15 +4,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "lang/message_number.h"
+
 namespace ontogen::app {
 
 namespace {
 
-std::string shortNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
+std::string shortNumber(double value) { return messageNumber(value); }
 
 std::string shortNumber(uint64_t value) { return std::to_string(value); }
 

@@ -11,6 +11,7 @@
 #include "interpreters/physics/statics_output.h"
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
+#include "lang/message_number.h"
 
 namespace ontogen::app {
 
@@ -55,7 +56,7 @@ int runStatics(const StaticsOptions& options) {
              << rod.moment.norm() << " N m\n";
     }
   } catch (const NonFiniteResult& bad) {
-    std::cerr << "ontogen: error: " << bad.what() << " (t = " << frame.time << ")\n";
+    std::cerr << "ontogen: error: " << bad.what() << " (t = " << messageNumber(frame.time) << ")\n";
     return kExitModelError;
   } catch (const OutputError& bad) {
     std::cerr << "ontogen: error: " << bad.what() << "\n";

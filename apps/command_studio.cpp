@@ -61,11 +61,7 @@ studio::StudioProgramOptions programOptionsOf(const CommonOptions& common) {
   program.threads = common.threads;
   program.maxErrors = common.maxErrors;
   program.maxSourceBytes = common.maxSourceBytes;
-  program.read = [](const std::string& path, uint64_t maxBytes) {
-    ProgramText read = readProgramText(path, maxBytes);  // says why on stderr when it fails
-    return studio::StudioSource{std::move(read.text), read.name, "", std::move(read.original),
-                                std::move(read.lineOrigins)};
-  };
+  program.read = studioReader(common.limits);
   return program;
 }
 }  // namespace

@@ -46,20 +46,42 @@ bool onlyOptionErrors(const DiagnosticSink& sink) {
 // A view file holds a few settings: no more than this is read of one.
 constexpr uint64_t kMaxViewBytes = uint64_t{1} << 20;
 
+// Checking a program takes about 100 bytes of memory a byte of text (a 5 MB axiom takes
+// 520 MB), converting one of another tool less (a 10 MB line of a .l took 87 bytes a
+// byte): a text that could not be checked within the memory limit is refused before it
+// is converted or checked.
+constexpr uint64_t kCheckBytesPerSourceByte = 128;
+
+// Prints why `result` has no text, and keeps it.
+ProgramText failed(ProgramText result, int exitCode, std::string error) {
+  std::cerr << "ontogen: error: " << error << "\n";
+  result.exitCode = exitCode;
+  result.error = std::move(error);
+  return result;
+}
+
+// Whether checking `bytes` of text read from `path` fits the memory limit.
+std::optional<std::string> pastMemoryLimit(const std::string& path, uint64_t bytes, const WorldLimits& limits) {
+  try {
+    checkOutsideMemory("checking the " + std::to_string(bytes) + " bytes of '" + path + "'",
+                       bytes * kCheckBytesPerSourceByte, 0, limits);
+  } catch (const LimitError& limit) {
+    return limit.what();
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
-ProgramText readProgramText(const std::string& path, uint64_t maxBytes) {
+ProgramText readProgramText(const std::string& path, uint64_t maxBytes, const WorldLimits& limits) {
   ProgramText result;
   result.name = path;
   SourceText read = readSourceFile(path, maxBytes);
-  if (!read.text) {
-    std::cerr << "ontogen: error: cannot read '" << path << "': " << read.error << "\n";
-    result.exitCode = kExitUsage;
-    return result;
-  }
+  if (!read.text) return failed(std::move(result), kExitUsage, "cannot read '" + path + "': " + read.error);
   std::optional<std::string>& text = read.text;
   const std::optional<convert::Dialect> dialect = convert::dialectOfPath(path);
   if (!dialect) {
+    if (auto past = pastMemoryLimit(path, text->size(), limits)) return failed(std::move(result), kExitModelError, *past);
     result.text = std::move(text);
     return result;
   }
@@ -71,16 +93,18 @@ ProgramText readProgramText(const std::string& path, uint64_t maxBytes) {
     const std::filesystem::path viewPath = std::filesystem::path(path).replace_extension(".v");
     std::error_code missing;
     if (std::filesystem::exists(std::filesystem::symlink_status(viewPath, missing))) {
-      SourceText viewText = readSourceFile(viewPath, kMaxViewBytes);
-      if (!viewText.text) {
-        std::cerr << "ontogen: error: cannot read the view file '" << viewPath.string() << "': " << viewText.error
-                  << "\n";
-        result.exitCode = kExitUsage;
-        return result;
-      }
+      // The view file counts with the file toward the source limit.
+      SourceText viewText = readSourceFile(viewPath, std::min(kMaxViewBytes, maxBytes - text->size()));
+      if (!viewText.text)
+        return failed(std::move(result), kExitUsage,
+                      "cannot read the view file '" + viewPath.string() + "': " + viewText.error);
       view = std::move(*viewText.text);
     }
   }
+  // Converting takes memory as checking does: a file that could not be checked within the
+  // limit is refused before it is converted (a 10 MB line took 36 s and 866 MB first).
+  if (auto past = pastMemoryLimit(path, text->size() + view.size(), limits))
+    return failed(std::move(result), kExitModelError, *past);
   auto source = std::make_shared<const SourceFile>(path, std::move(*text));
   DiagnosticSink sink;
   convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, maxBytes);
@@ -88,14 +112,25 @@ ProgramText readProgramText(const std::string& path, uint64_t maxBytes) {
   if (!converted.program) {
     std::cerr << "ontogen: " << path << " cannot be converted from " << convert::dialectName(*dialect) << "\n";
     result.exitCode = converted.untranslatable ? kExitUntranslatable : kExitProgramError;
+    result.error = "it cannot be converted from " + std::string(convert::dialectName(*dialect));
     return result;
   }
+  if (auto past = pastMemoryLimit(path + " (converted)", converted.program->size(), limits))
+    return failed(std::move(result), kExitModelError, *past);
   result.text = std::move(converted.program);
   result.name = path + " (converted)";
   result.converted = true;
   result.original = std::move(source);
   result.lineOrigins = std::move(converted.lineOrigins);
   return result;
+}
+
+studio::StudioReader studioReader(const WorldLimits& limits) {
+  return [limits](const std::string& path, uint64_t maxBytes) {
+    ProgramText read = readProgramText(path, maxBytes, limits);  // says why on stderr too
+    return studio::StudioSource{std::move(read.text), read.name, std::move(read.error), std::move(read.original),
+                                std::move(read.lineOrigins)};
+  };
 }
 
 Diagnostic inOriginal(const Diagnostic& diagnostic, const ProgramText& text) {
@@ -117,21 +152,10 @@ LoadedProgram loadProgram(const CommonOptions& common) {
   }
   const std::string& path = common.file;
   // The FILE argument names no program to read: a bad command line, like a missing file.
-  ProgramText text = readProgramText(path, common.maxSourceBytes);
+  // Held to the source and memory limits as it is read (and converted).
+  ProgramText text = readProgramText(path, common.maxSourceBytes, common.limits);
   if (!text.text) {
     loaded.exitCode = text.exitCode;
-    return loaded;
-  }
-  // Checking a program takes about 100 bytes of memory a byte of text (a 5 MB axiom
-  // takes 520 MB): a text that could not be checked within the memory limit is stopped
-  // before it is.
-  constexpr uint64_t kCheckBytesPerSourceByte = 128;
-  try {
-    checkOutsideMemory("checking the " + std::to_string(text.text->size()) + " bytes of '" + path + "'",
-                       text.text->size() * kCheckBytesPerSourceByte, 0, common.limits);
-  } catch (const LimitError& limit) {
-    std::cerr << "ontogen: error: " << limit.what() << "\n";
-    loaded.exitCode = kExitModelError;
     return loaded;
   }
   DiagnosticSink sink(common.maxErrors);

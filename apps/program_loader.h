@@ -7,10 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "core/limits.h"
 #include "lang/convert/lsystem_file.h"
 #include "lang/diagnostics.h"
 #include "lang/program.h"
 #include "lang/source_reader.h"
+#include "studio/program_options.h"
 
 namespace ontogen::app {
 
@@ -44,7 +46,10 @@ struct ProgramText {
   std::optional<std::string> text;
   std::string name;  ///< for diagnostics: the path, "PATH (converted)" for another tool's file
   bool converted = false;
-  int exitCode = kExitOk;  ///< kExitProgramError or kExitUntranslatable when there is no text
+  /// kExitUsage (not a readable file, past the source size limit), kExitModelError (past
+  /// the memory limit), kExitProgramError or kExitUntranslatable when there is no text.
+  int exitCode = kExitOk;
+  std::string error;  ///< why there is no text, as printed (without "ontogen: error: ")
   /// A converted file: the file itself, and for each line of `text` the bytes of it the
   /// line was written from (convert::mapToOriginal shows errors there).
   std::shared_ptr<const SourceFile> original;
@@ -54,7 +59,16 @@ struct ProgramText {
 /// A diagnostic of the compiler about `text`, at its place in the file it was converted
 /// from when it was (convert::mapToOriginal).
 Diagnostic inOriginal(const Diagnostic& diagnostic, const ProgramText& text);
-ProgramText readProgramText(const std::string& path, uint64_t maxBytes = kDefaultMaxSourceBytes);
+/// Reads the program file at `path`, converting another tool's. The file (with a cpfg
+/// file's view file) is held to the source limit `maxBytes` and, before it is converted or
+/// checked, to what checking it takes of the memory limit of `limits`; so is the text a
+/// conversion writes.
+ProgramText readProgramText(const std::string& path, uint64_t maxBytes = kDefaultMaxSourceBytes,
+                            const WorldLimits& limits = WorldLimits{});
+
+/// The studio's reader of its program file (studio/program_options.h): readProgramText
+/// held to the command line's `limits`, as every command reads its file.
+studio::StudioReader studioReader(const WorldLimits& limits);
 
 /// Reads and compiles the program file of `options` with its --system and --define. On
 /// failure prints the diagnostics (or the I/O error) to stderr and returns no program.

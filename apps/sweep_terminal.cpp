@@ -41,7 +41,7 @@ int readSweepSettings(const SweepCommonOptions& options, SweepSettings& settings
   const CommonOptions& common = options.common;
   LoadedProgram loaded = loadProgram(common);
   if (!loaded.program) return loaded.exitCode;
-  ProgramText text = readProgramText(common.file, common.maxSourceBytes);
+  ProgramText text = readProgramText(common.file, common.maxSourceBytes, common.limits);
   if (!text.text) return text.exitCode;
   const std::optional<std::pair<int, int>> size = parsePictureSize(options.size);
   if (!size) {

@@ -103,6 +103,9 @@ class Development {
   virtual void step(StepContext& context, double t1, bool stepRules) = 0;
   /// Position of the i-th cell: its index (linear), grid coordinates or spatial x, y, z.
   virtual std::array<double, 3> positionOf(size_t i) const = 0;
+  /// Bytes the development holds between steps, for the memory limit: its pool's and what
+  /// it keeps to reuse (a linear pool's previous word, a spatial pool's index).
+  virtual uint64_t heldBytes() const { return pool().bytes(); }
 };
 
 /// The development for `system`'s pool kind, with an empty pool.

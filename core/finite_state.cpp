@@ -1,22 +1,16 @@
 #include "core/finite_state.h"
 
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 
 #include "core/successors.h"
+#include "lang/message_number.h"
 
 namespace ontogen {
 
 namespace {
 
 constexpr uint64_t kExponent = 0x7FF0000000000000ull;  // all ones: an infinity or NaN
-
-std::string formatValue(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
-}
 
 struct Writer {
   SourceSpan span;
@@ -91,8 +85,8 @@ void checkFiniteState(const Program& program, const Pool& pool, double time) {
     const Writer writer = writerOf(program, view.master, static_cast<uint32_t>(bad));
     const std::string& name = master.stateNames[bad];
     throw ModelError(Diagnostic{Severity::Error, writer.span,
-                                "'" + master.label + "' holds " + name + " = " + formatValue(view.state[bad]) +
-                                    " at t = " + formatValue(time) + ", written by " + writer.what +
+                                "'" + master.label + "' holds " + name + " = " + messageNumber(view.state[bad]) +
+                                    " at t = " + messageNumber(time) + ", written by " + writer.what +
                                     ": a model's state must stay finite (#allow nonfinite accepts infinities and "
                                     "NaN)"},
                      master.label, time);

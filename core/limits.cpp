@@ -6,20 +6,15 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <string>
+
+#include "lang/message_number.h"
 
 namespace ontogen {
 
 namespace {
 std::string mebibytes(uint64_t bytes) { return std::to_string(bytes >> 20); }
-
-std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
-}
 
 // The memory of the machine, 0 when it does not say.
 uint64_t physicalMemoryBytes() {
@@ -173,7 +168,7 @@ void checkGridMemory(uint64_t sites, uint64_t bytesPerSite, const WorldLimits& l
 void checkEventLimit(uint64_t events, double when, const WorldLimits& limits) {
   if (events > limits.maxEventsPerStep) [[unlikely]]
     throw LimitError("more than " + std::to_string(limits.maxEventsPerStep) +
-                     " terminal-age events in one step (near t = " + std::to_string(when) +
+                     " terminal-age events in one step (near t = " + messageNumber(when) +
                      "); a lifetime much shorter than the step? Use a smaller --step, or raise --max-events N");
 }
 
@@ -181,15 +176,15 @@ void checkStepLimit(uint64_t steps, double more, double dt, double target, const
   // `more` may be huge or infinite (a denormal step): compare as doubles.
   const double total = static_cast<double>(steps) + more;
   if (!(total <= static_cast<double>(limits.maxSteps))) [[unlikely]]
-    throw LimitError("reaching t = " + number(target) + " in steps of " + number(dt) + " s takes " +
-                     (std::isfinite(total) ? number(total) : "more than " + number(DBL_MAX)) +
+    throw LimitError("reaching t = " + messageNumber(target) + " in steps of " + messageNumber(dt) + " s takes " +
+                     (std::isfinite(total) ? messageNumber(total) : "more than " + messageNumber(DBL_MAX)) +
                      " steps, past the step limit of " +
                      std::to_string(limits.maxSteps) + "; use a larger --step, or raise it with --max-steps N");
 }
 
 void checkTimeAdvances(double time, double next, double dt) {
   if (!(next > time)) [[unlikely]]
-    throw LimitError("a step of " + number(dt) + " s no longer moves the time on at t = " + number(time) +
+    throw LimitError("a step of " + messageNumber(dt) + " s no longer moves the time on at t = " + messageNumber(time) +
                      " (it is below the precision of the time there); use a larger --step");
 }
 

@@ -98,6 +98,11 @@ bool LinearDevelopment::anyExpires(double horizon) {
   return false;
 }
 
+uint64_t LinearDevelopment::heldBytes() const {
+  return pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double) +
+         nextWord_.bytes();
+}
+
 void LinearDevelopment::seed(StepContext& context) {
   pool_.storeRecords();
   seedFromAxiom(pool_, context);

@@ -30,6 +30,8 @@ class LinearDevelopment final : public Development {
   void seed(StepContext& context) override;
   void step(StepContext& context, double t1, bool stepRules) override;
   std::array<double, 3> positionOf(size_t i) const override { return {static_cast<double>(i), 0, 0}; }
+  /// The pool's word and the previous one, kept to write the next word into.
+  uint64_t heldBytes() const override;
 
  private:
   void applyStepRules(double t);

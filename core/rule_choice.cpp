@@ -1,9 +1,9 @@
 #include "core/rule_choice.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include "core/successors.h"
+#include "lang/message_number.h"
 #include "lang/program.h"
 
 namespace ontogen {
@@ -17,12 +17,8 @@ int activeGroup(const Program& program, const SystemDefinition& system, double t
   const double group = system.useGroup.evaluate(context);
   // Groups are numbered as the text numbers them; a million is more than any program has.
   if (!(group >= 0) || group != std::floor(group) || group > 1e6) {
-    char value[32];
-    std::snprintf(value, sizeof value, "%g", group);
-    char when[32];
-    std::snprintf(when, sizeof when, "%g", time);
     throw ModelError(Diagnostic{Severity::Error, system.useGroupSpan,
-                                std::string("'use group' gives ") + value + " at t = " + when +
+                                "'use group' gives " + messageNumber(group) + " at t = " + messageNumber(time) +
                                     ", not a whole number ≥ 0"},
                      system.name, time);
   }

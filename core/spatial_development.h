@@ -25,6 +25,10 @@ class SpatialDevelopment final : public Development {
   void seed(StepContext& context) override;
   void step(StepContext& context, double t1, bool stepRules) override;
   std::array<double, 3> positionOf(size_t i) const override { return pool_.positionOf(i); }
+  /// The pool's cells, its index and the neighbour tables kept for the next step.
+  uint64_t heldBytes() const override {
+    return pool_.bytes() + pool_.indexBytes() + (neighbourOffsets_.size() + neighbourCells_.size()) * sizeof(uint32_t);
+  }
 
  private:
   void applyStepRules(StepContext& context);

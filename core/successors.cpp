@@ -1,18 +1,10 @@
 #include "core/successors.h"
 
 #include <algorithm>
-#include <cstdio>
 
+#include "lang/message_number.h"
 
 namespace ontogen {
-
-namespace {
-std::string formatNumber(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
-}
-}  // namespace
 
 SuccessorWriter::SuccessorWriter(const Program& program) : program_(program) {
   size_t values = 1;
@@ -31,10 +23,10 @@ void SuccessorWriter::badBirthAge(const SuccessorTemplate& successor, uint32_t m
   const MasterCell& target = program_.masters[successor.master];
   const std::string& label = program_.masters[master].label;
   throw ModelError(Diagnostic{Severity::Error, successor.span,
-                              "'" + target.label + "' would be born with age " + formatNumber(age) +
-                                  (age >= target.lifetime ? ", not below its terminal age " + formatNumber(target.lifetime)
+                              "'" + target.label + "' would be born with age " + messageNumber(age) +
+                                  (age >= target.lifetime ? ", not below its terminal age " + messageNumber(target.lifetime)
                                                           : ", but ages are ≥ 0") +
-                                  " (in a rule of '" + label + "' at t = " + formatNumber(when) + ")"},
+                                  " (in a rule of '" + label + "' at t = " + messageNumber(when) + ")"},
                    label, when);
 }
 

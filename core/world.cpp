@@ -185,6 +185,8 @@ WorldHeld World::held() const {
     total.cells += nested.cells;
     total.bytes += nested.bytes;
   }
+  // The copy kept at the last grid instant is memory, not cells of the model.
+  if (onGrid_) total.bytes += onGrid_->held().bytes;
   return total;
 }
 

@@ -106,7 +106,8 @@ class World {
   const World* parent() const { return parent_; }
   /// Cells in this world's pool and in all nested pools.
   uint64_t totalCells() const;
-  /// Cells and bytes of this world's pool and of all nested pools.
+  /// Cells and bytes of this world's pool and of all nested pools, and the bytes of the
+  /// copy of the world kept at the last grid instant while a stop lies between two.
   WorldHeld held() const;
   /// Bytes the world's owner holds for it outside the pools (a run's frames, a picture),
   /// counted against the memory limit as the pools grow.
@@ -158,7 +159,9 @@ class World {
   void developChildren(double t1, bool stepRules, bool step, WorldHeld& tree);
   /// A step of the root world: what the world holds is counted once, then kept up to date.
   void developRootStep(double t1, bool stepRules);
-  WorldHeld heldHere() const { return {pool_->size(), pool_->bytes() + kWorldBytes}; }
+  /// What this world holds besides its nested systems: its pool, what its development
+  /// keeps between steps (the previous word) and its own kWorldBytes.
+  WorldHeld heldHere() const { return {pool_->size(), development_->heldBytes() + kWorldBytes}; }
   /// A world with nested systems stops as soon as what it holds, `tree`, passes the cell
   /// or memory limit, while its systems' pools are made (each makes its own).
   void checkTree(const WorldHeld& tree) const;

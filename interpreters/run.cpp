@@ -3,7 +3,6 @@
 #include <chrono>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <new>
 #include <stdexcept>
 #include <system_error>
@@ -11,6 +10,7 @@
 #include "interpreters/formats/look.h"
 #include "interpreters/geometry/surface.h"
 #include "interpreters/interpret.h"
+#include "lang/message_number.h"
 
 namespace ontogen {
 
@@ -25,12 +25,6 @@ std::string formatRunDiagnostic(const RunDiagnostic& diagnostic) {
 }
 
 namespace {
-std::string formatTime(double seconds) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", seconds);
-  return buffer;
-}
-
 // A diagnostic that belongs to no source text or time.
 RunDiagnostic unlocated(Severity severity, std::string message) {
   RunDiagnostic diagnostic;
@@ -59,15 +53,10 @@ Run::Run(RunDef def) : def_(std::move(def)) {
     if (frames > kMaxFrames) {
       // Every number in at most 15 significant digits: a speed of 1e-300 makes a count of
       // frames 300 digits long, which %.0f would print in full.
-      auto number = [](const char* format, double value) {
-        char text[40];
-        std::snprintf(text, sizeof text, format, value);
-        return std::string(text);
-      };
       setupErrors_.push_back(unlocated(
-          Severity::Error, "a speed of " + number("%g", speed) + " s a second over " + number("%g", span) + " s at " +
-                               number("%g", def_.setOptions.framesPerSecond) + " frames a second makes " +
-                               number("%.15g", frames) + " frames, more than " + number("%.15g", kMaxFrames) +
+          Severity::Error, "a speed of " + messageNumber(speed) + " s a second over " + messageNumber(span) + " s at " +
+                               messageNumber(def_.setOptions.framesPerSecond) + " frames a second makes " +
+                               messageNumber(frames, 15) + " frames, more than " + messageNumber(kMaxFrames, 15) +
                                ": a larger --speed or a lower --fps"));
     }
   }
@@ -127,7 +116,7 @@ RunReport Run::execute() {
     report.status = RunStatus::ModelFailed;
     report.diagnostics.push_back({Severity::Error,
                                   std::string(instruction.what()) + " (in the interpretation of '" + instruction.cell +
-                                      "' at t = " + formatTime(instruction.time) + ")",
+                                      "' at t = " + messageNumber(instruction.time) + ")",
                                   instruction.span, instruction.cell, instruction.time, 1});
   } catch (const SurfaceError& surface) {
     report.status = RunStatus::ModelFailed;

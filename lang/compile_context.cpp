@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "lang/builtins.h"
 
@@ -44,14 +43,6 @@ std::string where(const SourceSpan& span) {
   if (!span.file) return "?";
   const std::string& name = span.file->name();
   return name.substr(name.find_last_of('/') + 1) + ":" + std::to_string(span.line());
-}
-
-std::string formatNumber(double value) {
-  // printf writes "-nan" for some NaNs; a message says what it is.
-  if (std::isnan(value)) return "NaN";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
 }
 
 std::optional<double> ConstantScope::find(std::string_view name) const {

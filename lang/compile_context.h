@@ -37,8 +37,6 @@ int internalSlot(std::string_view name);
 /// "file:line" of a declaration (the file's name without its folders), for messages that
 /// name two places.
 std::string where(const SourceSpan& span);
-/// A number as messages print it (printf's %g).
-std::string formatNumber(double value);
 
 /// Constants visible in a scope: the block's #defines, then the program's, then built-ins.
 struct ConstantScope {

@@ -11,6 +11,7 @@
 #include "lang/builtins.h"
 #include "lang/compile_stages.h"
 #include "lang/expression_compiler.h"
+#include "lang/message_number.h"
 
 namespace ontogen::detail {
 
@@ -99,7 +100,7 @@ void takeDefineOverrides(CompileContext& ctx) {
       ++it;
       continue;
     }
-    ctx.sink.error(SourceSpan{}, "cannot set '" + it->first + "' to " + std::to_string(it->second) +
+    ctx.sink.error(SourceSpan{}, "cannot set '" + it->first + "' to " + messageNumber(it->second) +
                                      ": a value for a #define must be a finite number");
     it = ctx.overrides.erase(it);
   }

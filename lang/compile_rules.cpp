@@ -13,6 +13,7 @@
 
 #include "lang/compile_stages.h"
 #include "lang/expression_compiler.h"
+#include "lang/message_number.h"
 
 namespace ontogen::detail {
 
@@ -393,7 +394,7 @@ void compileSuccessors(CompileContext& ctx, const ast::Rule& rule, int moduleSco
       if (result.birthAge.isConstant()) {
         const double age = result.birthAge.constantValue();
         if (!(age >= 0) || !std::isfinite(age))
-          ctx.sink.error(successor.age->span, "'" + successor.label + "' cannot be born with age " + formatNumber(age) +
+          ctx.sink.error(successor.age->span, "'" + successor.label + "' cannot be born with age " + messageNumber(age) +
                                                    "; ages are finite and ≥ 0");
       }
     }
@@ -557,7 +558,7 @@ int rewriteDepth(CompileContext& ctx, const ast::ExprPtr& expr, const Scope& sco
   if (!value) return 1;
   if (!(*value >= 1) || *value != std::floor(*value) || *value > kMaxRewriteDepth) {
     ctx.sink.error(expr->span, "a maximum depth is a whole number from 1 to " + std::to_string(kMaxRewriteDepth) +
-                                   ", not " + formatNumber(*value));
+                                   ", not " + messageNumber(*value));
     return 1;
   }
   return static_cast<int>(*value);
@@ -645,8 +646,8 @@ void compileProductions(CompileContext& ctx, const ast::System& system, Scope& s
     auto [it, inserted] = terminal.emplace(master, std::make_pair(age, production.predecessor.span));
     if (!inserted && it->second.first != age) {
       ctx.sink.error(production.predecessor.span,
-                     "'" + production.predecessor.label + "' has terminal age " + formatNumber(age) + " here but " +
-                         formatNumber(it->second.first) + " at line " + std::to_string(it->second.second.line()) +
+                     "'" + production.predecessor.label + "' has terminal age " + messageNumber(age) + " here but " +
+                         messageNumber(it->second.first) + " at line " + std::to_string(it->second.second.line()) +
                          "; a symbol has one terminal age");
       continue;
     }

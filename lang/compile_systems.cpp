@@ -10,6 +10,7 @@
 
 #include "lang/compile_stages.h"
 #include "lang/expression_compiler.h"
+#include "lang/message_number.h"
 
 namespace ontogen::detail {
 
@@ -28,7 +29,7 @@ void gridShape(CompileContext& ctx, const ast::System& system, const Scope& scop
     auto value = evaluateConstant(*system.poolArgs[axis], ctx.constantLookup(scope), ctx.sink, "a grid size");
     if (!value) return;
     if (!(*value >= 1) || *value != std::floor(*value) || *value > 1e9) {
-      ctx.sink.error(system.poolArgs[axis]->span, "a grid size is a whole number ≥ 1, not " + formatNumber(*value));
+      ctx.sink.error(system.poolArgs[axis]->span, "a grid size is a whole number ≥ 1, not " + messageNumber(*value));
       return;
     }
     shape.size[axis] = static_cast<uint32_t>(*value);
@@ -113,7 +114,7 @@ void compilePlacements(CompileContext& ctx, const ast::System& system, Scope& sc
           continue;
         }
         if (!(*value >= 0) || *value != std::floor(*value) || *value >= definition.grid.size[axis]) {
-          ctx.sink.error(placement.at[axis]->span, "coordinate " + formatNumber(*value) +
+          ctx.sink.error(placement.at[axis]->span, "coordinate " + messageNumber(*value) +
                                                        " is outside the grid (0 to " +
                                                        std::to_string(definition.grid.size[axis] - 1) + ")");
           ok = false;
@@ -184,8 +185,8 @@ std::vector<AxiomCell> compileAxiom(CompileContext& ctx, const ast::System& syst
       if (!(cell.age >= 0) || cell.age >= target.lifetime)
         ctx.sink.error(
             module.age->span,
-            "'" + module.label + "' cannot start with age " + formatNumber(cell.age) +
-                (!(cell.age >= 0) ? "; ages are ≥ 0" : ", not below its terminal age " + formatNumber(target.lifetime)));
+            "'" + module.label + "' cannot start with age " + messageNumber(cell.age) +
+                (!(cell.age >= 0) ? "; ages are ≥ 0" : ", not below its terminal age " + messageNumber(target.lifetime)));
     }
     axiom.push_back(std::move(cell));
   }

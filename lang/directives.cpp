@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
+#include "lang/message_number.h"
 #include "lang/program.h"
 
 namespace ontogen {
@@ -263,14 +263,10 @@ constexpr ForeignDirective kForeignDirectives[] = {
     {"include", "cpfg's '#include' is written 'import \"file.cell\"' at the top level"},
 };
 
+// Whole numbers in full (the largest seed has 16 digits), others as any message writes them.
 std::string formatNumber(double value) {
-  char buffer[32];
-  // Whole numbers in full (the largest seed has 16 digits), others short.
-  if (value == std::floor(value) && std::fabs(value) < 1e16)
-    std::snprintf(buffer, sizeof buffer, "%.0f", value);
-  else
-    std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
+  if (value == std::floor(value) && std::fabs(value) < 1e16) return messageNumber(value, 17);
+  return messageNumber(value);
 }
 
 // "a, b or c".

@@ -11,6 +11,7 @@
 
 #include "lang/directives.h"
 #include "lang/lexer.h"
+#include "lang/message_number.h"
 #include "lang/parser.h"
 #include "lang/random.h"
 #include "lang/utf8.h"
@@ -250,10 +251,10 @@ std::string shortestNumber(double value) {
 
 VariationSpace::VariationSpace(std::string text, VariationOptions options) : text_(std::move(text)), options_(options) {
   if (!(options_.rate >= 0 && options_.rate <= 1))
-    throw std::invalid_argument("the mutation rate must be from 0 to 1, not " + shortestNumber(options_.rate));
+    throw std::invalid_argument("the mutation rate must be from 0 to 1, not " + messageNumber(options_.rate, kShortestDigits));
   if (!(options_.strength > 0) || !std::isfinite(options_.strength))
     throw std::invalid_argument("the mutation strength must be a finite number above 0, not " +
-                                shortestNumber(options_.strength));
+                                messageNumber(options_.strength, kShortestDigits));
   // The lexer reads the text without its byte-order mark: offsets into ours are shifted.
   const uint32_t shift = text_.starts_with(kUtf8ByteOrderMark) ? static_cast<uint32_t>(kUtf8ByteOrderMark.size()) : 0;
   const SourceFile file("<variation>", text_);

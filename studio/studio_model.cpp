@@ -13,21 +13,12 @@
 #include "lang/compiler.h"
 #include "lang/convert/convert.h"
 #include "lang/imports.h"
+#include "lang/message_number.h"
 #include "lang/source_reader.h"
 #include "lang/variation.h"
 #include "studio/file_bytes.h"
 
 namespace ontogen::studio {
-
-namespace {
-// A number as a message shows it: six significant digits, as a slider's label does.
-std::string formatNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
-
-}  // namespace
 
 struct StudioModel::Grown {
   std::optional<std::string> text;  // empty: the file could not be read (the last text stays)
@@ -273,8 +264,8 @@ void StudioModel::setDefine(const std::string& name, double value) {
     // The slider's range is the define's #range (or the gallery's default): a value
     // past it is a request no page makes, and may grow a model past any use.
     if (!(value >= define.low && value <= define.high))
-      throw std::invalid_argument(name + " = " + formatNumber(value) + " is outside its range [" +
-                                  formatNumber(define.low) + ", " + formatNumber(define.high) + "]");
+      throw std::invalid_argument(name + " = " + messageNumber(value) + " is outside its range [" +
+                                  messageNumber(define.low) + ", " + messageNumber(define.high) + "]");
     overrides_[name] = value;
     changed();
     return;

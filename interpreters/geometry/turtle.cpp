@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "interpreters/palette.h"
+#include "lang/message_number.h"
 
 namespace ontogen {
 
@@ -19,7 +20,7 @@ void checkField(const char* field, double value, bool allowNegative) {
   if (!std::isfinite(value) || (!allowNegative && value < 0)) {
     throw std::invalid_argument(std::string("TurtleDef::") + field + " must be finite" +
                                 (allowNegative ? "" : " and >= 0") + ", got " +
-                                std::to_string(value));
+                                messageNumber(value));
   }
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -10,6 +9,7 @@
 #include "interpreters/formats/picture_output.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/output_file.h"
+#include "lang/message_number.h"
 
 namespace ontogen {
 
@@ -26,14 +26,6 @@ std::array<uint8_t, 3> colourMap(double t) {
     rgb[c] = static_cast<uint8_t>(std::lround(kStops[i][c] + f * (kStops[i + 1][c] - kStops[i][c])));
   return rgb;
 }
-
-namespace {
-std::string formatCoordinate(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
-}
-}  // namespace
 
 ImageSet::ImageSet(const ImageSetDef& def) : def_(def) {
   if (def_.movie && !ffmpegAvailable())
@@ -59,7 +51,7 @@ void ImageSet::execute(std::string_view command, std::span<const double> args) {
   if (command != "pixel" || args.size() < 3) return;
   const double x = std::round(args[0]), y = std::round(args[1]);
   if (!(x >= 0 && y >= 0 && x < kMaxImageSide && y < kMaxImageSide))
-    refuse("pixel(" + formatCoordinate(args[0]) + ", " + formatCoordinate(args[1]) +
+    refuse("pixel(" + messageNumber(args[0]) + ", " + messageNumber(args[1]) +
            ") is outside the picture: a site's coordinates are whole numbers 0 to " + std::to_string(kMaxImageSide - 1));
   const double span = high_ - low_;
   const double t = span != 0 ? (args[2] - low_) / span : 0.5;

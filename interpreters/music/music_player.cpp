@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
+#include <string>
+
+#include "lang/message_number.h"
 
 namespace ontogen {
 
@@ -234,10 +236,8 @@ void MusicPlayer::execute(const MusicCommand& command, std::span<const double> a
 void MusicPlayer::checkTime(double beats, const char* what) const {
   if (beats <= def_.maxBeats) [[likely]]
     return;
-  char buffer[160];
-  std::snprintf(buffer, sizeof buffer, "%s beat %g, past beat %g, the end of any MIDI file at this resolution (#ppq)",
-                what, beats, def_.maxBeats);
-  throw MusicTimeError(buffer);
+  throw MusicTimeError(std::string(what) + " beat " + messageNumber(beats) + ", past beat " +
+                       messageNumber(def_.maxBeats) + ", the end of any MIDI file at this resolution (#ppq)");
 }
 
 void MusicPlayer::playNote(double duration, double velocity, Score& score) {

@@ -214,6 +214,25 @@ TEST(Convert, AViewFileThatIsNoRegularFileIsRefused) {
   }
 }
 
+// A 10 MB line of a .l reached 866 MB and 36 s in the converter under --max-memory 100
+// before the converted text's size refused it: it is refused before it is converted, as
+// the same text as a .cell is before it is checked (exit 3, the limit named).
+TEST(Convert, AFileTooLargeToCheckWithinTheMemoryLimitIsRefusedBeforeItIsConverted) {
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "memory";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string text = "Lsystem: 1\nderivation length: 1\nAxiom: " + std::string(10'000'000, 'F') + "\nF --> F\nendlsystem\n";
+  for (const char* name : {"big.l", "big.cell"}) {
+    const fs::path path = dir / name;
+    std::ofstream(path) << text;
+    const Result result = ontogen("run " + path.string() + " --max-memory 100 --format none");
+    EXPECT_EQ(result.exitCode, 3) << name << "\n" << result.err;
+    EXPECT_EQ(result.err, "ontogen: error: checking the 10000059 bytes of '" + path.string() +
+                              "' needs about 1221 MiB, past the memory limit of 100 MiB; raise it with --max-memory MIB\n")
+        << name;
+  }
+}
+
 // An error the compiler finds in converted text is shown at the line of the file.
 // `if random() < 0.25` in an L-Py body is a choice of chance 0.25: of 400 modules about
 // 100 take it (the count is fixed by the seed; 60 to 140 is 4.6 standard deviations).

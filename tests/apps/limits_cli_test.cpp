@@ -84,6 +84,38 @@ TEST(LimitsCli, NestedSystemsStopAtTheLimitsAsTheyAreMade) {
 }
 
 
+// A nested world keeps the word before its last step to write the next one into, and it
+// counts: systems whose words double (two of two, a value a cell) peaked at 155 MB under
+// --max-memory 100 while only their words counted, and --stats said what the words held.
+TEST(LimitsCli, NestedWordsCountTheWordBeforeTheyKeep) {
+  const fs::path dir = scratch("previous_word");
+  const std::string doubling = "cell A(x = 0) { rules { -> A(x + 1) A(x); } }\n";
+  const std::string program = writeProgram(dir, "system top { pool linear; axiom S S; }\n"
+                                                "system S { pool linear; axiom T T; }\n"
+                                                "system T { pool linear; axiom A; }\n" + doubling)
+                                  .string();
+  const Result memory = ontogen(dir, {"run", program, "--format", "none", "--until", "40", "--max-memory", "100"});
+  EXPECT_EQ(memory.exitCode, 3) << memory.err;
+  EXPECT_NE(memory.err.find("ontogen: error: the model's pools passed 100 MiB, the memory limit; raise it with "
+                            "--max-memory MIB\n"),
+            std::string::npos)
+      << memory.err;
+  if (!kAddressSanitized) {
+    EXPECT_LT(memory.peakKib, 125u * 1024) << "KiB at the peak";
+  }
+  // After 16 steps the nested pool holds 65,536 cells of 32 bytes and the 32,768 of the
+  // word before; the top pool its system cell twice over; and 2 worlds of 12 KiB:
+  // 3,170,352 bytes, 3.0 MiB (the words alone: 2.0 MiB).
+  const std::string one = writeProgram(dir, "system top { pool linear; axiom S; }\n"
+                                            "system S { pool linear; axiom A; }\n" + doubling,
+                                       "one.cell")
+                              .string();
+  const Result stats = ontogen(dir, {"run", one, "--format", "none", "--until", "16", "--stats"});
+  EXPECT_EQ(stats.exitCode, 0) << stats.err;
+  EXPECT_NE(stats.out.find("cells 65537, steps 16,"), std::string::npos) << stats.out;
+  EXPECT_NE(stats.out.find(", held 3.0 MiB,"), std::string::npos) << stats.out;
+}
+
 // State that becomes an infinity or NaN stops `word` and `run` with exit 3 at the rate,
 // and is printed only when the program allows it.
 TEST(LimitsCli, NonFiniteStateStopsAtTheRateUnlessAllowed) {

@@ -101,6 +101,21 @@ TEST(FiniteState, AWorldStoppedByANestedSystemStillCountsEveryCell) {
   EXPECT_EQ(world.held().cells, 4u);
 }
 
+// Every message of a run writes the values that are not finite as the language does,
+// `inf`, `-inf` and `NaN`, never printf's `-nan` (the NaN x86 makes has its sign set).
+TEST(FiniteState, MessagesWriteNaNAndInfinitiesAsTheLanguageDoes) {
+  const Stopped nan = grow("cell A(x = -1) { rules { x = sqrt(x); } }\nsystem s { pool linear; axiom A; }\n", 5);
+  EXPECT_EQ(nan.message,
+            "'A' holds x = NaN at t = 1, written by its calculation: a model's state must stay finite (#allow nonfinite "
+            "accepts infinities and NaN)");
+  const Stopped negative = grow("cell A(x = -1) { rules { x = x * 1e300; } }\nsystem s { pool linear; axiom A; }\n", 5);
+  EXPECT_NE(negative.message.find("'A' holds x = -inf at t = 2,"), std::string::npos) << negative.message;
+  const Stopped age = grow("lsystem a {\n axiom A(-1)\n (B, 3) -> B\n A(x) -> (B, sqrt(x))\n}\n", 5);
+  EXPECT_EQ(age.message, "'B' would be born with age NaN, but ages are ≥ 0 (in a rule of 'A' at t = 1)");
+  const Stopped group = grow("lsystem a {\n axiom A\n use group: sqrt(time - 5)\n A -> A\n}\n", 5);
+  EXPECT_EQ(group.message, "'use group' gives NaN at t = 0, not a whole number ≥ 0");
+}
+
 TEST(FiniteState, AProgramThatAllowsItDevelopsOn) {
   auto program = compileOrFail("#allow nonfinite\ncell A(x = 1) { rules { x = x * 1e300; } }\nsystem s { pool linear; axiom A; }\n");
   EXPECT_TRUE(program->allowsNonfinite);

@@ -54,7 +54,8 @@ TEST(Limits, CellsWithinAStepCountAgainstTheCellLimit) {
 }
 
 // 64 systems that each stay within the limit but together pass it: the memory limit
-// counts every pool of the world, as each grows.
+// counts every pool of the world, as each grows, and the word before each pool's last
+// step, which its development keeps to write the next word into.
 TEST(Limits, MemoryCountsEveryNestedPoolTogether) {
   std::string axiom;
   for (int i = 0; i < 64; ++i) axiom += " S";
@@ -63,6 +64,7 @@ TEST(Limits, MemoryCountsEveryNestedPoolTogether) {
                                "cell A { rules { -> A A; } }\n");
   WorldDef def;
   def.limits.maxMemoryBytes = 1 << 20;
+  def.rewriteBySlices = false;  // words of records, 24 bytes a cell
   World world(program, def);
   double stopped = 0;
   try {
@@ -73,10 +75,45 @@ TEST(Limits, MemoryCountsEveryNestedPoolTogether) {
   } catch (const LimitError& error) {
     EXPECT_NE(std::string(error.what()).find("--max-memory"), std::string::npos) << error.what();
   }
-  // 64 pools of 2^k cells of 24 bytes, held twice, pass 1 MiB at k = 9; one pool alone
-  // not before k = 15.
-  EXPECT_GE(stopped, 8);
-  EXPECT_LE(stopped, 11);
+  // 65 worlds of 12 KiB leave 244 KiB of the MiB to the cells: after step k the 64 pools
+  // hold 2^k cells and the 2^(k-1) of the word before, 2304 · 2^k bytes, which passes it
+  // at k = 7 (294,912 bytes). The words alone (1536 · 2^k) would not before k = 8.
+  EXPECT_EQ(stopped, 7);
+}
+
+// A nested world holds its word and the word before its last step, kept to write the
+// next one into; both count, in held() and against the memory limit. Eight nested
+// systems whose words double peaked at 137 MB under --max-memory 100 while only the
+// words counted.
+TEST(Limits, NestedWorldsCountThePreviousWordTheyKeep) {
+  WorldDef def;
+  def.rewriteBySlices = false;  // words of records, 24 bytes a cell and 8 a value
+  World world(compileOrFail("system top { pool linear; axiom S; }\nsystem S { pool linear; axiom A; }\n"
+                            "cell A(x = 0) { rules { -> A(x + 1) A(x); } }\n"),
+              def);
+  world.advanceTo(10, 1);
+  const World* nested = world.childOf(world.rootPool().cellAt(0).id);
+  ASSERT_NE(nested, nullptr);
+  EXPECT_EQ(nested->rootPool().size(), 1024u);
+  // 1024 cells of one value, and the 512 of the word before.
+  EXPECT_EQ(nested->held().bytes, World::kWorldBytes + (1024 + 512) * (sizeof(CellRecord) + sizeof(double)));
+  // The top world's word of one system cell is rewritten each step too: it and the word
+  // before.
+  EXPECT_EQ(world.held().bytes, World::kWorldBytes + 2 * sizeof(CellRecord) + nested->held().bytes);
+}
+
+// A world that integrates rates and stops between two grid instants keeps a copy of
+// itself as it was at the last one (the next advance starts from there): its bytes count
+// in held(), and so against the memory limit, but not its cells.
+TEST(Limits, TheCopyKeptAtTheLastGridInstantIsHeld) {
+  World world(compileOrFail("cell A(x = 1) { rules { rate(x) = -x; } }\nsystem s { pool linear; axiom A A A; }\n"));
+  const WorldHeld alone = world.held();
+  EXPECT_EQ(alone.bytes, World::kWorldBytes + 3 * (sizeof(CellRecord) + sizeof(double)));
+  world.advanceTo(2, 1);
+  EXPECT_EQ(world.held().bytes, alone.bytes);
+  world.advanceTo(2.5, 1);  // between the instants 2 and 3
+  EXPECT_EQ(world.held().cells, 3u);
+  EXPECT_EQ(world.held().bytes, 2 * alone.bytes);
 }
 
 // Systems nested `depth` levels, each holding two of the next; the last holds a cell

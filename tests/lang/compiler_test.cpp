@@ -131,7 +131,11 @@ TEST(CompilerDefines, AValueMustBeFinite) {
   auto c = compileText(kModel, {{"N", std::numeric_limits<double>::quiet_NaN()}});
   EXPECT_EQ(c->program, nullptr);
   ASSERT_EQ(c->sink.errorCount(), 1);
-  EXPECT_EQ(c->sink.diagnostics()[0].message, "cannot set 'N' to nan: a value for a #define must be a finite number");
+  EXPECT_EQ(c->sink.diagnostics()[0].message, "cannot set 'N' to NaN: a value for a #define must be a finite number");
+  auto infinite = compileText(kModel, {{"N", -std::numeric_limits<double>::infinity()}});
+  ASSERT_EQ(infinite->sink.errorCount(), 1);
+  EXPECT_EQ(infinite->sink.diagnostics()[0].message,
+            "cannot set 'N' to -inf: a value for a #define must be a finite number");
 }
 
 TEST(CompilerDefines, ImportedDefinesCanBeSet) {
