@@ -37,7 +37,7 @@ inline constexpr const char* kParametric = R"(lsystem parametric {
 })";
 
 inline std::string readModel(const std::string& name) {
-  std::ifstream in(std::string(ONTOGEN_SOURCE_DIR) + "/models/" + name, std::ios::binary);
+  std::ifstream in(std::filesystem::path(ONTOGEN_SOURCE_DIR) / "models" / name, std::ios::binary);
   EXPECT_TRUE(in.good()) << name;
   std::ostringstream text;
   text << in.rdbuf();
