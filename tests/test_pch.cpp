@@ -1,2 +1,3 @@
-// The source of ontogen_test_pch (tests/CMakeLists.txt), which only precompiles the
-// headers the test executables share.
+// The source of ontogen_test_pch (tests/CMakeLists.txt), an executable that does nothing:
+// it only precompiles the headers the test executables share, compiled as they are.
+int main() { return 0; }
