@@ -66,6 +66,7 @@ Run::Run(RunDef def) : def_(std::move(def)) {
     else
       setupErrors_.push_back(unlocated(Severity::Error, "unknown look '" + look + "' (known: " + lookList() + ")"));
   }
+  def_.setOptions.maxMemoryBytes = def_.world.limits.maxMemoryBytes;
   for (const std::string& name : def_.sets) {
     std::unique_ptr<InterpretationSet> set;
     try {

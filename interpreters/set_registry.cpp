@@ -67,6 +67,7 @@ std::unique_ptr<InterpretationSet> makeInterpretationSet(std::string_view name, 
     def.radians = settings.radians;
     def.physics.timestep = settings.timestep;
     def.writeMjcf = out.writeMjcf;
+    def.maxMemoryBytes = options.maxMemoryBytes;
     if (!out.writeSvg && !out.writeObj && !out.writePly && !out.writePngFrames && !out.writeMp4)
       def.meshing = out.writePng ? LimbMeshing::GrownAndLastFrame : LimbMeshing::GrownFrames;
     return std::make_unique<DynamicsSet>(def);

@@ -2,6 +2,7 @@
 // The interpretation sets ontogen knows, by name: one place to make a set for a run
 // and to tell the compiler which commands each set accepts.
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -29,6 +30,7 @@ struct SetOptions {
   UpAxis up = UpAxis::Y;            ///< geometry: the up axis of OBJ and PLY files
   double framesPerSecond = 25;      ///< geometry and image: of the movie (mp4), > 0
   bool sceneNodes = false;          ///< geometry: record the scene's nodes (GeometrySetDef::sceneNodes)
+  uint64_t maxMemoryBytes = 0;      ///< dynamics: the memory limit MuJoCo's room counts against (0: none)
 };
 
 /// The same, with output settings; throws std::invalid_argument with a message for the

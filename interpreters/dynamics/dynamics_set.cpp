@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -514,6 +515,7 @@ void DynamicsSet::build(const BodyPlan& plan, double time) {
   // steps before needed.
   const MujocoRoom usual = usualRoom(plan_);
   room_ = {std::max(room_.contacts, usual.contacts), std::max(room_.rows, usual.rows)};
+  checkRoomMemory(room_, "the dynamics set's body of " + std::to_string(plan_.bodies.size()) + " parts needs");
   mjcf_ = mjcfOf(plan_, physics_, target_.stem.empty() ? "dynamics" : target_.stem, room_);
   sim_ = std::make_unique<MujocoModel>(mjcf_);
   countedInstabilities_ = 0;
@@ -699,8 +701,11 @@ struct StepInputs {
   }
 };
 
-bool outOfRoom(const mjData* d) {
-  return d->warning[mjWARN_CONTACTFULL].number > 0 || d->warning[mjWARN_CNSTRFULL].number > 0;
+// MuJoCo's warning counts only grow over a data's life, and a model's first pose may
+// already have run out (its forward at build): the step ran out when it raised them.
+bool outOfRoom(const mjData* d, const StepInputs& before) {
+  return d->warning[mjWARN_CONTACTFULL].number > before.warnings[mjWARN_CONTACTFULL].number ||
+         d->warning[mjWARN_CNSTRFULL].number > before.warnings[mjWARN_CNSTRFULL].number;
 }
 
 }  // namespace
@@ -711,14 +716,19 @@ void DynamicsSet::stepWithRoom() {
   thread_local StepInputs inputs;
   inputs.save(sim_->model(), sim_->data());
   sim_->step();
-  while (outOfRoom(sim_->data())) {
-    const MujocoRoom more = doubled(room_);
+  while (outOfRoom(sim_->data(), inputs)) {
+    const MujocoRoom more = doubled(room_, mostRoom(plan_));
     if (more.contacts == room_.contacts && more.rows == room_.rows) {
       crowded_.add(1, site_);
-      sim_->data()->warning[mjWARN_CONTACTFULL].number = 0;
-      sim_->data()->warning[mjWARN_CNSTRFULL].number = 0;
       return;
     }
+    std::ostringstream why;
+    why << "at t = " << sim_->data()->time << " s the dynamics set's body touched the ground at more than "
+        << room_.contacts << " points";
+    if (stats_.instabilities > 0 || sim_->instabilities() > 0)
+      why << " while its simulation was unstable (MuJoCo reset it; a smaller #timestep or gentler servos may steady it)";
+    why << ", and needs";
+    checkRoomMemory(more, why.str());
     room_ = more;
     mjcf_ = mjcfOf(plan_, physics_, target_.stem.empty() ? "dynamics" : target_.stem, room_);
     if (!firstMjcf_.empty()) {
@@ -732,6 +742,16 @@ void DynamicsSet::stepWithRoom() {
     ++stats_.roomGrowths;
     sim_->step();
   }
+}
+
+void DynamicsSet::checkRoomMemory(MujocoRoom room, const std::string& why) const {
+  const uint64_t bytes = mujocoRoomBytes(room), limit = def_.maxMemoryBytes;
+  if (limit == 0 || bytes <= limit) return;
+  auto mebibytes = [](uint64_t n) { return std::to_string((n + (1u << 20) - 1) >> 20); };
+  throw LimitError(why + " MuJoCo's room for " + std::to_string(room.contacts) + " contacts and " +
+                   std::to_string(room.rows) + " constraint rows, about " + mebibytes(bytes) +
+                   " MiB, past the memory limit of " + mebibytes(limit) +
+                   " MiB; raise it with --max-memory MIB, or keep fewer limbs on the ground");
 }
 
 void DynamicsSet::advanceTo(double time) {
@@ -938,7 +958,7 @@ std::vector<SetWarning> DynamicsSet::takeWarnings() {
   unstable_.takeInto(out, "MuJoCo found the simulation unstable " + std::to_string(unstable_.count) +
                               " times and reset it: a smaller #timestep or weaker servos (the first here)");
   crowded_.takeInto(out, "MuJoCo had no room for all contacts in " + std::to_string(crowded_.count) +
-                             " steps, even at the most room the set gives (2^28 constraint rows): it dropped some (the first here)");
+                             " steps, even at the most room the set gives (4 contacts a limb touching the ground): it dropped some (the first here)");
   return out;
 }
 

@@ -47,6 +47,9 @@ struct DynamicsSetDef {
   LimbMeshing meshing = LimbMeshing::EveryFrame;  ///< as the creature set's
   PhysicsDef physics{};     ///< timestep (#timestep) and the defaults of the set's commands
   bool writeMjcf = false;   ///< endFrame() writes DIR/<stem>.xml, the model of the first frame
+  /// The memory limit (--max-memory) MuJoCo's room for contacts (mujocoRoomBytes) must
+  /// fit in before a model is made: passing it is a LimitError. 0: none.
+  uint64_t maxMemoryBytes = 0;
 };
 
 /// What the simulation did up to the last frame drawn, for measures and tests.
@@ -169,6 +172,9 @@ class DynamicsSet : public InterpretationSet {
   void advanceTo(double time);
   // One step; taken again in a model with more room while MuJoCo had too little.
   void stepWithRoom();
+  // Throws LimitError when MuJoCo's data for `room` would not fit in the memory limit;
+  // `why` says what asks for it.
+  void checkRoomMemory(MujocoRoom room, const std::string& why) const;
   void setControls(double time);
   // The servos' targets (one per actuated hinge, in hinges_' order) from the tape replayed
   // at `time`; false when the tape no longer makes the model's joints.

@@ -72,9 +72,29 @@ MujocoRoom usualRoom(const BodyPlan& plan) {
   return {static_cast<int>(contacts), static_cast<int>(std::min(kMost, kRowsPerContact * contacts + limits))};
 }
 
-MujocoRoom doubled(MujocoRoom room) {
-  constexpr int kMost = 1 << 28;
-  return {std::min(kMost, 2 * room.contacts), std::min(kMost, 2 * room.rows)};
+MujocoRoom mostRoom(const BodyPlan& plan) {
+  std::size_t touching = 0, hinges = 0;
+  for (const PlanBody& body : plan.bodies) {
+    for (const PlanLimb& limb : body.limbs) touching += limb.touches ? 1 : 0;
+    hinges += static_cast<std::size_t>(hingeCount(body.kind));
+  }
+  // MuJoCo meets a plane with at most 2 contacts from a capsule and 4 from a cylinder.
+  constexpr std::size_t kContactsPerLimb = 4;
+  const MujocoRoom usual = usualRoom(plan);
+  const std::size_t contacts = std::max<std::size_t>(static_cast<std::size_t>(usual.contacts), kContactsPerLimb * touching);
+  const std::size_t rows = std::max<std::size_t>(static_cast<std::size_t>(usual.rows), kRowsPerContact * contacts + hinges);
+  constexpr std::size_t kMost = 1 << 28;
+  return {static_cast<int>(std::min(kMost, contacts)), static_cast<int>(std::min(kMost, rows))};
+}
+
+uint64_t mujocoRoomBytes(MujocoRoom room) {
+  const auto rows = static_cast<uint64_t>(std::max(room.rows, 0));
+  return sizeof(double) * (5 * rows * rows + 60 * rows);
+}
+
+MujocoRoom doubled(MujocoRoom room, MujocoRoom most) {
+  return {std::max(room.contacts, std::min(most.contacts, 2 * room.contacts)),
+          std::max(room.rows, std::min(most.rows, 2 * room.rows))};
 }
 
 Nesting nestingOf(const BodyPlan& plan, bool centred) {

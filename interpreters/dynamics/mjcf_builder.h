@@ -7,6 +7,7 @@
 // y-up, so gravity points along -y and the plane faces +y. Numbers are written with 17
 // significant digits, so the text is the model exactly.
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,8 +52,19 @@ struct MujocoRoom {
 /// few of them) and a row for every hinge at its range's end: at least 16 contacts.
 MujocoRoom usualRoom(const BodyPlan& plan);
 
-/// The room twice over (each size doubled), for a step that ran out.
-MujocoRoom doubled(MujocoRoom room);
+/// The most room the plan's body can use at once: 4 contacts for each limb that touches
+/// the ground (a cylinder on a plane; a capsule makes 2), 4 rows a contact (a pyramid of
+/// condim 3) and a row for each hinge (its range's end). MuJoCo 2.2's scratch memory grows
+/// as the rows squared, so the room never grows past this.
+MujocoRoom mostRoom(const BodyPlan& plan);
+
+/// About the bytes MuJoCo 2.2 sets aside for `room` as it makes a model's data: its
+/// stack of 5 rows² + 60 rows doubles (measured on libmujoco 2.2.2), which dwarfs the rest.
+uint64_t mujocoRoomBytes(MujocoRoom room);
+
+/// The room twice over (each size doubled), for a step that ran out, but no more than
+/// `most`.
+MujocoRoom doubled(MujocoRoom room, MujocoRoom most);
 
 /// How mjcfOf nests the plan's bodies. A free body's tree (a creature) hangs from the
 /// body at its centre, the middle of its longest chain of bodies, which carries the free

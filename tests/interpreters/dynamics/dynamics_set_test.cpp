@@ -530,6 +530,67 @@ TEST(DynamicsSet, ABodyTouchingTheGroundEverywhereGetsTheRoomItsContactsNeed) {
     for (std::size_t j = 0; j < 12; ++j) EXPECT_NEAR(lying.at(f, j).y, 0.1, 2e-3) << "frame " << f << ", joint " << j;
 }
 
+// The same raft set 1 cm into the ground: the model's first pose already has more
+// contacts than its room (MuJoCo counts the overflow in its data), and the first step runs
+// out too. The step is taken again with more room once or twice, not until MuJoCo cannot
+// make its data (the overflow counted before the step is not this step's), the room never
+// passes what the raft's limbs can touch (4 contacts a limb), and the raft rises onto the
+// ground.
+TEST(DynamicsSet, ABodyStartingInTheGroundGrowsTheRoomItNeedsOnly) {
+  std::string raft = "#interpret dynamics\nsystem raft { pool linear; axiom Raft; }\n"
+                     "cell Raft { interpret dynamics { gait(1, 0.5, 0, 0, 0.09) limb(0.3, 0.1)";
+  for (int i = 1; i < 12; ++i) raft += " hinge(0) limb(0.3, 0.1)";
+  raft += " } }\n";
+  int growths = 0;
+  WalkDef w;
+  w.model = "sunk_raft.cell";
+  w.text = raft;
+  w.until = 1;
+  w.frames = 3;
+  w.onFrame = [&](const DynamicsSet& set, double) { growths = set.stats().roomGrowths; };
+  const Walk sunk = walk(w);
+  EXPECT_EQ(sunk.report.status, RunStatus::Ok);
+  ASSERT_EQ(sunk.frames().size(), 3u);
+  EXPECT_GE(growths, 1);
+  EXPECT_LE(growths, 2);
+  for (std::size_t j = 0; j < 12; ++j) EXPECT_NEAR(sunk.at(2, j).y, 0.1, 2e-3) << "joint " << j;
+}
+
+// MuJoCo's room for contacts counts against the memory limit before MuJoCo makes its
+// data: the sunk raft's model starts with room for 16 contacts and 64 rows (190 KiB);
+// under a limit of 512 KiB its first step, which asks for twice that (700 KiB), stops the
+// run with a limit's message, not an allocation MuJoCo cannot make.
+TEST(DynamicsSet, RoomForContactsPastTheMemoryLimitStopsAtTheLimit) {
+  std::string raft = "#interpret dynamics\nsystem raft { pool linear; axiom Raft; }\n"
+                     "cell Raft { interpret dynamics { gait(1, 0.5, 0, 0, 0.09) limb(0.3, 0.1)";
+  for (int i = 1; i < 12; ++i) raft += " hinge(0) limb(0.3, 0.1)";
+  raft += " } }\n";
+  DiagnosticSink sink;
+  CompileOptions options;
+  options.commandSets = commandSets();
+  RunDef def;
+  def.program = compileSource("sunk_raft.cell", raft, sink, options);
+  ASSERT_NE(def.program, nullptr) << formatDiagnostics(sink);
+  def.stem = "sunk_raft";
+  def.frames = 2;
+  def.until = 0.1;
+  def.sets = {"dynamics"};
+  def.setOptions.formats = "joints";
+  def.world.limits.maxMemoryBytes = 512 << 10;
+  def.out = fs::path(ONTOGEN_BINARY_DIR) / "dynamics_set_test" / "sunk_raft_limit";
+  fs::remove_all(def.out);
+  ontogen::Run run(std::move(def));
+  const RunReport report = run.execute();
+  EXPECT_EQ(report.status, RunStatus::ModelFailed);
+  ASSERT_EQ(report.diagnostics.size(), 1u);
+  const std::string& message = report.diagnostics[0].message;
+  EXPECT_NE(message.find("touched the ground at more than 16 points"), std::string::npos) << message;
+  EXPECT_NE(message.find("room for 32 contacts and 128 constraint rows, about 1 MiB, past the memory limit"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("raise it with --max-memory MIB"), std::string::npos) << message;
+}
+
 // A reed: a horizontal cantilever of 10 elastic segments (rod(1, 0.01, 1000), EI 10),
 // weightless, in a steady wind of V across it, damped.
 constexpr const char* kReed = R"(

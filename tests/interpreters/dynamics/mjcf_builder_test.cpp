@@ -465,6 +465,19 @@ TEST(MjcfBuilder, TheDeepestNestingIsWhatMujocosReaderTakes) {
   EXPECT_THROW(MujocoModel(mjcfOf(chains(1, kDeepestBodies + 1), {}, "chain")), MujocoError);
 }
 
+// The room's bytes as MuJoCo sets them aside: its stack (nstack doubles) of a compiled
+// model with that room, within 1 %.
+TEST(MjcfBuilder, TheRoomsBytesAreMujocosStack) {
+  for (const int rows : {100, 1000, 4000}) {
+    const MujocoRoom room{rows / 4, rows};
+    const std::string xml = "<mujoco>" + sizeElement(room) +
+                            "<worldbody><body><freejoint/><geom size=\"0.1\"/></body></worldbody></mujoco>";
+    MujocoModel sim(xml);
+    const double stack = static_cast<double>(sizeof(mjtNum)) * static_cast<double>(sim.model()->nstack);
+    EXPECT_NEAR(static_cast<double>(mujocoRoomBytes(room)), stack, 0.01 * stack) << rows;
+  }
+}
+
 TEST(MjcfBuilder, BadPhysicsIsNamed) {
   PhysicsDef def;
   EXPECT_EQ(physicsError(def), nullptr);
