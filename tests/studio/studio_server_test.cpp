@@ -261,6 +261,16 @@ struct StudioFixture : ::testing::Test {
     def.work = folder / "work";
     return def;
   }
+  // As the page asks: to the studio's address, its changes from its origin with the token.
+  static HttpResponse askAsThePage(StudioServer& server, std::string method, std::string path, std::string body) {
+    HttpRequest request;
+    request.method = std::move(method);
+    request.path = std::move(path);
+    request.body = std::move(body);
+    request.port = 8420;
+    request.headers = {{"host", "127.0.0.1:8420"}, {"origin", "http://127.0.0.1:8420"}, {"x-ontogen-token", server.token()}};
+    return server.handle(request);
+  }
   GalleryDef galleryDef(uint64_t seed = 7) {
     GalleryDef def;
     def.program.file = file.string();
@@ -669,15 +679,8 @@ TEST_F(StudioFixture, RoutesAnswerThePage) {
   model.start();
   Gallery gallery(galleryDef());
   StudioServer server(model, gallery);
-  // As the page asks: to the studio's address, its changes from its origin with the token.
   auto ask = [&](std::string method, std::string path, std::string body = "") {
-    HttpRequest request;
-    request.method = std::move(method);
-    request.path = std::move(path);
-    request.body = std::move(body);
-    request.port = 8420;
-    request.headers = {{"host", "127.0.0.1:8420"}, {"origin", "http://127.0.0.1:8420"}, {"x-ontogen-token", server.token()}};
-    return server.handle(request);
+    return askAsThePage(server, std::move(method), std::move(path), std::move(body));
   };
   const HttpResponse state = ask("GET", "/api/state");
   EXPECT_EQ(state.status, 200);
@@ -918,13 +921,7 @@ TEST_F(StudioFixture, AGalleryGrowsOffTheRequestsThreadAndANewGenerationReplaces
   Gallery gallery(galleryDef());
   auto server = std::make_unique<StudioServer>(model, gallery);
   auto ask = [&](std::string method, std::string path, std::string body = "") {
-    HttpRequest request;
-    request.method = std::move(method);
-    request.path = std::move(path);
-    request.body = std::move(body);
-    request.port = 8420;
-    request.headers = {{"host", "127.0.0.1:8420"}, {"origin", "http://127.0.0.1:8420"}, {"x-ontogen-token", server->token()}};
-    return server->handle(request);
+    return askAsThePage(*server, std::move(method), std::move(path), std::move(body));
   };
   const nlohmann::json first = nlohmann::json::parse(ask("POST", "/api/gallery", "{}").body);
   ASSERT_EQ(first["variants"].size(), 12u);
