@@ -783,6 +783,7 @@ struct StudioOverHttp : StudioFixture {
   }
   void TearDown() override {
     http->stop();
+    studio.reset();  // and with it the gallery's thread, which grows variants into the folder
     StudioFixture::TearDown();
   }
   // The answer to a request with these header lines (each "Name: value"), whole.
