@@ -593,8 +593,8 @@ TEST(GlbWriter, ManyLinesThatNeverMoveAreInstancesShownInTheirFrames) {
   for (int f = 0; f < 2; ++f) {
     SceneBuilder frame(f);
     for (uint64_t id = 1; id <= perFrame * (f + 1); ++id) {
-      const auto [a, b] = lineOf(id);
-      frame.cell(id, "F", a, glm::dmat3(1.0), [&](Geometry& g) { g.addSegment(a, b); });
+      const std::pair<glm::dvec3, glm::dvec3> line = lineOf(id);
+      frame.cell(id, "F", line.first, glm::dmat3(1.0), [&](Geometry& g) { g.addSegment(line.first, line.second); });
     }
     frame.cell(9999, "Ball", {0, 0, 0}, glm::dmat3(1.0), [&](Geometry& g) { g.addSphere({f, 0, 0}, 0.5); });
     writer.addFrame(frame.scene);
@@ -603,7 +603,7 @@ TEST(GlbWriter, ManyLinesThatNeverMoveAreInstancesShownInTheirFrames) {
   EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"Ball 9999", "cells", "parts", "lines 0", "lines 0 frames 1 to 1",
                                                       "ontogen camera", "ontogen key light"}));
   ASSERT_EQ(glb.json["skins"].size(), 1u);
-  EXPECT_EQ(glb.json["skins"][0]["joints"], nlohmann::json({0}));
+  EXPECT_EQ(glb.json["skins"][0]["joints"], nlohmann::json::array({0}));
   const double radius = glm::length(writer.parts().bounds().max - writer.parts().bounds().min) * kLineRadiusFraction;
   for (int n : {3, 4}) {
     const auto& attributes = glb.json["nodes"][n]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
