@@ -416,6 +416,28 @@ std::vector<std::string> nodeNames(const Glb& glb) {
   return names;
 }
 
+// The lines a node draws as instances of the unit tube (EXT_mesh_gpu_instancing): each
+// instance's ends (its translation, the middle, less and plus its rotated half length)
+// and its radius (its scale across).
+struct InstancedLine {
+  glm::dvec3 from, to;
+  double radius;
+};
+std::vector<InstancedLine> instancedLines(const Glb& glb, int node) {
+  const auto& attributes = glb.json["nodes"][node]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+  const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
+  const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
+  const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
+  std::vector<InstancedLine> lines;
+  for (std::size_t i = 0; 3 * i < t.size(); ++i) {
+    const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
+    const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
+    const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
+    lines.push_back({middle - half, middle + half, sc[3 * i]});
+  }
+  return lines;
+}
+
 // Cells that never move while they show, each over a span of frames (A in frame 0, B in
 // frames 1 and 2), beside one that moves (C): A and B are no joints of their own, but
 // their span's joint ("frames 0 to 0", "frames 1 to 2"), their parts in world
@@ -607,20 +629,15 @@ TEST(GlbWriter, ManyLinesThatNeverMoveAreInstancesShownInTheirFrames) {
   const double radius = glm::length(writer.parts().bounds().max - writer.parts().bounds().min) * kLineRadiusFraction;
   for (int n : {3, 4}) {
     const auto& attributes = glb.json["nodes"][n]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
-    const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
-    const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
-    const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
     const std::vector<double> cell = glb.values(attributes["_CELL"].get<int>());
-    ASSERT_EQ(t.size(), 3 * perFrame) << n;
+    const std::vector<InstancedLine> drawn = instancedLines(glb, n);
+    ASSERT_EQ(drawn.size(), perFrame) << n;
     for (std::size_t i = 0; i < perFrame; ++i) {
       const uint64_t id = (n == 3 ? 1 : perFrame + 1) + i;
       const auto [a, b] = lineOf(id);
-      const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
-      const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
-      const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
-      ASSERT_NEAR(glm::length(middle - half - a), 0, 1e-5) << n << " " << i;
-      ASSERT_NEAR(glm::length(middle + half - b), 0, 1e-5) << n << " " << i;
-      ASSERT_NEAR(sc[3 * i], radius, 1e-6 * radius);
+      ASSERT_NEAR(glm::length(drawn[i].from - a), 0, 1e-5) << n << " " << i;
+      ASSERT_NEAR(glm::length(drawn[i].to - b), 0, 1e-5) << n << " " << i;
+      ASSERT_NEAR(drawn[i].radius, radius, 1e-6 * radius);
       ASSERT_EQ(cell[2 * i + 1], static_cast<float>(0.25 * static_cast<double>(id))) << "the cell's birth";
     }
   }
@@ -819,18 +836,12 @@ TEST(GlbModels, KochGrownOverFramesPastTheBakedLinesIsInstancesPerFrame) {
     const Obj obj(models().kochFrames6.parent_path() / ("koch_000" + std::to_string(f) + ".obj"));
     ASSERT_EQ(obj.lines.size(), static_cast<std::size_t>(std::pow(5, f)));
     lines += obj.lines.size();
-    const auto& attributes = glb.json["nodes"][f]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
-    const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
-    const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
-    const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
-    ASSERT_EQ(t.size(), 3 * obj.lines.size()) << f;
+    const std::vector<InstancedLine> drawn = instancedLines(glb, f);
+    ASSERT_EQ(drawn.size(), obj.lines.size()) << f;
     for (std::size_t i = 0; i < obj.lines.size(); ++i) {
-      const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
-      const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
-      const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
       // Koch's curve at n = 6 spans 729 units: floats hold it to about 1e-4.
-      ASSERT_NEAR(glm::length(middle - half - obj.positions[obj.lines[i].first - 1]), 0, 1e-3) << f << " " << i;
-      ASSERT_NEAR(glm::length(middle + half - obj.positions[obj.lines[i].second - 1]), 0, 1e-3) << f << " " << i;
+      ASSERT_NEAR(glm::length(drawn[i].from - obj.positions[obj.lines[i].first - 1]), 0, 1e-3) << f << " " << i;
+      ASSERT_NEAR(glm::length(drawn[i].to - obj.positions[obj.lines[i].second - 1]), 0, 1e-3) << f << " " << i;
     }
     for (int g = 0; g < 7; ++g) EXPECT_EQ(glb.sample(f, "scale", g), f == g ? 1 : 0) << "node " << f << " at " << g;
   }
@@ -861,18 +872,12 @@ TEST(GlbModels, KochGrownPastTheJointsIsANodePerFrameOfInstancedLines) {
     EXPECT_FALSE(glb.json["nodes"][frame].contains("mesh")) << "Koch draws lines alone";
     for (int g = 0; g < 8; ++g)
       EXPECT_EQ(glb.sample(frame, "scale", g), f == g ? 1 : 0) << "frame " << f << " at " << g;
-    const auto& attributes = glb.json["nodes"][frame - 1]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
-    const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
-    const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
-    const std::vector<double> sc = glb.values(attributes["SCALE"].get<int>());
-    ASSERT_EQ(t.size(), 3 * obj.lines.size()) << f;
+    const std::vector<InstancedLine> drawn = instancedLines(glb, frame - 1);
+    ASSERT_EQ(drawn.size(), obj.lines.size()) << f;
     for (std::size_t i = 0; i < obj.lines.size(); ++i) {
-      const glm::dquat q(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]);
-      const glm::dvec3 middle(t[3 * i], t[3 * i + 1], t[3 * i + 2]);
-      const glm::dvec3 half = q * glm::dvec3(0, sc[3 * i + 1], 0);
       // Koch's curve at n = 7 spans 2187 units: floats hold it to about 3e-4.
-      ASSERT_NEAR(glm::length(middle - half - obj.positions[obj.lines[i].first - 1]), 0, 3e-3) << f << " " << i;
-      ASSERT_NEAR(glm::length(middle + half - obj.positions[obj.lines[i].second - 1]), 0, 3e-3) << f << " " << i;
+      ASSERT_NEAR(glm::length(drawn[i].from - obj.positions[obj.lines[i].first - 1]), 0, 3e-3) << f << " " << i;
+      ASSERT_NEAR(glm::length(drawn[i].to - obj.positions[obj.lines[i].second - 1]), 0, 3e-3) << f << " " << i;
     }
   }
   EXPECT_EQ(lines, 97'656u);
