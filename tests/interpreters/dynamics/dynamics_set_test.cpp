@@ -506,15 +506,22 @@ TEST(DynamicsSet, RodsOnACreaturesBodyMoveWithIt) {
   }
 }
 
+// A raft of 12 limbs of radius 0.1 joined by hinges, held with its joints at `height`
+// (0.1: lying on the ground).
+std::string raftOf(double height) {
+  std::string raft = "#interpret dynamics\nsystem raft { pool linear; axiom Raft; }\n"
+                     "cell Raft { interpret dynamics { gait(1, 0.5, 0, 0, " +
+                     std::to_string(height) + ") limb(0.3, 0.1)";
+  for (int i = 1; i < 12; ++i) raft += " hinge(0) limb(0.3, 0.1)";
+  return raft + " } }\n";
+}
+
 // A raft of 12 limbs joined by hinges, lying on the ground: each capsule touches it at
 // both ends, 24 contacts, more than the room a model starts with (one contact a limb).
 // The steps that run out are taken again with twice the room, so no contact is dropped
 // and no part of the raft sinks (MuJoCo's soft contact lets it in by less than 2 mm).
 TEST(DynamicsSet, ABodyTouchingTheGroundEverywhereGetsTheRoomItsContactsNeed) {
-  std::string raft = "#define R 0.1\n#interpret dynamics\nsystem raft { pool linear; axiom Raft; }\n"
-                     "cell Raft { interpret dynamics { gait(1, 0.5, 0, 0, R) limb(0.3, R)";
-  for (int i = 1; i < 12; ++i) raft += " hinge(0) limb(0.3, R)";
-  raft += " } }\n";
+  const std::string raft = raftOf(0.1);
   int growths = 0;
   WalkDef w;
   w.model = "raft.cell";
@@ -537,10 +544,7 @@ TEST(DynamicsSet, ABodyTouchingTheGroundEverywhereGetsTheRoomItsContactsNeed) {
 // passes what the raft's limbs can touch (4 contacts a limb), and the raft rises onto the
 // ground.
 TEST(DynamicsSet, ABodyStartingInTheGroundGrowsTheRoomItNeedsOnly) {
-  std::string raft = "#interpret dynamics\nsystem raft { pool linear; axiom Raft; }\n"
-                     "cell Raft { interpret dynamics { gait(1, 0.5, 0, 0, 0.09) limb(0.3, 0.1)";
-  for (int i = 1; i < 12; ++i) raft += " hinge(0) limb(0.3, 0.1)";
-  raft += " } }\n";
+  const std::string raft = raftOf(0.09);
   int growths = 0;
   WalkDef w;
   w.model = "sunk_raft.cell";
@@ -561,10 +565,7 @@ TEST(DynamicsSet, ABodyStartingInTheGroundGrowsTheRoomItNeedsOnly) {
 // under a limit of 512 KiB its first step, which asks for twice that (700 KiB), stops the
 // run with a limit's message, not an allocation MuJoCo cannot make.
 TEST(DynamicsSet, RoomForContactsPastTheMemoryLimitStopsAtTheLimit) {
-  std::string raft = "#interpret dynamics\nsystem raft { pool linear; axiom Raft; }\n"
-                     "cell Raft { interpret dynamics { gait(1, 0.5, 0, 0, 0.09) limb(0.3, 0.1)";
-  for (int i = 1; i < 12; ++i) raft += " hinge(0) limb(0.3, 0.1)";
-  raft += " } }\n";
+  const std::string raft = raftOf(0.09);
   DiagnosticSink sink;
   CompileOptions options;
   options.commandSets = commandSets();
