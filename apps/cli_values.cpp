@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen::app {
 

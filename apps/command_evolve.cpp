@@ -16,7 +16,7 @@
 #include "batch/sweep_setup.h"
 #include "interpreters/formats/png_writer.h"
 #include "interpreters/output_file.h"
-#include "lang/random.h"
+#include "model/random.h"
 
 namespace ontogen::app {
 

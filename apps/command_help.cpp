@@ -14,7 +14,7 @@
 #include "interpreters/physics/physics_commands.h"
 #include "interpreters/set_registry.h"
 #include "interpreters/sweep/measure.h"
-#include "lang/builtins.h"
+#include "model/builtins.h"
 #include "lang/directives.h"
 #include "lang/keywords.h"
 

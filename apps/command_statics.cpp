@@ -11,7 +11,7 @@
 #include "interpreters/physics/statics_output.h"
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen::app {
 

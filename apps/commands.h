@@ -10,7 +10,7 @@
 
 #include "batch/sweep.h"
 #include "core/world.h"
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 #include "lang/source_reader.h"
 #include "interpreters/set_registry.h"
 

@@ -12,7 +12,7 @@
 #include "interpreters/geometry/turtle_commands.h"
 #include "interpreters/music/music_commands.h"
 #include "interpreters/physics/physics_commands.h"
-#include "lang/builtins.h"
+#include "model/builtins.h"
 #include "lang/directives.h"
 #include "lang/keywords.h"
 

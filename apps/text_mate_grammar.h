@@ -2,7 +2,7 @@
 // `ontogen help --grammar`: a TextMate grammar of the cell language (JSON, as VS Code,
 // Sublime Text, Atom's successors and GitHub's Linguist read them), generated from the
 // tables `ontogen help` prints: the keywords (lang/keywords.h), the directives
-// (lang/directives.h), the built-in functions and constants (lang/builtins.h), the
+// (lang/directives.h), the built-in functions and constants (model/builtins.h), the
 // commands of the turtle, creature, dynamics, physics and music sets and the music set's scale
 // names. editors/vscode/syntaxes/cell.tmLanguage.json is a copy of its output
 // (tests/apps/text_mate_grammar_test.cpp keeps the two equal).

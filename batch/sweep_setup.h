@@ -18,7 +18,7 @@
 #include "interpreters/sweep/sweep_table.h"
 #include "interpreters/sweep/variant_run.h"
 #include "lang/compiler.h"
-#include "lang/program.h"
+#include "model/program.h"
 #include "lang/variation.h"
 
 namespace ontogen {

@@ -19,7 +19,7 @@
 #include "core/world.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen::bench {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The one loader of a cell's frame (lang/program.h): its state values, then the
+// The one loader of a cell's frame (model/program.h): its state values, then the
 // read-only internal state of FrameSlot (age, terminal age, time, id, position). Rules,
 // grid placements and interpretation blocks all read a cell through it, so `age` or
 // `me.x` can never mean two things.
@@ -9,7 +9,7 @@
 #include <cstdint>
 
 #include "core/salts.h"
-#include "lang/program.h"
+#include "model/program.h"
 #include "pools/cell_cursor.h"
 #include "pools/cell_record.h"
 

@@ -17,8 +17,8 @@
 #include "core/parallel_rewrite_internal.h"
 #include "core/rule_choice.h"
 #include "core/salts.h"
-#include "lang/expression_batch.h"
-#include "lang/random.h"
+#include "model/expression_batch.h"
+#include "model/random.h"
 #include "pools/compact_word.h"
 
 namespace ontogen {

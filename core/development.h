@@ -17,7 +17,7 @@
 #include "core/limits.h"
 #include "core/rewrite_plan.h"
 #include "core/successors.h"
-#include "lang/program.h"
+#include "model/program.h"
 #include "pools/pool.h"
 
 namespace ontogen {

@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "core/successors.h"
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen {
 

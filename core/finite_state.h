@@ -9,7 +9,7 @@
 
 #include <span>
 
-#include "lang/program.h"
+#include "model/program.h"
 #include "pools/pool.h"
 
 namespace ontogen {

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <span>
 
-#include "lang/program.h"
+#include "model/program.h"
 #include "pools/linear_pool.h"
 
 namespace ontogen {

@@ -287,7 +287,7 @@ void LinearDevelopment::checkLimits(uint64_t copying) {
   checkGrowth(*context_, cells, pool_.bytes() + cells * sizeof(CellRecord) + values * sizeof(double) + copying);
 }
 
-// The rule frame of lang/program.h: [state...] [internal state] [context...]. The
+// The rule frame of model/program.h: [state...] [internal state] [context...]. The
 // position (me.x) is the index in the word at the start of the step; a cell born and
 // expiring within one step has its ancestor's.
 double* LinearDevelopment::loadFrame(const CellRecord& cell, const double* state, double when, int64_t position) {

@@ -13,7 +13,7 @@
 
 #include <cstdint>
 
-#include "lang/random.h"
+#include "model/random.h"
 #include "pools/cell_cursor.h"
 #include "pools/cell_record.h"
 

@@ -12,8 +12,8 @@
 #include "core/rule_choice.h"
 #include "core/rule_evaluator.h"
 #include "core/salts.h"
-#include "lang/expression_batch.h"
-#include "lang/random.h"
+#include "model/expression_batch.h"
+#include "model/random.h"
 
 namespace ontogen {
 

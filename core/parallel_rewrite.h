@@ -46,7 +46,7 @@
 #include "core/development.h"
 #include "core/rewrite_plan.h"
 #include "core/successors.h"
-#include "lang/program.h"
+#include "model/program.h"
 #include "pools/compact_word.h"
 #include "pools/linear_pool.h"
 #include "pools/table_rewrite.h"

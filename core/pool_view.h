@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lang/program.h"
+#include "model/program.h"
 #include "pools/grid_pool.h"
 #include "pools/linear_pool.h"
 #include "pools/spatial_pool.h"

@@ -6,7 +6,7 @@
 
 #include "core/parallel_for.h"
 #include "core/salts.h"
-#include "lang/expression_batch.h"
+#include "model/expression_batch.h"
 
 namespace ontogen {
 

@@ -20,7 +20,7 @@
 #include "core/pool_view.h"
 #include "core/rate_stencil.h"
 #include "core/rule_evaluator.h"
-#include "lang/program.h"
+#include "model/program.h"
 #include "pools/large_page_allocator.h"
 
 namespace ontogen {

@@ -4,7 +4,7 @@
 
 #include "core/parallel_for.h"
 #include "core/rule_evaluator.h"
-#include "lang/expression_batch.h"
+#include "model/expression_batch.h"
 
 namespace ontogen {
 

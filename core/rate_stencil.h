@@ -21,8 +21,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "lang/expression.h"
-#include "lang/program.h"
+#include "model/expression.h"
+#include "model/program.h"
 #include "pools/grid_pool.h"
 
 namespace ontogen {

@@ -16,7 +16,7 @@
 #include "core/rule_choice.h"
 #include "core/rule_evaluator.h"
 #include "core/salts.h"
-#include "lang/random.h"
+#include "model/random.h"
 #include "pools/large_page_allocator.h"
 
 namespace ontogen {

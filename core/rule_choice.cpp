@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "core/successors.h"
-#include "lang/message_number.h"
-#include "lang/program.h"
+#include "model/message_number.h"
+#include "model/program.h"
 
 namespace ontogen {
 

@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "lang/expression.h"
-#include "lang/program.h"
-#include "lang/random.h"
+#include "model/expression.h"
+#include "model/program.h"
+#include "model/random.h"
 
 namespace ontogen {
 

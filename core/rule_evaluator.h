@@ -16,7 +16,7 @@
 
 #include "core/cell_frame.h"
 #include "core/pool_view.h"
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The constants that keep ontogen's random streams and ids apart, in one place (the
-// noise functions' own salt stays with them in lang/noise.cpp, below core): every
+// noise functions' own salt stays with them in model/noise.cpp, below core): every
 // stochastic choice draws from a stream keyed by (seed ^ salt, cell id, instant), and
 // changing one of these changes every stochastic model's output, so they never move.
 

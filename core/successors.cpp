@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen {
 

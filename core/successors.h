@@ -15,9 +15,9 @@
 #include "core/limits.h"
 #include "core/module_value.h"
 #include "core/salts.h"
-#include "lang/diagnostics.h"
-#include "lang/expression.h"
-#include "lang/program.h"
+#include "model/diagnostics.h"
+#include "model/expression.h"
+#include "model/program.h"
 #include "pools/cell_record.h"
 
 namespace ontogen {

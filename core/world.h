@@ -33,7 +33,7 @@
 #include "core/environment_process.h"
 #include "core/limits.h"
 #include "core/successors.h"
-#include "lang/program.h"
+#include "model/program.h"
 #include "pools/grid_pool.h"
 #include "pools/linear_pool.h"
 #include "pools/spatial_pool.h"

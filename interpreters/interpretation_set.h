@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include "lang/source.h"
+#include "model/source.h"
 
 namespace ontogen {
 

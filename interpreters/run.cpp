@@ -10,7 +10,7 @@
 #include "interpreters/formats/look.h"
 #include "interpreters/geometry/surface.h"
 #include "interpreters/interpret.h"
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen {
 

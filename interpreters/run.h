@@ -23,7 +23,7 @@
 #include "interpreters/interpretation_set.h"
 #include "interpreters/scene.h"
 #include "interpreters/set_registry.h"
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 
 namespace ontogen {
 

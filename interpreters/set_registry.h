@@ -13,7 +13,7 @@
 #include "interpreters/formats/scene_output.h"
 #include "interpreters/interpretation_set.h"
 #include "lang/compiler.h"
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen {
 

@@ -1,14 +1,14 @@
 #pragma once
 // The syntax tree the parser builds. It mirrors the text closely (cells, systems and
 // L-system blocks as written); lang/compiler.h checks it and lowers everything,
-// L-systems included, into the one cell model of lang/program.h.
+// L-systems included, into the one cell model of model/program.h.
 
 #include <array>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "lang/source.h"
+#include "model/source.h"
 #include "lang/token.h"
 
 namespace ontogen {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "lang/builtins.h"
+#include "model/builtins.h"
 
 namespace ontogen::detail {
 

@@ -19,9 +19,9 @@
 
 #include "lang/ast.h"
 #include "lang/compiler.h"
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 #include "lang/expression_compiler.h"
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen::detail {
 

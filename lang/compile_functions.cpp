@@ -8,10 +8,10 @@
 #include <set>
 #include <string>
 
-#include "lang/builtins.h"
+#include "model/builtins.h"
 #include "lang/compile_stages.h"
 #include "lang/expression_compiler.h"
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen::detail {
 

@@ -13,7 +13,7 @@
 
 #include "lang/compile_stages.h"
 #include "lang/expression_compiler.h"
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen::detail {
 

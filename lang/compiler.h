@@ -1,5 +1,5 @@
 #pragma once
-// Checks a parsed program and lowers it to the cell model (lang/program.h): cells and
+// Checks a parsed program and lowers it to the cell model (model/program.h): cells and
 // L-system modules become master cells, productions become terminal rules, successor
 // words become actions, every expression is compiled once. Errors go to the sink with
 // their location; compilation goes on to report as many as it can.
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "lang/ast.h"
-#include "lang/diagnostics.h"
-#include "lang/program.h"
+#include "model/diagnostics.h"
+#include "model/program.h"
 #include "lang/source_reader.h"
 
 namespace ontogen {

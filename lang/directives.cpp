@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "lang/message_number.h"
-#include "lang/program.h"
+#include "model/message_number.h"
+#include "model/program.h"
 
 namespace ontogen {
 

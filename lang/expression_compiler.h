@@ -5,9 +5,9 @@
 #include <string_view>
 
 #include "lang/ast.h"
-#include "lang/diagnostics.h"
-#include "lang/expression.h"
-#include "lang/source.h"
+#include "model/diagnostics.h"
+#include "model/expression.h"
+#include "model/source.h"
 
 namespace ontogen {
 

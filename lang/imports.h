@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "lang/ast.h"
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 #include "lang/source_reader.h"
 
 namespace ontogen {

@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "lang/utf8.h"
+#include "model/utf8.h"
 
 namespace ontogen {
 

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 #include "lang/token.h"
 
 namespace ontogen {

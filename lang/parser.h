@@ -4,8 +4,8 @@
 // stays silent on tokens that are already errors. The grammar is in docs/LANGUAGE.md.
 
 #include "lang/ast.h"
-#include "lang/diagnostics.h"
-#include "lang/source.h"
+#include "model/diagnostics.h"
+#include "model/source.h"
 
 namespace ontogen {
 

@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "lang/ast.h"
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 #include "lang/directives.h"
 #include "lang/lexer.h"
-#include "lang/source.h"
+#include "model/source.h"
 
 namespace ontogen::detail {
 

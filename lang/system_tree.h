@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen {
 

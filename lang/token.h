@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "lang/source.h"
+#include "model/source.h"
 
 namespace ontogen {
 

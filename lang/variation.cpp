@@ -11,10 +11,10 @@
 
 #include "lang/directives.h"
 #include "lang/lexer.h"
-#include "lang/message_number.h"
+#include "model/message_number.h"
 #include "lang/parser.h"
-#include "lang/random.h"
-#include "lang/utf8.h"
+#include "model/random.h"
+#include "model/utf8.h"
 
 namespace ontogen {
 

@@ -24,7 +24,7 @@
 // range is narrowed to the whole numbers inside it.
 //
 // Randomness comes from RandomStream keyed by mixKey of the seed and the parents' values
-// (lang/random.h), so a variant depends on nothing but its inputs, on every platform.
+// (model/random.h), so a variant depends on nothing but its inputs, on every platform.
 
 #include <cstdint>
 #include <string>

@@ -2,7 +2,7 @@
 // The 64-bit hash behind every id and random stream: mixKey(a, b) mixes two words into
 // one. It lives at the bottom of the stack (pools/) because a compact linear word
 // (pools/compact_word.h) derives each module's id from its run's key with it, and lang's
-// random streams (lang/random.h) key themselves with it too.
+// random streams (model/random.h) key themselves with it too.
 
 #include <bit>
 #include <cstdint>

@@ -3,7 +3,7 @@
 // arithmetic operation with a constant: `x`, `c`, `x + c`, `c - x`, `x * c`, `x / c` ...
 // Most parametric L-systems' arguments are of this form (A(x) -> A(x + 1) B(x * 0.5)). A
 // rewrite by a table (pools/table_rewrite.h) computes them in a loop over the word's values
-// instead of running the expression interpreter (lang/expression.h) for each module.
+// instead of running the expression interpreter (model/expression.h) for each module.
 //
 // apply() gives the bits the interpreter gives: the same IEEE operation, with the operands
 // in the same order (NaN payloads follow the first operand), and nothing a compiler may

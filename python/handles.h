@@ -11,7 +11,7 @@
 #include <pybind11/pybind11.h>
 
 #include "core/world.h"
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen::python {
 

@@ -12,7 +12,7 @@
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 #include "lang/convert/convert.h"
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 #include "lang/source_reader.h"
 #include "python/bindings.h"
 #include "python/handles.h"

@@ -7,7 +7,7 @@
 #include "interpreters/run.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
-#include "lang/random.h"
+#include "model/random.h"
 #include "studio/file_bytes.h"
 
 namespace ontogen::studio {

@@ -14,8 +14,8 @@
 #include "core/limits.h"
 #include "core/world.h"
 #include "lang/convert/lsystem_file.h"
-#include "lang/diagnostics.h"
-#include "lang/program.h"
+#include "model/diagnostics.h"
+#include "model/program.h"
 #include "lang/source_reader.h"
 
 namespace ontogen::studio {

@@ -13,7 +13,7 @@
 #include "lang/compiler.h"
 #include "lang/convert/convert.h"
 #include "lang/imports.h"
-#include "lang/message_number.h"
+#include "model/message_number.h"
 #include "lang/source_reader.h"
 #include "lang/variation.h"
 #include "studio/file_bytes.h"

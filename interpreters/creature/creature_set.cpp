@@ -9,7 +9,7 @@
 
 #include "interpreters/creature/two_bone_ik.h"
 #include "interpreters/geometry/gc_mesher.h"
-#include "lang/random.h"
+#include "model/random.h"
 
 namespace ontogen {
 

@@ -10,7 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "interpreters/palette.h"
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen {
 

@@ -9,7 +9,7 @@
 
 #include "core/environment_process.h"
 #include "interpreters/geometry/turtle.h"
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen {
 

@@ -9,7 +9,7 @@
 #include "interpreters/formats/picture_output.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/output_file.h"
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen {
 

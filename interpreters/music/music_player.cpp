@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen {
 

@@ -29,7 +29,7 @@
 #include "interpreters/music/music_player.h"
 #include "interpreters/music/score.h"
 #include "interpreters/music/score_output.h"
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen {
 

@@ -12,7 +12,7 @@
 #include "core/environment_process.h"
 #include "interpreters/geometry/turtle_queries.h"
 #include "interpreters/physics/physics_set.h"
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen {
 

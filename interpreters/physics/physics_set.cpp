@@ -10,7 +10,7 @@
 #include "interpreters/palette.h"
 #include "interpreters/physics/force_arrows.h"
 #include "interpreters/physics/rigid_statics.h"
-#include "lang/random.h"
+#include "model/random.h"
 
 namespace ontogen {
 

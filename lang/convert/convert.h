@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "lang/convert/lsystem_file.h"
-#include "lang/diagnostics.h"
-#include "lang/source.h"
+#include "model/diagnostics.h"
+#include "model/source.h"
 #include "lang/source_reader.h"
 
 namespace ontogen::convert {

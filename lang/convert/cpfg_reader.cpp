@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "lang/builtins.h"
+#include "model/builtins.h"
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
 

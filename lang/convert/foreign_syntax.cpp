@@ -9,7 +9,7 @@
 #include "lang/convert/foreign_text.h"
 #include "lang/convert/foreign_vocabulary.h"
 #include "lang/convert/python_operators.h"
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen::convert {
 

@@ -8,7 +8,7 @@
 
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 #include "tests/fuzz/fuzz_limits.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -9,8 +9,8 @@
 
 #include "lang/compiler.h"
 #include "lang/convert/convert.h"
-#include "lang/diagnostics.h"
-#include "lang/source.h"
+#include "model/diagnostics.h"
+#include "model/source.h"
 #include "tests/fuzz/fuzz_limits.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

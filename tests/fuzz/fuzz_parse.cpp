@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <string>
 
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 #include "lang/lexer.h"
 #include "lang/parser.h"
-#include "lang/source.h"
+#include "model/source.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace ontogen;

@@ -1,4 +1,4 @@
-#include "lang/builtins.h"
+#include "model/builtins.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "lang/noise.h"
-#include "lang/random.h"
+#include "model/noise.h"
+#include "model/random.h"
 
 namespace ontogen {
 namespace {

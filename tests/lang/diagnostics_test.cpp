@@ -1,4 +1,4 @@
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 
 #include <gtest/gtest.h>
 

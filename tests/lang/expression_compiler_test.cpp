@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "lang/expression_batch.h"
+#include "model/expression_batch.h"
 #include "lang/parser.h"
 
 namespace ontogen {

@@ -1,4 +1,4 @@
-// A message writes its numbers one way (lang/message_number.h): non-finite values as the
+// A message writes its numbers one way (model/message_number.h): non-finite values as the
 // language writes them, whatever sign a NaN carries, finite ones as printf's %g.
 
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 namespace ontogen {
 namespace {

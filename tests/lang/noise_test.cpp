@@ -1,4 +1,4 @@
-#include "lang/noise.h"
+#include "model/noise.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include "lang/random.h"
+#include "model/random.h"
 
 namespace ontogen {
 namespace {

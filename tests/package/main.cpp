@@ -11,7 +11,7 @@
 #include "interpreters/set_registry.h"
 #include "interpreters/text/word_text.h"
 #include "lang/compiler.h"
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "lang/expression_batch.h"
+#include "model/expression_batch.h"
 #include "lang/expression_compiler.h"
 #include "lang/parser.h"
 #include "tests/lang/convert/convert_test_support.h"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "lang/source.h"
+#include "model/source.h"
 
 namespace ontogen {
 

@@ -1,4 +1,4 @@
-#include "lang/message_number.h"
+#include "model/message_number.h"
 
 #include <charconv>
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// CompiledExpression::evaluateBatch: the bytecode of lang/expression.cpp run for many
+// CompiledExpression::evaluateBatch: the bytecode of model/expression.cpp run for many
 // cells at once, each instruction over every lane before the next. The arithmetic of each
 // lane is the one run() does, operation for operation, so each lane's value is the bits
 // a one-cell evaluation gives, except for the sign and payload of a NaN: once the lanes
@@ -9,8 +9,8 @@
 
 #include <cmath>
 
-#include "lang/builtins.h"
-#include "lang/expression.h"
+#include "model/builtins.h"
+#include "model/expression.h"
 
 namespace ontogen {
 

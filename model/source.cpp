@@ -1,8 +1,8 @@
-#include "lang/source.h"
+#include "model/source.h"
 
 #include <algorithm>
 
-#include "lang/utf8.h"
+#include "model/utf8.h"
 
 namespace ontogen {
 

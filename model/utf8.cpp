@@ -1,4 +1,4 @@
-#include "lang/utf8.h"
+#include "model/utf8.h"
 
 namespace ontogen {
 

@@ -1,4 +1,4 @@
-#include "lang/expression.h"
+#include "model/expression.h"
 
 #include <cmath>
 

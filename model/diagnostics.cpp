@@ -1,8 +1,8 @@
-#include "lang/diagnostics.h"
+#include "model/diagnostics.h"
 
 #include <algorithm>
 
-#include "lang/utf8.h"
+#include "model/utf8.h"
 
 namespace ontogen {
 

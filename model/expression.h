@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "lang/builtins.h"
+#include "model/builtins.h"
 #include "pools/value_operation.h"
 
 namespace ontogen {
@@ -107,7 +107,7 @@ class CompiledExpression {
   /// Evaluates it for `lanes` (at most kBatchLanes) cells at once, each lane to the bits
   /// evaluate() gives: `load(lane, slot)` reads a frame slot of a lane's cell and
   /// `aggregate(lane, query)` its neighbour aggregate; out[lane] gets the value. One pass
-  /// over the code for all lanes instead of one per cell (lang/expression_batch.h).
+  /// over the code for all lanes instead of one per cell (model/expression_batch.h).
   /// The expression as one operation on frame slot s below `slots` and a constant (`x`,
   /// `c`, `x + c`, `c / x` ...: pools/value_operation.h), whose apply() gives the bits
   /// evaluate() gives; false for any other expression.

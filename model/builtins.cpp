@@ -1,4 +1,4 @@
-#include "lang/builtins.h"
+#include "model/builtins.h"
 
 #include <array>
 #include <cassert>
@@ -7,7 +7,7 @@
 #include <limits>
 #include <numbers>
 
-#include "lang/noise.h"
+#include "model/noise.h"
 
 namespace ontogen {
 

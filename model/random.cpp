@@ -1,4 +1,4 @@
-#include "lang/random.h"
+#include "model/random.h"
 
 #include <bit>
 #include <cmath>

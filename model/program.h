@@ -19,8 +19,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "lang/expression.h"
-#include "lang/source.h"
+#include "model/expression.h"
+#include "model/source.h"
 #include "pools/cell_record.h"
 #include "pools/grid_pool.h"
 #include "pools/linear_pool.h"

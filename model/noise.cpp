@@ -1,4 +1,4 @@
-#include "lang/noise.h"
+#include "model/noise.h"
 
 #include <array>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <numeric>
 #include <utility>
 
-#include "lang/random.h"
+#include "model/random.h"
 
 namespace ontogen {
 

@@ -7,7 +7,7 @@
 #include <span>
 #include <string_view>
 
-#include "lang/random.h"
+#include "model/random.h"
 
 namespace ontogen {
 

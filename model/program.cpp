@@ -1,4 +1,4 @@
-#include "lang/program.h"
+#include "model/program.h"
 
 namespace ontogen {
 
