@@ -10,8 +10,8 @@
 #   target_include_directories(ontogen_music PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>)
 #   ontogen_install_library(ontogen_music)
 #
-# Headers are installed per top-level source folder (ontogen_install_headers), the whole
-# tree below it, so they stay installed when they move between its subfolders.
+# Only the public headers are installed (cmake/ontogen_public_headers.cmake, an explicit
+# list), each at its path in the repository; every other header is private to its library.
 
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
@@ -43,23 +43,14 @@ function(ontogen_install_library target)
   endif()
 endfunction()
 
-# Installs every header below the current source folder into
-# include/ontogen/<folder relative to the repository root>/, keeping subfolders.
-# EXCLUDE names header files (by file name) not to install, e.g. those of a library
-# switched off.
-function(ontogen_install_headers)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "" "" "EXCLUDE")
-  if(NOT ONTOGEN_INSTALL)
-    return()
-  endif()
-  file(RELATIVE_PATH folder "${PROJECT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}")
-  set(excludes "")
-  foreach(file IN LISTS arg_EXCLUDE)
-    list(APPEND excludes PATTERN "${file}" EXCLUDE)
+include("${CMAKE_CURRENT_LIST_DIR}/ontogen_public_headers.cmake")
+
+# Installs the public headers into include/ontogen/<their folder in the repository>/.
+function(ontogen_install_public_headers)
+  foreach(header IN LISTS ONTOGEN_PUBLIC_HEADERS)
+    get_filename_component(folder "${header}" DIRECTORY)
+    install(FILES "${PROJECT_SOURCE_DIR}/${header}" DESTINATION "${ONTOGEN_INSTALL_INCLUDEDIR}/${folder}")
   endforeach()
-  install(DIRECTORY "${CMAKE_CURRENT_SOURCE_DIR}/"
-    DESTINATION "${ONTOGEN_INSTALL_INCLUDEDIR}/${folder}"
-    FILES_MATCHING PATTERN "*.h" ${excludes})
 endfunction()
 
 # The export set and the package files; called once, after every library is added.
@@ -67,6 +58,7 @@ function(ontogen_install_package)
   if(NOT ONTOGEN_INSTALL)
     return()
   endif()
+  ontogen_install_public_headers()
   get_property(ONTOGEN_PACKAGE_COMPONENTS GLOBAL PROPERTY ONTOGEN_INSTALLED_LIBRARIES)
   set(ONTOGEN_PACKAGE_LIVE_MIDI OFF)
   if(TARGET ontogen_live_midi)

@@ -7,10 +7,13 @@
 #include <string>
 #include <system_error>
 
+#include "interpreters/formats/glb_writer.h"
+#include "interpreters/formats/joints_writer.h"
 #include "interpreters/formats/movie_writer.h"
 #include "interpreters/formats/obj_writer.h"
 #include "interpreters/formats/ply_writer.h"
 #include "interpreters/formats/png_writer.h"
+#include "interpreters/formats/skinned_glb_writer.h"
 #include "interpreters/output_file.h"
 
 namespace ontogen {
@@ -69,7 +72,13 @@ std::string applyGeometryFormats(std::string_view list, SceneOutputDef& def) {
   return "";
 }
 
-SceneOutput::SceneOutput(const SceneOutputDef& def) : def_(def) {
+struct SceneOutput::Writers {
+  GlbAnimationWriter glb;
+  SkinnedGlbWriter skinnedGlb;  // the run's frames when they hold a skeleton
+  JointTrackWriter joints;
+};
+
+SceneOutput::SceneOutput(const SceneOutputDef& def) : def_(def), writers_(std::make_unique<Writers>()) {
   checkSvgOptions(def.svg);
   if (def.writePng || def.writePngFrames || def.writeMp4) checkRenderDef(def.render);
   if (def.writeMp4 && !ffmpegAvailable()) {
@@ -77,6 +86,14 @@ SceneOutput::SceneOutput(const SceneOutputDef& def) : def_(def) {
   }
   if (!(def.framesPerSecond > 0)) throw std::invalid_argument("framesPerSecond must be > 0");
 }
+
+SceneOutput::~SceneOutput() = default;
+SceneOutput::SceneOutput(SceneOutput&&) noexcept = default;
+SceneOutput& SceneOutput::operator=(SceneOutput&&) noexcept = default;
+
+uint64_t SceneOutput::heldBytes() const { return writers_->glb.heldBytes() + movieBytes_; }
+
+std::size_t SceneOutput::glbFrames() const { return writers_->glb.frameCount(); }
 
 std::filesystem::path outputPath(const FrameTarget& target, std::string_view extension) {
   std::string name = target.stem.empty() ? std::string("geometry") : target.stem;
@@ -188,35 +205,35 @@ std::vector<std::filesystem::path> SceneOutput::write(const Scene& scene, const 
   // A run whose frames hold a skeleton is written as one skin, from the first frame that
   // holds one (it fixes the skeleton; the frames before it, where the body had not grown
   // yet, are left out); any other as persistent parts (glb_writer.h).
-  const bool skinned = skinnedGlb_.frameCount() > 0 || !scene.skeleton.empty();
+  const bool skinned = writers_->skinnedGlb.frameCount() > 0 || !scene.skeleton.empty();
   // A run of one frame is written from its scene at once, not kept (glb_writer.h).
-  const bool still = !skinned && target_.frameCount <= 1 && glb_.frameCount() == 0;
+  const bool still = !skinned && target_.frameCount <= 1 && writers_->glb.frameCount() == 0;
   if (def_.writeGlb && !still) {
     if (skinned)
-      skinnedGlb_.addFrame(scene);
+      writers_->skinnedGlb.addFrame(scene);
     else
-      glb_.addFrame(scene);
+      writers_->glb.addFrame(scene);
   }
-  if (def_.writeJoints) joints_.addFrame(scene);
+  if (def_.writeJoints) writers_->joints.addFrame(scene);
   if (last) {
     if (def_.writeGlb) {
       std::filesystem::path path = outputPath(whole, "glb");
       writeFileAtomically(path, [&](std::ostream& out) {
         if (skinned)
-          skinnedGlb_.write(out);
+          writers_->skinnedGlb.write(out);
         else if (still)
           GlbAnimationWriter::writeFrame(scene, out);
         else
-          glb_.write(out);
+          writers_->glb.write(out);
       });
-      glb_.clear();
-      skinnedGlb_.clear();
+      writers_->glb.clear();
+      writers_->skinnedGlb.clear();
       written.push_back(std::move(path));
     }
     if (def_.writeJoints) {
       std::filesystem::path path = outputPath(whole, "joints.json");
-      writeFileAtomically(path, [&](std::ostream& out) { joints_.write(out); });
-      joints_.clear();
+      writeFileAtomically(path, [&](std::ostream& out) { writers_->joints.write(out); });
+      writers_->joints.clear();
       written.push_back(std::move(path));
     }
     if (def_.writeMp4) {

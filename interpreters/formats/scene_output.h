@@ -5,22 +5,18 @@
 // picture of the last, the MP4 of all (through ffmpeg), the skeleton's joint tracks. Sets only draw scenes (interpreters/scene.h); this writes them, so several
 // sets can draw into one frame. Every file is written atomically: complete or absent.
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "interpreters/formats/glb_writer.h"
-#include "interpreters/formats/joints_writer.h"
-#include "interpreters/formats/movie_writer.h"
-#include "interpreters/formats/skinned_glb_writer.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/formats/svg_writer.h"
 #include "interpreters/formats/up_axis.h"
 #include "interpreters/interpretation_set.h"
 #include "interpreters/scene.h"
-#include "interpreters/temporary_files.h"
 
 namespace ontogen {
 
@@ -59,6 +55,9 @@ class SceneOutput {
  public:
   /// Throws std::invalid_argument when def is out of range, or asks for mp4 without ffmpeg.
   explicit SceneOutput(const SceneOutputDef& def);
+  ~SceneOutput();
+  SceneOutput(SceneOutput&&) noexcept;
+  SceneOutput& operator=(SceneOutput&&) noexcept;
 
   /// Writes one frame's scene (and, at the run's last frame, the outputs of the whole
   /// run); returns the paths written, SVG first. Throws OutputError on failure.
@@ -66,22 +65,25 @@ class SceneOutput {
   const SceneOutputDef& def() const { return def_; }
   /// Bytes this stage holds between frames (the .glb's frames and the movie's, all
   /// written at the end).
-  uint64_t heldBytes() const { return glb_.heldBytes() + movieBytes_; }
+  uint64_t heldBytes() const;
   /// Bytes the write() of `target` needs for a while to render a picture (0: none).
   uint64_t pictureBytes(const FrameTarget& target) const;
   /// Frames the .glb holds so far.
-  std::size_t glbFrames() const { return glb_.frameCount(); }
+  std::size_t glbFrames() const;
   /// What the stage left out since the last call (frames with nothing an .obj or .ply
   /// can hold, which get no such file), one entry per kind; starts again.
   std::vector<SetWarning> takeWarnings();
 
  private:
+  // The writers that keep the run's frames until the last (scene_output.cpp), behind a
+  // pointer so that this header, which the run's public header includes, needs none of
+  // theirs.
+  struct Writers;
+
   void renderMovieFrames(const FrameTarget& target, std::vector<std::filesystem::path>& written);
 
   SceneOutputDef def_;
-  GlbAnimationWriter glb_;
-  SkinnedGlbWriter skinnedGlb_;  // the run's frames when they hold a skeleton
-  JointTrackWriter joints_;
+  std::unique_ptr<Writers> writers_;
   /// The movie's frames, kept until the last so that one camera frames them all (on the
   /// union of their bounds): a growing model grows on screen instead of zooming.
   std::vector<Geometry> movieFrames_;

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "interpreters/formats/movie_writer.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/formats/scene_output.h"
 #include "interpreters/run.h"

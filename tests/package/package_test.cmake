@@ -38,6 +38,9 @@ foreach(file IN ITEMS bin/ontogen include/ontogen/core/world.h include/ontogen/l
   endif()
 endforeach()
 run("installed ontogen help" "${prefix}/bin/ontogen" help)
+# The public headers alone, each including only public ones (public_headers_test.cmake).
+run("checking the installed headers" "${CMAKE_COMMAND}" "-DINCLUDE_DIR=${prefix}/include/ontogen"
+  "-DSOURCE_DIR=${example}/../.." -P "${example}/public_headers_test.cmake")
 
 # The example is built like the libraries it links: same compiler, same sanitizers.
 set(configure_args -S "${example}" -B "${build}" "-DCMAKE_PREFIX_PATH=${prefix}"

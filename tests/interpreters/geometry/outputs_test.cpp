@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "interpreters/formats/glb_writer.h"
+#include "interpreters/formats/movie_writer.h"
 #include "interpreters/formats/renderer.h"
 #include "interpreters/geometry/geometry_set.h"
 #include "interpreters/geometry/surface.h"
