@@ -6,7 +6,7 @@
 #include "apps/command_reference.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
-#include "apps/text_mate_grammar.h"
+#include "editors/text_mate_grammar.h"
 #include "interpreters/creature/creature_commands.h"
 #include "interpreters/dynamics/dynamics_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
@@ -70,7 +70,7 @@ void printKeywords() {
 
 int runHelp(const HelpOptions& options) {
   if (options.grammar) {
-    std::cout << textMateGrammar();
+    std::cout << editors::textMateGrammar();
     return kExitOk;
   }
   if (options.reference) {

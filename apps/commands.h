@@ -106,7 +106,7 @@ struct StudioOptions {
 };
 
 struct HelpOptions {
-  bool grammar = false;  ///< print the editors' TextMate grammar instead (apps/text_mate_grammar.h)
+  bool grammar = false;  ///< print the editors' TextMate grammar instead (editors/text_mate_grammar.h)
   bool reference = false;  ///< print the sets' command reference instead (apps/command_reference.h)
 };
 
