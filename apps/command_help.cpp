@@ -3,9 +3,9 @@
 #include <string>
 #include <string_view>
 
-#include "apps/command_reference.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
+#include "editors/command_reference.h"
 #include "editors/text_mate_grammar.h"
 #include "interpreters/creature/creature_commands.h"
 #include "interpreters/dynamics/dynamics_commands.h"
@@ -74,7 +74,7 @@ int runHelp(const HelpOptions& options) {
     return kExitOk;
   }
   if (options.reference) {
-    std::cout << commandReference();
+    std::cout << editors::commandReference();
     return kExitOk;
   }
   std::cout << "ontogen: grows cell-language programs and realises them as geometry, music and text.\n\n"
