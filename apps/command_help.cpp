@@ -3,10 +3,10 @@
 #include <string>
 #include <string_view>
 
-#include "apps/command_reference.h"
 #include "apps/commands.h"
 #include "apps/program_loader.h"
-#include "apps/text_mate_grammar.h"
+#include "editors/command_reference.h"
+#include "editors/text_mate_grammar.h"
 #include "interpreters/creature/creature_commands.h"
 #include "interpreters/dynamics/dynamics_commands.h"
 #include "interpreters/geometry/turtle_commands.h"
@@ -70,11 +70,11 @@ void printKeywords() {
 
 int runHelp(const HelpOptions& options) {
   if (options.grammar) {
-    std::cout << textMateGrammar();
+    std::cout << editors::textMateGrammar();
     return kExitOk;
   }
   if (options.reference) {
-    std::cout << commandReference();
+    std::cout << editors::commandReference();
     return kExitOk;
   }
   std::cout << "ontogen: grows cell-language programs and realises them as geometry, music and text.\n\n"

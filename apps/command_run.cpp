@@ -80,7 +80,7 @@ int runRun(const RunOptions& options) {
   def.progress = [&progress](int done, int total) { progress.update(done, total); };
 
   Run run(std::move(def));
-  std::shared_ptr<LivePlayback> playback;
+  std::shared_ptr<LiveSession> playback;
   if (int code = attachLivePlayback(options, run.sets(), playback); code != kExitOk) return code;
   const RunReport report = run.execute();
   if (report.ok()) progress.finish();

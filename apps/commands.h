@@ -106,8 +106,8 @@ struct StudioOptions {
 };
 
 struct HelpOptions {
-  bool grammar = false;  ///< print the editors' TextMate grammar instead (apps/text_mate_grammar.h)
-  bool reference = false;  ///< print the sets' command reference instead (apps/command_reference.h)
+  bool grammar = false;  ///< print the editors' TextMate grammar instead (editors/text_mate_grammar.h)
+  bool reference = false;  ///< print the sets' command reference instead (editors/command_reference.h)
 };
 
 /// What `sweep` and `evolve` share.

@@ -3,16 +3,13 @@
 #include <atomic>
 #include <csignal>
 #include <iostream>
-#include <mutex>
 #include <optional>
-#include <span>
 #include <string>
-#include <thread>
 
 #include "apps/program_loader.h"
 #include "interpreters/music/music_set.h"
 #ifdef ONTOGEN_HAVE_LIVE_MIDI
-#include "interpreters/music/live_midi.h"
+#include "interpreters/music/live_playback.h"
 #endif
 
 namespace ontogen::app {
@@ -45,62 +42,38 @@ class InterruptGuard {
 
 }  // namespace
 
-class LivePlayback {
+// The playback with Ctrl-C's handler while it plays, and whether to print its statistics.
+class LiveSession {
  public:
-  LivePlayback(const LiveMidiDef& def, bool stats) : output_(def), stats_(stats) {}
-  ~LivePlayback() {
-    // A run that failed: stop the music at once rather than play what was made.
-    gStop.store(true);
-    join();
+  LiveSession(const LiveMidiDef& midi, bool stats) : stats_(stats) {
+    LivePlaybackDef def;
+    def.midi = midi;
+    def.stop = &gStop;
+    def.started = [this](const std::string& port) {
+      guard_.emplace();
+      std::cerr << "playing on '" << port << "' as the model develops\n";
+    };
+    playback_ = std::make_shared<LivePlayback>(std::move(def));
   }
-  LivePlayback(const LivePlayback&) = delete;
-  LivePlayback& operator=(const LivePlayback&) = delete;
+  void attach(MusicSet& music) { LivePlayback::attach(playback_, music); }
 
-  /// The music set's streamer: encodes what is final and hands it to the performer.
-  void stream(const Score& score, double horizon, bool finished, const MidiFileDef& file) {
-    if (gStop.load()) {
-      join();  // its notes are stopped before the run ends
-      throw PlaybackInterrupted("interrupted: every note stopped");
-    }
-    if (std::string failed = error(); !failed.empty()) throw OutputError(failed);
-    if (!performer_.joinable()) start();
-    if (!encoder_) {
-      encoder_.emplace(file.ppq, file.tempo);
-      sequence_ = MidiSequence{};
-      forwarded_ = 0;
-      stream_.begin(file.ppq);
-    }
-    try {
-      if (finished)
-        encoder_->finish(score, sequence_);
-      else
-        encoder_->advance(score, horizon, sequence_);
-    } catch (const std::invalid_argument& bad) {
-      throw OutputError(std::string("live MIDI: ") + bad.what());
-    }
-    stream_.add(std::span(sequence_.messages).subspan(forwarded_), sequence_.tempos, encoder_->released(), finished);
-    forwarded_ = sequence_.messages.size();
-    if (finished) encoder_.reset();
-  }
-
-  /// Lets the performance end, then reports it.
   int finish() {
-    if (performer_.joinable()) std::cerr << "grown; the music plays to its end (Ctrl-C stops it)\n";
-    stream_.close();
-    join();
+    if (playback_->playing()) std::cerr << "grown; the music plays to its end (Ctrl-C stops it)\n";
+    const PlaybackOutcome outcome = playback_->finish();
     guard_.reset();
     if (stats_) {
-      TimingSummary timing = summarizeTiming(report_.lateness);
-      std::cerr << "live: " << report_.sent << " messages sent, lateness against the schedule: median "
+      const PerformanceReport& report = outcome.report;
+      TimingSummary timing = summarizeTiming(report.lateness);
+      std::cerr << "live: " << report.sent << " messages sent, lateness against the schedule: median "
                 << timing.median * 1e3 << " ms, p99 " << timing.p99 * 1e3 << " ms, max " << timing.max * 1e3
-                << " ms; " << report_.clocks << " clocks; " << report_.stalls << " stalls waiting "
-                << report_.stalledSeconds << " s for the development\n";
+                << " ms; " << report.clocks << " clocks; " << report.stalls << " stalls waiting "
+                << report.stalledSeconds << " s for the development\n";
     }
-    if (std::string failed = error(); !failed.empty()) {
-      std::cerr << "ontogen: error: " << failed << "\n";
+    if (!outcome.error.empty()) {
+      std::cerr << "ontogen: error: " << outcome.error << "\n";
       return kExitOutputError;
     }
-    if (report_.stopped) {
+    if (outcome.report.stopped) {
       std::cerr << "\nontogen: interrupted: every note stopped\n";
       return kExitInterrupted;
     }
@@ -108,43 +81,13 @@ class LivePlayback {
   }
 
  private:
-  void start() {
-    guard_.emplace();
-    std::cerr << "playing on '" << output_.portName() << "' as the model develops\n";
-    performer_ = std::thread([this] {
-      try {
-        report_ = output_.perform(stream_, gStop);
-      } catch (const LiveMidiError& failure) {
-        std::lock_guard lock(errorMutex_);
-        error_ = failure.what();
-      }
-    });
-  }
-  void join() {
-    stream_.close();
-    if (performer_.joinable()) performer_.join();
-  }
-  std::string error() {
-    std::lock_guard lock(errorMutex_);
-    return error_;
-  }
-
-  LiveMidiOutput output_;
   bool stats_;
-  LiveMidiStream stream_;
-  std::thread performer_;
   std::optional<InterruptGuard> guard_;
-  PerformanceReport report_;  // written by the performer, read after join
-  std::mutex errorMutex_;
-  std::string error_;
-  // The piece being streamed: its encoder and the messages made so far.
-  std::optional<MidiStreamEncoder> encoder_;
-  MidiSequence sequence_;
-  size_t forwarded_ = 0;
+  std::shared_ptr<LivePlayback> playback_;  // last: its notes stop before Ctrl-C is given back
 };
 
 int attachLivePlayback(const RunOptions& options, std::vector<std::unique_ptr<InterpretationSet>>& sets,
-                       std::shared_ptr<LivePlayback>& playback) {
+                       std::shared_ptr<LiveSession>& session) {
   if (options.midiPort.empty() && !options.virtualPort) {
     if (!options.midiClock) return kExitOk;
     std::cerr << "ontogen: error: --midi-clock is sent with live playback: add --midi-port or --virtual-port\n";
@@ -162,20 +105,16 @@ int attachLivePlayback(const RunOptions& options, std::vector<std::unique_ptr<In
   def.virtualPort = options.virtualPort;
   def.clock = options.midiClock;
   try {
-    playback = std::make_shared<LivePlayback>(def, options.stats);
+    session = std::make_shared<LiveSession>(def, options.stats);
   } catch (const LiveMidiError& error) {
     std::cerr << "ontogen: error: " << error.what() << "\n";
     return kExitMidiError;
   }
-  // The set holds the playback weakly: the run's owner decides when it ends.
-  std::weak_ptr<LivePlayback> weak = playback;
-  music->setStreamer([weak](const Score& score, double horizon, bool finished, const MidiFileDef& file) {
-    if (auto live = weak.lock()) live->stream(score, horizon, finished, file);
-  });
+  session->attach(*music);
   return kExitOk;
 }
 
-int finishLivePlayback(const std::shared_ptr<LivePlayback>& playback) { return playback ? playback->finish() : kExitOk; }
+int finishLivePlayback(const std::shared_ptr<LiveSession>& session) { return session ? session->finish() : kExitOk; }
 
 int runMidiPorts() {
   try {
@@ -191,10 +130,10 @@ int runMidiPorts() {
 
 #else
 
-class LivePlayback {};
+class LiveSession {};
 
 int attachLivePlayback(const RunOptions& options, std::vector<std::unique_ptr<InterpretationSet>>&,
-                       std::shared_ptr<LivePlayback>&) {
+                       std::shared_ptr<LiveSession>&) {
   if (options.midiPort.empty() && !options.virtualPort && !options.midiClock) return kExitOk;
   std::cerr << "ontogen: error: this ontogen was built without live MIDI (ONTOGEN_LIVE_MIDI=OFF)\n";
   return kExitMidiError;
@@ -205,7 +144,7 @@ int runMidiPorts() {
   return kExitMidiError;
 }
 
-int finishLivePlayback(const std::shared_ptr<LivePlayback>&) { return kExitOk; }
+int finishLivePlayback(const std::shared_ptr<LiveSession>&) { return kExitOk; }
 
 #endif
 

@@ -1,6 +1,5 @@
 #include "apps/program_loader.h"
 
-#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -36,107 +35,48 @@ std::optional<DefineOverride> parseDefine(const std::string& text) {
   return DefineOverride{text.substr(0, equals), *number};
 }
 
-// Errors with no place in the text come from the compile options, here --system and
-// --define: a bad command line rather than a bad program.
-bool onlyOptionErrors(const DiagnosticSink& sink) {
-  return std::all_of(sink.diagnostics().begin(), sink.diagnostics().end(),
-                     [](const Diagnostic& d) { return d.severity != Severity::Error || !d.span.valid(); });
-}
-
-// A view file holds a few settings: no more than this is read of one.
-constexpr uint64_t kMaxViewBytes = uint64_t{1} << 20;
-
-// Checking a program takes about 100 bytes of memory a byte of text (a 5 MB axiom takes
-// 520 MB), converting one of another tool less (a 10 MB line of a .l took 87 bytes a
-// byte): a text that could not be checked within the memory limit is refused before it
-// is converted or checked.
-constexpr uint64_t kCheckBytesPerSourceByte = 128;
-
-// Prints why `result` has no text, and keeps it.
-ProgramText failed(ProgramText result, int exitCode, std::string error) {
-  std::cerr << "ontogen: error: " << error << "\n";
-  result.exitCode = exitCode;
-  result.error = std::move(error);
-  return result;
-}
-
-// Whether checking `bytes` of text read from `path` fits the memory limit.
-std::optional<std::string> pastMemoryLimit(const std::string& path, uint64_t bytes, const WorldLimits& limits) {
-  try {
-    checkOutsideMemory("checking the " + std::to_string(bytes) + " bytes of '" + path + "'",
-                       bytes * kCheckBytesPerSourceByte, 0, limits);
-  } catch (const LimitError& limit) {
-    return limit.what();
-  }
-  return std::nullopt;
+// The memory limit of `limits` as lang/program_file.h asks it.
+MemoryCheck memoryCheckOf(const WorldLimits& limits) {
+  return [limits](const std::string& what, uint64_t bytes) -> std::optional<std::string> {
+    try {
+      checkOutsideMemory(what, bytes, 0, limits);
+    } catch (const LimitError& limit) {
+      return limit.what();
+    }
+    return std::nullopt;
+  };
 }
 
 }  // namespace
 
 ProgramText readProgramText(const std::string& path, uint64_t maxBytes, const WorldLimits& limits) {
-  ProgramText result;
-  result.name = path;
-  SourceText read = readSourceFile(path, maxBytes);
-  if (!read.text) return failed(std::move(result), kExitUsage, "cannot read '" + path + "': " + read.error);
-  std::optional<std::string>& text = read.text;
-  const std::optional<convert::Dialect> dialect = convert::dialectOfPath(path);
-  if (!dialect) {
-    if (auto past = pastMemoryLimit(path, text->size(), limits)) return failed(std::move(result), kExitModelError, *past);
-    result.text = std::move(text);
-    return result;
-  }
-  // cpfg keeps the turn angle in the view file beside the L-system, named alike. It is
-  // read as a program is, a regular file up to a limit: a FIFO or a device named .v
-  // must neither block nor fill memory.
-  std::string view;
-  if (*dialect == convert::Dialect::Cpfg) {
-    const std::filesystem::path viewPath = std::filesystem::path(path).replace_extension(".v");
-    std::error_code missing;
-    if (std::filesystem::exists(std::filesystem::symlink_status(viewPath, missing))) {
-      // The view file counts with the file toward the source limit.
-      SourceText viewText = readSourceFile(viewPath, std::min(kMaxViewBytes, maxBytes - text->size()));
-      if (!viewText.text)
-        return failed(std::move(result), kExitUsage,
-                      "cannot read the view file '" + viewPath.string() + "': " + viewText.error);
-      view = std::move(*viewText.text);
-    }
-  }
-  // Converting takes memory as checking does: a file that could not be checked within the
-  // limit is refused before it is converted (a 10 MB line took 36 s and 866 MB first).
-  if (auto past = pastMemoryLimit(path, text->size() + view.size(), limits))
-    return failed(std::move(result), kExitModelError, *past);
-  auto source = std::make_shared<const SourceFile>(path, std::move(*text));
   DiagnosticSink sink;
-  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, maxBytes);
+  ProgramText result;
+  static_cast<ProgramFileText&>(result) = readProgramFile(path, ProgramFileDef{maxBytes, memoryCheckOf(limits)}, sink);
   std::cerr << formatDiagnostics(sink);
-  if (!converted.program) {
-    std::cerr << "ontogen: " << path << " cannot be converted from " << convert::dialectName(*dialect) << "\n";
-    result.exitCode = converted.untranslatable ? kExitUntranslatable : kExitProgramError;
-    result.error = "it cannot be converted from " + std::string(convert::dialectName(*dialect));
-    return result;
+  switch (result.failure) {
+    case ProgramFileFailure::None: return result;
+    case ProgramFileFailure::Unreadable: result.exitCode = kExitUsage; break;
+    case ProgramFileFailure::PastMemoryLimit: result.exitCode = kExitModelError; break;
+    case ProgramFileFailure::NotConverted:
+    case ProgramFileFailure::Untranslatable:
+      std::cerr << "ontogen: " << path << " cannot be converted from "
+                << convert::dialectName(*convert::dialectOfPath(path)) << "\n";
+      result.exitCode =
+          result.failure == ProgramFileFailure::Untranslatable ? kExitUntranslatable : kExitProgramError;
+      return result;
   }
-  if (auto past = pastMemoryLimit(path + " (converted)", converted.program->size(), limits))
-    return failed(std::move(result), kExitModelError, *past);
-  result.text = std::move(converted.program);
-  result.name = path + " (converted)";
-  result.converted = true;
-  result.original = std::move(source);
-  result.lineOrigins = std::move(converted.lineOrigins);
+  std::cerr << "ontogen: error: " << result.error << "\n";
   return result;
 }
 
 studio::StudioReader studioReader(const WorldLimits& limits) {
   return [limits](const std::string& path, uint64_t maxBytes) {
     ProgramText read = readProgramText(path, maxBytes, limits);  // says why on stderr too
-    return studio::StudioSource{std::move(read.text), read.name, std::move(read.error), std::move(read.original),
+    std::shared_ptr<const SourceFile> original = read.converted ? std::move(read.original) : nullptr;
+    return studio::StudioSource{std::move(read.text), read.name, std::move(read.error), std::move(original),
                                 std::move(read.lineOrigins)};
   };
-}
-
-Diagnostic inOriginal(const Diagnostic& diagnostic, const ProgramText& text) {
-  if (!text.converted || !text.original || !diagnostic.span.valid() || diagnostic.span.file->name() != text.name)
-    return diagnostic;
-  return convert::mapToOriginal(diagnostic, *text.original, text.lineOrigins);
 }
 
 LoadedProgram loadProgram(const CommonOptions& common) {

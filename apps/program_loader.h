@@ -8,10 +8,8 @@
 #include <vector>
 
 #include "core/limits.h"
-#include "lang/convert/lsystem_file.h"
-#include "model/diagnostics.h"
 #include "model/program.h"
-#include "lang/source_reader.h"
+#include "lang/program_file.h"
 #include "studio/program_options.h"
 
 namespace ontogen::app {
@@ -40,29 +38,16 @@ struct LoadedProgram {
 
 struct CommonOptions;
 
-/// A program's text: a cell-language file as it is, a cpfg (.l) or L-Py (.lpy) file
-/// converted (lang/convert/convert.h). On failure prints why to stderr and gives no text.
-struct ProgramText {
-  std::optional<std::string> text;
-  std::string name;  ///< for diagnostics: the path, "PATH (converted)" for another tool's file
-  bool converted = false;
-  /// kExitUsage (not a readable file, past the source size limit), kExitModelError (past
-  /// the memory limit), kExitProgramError or kExitUntranslatable when there is no text.
+/// A program file's text (lang/program_file.h) with the exit code of why there is none:
+/// kExitUsage (not a readable file, past the source size limit), kExitModelError (past
+/// the memory limit), kExitProgramError or kExitUntranslatable (not converted).
+struct ProgramText : ProgramFileText {
   int exitCode = kExitOk;
-  std::string error;  ///< why there is no text, as printed (without "ontogen: error: ")
-  /// A converted file: the file itself, and for each line of `text` the bytes of it the
-  /// line was written from (convert::mapToOriginal shows errors there).
-  std::shared_ptr<const SourceFile> original;
-  std::vector<convert::SourceRange> lineOrigins;
 };
 
-/// A diagnostic of the compiler about `text`, at its place in the file it was converted
-/// from when it was (convert::mapToOriginal).
-Diagnostic inOriginal(const Diagnostic& diagnostic, const ProgramText& text);
-/// Reads the program file at `path`, converting another tool's. The file (with a cpfg
-/// file's view file) is held to the source limit `maxBytes` and, before it is converted or
-/// checked, to what checking it takes of the memory limit of `limits`; so is the text a
-/// conversion writes.
+/// Reads the program file at `path`, converting another tool's, held to the source limit
+/// `maxBytes` and the memory limit of `limits`; prints the converter's diagnostics and
+/// why there is no text to stderr.
 ProgramText readProgramText(const std::string& path, uint64_t maxBytes = kDefaultMaxSourceBytes,
                             const WorldLimits& limits = WorldLimits{});
 

@@ -2,7 +2,7 @@
 // The table of the cell language's words: its keywords (contextual: the parser reads
 // them as identifiers where no keyword can stand, so `cell` or `pool` stay free as
 // module labels) and the names a program reads but never declares (`age`, `time`, `me`).
-// `ontogen help` prints it and the editors' grammar (apps/text_mate_grammar.h) colours
+// `ontogen help` prints it and the editors' grammar (editors/text_mate_grammar.h) colours
 // it; tests/lang/keywords_test.cpp holds it to the words lang/parser*.cpp and
 // lang/compile_context.cpp accept.
 

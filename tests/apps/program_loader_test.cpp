@@ -1,6 +1,7 @@
-// Reading a program for the commands (apps/program_loader.h): a file of another tool is
-// held to the source and memory limits before it is converted, as a cell-language file is
-// before it is checked, and the studio reads through the same limits.
+// Reading a program for the commands (apps/program_loader.h over lang/program_file.h): a
+// file of another tool is held to the source and memory limits before it is converted, as
+// a cell-language file is before it is checked, and the studio reads through the same
+// limits.
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "apps/text_mate_grammar.h"
+#include "editors/text_mate_grammar.h"
 
 #include <algorithm>
 #include <cctype>
@@ -16,7 +16,7 @@
 #include "lang/directives.h"
 #include "lang/keywords.h"
 
-namespace ontogen::app {
+namespace ontogen::editors {
 
 namespace {
 
@@ -163,4 +163,4 @@ std::string textMateGrammar() {
   return grammar.dump(2) + "\n";
 }
 
-}  // namespace ontogen::app
+}  // namespace ontogen::editors

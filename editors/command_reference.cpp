@@ -1,4 +1,4 @@
-#include "apps/command_reference.h"
+#include "editors/command_reference.h"
 
 #include <string_view>
 
@@ -8,7 +8,7 @@
 #include "interpreters/music/music_commands.h"
 #include "interpreters/physics/physics_commands.h"
 
-namespace ontogen::app {
+namespace ontogen::editors {
 
 namespace {
 
@@ -92,4 +92,4 @@ std::string commandReference() {
   return out;
 }
 
-}  // namespace ontogen::app
+}  // namespace ontogen::editors

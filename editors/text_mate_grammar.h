@@ -5,7 +5,7 @@
 // (lang/directives.h), the built-in functions and constants (model/builtins.h), the
 // commands of the turtle, creature, dynamics, physics and music sets and the music set's scale
 // names. editors/vscode/syntaxes/cell.tmLanguage.json is a copy of its output
-// (tests/apps/text_mate_grammar_test.cpp keeps the two equal).
+// (tests/editors/text_mate_grammar_test.cpp keeps the two equal).
 //
 // A grammar colours by regular expressions, line by line, without the parser's context,
 // so it colours a word by what it usually is: `at` as a keyword (also a music command),
@@ -14,10 +14,10 @@
 
 #include <string>
 
-namespace ontogen::app {
+namespace ontogen::editors {
 
 /// The grammar as pretty-printed JSON (two spaces, keys in a fixed order, a final
 /// newline): the same bytes from the same tables.
 std::string textMateGrammar();
 
-}  // namespace ontogen::app
+}  // namespace ontogen::editors

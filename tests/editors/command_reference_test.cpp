@@ -1,8 +1,8 @@
-// The sets' command reference (apps/command_reference.h): the committed docs/COMMANDS.md
+// The sets' command reference (editors/command_reference.h): the committed docs/COMMANDS.md
 // is what `ontogen help --reference` prints, it has a row for every command of every
 // table in the table's order, and docs/LANGUAGE.md links each set to it.
 
-#include "apps/command_reference.h"
+#include "editors/command_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@
 
 namespace {
 
-using ontogen::app::commandReference;
+using ontogen::editors::commandReference;
 
 std::string readDoc(const std::string& name) {
   std::ifstream in(std::string(ONTOGEN_SOURCE_DIR) + "/docs/" + name, std::ios::binary);

@@ -1,9 +1,9 @@
-// The editors' grammar (apps/text_mate_grammar.h): the committed copy is what
+// The editors' grammar (editors/text_mate_grammar.h): the committed copy is what
 // `ontogen help --grammar` prints, and every name of the tables it is made from is in it.
-// tests/apps/text_mate_grammar_test.mjs tokenizes models with it in a real TextMate
+// tests/editors/text_mate_grammar_test.mjs tokenizes models with it in a real TextMate
 // engine (vscode-textmate with Oniguruma).
 
-#include "apps/text_mate_grammar.h"
+#include "editors/text_mate_grammar.h"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +23,7 @@
 
 namespace {
 
-using ontogen::app::textMateGrammar;
+using ontogen::editors::textMateGrammar;
 
 std::string committed() {
   std::ifstream in(std::string(ONTOGEN_SOURCE_DIR) + "/editors/vscode/syntaxes/cell.tmLanguage.json", std::ios::binary);

@@ -1,0 +1,28 @@
+# Fails when apps/ holds more than LIMIT lines (its files together, as `wc -l apps/*`
+# counts them): apps/ parses flags and prints, and logic belongs in the libraries.
+#   cmake -DAPPS_DIR=<source>/apps -DLIMIT=2500 -P apps_line_limit.cmake
+if(NOT APPS_DIR OR NOT LIMIT)
+  message(FATAL_ERROR "apps_line_limit.cmake needs -DAPPS_DIR=... and -DLIMIT=...")
+endif()
+file(GLOB files LIST_DIRECTORIES false "${APPS_DIR}/*")
+if(NOT files)
+  message(FATAL_ERROR "no files in ${APPS_DIR}")
+endif()
+set(total 0)
+set(largest "")
+foreach(file IN LISTS files)
+  file(READ "${file}" text)
+  string(REGEX MATCHALL "\n" newlines "${text}")
+  list(LENGTH newlines lines)
+  math(EXPR total "${total} + ${lines}")
+  get_filename_component(name "${file}" NAME)
+  list(APPEND largest "${lines} ${name}")
+endforeach()
+if(total GREATER LIMIT)
+  list(SORT largest COMPARE NATURAL ORDER DESCENDING)
+  list(SUBLIST largest 0 5 top)
+  string(REPLACE ";" ", " top "${top}")
+  message(FATAL_ERROR "apps/ holds ${total} lines, more than ${LIMIT}: move logic into a library "
+                      "(largest: ${top})")
+endif()
+message(STATUS "apps/ holds ${total} lines (at most ${LIMIT})")
