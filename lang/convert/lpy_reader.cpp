@@ -8,6 +8,7 @@
 #include <string>
 #include <tuple>
 
+#include "lang/builtins.h"
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
 #include "lang/convert/lpy_hooks.h"
@@ -145,6 +146,7 @@ class LPyReader {
         continue;
       }
       if (isImport(begin, end)) continue;
+      if (topLevelStatement(begin, end)) continue;
       if (angleIncrement(begin, end)) continue;
       // print(...) writes to the terminal, which changes no word.
       if (afterKeyword(clean_, line, "print")) continue;
@@ -220,39 +222,110 @@ class LPyReader {
   }
 
   // `import math`, `from random import *`, `import random as rd`: the names these give
-  // are translated.
+  // are translated. Another module's import is read over where the names it binds are
+  // none the converter gives a meaning to: read, they are then unknown names, a located
+  // error (`t.time()` is an attribute, refused as such).
   bool isImport(uint32_t begin, uint32_t end) {
     const Line line{begin, end};
     // from __future__ import division, print_function: Python 2 reading as 3 (pythonVersion).
     if (clean_.compare(begin, 22, "from __future__ import") == 0) return true;
-    for (std::string_view module : {"math", "random", "openalea.plantgl.all"}) {
-      if (auto at = afterKeyword(clean_, line, "import")) {
-        uint32_t a = *at, b = end;
+    auto known = [](std::string_view module) {
+      return module == "math" || module == "random" || module == "openalea.plantgl.all";
+    };
+    if (auto at = afterKeyword(clean_, line, "import")) {
+      for (uint32_t from = *at; from < end;) {
+        const uint32_t comma = syntax_.find(from, end, ",");
+        uint32_t a = from, b = comma;
         syntax_.trim(a, b);
-        if (clean_.substr(a, b - a) == module) return true;
-        // import random as rd
-        if (module != "openalea.plantgl.all" && clean_.compare(a, module.size(), module) == 0 &&
-            a + module.size() < b && std::isspace(static_cast<unsigned char>(clean_[a + module.size()]))) {
-          if (auto as = afterKeyword(clean_, Line{static_cast<uint32_t>(a + module.size()), b}, "as")) {
-            uint32_t x = *as, y = b;
-            syntax_.trim(x, y);
-            bool isName = x < y;
-            for (uint32_t k = x; k < y; ++k) isName = isName && isNameChar(clean_[k]);
-            if (isName) {
-              syntax_.moduleAliases[std::string(clean_.substr(x, y - x))] = std::string(module);
-              return true;
-            }
-          }
+        uint32_t stop = a;
+        while (stop < b && (isNameChar(clean_[stop]) || clean_[stop] == '.')) ++stop;
+        const std::string module(clean_.substr(a, stop - a));
+        if (module.empty()) python(a, end);
+        std::string bound = module.substr(0, module.find('.'));
+        if (stop < b) {
+          auto as = afterKeyword(clean_, Line{stop, b}, "as");
+          uint32_t x = as ? *as : b, y = b;
+          syntax_.trim(x, y);
+          uint32_t k = x;
+          while (k < y && isNameChar(clean_[k])) ++k;
+          if (!as || x == y || k != y) python(stop, b);
+          bound = std::string(clean_.substr(x, y - x));
+          if (module == "math" || module == "random") syntax_.moduleAliases[bound] = module;
         }
+        if (!known(module) && (bound == "math" || bound == "random" || syntax_.moduleAliases.count(bound)))
+          syntax_.fail(a, b, "'import " + module + "' binds the name '" + bound +
+                                 "', which the converter reads as Python's module " +
+                                 (bound == "math" || bound == "random" ? bound : syntax_.moduleAliases.at(bound)));
+        from = comma + 1;
       }
-      if (auto at = afterKeyword(clean_, line, "from")) {
-        uint32_t a = *at, b = end;
-        syntax_.trim(a, b);
-        if (clean_.compare(a, module.size(), module) == 0 && a + module.size() < b &&
-            std::isspace(static_cast<unsigned char>(clean_[a + module.size()])) &&
-            afterKeyword(clean_, Line{static_cast<uint32_t>(a + module.size()), b}, "import"))
-          return true;
-      }
+      return true;
+    }
+    auto at = afterKeyword(clean_, line, "from");
+    if (!at) return false;
+    uint32_t a = *at;
+    while (a < end && std::isspace(static_cast<unsigned char>(clean_[a]))) ++a;
+    uint32_t stop = a;
+    while (stop < end && (isNameChar(clean_[stop]) || clean_[stop] == '.')) ++stop;
+    const std::string module(clean_.substr(a, stop - a));
+    auto names = afterKeyword(clean_, Line{stop, end}, "import");
+    if (module.empty() || stop == end || !names) return false;
+    if (known(module)) return true;
+    uint32_t x = *names, y = end;
+    syntax_.trim(x, y);
+    if (x < y && clean_[x] == '(' && clean_[y - 1] == ')') syntax_.trim(++x, --y);
+    if (clean_.substr(x, y - x) == "*") {
+      // L-Py's own modules give classes and functions of its Python side, none of them a
+      // name the converter translates.
+      if (module == "openalea.lpy" || module.rfind("openalea.lpy.", 0) == 0) return true;
+      syntax_.fail(x, y, "'from " + module + " import *' gives names the converter cannot know: name them");
+    }
+    for (uint32_t from = x; from < y;) {
+      const uint32_t comma = syntax_.find(from, y, ",");
+      uint32_t p = from, q = comma;
+      syntax_.trim(p, q);
+      if (auto as = syntax_.find(p, q, " as "); as < q) p = as + 4;
+      syntax_.trim(p, q);
+      const std::string name(clean_.substr(p, q - p));
+      if (translatedName(name))
+        syntax_.fail(p, q, "'" + name + "' imported from " + module +
+                               ": a name the converter reads as Python's or the cell language's own");
+      from = comma + 1;
+    }
+    return true;
+  }
+
+  // A name the converter gives a meaning to where a file reads it: the cell language's
+  // functions and constants and the Python names translated into them.
+  static bool translatedName(const std::string& name) {
+    for (std::string_view python : {"math", "random", "uniform", "gauss", "normalvariate", "normal", "int", "float",
+                                    "round", "radians", "degrees", "fabs", "getIterationNb", "seed", "True", "False",
+                                    "None", "pi", "e"})
+      if (name == python) return true;
+    return findBuiltin(name) || findConstant(name);
+  }
+
+  // Statements of Python's top level that change no word the block derives: `global`
+  // (at the top level, names are global already), `assert` (a warning: the block does not
+  // check it), and `backward()` / `forward()`, the direction of every step (L-Py keeps it
+  // from the file's loading on).
+  bool topLevelStatement(uint32_t begin, uint32_t end) {
+    const Line line{begin, end};
+    if (afterKeyword(clean_, line, "global")) return true;
+    if (afterKeyword(clean_, line, "assert")) {
+      syntax_.warnings.push_back({SourceRange{begin, end},
+                                  "'assert' at L-Py's top level is not checked: the converted block runs on where "
+                                  "L-Py stops at an assertion that fails"});
+      return true;
+    }
+    for (std::string_view call : {"backward", "forward"}) {
+      const Line rest{static_cast<uint32_t>(begin + call.size()), end};
+      if (clean_.compare(begin, call.size(), call) != 0 || rest.begin >= end || isNameChar(clean_[rest.begin]))
+        continue;
+      uint32_t a = rest.begin, b = end;
+      syntax_.trim(a, b);
+      if (clean_.substr(a, b - a) != "()") continue;
+      direction_ = std::pair{call == "backward", SourceRange{begin, end}};
+      return true;
     }
     return false;
   }
@@ -303,7 +376,8 @@ class LPyReader {
     syntax_.inHomomorphism = false;  // the hooks run around the steps
     std::map<std::string, std::string, std::less<>> initial;
     for (const Define& d : file_.defines) initial[cellName(d.name)] = d.value;
-    const HookEffects effects = translateHooks(syntax_, clean_, hooks_, initial);
+    HookEffects effects = translateHooks(syntax_, clean_, hooks_, initial);
+    if (!effects.backward) effects.backward = direction_;
     for (const auto& [key, value] : effects.defines) {
       const std::string& name = key;
       auto given = std::find_if(file_.defines.begin(), file_.defines.end(),
@@ -757,6 +831,7 @@ class LPyReader {
   SourceRange line_;
   size_t stamped_ = 0;
   std::vector<HookText> hooks_;
+  std::optional<std::pair<bool, SourceRange>> direction_;  ///< backward() or forward() at the top level
 };
 
 }  // namespace

@@ -459,6 +459,18 @@ TEST(Convert, LPyRoundAndDivisionMeanWhatPythonComputes) {
   EXPECT_EQ(future.out, "t = 1: B(2.5)\n");
 }
 
+// L-Py's top-level imports, `global`, `assert` and backward() change no word: the file
+// grows as L-Py derives it right to left, each B reading its new right neighbour
+// (B(0) B(0) B(0) -> B(2) B(1) B(0) -> B(5) B(2) B(0)), with a warning at the assert.
+TEST(Convert, LPyTopLevelStatementsThatChangeNoWordAreReadOver) {
+  Result result = ontogen("word " + file("lpy_top_level.lpy") + " --at 1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 1: B(2) B(1) B(0)\nt = 2: B(5) B(2) B(0)\n");
+  EXPECT_NE(result.err.find("lpy_top_level.lpy:11:1: warning: 'assert' at L-Py's top level is not checked"),
+            std::string::npos)
+      << result.err;
+}
+
 TEST(Convert, OnlyReadsOtherToolsFiles) {
   Result result = ontogen("convert " + file("fig1_24d.cell"));
   EXPECT_EQ(result.exitCode, 2);

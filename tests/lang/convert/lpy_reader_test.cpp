@@ -185,7 +185,65 @@ TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
 
   auto import = convertText(Dialect::LPy, "a.lpy", "from numpy import random\nAxiom: A\n");
   EXPECT_EQ(import.line, 1);
-  EXPECT_NE(import.error.find("'from': Python code"), std::string::npos) << import.error;
+  EXPECT_EQ(import.column, 19);
+  EXPECT_NE(import.error.find("'random' imported from numpy: a name the converter reads as Python's or the cell "
+                              "language's own"),
+            std::string::npos)
+      << import.error;
+}
+
+// Imports of other modules are read over where the names they bind mean nothing to the
+// converter (a name read later is then an unknown name, located); a name it translates
+// bound to another module's, or names it cannot know, are refused at the import.
+TEST(LPyReader, ImportsOfOtherModulesBindNoTranslatedName) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "import warnings\nimport time as t, os.path\nfrom time import clock as c, sleep\n"
+                       "from openalea.lpy.__lpyfuture__ import *\nAxiom: A\n");
+  EXPECT_EQ(c.error, "");
+  const struct {
+    const char* text;
+    int column;
+    const char* message;
+  } refused[] = {
+      {"import numpy as math\n", 8, "'import numpy' binds the name 'math', which the converter reads as Python's module math"},
+      {"import random as rd\nimport numpy as rd\n", 8, "binds the name 'rd', which the converter reads as Python's module random"},
+      {"from numpy import (sqrt)\n", 20, "'sqrt' imported from numpy"},
+      {"from numpy.random import normal as gauss\n", 36, "'gauss' imported from numpy.random"},
+      {"from matplotlib.pyplot import *\n", 31, "'from matplotlib.pyplot import *' gives names the converter cannot know"},
+      {"import t as\n", 9, "Python code"},
+  };
+  for (const auto& r : refused) {
+    auto bad = convertText(Dialect::LPy, "a.lpy", std::string(r.text) + "Axiom: A\n");
+    const int line = std::string(r.text).find('\n') + 1 == std::string(r.text).size() ? 1 : 2;
+    EXPECT_EQ(bad.line, line) << r.text;
+    EXPECT_EQ(bad.column, r.column) << r.text;
+    EXPECT_NE(bad.error.find(r.message), std::string::npos) << r.text << bad.error;
+  }
+  // The name an import binds, read, is unknown: `t.time()` is an attribute.
+  auto read = convertText(Dialect::LPy, "a.lpy", "import time as t\nAxiom: A(t.time())\n");
+  EXPECT_EQ(read.line, 2);
+  EXPECT_NE(read.error.find("the attribute 't.time'"), std::string::npos) << read.error;
+}
+
+// At the top level `global` changes nothing, an `assert` is a warning at its place,
+// and backward() or forward() is the direction of every step: a block whose productions
+// read a new context of the other direction is refused at the call.
+TEST(LPyReader, TopLevelGlobalAssertAndDirection) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "global n\nn = 2\nassert n > 1\nbackward()\nAxiom: A\nA >> B --> C\n");
+  ASSERT_EQ(c.error, "");
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_EQ(c.warnings[0].rfind("3:1: 'assert' at L-Py's top level is not checked", 0), 0u) << c.warnings[0];
+  for (const char* text : {"backward()\nAxiom: A\nA << B --> C\n", "forward()\nAxiom: A\nA >> B --> C\n"}) {
+    auto other = convertText(Dialect::LPy, "a.lpy", text);
+    EXPECT_EQ(other.line, 1) << text;
+    EXPECT_EQ(other.column, 1) << text;
+    EXPECT_NE(other.error.find("on every step, where a production has a new context of the other direction"),
+              std::string::npos)
+        << other.error;
+  }
+  // A hook's direction is set after the file's top level: it is the one that holds.
+  auto hook = convertText(Dialect::LPy, "a.lpy", "backward()\ndef Start():\n  forward()\nAxiom: A\nA << B --> C\n");
+  EXPECT_EQ(hook.error, "");
 }
 
 TEST(LPyReader, TheToolIsKnownByTheExtension) {
