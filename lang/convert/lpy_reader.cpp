@@ -87,6 +87,10 @@ class LPyReader {
         continue;
       }
       if (auto at = afterLabel(clean_, line, "axiom")) {
+        if (auto last = functionalAxiom(lines, i, *at, end)) {
+          i = *last;
+          continue;
+        }
         file_.axiom = syntax_.modules(*at, end, false);
         file_.axiomOrigin = line_;
         continue;
@@ -378,6 +382,7 @@ class LPyReader {
     for (const Define& d : file_.defines) initial[cellName(d.name)] = d.value;
     HookEffects effects = translateHooks(syntax_, clean_, hooks_, initial);
     if (!effects.backward) effects.backward = direction_;
+    keepLoadTimeValues(effects, initial);
     for (const auto& [key, value] : effects.defines) {
       const std::string& name = key;
       auto given = std::find_if(file_.defines.begin(), file_.defines.end(),
@@ -419,6 +424,37 @@ class LPyReader {
                      "a global L-Py's StartEach() sets at each step, read in the interpretation: its value after "
                      "the last step is not written");
     }
+  }
+
+  // L-Py computes the file's top level, the axiom and the derivation length when it loads
+  // the file, before Start or StartEach set any global: where those read a global a hook
+  // sets, they read the file's value of it, put in here; a global the file does not give
+  // is one L-Py could not read there.
+  void keepLoadTimeValues(const HookEffects& effects, const std::map<std::string, std::string, std::less<>>& initial) {
+    std::map<std::string, HookValue, std::less<>> fileValues, unset;
+    for (const auto* set : {&effects.defines, &effects.stepValues})
+      for (const auto& [name, value] : *set) {
+        if (auto given = initial.find(name); given != initial.end())
+          fileValues[name] = {given->second, {}};
+        else
+          unset[name] = value;
+      }
+    if (fileValues.empty() && unset.empty()) return;
+    auto loaded = [&](std::string& text, SourceRange where) {
+      bool early = false;
+      withHookValues(text, unset, {}, &early);
+      if (early)
+        syntax_.fail(where.begin, where.end,
+                     "a global that only a hook of L-Py sets, read where L-Py loads the file, before any hook runs");
+      text = withHookValues(text, fileValues, {});
+    };
+    for (ModuleText& m : file_.axiom)
+      for (std::string& arg : m.args) loaded(arg, file_.axiomOrigin);
+    if (file_.derivationLength) loaded(*file_.derivationLength, file_.derivationLengthOrigin);
+    for (Define& d : file_.defines)
+      if (!fileValues.count(cellName(d.name)) && !unset.count(cellName(d.name))) loaded(d.value, d.origin);
+    for (auto& [name, elements] : syntax_.arrays)
+      for (std::string& element : elements) element = withHookValues(element, fileValues, {});
   }
 
   // The helper functions, `def f(x, y): return EXPR` on one line or with `return EXPR`
@@ -588,6 +624,38 @@ class LPyReader {
     head.origin = {begin, bodyEnd};
     for (Statement& s : translatePythonBody(syntax_, clean_, head, logicalLines(clean_, colon + 1, bodyEnd)))
       file_.statements.push_back(std::move(s));
+    return last;
+  }
+
+  // L-Py's functional axiom: `Axiom:` alone on its line and a Python body below it,
+  // read as a production body (nproduce, produce, locals, loops over ranges) whose one
+  // way, with no test and no random choice, is the axiom. The index of its last line.
+  std::optional<size_t> functionalAxiom(const std::vector<Line>& lines, size_t i, uint32_t at, uint32_t end) {
+    uint32_t a = at, b = end;
+    syntax_.trim(a, b);
+    if (a < b) return std::nullopt;
+    size_t last = i;
+    for (size_t k = i + 1; k < lines.size(); ++k) {
+      const uint32_t first = firstNonSpace(clean_, lines[k]);
+      if (first == lines[k].end) continue;
+      if (first == lines[k].begin) break;
+      last = k;
+    }
+    if (last == i) return std::nullopt;
+    const uint32_t bodyBegin = firstNonSpace(clean_, lines[i + 1]), bodyEnd = lines[last].end;
+    Statement head;
+    head.predecessor.label = "Axiom";
+    const std::vector<Statement> ways = translatePythonBody(syntax_, clean_, head, logicalLines(clean_, end, bodyEnd));
+    if (ways.size() != 1 || !ways.front().condition.empty() || !ways.front().probability.empty() ||
+        ways.front().keepsModule)
+      syntax_.fail(bodyBegin, bodyEnd,
+                   ways.empty() ? "a functional axiom that produces nothing (the empty word, which no block starts from)"
+                                : "a functional axiom whose word depends on a test or a random choice: the converter "
+                                  "writes one axiom");
+    if (ways.front().successors.empty())
+      syntax_.fail(bodyBegin, bodyEnd, "a functional axiom that produces the empty word, which no block starts from");
+    file_.axiom = ways.front().successors;
+    file_.axiomOrigin = {line_.begin, bodyEnd};
     return last;
   }
 

@@ -471,6 +471,24 @@ TEST(Convert, LPyTopLevelStatementsThatChangeNoWordAreReadOver) {
       << result.err;
 }
 
+// L-Py's functional axiom (a Python body under `Axiom:`) is the word its one way
+// produces, C F(0) f F(2) f F(4) f A(2, 2); the axiom, the file's constants and the
+// derivation length (2) read n as the file gives it (1), the productions as Start sets it
+// (3): A(2, 2) -> A(5, 2) -> A(8, 2). The production body's assert is a warning.
+TEST(Convert, LPyFunctionalAxiomAndLoadTimeValuesAreWhatLPyComputes) {
+  Result result = ontogen("word " + file("lpy_axiom.lpy") + " --at 0,1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 0: C F(0) f F(2) f F(4) f A(2, 2)\n"
+            "t = 1: C F(0) f F(2) f F(4) f A(5, 2)\n"
+            "t = 2: C F(0) f F(2) f F(4) f A(8, 2)\n");
+  EXPECT_NE(result.err.find("lpy_axiom.lpy:22:3: warning: 'assert' in a production body is not checked"),
+            std::string::npos)
+      << result.err;
+  Result converted = ontogen("convert " + file("lpy_axiom.lpy"));
+  EXPECT_NE(converted.out.find("#until (1) + 1\n"), std::string::npos) << converted.out;
+}
+
 TEST(Convert, OnlyReadsOtherToolsFiles) {
   Result result = ontogen("convert " + file("fig1_24d.cell"));
   EXPECT_EQ(result.exitCode, 2);

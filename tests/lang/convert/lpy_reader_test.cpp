@@ -192,6 +192,33 @@ TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
       << import.error;
 }
 
+// A functional axiom is written when its body has one way, with no test and no random
+// choice; else it is refused at the body. A global only a hook sets is one L-Py cannot
+// read where it loads the file (the axiom, the derivation length, the top level).
+TEST(LPyReader, FunctionalAxiomsOfOneWayAndTheValuesAtLoading) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom:\n  for i in range(2): nproduce B(i)\n  produce A\nB(x) --> C\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  axiom B(0) B(1) A\n"), std::string::npos) << c.program;
+  const struct {
+    const char* text;
+    int line, column;
+    const char* message;
+  } refused[] = {
+      {"n = 1\nAxiom:\n  if n > 1: produce A\n  else: produce B\n", 3, 3, "a functional axiom whose word depends on a test"},
+      {"Axiom:\n  if random() < 0.5: produce A\n  produce B\n", 2, 3, "a functional axiom whose word depends on a test"},
+      {"Axiom:\n  pass\n", 2, 3, "a functional axiom that produces nothing"},
+      {"def Start():\n  global n\n  n = 2\nAxiom: A(n)\n", 4, 1, "a global that only a hook of L-Py sets"},
+      {"def Start():\n  global n\n  n = 2\nAxiom: A\nderivation length: n\n", 5, 1,
+       "a global that only a hook of L-Py sets"},
+  };
+  for (const auto& r : refused) {
+    auto bad = convertText(Dialect::LPy, "a.lpy", r.text);
+    EXPECT_EQ(bad.line, r.line) << r.text;
+    EXPECT_EQ(bad.column, r.column) << r.text;
+    EXPECT_NE(bad.error.find(r.message), std::string::npos) << r.text << bad.error;
+  }
+}
+
 // Imports of other modules are read over where the names they bind mean nothing to the
 // converter (a name read later is then an unknown name, located); a name it translates
 // bound to another module's, or names it cannot know, are refused at the import.
