@@ -98,11 +98,10 @@ class LPyReader {
       if (auto at = afterLabel(clean_, line, "derivation length")) {
         uint32_t a = *at, b = end;
         syntax_.trim(a, b);
-        if (clean_.substr(a, b - a) == "0")
-          syntax_.fail(a, b,
-                       "derivation length 0 (the word is the axiom): ontogen's #until is at least 1; "
-                       "ask for the axiom with word --at 0");
-        file_.derivationLength = syntax_.expression(*at, end);
+        // 0: L-Py shows the axiom. Without productions every step's word is the axiom, so
+        // one step says the same (checked when the whole file is read).
+        if (clean_.substr(a, b - a) == "0") zeroLength_ = SourceRange{a, b};
+        file_.derivationLength = zeroLength_ ? "1" : syntax_.expression(*at, end);
         file_.derivationLengthOrigin = line_;
         continue;
       }
@@ -178,6 +177,17 @@ class LPyReader {
     stamp();
     applyHooks();
     checkChoices();
+    if (zeroLength_) {
+      bool rewrites = false, homomorphism = false;
+      for (const Statement& s : file_.statements) {
+        if (s.kind == StatementKind::Section) homomorphism = s.word == "homomorphism";
+        rewrites = rewrites || (s.kind == StatementKind::Production && !homomorphism);
+      }
+      if (rewrites)
+        syntax_.fail(zeroLength_->begin, zeroLength_->end,
+                     "derivation length 0 (the word is the axiom) where productions would rewrite it: ontogen's "
+                     "#until is at least 1; ask for the axiom with word --at 0");
+    }
     // L-Py derives once unless the file says otherwise.
     if (!file_.derivationLength) file_.derivationLength = "1";
     file_.warnings = std::move(syntax_.warnings);
@@ -899,6 +909,7 @@ class LPyReader {
   SourceRange line_;
   size_t stamped_ = 0;
   std::vector<HookText> hooks_;
+  std::optional<SourceRange> zeroLength_;  ///< `derivation length: 0`, its value
   std::optional<std::pair<bool, SourceRange>> direction_;  ///< backward() or forward() at the top level
 };
 

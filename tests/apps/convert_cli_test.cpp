@@ -489,6 +489,17 @@ TEST(Convert, LPyFunctionalAxiomAndLoadTimeValuesAreWhatLPyComputes) {
   EXPECT_NE(converted.out.find("#until (1) + 1\n"), std::string::npos) << converted.out;
 }
 
+// `derivation length: 0` in a file of no productions: L-Py shows the axiom, and so is
+// the word at the step the converted block makes.
+TEST(Convert, LPyDerivationLengthZeroWithoutProductionsIsTheAxiom) {
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "zero";
+  fs::create_directories(dir);
+  std::ofstream(dir / "shown.lpy") << "derivation length: 0\nAxiom: -(30)F(1)-(120)F(1)\ninterpretation:\nF(x) --> F(2 * x)\n";
+  Result result = ontogen("word " + (dir / "shown.lpy").string() + " --at 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 1: -(30) F(1) -(120) F(1)\n");
+}
+
 TEST(Convert, OnlyReadsOtherToolsFiles) {
   Result result = ontogen("convert " + file("fig1_24d.cell"));
   EXPECT_EQ(result.exitCode, 2);
