@@ -583,15 +583,20 @@ class LPyReader {
         a = comma + 1;
       }
       at = close + 1;
-      if (fields.size() < 3) continue;
-      auto unquote = [](std::string text) {
-        if (text.size() >= 2 && (text[0] == '\'' || text[0] == '"')) text = text.substr(1, text.size() - 2);
+      if (fields.size() < 2) continue;
+      auto quoted = [](const std::string& text) { return !text.empty() && (text[0] == '\'' || text[0] == '"'); };
+      auto unquote = [&](std::string text) {
+        if (text.size() >= 2 && quoted(text)) text = text.substr(1, text.size() - 2);
         return text;
       };
-      const std::string name = unquote(fields[0]), type = unquote(fields[1]);
-      std::string value = fields[2];
-      if (type == "Bool") value = value == "True" ? "1" : "0";
-      else if (type != "Integer" && type != "Float") continue;
+      // ('N', 'Integer', 10, 1, 20), or as older editors wrote it, ('N', 10, 1, 20) and
+      // ('B', True, False, True); ('Title', None) names a category of no value.
+      const bool typed = quoted(fields[1]);
+      if (typed && fields.size() < 3) continue;
+      const std::string name = unquote(fields[0]), type = typed ? unquote(fields[1]) : "";
+      std::string value = typed ? fields[2] : fields[1];
+      if (type == "Bool" || (!typed && (value == "True" || value == "False"))) value = value == "True" ? "1" : "0";
+      else if (typed && type != "Integer" && type != "Float") continue;
       bool given = false;
       for (const Define& d : file_.defines) given = given || d.name == name;
       if (given || name.empty()) continue;

@@ -298,6 +298,15 @@ TEST(LPyReader, AngleIncrementAndTheEditorsScalars) {
   EXPECT_EQ(c.program.substr(open + 2, close - open - 2),
             "  #define N 4\n  #define M 0.5\n  #define B 1\n  #define F 0\n  #angle 90\n  #until 1\n"
             "  axiom A(N, M, B, F)\n");
+  // Older editors wrote no type: (name, value, min, max), a category (name, None).
+  auto untyped = convertText(Dialect::LPy, "a.lpy",
+                             "N = 4\nAxiom: A(N, L, B, D)\n###### INITIALISATION ######\n"
+                             "def __initialiseContext__(context):\n\tscalars = [('T', None), ('L', 29, 0, 99), "
+                             "('N', 7, 0, 9), ('B', False, False, True), ('D', 42.85, 0.0, 99.99, 2)]\n");
+  ASSERT_EQ(untyped.error, "");
+  EXPECT_NE(untyped.program.find("  #define N 4\n  #define L 29\n  #define B 0\n  #define D 42.85\n  #angle 60\n"),
+            std::string::npos)
+      << untyped.program;
 }
 
 }  // namespace
