@@ -63,6 +63,17 @@ class LPyReader {
   LSystemFile read() {
     const std::vector<Line> lines = splitLines(clean_);
     pythonVersion(lines);
+    for (const Line& line : lines) {
+      if (original_.substr(firstNonSpace(original_, line), kInitialisation.size()) == kInitialisation) break;
+      // Where a word is written: after `Axiom:`, an arrow, `produce` or `nproduce`.
+      const std::string_view text = std::string_view(clean_).substr(line.begin, line.end - line.begin);
+      size_t word = text.find("->");
+      if (auto at = afterLabel(clean_, line, "axiom")) word = std::min<size_t>(word, *at - line.begin);
+      for (size_t k = text.find("produce"); k != std::string_view::npos; k = text.find("produce", k + 1))
+        if ((k == 0 || !isNameChar(text[k - 1])) && (k + 7 == text.size() || !isNameChar(text[k + 7])))
+          word = std::min(word, k);
+      if (word != std::string_view::npos) sharpModule(line.begin + static_cast<uint32_t>(word), line.end);
+    }
     std::map<size_t, size_t> helpers = functions(lines);
     bool ended = false;
     for (size_t i = 0; i < lines.size(); ++i) {
@@ -93,6 +104,10 @@ class LPyReader {
         }
         file_.axiom = syntax_.modules(*at, end, false);
         file_.axiomOrigin = line_;
+        if (file_.axiom.empty())
+          syntax_.fail(begin, end,
+                       "an empty axiom: L-Py starts from the empty word, from which no block of the cell language "
+                       "starts");
         continue;
       }
       if (auto at = afterLabel(clean_, line, "derivation length")) {
@@ -175,6 +190,15 @@ class LPyReader {
       { python(begin, end); }
     }
     stamp();
+    if (!file_.axiomOrigin.known()) {
+      uint32_t first = 0;
+      while (first < original_.size() && std::isspace(static_cast<unsigned char>(original_[first]))) ++first;
+      uint32_t stop = first;
+      while (stop < original_.size() && original_[stop] != '\n') ++stop;
+      syntax_.fail(first, stop,
+                   "no Axiom: in this file: L-Py starts from the empty word, from which no block of the cell language "
+                   "starts");
+    }
     applyHooks();
     checkChoices();
     if (zeroLength_) {
@@ -640,6 +664,21 @@ class LPyReader {
     for (Statement& s : translatePythonBody(syntax_, clean_, head, logicalLines(clean_, colon + 1, bodyEnd)))
       file_.statements.push_back(std::move(s));
     return last;
+  }
+
+  // `#(` in a word [begin, end) of the file: L-Py reads `#` there as the start of a
+  // comment and refuses `#(` (cpfg's width module), so the word would not be the file's.
+  void sharpModule(uint32_t begin, uint32_t end) const {
+    for (uint32_t k = begin; k < end && k < original_.size(); ++k) {
+      if (original_[k] != '#' || clean_[k] == '#') continue;
+      uint32_t next = k + 1;
+      while (next < end && (original_[next] == ' ' || original_[next] == '\t')) ++next;
+      if (next < end && original_[next] == '(')
+        syntax_.fail(k, next + 1,
+                     "'#(' in a word: L-Py reads '#' as the start of a comment and refuses '#(' (cpfg's module of "
+                     "width, which L-Py writes _)");
+      return;
+    }
   }
 
   // L-Py's functional axiom: `Axiom:` alone on its line and a Python body below it,

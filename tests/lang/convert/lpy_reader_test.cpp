@@ -219,6 +219,34 @@ TEST(LPyReader, FunctionalAxiomsOfOneWayAndTheValuesAtLoading) {
   }
 }
 
+// What L-Py refuses or reads as nothing is a located error in the file, never a block
+// without an axiom that only `check` finds: `#(` in a word (L-Py reads '#' as a comment
+// and refuses '#('), an empty axiom, no axiom.
+TEST(LPyReader, SharpModulesAndEmptyAxiomsAreLocatedErrors) {
+  const struct {
+    const char* text;
+    int line, column;
+    const char* message;
+  } refused[] = {
+      {"Axiom: #(0.001)F(1)\n", 1, 8, "'#(' in a word: L-Py reads '#' as the start of a comment and refuses '#('"},
+      {"Axiom: F\nF --> F #  (2) F\n", 2, 9, "'#(' in a word"},
+      {"Axiom: F\nF :\n  produce F #(2)\n", 3, 13, "'#(' in a word"},
+      {"Axiom: \nderivation length: 1\n", 1, 1, "an empty axiom: L-Py starts from the empty word"},
+      {"Axiom:  # (a comment)\nF --> F\n", 1, 9, "'#(' in a word"},
+      {"\nderivation length: 1\nproduction:\nA --> B\n", 2, 1, "no Axiom: in this file: L-Py starts from the empty word"},
+  };
+  for (const auto& r : refused) {
+    auto bad = convertText(Dialect::LPy, "a.lpy", r.text);
+    EXPECT_EQ(bad.line, r.line) << r.text;
+    EXPECT_EQ(bad.column, r.column) << r.text;
+    EXPECT_NE(bad.error.find(r.message), std::string::npos) << r.text << bad.error;
+  }
+  // A comment that opens no parenthesis is a comment, as in L-Py.
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: F # the start\nF --> F F # doubles (each step)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  axiom F\n  F -> F F\n"), std::string::npos) << c.program;
+}
+
 // Imports of other modules are read over where the names they bind mean nothing to the
 // converter (a name read later is then an unknown name, located); a name it translates
 // bound to another module's, or names it cannot know, are refused at the import.
