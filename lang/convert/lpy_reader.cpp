@@ -74,6 +74,7 @@ class LPyReader {
           word = std::min(word, k);
       if (word != std::string_view::npos) sharpModule(line.begin + static_cast<uint32_t>(word), line.end);
     }
+    editorObjects(lines);
     std::map<size_t, size_t> helpers = functions(lines);
     bool ended = false;
     for (size_t i = 0; i < lines.size(); ++i) {
@@ -664,6 +665,34 @@ class LPyReader {
     for (Statement& s : translatePythonBody(syntax_, clean_, head, logicalLines(clean_, colon + 1, bodyEnd)))
       file_.statements.push_back(std::move(s));
     return last;
+  }
+
+  // The editor's objects, `NAME = pgl.NurbsCurve2D(` (or any class) indented under
+  // `def __initialiseContext__(context):` after the INITIALISATION line.
+  void editorObjects(const std::vector<Line>& lines) {
+    size_t k = 0;
+    while (k < lines.size() &&
+           original_.substr(firstNonSpace(original_, lines[k]), kInitialisation.size()) != kInitialisation)
+      ++k;
+    for (++k; k < lines.size(); ++k) {
+      uint32_t a = firstNonSpace(clean_, lines[k]);
+      const uint32_t end = lines[k].end;
+      uint32_t stop = a;
+      while (stop < end && isNameChar(clean_[stop])) ++stop;
+      if (stop == a || std::isdigit(static_cast<unsigned char>(clean_[a]))) continue;
+      const std::string name(clean_.substr(a, stop - a));
+      while (stop < end && std::isspace(static_cast<unsigned char>(clean_[stop]))) ++stop;
+      if (stop >= end || clean_[stop] != '=' || (stop + 1 < end && clean_[stop + 1] == '=')) continue;
+      uint32_t value = stop + 1;
+      while (value < end && std::isspace(static_cast<unsigned char>(clean_[value]))) ++value;
+      if (clean_.compare(value, 4, "pgl.") == 0) value += 4;
+      uint32_t close = value;
+      while (close < end && isNameChar(clean_[close])) ++close;
+      if (close == value || close >= end || clean_[close] != '(' ||
+          !std::isupper(static_cast<unsigned char>(clean_[value])))
+        continue;
+      syntax_.editorObjects[name] = std::string(clean_.substr(value, close - value));
+    }
   }
 
   // `#(` in a word [begin, end) of the file: L-Py reads `#` there as the start of a

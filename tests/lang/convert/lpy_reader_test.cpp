@@ -247,6 +247,28 @@ TEST(LPyReader, SharpModulesAndEmptyAxiomsAreLocatedErrors) {
   EXPECT_NE(c.program.find("  axiom F\n  F -> F F\n"), std::string::npos) << c.program;
 }
 
+// The editor's curves and patches are refused at the name that reads them, where they
+// were unknown names of the converted text; a parameter of that name is the one read.
+TEST(LPyReader, TheEditorsObjectsAreRefusedWhereTheyAreRead) {
+  const std::string editor =
+      "###### INITIALISATION ######\ndef __initialiseContext__(context):\n"
+      "\timport openalea.plantgl.all as pgl\n\tpath = pgl.NurbsCurve2D(\n\t    ctrlPointList = [(0, 0, 1)])\n"
+      "\tpatch = NurbsPatch([[(0, 0, 0, 1)]])\n\tpath.name = \"path\"\n";
+  auto axiom = convertText(Dialect::LPy, "a.lpy", "Axiom: SetGuide(path, 10) A\n" + editor);
+  EXPECT_EQ(axiom.line, 1);
+  EXPECT_EQ(axiom.column, 17);
+  EXPECT_NE(axiom.error.find("'path', a NurbsCurve2D of L-Py's editor (its INITIALISATION section), which the "
+                             "converter does not translate"),
+            std::string::npos)
+      << axiom.error;
+  auto method = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(x) --> A(patch.getPointAt(x))\n" + editor);
+  EXPECT_EQ(method.line, 2);
+  EXPECT_EQ(method.column, 12);
+  EXPECT_NE(method.error.find("'patch', a NurbsPatch of L-Py's editor"), std::string::npos) << method.error;
+  auto parameter = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(path) --> A(path + 1)\n" + editor);
+  EXPECT_EQ(parameter.error, "");
+}
+
 // Imports of other modules are read over where the names they bind mean nothing to the
 // converter (a name read later is then an unknown name, located); a name it translates
 // bound to another module's, or names it cannot know, are refused at the import.
