@@ -487,6 +487,15 @@ TEST(Convert, LPyFunctionalAxiomAndLoadTimeValuesAreWhatLPyComputes) {
       << result.err;
   Result converted = ontogen("convert " + file("lpy_axiom.lpy"));
   EXPECT_NE(converted.out.find("#until (1) + 1\n"), std::string::npos) << converted.out;
+  // L-Py's own test of a functional axiom asserts a word of 20 modules after its step.
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "axiom";
+  fs::create_directories(dir);
+  std::ofstream(dir / "functional.lpy") << "Axiom:\n  for i in range(10):\n    nproduce F f\n\nderivation length: 1\n"
+                                           "production:\ninterpretation:\nendlsystem\n";
+  Result twenty = ontogen("word " + (dir / "functional.lpy").string() + " --at 1");
+  ASSERT_EQ(twenty.exitCode, 0) << twenty.err;
+  EXPECT_EQ(count(twenty.out, " F") + count(twenty.out, " f"), 20u) << twenty.out;
+  EXPECT_EQ(count(twenty.out, "F f"), 10u) << twenty.out;
 }
 
 // `derivation length: 0` in a file of no productions: L-Py shows the axiom, and so is
