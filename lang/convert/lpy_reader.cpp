@@ -8,10 +8,10 @@
 #include <string>
 #include <tuple>
 
-#include "lang/builtins.h"
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
 #include "lang/convert/lpy_hooks.h"
+#include "lang/convert/lpy_imports.h"
 #include "lang/convert/python_body.h"
 
 namespace ontogen::convert {
@@ -50,6 +50,22 @@ std::string withoutComments(std::string_view text) {
   }
   return result;
 }
+
+// While it lives, L-Py's getIterationNb() reads as 0, its value while L-Py
+// loads the file: the top level, the axiom, the derivation length.
+class AtLoading {
+ public:
+  explicit AtLoading(ForeignSyntax& syntax) : syntax_(syntax), saved_(syntax.iterationNumber) {
+    syntax_.iterationNumber = "0";
+  }
+  ~AtLoading() { syntax_.iterationNumber = saved_; }
+  AtLoading(const AtLoading&) = delete;
+  AtLoading& operator=(const AtLoading&) = delete;
+
+ private:
+  ForeignSyntax& syntax_;
+  std::string saved_;
+};
 
 class LPyReader {
  public:
@@ -98,7 +114,10 @@ class LPyReader {
         i = *last;
         continue;
       }
+      // What L-Py computes when it loads the file (the axiom, the derivation length, the
+      // top level's values) reads getIterationNb() as 0.
       if (auto at = afterLabel(clean_, line, "axiom")) {
+        const AtLoading loading(syntax_);
         if (auto last = functionalAxiom(lines, i, *at, end)) {
           i = *last;
           continue;
@@ -112,6 +131,7 @@ class LPyReader {
         continue;
       }
       if (auto at = afterLabel(clean_, line, "derivation length")) {
+        const AtLoading loading(syntax_);
         uint32_t a = *at, b = end;
         syntax_.trim(a, b);
         // 0: L-Py shows the axiom. Without productions every step's word is the axiom, so
@@ -164,7 +184,7 @@ class LPyReader {
         file_.statements.push_back(syntax_.production(begin, end));
         continue;
       }
-      if (isImport(begin, end)) continue;
+      if (readImport(syntax_, clean_, begin, end)) continue;
       if (topLevelStatement(begin, end)) continue;
       if (angleIncrement(begin, end)) continue;
       // print(...) writes to the terminal, which changes no word.
@@ -183,6 +203,7 @@ class LPyReader {
           continue;
         }
       }
+      const AtLoading loading(syntax_);
       if (isAssignment(begin, end)) {
         define(begin, end, "=");
         continue;
@@ -201,6 +222,7 @@ class LPyReader {
                    "starts");
     }
     applyHooks();
+    loadedOnce();
     checkChoices();
     if (zeroLength_) {
       bool rewrites = false, homomorphism = false;
@@ -258,89 +280,6 @@ class LPyReader {
         if (!syntax_.python2 && text.find(mark) != std::string_view::npos)
           syntax_.python2 = first + static_cast<uint32_t>(text.find(mark));
     }
-  }
-
-  // `import math`, `from random import *`, `import random as rd`: the names these give
-  // are translated. Another module's import is read over where the names it binds are
-  // none the converter gives a meaning to: read, they are then unknown names, a located
-  // error (`t.time()` is an attribute, refused as such).
-  bool isImport(uint32_t begin, uint32_t end) {
-    const Line line{begin, end};
-    // from __future__ import division, print_function: Python 2 reading as 3 (pythonVersion).
-    if (clean_.compare(begin, 22, "from __future__ import") == 0) return true;
-    auto known = [](std::string_view module) {
-      return module == "math" || module == "random" || module == "openalea.plantgl.all";
-    };
-    if (auto at = afterKeyword(clean_, line, "import")) {
-      for (uint32_t from = *at; from < end;) {
-        const uint32_t comma = syntax_.find(from, end, ",");
-        uint32_t a = from, b = comma;
-        syntax_.trim(a, b);
-        uint32_t stop = a;
-        while (stop < b && (isNameChar(clean_[stop]) || clean_[stop] == '.')) ++stop;
-        const std::string module(clean_.substr(a, stop - a));
-        if (module.empty()) python(a, end);
-        std::string bound = module.substr(0, module.find('.'));
-        if (stop < b) {
-          auto as = afterKeyword(clean_, Line{stop, b}, "as");
-          uint32_t x = as ? *as : b, y = b;
-          syntax_.trim(x, y);
-          uint32_t k = x;
-          while (k < y && isNameChar(clean_[k])) ++k;
-          if (!as || x == y || k != y) python(stop, b);
-          bound = std::string(clean_.substr(x, y - x));
-          if (module == "math" || module == "random") syntax_.moduleAliases[bound] = module;
-        }
-        if (!known(module) && (bound == "math" || bound == "random" || syntax_.moduleAliases.count(bound)))
-          syntax_.fail(a, b, "'import " + module + "' binds the name '" + bound +
-                                 "', which the converter reads as Python's module " +
-                                 (bound == "math" || bound == "random" ? bound : syntax_.moduleAliases.at(bound)));
-        from = comma + 1;
-      }
-      return true;
-    }
-    auto at = afterKeyword(clean_, line, "from");
-    if (!at) return false;
-    uint32_t a = *at;
-    while (a < end && std::isspace(static_cast<unsigned char>(clean_[a]))) ++a;
-    uint32_t stop = a;
-    while (stop < end && (isNameChar(clean_[stop]) || clean_[stop] == '.')) ++stop;
-    const std::string module(clean_.substr(a, stop - a));
-    auto names = afterKeyword(clean_, Line{stop, end}, "import");
-    if (module.empty() || stop == end || !names) return false;
-    if (known(module)) return true;
-    uint32_t x = *names, y = end;
-    syntax_.trim(x, y);
-    if (x < y && clean_[x] == '(' && clean_[y - 1] == ')') syntax_.trim(++x, --y);
-    if (clean_.substr(x, y - x) == "*") {
-      // L-Py's own modules give classes and functions of its Python side, none of them a
-      // name the converter translates.
-      if (module == "openalea.lpy" || module.rfind("openalea.lpy.", 0) == 0) return true;
-      syntax_.fail(x, y, "'from " + module + " import *' gives names the converter cannot know: name them");
-    }
-    for (uint32_t from = x; from < y;) {
-      const uint32_t comma = syntax_.find(from, y, ",");
-      uint32_t p = from, q = comma;
-      syntax_.trim(p, q);
-      if (auto as = syntax_.find(p, q, " as "); as < q) p = as + 4;
-      syntax_.trim(p, q);
-      const std::string name(clean_.substr(p, q - p));
-      if (translatedName(name))
-        syntax_.fail(p, q, "'" + name + "' imported from " + module +
-                               ": a name the converter reads as Python's or the cell language's own");
-      from = comma + 1;
-    }
-    return true;
-  }
-
-  // A name the converter gives a meaning to where a file reads it: the cell language's
-  // functions and constants and the Python names translated into them.
-  static bool translatedName(const std::string& name) {
-    for (std::string_view python : {"math", "random", "uniform", "gauss", "normalvariate", "normal", "int", "float",
-                                    "round", "radians", "degrees", "fabs", "getIterationNb", "seed", "True", "False",
-                                    "None", "pi", "e"})
-      if (name == python) return true;
-    return findBuiltin(name) || findConstant(name);
   }
 
   // Statements of Python's top level that change no word the block derives: `global`
@@ -458,6 +397,27 @@ class LPyReader {
         syntax_.fail(s.origin.begin, s.origin.end,
                      "a global L-Py's StartEach() sets at each step, read in the interpretation: its value after "
                      "the last step is not written");
+    }
+  }
+
+  // A helper function of several lines is translated once, as productions read it: where
+  // the axiom or the derivation length calls one that reads getIterationNb(), the value
+  // would change with the step, where L-Py reads 0 once.
+  void loadedOnce() const {
+    auto readsTime = [](const std::string& text) {
+      for (size_t at = text.find("time"); at != std::string::npos; at = text.find("time", at + 1))
+        if ((at == 0 || !isNameChar(text[at - 1])) && (at + 4 == text.size() || !isNameChar(text[at + 4]))) return true;
+      return false;
+    };
+    bool axiom = false;
+    for (const ModuleText& m : file_.axiom)
+      for (const std::string& arg : m.args) axiom = axiom || readsTime(arg);
+    const bool length = file_.derivationLength && readsTime(*file_.derivationLength);
+    if (axiom || length) {
+      const SourceRange at = axiom ? file_.axiomOrigin : file_.derivationLengthOrigin;
+      syntax_.fail(at.begin, at.end,
+                   "getIterationNb() read through a helper function where L-Py loads the file (it reads 0 there): "
+                   "the converter writes the helper as productions read it");
     }
   }
 
@@ -620,8 +580,10 @@ class LPyReader {
       if (typed && fields.size() < 3) continue;
       const std::string name = unquote(fields[0]), type = typed ? unquote(fields[1]) : "";
       std::string value = typed ? fields[2] : fields[1];
-      if (type == "Bool" || (!typed && (value == "True" || value == "False"))) value = value == "True" ? "1" : "0";
-      else if (typed && type != "Integer" && type != "Float") continue;
+      if (type == "Bool" || (!typed && (value == "True" || value == "False")))
+        value = value == "True" ? "1" : "0";
+      else if (typed && type != "Integer" && type != "Float")
+        continue;
       bool given = false;
       for (const Define& d : file_.defines) given = given || d.name == name;
       if (given || name.empty()) continue;
@@ -732,9 +694,10 @@ class LPyReader {
     if (ways.size() != 1 || !ways.front().condition.empty() || !ways.front().probability.empty() ||
         ways.front().keepsModule)
       syntax_.fail(bodyBegin, bodyEnd,
-                   ways.empty() ? "a functional axiom that produces nothing (the empty word, which no block starts from)"
-                                : "a functional axiom whose word depends on a test or a random choice: the converter "
-                                  "writes one axiom");
+                   ways.empty()
+                       ? "a functional axiom that produces nothing (the empty word, which no block starts from)"
+                       : "a functional axiom whose word depends on a test or a random choice: the converter "
+                         "writes one axiom");
     if (ways.front().successors.empty())
       syntax_.fail(bodyBegin, bodyEnd, "a functional axiom that produces the empty word, which no block starts from");
     file_.axiom = ways.front().successors;
@@ -982,7 +945,7 @@ class LPyReader {
   SourceRange line_;
   size_t stamped_ = 0;
   std::vector<HookText> hooks_;
-  std::optional<SourceRange> zeroLength_;  ///< `derivation length: 0`, its value
+  std::optional<SourceRange> zeroLength_;                  ///< `derivation length: 0`, its value
   std::optional<std::pair<bool, SourceRange>> direction_;  ///< backward() or forward() at the top level
 };
 

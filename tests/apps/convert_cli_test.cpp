@@ -503,7 +503,8 @@ TEST(Convert, LPyFunctionalAxiomAndLoadTimeValuesAreWhatLPyComputes) {
 TEST(Convert, LPyDerivationLengthZeroWithoutProductionsIsTheAxiom) {
   const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "zero";
   fs::create_directories(dir);
-  std::ofstream(dir / "shown.lpy") << "derivation length: 0\nAxiom: -(30)F(1)-(120)F(1)\ninterpretation:\nF(x) --> F(2 * x)\n";
+  std::ofstream(dir / "shown.lpy")
+      << "derivation length: 0\nAxiom: -(30)F(1)-(120)F(1)\ninterpretation:\nF(x) --> F(2 * x)\n";
   Result result = ontogen("word " + (dir / "shown.lpy").string() + " --at 1");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.out, "t = 1: -(30) F(1) -(120) F(1)\n");

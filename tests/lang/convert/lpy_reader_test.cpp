@@ -204,8 +204,10 @@ TEST(LPyReader, FunctionalAxiomsOfOneWayAndTheValuesAtLoading) {
     int line, column;
     const char* message;
   } refused[] = {
-      {"n = 1\nAxiom:\n  if n > 1: produce A\n  else: produce B\n", 3, 3, "a functional axiom whose word depends on a test"},
-      {"Axiom:\n  if random() < 0.5: produce A\n  produce B\n", 2, 3, "a functional axiom whose word depends on a test"},
+      {"n = 1\nAxiom:\n  if n > 1: produce A\n  else: produce B\n", 3, 3,
+       "a functional axiom whose word depends on a test"},
+      {"Axiom:\n  if random() < 0.5: produce A\n  produce B\n", 2, 3,
+       "a functional axiom whose word depends on a test"},
       {"Axiom:\n  pass\n", 2, 3, "a functional axiom that produces nothing"},
       {"def Start():\n  global n\n  n = 2\nAxiom: A(n)\n", 4, 1, "a global that only a hook of L-Py sets"},
       {"def Start():\n  global n\n  n = 2\nAxiom: A\nderivation length: n\n", 5, 1,
@@ -233,7 +235,8 @@ TEST(LPyReader, SharpModulesAndEmptyAxiomsAreLocatedErrors) {
       {"Axiom: F\nF :\n  produce F #(2)\n", 3, 13, "'#(' in a word"},
       {"Axiom: \nderivation length: 1\n", 1, 1, "an empty axiom: L-Py starts from the empty word"},
       {"Axiom:  # (a comment)\nF --> F\n", 1, 9, "'#(' in a word"},
-      {"\nderivation length: 1\nproduction:\nA --> B\n", 2, 1, "no Axiom: in this file: L-Py starts from the empty word"},
+      {"\nderivation length: 1\nproduction:\nA --> B\n", 2, 1,
+       "no Axiom: in this file: L-Py starts from the empty word"},
   };
   for (const auto& r : refused) {
     auto bad = convertText(Dialect::LPy, "a.lpy", r.text);
@@ -269,6 +272,25 @@ TEST(LPyReader, TheEditorsObjectsAreRefusedWhereTheyAreRead) {
   EXPECT_EQ(parameter.error, "");
 }
 
+// getIterationNb() is 0 while L-Py loads the file: in the axiom, the derivation length
+// and the top level's values; a production reads the step it derives from.
+TEST(LPyReader, TheIterationNumberIsZeroWhereLPyLoadsTheFile) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "k = getIterationNb() + 2\nAxiom: A(getIterationNb())\nderivation length: getIterationNb() + 1\n"
+                       "A(x) --> B(x, getIterationNb(), k)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  #define k 0 + 2\n  #angle 60\n  #until 0 + 1\n  axiom A(0)\n"
+                           "  A(x) -> B(x, (time - 1), k)\n"),
+            std::string::npos)
+      << c.program;
+  auto helper =
+      convertText(Dialect::LPy, "a.lpy", "def f(x):\n  y = x + getIterationNb()\n  return y\nAxiom: A(f(1))\n");
+  EXPECT_EQ(helper.line, 4);
+  EXPECT_NE(helper.error.find("getIterationNb() read through a helper function where L-Py loads the file"),
+            std::string::npos)
+      << helper.error;
+}
+
 // Imports of other modules are read over where the names they bind mean nothing to the
 // converter (a name read later is then an unknown name, located); a name it translates
 // bound to another module's, or names it cannot know, are refused at the import.
@@ -282,11 +304,14 @@ TEST(LPyReader, ImportsOfOtherModulesBindNoTranslatedName) {
     int column;
     const char* message;
   } refused[] = {
-      {"import numpy as math\n", 8, "'import numpy' binds the name 'math', which the converter reads as Python's module math"},
-      {"import random as rd\nimport numpy as rd\n", 8, "binds the name 'rd', which the converter reads as Python's module random"},
+      {"import numpy as math\n", 8,
+       "'import numpy' binds the name 'math', which the converter reads as Python's module math"},
+      {"import random as rd\nimport numpy as rd\n", 8,
+       "binds the name 'rd', which the converter reads as Python's module random"},
       {"from numpy import (sqrt)\n", 20, "'sqrt' imported from numpy"},
       {"from numpy.random import normal as gauss\n", 36, "'gauss' imported from numpy.random"},
-      {"from matplotlib.pyplot import *\n", 31, "'from matplotlib.pyplot import *' gives names the converter cannot know"},
+      {"from matplotlib.pyplot import *\n", 31,
+       "'from matplotlib.pyplot import *' gives names the converter cannot know"},
       {"import t as\n", 9, "Python code"},
   };
   for (const auto& r : refused) {
