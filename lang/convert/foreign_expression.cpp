@@ -446,6 +446,11 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
         }
       }
       if (python) {
+        const std::string_view head = std::string_view(name).substr(0, name.find('.'));
+        if (auto object = editorObjects.find(head); object != editorObjects.end() && !bound_.count(head))
+          fail(at, stop,
+               shown(std::string(head)) + ", a " + object->second +
+                   " of L-Py's editor (its INITIALISATION section), which the converter does not translate");
         if (name.rfind("math.", 0) == 0) name = name.substr(5);  // math.sqrt is sqrt
         if (name.rfind("random.", 0) == 0) name = name.substr(7);  // random.uniform is uniform
         uint32_t next = stop;

@@ -71,6 +71,10 @@ class ForeignSyntax {
   /// cell-language expression of constants. `c[i]` reads as a choice among them by the
   /// index made whole, as C's cast does.
   std::map<std::string, std::vector<std::string>, std::less<>> arrays;
+  /// L-Py: the objects the editor's INITIALISATION section makes (`path =
+  /// pgl.NurbsCurve2D(...)`), by name: their class. A production reading one is refused
+  /// at the name.
+  std::map<std::string, std::string, std::less<>> editorObjects;
   /// The section being read is a homomorphism.
   bool inHomomorphism = false;
   /// What L-Py's `getIterationNb()` (the number of the step being derived, from 0) reads

@@ -11,6 +11,7 @@
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
 #include "lang/convert/lpy_hooks.h"
+#include "lang/convert/lpy_imports.h"
 #include "lang/convert/python_body.h"
 
 namespace ontogen::convert {
@@ -50,6 +51,22 @@ std::string withoutComments(std::string_view text) {
   return result;
 }
 
+// While it lives, L-Py's getIterationNb() reads as 0, its value while L-Py
+// loads the file: the top level, the axiom, the derivation length.
+class AtLoading {
+ public:
+  explicit AtLoading(ForeignSyntax& syntax) : syntax_(syntax), saved_(syntax.iterationNumber) {
+    syntax_.iterationNumber = "0";
+  }
+  ~AtLoading() { syntax_.iterationNumber = saved_; }
+  AtLoading(const AtLoading&) = delete;
+  AtLoading& operator=(const AtLoading&) = delete;
+
+ private:
+  ForeignSyntax& syntax_;
+  std::string saved_;
+};
+
 class LPyReader {
  public:
   LPyReader(std::string_view text, std::string_view path)
@@ -62,6 +79,18 @@ class LPyReader {
   LSystemFile read() {
     const std::vector<Line> lines = splitLines(clean_);
     pythonVersion(lines);
+    for (const Line& line : lines) {
+      if (original_.substr(firstNonSpace(original_, line), kInitialisation.size()) == kInitialisation) break;
+      // Where a word is written: after `Axiom:`, an arrow, `produce` or `nproduce`.
+      const std::string_view text = std::string_view(clean_).substr(line.begin, line.end - line.begin);
+      size_t word = text.find("->");
+      if (auto at = afterLabel(clean_, line, "axiom")) word = std::min<size_t>(word, *at - line.begin);
+      for (size_t k = text.find("produce"); k != std::string_view::npos; k = text.find("produce", k + 1))
+        if ((k == 0 || !isNameChar(text[k - 1])) && (k + 7 == text.size() || !isNameChar(text[k + 7])))
+          word = std::min(word, k);
+      if (word != std::string_view::npos) sharpModule(line.begin + static_cast<uint32_t>(word), line.end);
+    }
+    editorObjects(lines);
     std::map<size_t, size_t> helpers = functions(lines);
     bool ended = false;
     for (size_t i = 0; i < lines.size(); ++i) {
@@ -85,19 +114,30 @@ class LPyReader {
         i = *last;
         continue;
       }
+      // What L-Py computes when it loads the file (the axiom, the derivation length, the
+      // top level's values) reads getIterationNb() as 0.
       if (auto at = afterLabel(clean_, line, "axiom")) {
+        const AtLoading loading(syntax_);
+        if (auto last = functionalAxiom(lines, i, *at, end)) {
+          i = *last;
+          continue;
+        }
         file_.axiom = syntax_.modules(*at, end, false);
         file_.axiomOrigin = line_;
+        if (file_.axiom.empty())
+          syntax_.fail(begin, end,
+                       "an empty axiom: L-Py starts from the empty word, from which no block of the cell language "
+                       "starts");
         continue;
       }
       if (auto at = afterLabel(clean_, line, "derivation length")) {
+        const AtLoading loading(syntax_);
         uint32_t a = *at, b = end;
         syntax_.trim(a, b);
-        if (clean_.substr(a, b - a) == "0")
-          syntax_.fail(a, b,
-                       "derivation length 0 (the word is the axiom): ontogen's #until is at least 1; "
-                       "ask for the axiom with word --at 0");
-        file_.derivationLength = syntax_.expression(*at, end);
+        // 0: L-Py shows the axiom. Without productions every step's word is the axiom, so
+        // one step says the same (checked when the whole file is read).
+        if (clean_.substr(a, b - a) == "0") zeroLength_ = SourceRange{a, b};
+        file_.derivationLength = zeroLength_ ? "1" : syntax_.expression(*at, end);
         file_.derivationLengthOrigin = line_;
         continue;
       }
@@ -144,7 +184,8 @@ class LPyReader {
         file_.statements.push_back(syntax_.production(begin, end));
         continue;
       }
-      if (isImport(begin, end)) continue;
+      if (readImport(syntax_, clean_, begin, end)) continue;
+      if (topLevelStatement(begin, end)) continue;
       if (angleIncrement(begin, end)) continue;
       // print(...) writes to the terminal, which changes no word.
       if (afterKeyword(clean_, line, "print")) continue;
@@ -162,6 +203,7 @@ class LPyReader {
           continue;
         }
       }
+      const AtLoading loading(syntax_);
       if (isAssignment(begin, end)) {
         define(begin, end, "=");
         continue;
@@ -170,8 +212,29 @@ class LPyReader {
       { python(begin, end); }
     }
     stamp();
+    if (!file_.axiomOrigin.known()) {
+      uint32_t first = 0;
+      while (first < original_.size() && std::isspace(static_cast<unsigned char>(original_[first]))) ++first;
+      uint32_t stop = first;
+      while (stop < original_.size() && original_[stop] != '\n') ++stop;
+      syntax_.fail(first, stop,
+                   "no Axiom: in this file: L-Py starts from the empty word, from which no block of the cell language "
+                   "starts");
+    }
     applyHooks();
+    loadedOnce();
     checkChoices();
+    if (zeroLength_) {
+      bool rewrites = false, homomorphism = false;
+      for (const Statement& s : file_.statements) {
+        if (s.kind == StatementKind::Section) homomorphism = s.word == "homomorphism";
+        rewrites = rewrites || (s.kind == StatementKind::Production && !homomorphism);
+      }
+      if (rewrites)
+        syntax_.fail(zeroLength_->begin, zeroLength_->end,
+                     "derivation length 0 (the word is the axiom) where productions would rewrite it: ontogen's "
+                     "#until is at least 1; ask for the axiom with word --at 0");
+    }
     // L-Py derives once unless the file says otherwise.
     if (!file_.derivationLength) file_.derivationLength = "1";
     file_.warnings = std::move(syntax_.warnings);
@@ -219,40 +282,28 @@ class LPyReader {
     }
   }
 
-  // `import math`, `from random import *`, `import random as rd`: the names these give
-  // are translated.
-  bool isImport(uint32_t begin, uint32_t end) {
+  // Statements of Python's top level that change no word the block derives: `global`
+  // (at the top level, names are global already), `assert` (a warning: the block does not
+  // check it), and `backward()` / `forward()`, the direction of every step (L-Py keeps it
+  // from the file's loading on).
+  bool topLevelStatement(uint32_t begin, uint32_t end) {
     const Line line{begin, end};
-    // from __future__ import division, print_function: Python 2 reading as 3 (pythonVersion).
-    if (clean_.compare(begin, 22, "from __future__ import") == 0) return true;
-    for (std::string_view module : {"math", "random", "openalea.plantgl.all"}) {
-      if (auto at = afterKeyword(clean_, line, "import")) {
-        uint32_t a = *at, b = end;
-        syntax_.trim(a, b);
-        if (clean_.substr(a, b - a) == module) return true;
-        // import random as rd
-        if (module != "openalea.plantgl.all" && clean_.compare(a, module.size(), module) == 0 &&
-            a + module.size() < b && std::isspace(static_cast<unsigned char>(clean_[a + module.size()]))) {
-          if (auto as = afterKeyword(clean_, Line{static_cast<uint32_t>(a + module.size()), b}, "as")) {
-            uint32_t x = *as, y = b;
-            syntax_.trim(x, y);
-            bool isName = x < y;
-            for (uint32_t k = x; k < y; ++k) isName = isName && isNameChar(clean_[k]);
-            if (isName) {
-              syntax_.moduleAliases[std::string(clean_.substr(x, y - x))] = std::string(module);
-              return true;
-            }
-          }
-        }
-      }
-      if (auto at = afterKeyword(clean_, line, "from")) {
-        uint32_t a = *at, b = end;
-        syntax_.trim(a, b);
-        if (clean_.compare(a, module.size(), module) == 0 && a + module.size() < b &&
-            std::isspace(static_cast<unsigned char>(clean_[a + module.size()])) &&
-            afterKeyword(clean_, Line{static_cast<uint32_t>(a + module.size()), b}, "import"))
-          return true;
-      }
+    if (afterKeyword(clean_, line, "global")) return true;
+    if (afterKeyword(clean_, line, "assert")) {
+      syntax_.warnings.push_back({SourceRange{begin, end},
+                                  "'assert' at L-Py's top level is not checked: the converted block runs on where "
+                                  "L-Py stops at an assertion that fails"});
+      return true;
+    }
+    for (std::string_view call : {"backward", "forward"}) {
+      const Line rest{static_cast<uint32_t>(begin + call.size()), end};
+      if (clean_.compare(begin, call.size(), call) != 0 || rest.begin >= end || isNameChar(clean_[rest.begin]))
+        continue;
+      uint32_t a = rest.begin, b = end;
+      syntax_.trim(a, b);
+      if (clean_.substr(a, b - a) != "()") continue;
+      direction_ = std::pair{call == "backward", SourceRange{begin, end}};
+      return true;
     }
     return false;
   }
@@ -303,7 +354,9 @@ class LPyReader {
     syntax_.inHomomorphism = false;  // the hooks run around the steps
     std::map<std::string, std::string, std::less<>> initial;
     for (const Define& d : file_.defines) initial[cellName(d.name)] = d.value;
-    const HookEffects effects = translateHooks(syntax_, clean_, hooks_, initial);
+    HookEffects effects = translateHooks(syntax_, clean_, hooks_, initial);
+    if (!effects.backward) effects.backward = direction_;
+    keepLoadTimeValues(effects, initial);
     for (const auto& [key, value] : effects.defines) {
       const std::string& name = key;
       auto given = std::find_if(file_.defines.begin(), file_.defines.end(),
@@ -345,6 +398,58 @@ class LPyReader {
                      "a global L-Py's StartEach() sets at each step, read in the interpretation: its value after "
                      "the last step is not written");
     }
+  }
+
+  // A helper function of several lines is translated once, as productions read it: where
+  // the axiom or the derivation length calls one that reads getIterationNb(), the value
+  // would change with the step, where L-Py reads 0 once.
+  void loadedOnce() const {
+    auto readsTime = [](const std::string& text) {
+      for (size_t at = text.find("time"); at != std::string::npos; at = text.find("time", at + 1))
+        if ((at == 0 || !isNameChar(text[at - 1])) && (at + 4 == text.size() || !isNameChar(text[at + 4]))) return true;
+      return false;
+    };
+    bool axiom = false;
+    for (const ModuleText& m : file_.axiom)
+      for (const std::string& arg : m.args) axiom = axiom || readsTime(arg);
+    const bool length = file_.derivationLength && readsTime(*file_.derivationLength);
+    if (axiom || length) {
+      const SourceRange at = axiom ? file_.axiomOrigin : file_.derivationLengthOrigin;
+      syntax_.fail(at.begin, at.end,
+                   "getIterationNb() read through a helper function where L-Py loads the file (it reads 0 there): "
+                   "the converter writes the helper as productions read it");
+    }
+  }
+
+  // L-Py computes the file's top level, the axiom and the derivation length when it loads
+  // the file, before Start or StartEach set any global: where those read a global a hook
+  // sets, they read the file's value of it, put in here; a global the file does not give
+  // is one L-Py could not read there.
+  void keepLoadTimeValues(const HookEffects& effects, const std::map<std::string, std::string, std::less<>>& initial) {
+    std::map<std::string, HookValue, std::less<>> fileValues, unset;
+    for (const auto* set : {&effects.defines, &effects.stepValues})
+      for (const auto& [name, value] : *set) {
+        if (auto given = initial.find(name); given != initial.end())
+          fileValues[name] = {given->second, {}};
+        else
+          unset[name] = value;
+      }
+    if (fileValues.empty() && unset.empty()) return;
+    auto loaded = [&](std::string& text, SourceRange where) {
+      bool early = false;
+      withHookValues(text, unset, {}, &early);
+      if (early)
+        syntax_.fail(where.begin, where.end,
+                     "a global that only a hook of L-Py sets, read where L-Py loads the file, before any hook runs");
+      text = withHookValues(text, fileValues, {});
+    };
+    for (ModuleText& m : file_.axiom)
+      for (std::string& arg : m.args) loaded(arg, file_.axiomOrigin);
+    if (file_.derivationLength) loaded(*file_.derivationLength, file_.derivationLengthOrigin);
+    for (Define& d : file_.defines)
+      if (!fileValues.count(cellName(d.name)) && !unset.count(cellName(d.name))) loaded(d.value, d.origin);
+    for (auto& [name, elements] : syntax_.arrays)
+      for (std::string& element : elements) element = withHookValues(element, fileValues, {});
   }
 
   // The helper functions, `def f(x, y): return EXPR` on one line or with `return EXPR`
@@ -463,15 +568,22 @@ class LPyReader {
         a = comma + 1;
       }
       at = close + 1;
-      if (fields.size() < 3) continue;
-      auto unquote = [](std::string text) {
-        if (text.size() >= 2 && (text[0] == '\'' || text[0] == '"')) text = text.substr(1, text.size() - 2);
+      if (fields.size() < 2) continue;
+      auto quoted = [](const std::string& text) { return !text.empty() && (text[0] == '\'' || text[0] == '"'); };
+      auto unquote = [&](std::string text) {
+        if (text.size() >= 2 && quoted(text)) text = text.substr(1, text.size() - 2);
         return text;
       };
-      const std::string name = unquote(fields[0]), type = unquote(fields[1]);
-      std::string value = fields[2];
-      if (type == "Bool") value = value == "True" ? "1" : "0";
-      else if (type != "Integer" && type != "Float") continue;
+      // ('N', 'Integer', 10, 1, 20), or as older editors wrote it, ('N', 10, 1, 20) and
+      // ('B', True, False, True); ('Title', None) names a category of no value.
+      const bool typed = quoted(fields[1]);
+      if (typed && fields.size() < 3) continue;
+      const std::string name = unquote(fields[0]), type = typed ? unquote(fields[1]) : "";
+      std::string value = typed ? fields[2] : fields[1];
+      if (type == "Bool" || (!typed && (value == "True" || value == "False")))
+        value = value == "True" ? "1" : "0";
+      else if (typed && type != "Integer" && type != "Float")
+        continue;
       bool given = false;
       for (const Define& d : file_.defines) given = given || d.name == name;
       if (given || name.empty()) continue;
@@ -514,6 +626,82 @@ class LPyReader {
     head.origin = {begin, bodyEnd};
     for (Statement& s : translatePythonBody(syntax_, clean_, head, logicalLines(clean_, colon + 1, bodyEnd)))
       file_.statements.push_back(std::move(s));
+    return last;
+  }
+
+  // The editor's objects, `NAME = pgl.NurbsCurve2D(` (or any class) indented under
+  // `def __initialiseContext__(context):` after the INITIALISATION line.
+  void editorObjects(const std::vector<Line>& lines) {
+    size_t k = 0;
+    while (k < lines.size() &&
+           original_.substr(firstNonSpace(original_, lines[k]), kInitialisation.size()) != kInitialisation)
+      ++k;
+    for (++k; k < lines.size(); ++k) {
+      uint32_t a = firstNonSpace(clean_, lines[k]);
+      const uint32_t end = lines[k].end;
+      uint32_t stop = a;
+      while (stop < end && isNameChar(clean_[stop])) ++stop;
+      if (stop == a || std::isdigit(static_cast<unsigned char>(clean_[a]))) continue;
+      const std::string name(clean_.substr(a, stop - a));
+      while (stop < end && std::isspace(static_cast<unsigned char>(clean_[stop]))) ++stop;
+      if (stop >= end || clean_[stop] != '=' || (stop + 1 < end && clean_[stop + 1] == '=')) continue;
+      uint32_t value = stop + 1;
+      while (value < end && std::isspace(static_cast<unsigned char>(clean_[value]))) ++value;
+      if (clean_.compare(value, 4, "pgl.") == 0) value += 4;
+      uint32_t close = value;
+      while (close < end && isNameChar(clean_[close])) ++close;
+      if (close == value || close >= end || clean_[close] != '(' ||
+          !std::isupper(static_cast<unsigned char>(clean_[value])))
+        continue;
+      syntax_.editorObjects[name] = std::string(clean_.substr(value, close - value));
+    }
+  }
+
+  // `#(` in a word [begin, end) of the file: L-Py reads `#` there as the start of a
+  // comment and refuses `#(` (cpfg's width module), so the word would not be the file's.
+  void sharpModule(uint32_t begin, uint32_t end) const {
+    for (uint32_t k = begin; k < end && k < original_.size(); ++k) {
+      if (original_[k] != '#' || clean_[k] == '#') continue;
+      uint32_t next = k + 1;
+      while (next < end && (original_[next] == ' ' || original_[next] == '\t')) ++next;
+      if (next < end && original_[next] == '(')
+        syntax_.fail(k, next + 1,
+                     "'#(' in a word: L-Py reads '#' as the start of a comment and refuses '#(' (cpfg's module of "
+                     "width, which L-Py writes _)");
+      return;
+    }
+  }
+
+  // L-Py's functional axiom: `Axiom:` alone on its line and a Python body below it,
+  // read as a production body (nproduce, produce, locals, loops over ranges) whose one
+  // way, with no test and no random choice, is the axiom. The index of its last line.
+  std::optional<size_t> functionalAxiom(const std::vector<Line>& lines, size_t i, uint32_t at, uint32_t end) {
+    uint32_t a = at, b = end;
+    syntax_.trim(a, b);
+    if (a < b) return std::nullopt;
+    size_t last = i;
+    for (size_t k = i + 1; k < lines.size(); ++k) {
+      const uint32_t first = firstNonSpace(clean_, lines[k]);
+      if (first == lines[k].end) continue;
+      if (first == lines[k].begin) break;
+      last = k;
+    }
+    if (last == i) return std::nullopt;
+    const uint32_t bodyBegin = firstNonSpace(clean_, lines[i + 1]), bodyEnd = lines[last].end;
+    Statement head;
+    head.predecessor.label = "Axiom";
+    const std::vector<Statement> ways = translatePythonBody(syntax_, clean_, head, logicalLines(clean_, end, bodyEnd));
+    if (ways.size() != 1 || !ways.front().condition.empty() || !ways.front().probability.empty() ||
+        ways.front().keepsModule)
+      syntax_.fail(bodyBegin, bodyEnd,
+                   ways.empty()
+                       ? "a functional axiom that produces nothing (the empty word, which no block starts from)"
+                       : "a functional axiom whose word depends on a test or a random choice: the converter "
+                         "writes one axiom");
+    if (ways.front().successors.empty())
+      syntax_.fail(bodyBegin, bodyEnd, "a functional axiom that produces the empty word, which no block starts from");
+    file_.axiom = ways.front().successors;
+    file_.axiomOrigin = {line_.begin, bodyEnd};
     return last;
   }
 
@@ -757,6 +945,8 @@ class LPyReader {
   SourceRange line_;
   size_t stamped_ = 0;
   std::vector<HookText> hooks_;
+  std::optional<SourceRange> zeroLength_;                  ///< `derivation length: 0`, its value
+  std::optional<std::pair<bool, SourceRange>> direction_;  ///< backward() or forward() at the top level
 };
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "lang/convert/python_body.h"
 
+#include <algorithm>
+
 #include <cctype>
 #include <cstdlib>
 #include <map>
@@ -201,6 +203,16 @@ class BodyTranslator {
     if (leading("produce", StmtKind::Produce) || leading("nproduce", StmtKind::NProduce)) return stmt;
     // print(...) writes to the terminal, which changes no word.
     if (startsWith(b, e, "print")) return stmt;
+    // An assert changes no word either, but L-Py stops where it fails: a warning, once.
+    if (startsWith(b, e, "assert")) {
+      const bool warned = std::any_of(syntax_.warnings.begin(), syntax_.warnings.end(),
+                                      [&](const ConvertWarning& w) { return w.at.begin == b && w.at.end == e; });
+      if (!warned)
+        syntax_.warnings.push_back({SourceRange{b, e},
+                                    "'assert' in a production body is not checked: the converted block runs on where "
+                                    "L-Py stops at an assertion that fails"});
+      return stmt;
+    }
     // `global n` where the body only reads n: Python reads the global anyway.
     if (startsWith(b, e, "global")) {
       for (uint32_t at = b + 6; at < e;) {

@@ -459,6 +459,57 @@ TEST(Convert, LPyRoundAndDivisionMeanWhatPythonComputes) {
   EXPECT_EQ(future.out, "t = 1: B(2.5)\n");
 }
 
+// L-Py's top-level imports, `global`, `assert` and backward() change no word: the file
+// grows as L-Py derives it right to left, each B reading its new right neighbour
+// (B(0) B(0) B(0) -> B(2) B(1) B(0) -> B(5) B(2) B(0)), with a warning at the assert.
+TEST(Convert, LPyTopLevelStatementsThatChangeNoWordAreReadOver) {
+  Result result = ontogen("word " + file("lpy_top_level.lpy") + " --at 1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 1: B(2) B(1) B(0)\nt = 2: B(5) B(2) B(0)\n");
+  EXPECT_NE(result.err.find("lpy_top_level.lpy:11:1: warning: 'assert' at L-Py's top level is not checked"),
+            std::string::npos)
+      << result.err;
+}
+
+// L-Py's functional axiom (a Python body under `Axiom:`) is the word its one way
+// produces, C F(0) f F(2) f F(4) f A(2, 2); the axiom, the file's constants and the
+// derivation length (2) read n as the file gives it (1), the productions as Start sets it
+// (3): A(2, 2) -> A(5, 2) -> A(8, 2). The production body's assert is a warning.
+TEST(Convert, LPyFunctionalAxiomAndLoadTimeValuesAreWhatLPyComputes) {
+  Result result = ontogen("word " + file("lpy_axiom.lpy") + " --at 0,1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 0: C F(0) f F(2) f F(4) f A(2, 2)\n"
+            "t = 1: C F(0) f F(2) f F(4) f A(5, 2)\n"
+            "t = 2: C F(0) f F(2) f F(4) f A(8, 2)\n");
+  EXPECT_NE(result.err.find("lpy_axiom.lpy:22:3: warning: 'assert' in a production body is not checked"),
+            std::string::npos)
+      << result.err;
+  Result converted = ontogen("convert " + file("lpy_axiom.lpy"));
+  EXPECT_NE(converted.out.find("#until (1) + 1\n"), std::string::npos) << converted.out;
+  // L-Py's own test of a functional axiom asserts a word of 20 modules after its step.
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "axiom";
+  fs::create_directories(dir);
+  std::ofstream(dir / "functional.lpy") << "Axiom:\n  for i in range(10):\n    nproduce F f\n\nderivation length: 1\n"
+                                           "production:\ninterpretation:\nendlsystem\n";
+  Result twenty = ontogen("word " + (dir / "functional.lpy").string() + " --at 1");
+  ASSERT_EQ(twenty.exitCode, 0) << twenty.err;
+  EXPECT_EQ(count(twenty.out, " F") + count(twenty.out, " f"), 20u) << twenty.out;
+  EXPECT_EQ(count(twenty.out, "F f"), 10u) << twenty.out;
+}
+
+// `derivation length: 0` in a file of no productions: L-Py shows the axiom, and so is
+// the word at the step the converted block makes.
+TEST(Convert, LPyDerivationLengthZeroWithoutProductionsIsTheAxiom) {
+  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "zero";
+  fs::create_directories(dir);
+  std::ofstream(dir / "shown.lpy")
+      << "derivation length: 0\nAxiom: -(30)F(1)-(120)F(1)\ninterpretation:\nF(x) --> F(2 * x)\n";
+  Result result = ontogen("word " + (dir / "shown.lpy").string() + " --at 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 1: -(30) F(1) -(120) F(1)\n");
+}
+
 TEST(Convert, OnlyReadsOtherToolsFiles) {
   Result result = ontogen("convert " + file("fig1_24d.cell"));
   EXPECT_EQ(result.exitCode, 2);

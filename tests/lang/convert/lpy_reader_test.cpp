@@ -185,7 +185,167 @@ TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
 
   auto import = convertText(Dialect::LPy, "a.lpy", "from numpy import random\nAxiom: A\n");
   EXPECT_EQ(import.line, 1);
-  EXPECT_NE(import.error.find("'from': Python code"), std::string::npos) << import.error;
+  EXPECT_EQ(import.column, 19);
+  EXPECT_NE(import.error.find("'random' imported from numpy: a name the converter reads as Python's or the cell "
+                              "language's own"),
+            std::string::npos)
+      << import.error;
+}
+
+// A functional axiom is written when its body has one way, with no test and no random
+// choice; else it is refused at the body. A global only a hook sets is one L-Py cannot
+// read where it loads the file (the axiom, the derivation length, the top level).
+TEST(LPyReader, FunctionalAxiomsOfOneWayAndTheValuesAtLoading) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom:\n  for i in range(2): nproduce B(i)\n  produce A\nB(x) --> C\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  axiom B(0) B(1) A\n"), std::string::npos) << c.program;
+  const struct {
+    const char* text;
+    int line, column;
+    const char* message;
+  } refused[] = {
+      {"n = 1\nAxiom:\n  if n > 1: produce A\n  else: produce B\n", 3, 3,
+       "a functional axiom whose word depends on a test"},
+      {"Axiom:\n  if random() < 0.5: produce A\n  produce B\n", 2, 3,
+       "a functional axiom whose word depends on a test"},
+      {"Axiom:\n  pass\n", 2, 3, "a functional axiom that produces nothing"},
+      {"def Start():\n  global n\n  n = 2\nAxiom: A(n)\n", 4, 1, "a global that only a hook of L-Py sets"},
+      {"def Start():\n  global n\n  n = 2\nAxiom: A\nderivation length: n\n", 5, 1,
+       "a global that only a hook of L-Py sets"},
+  };
+  for (const auto& r : refused) {
+    auto bad = convertText(Dialect::LPy, "a.lpy", r.text);
+    EXPECT_EQ(bad.line, r.line) << r.text;
+    EXPECT_EQ(bad.column, r.column) << r.text;
+    EXPECT_NE(bad.error.find(r.message), std::string::npos) << r.text << bad.error;
+  }
+}
+
+// What L-Py refuses or reads as nothing is a located error in the file, never a block
+// without an axiom that only `check` finds: `#(` in a word (L-Py reads '#' as a comment
+// and refuses '#('), an empty axiom, no axiom.
+TEST(LPyReader, SharpModulesAndEmptyAxiomsAreLocatedErrors) {
+  const struct {
+    const char* text;
+    int line, column;
+    const char* message;
+  } refused[] = {
+      {"Axiom: #(0.001)F(1)\n", 1, 8, "'#(' in a word: L-Py reads '#' as the start of a comment and refuses '#('"},
+      {"Axiom: F\nF --> F #  (2) F\n", 2, 9, "'#(' in a word"},
+      {"Axiom: F\nF :\n  produce F #(2)\n", 3, 13, "'#(' in a word"},
+      {"Axiom: \nderivation length: 1\n", 1, 1, "an empty axiom: L-Py starts from the empty word"},
+      {"Axiom:  # (a comment)\nF --> F\n", 1, 9, "'#(' in a word"},
+      {"\nderivation length: 1\nproduction:\nA --> B\n", 2, 1,
+       "no Axiom: in this file: L-Py starts from the empty word"},
+  };
+  for (const auto& r : refused) {
+    auto bad = convertText(Dialect::LPy, "a.lpy", r.text);
+    EXPECT_EQ(bad.line, r.line) << r.text;
+    EXPECT_EQ(bad.column, r.column) << r.text;
+    EXPECT_NE(bad.error.find(r.message), std::string::npos) << r.text << bad.error;
+  }
+  // A comment that opens no parenthesis is a comment, as in L-Py.
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: F # the start\nF --> F F # doubles (each step)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  axiom F\n  F -> F F\n"), std::string::npos) << c.program;
+}
+
+// The editor's curves and patches are refused at the name that reads them, where they
+// were unknown names of the converted text; a parameter of that name is the one read.
+TEST(LPyReader, TheEditorsObjectsAreRefusedWhereTheyAreRead) {
+  const std::string editor =
+      "###### INITIALISATION ######\ndef __initialiseContext__(context):\n"
+      "\timport openalea.plantgl.all as pgl\n\tpath = pgl.NurbsCurve2D(\n\t    ctrlPointList = [(0, 0, 1)])\n"
+      "\tpatch = NurbsPatch([[(0, 0, 0, 1)]])\n\tpath.name = \"path\"\n";
+  auto axiom = convertText(Dialect::LPy, "a.lpy", "Axiom: SetGuide(path, 10) A\n" + editor);
+  EXPECT_EQ(axiom.line, 1);
+  EXPECT_EQ(axiom.column, 17);
+  EXPECT_NE(axiom.error.find("'path', a NurbsCurve2D of L-Py's editor (its INITIALISATION section), which the "
+                             "converter does not translate"),
+            std::string::npos)
+      << axiom.error;
+  auto method = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(x) --> A(patch.getPointAt(x))\n" + editor);
+  EXPECT_EQ(method.line, 2);
+  EXPECT_EQ(method.column, 12);
+  EXPECT_NE(method.error.find("'patch', a NurbsPatch of L-Py's editor"), std::string::npos) << method.error;
+  auto parameter = convertText(Dialect::LPy, "a.lpy", "Axiom: A(1)\nA(path) --> A(path + 1)\n" + editor);
+  EXPECT_EQ(parameter.error, "");
+}
+
+// getIterationNb() is 0 while L-Py loads the file: in the axiom, the derivation length
+// and the top level's values; a production reads the step it derives from.
+TEST(LPyReader, TheIterationNumberIsZeroWhereLPyLoadsTheFile) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "k = getIterationNb() + 2\nAxiom: A(getIterationNb())\nderivation length: getIterationNb() + 1\n"
+                       "A(x) --> B(x, getIterationNb(), k)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  #define k 0 + 2\n  #angle 60\n  #until 0 + 1\n  axiom A(0)\n"
+                           "  A(x) -> B(x, (time - 1), k)\n"),
+            std::string::npos)
+      << c.program;
+  auto helper =
+      convertText(Dialect::LPy, "a.lpy", "def f(x):\n  y = x + getIterationNb()\n  return y\nAxiom: A(f(1))\n");
+  EXPECT_EQ(helper.line, 4);
+  EXPECT_NE(helper.error.find("getIterationNb() read through a helper function where L-Py loads the file"),
+            std::string::npos)
+      << helper.error;
+}
+
+// Imports of other modules are read over where the names they bind mean nothing to the
+// converter (a name read later is then an unknown name, located); a name it translates
+// bound to another module's, or names it cannot know, are refused at the import.
+TEST(LPyReader, ImportsOfOtherModulesBindNoTranslatedName) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "import warnings\nimport time as t, os.path\nfrom time import clock as c, sleep\n"
+                       "from openalea.lpy.__lpyfuture__ import *\nAxiom: A\n");
+  EXPECT_EQ(c.error, "");
+  const struct {
+    const char* text;
+    int column;
+    const char* message;
+  } refused[] = {
+      {"import numpy as math\n", 8,
+       "'import numpy' binds the name 'math', which the converter reads as Python's module math"},
+      {"import random as rd\nimport numpy as rd\n", 8,
+       "binds the name 'rd', which the converter reads as Python's module random"},
+      {"from numpy import (sqrt)\n", 20, "'sqrt' imported from numpy"},
+      {"from numpy.random import normal as gauss\n", 36, "'gauss' imported from numpy.random"},
+      {"from matplotlib.pyplot import *\n", 31,
+       "'from matplotlib.pyplot import *' gives names the converter cannot know"},
+      {"import t as\n", 9, "Python code"},
+  };
+  for (const auto& r : refused) {
+    auto bad = convertText(Dialect::LPy, "a.lpy", std::string(r.text) + "Axiom: A\n");
+    const int line = std::string(r.text).find('\n') + 1 == std::string(r.text).size() ? 1 : 2;
+    EXPECT_EQ(bad.line, line) << r.text;
+    EXPECT_EQ(bad.column, r.column) << r.text;
+    EXPECT_NE(bad.error.find(r.message), std::string::npos) << r.text << bad.error;
+  }
+  // The name an import binds, read, is unknown: `t.time()` is an attribute.
+  auto read = convertText(Dialect::LPy, "a.lpy", "import time as t\nAxiom: A(t.time())\n");
+  EXPECT_EQ(read.line, 2);
+  EXPECT_NE(read.error.find("the attribute 't.time'"), std::string::npos) << read.error;
+}
+
+// At the top level `global` changes nothing, an `assert` is a warning at its place,
+// and backward() or forward() is the direction of every step: a block whose productions
+// read a new context of the other direction is refused at the call.
+TEST(LPyReader, TopLevelGlobalAssertAndDirection) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "global n\nn = 2\nassert n > 1\nbackward()\nAxiom: A\nA >> B --> C\n");
+  ASSERT_EQ(c.error, "");
+  ASSERT_EQ(c.warnings.size(), 1u);
+  EXPECT_EQ(c.warnings[0].rfind("3:1: 'assert' at L-Py's top level is not checked", 0), 0u) << c.warnings[0];
+  for (const char* text : {"backward()\nAxiom: A\nA << B --> C\n", "forward()\nAxiom: A\nA >> B --> C\n"}) {
+    auto other = convertText(Dialect::LPy, "a.lpy", text);
+    EXPECT_EQ(other.line, 1) << text;
+    EXPECT_EQ(other.column, 1) << text;
+    EXPECT_NE(other.error.find("on every step, where a production has a new context of the other direction"),
+              std::string::npos)
+        << other.error;
+  }
+  // A hook's direction is set after the file's top level: it is the one that holds.
+  auto hook = convertText(Dialect::LPy, "a.lpy", "backward()\ndef Start():\n  forward()\nAxiom: A\nA << B --> C\n");
+  EXPECT_EQ(hook.error, "");
 }
 
 TEST(LPyReader, TheToolIsKnownByTheExtension) {
@@ -213,6 +373,15 @@ TEST(LPyReader, AngleIncrementAndTheEditorsScalars) {
   EXPECT_EQ(c.program.substr(open + 2, close - open - 2),
             "  #define N 4\n  #define M 0.5\n  #define B 1\n  #define F 0\n  #angle 90\n  #until 1\n"
             "  axiom A(N, M, B, F)\n");
+  // Older editors wrote no type: (name, value, min, max), a category (name, None).
+  auto untyped = convertText(Dialect::LPy, "a.lpy",
+                             "N = 4\nAxiom: A(N, L, B, D)\n###### INITIALISATION ######\n"
+                             "def __initialiseContext__(context):\n\tscalars = [('T', None), ('L', 29, 0, 99), "
+                             "('N', 7, 0, 9), ('B', False, False, True), ('D', 42.85, 0.0, 99.99, 2)]\n");
+  ASSERT_EQ(untyped.error, "");
+  EXPECT_NE(untyped.program.find("  #define N 4\n  #define L 29\n  #define B 0\n  #define D 42.85\n  #angle 60\n"),
+            std::string::npos)
+      << untyped.program;
 }
 
 }  // namespace

@@ -127,6 +127,19 @@ TEST(Untranslated, LPysDerivationLengthIsOneUnlessSaid) {
   EXPECT_EQ(zero.column, 20);
   EXPECT_TRUE(zero.untranslatable);
   EXPECT_NE(zero.error.find("word --at 0"), std::string::npos) << zero.error;
+  // A decomposition rewrites the word too.
+  auto decomposed = convertText(Dialect::LPy, "a.lpy", "derivation length: 0\nAxiom: A\ndecomposition:\nA --> B\n");
+  EXPECT_EQ(decomposed.line, 1);
+  EXPECT_NE(decomposed.error.find("derivation length 0 (the word is the axiom) where productions would rewrite it"),
+            std::string::npos)
+      << decomposed.error;
+  // With no production to rewrite it, every step's word is the axiom L-Py shows: one step.
+  auto shown = convertText(Dialect::LPy, "a.lpy",
+                           "derivation length: 0\nAxiom: A B\nproduction:\ninterpretation:\nA --> F\nendlsystem\n");
+  ASSERT_EQ(shown.error, "");
+  EXPECT_NE(shown.program.find("  #until 1\n  axiom A B\n  production:\n  homomorphism:\n  A -> F\n"),
+            std::string::npos)
+      << shown.program;
 }
 
 // Issue 37, defect 6: nesting 10,000 deep is an error at the level past the limit, not
