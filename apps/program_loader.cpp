@@ -107,7 +107,14 @@ ProgramText readProgramText(const std::string& path, uint64_t maxBytes, const Wo
     return failed(std::move(result), kExitModelError, *past);
   auto source = std::make_shared<const SourceFile>(path, std::move(*text));
   DiagnosticSink sink;
-  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, maxBytes);
+  // The function files the view file names (cpfg's func), beside the file, read as the
+  // view file is.
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  auto readSideFile = [&folder](const std::string& name) -> std::optional<std::string> {
+    SourceText side = readSourceFile(folder / name, kMaxViewBytes);
+    return side.text;
+  };
+  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, maxBytes, readSideFile);
   std::cerr << formatDiagnostics(sink);
   if (!converted.program) {
     std::cerr << "ontogen: " << path << " cannot be converted from " << convert::dialectName(*dialect) << "\n";

@@ -69,8 +69,9 @@ std::optional<std::string> angleOfView(std::string_view view) {
 
 class CpfgReader {
  public:
-  CpfgReader(std::string_view text, std::string_view path)
+  CpfgReader(std::string_view text, std::string_view path, std::vector<SampledFunction> functions)
       : clean_(withoutComments(text)), syntax_(Dialect::Cpfg, clean_) {
+    syntax_.splineFunctions = std::move(functions);
     file_.dialect = Dialect::Cpfg;
     file_.name = blockNameOf(path);
   }
@@ -580,6 +581,10 @@ class CpfgReader {
     Statement s;
     s.kind = kind;
     s.symbols = syntax_.symbols(at, end);
+    // Brackets in a consider: list keep them read, as the cell language always does.
+    auto bracket = [](const std::string& symbol) { return symbol == "[" || symbol == "]"; };
+    if (kind == StatementKind::Consider && !std::all_of(s.symbols.begin(), s.symbols.end(), bracket))
+      std::erase_if(s.symbols, bracket);
     file_.statements.push_back(std::move(s));
   }
 
@@ -600,8 +605,9 @@ class CpfgReader {
 
 }  // namespace
 
-LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view) {
-  CpfgReader reader(text, path);
+LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view,
+                     const SideFileReader& readSideFile) {
+  CpfgReader reader(text, path, viewFunctions(view, readSideFile));
   LSystemFile file = reader.read();
   file.angle = angleOfView(view);
   return file;
