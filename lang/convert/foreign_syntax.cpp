@@ -213,6 +213,12 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
       fail(moduleBegin, at + 1,
            "L-Py's repetition x(...) in a context has no cell-language counterpart (a context of the cell "
            "language is a fixed sequence of modules)");
+    // cpfg's reader passes over spaces between a module and its parameters, `\ (90)`.
+    if (dialect_ == Dialect::Cpfg) {
+      uint32_t next = at;
+      while (next < end && isSpace(text_[next])) ++next;
+      if (next < end && text_[next] == '(') at = next;
+    }
     if (at < end && text_[at] == '(') {
       int depth = 0;
       uint32_t stop = at;

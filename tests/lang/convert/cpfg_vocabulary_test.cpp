@@ -83,5 +83,13 @@ TEST(CpfgVocabulary, BracketsOfAConsiderListAreLeftOut) {
   EXPECT_EQ(body(c.program), "  axiom S\n  consider: S L\n");
 }
 
+// cpfg's reader passes over spaces between a module and its parameters (vlab's
+// Lychnis writes `\ (90)`), also before a tab-continued line.
+TEST(CpfgVocabulary, SpacesBeforeParametersKeepThemOnTheirModule) {
+  auto c = convertText(Dialect::Cpfg, "a.l", "Axiom: A (1)\nA(t) --> F [\\ (90) B(t)] /\n\t(45)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  axiom A(1)\n  A(t) -> F [ \\(90) B(t) ] /(45)\n");
+}
+
 }  // namespace
 }  // namespace ontogen::convert
