@@ -178,10 +178,30 @@ void ForeignSyntax::vocabulary(ModuleText& module, uint32_t begin, uint32_t end,
 std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, bool pattern) const {
   std::vector<ModuleText> result;
   uint32_t at = begin;
+  uint32_t tokenEnd = begin;  // cpfg: the end of the C token `at` is within
   while (at < end) {
     if (isSpace(text_[at])) {
       ++at;
       continue;
+    }
+    // cpfg reads its file through the C preprocessor, which puts a macro's text in place
+    // of a name (a whole C token: `BACKGROUND`, not the B of `AB`): its modules.
+    if (dialect_ == Dialect::Cpfg && at >= tokenEnd && isNameChar(text_[at])) {
+      tokenEnd = at;
+      while (tokenEnd < end && isNameChar(text_[tokenEnd])) ++tokenEnd;
+      const auto macro = isLetter(text_[at]) ? macros.find(text_.substr(at, tokenEnd - at)) : macros.end();
+      if (macro != macros.end()) {
+        const Nested nested(*this, at, tokenEnd);
+        for (ModuleText& m : modules(macro->second.begin, macro->second.end, pattern)) result.push_back(std::move(m));
+        at = tokenEnd;
+        continue;
+      }
+      uint32_t next = tokenEnd;
+      while (next < end && isSpace(text_[next])) ++next;
+      if (next < end && text_[next] == '(' && functions.count(text_.substr(at, tokenEnd - at)))
+        fail(at, tokenEnd,
+             "a macro with parameters among modules: C puts its value there, which the converter does not "
+             "write among modules (it writes a macro's value of modules without parameters)");
     }
     if (text_[at] == '(' || text_[at] == ')')
       fail(at, at + 1, "expected a module before " + shown(text_.substr(at, 1)), false);

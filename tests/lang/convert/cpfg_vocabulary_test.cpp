@@ -91,5 +91,21 @@ TEST(CpfgVocabulary, SpacesBeforeParametersKeepThemOnTheirModule) {
   EXPECT_EQ(body(c.program), "  axiom A(1)\n  A(t) -> F [ \\(90) B(t) ] /(45)\n");
 }
 
+// cpfg reads its file through the C preprocessor: a macro whose value is a module
+// string stands for its modules where its name is a whole C token (not within xGROUND),
+// and a line that ends in a backslash goes on on the next.
+TEST(CpfgVocabulary, AMacroOfModulesIsItsModulesWhereItsNameStands) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "#define GROUND [,(6)f(2)\\\n+F]\nAxiom: GROUND A\nA --> AB GROUND xGROUND\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  axiom [ color(6) f(2) + F ] A\n  A -> A B [ color(6) f(2) + F ] x G R O U N D\n");
+  // A macro with parameters among modules: C would put its value there.
+  auto call = convertText(Dialect::Cpfg, "a.l", "#define LEAF(x) x*2\nAxiom: A\nA --> F LEAF(3)\n");
+  EXPECT_EQ(call.line, 3);
+  EXPECT_EQ(call.column, 9);
+  EXPECT_NE(call.error.find("a macro with parameters among modules"), std::string::npos) << call.error;
+}
+
 }  // namespace
 }  // namespace ontogen::convert
