@@ -190,14 +190,19 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
       tokenEnd = at;
       while (tokenEnd < end && isNameChar(text_[tokenEnd])) ++tokenEnd;
       const auto macro = isLetter(text_[at]) ? macros.find(text_.substr(at, tokenEnd - at)) : macros.end();
+      uint32_t next = tokenEnd;
+      while (next < end && isSpace(text_[next])) ++next;
+      if (macro != macros.end() && next < end && text_[next] == '(')
+        fail(at, next + 1,
+             "the macro " + shown(macro->first) +
+                 " before parameters: C's preprocessor puts its value in place of the name, so the parameters "
+                 "would be its last module's; give the module another name than the macro");
       if (macro != macros.end()) {
         const Nested nested(*this, at, tokenEnd);
         for (ModuleText& m : modules(macro->second.begin, macro->second.end, pattern)) result.push_back(std::move(m));
         at = tokenEnd;
         continue;
       }
-      uint32_t next = tokenEnd;
-      while (next < end && isSpace(text_[next])) ++next;
       if (next < end && text_[next] == '(' && functions.count(text_.substr(at, tokenEnd - at)))
         fail(at, tokenEnd,
              "a macro with parameters among modules: C puts its value there, which the converter does not "

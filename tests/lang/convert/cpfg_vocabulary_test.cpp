@@ -105,6 +105,11 @@ TEST(CpfgVocabulary, AMacroOfModulesIsItsModulesWhereItsNameStands) {
   EXPECT_EQ(call.line, 3);
   EXPECT_EQ(call.column, 9);
   EXPECT_NE(call.error.find("a macro with parameters among modules"), std::string::npos) << call.error;
+  // A module of a macro's name, C(x) beside #define C 0.5: C makes it 0.5(x).
+  auto named = convertText(Dialect::Cpfg, "a.l", "#define C 0.5\nAxiom: A\nA --> F C(3)\n");
+  EXPECT_EQ(named.line, 3);
+  EXPECT_EQ(named.column, 9);
+  EXPECT_NE(named.error.find("the macro 'C' before parameters"), std::string::npos) << named.error;
 }
 
 }  // namespace
