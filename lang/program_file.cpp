@@ -64,7 +64,14 @@ ProgramFileText readProgramFile(const std::string& path, const ProgramFileDef& d
     return failed(std::move(result), ProgramFileFailure::PastMemoryLimit, *past);
   auto source = std::make_shared<const SourceFile>(path, std::move(*text));
   result.original = source;  // the converter's diagnostics point into it, also when it fails
-  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, maxBytes);
+  // The function files the view file names (cpfg's func), beside the file, read as the
+  // view file is.
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  auto readSideFile = [&folder](const std::string& name) -> std::optional<std::string> {
+    SourceText side = readSourceFile(folder / name, kMaxViewBytes);
+    return side.text;
+  };
+  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, maxBytes, readSideFile);
   if (!converted.program)
     return failed(std::move(result),
                   converted.untranslatable ? ProgramFileFailure::Untranslatable : ProgramFileFailure::NotConverted,

@@ -17,11 +17,11 @@ std::optional<Dialect> dialectOfPath(std::string_view path) {
 }
 
 ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_view view, DiagnosticSink& sink,
-                          uint64_t maxBytes) {
+                          uint64_t maxBytes, const SideFileReader& readSideFile) {
   ConvertResult result;
   try {
     LSystemFile read =
-        dialect == Dialect::Cpfg ? readCpfg(file.text(), file.name(), view) : readLPy(file.text(), file.name());
+        dialect == Dialect::Cpfg ? readCpfg(file.text(), file.name(), view, readSideFile) : readLPy(file.text(), file.name());
     // In the file's order: the readers find some (the hooks') before others above them.
     std::stable_sort(read.warnings.begin(), read.warnings.end(),
                      [](const ConvertWarning& a, const ConvertWarning& b) { return a.at.begin < b.at.begin; });

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "lang/convert/cpfg_function.h"
 #include "lang/convert/lsystem_file.h"
 #include "model/diagnostics.h"
 #include "model/source.h"
@@ -31,11 +32,11 @@ struct ConvertResult {
 };
 
 /// Converts `file`, written for `dialect`; `view` is cpfg's view file (.v), where cpfg
-/// keeps the turn angle, or empty. The error, if any, and the warnings go to `sink` with
-/// their places. A program longer than `maxBytes` is an error: the source limit holds for
-/// the converted text too.
+/// keeps the turn angle and names its functions (read by `readSideFile`), or empty. The
+/// error, if any, and the warnings go to `sink` with their places. A program longer than
+/// `maxBytes` is an error: the source limit holds for the converted text too.
 ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_view view, DiagnosticSink& sink,
-                          uint64_t maxBytes = kDefaultMaxSourceBytes);
+                          uint64_t maxBytes = kDefaultMaxSourceBytes, const SideFileReader& readSideFile = {});
 
 /// A diagnostic of the compiler in converted text, at the place of the file it was
 /// converted from (`original`), with the converted line quoted; one at a line that came

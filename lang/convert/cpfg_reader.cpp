@@ -17,8 +17,9 @@ namespace ontogen::convert {
 
 namespace {
 
-// The text with its `/* */` and `//` comments made spaces, so that offsets stay the
-// file's. cpfg reads its file through the C preprocessor, which removes both.
+// The text with its `/* */` and `//` comments and its backslashes before a line break
+// made spaces, so that offsets stay the file's. cpfg reads its file through the C
+// preprocessor, which removes the comments and joins such lines.
 std::string withoutComments(std::string_view text) {
   std::string result(text);
   for (size_t at = 0; at + 1 < result.size(); ++at) {
@@ -30,6 +31,11 @@ std::string withoutComments(std::string_view text) {
       at = stop - 1;
     } else if (result[at] == '/' && result[at + 1] == '/') {
       for (; at < result.size() && result[at] != '\n'; ++at) result[at] = ' ';
+    } else if (result[at] == '\\' && (result[at + 1] == '\n' || (result[at + 1] == '\r' && at + 2 < result.size() &&
+                                                                result[at + 2] == '\n'))) {
+      // The preprocessor joins a line that ends in a backslash to the next.
+      for (; result[at] != '\n'; ++at) result[at] = ' ';
+      result[at] = ' ';
     }
   }
   return result;
@@ -69,8 +75,9 @@ std::optional<std::string> angleOfView(std::string_view view) {
 
 class CpfgReader {
  public:
-  CpfgReader(std::string_view text, std::string_view path)
+  CpfgReader(std::string_view text, std::string_view path, std::vector<SampledFunction> functions)
       : clean_(withoutComments(text)), syntax_(Dialect::Cpfg, clean_) {
+    syntax_.splineFunctions = std::move(functions);
     file_.dialect = Dialect::Cpfg;
     file_.name = blockNameOf(path);
   }
@@ -292,7 +299,12 @@ class CpfgReader {
     ForeignSyntax::Function macro;
     macro.begin = stop;
     macro.end = end;
-    macro.constant = namesConstantsOnly(stop, end);
+    // A value that starts as a module string, `[,(3)F(1)]`, is put in where the name
+    // stands among modules (ForeignSyntax::modules); no expression.
+    uint32_t first = stop;
+    while (first < end && std::isspace(static_cast<unsigned char>(clean_[first]))) ++first;
+    const bool word = first < end && clean_[first] == '[';
+    macro.constant = !word && namesConstantsOnly(stop, end);
     if (macro.constant) file_.defines.push_back({name, syntax_.expression(stop, end), line_});
     syntax_.macros[std::move(name)] = macro;
   }
@@ -580,6 +592,10 @@ class CpfgReader {
     Statement s;
     s.kind = kind;
     s.symbols = syntax_.symbols(at, end);
+    // Brackets in a consider: list keep them read, as the cell language always does.
+    auto bracket = [](const std::string& symbol) { return symbol == "[" || symbol == "]"; };
+    if (kind == StatementKind::Consider && !std::all_of(s.symbols.begin(), s.symbols.end(), bracket))
+      std::erase_if(s.symbols, bracket);
     file_.statements.push_back(std::move(s));
   }
 
@@ -600,8 +616,9 @@ class CpfgReader {
 
 }  // namespace
 
-LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view) {
-  CpfgReader reader(text, path);
+LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view,
+                     const SideFileReader& readSideFile) {
+  CpfgReader reader(text, path, viewFunctions(view, readSideFile));
   LSystemFile file = reader.read();
   file.angle = angleOfView(view);
   return file;

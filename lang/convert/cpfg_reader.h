@@ -8,12 +8,15 @@
 
 #include <string_view>
 
+#include "lang/convert/cpfg_function.h"
 #include "lang/convert/lsystem_file.h"
 
 namespace ontogen::convert {
 
-/// Reads a cpfg file; `view` is the text of its view file, or empty. Throws ConvertError
-/// (lang/convert/foreign_syntax.h) at the first construct it cannot translate.
-LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view);
+/// Reads a cpfg file; `view` is the text of its view file, or empty; `readSideFile` gives
+/// the function files the view file names (cpfg_function.h), or is empty. Throws
+/// ConvertError (lang/convert/foreign_syntax.h) at the first construct it cannot translate.
+LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view,
+                     const SideFileReader& readSideFile = {});
 
 }  // namespace ontogen::convert

@@ -257,6 +257,44 @@ std::optional<std::string> ForeignSyntax::degreeCall(const std::string& name, ui
   return direct ? name + "(rad(" + x + "))" : "deg(" + name + "(" + x + "))";
 }
 
+std::string ForeignSyntax::splineCall(uint32_t at, uint32_t open, uint32_t end, uint32_t& stop) const {
+  const uint32_t close = closingParenthesis(text_, open, end);
+  if (close >= end) fail(at, end, "the call of 'func' has no closing ')'", false);
+  const uint32_t comma = find(open + 1, close, ",");
+  if (comma >= close) fail(at, close + 1, "cpfg's func(n, x) takes two arguments", false);
+  // The function's number, written in the file or as a macro of a number.
+  uint32_t a = open + 1, b = comma;
+  trim(a, b);
+  std::string number(text_.substr(a, b - a));
+  if (auto macro = macros.find(number); macro != macros.end()) {
+    uint32_t ma = macro->second.begin, mb = macro->second.end;
+    trim(ma, mb);
+    number = std::string(text_.substr(ma, mb - ma));
+  }
+  char* last = nullptr;
+  const long n = std::strtol(number.c_str(), &last, 10);
+  if (number.empty() || last != number.c_str() + number.size())
+    fail(a, b, "the number of cpfg's function, func(n, x), is a whole number written in the file or a macro of one");
+  if (n < 1 || static_cast<size_t>(n) > splineFunctions.size())
+    fail(at, close + 1,
+         "func(" + number + ", x): the view file names " + std::to_string(splineFunctions.size()) +
+             " functions ('function: FILE N' lines), which func(1, x) and on read in order");
+  const SampledFunction& function = splineFunctions[static_cast<size_t>(n) - 1];
+  if (!function.error.empty()) fail(at, close + 1, "func(" + number + ", x): " + function.error);
+  const Nested nested(*this, at, close + 1);
+  uint32_t xa = comma + 1, xb = close;
+  trim(xa, xb);
+  const std::string x = expression(xa, xb);
+  if (drawsRandom(x))
+    fail(xa, xb,
+         "an argument of func that draws a random number: the converter writes it once per sample, so it would "
+         "be drawn anew each time");
+  stop = close + 1;
+  std::string value = sampledValue(function, x);
+  countInlined(value.size(), at, stop);
+  return value;
+}
+
 std::string ForeignSyntax::pythonRound(uint32_t at, uint32_t open, uint32_t end, uint32_t& stop) const {
   const uint32_t close = closingParenthesis(text_, open, end);
   if (close >= end) fail(at, end, "the call of 'round' has no closing ')'", false);
@@ -438,6 +476,11 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
           uint32_t after = open;
           if (std::optional<std::string> call = degreeCall(name, at, open, end, after)) {
             emit(*call, false, after - at);
+            at = after;
+            continue;
+          }
+          if (name == "func") {
+            emit(splineCall(at, open, end, after), false, after - at);
             at = after;
             continue;
           }

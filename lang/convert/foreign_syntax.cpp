@@ -67,7 +67,8 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
     return at + 2;
   }
   // '@' modules: the longest predefined name, as the tools read them (@GcI is @Gc I).
-  if (c == '@' && at + 1 < end && isNameChar(text_[at + 1])) {
+  if (c == '@' && at + 1 < end &&
+      (isNameChar(text_[at + 1]) || (dialect_ == Dialect::Cpfg && (text_[at + 1] == '#' || text_[at + 1] == '!')))) {
     size_t best = 0;
     for (const Predefined& p : predefinedModules())
       if (p.name[0] == '@' && inDialect(p, dialect_) && p.name.size() > best &&
@@ -79,7 +80,9 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
       fail(at, stop,
            std::string(dialectName(dialect_)) + "'s module " + shown(text_.substr(at, stop - at)) +
                " is none ontogen can translate (it knows @O, @o, @v, @M, @R, @L, @b, @Ge, @Gc" +
-               (dialect_ == Dialect::LPy ? ", @B, @g, @h, @D, @Dd, @Di, @Ts, @Tp, @2D, @3D" : ", @Gs, @Gt, @Gr, @c") +
+               (dialect_ == Dialect::LPy ? ", @B, @g, @h, @D, @Dd, @Di, @Ts, @Tp, @2D, @3D"
+                                         : ", @Gs, @Gt, @Gr, @c, @bo, @bc, @D, @Dd, @Di, @Tx, @Ti, @Td, @Ts, @Tp, @Tf, "
+                                           "@#, @!") +
                ")");
     }
     label = std::string(text_.substr(at, best));
@@ -104,7 +107,7 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
     return at + static_cast<uint32_t>(best);
   }
   if (isNameChar(c) || isCellSymbol(c) || c == ';' || c == ',' || c == '{' || c == '}' || c == '.' ||
-      (c == '#' && dialect_ == Dialect::Cpfg)) {
+      (dialect_ == Dialect::Cpfg && (c == '#' || c == '='))) {
     label = std::string(1, c);
     return at + 1;
   }
@@ -158,6 +161,10 @@ void ForeignSyntax::vocabulary(ModuleText& module, uint32_t begin, uint32_t end,
   if (label == "}") return inert("EP", "polygon module");
   if (label == ".") return inert("PP", "polygon module");
   if (label == "#") return inert("IncWidth", "module");
+  if (label == "=" && !pattern)  // in a right context: production() reads it
+    fail(begin, end,
+         "cpfg's '=' (in a right context before ']': the rest of the branch) as a module, which the cell "
+         "language cannot spell");
   if (label.size() == 2 && label[0] == '~') return inert("Surface_" + label.substr(1), "surface");
   const Predefined* p = predefined(label, dialect_);
   if (!p) return;
@@ -171,10 +178,35 @@ void ForeignSyntax::vocabulary(ModuleText& module, uint32_t begin, uint32_t end,
 std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, bool pattern) const {
   std::vector<ModuleText> result;
   uint32_t at = begin;
+  uint32_t tokenEnd = begin;  // cpfg: the end of the C token `at` is within
   while (at < end) {
     if (isSpace(text_[at])) {
       ++at;
       continue;
+    }
+    // cpfg reads its file through the C preprocessor, which puts a macro's text in place
+    // of a name (a whole C token: `BACKGROUND`, not the B of `AB`): its modules.
+    if (dialect_ == Dialect::Cpfg && at >= tokenEnd && isNameChar(text_[at])) {
+      tokenEnd = at;
+      while (tokenEnd < end && isNameChar(text_[tokenEnd])) ++tokenEnd;
+      const auto macro = isLetter(text_[at]) ? macros.find(text_.substr(at, tokenEnd - at)) : macros.end();
+      uint32_t next = tokenEnd;
+      while (next < end && isSpace(text_[next])) ++next;
+      if (macro != macros.end() && next < end && text_[next] == '(')
+        fail(at, next + 1,
+             "the macro " + shown(macro->first) +
+                 " before parameters: C's preprocessor puts its value in place of the name, so the parameters "
+                 "would be its last module's; give the module another name than the macro");
+      if (macro != macros.end()) {
+        const Nested nested(*this, at, tokenEnd);
+        for (ModuleText& m : modules(macro->second.begin, macro->second.end, pattern)) result.push_back(std::move(m));
+        at = tokenEnd;
+        continue;
+      }
+      if (next < end && text_[next] == '(' && functions.count(text_.substr(at, tokenEnd - at)))
+        fail(at, tokenEnd,
+             "a macro with parameters among modules: C puts its value there, which the converter does not "
+             "write among modules (it writes a macro's value of modules without parameters)");
     }
     if (text_[at] == '(' || text_[at] == ')')
       fail(at, at + 1, "expected a module before " + shown(text_.substr(at, 1)), false);
@@ -206,6 +238,12 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
       fail(moduleBegin, at + 1,
            "L-Py's repetition x(...) in a context has no cell-language counterpart (a context of the cell "
            "language is a fixed sequence of modules)");
+    // cpfg's reader passes over spaces between a module and its parameters, `\ (90)`.
+    if (dialect_ == Dialect::Cpfg) {
+      uint32_t next = at;
+      while (next < end && isSpace(text_[next])) ++next;
+      if (next < end && text_[next] == '(') at = next;
+    }
     if (at < end && text_[at] == '(') {
       int depth = 0;
       uint32_t stop = at;
@@ -363,7 +401,32 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
     s.right = modules(greater + static_cast<uint32_t>(s.rightArrow.size()), headEnd, true);
     predEnd = greater;
   }
+  // cpfg's '=' before ']' in a right context skips the rest of the branch, as the cell
+  // language's ']' in a right context does. cpfg's ']' alone matches only where the
+  // branch ends right there (ignored modules and nested branches aside), which the cell
+  // language cannot say; '=' anywhere else has no counterpart either.
+  if (dialect_ == Dialect::Cpfg)
+    for (size_t i = 0; i < s.right.size(); ++i) {
+      const bool skips = s.right[i].label == "=" && !s.right[i].hasArgs && i + 1 < s.right.size() &&
+                         s.right[i + 1].label == "]";
+      if (s.right[i].label == "=" && !skips)
+        fail(greater, headEnd,
+             "cpfg's '=' in a right context stands before ']' (the rest of the branch); elsewhere it has no "
+             "cell-language counterpart");
+      if (s.right[i].label == "]")
+        fail(greater, headEnd,
+             "cpfg's ']' in a right context matches where the branch ends right after the modules before it; "
+             "the cell language's skips the rest of the branch, as cpfg's '=]' does: this context has no "
+             "counterpart");
+      if (skips) s.right.erase(s.right.begin() + static_cast<std::ptrdiff_t>(i));  // the ']' is next
+    }
+  for (const ModuleText& m : s.left)
+    if (m.label == "=")
+      fail(begin, less, "cpfg's '=' in a left context has no cell-language counterpart (it skips the rest of a "
+                        "branch in a right context)");
   std::vector<ModuleText> predecessor = modules(predBegin, predEnd, true);
+  for (const ModuleText& m : predecessor)
+    if (m.label == "=") fail(predBegin, predEnd, "cpfg's '=' as a predecessor: it stands in a right context before ']'");
   if (predecessor.size() != 1) {
     uint32_t a = predBegin, b = predEnd;
     trim(a, b);

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "lang/convert/cpfg_function.h"
 #include "lang/convert/lsystem_file.h"
 #include "lang/convert/python_operators.h"
 
@@ -75,6 +76,8 @@ class ForeignSyntax {
   /// pgl.NurbsCurve2D(...)`), by name: their class. A production reading one is refused
   /// at the name.
   std::map<std::string, std::string, std::less<>> editorObjects;
+  /// cpfg's functions `func(n, x)` of the view file, in its order (cpfg_function.h).
+  std::vector<SampledFunction> splineFunctions;
   /// The section being read is a homomorphism.
   bool inHomomorphism = false;
   /// What L-Py's `getIterationNb()` (the number of the step being derived, from 0) reads
@@ -164,6 +167,10 @@ class ForeignSyntax {
   /// inverses) as the cell language's, in radians; nullopt for other names.
   std::optional<std::string> degreeCall(const std::string& name, uint32_t at, uint32_t open, uint32_t end,
                                         uint32_t& stop) const;
+  /// A call `func(n, x)` of cpfg's functions of the view file, whose name starts at `at`
+  /// and whose '(' is at `open`: the value between its samples; in `stop` the offset
+  /// after its ')'.
+  std::string splineCall(uint32_t at, uint32_t open, uint32_t end, uint32_t& stop) const;
   /// The element `[index]` of a cpfg array whose name starts at `at` and whose '[' is at
   /// `open`; in `stop` the offset after its ']'.
   std::string arrayElement(const std::vector<std::string>& elements, uint32_t at, uint32_t open, uint32_t end,

@@ -32,6 +32,22 @@ constexpr Predefined kPredefined[] = {
     {"@Gr", "RadiusTangents", Fate::Inert, false, true},
     {"@c", "Circle3D", Fate::Inert, false, true},  // a circle facing the turtle's heading
     {"@Ge", "gcend", Fate::Translate, false},
+    // cpfg's other '@' modules (its blackbox.c), none of which ontogen's turtle has:
+    // textures, the elasticities of its tropisms, the frame kept against twist, the
+    // contour and sides of cylinders, the turtle's scale, bounded circles.
+    {"@Tx", "Texture", Fate::Inert, false, true},
+    {"@Ti", "IncElasticity", Fate::Inert, false, true},
+    {"@Td", "DecElasticity", Fate::Inert, false, true},
+    {"@Ts", "SetElasticity", Fate::Inert, false, true},
+    {"@Tp", "PreventTwist", Fate::Inert, false, true},
+    {"@Tf", "AcceptTwist", Fate::Inert, false, true},
+    {"@#", "SetContour", Fate::Inert, false, true},
+    {"@!", "CylinderSides", Fate::Inert, false, true},
+    {"@Dd", "DivScale", Fate::Inert, false, true},
+    {"@Di", "MultScale", Fate::Inert, false, true},
+    {"@D", "SetScale", Fate::Inert, false, true},
+    {"@bo", "BoundedDisc", Fate::Inert, false, true},
+    {"@bc", "BoundedCircle3D", Fate::Inert, false, true},
     // L-Py's names.
     {"Sphere", "sphere", Fate::Translate},
     {"Circle", "disc", Fate::Translate},

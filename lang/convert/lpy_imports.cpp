@@ -3,7 +3,7 @@
 #include <cctype>
 #include <string>
 
-#include "lang/builtins.h"
+#include "model/builtins.h"
 #include "lang/convert/line_reader.h"
 
 namespace ontogen::convert {

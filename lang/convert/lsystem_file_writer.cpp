@@ -38,6 +38,23 @@ bool needsLetters(const LSystemFile& file) {
   return false;
 }
 
+bool isDigitLabel(const std::string& label) {
+  return !label.empty() && std::isdigit(static_cast<unsigned char>(label[0]));
+}
+
+// An ignore: or consider: list of a block without #letters, where no digit module stands
+// in the axiom or a production: its digits (which the cell language spells under
+// #letters only) name modules the word never holds, so leaving them out changes nothing.
+Statement withoutAbsentDigits(Statement s) {
+  if (s.kind != StatementKind::Ignore && s.kind != StatementKind::Consider) return s;
+  std::vector<std::string> kept;
+  for (std::string& symbol : s.symbols)
+    if (!isDigitLabel(symbol)) kept.push_back(std::move(symbol));
+  // A list of digits alone stays as it is (an empty list would mean otherwise).
+  if (!kept.empty()) s.symbols = std::move(kept);
+  return s;
+}
+
 std::string statementText(const Statement& s) {
   switch (s.kind) {
     case StatementKind::Section:
@@ -89,14 +106,16 @@ CellProgram writeCellProgram(const LSystemFile& file, std::string_view sourceNam
   line("// Converted by ontogen convert from " + std::string(sourceName) + " (" +
        std::string(dialectName(file.dialect)) + ")");
   line("lsystem " + file.name + " {");
-  if (needsLetters(file)) line("  #letters");
+  const bool letters = needsLetters(file);
+  if (letters) line("  #letters");
   for (const Define& define : file.defines) line("  #define " + cellName(define.name) + " " + define.value, define.origin);
   if (file.angle) line("  #angle " + *file.angle);
   if (file.seed) line("  #seed " + *file.seed);
   if (file.derivationLength) line("  #until " + *file.derivationLength, file.derivationLengthOrigin);
   if (file.useGroup) line("  use group: " + *file.useGroup, file.useGroupOrigin);
   if (!file.axiom.empty()) line("  axiom " + wordText(file.axiom), file.axiomOrigin);
-  for (const Statement& statement : file.statements) line("  " + statementText(statement), statement.origin);
+  for (const Statement& statement : file.statements)
+    line("  " + statementText(letters ? statement : withoutAbsentDigits(statement)), statement.origin);
   line("}");
   return out;
 }

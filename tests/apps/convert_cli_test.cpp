@@ -313,6 +313,20 @@ TEST(Convert, CpfgStepCountersGrowAsCpfgCountsTheSteps) {
       << end.err;
 }
 
+// cpfg's @Tx and @Ts stay modules (Texture, SetElasticity) that contexts read as cpfg
+// does; '=]' lets A's context [B=]C match the branch [+BD] (+ ignored, D skipped), the
+// ignore: list's digit 0 names no module; func(1, 0.5) is the view file's function's
+// middle sample, 3 (cpfg_vocabulary.func: a Bézier segment whose y(0.5) is 3). The words
+// as cpfg derives them.
+TEST(Convert, CpfgModulesContextsAndFunctionsGrowAsCpfgDerivesThem) {
+  Result result = ontogen("word " + file("cpfg_vocabulary.l") + " --at 1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 1: Texture(2) SetElasticity(1, 0) A(0.5) [ + B D ] C F(3)\n"
+            "t = 2: Texture(2) SetElasticity(1, 0) SetElasticity(1, 0.5) A(1) [ + B D D ] C F(3) F(3)\n");
+  EXPECT_EQ(count(result.err, ": warning: "), 2u) << result.err;
+}
+
 // L-Py's hooks: Start's globals are constants (n = 3, not the file's 1); StartEach
 // chooses group 1 at steps 0 and 3 (getIterationNb() % 3 == 0), else group 2, counts k
 // from Start's 10 by 2 before each step and sets half = getIterationNb() // 2; B gets

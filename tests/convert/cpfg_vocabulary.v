@@ -1,0 +1,2 @@
+angle factor: 8
+function: cpfg_vocabulary.func 100
