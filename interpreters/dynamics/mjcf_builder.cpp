@@ -54,6 +54,9 @@ const char* physicsError(const PhysicsDef& def) {
   if (!(def.kp >= 0) || !std::isfinite(def.kp)) return "the servos' kp must be a finite number >= 0";
   if (!(def.kd >= 0) || !std::isfinite(def.kd)) return "the servos' kd must be a finite number >= 0";
   if (!(def.torque > 0)) return "the servos' torque must be above 0";
+  if (def.iterations < 1 || def.iterations > kMostSolverIterations)
+    return "the solver's iterations must be a whole number from 1 to 1000";
+  if (!(def.tolerance >= 0 && def.tolerance < 1)) return "the solver's tolerance must be >= 0 and below 1";
   return nullptr;
 }
 
@@ -227,7 +230,8 @@ std::string mjcfOf(const BodyPlan& plan, const PhysicsDef& def, std::string_view
   int degrees = 0;
   for (const PlanBody& body : bodies) degrees += body.kind == JointKind::Free ? 6 : hingeCount(body.kind);
   out += "  <option timestep=\"" + number(def.timestep) + "\" gravity=\"0 " + number(-def.gravity) +
-         " 0\" integrator=\"" + (def.rungeKutta ? "RK4" : "Euler") + "\"" +
+         " 0\" integrator=\"" + (def.rungeKutta ? "RK4" : "Euler") + "\" iterations=\"" +
+         std::to_string(def.iterations) + "\" tolerance=\"" + number(def.tolerance) + "\"" +
          (degrees > kNewtonDegrees ? " solver=\"CG\"" : "") + "/>\n";
   out += "  " + sizeElement(room) + "\n";
   // Limbs touch the ground and nothing else: contype 0 meets conaffinity 1 of the ground only.

@@ -399,7 +399,8 @@ TEST(DynamicsSet, MeasuresTheWalk) {
     def.run.from = kPeriod;
     def.run.until = kPeriod + 3;
     def.run.frames = 4;
-    for (const char* m : {"d=distance", "f=fallen", "e=energy", "s=slip"}) def.measures.push_back(parseMeasure(m));
+    for (const char* m : {"d=distance", "f=fallen", "e=energy", "s=slip", "u=unstable"})
+      def.measures.push_back(parseMeasure(m));
     return runVariant(std::move(def));
   };
   const std::string model = testing_support::readModel("creature.cell");
@@ -409,6 +410,7 @@ TEST(DynamicsSet, MeasuresTheWalk) {
   EXPECT_EQ(walking.measures[1], 0);
   EXPECT_GT(walking.measures[2], 0);
   EXPECT_GT(walking.measures[3], 0);
+  EXPECT_EQ(walking.measures[4], 0);
   std::string limp = model;
   limp.replace(limp.find("axiom Gait body;"), 16, "axiom Limp Gait body;");
   limp += "\ncell Limp { interpret dynamics { servo(0, 0) } }\n";
@@ -516,6 +518,60 @@ std::string raftOf(double height) {
   return raft + " } }\n";
 }
 
+// solver(iterations, tolerance) reaches the MJCF's <option> and MuJoCo's model read from
+// it; without it the MJCF says MuJoCo's defaults (100, 1e-8). solver(0), solver(2.5) and
+// solver(10, 1) are ignored and named as bad arguments, located at the first.
+TEST(DynamicsSet, TheSolversIterationsAndToleranceReachMujoco) {
+  auto run = [](const std::string& solver) {
+    WalkDef w;
+    w.model = "solver.cell";
+    w.text = raftOf(0.1);
+    w.text.replace(w.text.find("gait("), 0, solver + " ");
+    w.until = 0.1;
+    w.frames = 2;
+    w.formats = "mjcf";
+    return walk(w);
+  };
+  auto option = [](const Walk& w, int& iterations, double& tolerance) {
+    const fs::path path = w.dir / "solver.xml";
+    char error[1000] = "";
+    mjModel* m = mj_loadXML(path.string().c_str(), nullptr, error, sizeof error);
+    ASSERT_NE(m, nullptr) << error;
+    iterations = m->opt.iterations;
+    tolerance = m->opt.tolerance;
+    mj_deleteModel(m);
+  };
+  int iterations = 0;
+  double tolerance = 0;
+  const Walk set = run("solver(37, 2.5e-5)");
+  EXPECT_NE(bytesOf(set.dir / "solver.xml").find(" iterations=\"37\" tolerance=\"2.5000000000000001e-05\""),
+            std::string::npos);
+  option(set, iterations, tolerance);
+  EXPECT_EQ(iterations, 37);
+  EXPECT_EQ(tolerance, 2.5e-5);
+  const Walk fewer = run("solver(3)");
+  option(fewer, iterations, tolerance);
+  EXPECT_EQ(iterations, 3);
+  EXPECT_EQ(tolerance, 1e-8);
+  const Walk plain = run("");
+  EXPECT_NE(bytesOf(plain.dir / "solver.xml").find(" iterations=\"100\" tolerance=\"1e-08\""), std::string::npos);
+  option(plain, iterations, tolerance);
+  EXPECT_EQ(iterations, 100);
+  EXPECT_EQ(tolerance, 1e-8);
+  const Walk bad = run("solver(0) solver(2.5) solver(10, 1)");
+  option(bad, iterations, tolerance);
+  EXPECT_EQ(iterations, 100);
+  EXPECT_EQ(tolerance, 1e-8);
+  int named = 0;
+  for (const RunDiagnostic& d : bad.report.diagnostics) {
+    if (d.message.find("bad arguments") == std::string::npos) continue;
+    ++named;
+    EXPECT_EQ(d.count, 3u) << d.message;
+    EXPECT_TRUE(d.span.valid()) << d.message;
+  }
+  EXPECT_EQ(named, 1);
+}
+
 // A raft of 12 limbs joined by hinges, lying on the ground: each capsule touches it at
 // both ends, 24 contacts, more than the room a model starts with (one contact a limb).
 // The steps that run out are taken again with twice the room, so no contact is dropped
@@ -564,24 +620,28 @@ TEST(DynamicsSet, ABodyStartingInTheGroundGrowsTheRoomItNeedsOnly) {
 // data: the sunk raft's model starts with room for 16 contacts and 64 rows (190 KiB);
 // under a limit of 512 KiB its first step, which asks for twice that (700 KiB), stops the
 // run with a limit's message, not an allocation MuJoCo cannot make.
-TEST(DynamicsSet, RoomForContactsPastTheMemoryLimitStopsAtTheLimit) {
-  const std::string raft = raftOf(0.09);
+// The report of a run of `program` (stem `stem`) to 0.1 s under a memory limit of 512 KiB.
+RunReport runUnderHalfAMebibyte(const std::string& program, const std::string& stem) {
   DiagnosticSink sink;
   CompileOptions options;
   options.commandSets = commandSets();
   RunDef def;
-  def.program = compileSource("sunk_raft.cell", raft, sink, options);
-  ASSERT_NE(def.program, nullptr) << formatDiagnostics(sink);
-  def.stem = "sunk_raft";
+  def.program = compileSource(stem + ".cell", program, sink, options);
+  EXPECT_NE(def.program, nullptr) << formatDiagnostics(sink);
+  def.stem = stem;
   def.frames = 2;
   def.until = 0.1;
   def.sets = {"dynamics"};
   def.setOptions.formats = "joints";
   def.world.limits.maxMemoryBytes = 512 << 10;
-  def.out = fs::path(ONTOGEN_BINARY_DIR) / "dynamics_set_test" / "sunk_raft_limit";
+  def.out = fs::path(ONTOGEN_BINARY_DIR) / "dynamics_set_test" / (stem + "_limit");
   fs::remove_all(def.out);
   ontogen::Run run(std::move(def));
-  const RunReport report = run.execute();
+  return run.execute();
+}
+
+TEST(DynamicsSet, RoomForContactsPastTheMemoryLimitStopsAtTheLimit) {
+  const RunReport report = runUnderHalfAMebibyte(raftOf(0.09), "sunk_raft");
   EXPECT_EQ(report.status, RunStatus::ModelFailed);
   ASSERT_EQ(report.diagnostics.size(), 1u);
   const std::string& message = report.diagnostics[0].message;
@@ -590,6 +650,70 @@ TEST(DynamicsSet, RoomForContactsPastTheMemoryLimitStopsAtTheLimit) {
             std::string::npos)
       << message;
   EXPECT_NE(message.find("raise it with --max-memory MIB"), std::string::npos) << message;
+  EXPECT_EQ(message.find("unstable"), std::string::npos) << message;
+}
+
+// The same sunk raft under a gravity past MuJoCo's bound on accelerations (1e10): its
+// first step is reset as unstable and then runs out of room; the limit's message says so.
+TEST(DynamicsSet, RoomPastTheLimitInAnUnstableRunSaysItWasUnstable) {
+  std::string raft = raftOf(0.09);
+  raft.replace(raft.find("gait("), 0, "gravity(1e11) ");
+  const RunReport report = runUnderHalfAMebibyte(raft, "unstable_sunk_raft");
+  EXPECT_EQ(report.status, RunStatus::ModelFailed);
+  ASSERT_EQ(report.diagnostics.size(), 1u);
+  const std::string& message = report.diagnostics[0].message;
+  EXPECT_NE(message.find("at t = 0.002 s the dynamics set's body touched the ground at more than 16 points while its "
+                         "simulation was unstable (MuJoCo reset it; a smaller #timestep or gentler servos may steady "
+                         "it), and needs MuJoCo's room for 32 contacts"),
+            std::string::npos)
+      << message;
+}
+
+// Under a gravity of 1e11, past MuJoCo's bound of 1e10 on accelerations, every step of a
+// hinged body in the air is unstable and reset: `unstable` counts the 50 steps of 0.1 s
+// at 0.002 s, and the run warns once with that count. The walking creature counts none.
+TEST(DynamicsSet, UnstableCountsTheStepsMujocoReset) {
+  const std::string program = "#interpret dynamics\nsystem s { pool linear; axiom Body; }\n"
+                              "cell Body { interpret dynamics { gravity(1e11) gait(1, 0.5, 0, 0, 1) limb(0.3, 0.1) "
+                              "hinge(0) limb(0.3, 0.1) } }\n";
+  VariantDef def;
+  def.name = "models/unstable.cell";
+  def.text = program;
+  def.compile.commandSets = commandSets();
+  def.run.sets = {"dynamics"};
+  def.run.setOptions.formats = "joints";
+  def.run.out = fs::path(ONTOGEN_BINARY_DIR) / "dynamics_set_test" / "unstable";
+  def.run.until = 0.1;
+  def.run.frames = 2;
+  def.measures.push_back(parseMeasure("u=unstable"));
+  const VariantResult result = runVariant(std::move(def));
+  ASSERT_EQ(result.error, "");
+  EXPECT_EQ(result.measures[0], 50);
+
+  DiagnosticSink sink;
+  CompileOptions options;
+  options.commandSets = commandSets();
+  RunDef run;
+  run.program = compileSource("unstable.cell", program, sink, options);
+  ASSERT_NE(run.program, nullptr) << formatDiagnostics(sink);
+  run.stem = "unstable";
+  run.frames = 2;
+  run.until = 0.1;
+  run.sets = {"dynamics"};
+  run.setOptions.formats = "joints";
+  run.out = fs::path(ONTOGEN_BINARY_DIR) / "dynamics_set_test" / "unstable_run";
+  fs::remove_all(run.out);
+  const RunReport report = ontogen::Run(std::move(run)).execute();
+  int warned = 0;
+  for (const RunDiagnostic& d : report.diagnostics) {
+    if (d.message.find("unstable") == std::string::npos) continue;
+    ++warned;
+    EXPECT_EQ(d.message, "MuJoCo found the simulation unstable at 50 steps and reset it: a smaller #timestep or "
+                         "weaker servos (the first here)");
+    EXPECT_EQ(d.count, 50u);
+    EXPECT_EQ(d.severity, Severity::Warning);
+  }
+  EXPECT_EQ(warned, 1);
 }
 
 // A reed: a horizontal cantilever of 10 elastic segments (rod(1, 0.01, 1000), EI 10),
