@@ -53,16 +53,21 @@ void DynamicsSet::setControls(double time) {
     atNextKnot_.valid = poseTargets(static_cast<double>(knot + 1) * control_, atNextKnot_.targets);
     knot_ = knot;
     knotsStale_ = false;
+    // The way from each target to the next, the short way round (a hinge's angle is read
+    // in (-pi, pi]): once a knot, not at each step.
+    if (atKnot_.valid && atNextKnot_.valid) {
+      towardsNextKnot_.resize(atKnot_.targets.size());
+      for (std::size_t i = 0; i < towardsNextKnot_.size(); ++i)
+        towardsNextKnot_[i] = std::remainder(atNextKnot_.targets[i] - atKnot_.targets[i], 2 * std::numbers::pi);
+    }
   }
   if (!atKnot_.valid || !atNextKnot_.valid) return;
   const double along = std::clamp((time - static_cast<double>(knot) * control_) / control_, 0.0, 1.0);
   std::size_t i = 0;
   for (const Hinge& hinge : hinges_) {
     if (hinge.actuator < 0) continue;
-    const double from = atKnot_.targets[i], to = atNextKnot_.targets[i];
+    double target = atKnot_.targets[i] + towardsNextKnot_[i] * along;
     ++i;
-    // The short way round: a hinge's angle is read in (-pi, pi].
-    double target = from + std::remainder(to - from, 2 * std::numbers::pi) * along;
     if (hinge.range.set) target = std::clamp(target, hinge.range.lo, hinge.range.hi);
     d->ctrl[hinge.actuator] = target;
   }

@@ -227,6 +227,7 @@ class DynamicsSet : public InterpretationSet {
   long knot_ = 0;
   bool knotsStale_ = true;
   Knot atKnot_, atNextKnot_;
+  std::vector<double> towardsNextKnot_;  // per servo, from its target at atKnot_ to atNextKnot_'s
   std::size_t skeletonBodies_ = 0;  // the plan's bodies before its rods'
   struct Drag {
     int body = 0;  // MuJoCo's
