@@ -275,8 +275,10 @@ void CreatureSet::runChecked(const CreatureCommand& command, std::span<const dou
 // The root of a creature: level, on its walk at the word's time.
 void CreatureSet::startCreature(std::span<const double> args) {
   GaitDef gait{.period = args[0], .duty = args[1], .stride = args[2], .lift = args[3], .height = args[4]};
-  if (gaitError(gait) != nullptr) {
-    badArguments_.add(1, site_);
+  if (const char* error = gaitError(gait)) {
+    // Named with its own reason: a gait refused leaves the whole creature unmade.
+    if (badGaits_.count == 0) badGait_ = error;
+    badGaits_.add(1, site_);
     return;
   }
   Creature creature;
@@ -425,6 +427,9 @@ std::vector<SetWarning> CreatureSet::takeWarnings() {
                              " joint angles inside their ranges (the first here)");
   unreached_.takeInto(out, "the creature set counted " + std::to_string(unreached_.count) +
                                " feet that could not reach where the gait puts them (the first here)");
+  badGaits_.takeInto(out, "the creature set made no creature of " + std::to_string(badGaits_.count) +
+                              (badGaits_.count == 1 ? " gait" : " gaits") + " out of range: " +
+                              (badGait_ ? badGait_ : "") + " (the first here)");
   legless_.takeInto(out, "the creature set made " + std::to_string(legless_.count) +
                              " legs outside any creature (no gait before them), hanging straight (the first here)");
   return out;

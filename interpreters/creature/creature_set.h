@@ -193,6 +193,8 @@ class CreatureSet : public InterpretationSet {
   WarningCounter clamped_;
   WarningCounter unreached_;
   WarningCounter legless_;
+  WarningCounter badGaits_;
+  const char* badGait_ = nullptr;  // why the first gait counted in badGaits_ was refused
 };
 
 }  // namespace ontogen

@@ -36,6 +36,10 @@ constexpr std::array kCommands = {
     DynamicsCommand{"control", DynamicsOp::Control, 1, 1, "control(period)",
                     "the servos' targets are the kinematic pose taken every period seconds of simulated time, "
                     "on a grid from time 0, and followed linearly between (0 to 1; default 0.01; 0: at every step)"},
+    DynamicsCommand{"solver", DynamicsOp::Solver, 1, 2, "solver(iterations[, tolerance])",
+                    "MuJoCo's constraint solver (contacts, ranges) takes at most iterations a step (a whole number "
+                    "1..1000; default 100), stopping early when an iteration improves its cost by less than the "
+                    "fraction tolerance (>= 0, below 1; default 1e-8; 0: every iteration)"},
 };
 
 }  // namespace

@@ -2,7 +2,7 @@
 // The table of the "dynamics" set's own commands: the physical constants of the body a
 // word develops (interpreters/dynamics/dynamics_set.h). The set also runs the creature
 // set's commands (interpreters/creature/creature_commands.h); these come first in its
-// table. density, servo, friction, gravity, damping, wind and control set a value for the whole
+// table. density, servo, friction, gravity, damping, wind, control and solver set a value for the whole
 // model (the last one in a word holds); rod draws a rod of the plant the word grows, with
 // the stiffness and elastic segments given before it on its path.
 
@@ -22,6 +22,7 @@ enum class DynamicsOp {
   Damping,   ///< damping: the rods' springs' damping
   Wind,      ///< wind: the air's speed, and its gusts
   Control,   ///< control: how often the servos' targets are taken from the kinematic pose
+  Solver,    ///< solver: MuJoCo's constraint solver's iterations and tolerance
 };
 
 struct DynamicsCommand {

@@ -18,6 +18,11 @@
 // A frame is the inner creature set's scene of the tape at the frame's time, every joint
 // and limb moved to where the simulation has its body; the skeleton is marked simulated
 // and lists the joints whose limbs touch the ground.
+//
+// Its parts: dynamics_set.cpp reads the word into its tape and body plan; dynamics_rods.cpp
+// makes the plants' rods and their wind; dynamics_build.cpp makes the model and carries the
+// state over; dynamics_servos.cpp sets the servos' targets; dynamics_step.cpp steps the
+// simulation; dynamics_frame.cpp draws a frame from it.
 
 #include <filesystem>
 #include <memory>
@@ -65,7 +70,9 @@ struct DynamicsStats {
   double lowest = 0;          ///< the lowest height above the ground any joint had at a frame
   double energy = 0;          ///< the servos' work, |torque x angular speed| summed over steps
   double slip = 0;            ///< distance contact points slid along the ground, summed
-  int instabilities = 0;      ///< times MuJoCo reset an unstable simulation
+  /// Steps at which MuJoCo found the state bad (not finite, or past its bound of 1e10 on
+  /// positions, speeds and accelerations: an unstable simulation) and reset it.
+  int instabilities = 0;
   int roomGrowths = 0;        ///< steps taken again with twice the contacts' and constraints' room
 };
 
@@ -220,6 +227,7 @@ class DynamicsSet : public InterpretationSet {
   long knot_ = 0;
   bool knotsStale_ = true;
   Knot atKnot_, atNextKnot_;
+  std::vector<double> towardsNextKnot_;  // per servo, from its target at atKnot_ to atNextKnot_'s
   std::size_t skeletonBodies_ = 0;  // the plan's bodies before its rods'
   struct Drag {
     int body = 0;  // MuJoCo's
@@ -232,7 +240,6 @@ class DynamicsSet : public InterpretationSet {
   std::vector<int> planOfBody_;  // the plan body of each MuJoCo body (-1: the world)
   int groundGeom_ = -1;
   MujocoRoom room_;
-  int countedInstabilities_ = 0;  // of sim_'s data, already in stats_
 
   FrameTarget target_;
   bool framed_ = false;

@@ -27,7 +27,19 @@ struct PhysicsDef {
   double kd = 100;          ///< their damping, torque per radian a second, >= 0
   double torque = 4000;     ///< the most torque a servo gives, > 0 (infinity: no limit)
   bool rungeKutta = false;  ///< integrate with MuJoCo's RK4 instead of its semi-implicit Euler
+  /// The most iterations MuJoCo's constraint solver takes a step, a whole number 1..kMostSolverIterations
+  /// (MuJoCo's default).
+  int iterations = 100;
+  /// The solver stops when the cost falls by less than this fraction, >= 0 and < 1 (0: always
+  /// every iteration; MuJoCo's default).
+  double tolerance = 1e-8;
+
+  bool operator==(const PhysicsDef&) const = default;
 };
+
+/// The most solver iterations a step: far past what a contact needs to converge, and a
+/// bound on a step's time.
+constexpr int kMostSolverIterations = 1000;
 
 /// Why def is no physics, or null when it is.
 const char* physicsError(const PhysicsDef& def);

@@ -1,5 +1,7 @@
 #include "interpreters/dynamics/mujoco_model.h"
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <mutex>
 
@@ -56,6 +58,17 @@ mjData* MujocoModel::scratch() {
   if (!scratch_) scratch_ = mj_makeData(model_);
   if (!scratch_) throw MujocoError("MuJoCo could not allocate the model's data");
   return scratch_;
+}
+
+void MujocoModel::step() {
+  constexpr std::array kBad{mjWARN_BADQPOS, mjWARN_BADQVEL, mjWARN_BADQACC};
+  constexpr std::array kFull{mjWARN_CONTACTFULL, mjWARN_CNSTRFULL};
+  for (const mjtWarning warning : kBad) data_->warning[warning].number = 0;
+  for (const mjtWarning warning : kFull) data_->warning[warning].number = 0;
+  mj_step(model_, data_);
+  lastStepReset_ = std::any_of(kBad.begin(), kBad.end(), [&](mjtWarning w) { return data_->warning[w].number > 0; });
+  lastStepOutOfRoom_ =
+      std::any_of(kFull.begin(), kFull.end(), [&](mjtWarning w) { return data_->warning[w].number > 0; });
 }
 
 MujocoModel::~MujocoModel() {

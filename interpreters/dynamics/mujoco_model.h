@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
 #include <mujoco/mujoco.h>
 
 namespace ontogen {
@@ -31,15 +33,36 @@ class MujocoModel {
   /// A second data of the model, for states read beside the simulation's own; made on
   /// first use (MuJoCo clears all of a data's memory as it makes one).
   mjData* scratch();
-  /// Steps once with the controls as they are.
-  void step() { mj_step(model_, data_); }
-  /// Times MuJoCo found the simulation unstable and reset it (mjWARN_BADQACC).
-  int instabilities() const { return data_->warning[mjWARN_BADQACC].number; }
+  /// Steps once with the controls as they are, and notes what MuJoCo said of the step. Its
+  /// warning counts are cleared first: MuJoCo clears them itself as it resets a data, so
+  /// only a count of this step alone tells a reset or a lack of room.
+  void step();
+  /// The last step() found the state bad (not finite, or past 1e10: MuJoCo's bound on
+  /// positions, speeds and accelerations) and MuJoCo reset the data to the model's first
+  /// pose at time 0 before integrating it.
+  bool lastStepReset() const { return lastStepReset_; }
+  /// The last step() found more contacts or constraint rows than the model has room for
+  /// (MuJoCo dropped those past it).
+  bool lastStepOutOfRoom() const { return lastStepOutOfRoom_; }
 
  private:
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
   mjData* scratch_ = nullptr;
+  bool lastStepReset_ = false;
+  bool lastStepOutOfRoom_ = false;
 };
+
+/// A MuJoCo body's frame in the world (columns H, L, U), from its xmat (row-major).
+inline glm::dmat3 frameOf(const mjData* d, int body) {
+  const mjtNum* x = d->xmat + 9 * body;
+  return glm::dmat3(glm::dvec3(x[0], x[3], x[6]), glm::dvec3(x[1], x[4], x[7]), glm::dvec3(x[2], x[5], x[8]));
+}
+
+/// A MuJoCo body's place in the world, from its xpos.
+inline glm::dvec3 positionOf(const mjData* d, int body) {
+  const mjtNum* x = d->xpos + 3 * body;
+  return {x[0], x[1], x[2]};
+}
 
 }  // namespace ontogen

@@ -44,6 +44,9 @@ constexpr std::array kQuantities{
     QuantityInfo{"fallen", Source::Dynamics,
                  "1 when the body's centre of mass ended below half its height at the first frame, else 0"},
     QuantityInfo{"energy", Source::Dynamics, "the servos' work, |torque x angular speed| over every step, summed"},
+    QuantityInfo{"unstable", Source::Dynamics,
+                 "steps at which MuJoCo found the simulation unstable (a position, speed or acceleration not "
+                 "finite or past 1e10) and reset it; 0 for a steady run"},
 };
 
 // An expression deeper than this is no measure anyone writes; the bound keeps the

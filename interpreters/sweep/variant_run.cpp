@@ -164,6 +164,7 @@ VariantResult runVariant(VariantDef def) {
       q.values["slip"] = stats.slip;
       q.values["fallen"] = stats.simulating && stats.height < stats.startHeight / 2 ? 1 : 0;
       q.values["energy"] = stats.energy;
+      q.values["unstable"] = stats.instabilities;
     }
   }
   for (const auto& [name, value] : def.values) q.values[name] = value;

@@ -108,6 +108,35 @@ bool onGround(const Walk& w, std::size_t frame, std::size_t foot) { return w.at(
 constexpr double kPeriod = 1.2, kStride = 0.55, kFps = 30;  // models/creature.cell's defaults
 constexpr int kFramesPerCycle = 36;
 
+// A gait out of range (DUTY 1: a foot never off the ground; DUTY 0; a negative stride)
+// makes no creature, and the set says why once a frame, located at the gait's call in
+// models/creature.cell (line 63, column 5).
+TEST(CreatureModel, AGaitOutOfRangeIsAWarningAtItsCallSayingWhy) {
+  const std::map<double, std::string> reasons{{1.0, "the duty factor must be between 0 and 1"},
+                                              {0.0, "the duty factor must be between 0 and 1"}};
+  for (const auto& [duty, reason] : reasons) {
+    const Walk w = walk("creature.cell", {{"DUTY", duty}}, "joints", 2);
+    int named = 0;
+    for (const RunDiagnostic& d : w.report.diagnostics) {
+      if (d.message.find("made no creature") == std::string::npos) continue;
+      ++named;
+      EXPECT_EQ(d.severity, Severity::Warning);
+      EXPECT_EQ(d.message, "the creature set made no creature of " + std::to_string(d.count) + (d.count == 1 ? " gait" : " gaits") +
+                               " out of range: " + reason + " (the first here)");
+      EXPECT_GE(d.count, 1u);
+      ASSERT_TRUE(d.span.valid());
+      EXPECT_EQ(d.span.line(), 63);
+      EXPECT_EQ(d.span.column(), 5);
+    }
+    EXPECT_EQ(named, 1) << "DUTY " << duty;
+  }
+  const Walk negative = walk("creature.cell", {{"STRIDE", -1}}, "joints", 2);
+  bool said = false;
+  for (const RunDiagnostic& d : negative.report.diagnostics)
+    said = said || d.message.find("out of range: the stride must be >= 0") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST(CreatureModel, StanceFeetDoNotSlip) {
   for (double noise : {0.0, 0.15}) {
     const Walk w = walk("creature.cell", {{"NOISE", noise}, {"SEGMENTS", 4}});

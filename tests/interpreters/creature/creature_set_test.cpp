@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -114,8 +115,13 @@ TEST(CreatureSet, BadArgumentsAreIgnoredAndCounted) {
   draw(set, 0, {{{"gait", {1, 1.5, 1, 1, 1}}, {"limb", {-1, 0.1}}, {"knee", {}}, {"]", {}}, {"hinge", {NAN}}}});
   EXPECT_TRUE(set.scene().skeleton.empty());
   const auto warnings = set.takeWarnings();
-  ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_EQ(warnings[0].count, 5u);
+  // The gait out of range is named apart, with its reason.
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[0].count, 4u);
+  EXPECT_NE(warnings[0].message.find("bad arguments"), std::string::npos);
+  EXPECT_EQ(warnings[1].count, 1u);
+  EXPECT_EQ(warnings[1].message, "the creature set made no creature of 1 gait out of range: the duty factor must be "
+                                 "between 0 and 1 (the first here)");
 }
 
 // Finite arguments that would place a joint, a foot or a limb beyond what outputs hold

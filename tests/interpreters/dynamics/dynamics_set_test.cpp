@@ -30,6 +30,7 @@
 #include "interpreters/sweep/measure.h"
 #include "interpreters/sweep/variant_run.h"
 #include "tests/core/test_support.h"
+#include "tests/interpreters/dynamics/dynamics_walk.h"
 #include "tests/interpreters/physics/physics_support.h"
 
 namespace ontogen {
@@ -37,108 +38,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Walk {
-  RunReport report;
-  nlohmann::json tracks;  // the joints.json
-  fs::path dir;
-
-  const nlohmann::json& joints() const { return tracks["joints"]; }
-  const nlohmann::json& frames() const { return tracks["frames"]; }
-  glm::dvec3 at(std::size_t frame, std::size_t joint) const {
-    const auto& p = tracks["frames"][frame]["positions"][joint];
-    return {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()};
-  }
-  std::size_t root() const {
-    for (std::size_t j = 0; j < joints().size(); ++j)
-      if (joints()[j]["parent"].get<int>() < 0) return j;
-    return 0;
-  }
-  // The root's travel along the ground from the first frame to the last.
-  double distance() const {
-    const glm::dvec3 a = at(0, root()), b = at(frames().size() - 1, root());
-    return std::hypot(b.x - a.x, b.z - a.z);
-  }
-  double lowest() const {
-    double low = 1e300;
-    for (std::size_t f = 0; f < frames().size(); ++f)
-      for (std::size_t j = 0; j < joints().size(); ++j) low = std::min(low, at(f, j).y);
-    return low;
-  }
-};
-
-std::shared_ptr<const Program> compileWith(const std::string& model, const std::map<std::string, double>& defines) {
-  DiagnosticSink sink;
-  CompileOptions options;
-  options.commandSets = commandSets();
-  for (const auto& [name, value] : defines) options.defines.push_back({name, value});
-  auto program = compileSource("models/" + model, testing_support::readModel(model), sink, options);
-  EXPECT_NE(program, nullptr) << formatDiagnostics(sink);
-  return program;
-}
-
-struct WalkDef {
-  std::string model = "creature.cell";
-  std::map<std::string, double> defines;
-  double from = 0, until = 1;
-  int frames = 11;
-  std::string formats = "joints";
-  int threads = 1;
-  // Called after each frame with the set and the frame's time.
-  std::function<void(const DynamicsSet&, double)> onFrame = {};
-  std::string text = {};  // the program, when not the model's file
-};
-
-Walk walk(const WalkDef& w) {
-  // Each run its own folder: ctest runs tests in parallel processes.
-  std::string name = std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" + w.model;
-  for (const auto& [key, value] : w.defines) name += "_" + key + std::to_string(value);
-  name += "_" + std::to_string(w.frames) + "_" + std::to_string(w.threads);
-  Walk result;
-  result.dir = fs::path(ONTOGEN_BINARY_DIR) / "dynamics_set_test" / name;
-  fs::remove_all(result.dir);
-  RunDef def;
-  if (w.text.empty()) {
-    def.program = compileWith(w.model, w.defines);
-  } else {
-    DiagnosticSink sink;
-    CompileOptions options;
-    options.commandSets = commandSets();
-    for (const auto& [key, value] : w.defines) options.defines.push_back({key, value});
-    def.program = compileSource("models/" + w.model, w.text, sink, options);
-    EXPECT_NE(def.program, nullptr) << formatDiagnostics(sink);
-  }
-  if (!def.program) return result;
-  def.stem = fs::path(w.model).stem().string();
-  def.frames = w.frames;
-  def.from = w.from;
-  def.until = w.until;
-  def.world.threads = w.threads;
-  def.sets = {"dynamics"};
-  def.setOptions.formats = w.formats;
-  def.out = result.dir;
-  const DynamicsSet* dynamics = nullptr;
-  if (w.onFrame)
-    def.frameDrawn = [&](const Scene& scene) {
-      if (dynamics) w.onFrame(*dynamics, scene.time);
-    };
-  Run run(std::move(def));
-  for (const auto& set : run.sets())
-    if (const auto* found = dynamic_cast<const DynamicsSet*>(set.get())) dynamics = found;
-  result.report = run.execute();
-  EXPECT_TRUE(result.report.ok()) << (result.report.diagnostics.empty() ? "" : result.report.diagnostics[0].message);
-  for (const RunDiagnostic& diagnostic : result.report.diagnostics)
-    EXPECT_EQ(diagnostic.message.find("unstable"), std::string::npos) << diagnostic.message;
-  std::ifstream in(result.dir / (fs::path(w.model).stem().string() + ".joints.json"));
-  if (in) result.tracks = nlohmann::json::parse(in);
-  return result;
-}
-
-std::string bytesOf(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using namespace dynamics_testing;
 
 // models/creature.cell's defaults.
 constexpr double kPeriod = 1.2, kStride = 0.55, kHeight = 0.75, kLeg = 0.95 + 1.15;
@@ -399,7 +299,8 @@ TEST(DynamicsSet, MeasuresTheWalk) {
     def.run.from = kPeriod;
     def.run.until = kPeriod + 3;
     def.run.frames = 4;
-    for (const char* m : {"d=distance", "f=fallen", "e=energy", "s=slip"}) def.measures.push_back(parseMeasure(m));
+    for (const char* m : {"d=distance", "f=fallen", "e=energy", "s=slip", "u=unstable"})
+      def.measures.push_back(parseMeasure(m));
     return runVariant(std::move(def));
   };
   const std::string model = testing_support::readModel("creature.cell");
@@ -409,6 +310,7 @@ TEST(DynamicsSet, MeasuresTheWalk) {
   EXPECT_EQ(walking.measures[1], 0);
   EXPECT_GT(walking.measures[2], 0);
   EXPECT_GT(walking.measures[3], 0);
+  EXPECT_EQ(walking.measures[4], 0);
   std::string limp = model;
   limp.replace(limp.find("axiom Gait body;"), 16, "axiom Limp Gait body;");
   limp += "\ncell Limp { interpret dynamics { servo(0, 0) } }\n";
@@ -504,92 +406,6 @@ TEST(DynamicsSet, RodsOnACreaturesBodyMoveWithIt) {
     // Lying on the ground: the tip within its radius and a little sag of MuJoCo's soft contact.
     EXPECT_LT(rootAndTip.back().second.y, 0.1) << rod;
   }
-}
-
-// A raft of 12 limbs of radius 0.1 joined by hinges, held with its joints at `height`
-// (0.1: lying on the ground).
-std::string raftOf(double height) {
-  std::string raft = "#interpret dynamics\nsystem raft { pool linear; axiom Raft; }\n"
-                     "cell Raft { interpret dynamics { gait(1, 0.5, 0, 0, " +
-                     std::to_string(height) + ") limb(0.3, 0.1)";
-  for (int i = 1; i < 12; ++i) raft += " hinge(0) limb(0.3, 0.1)";
-  return raft + " } }\n";
-}
-
-// A raft of 12 limbs joined by hinges, lying on the ground: each capsule touches it at
-// both ends, 24 contacts, more than the room a model starts with (one contact a limb).
-// The steps that run out are taken again with twice the room, so no contact is dropped
-// and no part of the raft sinks (MuJoCo's soft contact lets it in by less than 2 mm).
-TEST(DynamicsSet, ABodyTouchingTheGroundEverywhereGetsTheRoomItsContactsNeed) {
-  const std::string raft = raftOf(0.1);
-  int growths = 0;
-  WalkDef w;
-  w.model = "raft.cell";
-  w.text = raft;
-  w.until = 2;
-  w.frames = 5;
-  w.onFrame = [&](const DynamicsSet& set, double) { growths = set.stats().roomGrowths; };
-  const Walk lying = walk(w);
-  ASSERT_EQ(lying.frames().size(), 5u);
-  ASSERT_EQ(lying.joints().size(), 12u);
-  EXPECT_GE(growths, 1);
-  for (std::size_t f = 0; f < 5; ++f)
-    for (std::size_t j = 0; j < 12; ++j) EXPECT_NEAR(lying.at(f, j).y, 0.1, 2e-3) << "frame " << f << ", joint " << j;
-}
-
-// The same raft set 1 cm into the ground: the model's first pose already has more
-// contacts than its room (MuJoCo counts the overflow in its data), and the first step runs
-// out too. The step is taken again with more room once or twice, not until MuJoCo cannot
-// make its data (the overflow counted before the step is not this step's), the room never
-// passes what the raft's limbs can touch (4 contacts a limb), and the raft rises onto the
-// ground.
-TEST(DynamicsSet, ABodyStartingInTheGroundGrowsTheRoomItNeedsOnly) {
-  const std::string raft = raftOf(0.09);
-  int growths = 0;
-  WalkDef w;
-  w.model = "sunk_raft.cell";
-  w.text = raft;
-  w.until = 1;
-  w.frames = 3;
-  w.onFrame = [&](const DynamicsSet& set, double) { growths = set.stats().roomGrowths; };
-  const Walk sunk = walk(w);
-  EXPECT_EQ(sunk.report.status, RunStatus::Ok);
-  ASSERT_EQ(sunk.frames().size(), 3u);
-  EXPECT_GE(growths, 1);
-  EXPECT_LE(growths, 2);
-  for (std::size_t j = 0; j < 12; ++j) EXPECT_NEAR(sunk.at(2, j).y, 0.1, 2e-3) << "joint " << j;
-}
-
-// MuJoCo's room for contacts counts against the memory limit before MuJoCo makes its
-// data: the sunk raft's model starts with room for 16 contacts and 64 rows (190 KiB);
-// under a limit of 512 KiB its first step, which asks for twice that (700 KiB), stops the
-// run with a limit's message, not an allocation MuJoCo cannot make.
-TEST(DynamicsSet, RoomForContactsPastTheMemoryLimitStopsAtTheLimit) {
-  const std::string raft = raftOf(0.09);
-  DiagnosticSink sink;
-  CompileOptions options;
-  options.commandSets = commandSets();
-  RunDef def;
-  def.program = compileSource("sunk_raft.cell", raft, sink, options);
-  ASSERT_NE(def.program, nullptr) << formatDiagnostics(sink);
-  def.stem = "sunk_raft";
-  def.frames = 2;
-  def.until = 0.1;
-  def.sets = {"dynamics"};
-  def.setOptions.formats = "joints";
-  def.world.limits.maxMemoryBytes = 512 << 10;
-  def.out = fs::path(ONTOGEN_BINARY_DIR) / "dynamics_set_test" / "sunk_raft_limit";
-  fs::remove_all(def.out);
-  ontogen::Run run(std::move(def));
-  const RunReport report = run.execute();
-  EXPECT_EQ(report.status, RunStatus::ModelFailed);
-  ASSERT_EQ(report.diagnostics.size(), 1u);
-  const std::string& message = report.diagnostics[0].message;
-  EXPECT_NE(message.find("touched the ground at more than 16 points"), std::string::npos) << message;
-  EXPECT_NE(message.find("room for 32 contacts and 128 constraint rows, about 1 MiB, past the memory limit"),
-            std::string::npos)
-      << message;
-  EXPECT_NE(message.find("raise it with --max-memory MIB"), std::string::npos) << message;
 }
 
 // A reed: a horizontal cantilever of 10 elastic segments (rod(1, 0.01, 1000), EI 10),

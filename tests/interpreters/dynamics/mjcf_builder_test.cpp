@@ -445,15 +445,14 @@ BodyPlan chains(int count, int hinges) {
   return plan;
 }
 
-// Past 100 degrees of freedom a model asks for MuJoCo's conjugate-gradient solver, whose
-// cost grows more slowly with them than Newton's dense factorization.
-TEST(MjcfBuilder, ModelsPastAHundredDegreesOfFreedomUseTheConjugateGradientSolver) {
-  MujocoModel hundred(mjcfOf(chains(2, 50), {}, "chains"));
-  ASSERT_EQ(hundred.model()->nv, 100);
-  EXPECT_EQ(hundred.model()->opt.solver, mjSOL_NEWTON);
+// Small and past 100 degrees of freedom, a model asks for MuJoCo's Newton solver, which
+// factors its Hessian sparsely on a sparse model (mjcfOf says why).
+TEST(MjcfBuilder, ModelsOfEverySizeUseNewtonsSolver) {
+  MujocoModel small(mjcfOf(chains(1, 5), {}, "chains"));
+  EXPECT_EQ(small.model()->opt.solver, mjSOL_NEWTON);
   MujocoModel more(mjcfOf(chains(3, 34), {}, "chains"));
   ASSERT_EQ(more.model()->nv, 102);
-  EXPECT_EQ(more.model()->opt.solver, mjSOL_CG);
+  EXPECT_EQ(more.model()->opt.solver, mjSOL_NEWTON);
 }
 
 // kDeepestBodies is MuJoCo's own bound: a chain that deep compiles, one body more does not.
