@@ -146,6 +146,24 @@ try {
     check(zero < half && half < end, `scrubbing shows growth: ${zero} pixels drawn at 0, ${half} at 5, ${end} at 10`);
     check(end2 === end && end3 === end && zero2 === zero,
       `scrubbing back and forth shows the same frames again (${scrubbed.join(', ')} pixels at 10, 0, 10, 5, 0, 10)`);
+    // The view draws only when it changed: a large model takes a software renderer most of
+    // a second a frame, and drawn at every animation frame it held the page's requests
+    // back for seconds. Idle, it draws nothing; a scrub draws it again.
+    const draws = () => page.evaluate(() => window.studio.draws);
+    const idleFrom = await draws();
+    for (let i = 0; i < 5; i += 1) await settle(page);
+    const idleTo = await draws();
+    await at(5);
+    const scrubbedTo = await draws();
+    check(idleTo === idleFrom && scrubbedTo > idleTo,
+      `the view draws only when it changes (${idleTo - idleFrom} draws in 10 idle frames, ${scrubbedTo - idleTo} for a scrub)`);
+    // The notes are asked for with the model, not once it is parsed.
+    const [notesAsked, modelAnswered] = await page.evaluate(() => {
+      const entries = performance.getEntriesByType('resource');
+      const last = (part) => entries.filter((e) => e.name.includes(part)).at(-1);
+      return [last('/api/notes').startTime, last('/model.glb').responseEnd];
+    });
+    check(notesAsked < modelAnswered, 'the page asks for the notes while the model comes, not after it');
     await at(0);
     await page.click('#play');
     const during = [];
