@@ -329,7 +329,7 @@ TEST_F(StudioFixture, AnImageModelsPicturesAreServedAFrameEach) {
 // the slider's value can be dropped, not written.
 TEST_F(StudioFixture, ASlidersValueIsNotWrittenIntoAConvertedFile) {
   StudioModelDef def = modelDef();
-  def.program.read = [](const std::string& path, uint64_t) {
+  def.program.read = [](const std::string& path, uint64_t, const WorldLimits&) {
     return StudioSource{std::string(kTree), path + " (converted)", "", nullptr, {}};
   };
   StudioModel model(def);
@@ -351,7 +351,7 @@ TEST_F(StudioFixture, ASaveCaughtHalfWrittenFlashesNoErrors) {
   write(half);
   StudioModelDef def = modelDef();
   int reads = 0;
-  def.program.read = [&](const std::string& path, uint64_t) {
+  def.program.read = [&](const std::string& path, uint64_t, const WorldLimits&) {
     StudioSource read{readText(path), path, "", nullptr, {}};
     if (++reads == 1) write(kTree);  // the editor finishes just after the studio read
     return read;
@@ -382,7 +382,7 @@ TEST_F(StudioFixture, AConvertedFilesErrorsAreAtItsOwnLines) {
   std::ofstream(lpy, std::ios::binary) << original;
   StudioModelDef def = modelDef();
   def.program.file = lpy.string();
-  def.program.read = [](const std::string& path, uint64_t maxBytes) {
+  def.program.read = [](const std::string& path, uint64_t maxBytes, const WorldLimits&) {
     auto source = std::make_shared<const SourceFile>(path, readText(path));
     DiagnosticSink sink;
     convert::ConvertResult converted = convert::convertFile(*source, convert::Dialect::LPy, "", sink, maxBytes);
@@ -475,6 +475,40 @@ TEST_F(StudioFixture, InteractiveLimitsStopARunawayAndCanBeRaisedToTheCeiling) {
   EXPECT_NE(state["diagnostics"][0]["message"].get<std::string>().find("past 1000 cells"), std::string::npos)
       << state.dump(2);
   EXPECT_EQ(state["limits"]["maxCells"], 1000);
+}
+
+// The interactive limits hold the reading of the program's file too, not only its growth:
+// the reader (which refuses a file whose checking would pass the memory limit, and
+// converts another tool's within it) is given the limits the page shows, and the ones
+// it raises them to.
+TEST_F(StudioFixture, TheInteractiveLimitsHoldTheReadingOfTheFile) {
+  StudioModelDef def = modelDef();
+  def.program.limits.maxCells = 50'000;
+  def.program.limits.maxMemoryBytes = uint64_t{4} << 30;  // the ceiling, as the command line gives it
+  def.maxMemoryBytes = 64 << 20;
+  std::vector<WorldLimits> given;
+  def.program.read = [&given](const std::string& path, uint64_t, const WorldLimits& limits) {
+    given.push_back(limits);
+    if (limits.maxMemoryBytes < (96 << 20))  // as a reader refuses a file past the limit
+      return StudioSource{std::nullopt, path, "checking it needs about 80 MiB, past the memory limit", nullptr, {}};
+    return StudioSource{readText(path), path, "", nullptr, {}};
+  };
+  StudioModel model(def);
+  model.regrow();
+  ASSERT_EQ(given.size(), 1u);
+  EXPECT_EQ(given[0].maxMemoryBytes, uint64_t{64} << 20);
+  EXPECT_EQ(given[0].maxCells, 50'000u);
+  EXPECT_EQ(model.modelVersion(), 0u);
+  const nlohmann::json refused = model.state();
+  ASSERT_EQ(refused["diagnostics"].size(), 1u) << refused.dump(2);
+  EXPECT_EQ(refused["diagnostics"][0]["message"],
+            "cannot read or convert " + file.string() + ": checking it needs about 80 MiB, past the memory limit");
+  model.setLimits(40'000, 128 << 20);
+  model.regrow();
+  ASSERT_EQ(given.size(), 2u);
+  EXPECT_EQ(given[1].maxMemoryBytes, uint64_t{128} << 20);
+  EXPECT_EQ(given[1].maxCells, 40'000u);
+  EXPECT_EQ(model.modelVersion(), 1u) << model.state().dump(2);
 }
 
 TEST_F(StudioFixture, RoutesAnswerThePage) {
