@@ -363,9 +363,9 @@ function showGallery(gallery) {
   }
   studio.generation = gallery.generation;
   studio.galleryGrown = gallery.grown;
-  $('generation').textContent = gallery.growing
+  $('generation').textContent = (gallery.growing
     ? `generation ${gallery.generation}: ${gallery.grown} of ${gallery.variants.length} grown`
-    : `generation ${gallery.generation}`;
+    : `generation ${gallery.generation}`) + (gallery.warning ? ` (${gallery.warning})` : '');
   $('breed').disabled = studio.picked.size === 0;
   $('gallery-restart').disabled = false;
   document.body.dataset.generation = String(gallery.generation);

@@ -232,6 +232,13 @@ try {
     const atEdges = await edges();
     const longer = (await picture(page)).drawn;
     check(atEdges === 0 && longer > 0, `a model that grew larger is framed whole (${longer} pixels drawn, ${atEdges} at the edges)`);
+    // A gallery of a program with nothing to vary says so.
+    await page.click('#gallery-open');
+    await page.waitForFunction(() => /every variant is the same/.test(document.getElementById('generation').textContent),
+      null, { timeout: 20000 }).catch(() => {});
+    const warned = await page.textContent('#generation');
+    check(/^generation 1.*\(the program has no #define NAME NUMBER to vary: every variant is the same/.test(warned),
+      `a gallery with nothing to vary says so (${warned})`);
     await page.close();
   }
 

@@ -814,6 +814,26 @@ TEST_F(StudioFixture, ASavedVariantStaysInTheSaveFolderWhateverItsStem) {
   EXPECT_FALSE(fs::exists(folder / "escaped_g1_v0.cell"));
 }
 
+// A program with nothing to vary makes a gallery of twelve of the same: the gallery says
+// so, and what would vary it.
+TEST_F(StudioFixture, AGalleryWarnsWhenNothingWouldVary) {
+  Gallery varied(galleryDef());
+  varied.reset(kTree, "tree");
+  EXPECT_EQ(varied.state()["warning"], "");
+  const std::string fixed = "lsystem fixed {\n  #until 2\n  axiom A\n  A -> F [ + A ] A\n}\n";
+  Gallery same(galleryDef());
+  same.reset(fixed, "fixed");
+  EXPECT_EQ(same.state()["warning"],
+            "the program has no #define NAME NUMBER to vary: every variant is the same (vary its rules' numbers "
+            "with --vary-constants)");
+  GalleryDef constants = galleryDef();
+  constants.constants = true;
+  Gallery none(constants);
+  none.reset("lsystem fixed {\n  #until 2\n  axiom A\n  A -> F [ + A ] A\n}\n", "fixed");
+  EXPECT_EQ(none.state()["warning"], "the program has no #define NAME NUMBER and no number in its rules to vary: "
+                                     "every variant is the same");
+}
+
 TEST_F(StudioFixture, GalleryIsTheSameForTheSameSeedAndPicks) {
   Gallery a(galleryDef(7)), b(galleryDef(7)), c(galleryDef(8));
   a.reset(kTree, "tree");
