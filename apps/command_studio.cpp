@@ -61,7 +61,7 @@ studio::StudioProgramOptions programOptionsOf(const CommonOptions& common) {
   program.threads = common.threads;
   program.maxErrors = common.maxErrors;
   program.maxSourceBytes = common.maxSourceBytes;
-  program.read = studioReader(common.limits);
+  program.read = studioReader();
   return program;
 }
 }  // namespace

@@ -70,8 +70,8 @@ ProgramText readProgramText(const std::string& path, uint64_t maxBytes, const Wo
   return result;
 }
 
-studio::StudioReader studioReader(const WorldLimits& limits) {
-  return [limits](const std::string& path, uint64_t maxBytes) {
+studio::StudioReader studioReader() {
+  return [](const std::string& path, uint64_t maxBytes, const WorldLimits& limits) {
     ProgramText read = readProgramText(path, maxBytes, limits);  // says why on stderr too
     std::shared_ptr<const SourceFile> original = read.converted ? std::move(read.original) : nullptr;
     return studio::StudioSource{std::move(read.text), read.name, std::move(read.error), std::move(original),

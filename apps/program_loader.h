@@ -52,8 +52,8 @@ ProgramText readProgramText(const std::string& path, uint64_t maxBytes = kDefaul
                             const WorldLimits& limits = WorldLimits{});
 
 /// The studio's reader of its program file (studio/program_options.h): readProgramText
-/// held to the command line's `limits`, as every command reads its file.
-studio::StudioReader studioReader(const WorldLimits& limits);
+/// held to the limits of each read, the studio's interactive ones.
+studio::StudioReader studioReader();
 
 /// Reads and compiles the program file of `options` with its --system and --define. On
 /// failure prints the diagnostics (or the I/O error) to stderr and returns no program.

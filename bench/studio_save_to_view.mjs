@@ -1,8 +1,9 @@
 // Save to view in the studio, measured as a person sees it: `ontogen studio MODEL` on a
 // free port, its page in headless Chromium (Debian's, driven by playwright-core); the
 // model's file is saved again (its text unchanged but for a trailing comment) and the
-// time is taken from the save until the page shows the new model (body's
-// data-model-version). Prints the first load's time and each save's.
+// time is taken from the save until the page has drawn the new model (body's
+// data-model-version, then the animation frame that draws it). Prints the first load's
+// time, each save's, the .glb's size and what the page fetched after the last save.
 // A measurement, not a test: nothing here passes or fails.
 //
 //   NODE_PATH=.tools/node_modules node bench/studio_save_to_view.mjs ONTOGEN MODEL.cell [SAVES] [STUDIO ARGS...]
@@ -45,15 +46,39 @@ const browser = await chromium.launch({
 try {
   const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
   const opened = Date.now();
+  // The page sets the version once the model is in its scene; the next animation frame
+  // draws it, and reading a pixel of the canvas waits until the drawing is done.
+  const drawn = async (version) => {
+    await page.waitForSelector(`body[data-model-version="${version}"]`, { timeout: 600000 });
+    await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => {
+      const pixel = document.createElement('canvas');
+      pixel.width = pixel.height = 1;
+      const context = pixel.getContext('2d');
+      context.drawImage(document.getElementById('canvas'), 0, 0, 1, 1);
+      resolve(context.getImageData(0, 0, 1, 1).data[0]);
+    })));
+  };
   await page.goto(url);
-  await page.waitForSelector('body[data-model-version="1"]', { timeout: 600000 });
+  await drawn(1);
   console.log(`first view: ${((Date.now() - opened) / 1000).toFixed(2)} s`);
+  const times = [];
   for (let k = 1; k <= saves; ++k) {
     const saved = Date.now();
+    const savedInPage = await page.evaluate(() => performance.now());
     fs.writeFileSync(file, `${text}\n// save ${k}\n`);
-    await page.waitForSelector(`body[data-model-version="${k + 1}"]`, { timeout: 600000 });
-    console.log(`save ${k} to view: ${((Date.now() - saved) / 1000).toFixed(2)} s (${await page.textContent('#status')})`);
+    await drawn(k + 1);
+    times.push((Date.now() - saved) / 1000);
+    console.log(`save ${k} to view: ${times.at(-1).toFixed(2)} s (${await page.textContent('#status')})`);
+    if (k < saves) continue;
+    // Where the last save's time went, as the page saw its requests (ms after the save).
+    const fetched = await page.evaluate((from) => performance.getEntriesByType('resource')
+      .filter((e) => e.startTime >= from && !e.name.includes('/api/events'))
+      .map((e) => `${e.name.replace(/^.*\/(?=[^/]+$)/, '')} asked at ${(e.startTime - from).toFixed(0)}, ` +
+        `answered by ${(e.responseEnd - from).toFixed(0)} (${e.encodedBodySize} bytes)`), savedInPage);
+    for (const line of fetched) console.log('  ' + line);
   }
+  const glb = await page.evaluate(async () => (await (await fetch('/model.glb')).arrayBuffer()).byteLength);
+  console.log(`summary: saves ${times.map((t) => t.toFixed(2)).join(' ')} s, .glb ${glb} bytes`);
 } finally {
   await browser.close();
   child.kill('SIGINT');

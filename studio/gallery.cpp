@@ -184,6 +184,14 @@ nlohmann::json Gallery::state() const {
       genes.push_back({{"name", gene.name}, {"value", gene.value}, {"low", gene.low}, {"high", gene.high},
                        {"integer", gene.integer}, {"line", gene.line}});
   state["genes"] = genes;
+  // A gallery of twelve of the same looks like a broken one: say why, and what would vary it.
+  std::string warning;
+  if (space_ && space_->genes().empty())
+    warning = def_.constants ? "the program has no #define NAME NUMBER and no number in its rules to vary: every "
+                               "variant is the same"
+                             : "the program has no #define NAME NUMBER to vary: every variant is the same (vary its "
+                               "rules' numbers with --vary-constants)";
+  state["warning"] = warning;
   nlohmann::json variants = nlohmann::json::array();
   for (std::size_t i = 0; i < variants_.size(); ++i) {
     const GalleryVariant& variant = variants_[i];

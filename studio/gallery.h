@@ -101,9 +101,9 @@ class Gallery {
   const std::vector<GalleryVariant>& variants() const { return variants_; }
   bool ready() const { return space_ != nullptr; }
   const VariationSpace& space() const { return *space_; }
-  /// Generation, genes, variants (without pictures: /gallery/N.png serves them), and how
-  /// far the generation's growth is: "grown" variants of the "variants", "growing" while
-  /// some are not.
+  /// Generation, genes, variants (without pictures: /gallery/N.png serves them), how far
+  /// the generation's growth is ("grown" variants of the "variants", "growing" while some
+  /// are not), and a "warning" when the program has nothing to vary (empty otherwise).
   nlohmann::json state() const;
 
  private:

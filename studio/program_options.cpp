@@ -4,8 +4,8 @@
 
 namespace ontogen::studio {
 
-StudioSource readStudioSource(const StudioProgramOptions& options) {
-  if (options.read) return options.read(options.file, options.maxSourceBytes);
+StudioSource readStudioSource(const StudioProgramOptions& options, const WorldLimits& limits) {
+  if (options.read) return options.read(options.file, options.maxSourceBytes, limits);
   SourceText read = readSourceFile(options.file, options.maxSourceBytes);
   return {std::move(read.text), options.file, std::move(read.error), nullptr, {}};
 }

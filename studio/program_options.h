@@ -32,8 +32,11 @@ struct StudioSource {
   std::vector<convert::SourceRange> lineOrigins;
 };
 
-/// Reads the program file at path, at most maxBytes of it (with its imports).
-using StudioReader = std::function<StudioSource(const std::string& path, uint64_t maxBytes)>;
+/// Reads the program file at path, at most maxBytes of it (with its imports), within
+/// `limits`: the interactive limits of the growth it is read for (StudioModel), which
+/// may refuse a file whose checking or conversion would pass their memory.
+using StudioReader =
+    std::function<StudioSource(const std::string& path, uint64_t maxBytes, const WorldLimits& limits)>;
 
 struct StudioProgramOptions {
   std::string file;                       ///< the program file
@@ -41,17 +44,17 @@ struct StudioProgramOptions {
   std::map<std::string, double> defines;  ///< define values to start from (`--define`)
   std::optional<uint64_t> seed;           ///< empty: the program's #seed
   std::optional<double> step;             ///< empty: the program's #dt
-  WorldLimits limits;
+  WorldLimits limits;  ///< the command line's; the studio's interactive limits are at most these
   unsigned threads = 0;                              ///< 0: all cores
   int maxErrors = kDefaultMaxErrors;                 ///< errors reported before the compiler stops; 0: all
   uint64_t maxSourceBytes = kDefaultMaxSourceBytes;  ///< of the program and its imports
   /// Reads the file; empty: read as a cell-language file (lang/source_reader.h). The
-  /// command gives one that converts cpfg and L-Py files too.
+  /// command gives one that converts cpfg and L-Py files too, held to the limits given.
   StudioReader read;
 };
 
-/// The program file's text, read as options say.
-StudioSource readStudioSource(const StudioProgramOptions& options);
+/// The program file's text, read as options say within `limits` (the interactive ones).
+StudioSource readStudioSource(const StudioProgramOptions& options, const WorldLimits& limits);
 
 /// The world a run of program grows with these options.
 WorldDef worldDefOf(const StudioProgramOptions& options, const Program& program);

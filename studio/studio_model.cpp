@@ -402,7 +402,8 @@ std::map<std::string, double> StudioModel::defineValues() const {
 }
 
 void StudioModel::grow(Grown& grown, const std::map<std::string, double>& given, const WorldLimits& limits) {
-  const StudioSource read = readStudioSource(def_.program);
+  // Read within the interactive limits, as it grows: the page's limits hold every part.
+  const StudioSource read = readStudioSource(def_.program, limits);
   if (!read.text) {
     const std::string why =
         "cannot read or convert " + def_.program.file + (read.error.empty() ? "" : ": " + read.error);

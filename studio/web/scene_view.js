@@ -49,6 +49,12 @@ export class SceneView {
     // zooms the camera; frameAll() frames it and follows again.
     this.following = true;
     this.controls.addEventListener('start', () => { this.following = false; });
+    // Drawn only when something changed (the model, its time, the camera, the canvas'
+    // size): a large model takes a software renderer most of a second a frame, which
+    // drawn at every animation frame held the page's requests and parsing back for
+    // seconds. The controls say when their damping still moves the camera.
+    this.stale = true;
+    this.controls.addEventListener('change', () => { this.stale = true; });
   }
 
   /// Parses a .glb's bytes (an ArrayBuffer); resolves to the glTF, not yet shown.
@@ -65,6 +71,7 @@ export class SceneView {
     this.model = null;
     this.mixer = null;
     this.action = null;
+    this.stale = true;
   }
 
   /// Shows a parsed glTF in place of the model before, posed at time t.
@@ -115,6 +122,7 @@ export class SceneView {
     camera.updateProjectionMatrix();
     this.controls.target.copy(centre);
     this.controls.update();
+    this.stale = true;
   }
 
   /// Poses the model at developmental time t (seconds).
@@ -134,9 +142,11 @@ export class SceneView {
     this.action.paused = false;
     this.action.time = Math.min(Math.max(clipTime, this.clipStart), this.clipEnd);
     this.mixer.update(0);
+    this.stale = true;
   }
 
-  /// Draws a frame (call it from requestAnimationFrame).
+  /// Draws a frame when the view changed since the last (call it from
+  /// requestAnimationFrame); returns whether it drew.
   render() {
     const { canvas, renderer, camera } = this;
     const { clientWidth: w, clientHeight: h } = canvas;
@@ -145,8 +155,12 @@ export class SceneView {
       renderer.setSize(w, h, false);
       camera.aspect = w / Math.max(h, 1);
       camera.updateProjectionMatrix();
+      this.stale = true;
     }
-    this.controls.update();
+    this.controls.update();  // dispatches 'change' while the camera still moves
+    if (!this.stale) return false;
+    this.stale = false;
     renderer.render(this.scene, camera);
+    return true;
   }
 }

@@ -24,6 +24,7 @@ const studio = {
   lastError: '',
   events: 0,           // states the server pushed
   growing: false,      // a growth is in progress
+  draws: 0,            // frames the 3-D view drew (only when it changed)
 };
 window.studio = studio;
 
@@ -118,7 +119,7 @@ function tick(now) {
     setTime(after);
     if (after >= Number(timeSlider.max)) stopPlaying();
   }
-  view.render();
+  if (view.render()) studio.draws += 1;
 }
 requestAnimationFrame(tick);
 
@@ -275,12 +276,14 @@ let loadingModel = 0;
 // word read as a piece plays at its own tempo).
 async function loadModel(version, hasModel) {
   loadingModel = version;
+  // Both asked at once: the notes come while the model is parsed.
+  const notesAsked = fetch('/api/notes').then((response) => response.json());
   let gltf = null;
   if (hasModel) {
     const response = await fetch('/model.glb?v=' + version);
     if (response.ok) gltf = await view.parse(await response.arrayBuffer());
   }
-  const notesAnswer = await (await fetch('/api/notes')).json();
+  const notesAnswer = await notesAsked;
   if (loadingModel !== version) return;  // a newer model is on its way
   notes = notesAnswer.notes;
   $('note-count').textContent = notes.length ? `(${notes.length} notes)` : '(no music set)';
@@ -360,9 +363,9 @@ function showGallery(gallery) {
   }
   studio.generation = gallery.generation;
   studio.galleryGrown = gallery.grown;
-  $('generation').textContent = gallery.growing
+  $('generation').textContent = (gallery.growing
     ? `generation ${gallery.generation}: ${gallery.grown} of ${gallery.variants.length} grown`
-    : `generation ${gallery.generation}`;
+    : `generation ${gallery.generation}`) + (gallery.warning ? ` (${gallery.warning})` : '');
   $('breed').disabled = studio.picked.size === 0;
   $('gallery-restart').disabled = false;
   document.body.dataset.generation = String(gallery.generation);

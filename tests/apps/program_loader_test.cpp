@@ -83,21 +83,25 @@ TEST(ProgramLoader, AViewFileCountsWithItsFile) {
                               "' needs about 147 MiB, past the memory limit of 140 MiB; raise it with --max-memory MIB");
 }
 
-// The studio reads its file through the command line's limits: a file of another tool
-// that grows past them while the studio watches it is refused, and says why.
-TEST(ProgramLoader, TheStudioReadsThroughTheSameLimits) {
+// The studio reads its file through the limits of each read, its interactive ones: a
+// file of another tool that grows past them while the studio watches it is refused, and
+// says why; raised on the page, the same reader converts it.
+TEST(ProgramLoader, TheStudioReadsThroughTheLimitsOfEachRead) {
   const fs::path dir = scratch("studio");
-  const fs::path path = write(dir / "grown.lpy", "Axiom: F\nderivation length: 1\nproduction:\nF --> FF\nendlsystem\n");
-  const studio::StudioReader read = studioReader(memoryLimit(100));
-  const studio::StudioSource before = read(path.string(), kDefaultMaxSourceBytes);
+  const fs::path path = write(dir / "grown.l", cpfgWithAxiomOf(10));
+  const studio::StudioReader read = studioReader();
+  const studio::StudioSource before = read(path.string(), kDefaultMaxSourceBytes, memoryLimit(8));
   ASSERT_TRUE(before.text) << before.error;
   ASSERT_TRUE(before.original);
   EXPECT_EQ(before.original->name(), path.string());
-  write(path, cpfgWithAxiomOf(10'000'000));
-  const studio::StudioSource after = read(path.string(), kDefaultMaxSourceBytes);
+  // Checking 100,000 letters takes about 13 MiB.
+  write(path, cpfgWithAxiomOf(100'000));
+  const studio::StudioSource after = read(path.string(), kDefaultMaxSourceBytes, memoryLimit(8));
   EXPECT_FALSE(after.text);
-  EXPECT_NE(after.error.find("past the memory limit of 100 MiB; raise it with --max-memory MIB"), std::string::npos)
-      << after.error;
+  EXPECT_NE(after.error.find("needs about 13 MiB, past the memory limit of 8 MiB"), std::string::npos) << after.error;
+  const studio::StudioSource raised = read(path.string(), kDefaultMaxSourceBytes, memoryLimit(32));
+  ASSERT_TRUE(raised.text) << raised.error;
+  EXPECT_NE(raised.text->find("axiom F F F"), std::string::npos);
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
 // The studio end to end: `ontogen studio` on a free port, its page in headless Chromium
-// (Debian's, driven by playwright-core). Checks that the page shows the model, follows a
-// saved change by the events the server pushes (no polling), that the time slider and a
+// (Debian's, driven by playwright-core). Checks that the page shows the model (lit by its
+// own lights, not washed white; drawn only when it changes), follows a saved change by
+// the events the server pushes (no polling), that scrubbing shows every time in any order
+// for geometry, a creature's walk and a structure's arrows, that an image model's pictures
+// play as an animated picture, that the time slider and a
 // #define slider change the picture, that diagnostics appear at their line while the last
 // model stays, that a growth without end shows its progress, is answered about all the
 // while and stops with Stop, that a runaway stops at the interactive limit the page
@@ -116,12 +119,14 @@ async function picture(page) {
     const fullContext = full.getContext('2d');
     fullContext.drawImage(source, 0, 0);
     const pixels = fullContext.getImageData(0, 0, full.width, full.height).data;
-    let drawn = 0;
-    for (let i = 0; i < pixels.length; i += 4)   // the background is (42, 45, 51)
+    let drawn = 0, white = 0;
+    for (let i = 0; i < pixels.length; i += 4) {  // the background is (42, 45, 51)
       if (Math.abs(pixels[i] - 42) + Math.abs(pixels[i + 1] - 45) + Math.abs(pixels[i + 2] - 51) > 24) drawn += 1;
+      if (Math.min(pixels[i], pixels[i + 1], pixels[i + 2]) > 240) white += 1;
+    }
     const grey = [];
     for (let i = 0; i < data.length; i += 4) grey.push((data[i] + data[i + 1] + data[i + 2]) / 3);
-    return { grey, drawn, total: pixels.length / 4 };
+    return { grey, drawn, white, total: pixels.length / 4 };
   });
 }
 const difference = (a, b) => a.grey.reduce((sum, v, i) => sum + Math.abs(v - b.grey[i]), 0) / a.grey.length;
@@ -146,6 +151,24 @@ try {
     check(zero < half && half < end, `scrubbing shows growth: ${zero} pixels drawn at 0, ${half} at 5, ${end} at 10`);
     check(end2 === end && end3 === end && zero2 === zero,
       `scrubbing back and forth shows the same frames again (${scrubbed.join(', ')} pixels at 10, 0, 10, 5, 0, 10)`);
+    // The view draws only when it changed: a large model takes a software renderer most of
+    // a second a frame, and drawn at every animation frame it held the page's requests
+    // back for seconds. Idle, it draws nothing; a scrub draws it again.
+    const draws = () => page.evaluate(() => window.studio.draws);
+    const idleFrom = await draws();
+    for (let i = 0; i < 5; i += 1) await settle(page);
+    const idleTo = await draws();
+    await at(5);
+    const scrubbedTo = await draws();
+    check(idleTo === idleFrom && scrubbedTo > idleTo,
+      `the view draws only when it changes (${idleTo - idleFrom} draws in 10 idle frames, ${scrubbedTo - idleTo} for a scrub)`);
+    // The notes are asked for with the model, not once it is parsed.
+    const [notesAsked, modelAnswered] = await page.evaluate(() => {
+      const entries = performance.getEntriesByType('resource');
+      const last = (part) => entries.filter((e) => e.name.includes(part)).at(-1);
+      return [last('/api/notes').startTime, last('/model.glb').responseEnd];
+    });
+    check(notesAsked < modelAnswered, 'the page asks for the notes while the model comes, not after it');
     await at(0);
     await page.click('#play');
     const during = [];
@@ -209,7 +232,39 @@ try {
     const atEdges = await edges();
     const longer = (await picture(page)).drawn;
     check(atEdges === 0 && longer > 0, `a model that grew larger is framed whole (${longer} pixels drawn, ${atEdges} at the edges)`);
+    // A gallery of a program with nothing to vary says so.
+    await page.click('#gallery-open');
+    await page.waitForFunction(() => /every variant is the same/.test(document.getElementById('generation').textContent),
+      null, { timeout: 20000 }).catch(() => {});
+    const warned = await page.textContent('#generation');
+    check(/^generation 1.*\(the program has no #define NAME NUMBER to vary: every variant is the same/.test(warned),
+      `a gallery with nothing to vary says so (${warned})`);
     await page.close();
+  }
+
+  // A creature's walk and a structure's force arrows scrub as geometry does: two times
+  // differ, and each shows the same picture again when scrubbed back to it, in any order.
+  for (const [name, frames] of [['creature.cell', '13'], ['cantilever.cell', '7']]) {
+    const modelFile = path.join(work, name);
+    fs.copyFileSync(new URL(`../../models/${name}`, import.meta.url), modelFile);
+    const opened = await startStudio(modelFile, ['--frames', frames]);
+    const page = await browser.newPage({ viewport: { width: 900, height: 700 } });
+    await page.goto(opened.url);
+    await page.waitForSelector('body[data-model-version="1"]', { timeout: 30000 });
+    const [lo, hi] = [Number(await page.getAttribute('#time', 'min')), Number(await page.getAttribute('#time', 'max'))];
+    const shown = [];
+    for (const share of [0.4, 1, 0.4, 0.7, 1]) {
+      await page.locator('#time').fill(String(lo + share * (hi - lo)));
+      await settle(page);
+      shown.push(await picture(page));
+    }
+    const [middle, end, middle2, later, end2] = shown;
+    check(end.drawn > 0 && difference(middle, end) > 0.1 && difference(middle, later) > 0.1 &&
+      difference(middle, middle2) === 0 && difference(end, end2) === 0,
+      `${name} scrubs in any order (mean differences ${difference(middle, end).toFixed(2)} between 0.4 and 1 of its ` +
+      `time, ${difference(middle, later).toFixed(2)} to 0.7, ${difference(middle, middle2)} and ${difference(end, end2)} back)`);
+    await page.close();
+    await stopStudio(opened);
   }
 
   // A program that has errors when the studio starts opens with them. The error is in a
@@ -320,6 +375,17 @@ try {
       shown[1].colour !== shown[2].colour && shown[3].colour === shown[0].colour,
       `an image model shows the picture of the frame at the time (frames ${shown.map((s) => s.frame).join(', ')}; ` +
       `colours ${shown.map((s) => s.colour).join(' / ')})`);
+    // Play shows them as an animated picture: every frame's in turn.
+    await page.evaluate(() => {
+      window.framesShown = [];
+      new MutationObserver(() => window.framesShown.push(window.studio.pictureFrame))
+        .observe(document.getElementById('picture'), { attributes: true, attributeFilter: ['src'] });
+    });
+    await page.click('#rewind');
+    await page.click('#play');
+    await page.waitForFunction(() => !window.studio.playing, null, { timeout: 20000 });
+    const played = await page.evaluate(() => window.framesShown);
+    check(played.join() === '0,1,2,3', `Play shows the pictures in turn, an animated picture (frames ${played.join(', ')})`);
     await page.close();
     await stopStudio(pictured);
   }
@@ -335,6 +401,9 @@ try {
   await page.screenshot({ path: path.join(outputDir, 'studio_first.png') });
   const first = await picture(page);
   check(first.drawn > first.total * 0.002, `the first screenshot shows the model (${first.drawn} of ${first.total} pixels drawn)`);
+  // The .glb's key light is in lux, for Blender (2049): the page lights the model itself,
+  // and nothing of it is washed out to white.
+  check(first.white < first.drawn * 0.01, `the model is not washed white (${first.white} of ${first.drawn} drawn pixels white)`);
   const defines = await page.$$eval('#defines input[type=range]', (inputs) => inputs.map((i) => i.dataset.define));
   check(defines.join(',') === 'ANGLE,LEN', `a slider per #define (${defines})`);
 

@@ -1,16 +1,10 @@
-// The studio without a browser: requests parsed and answered over a real socket, the
-// model re-grown as its file and defines change, the routes the page uses, the gallery.
+// The studio without a browser: the model re-grown as its file and defines change, the
+// routes the page uses, who may ask them over a real socket, the gallery. The HTTP server
+// alone is tests/studio/http_server_test.cpp.
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <sys/time.h>
 #include <unistd.h>
 
-#include <atomic>
-#include <cerrno>
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -18,7 +12,6 @@
 #include <set>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -30,203 +23,14 @@
 #include "studio/studio_assets.h"
 #include "studio/studio_model.h"
 #include "studio/studio_server.h"
+#include "tests/studio/socket_client.h"
 
 namespace ontogen::studio {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Sends raw bytes to 127.0.0.1:port and returns the whole answer.
-std::string exchange(uint16_t port, const std::string& bytes) {
-  const int client = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  address.sin_port = htons(port);
-  if (::connect(client, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
-    ::close(client);
-    return "connect failed";
-  }
-  // No half-close: the server would take it for a page gone away. The requests say
-  // `Connection: close`, or are bad ones the server closes after answering. An answer
-  // that does not end (a stream of events) is cut after 10 s.
-  const timeval wait{1, 0};
-  ::setsockopt(client, SOL_SOCKET, SO_RCVTIMEO, &wait, sizeof wait);
-  ::send(client, bytes.data(), bytes.size(), MSG_NOSIGNAL);
-  std::string answer;
-  char buffer[4096];
-  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  for (ssize_t n; std::chrono::steady_clock::now() < end;) {
-    if ((n = ::recv(client, buffer, sizeof buffer, 0)) > 0) answer.append(buffer, static_cast<size_t>(n));
-    else if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) break;
-  }
-  ::close(client);
-  return answer;
-}
-
-// A socket connected to 127.0.0.1:port, or -1.
-int connectTo(uint16_t port) {
-  const int client = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  address.sin_port = htons(port);
-  if (::connect(client, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
-    ::close(client);
-    return -1;
-  }
-  return client;
-}
-
-HttpResponse echo(const HttpRequest& request) {
-  return HttpResponse{200, "text/plain", "path " + request.path + " q " + (request.query.count("g") ? request.query.at("g") : "") +
-                                             " host " + request.header("host") + " body " + request.body};
-}
-
-TEST(HttpServer, AnswersOverASocketAndRefusesBadRequests) {
-  HttpServerDef def;
-  def.readTimeoutSeconds = 1;  // the request cut short below ends after it,
-  def.keepAliveSeconds = 1;    // and the bad ones, which the server keeps alive
-  HttpServer server(def, echo);
-  ASSERT_GT(server.port(), 0);
-  server.start();
-  const std::string ok = exchange(server.port(), "GET /a%20b?g=2 HTTP/1.1\r\nHost: here\r\nConnection: close\r\n\r\n");
-  EXPECT_TRUE(ok.starts_with("HTTP/1.1 200 OK\r\n")) << ok;
-  EXPECT_NE(ok.find("Cache-Control: no-store\r\n"), std::string::npos) << ok;
-  EXPECT_TRUE(ok.ends_with("\r\n\r\npath /a b q 2 host here body ")) << ok;
-  const std::string posted =
-      exchange(server.port(), "POST /p HTTP/1.1\r\nContent-Length: 5\r\nConnection: close\r\n\r\n{\"a\"}tail");
-  EXPECT_TRUE(posted.ends_with("body {\"a\"}")) << posted;
-  EXPECT_TRUE(exchange(server.port(), "NONSENSE\r\n\r\n").starts_with("HTTP/1.1 400 "));
-  EXPECT_TRUE(exchange(server.port(), "POST / HTTP/1.1\r\nContent-Length: 99999999\r\n\r\n").starts_with("HTTP/1.1 413 "));
-  // A request cut short is never answered from half of it.
-  const std::string cut = exchange(server.port(), "GET /cut HTTP/1.1\r\n");
-  EXPECT_TRUE(cut.empty() || cut.starts_with("HTTP/1.1 400 ")) << cut;
-  server.stop();
-}
-
-// A body is sent as it is, even to a browser that accepts compression: compressing the
-// page's 650 KB script with brotli on every request held the page for seconds.
-TEST(HttpServer, SendsABodyUncompressed) {
-  std::string script(700'000, ' ');
-  for (std::size_t i = 0; i < script.size(); ++i) script[i] = "let a = 1; // page\n"[i % 19];
-  HttpServer server(HttpServerDef{}, [&script](const HttpRequest&) { return HttpResponse{200, "text/javascript", script}; });
-  server.start();
-  const std::string answer = exchange(
-      server.port(), "GET /studio.js HTTP/1.1\r\nAccept-Encoding: gzip, deflate, br\r\nConnection: close\r\n\r\n");
-  EXPECT_TRUE(answer.starts_with("HTTP/1.1 200 OK\r\n")) << answer.substr(0, 300);
-  const std::string head = answer.substr(0, answer.find("\r\n\r\n") + 4);
-  EXPECT_EQ(head.find("Content-Encoding"), std::string::npos) << head;
-  EXPECT_NE(head.find("Content-Length: 700000\r\n"), std::string::npos) << head;
-  EXPECT_NE(head.find("Content-Type: text/javascript\r\n"), std::string::npos) << head;
-  EXPECT_EQ(answer.substr(head.size()), script);
-  server.stop();
-}
-
-// Idle connections do not hold up the others: with 20 connections open that send nothing,
-// a request is answered while they are all still open, long before their time-out (the
-// sequential server answered it only after 20 of them). Nothing here asserts a duration:
-// the idle sockets' own time-out is the clock.
-TEST(HttpServer, IdleConnectionsDoNotDelayARequest) {
-  HttpServerDef def;
-  def.readTimeoutSeconds = 20;
-  def.keepAliveSeconds = 20;
-  HttpServer server(def, echo);
-  server.start();
-  std::vector<int> idle;
-  for (int i = 0; i < 20; ++i) {
-    idle.push_back(connectTo(server.port()));
-    ASSERT_GE(idle.back(), 0);
-  }
-  const std::string answer = exchange(server.port(), "GET /busy HTTP/1.1\r\nConnection: close\r\n\r\n");
-  EXPECT_TRUE(answer.starts_with("HTTP/1.1 200 OK\r\n")) << answer;
-  // Every idle connection is still open: the server has not closed one to get to the request.
-  for (int socket : idle) {
-    char byte = 0;
-    EXPECT_EQ(::recv(socket, &byte, 1, MSG_DONTWAIT), -1);
-    EXPECT_TRUE(errno == EAGAIN || errno == EWOULDBLOCK);
-    ::close(socket);
-  }
-  server.stop();
-}
-
-// A stream of events (server-sent events) goes on while other requests are answered, and
-// ends when the server stops.
-TEST(HttpServer, StreamsEventsWhileAnsweringOthersAndEndsThemWhenItStops) {
-  std::atomic<int> sent{0};
-  HttpServer server(HttpServerDef{}, [&sent](const HttpRequest& request) {
-    if (request.path != "/events") return echo(request);
-    HttpResponse response{200, "text/event-stream", ""};
-    response.stream = [&sent](std::string& next) {
-      const int n = ++sent;
-      if (n > 3) {  // nothing more to say: wait a while, as the studio waits for a change
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        next.clear();
-      } else {
-        next = "data: " + std::to_string(n) + "\n\n";
-      }
-      return true;
-    };
-    return response;
-  });
-  server.start();
-  const int client = connectTo(server.port());
-  ASSERT_GE(client, 0);
-  const std::string ask = "GET /events HTTP/1.1\r\nHost: here\r\n\r\n";
-  ::send(client, ask.data(), ask.size(), MSG_NOSIGNAL);
-  std::string stream;
-  char buffer[4096];
-  while (stream.find("data: 3\n\n") == std::string::npos) {
-    const ssize_t n = ::recv(client, buffer, sizeof buffer, 0);
-    ASSERT_GT(n, 0) << stream;
-    stream.append(buffer, static_cast<size_t>(n));
-  }
-  EXPECT_TRUE(stream.starts_with("HTTP/1.1 200 OK\r\n")) << stream;
-  EXPECT_NE(stream.find("Content-Type: text/event-stream"), std::string::npos) << stream;
-  EXPECT_NE(stream.find("data: 1\n\n"), std::string::npos) << stream;
-  const std::string other = exchange(server.port(), "GET /other HTTP/1.1\r\nConnection: close\r\n\r\n");
-  EXPECT_TRUE(other.starts_with("HTTP/1.1 200 OK\r\n")) << other;
-  server.stop();
-  // The stream has ended: what is left is its last chunk, then the end of the connection.
-  ssize_t n = 0;
-  while ((n = ::recv(client, buffer, sizeof buffer, 0)) > 0) stream.append(buffer, static_cast<size_t>(n));
-  EXPECT_EQ(n, 0);
-  ::close(client);
-}
-
-// The bytes of one connection answered without a socket (the fuzz target's way in): each
-// request kept alive answered in turn; of a stream of events only its head.
-TEST(HttpServer, AnswersTheBytesOfAConnectionWithoutListening) {
-  HttpServerDef def;
-  def.port = 8420;
-  def.listen = false;
-  int pieces = 0;
-  HttpServer server(def, [&pieces](const HttpRequest& request) {
-    if (request.path != "/events") {
-      HttpResponse response = echo(request);
-      response.body += " port " + std::to_string(request.port);
-      return response;
-    }
-    HttpResponse response{200, "text/event-stream", ""};
-    response.stream = [&pieces](std::string& next) {
-      next = "data: " + std::to_string(++pieces) + "\n\n";
-      return true;
-    };
-    return response;
-  });
-  EXPECT_EQ(server.port(), 8420);
-  EXPECT_THROW(server.start(), std::logic_error);
-  const std::string two = server.answerBytes(
-      "GET /a?g=1 HTTP/1.1\r\nHost: h\r\n\r\nPOST /b HTTP/1.1\r\nContent-Length: 2\r\n\r\nxy");
-  EXPECT_TRUE(two.starts_with("HTTP/1.1 200 OK\r\n")) << two;
-  EXPECT_NE(two.find("path /a q 1 host h body  port 8420HTTP/1.1 200 OK\r\n"), std::string::npos) << two;
-  EXPECT_TRUE(two.ends_with("path /b q  host  body xy port 8420")) << two;
-  EXPECT_TRUE(server.answerBytes("NONSENSE\r\n\r\n").starts_with("HTTP/1.1 400 "));
-  const std::string events = server.answerBytes("GET /events HTTP/1.1\r\n\r\n");
-  EXPECT_TRUE(events.starts_with("HTTP/1.1 200 OK\r\n")) << events;
-  EXPECT_NE(events.find("Content-Type: text/event-stream\r\n"), std::string::npos) << events;
-  EXPECT_EQ(pieces, 0);
-}
+using test::exchange;
 
 const char* kTree = R"(#define ANGLE 30
 #define LEN 1
@@ -525,7 +329,7 @@ TEST_F(StudioFixture, AnImageModelsPicturesAreServedAFrameEach) {
 // the slider's value can be dropped, not written.
 TEST_F(StudioFixture, ASlidersValueIsNotWrittenIntoAConvertedFile) {
   StudioModelDef def = modelDef();
-  def.program.read = [](const std::string& path, uint64_t) {
+  def.program.read = [](const std::string& path, uint64_t, const WorldLimits&) {
     return StudioSource{std::string(kTree), path + " (converted)", "", nullptr, {}};
   };
   StudioModel model(def);
@@ -547,7 +351,7 @@ TEST_F(StudioFixture, ASaveCaughtHalfWrittenFlashesNoErrors) {
   write(half);
   StudioModelDef def = modelDef();
   int reads = 0;
-  def.program.read = [&](const std::string& path, uint64_t) {
+  def.program.read = [&](const std::string& path, uint64_t, const WorldLimits&) {
     StudioSource read{readText(path), path, "", nullptr, {}};
     if (++reads == 1) write(kTree);  // the editor finishes just after the studio read
     return read;
@@ -578,7 +382,7 @@ TEST_F(StudioFixture, AConvertedFilesErrorsAreAtItsOwnLines) {
   std::ofstream(lpy, std::ios::binary) << original;
   StudioModelDef def = modelDef();
   def.program.file = lpy.string();
-  def.program.read = [](const std::string& path, uint64_t maxBytes) {
+  def.program.read = [](const std::string& path, uint64_t maxBytes, const WorldLimits&) {
     auto source = std::make_shared<const SourceFile>(path, readText(path));
     DiagnosticSink sink;
     convert::ConvertResult converted = convert::convertFile(*source, convert::Dialect::LPy, "", sink, maxBytes);
@@ -671,6 +475,40 @@ TEST_F(StudioFixture, InteractiveLimitsStopARunawayAndCanBeRaisedToTheCeiling) {
   EXPECT_NE(state["diagnostics"][0]["message"].get<std::string>().find("past 1000 cells"), std::string::npos)
       << state.dump(2);
   EXPECT_EQ(state["limits"]["maxCells"], 1000);
+}
+
+// The interactive limits hold the reading of the program's file too, not only its growth:
+// the reader (which refuses a file whose checking would pass the memory limit, and
+// converts another tool's within it) is given the limits the page shows, and the ones
+// it raises them to.
+TEST_F(StudioFixture, TheInteractiveLimitsHoldTheReadingOfTheFile) {
+  StudioModelDef def = modelDef();
+  def.program.limits.maxCells = 50'000;
+  def.program.limits.maxMemoryBytes = uint64_t{4} << 30;  // the ceiling, as the command line gives it
+  def.maxMemoryBytes = 64 << 20;
+  std::vector<WorldLimits> given;
+  def.program.read = [&given](const std::string& path, uint64_t, const WorldLimits& limits) {
+    given.push_back(limits);
+    if (limits.maxMemoryBytes < (96 << 20))  // as a reader refuses a file past the limit
+      return StudioSource{std::nullopt, path, "checking it needs about 80 MiB, past the memory limit", nullptr, {}};
+    return StudioSource{readText(path), path, "", nullptr, {}};
+  };
+  StudioModel model(def);
+  model.regrow();
+  ASSERT_EQ(given.size(), 1u);
+  EXPECT_EQ(given[0].maxMemoryBytes, uint64_t{64} << 20);
+  EXPECT_EQ(given[0].maxCells, 50'000u);
+  EXPECT_EQ(model.modelVersion(), 0u);
+  const nlohmann::json refused = model.state();
+  ASSERT_EQ(refused["diagnostics"].size(), 1u) << refused.dump(2);
+  EXPECT_EQ(refused["diagnostics"][0]["message"],
+            "cannot read or convert " + file.string() + ": checking it needs about 80 MiB, past the memory limit");
+  model.setLimits(40'000, 128 << 20);
+  model.regrow();
+  ASSERT_EQ(given.size(), 2u);
+  EXPECT_EQ(given[1].maxMemoryBytes, uint64_t{128} << 20);
+  EXPECT_EQ(given[1].maxCells, 40'000u);
+  EXPECT_EQ(model.modelVersion(), 1u) << model.state().dump(2);
 }
 
 TEST_F(StudioFixture, RoutesAnswerThePage) {
@@ -974,6 +812,26 @@ TEST_F(StudioFixture, ASavedVariantStaysInTheSaveFolderWhateverItsStem) {
     EXPECT_TRUE(fs::exists(path)) << path;
   }
   EXPECT_FALSE(fs::exists(folder / "escaped_g1_v0.cell"));
+}
+
+// A program with nothing to vary makes a gallery of twelve of the same: the gallery says
+// so, and what would vary it.
+TEST_F(StudioFixture, AGalleryWarnsWhenNothingWouldVary) {
+  Gallery varied(galleryDef());
+  varied.reset(kTree, "tree");
+  EXPECT_EQ(varied.state()["warning"], "");
+  const std::string fixed = "lsystem fixed {\n  #until 2\n  axiom A\n  A -> F [ + A ] A\n}\n";
+  Gallery same(galleryDef());
+  same.reset(fixed, "fixed");
+  EXPECT_EQ(same.state()["warning"],
+            "the program has no #define NAME NUMBER to vary: every variant is the same (vary its rules' numbers "
+            "with --vary-constants)");
+  GalleryDef constants = galleryDef();
+  constants.constants = true;
+  Gallery none(constants);
+  none.reset("lsystem fixed {\n  #until 2\n  axiom A\n  A -> F [ + A ] A\n}\n", "fixed");
+  EXPECT_EQ(none.state()["warning"], "the program has no #define NAME NUMBER and no number in its rules to vary: "
+                                     "every variant is the same");
 }
 
 TEST_F(StudioFixture, GalleryIsTheSameForTheSameSeedAndPicks) {
