@@ -1,6 +1,7 @@
 #include "core/rate_stencil.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "core/parallel_for.h"
 #include "core/rule_evaluator.h"
@@ -137,11 +138,12 @@ double RateStencil::atEdge(const Query& q, size_t edge, const double* in) const 
     return sum;
   }
   if (query.label < 0 && query.kind == AggregateKind::Count) return count;
-  return aggregateOver(query, count, [&](int k) -> const NeighbourRef& { return around[k]; }, in);
+  return aggregateOver(
+      query, count, [&](int k) -> const NeighbourRef& { return around[k]; }, in);
 }
 
-void RateStencil::gather(const Query& q, size_t first, int lanes, bool insideRow, size_t firstEdge,
-                         const double* in, double* out) const {
+void RateStencil::gather(const Query& q, size_t first, int lanes, bool insideRow, size_t firstEdge, const double* in,
+                         double* out) const {
   // The lanes [lo, hi) have every neighbour at its fixed distance: in a row inside, all
   // but a first or last cell of the row.
   const size_t width = size_[0], x0 = first % width;
@@ -166,10 +168,19 @@ void RateStencil::gather(const Query& q, size_t first, int lanes, bool insideRow
     const double* at = in + first * stride_ + static_cast<size_t>(q.slot);
     const int64_t* delta = strideDeltas_.data();
     if (strideDeltas_.size() == 4) {  // von Neumann in 2-D: the sum in registers
-      for (int lane = lo; lane < hi; ++lane) {
-        const double* cell = at + static_cast<size_t>(lane) * stride_;
-        out[lane] = 0.0 + cell[delta[0]] + cell[delta[1]] + cell[delta[2]] + cell[delta[3]];
-      }
+      const int64_t d0 = delta[0], d1 = delta[1], d2 = delta[2], d3 = delta[3];
+      auto sum = [&](auto stride) {  // a stride known to the compiler vectorises
+        for (int lane = lo; lane < hi; ++lane) {
+          const double* cell = at + static_cast<size_t>(lane) * stride;
+          out[lane] = 0.0 + cell[d0] + cell[d1] + cell[d2] + cell[d3];
+        }
+      };
+      if (stride_ == 1)
+        sum(std::integral_constant<size_t, 1>{});
+      else if (stride_ == 2)
+        sum(std::integral_constant<size_t, 2>{});
+      else
+        sum(size_t{stride_});
       return;
     }
     for (int lane = lo; lane < hi; ++lane) out[lane] = 0;
@@ -188,34 +199,35 @@ void RateStencil::gather(const Query& q, size_t first, int lanes, bool insideRow
 void RateStencil::rates(size_t first, int lanes, const double* in, const EvalContext& context,
                         double (*values)[CompiledExpression::kBatchLanes]) const {
   const bool inside = rowInside(first);
-  const size_t firstEdge =
-      static_cast<size_t>(std::lower_bound(edgeCells_.begin(), edgeCells_.end(), static_cast<uint32_t>(first)) -
-                          edgeCells_.begin());
+  const size_t firstEdge = static_cast<size_t>(
+      std::lower_bound(edgeCells_.begin(), edgeCells_.end(), static_cast<uint32_t>(first)) - edgeCells_.begin());
   double aggregates[kMaxQueries][CompiledExpression::kBatchLanes];
   auto evaluate = [&](auto&& load) {
     for (size_t e = 0; e < equations_.size(); ++e) {
       const std::vector<Query>& queries = queries_[e];
-      for (size_t q = 0; q < queries.size(); ++q) gather(queries[q], first, lanes, inside, firstEdge, in, aggregates[q]);
+      for (size_t q = 0; q < queries.size(); ++q)
+        gather(queries[q], first, lanes, inside, firstEdge, in, aggregates[q]);
       equations_[e].calculation->value.evaluateBatch(
           lanes, load, [&](int lane, int q) { return aggregates[q][lane]; }, context, values[e]);
     }
   };
   const double* cells = in + first * stride_;
   if (stride_ > kMaxTransposed) {
-    evaluate([&](int lane, int slot) { return cells[static_cast<size_t>(lane) * stride_ + static_cast<size_t>(slot)]; });
+    evaluate(
+        [&](int lane, int slot) { return cells[static_cast<size_t>(lane) * stride_ + static_cast<size_t>(slot)]; });
     return;
   }
   // The batch's state a variable at a time, read once: each load of the equations is
   // then a copy of consecutive values, not a stride through the cells.
   double variables[kMaxTransposed][CompiledExpression::kBatchLanes];
   for (int lane = 0; lane < lanes; ++lane)
-    for (size_t slot = 0; slot < stride_; ++slot) variables[slot][lane] = cells[static_cast<size_t>(lane) * stride_ + slot];
+    for (size_t slot = 0; slot < stride_; ++slot)
+      variables[slot][lane] = cells[static_cast<size_t>(lane) * stride_ + slot];
   evaluate([&](int lane, int slot) { return variables[slot][lane]; });
 }
 
 template <RateStencil::Stage which>
-void RateStencil::stage(const double* in, double* x, double dt, const EvalContext& context, size_t begin,
-                        size_t end) {
+void RateStencil::stage(const double* in, double* x, double dt, const EvalContext& context, size_t begin, size_t end) {
   // odeint's runge_kutta4 coefficients (a, b) times dt, as its generic_rk_scale_sum makes them.
   const double half = 0.5 * dt, zero = 0.0 * dt, whole = 1.0 * dt, sixth = (1.0 / 6.0) * dt, third = (1.0 / 3.0) * dt;
   double* a = stageA_.data();
@@ -226,29 +238,41 @@ void RateStencil::stage(const double* in, double* x, double dt, const EvalContex
   for (size_t first = begin; first < end;) {
     // A batch stays within a row, so that whether its row is inside is known at once.
     const size_t rowEnd = (first / width + 1) * width;
-    const int lanes = static_cast<int>(std::min({size_t{CompiledExpression::kBatchLanes}, end - first, rowEnd - first}));
+    const int lanes =
+        static_cast<int>(std::min({size_t{CompiledExpression::kBatchLanes}, end - first, rowEnd - first}));
     rates(first, lanes, in, context, values);
-    for (size_t slot = 0; slot < stride_; ++slot) {
-      const int e = equationOf_[slot];
-      for (int lane = 0; lane < lanes; ++lane) {
-        const double k = e >= 0 ? values[e][lane] : 0.0;  // a constant's derivative, as the general path's fill
-        const size_t i = (first + static_cast<size_t>(lane)) * stride_ + slot;
-        if constexpr (which == Stage::First) {  // x + a1 dt k1
-          a[i] = 1.0 * x[i] + half * k;
-          zeros[i] = 1.0 * x[i] + zero * k;
-          result[i] = 1.0 * x[i] + sixth * k;
-        } else if constexpr (which == Stage::Second) {  // x + 0 dt k1 + a2 dt k2, into x
-          x[i] = zeros[i] + half * k;
-          zeros[i] = zeros[i] + zero * k;
-          result[i] = result[i] + third * k;
-        } else if constexpr (which == Stage::Third) {  // x + 0 dt k1 + 0 dt k2 + dt k3
-          a[i] = zeros[i] + whole * k;
-          result[i] = result[i] + third * k;
-        } else {  // x + dt (k1 / 6 + k2 / 3 + k3 / 3 + k4 / 6), summed left to right
-          x[i] = result[i] + sixth * k;
+    // A constant's derivative is 0, as the general path's fill.
+    static constexpr double kConstant[CompiledExpression::kBatchLanes] = {};
+    auto sums = [&](auto stride) {  // a stride known to the compiler vectorises
+      for (size_t slot = 0; slot < stride; ++slot) {
+        const int e = equationOf_[slot];
+        const double* rate = e >= 0 ? values[e] : kConstant;
+        for (int lane = 0; lane < lanes; ++lane) {
+          const double k = rate[lane];
+          const size_t i = (first + static_cast<size_t>(lane)) * stride + slot;
+          if constexpr (which == Stage::First) {  // x + a1 dt k1
+            a[i] = 1.0 * x[i] + half * k;
+            zeros[i] = 1.0 * x[i] + zero * k;
+            result[i] = 1.0 * x[i] + sixth * k;
+          } else if constexpr (which == Stage::Second) {  // x + 0 dt k1 + a2 dt k2, into x
+            x[i] = zeros[i] + half * k;
+            zeros[i] = zeros[i] + zero * k;
+            result[i] = result[i] + third * k;
+          } else if constexpr (which == Stage::Third) {  // x + 0 dt k1 + 0 dt k2 + dt k3
+            a[i] = zeros[i] + whole * k;
+            result[i] = result[i] + third * k;
+          } else {  // x + dt (k1 / 6 + k2 / 3 + k3 / 3 + k4 / 6), summed left to right
+            x[i] = result[i] + sixth * k;
+          }
         }
       }
-    }
+    };
+    if (stride_ == 1)
+      sums(std::integral_constant<size_t, 1>{});
+    else if (stride_ == 2)
+      sums(std::integral_constant<size_t, 2>{});
+    else
+      sums(size_t{stride_});
     first += static_cast<size_t>(lanes);
   }
 }
@@ -259,15 +283,13 @@ void RateStencil::step(StateArray& x, double dt, const EvalContext& context, uns
   resizeForOverwrite(zeroSum_, x.size());
   resizeForOverwrite(result_, x.size());
   double* state = x.data();
-  parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
-    stage<Stage::First>(state, state, dt, context, begin, end);
-  });
+  parallelFor(cells_, threads,
+              [&](size_t begin, size_t end, unsigned) { stage<Stage::First>(state, state, dt, context, begin, end); });
   parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
     stage<Stage::Second>(stageA_.data(), state, dt, context, begin, end);
   });
-  parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
-    stage<Stage::Third>(state, state, dt, context, begin, end);
-  });
+  parallelFor(cells_, threads,
+              [&](size_t begin, size_t end, unsigned) { stage<Stage::Third>(state, state, dt, context, begin, end); });
   parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
     stage<Stage::Fourth>(stageA_.data(), state, dt, context, begin, end);
   });
