@@ -35,11 +35,7 @@ int runWord(const WordOptions& options) {
       if (last) writer.end();
     } else {
       buffered.text() += "t = " + formatExact(t) + ": ";
-      WordTextWriter writer(buffered, options.precision);
-      if (options.interpreted)
-        visitInterpretedWord(*world, writer);
-      else
-        visitWord(*world, writer);
+      writeWordText(*world, buffered, options.precision, options.interpreted);
       buffered.text() += '\n';
     }
   };

@@ -1,11 +1,13 @@
-// Writing a word: what `ontogen word` does after developing. The word streams cell by cell
-// through WordTextWriter / WordJsonWriter into a stream that counts and drops its bytes,
-// so the figures do not measure a disk or a pipe. The baseline writes the same text of
-// the same Koch word by hand, from a byte per module, through the same kind of buffer.
+// Writing a word: what `ontogen word` does after developing, as text (writeWordText) and
+// as JSON (WordJsonWriter), into a stream that counts and drops its bytes, so the figures
+// do not measure a disk or a pipe. The baseline writes the same text of the same Koch
+// word by hand, from a byte per module, through the same kind of buffer; the
+// derive-and-write pair times what `ontogen word` does as a whole, derivation included.
 
 #include <benchmark/benchmark.h>
 
 #include <ostream>
+#include <sstream>
 #include <streambuf>
 #include <string>
 #include <vector>
@@ -69,10 +71,7 @@ void writeKochWord(benchmark::State& state, Write&& write, Check&& sizeIsRight) 
 void BM_KochWordText(benchmark::State& state) {
   writeKochWord(
       state,
-      [](const World& world, BufferedOutput& buffered) {
-        WordTextWriter writer(buffered, 6);
-        visitWord(world, writer);
-      },
+      [](const World& world, BufferedOutput& buffered) { writeWordText(world, buffered, 6); },
       // 2 bytes a module ("F " or "+ "), less the last space.
       [](size_t modules, size_t bytes) { return bytes == 2 * modules - 1; });
 }
@@ -93,11 +92,13 @@ void BM_KochWordJson(benchmark::State& state) {
 }
 BENCHMARK(BM_KochWordJson)->Arg(8)->Unit(benchmark::kMillisecond);
 
-// The same text from a byte per module: Koch's word derived by hand, then written as
-// symbols separated by spaces through a 64 KiB buffer.
-void BM_KochWordTextHandWritten(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
+// Koch's word derived by hand, a byte per module, both words reserved for the final size.
+std::vector<char> kochByHand(int n) {
+  size_t modules = 1;
+  for (int i = 0; i < n; ++i) modules = modules * 5 + 4;  // 5 F and 4 turns a former F
   std::vector<char> word{'F'}, next;
+  word.reserve(modules);
+  next.reserve(modules);
   for (int i = 0; i < n; ++i) {
     next.clear();
     for (char c : word) {
@@ -108,26 +109,92 @@ void BM_KochWordTextHandWritten(benchmark::State& state) {
     }
     word.swap(next);
   }
+  return word;
+}
+
+// The word as symbols separated by spaces, through a 64 KiB buffer.
+void writeByHand(const std::vector<char>& word, std::ostream& out) {
+  std::string buffer;
+  buffer.reserve((size_t{1} << 16) + 16);
+  for (size_t i = 0; i < word.size(); ++i) {
+    if (i) buffer += ' ';
+    buffer += word[i];
+    if (buffer.size() >= (size_t{1} << 16)) {
+      out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+      buffer.clear();
+    }
+  }
+  out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+}
+
+// Whether the hand-written text is the engine's, byte for byte.
+bool sameTextAsTheEngine(const std::vector<char>& word, int n) {
+  World world(koch().program, kBenchWorld);
+  world.advanceTo(n, 1.0);
+  std::ostringstream engine, byHand;
+  {
+    BufferedOutput buffered(engine);
+    writeWordText(world, buffered, 6);
+  }
+  writeByHand(word, byHand);
+  return engine.str() == byHand.str();
+}
+
+// The same text from a byte per module: Koch's word derived by hand, then written.
+void BM_KochWordTextHandWritten(benchmark::State& state) {
+  if (!koch().program) return state.SkipWithError(koch().error.c_str());
+  const int n = static_cast<int>(state.range(0));
+  const std::vector<char> word = kochByHand(n);
   CountingBuffer counter;
   std::ostream out(&counter);
   for (auto _ : state) {
     counter.bytes = 0;
-    std::string buffer;
-    buffer.reserve((size_t{1} << 16) + 16);
-    for (size_t i = 0; i < word.size(); ++i) {
-      if (i) buffer += ' ';
-      buffer += word[i];
-      if (buffer.size() >= (size_t{1} << 16)) {
-        out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-        buffer.clear();
-      }
-    }
-    out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    writeByHand(word, out);
   }
-  if (counter.bytes != 2 * word.size() - 1) return state.SkipWithError("wrong text size");
+  if (!sameTextAsTheEngine(word, n)) return state.SkipWithError("not the engine's text");
   report(state, word.size(), counter.bytes);
 }
 BENCHMARK(BM_KochWordTextHandWritten)->Arg(8)->Unit(benchmark::kMillisecond);
+
+// `ontogen word --at n` in the process: a fresh world grown from the axiom, its word
+// written as text.
+void BM_KochDeriveAndWriteText(benchmark::State& state) {
+  if (!koch().program) return state.SkipWithError(koch().error.c_str());
+  const int n = static_cast<int>(state.range(0));
+  CountingBuffer counter;
+  std::ostream out(&counter);
+  size_t modules = 0;
+  for (auto _ : state) {
+    counter.bytes = 0;
+    World world(koch().program, kBenchWorld);
+    world.advanceTo(n, 1.0);
+    BufferedOutput buffered(out);
+    writeWordText(world, buffered, 6);
+    buffered.flush();
+    modules = world.rootPool().size();
+  }
+  if (counter.bytes != 2 * modules - 1) return state.SkipWithError("wrong output size");
+  report(state, modules, counter.bytes);
+}
+BENCHMARK(BM_KochDeriveAndWriteText)->Arg(8)->Unit(benchmark::kMillisecond);
+
+// The same by hand: the word derived as bytes, then written.
+void BM_KochDeriveAndWriteTextHandWritten(benchmark::State& state) {
+  if (!koch().program) return state.SkipWithError(koch().error.c_str());
+  const int n = static_cast<int>(state.range(0));
+  CountingBuffer counter;
+  std::ostream out(&counter);
+  size_t modules = 0;
+  for (auto _ : state) {
+    counter.bytes = 0;
+    const std::vector<char> word = kochByHand(n);
+    writeByHand(word, out);
+    modules = word.size();
+  }
+  if (!sameTextAsTheEngine(kochByHand(n), n)) return state.SkipWithError("not the engine's text");
+  report(state, modules, counter.bytes);
+}
+BENCHMARK(BM_KochDeriveAndWriteTextHandWritten)->Arg(8)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace ontogen::bench

@@ -1,6 +1,7 @@
 #include "core/rate_stencil.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "core/parallel_for.h"
 #include "core/rule_evaluator.h"
@@ -14,6 +15,9 @@ namespace {
 constexpr size_t kMaxEquations = 16;
 // The same for the neighbour aggregates of one rule.
 constexpr size_t kMaxQueries = 16;
+// A batch's state is read a variable at a time up to this many variables a cell (every
+// model's cells hold fewer), else in place.
+constexpr size_t kMaxTransposed = 16;
 }  // namespace
 
 bool RateStencil::prepare(const Program& program, const GridPool& grid) {
@@ -61,11 +65,45 @@ bool RateStencil::prepare(const Program& program, const GridPool& grid) {
   dimensions_ = shape.dimensions;
   size_ = shape.size;
   deltas_.clear();
-  for (const GridCoordinates& offset : grid.offsets())
+  strideDeltas_.clear();
+  for (const GridCoordinates& offset : grid.offsets()) {
     deltas_.push_back(offset[0] + offset[1] * int64_t{size_[0]} + offset[2] * int64_t{size_[0]} * size_[1]);
+    strideDeltas_.push_back(deltas_.back() * static_cast<int64_t>(stride_));
+  }
   cells_ = cells.size();
+  // The neighbours of the cells at an edge, found once: the structure does not change
+  // while the plan holds, and asking the grid for them in every stage cost more than the
+  // rates of a small grid. A row inside has its first and last cell at an edge.
+  edgeCells_.clear();
+  edgeStart_.assign(1, 0);
+  edgeRefs_.clear();
+  uint32_t sites[GridPool::kMaxNeighbours];
+  auto addEdge = [&](size_t cell) {
+    const int offsets = grid.neighbourSites(static_cast<uint32_t>(cell), sites);  // full: site i holds cell i
+    for (int k = 0; k < offsets; ++k)
+      if (sites[k] != GridPool::kEmpty) edgeRefs_.push_back(NeighbourRef{master_, grid.cellAt(sites[k]) * stride_});
+    edgeCells_.push_back(static_cast<uint32_t>(cell));
+    edgeStart_.push_back(static_cast<uint32_t>(edgeRefs_.size()));
+  };
+  const size_t width = size_[0];
+  for (size_t first = 0; first < cells_; first += width) {
+    if (rowInside(first)) {
+      addEdge(first);
+      if (width > 1) addEdge(first + width - 1);
+    } else {
+      for (size_t cell = first; cell < first + width; ++cell) addEdge(cell);
+    }
+  }
   applies_ = true;
   return true;
+}
+
+// Whether the row that starts at cell `first` is inside the grid along y and z (the
+// neighbourhoods reach one site along each axis).
+bool RateStencil::rowInside(size_t first) const {
+  const size_t width = size_[0], height = size_[1], depth = size_[2];
+  const size_t row = first / width, y = row % height, z = row / height;
+  return (dimensions_ < 2 || (y >= 1 && y + 1 < height)) && (dimensions_ < 3 || (z >= 1 && z + 1 < depth));
 }
 
 // A cell whose neighbours are all inside the grid: each at its fixed distance.
@@ -87,68 +125,109 @@ double RateStencil::inside(const Query& q, size_t cell, const double* in) const 
       in);
 }
 
-// A cell at an edge: the grid's boundary says which sites are its neighbours.
-double RateStencil::atEdge(const Query& q, size_t cell, const double* in) const {
-  uint32_t sites[GridPool::kMaxNeighbours];
-  NeighbourRef around[GridPool::kMaxNeighbours];
-  const int offsets = grid_->neighbourSites(static_cast<uint32_t>(cell), sites);  // full: site i holds cell i
-  int count = 0;
-  for (int k = 0; k < offsets; ++k)
-    if (sites[k] != GridPool::kEmpty) around[count++] = NeighbourRef{master_, grid_->cellAt(sites[k]) * stride_};
-  return aggregateOver(*q.query, count, [&](int k) -> const NeighbourRef& { return around[k]; }, in);
+// The edge cell edgeCells_[edge]: its neighbours as the grid's boundary gave them to prepare().
+double RateStencil::atEdge(const Query& q, size_t edge, const double* in) const {
+  const NeighbourRef* around = edgeRefs_.data() + edgeStart_[edge];
+  const int count = static_cast<int>(edgeStart_[edge + 1] - edgeStart_[edge]);
+  const AggregateQuery& query = *q.query;
+  // aggregateOver's plain sum and count, for neighbours all of the grid's master.
+  if (query.label < 0 && query.kind == AggregateKind::Sum) {
+    double sum = 0;
+    if (q.slot >= 0)
+      for (int k = 0; k < count; ++k) sum += in[around[k].state + static_cast<uint32_t>(q.slot)];
+    return sum;
+  }
+  if (query.label < 0 && query.kind == AggregateKind::Count) return count;
+  return aggregateOver(
+      query, count, [&](int k) -> const NeighbourRef& { return around[k]; }, in);
 }
 
-void RateStencil::gather(const Query& q, size_t first, int lanes, bool allInside, bool rowInside,
-                         const double* in, double* out) const {
+void RateStencil::gather(const Query& q, size_t first, int lanes, bool insideRow, size_t firstEdge, const double* in,
+                         double* out) const {
+  // The lanes [lo, hi) have every neighbour at its fixed distance: in a row inside, all
+  // but a first or last cell of the row.
+  const size_t width = size_[0], x0 = first % width;
+  int lo = lanes, hi = lanes;
+  if (insideRow) {
+    lo = x0 == 0 ? 1 : 0;
+    hi = std::max(lo, x0 + static_cast<size_t>(lanes) == width ? lanes - 1 : lanes);
+  }
+  // The lanes at an edge are the batch's edge cells, in order.
+  size_t edge = firstEdge;
+  for (int lane = 0; lane < lo; ++lane) out[lane] = atEdge(q, edge++, in);
+  for (int lane = hi; lane < lanes; ++lane) out[lane] = atEdge(q, edge++, in);
   const AggregateQuery& query = *q.query;
-  if (allInside && query.kind == AggregateKind::Count) {
+  if (query.kind == AggregateKind::Count) {
     const double count = q.matches ? static_cast<double>(deltas_.size()) : 0.0;
-    for (int lane = 0; lane < lanes; ++lane) out[lane] = count;
+    for (int lane = lo; lane < hi; ++lane) out[lane] = count;
     return;
   }
-  if (allInside && query.kind == AggregateKind::Sum && q.matches && q.slot >= 0) {
+  if (query.kind == AggregateKind::Sum && q.matches && q.slot >= 0) {
     // Lane by lane, each lane's neighbours added in the neighbourhood's order from 0, as
     // aggregateOver sums: the loop over lanes is the one that vectorises.
-    for (int lane = 0; lane < lanes; ++lane) out[lane] = 0;
-    for (int64_t delta : deltas_) {
-      const double* from = in + static_cast<size_t>(static_cast<int64_t>(first) + delta) * stride_ +
-                           static_cast<size_t>(q.slot);
+    const double* at = in + first * stride_ + static_cast<size_t>(q.slot);
+    const int64_t* delta = strideDeltas_.data();
+    if (strideDeltas_.size() == 4) {  // von Neumann in 2-D: the sum in registers
+      const int64_t d0 = delta[0], d1 = delta[1], d2 = delta[2], d3 = delta[3];
+      auto sum = [&](auto stride) {  // a stride known to the compiler vectorises
+        for (int lane = lo; lane < hi; ++lane) {
+          const double* cell = at + static_cast<size_t>(lane) * stride;
+          out[lane] = 0.0 + cell[d0] + cell[d1] + cell[d2] + cell[d3];
+        }
+      };
       if (stride_ == 1)
-        for (int lane = 0; lane < lanes; ++lane) out[lane] += from[lane];
+        sum(std::integral_constant<size_t, 1>{});
+      else if (stride_ == 2)
+        sum(std::integral_constant<size_t, 2>{});
       else
-        for (int lane = 0; lane < lanes; ++lane) out[lane] += from[static_cast<size_t>(lane) * stride_];
+        sum(size_t{stride_});
+      return;
+    }
+    for (int lane = lo; lane < hi; ++lane) out[lane] = 0;
+    for (int64_t d : strideDeltas_) {
+      const double* from = at + d;
+      if (stride_ == 1)
+        for (int lane = lo; lane < hi; ++lane) out[lane] += from[lane];
+      else
+        for (int lane = lo; lane < hi; ++lane) out[lane] += from[static_cast<size_t>(lane) * stride_];
     }
     return;
   }
-  const size_t width = size_[0], x0 = first % width;
-  for (int lane = 0; lane < lanes; ++lane) {
-    const size_t at = x0 + static_cast<size_t>(lane), cell = first + static_cast<size_t>(lane);
-    out[lane] = allInside || (rowInside && at >= 1 && at + 1 < width) ? inside(q, cell, in) : atEdge(q, cell, in);
-  }
+  for (int lane = lo; lane < hi; ++lane) out[lane] = inside(q, first + static_cast<size_t>(lane), in);
 }
 
 void RateStencil::rates(size_t first, int lanes, const double* in, const EvalContext& context,
                         double (*values)[CompiledExpression::kBatchLanes]) const {
-  const size_t width = size_[0], height = size_[1], depth = size_[2];
-  const size_t x0 = first % width, row = first / width, y = row % height, z = row / height;
-  const bool rowInside =
-      (dimensions_ < 2 || (y >= 1 && y + 1 < height)) && (dimensions_ < 3 || (z >= 1 && z + 1 < depth));
-  const bool allInside = rowInside && x0 >= 1 && x0 + static_cast<size_t>(lanes) < width;
+  const bool inside = rowInside(first);
+  const size_t firstEdge = static_cast<size_t>(
+      std::lower_bound(edgeCells_.begin(), edgeCells_.end(), static_cast<uint32_t>(first)) - edgeCells_.begin());
   double aggregates[kMaxQueries][CompiledExpression::kBatchLanes];
-  auto load = [&](int lane, int slot) {
-    return in[(first + static_cast<size_t>(lane)) * stride_ + static_cast<size_t>(slot)];
+  auto evaluate = [&](auto&& load) {
+    for (size_t e = 0; e < equations_.size(); ++e) {
+      const std::vector<Query>& queries = queries_[e];
+      for (size_t q = 0; q < queries.size(); ++q)
+        gather(queries[q], first, lanes, inside, firstEdge, in, aggregates[q]);
+      equations_[e].calculation->value.evaluateBatch(
+          lanes, load, [&](int lane, int q) { return aggregates[q][lane]; }, context, values[e]);
+    }
   };
-  for (size_t e = 0; e < equations_.size(); ++e) {
-    const std::vector<Query>& queries = queries_[e];
-    for (size_t q = 0; q < queries.size(); ++q) gather(queries[q], first, lanes, allInside, rowInside, in, aggregates[q]);
-    equations_[e].calculation->value.evaluateBatch(
-        lanes, load, [&](int lane, int q) { return aggregates[q][lane]; }, context, values[e]);
+  const double* cells = in + first * stride_;
+  if (stride_ > kMaxTransposed) {
+    evaluate(
+        [&](int lane, int slot) { return cells[static_cast<size_t>(lane) * stride_ + static_cast<size_t>(slot)]; });
+    return;
   }
+  // The batch's state a variable at a time, read once: each load of the equations is
+  // then a copy of consecutive values, not a stride through the cells.
+  double variables[kMaxTransposed][CompiledExpression::kBatchLanes];
+  for (int lane = 0; lane < lanes; ++lane)
+    for (size_t slot = 0; slot < stride_; ++slot)
+      variables[slot][lane] = cells[static_cast<size_t>(lane) * stride_ + slot];
+  evaluate([&](int lane, int slot) { return variables[slot][lane]; });
 }
 
 template <RateStencil::Stage which>
-void RateStencil::stage(const double* in, double* x, double dt, const EvalContext& context, size_t begin,
-                        size_t end) {
+void RateStencil::stage(const double* in, double* x, double dt, const EvalContext& context, size_t begin, size_t end) {
   // odeint's runge_kutta4 coefficients (a, b) times dt, as its generic_rk_scale_sum makes them.
   const double half = 0.5 * dt, zero = 0.0 * dt, whole = 1.0 * dt, sixth = (1.0 / 6.0) * dt, third = (1.0 / 3.0) * dt;
   double* a = stageA_.data();
@@ -157,37 +236,43 @@ void RateStencil::stage(const double* in, double* x, double dt, const EvalContex
   const size_t width = size_[0];
   double values[kMaxEquations][CompiledExpression::kBatchLanes];
   for (size_t first = begin; first < end;) {
-    // A batch stays within a row, so that the cells inside are known at once, and the
-    // first and last cell of a row go alone, so that the others are all inside.
+    // A batch stays within a row, so that whether its row is inside is known at once.
     const size_t rowEnd = (first / width + 1) * width;
-    size_t count = std::min({size_t{CompiledExpression::kBatchLanes}, end - first, rowEnd - first});
-    if (first % width == 0)
-      count = 1;
-    else if (first + count == rowEnd && count > 1)
-      --count;
-    const int lanes = static_cast<int>(count);
+    const int lanes =
+        static_cast<int>(std::min({size_t{CompiledExpression::kBatchLanes}, end - first, rowEnd - first}));
     rates(first, lanes, in, context, values);
-    for (size_t slot = 0; slot < stride_; ++slot) {
-      const int e = equationOf_[slot];
-      for (int lane = 0; lane < lanes; ++lane) {
-        const double k = e >= 0 ? values[e][lane] : 0.0;  // a constant's derivative, as the general path's fill
-        const size_t i = (first + static_cast<size_t>(lane)) * stride_ + slot;
-        if constexpr (which == Stage::First) {  // x + a1 dt k1
-          a[i] = 1.0 * x[i] + half * k;
-          zeros[i] = 1.0 * x[i] + zero * k;
-          result[i] = 1.0 * x[i] + sixth * k;
-        } else if constexpr (which == Stage::Second) {  // x + 0 dt k1 + a2 dt k2, into x
-          x[i] = zeros[i] + half * k;
-          zeros[i] = zeros[i] + zero * k;
-          result[i] = result[i] + third * k;
-        } else if constexpr (which == Stage::Third) {  // x + 0 dt k1 + 0 dt k2 + dt k3
-          a[i] = zeros[i] + whole * k;
-          result[i] = result[i] + third * k;
-        } else {  // x + dt (k1 / 6 + k2 / 3 + k3 / 3 + k4 / 6), summed left to right
-          x[i] = result[i] + sixth * k;
+    // A constant's derivative is 0, as the general path's fill.
+    static constexpr double kConstant[CompiledExpression::kBatchLanes] = {};
+    auto sums = [&](auto stride) {  // a stride known to the compiler vectorises
+      for (size_t slot = 0; slot < stride; ++slot) {
+        const int e = equationOf_[slot];
+        const double* rate = e >= 0 ? values[e] : kConstant;
+        for (int lane = 0; lane < lanes; ++lane) {
+          const double k = rate[lane];
+          const size_t i = (first + static_cast<size_t>(lane)) * stride + slot;
+          if constexpr (which == Stage::First) {  // x + a1 dt k1
+            a[i] = 1.0 * x[i] + half * k;
+            zeros[i] = 1.0 * x[i] + zero * k;
+            result[i] = 1.0 * x[i] + sixth * k;
+          } else if constexpr (which == Stage::Second) {  // x + 0 dt k1 + a2 dt k2, into x
+            x[i] = zeros[i] + half * k;
+            zeros[i] = zeros[i] + zero * k;
+            result[i] = result[i] + third * k;
+          } else if constexpr (which == Stage::Third) {  // x + 0 dt k1 + 0 dt k2 + dt k3
+            a[i] = zeros[i] + whole * k;
+            result[i] = result[i] + third * k;
+          } else {  // x + dt (k1 / 6 + k2 / 3 + k3 / 3 + k4 / 6), summed left to right
+            x[i] = result[i] + sixth * k;
+          }
         }
       }
-    }
+    };
+    if (stride_ == 1)
+      sums(std::integral_constant<size_t, 1>{});
+    else if (stride_ == 2)
+      sums(std::integral_constant<size_t, 2>{});
+    else
+      sums(size_t{stride_});
     first += static_cast<size_t>(lanes);
   }
 }
@@ -198,15 +283,13 @@ void RateStencil::step(StateArray& x, double dt, const EvalContext& context, uns
   resizeForOverwrite(zeroSum_, x.size());
   resizeForOverwrite(result_, x.size());
   double* state = x.data();
-  parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
-    stage<Stage::First>(state, state, dt, context, begin, end);
-  });
+  parallelFor(cells_, threads,
+              [&](size_t begin, size_t end, unsigned) { stage<Stage::First>(state, state, dt, context, begin, end); });
   parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
     stage<Stage::Second>(stageA_.data(), state, dt, context, begin, end);
   });
-  parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
-    stage<Stage::Third>(state, state, dt, context, begin, end);
-  });
+  parallelFor(cells_, threads,
+              [&](size_t begin, size_t end, unsigned) { stage<Stage::Third>(state, state, dt, context, begin, end); });
   parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
     stage<Stage::Fourth>(stageA_.data(), state, dt, context, begin, end);
   });

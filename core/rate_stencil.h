@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/rule_evaluator.h"
 #include "model/expression.h"
 #include "model/program.h"
 #include "pools/grid_pool.h"
@@ -59,13 +60,17 @@ class RateStencil {
   /// The rates of `lanes` cells from `first`, within one row of the grid, from `in`.
   void rates(size_t first, int lanes, const double* in, const EvalContext& context,
              double (*values)[CompiledExpression::kBatchLanes]) const;
-  /// Aggregate `q` of the lanes from `first` into out[lane]: a stencil over the state
-  /// where every lane's neighbours are inside the grid, else the grid's answer per lane.
-  void gather(const Query& q, size_t first, int lanes, bool allInside, bool rowInside, const double* in,
+  /// Aggregate `q` of the lanes from `first` (within one row) into out[lane]: a stencil
+  /// over the state for the lanes whose neighbours are inside the grid, the neighbours
+  /// the grid gave prepare() for the lanes at an edge.
+  /// `firstEdge`: the first of edgeCells_ at or after `first`.
+  void gather(const Query& q, size_t first, int lanes, bool insideRow, size_t firstEdge, const double* in,
               double* out) const;
-  /// Aggregate `q` of a cell whose neighbours are all inside the grid, or of one at an edge.
+  /// Aggregate `q` of a cell whose neighbours are all inside the grid, or of edge cell
+  /// edgeCells_[edge].
   double inside(const Query& q, size_t cell, const double* in) const;
-  double atEdge(const Query& q, size_t cell, const double* in) const;
+  double atEdge(const Query& q, size_t edge, const double* in) const;
+  bool rowInside(size_t first) const;
 
   const GridPool* grid_ = nullptr;
   uint64_t version_ = UINT64_MAX;
@@ -77,6 +82,10 @@ class RateStencil {
   std::vector<int> equationOf_;                // per state slot: its equation, -1: constant while integrating
   std::vector<std::vector<Query>> queries_;    // per equation: its rule's aggregates
   std::vector<int64_t> deltas_;                // per neighbourhood offset: cells away
+  std::vector<int64_t> strideDeltas_;          // the same in state values
+  std::vector<uint32_t> edgeCells_;       // the cells with a neighbour across an edge, in order
+  std::vector<uint32_t> edgeStart_;       // per edge cell and one more: where its neighbours start in edgeRefs_
+  std::vector<NeighbourRef> edgeRefs_;    // their neighbours, in the grid's order
   std::array<uint32_t, 3> size_{1, 1, 1};
   int dimensions_ = 1;
   // The input of stages 2 and 4 (the state itself holds stage 3's: after the first pass

@@ -28,6 +28,9 @@ class BufferedOutput {
     if (text_.size() >= kFlushAt) flush();
   }
   void flush();
+  /// Writes `size` bytes after what the buffer holds: a large piece goes to the stream
+  /// as it is, without a copy.
+  void write(const char* data, size_t size);
 
  private:
   static constexpr size_t kFlushAt = size_t{1} << 16;
@@ -52,6 +55,13 @@ class WordTextWriter final : public WordVisitor {
   bool first_ = true;   // no cell written yet at the top level
 };
 
+/// Writes the world's word (`interpreted`: its homomorphism's image) as visitWord or
+/// visitInterpretedWord streams it through a WordTextWriter, to the byte. A word held
+/// compactly and read without ids (WordVisitor::readsIds) is written as it is held: each
+/// label's text made once and copied for its modules, numbers written in place, in
+/// chunks handed to the stream whole.
+void writeWordText(const World& world, BufferedOutput& out, int precision, bool interpreted = false);
+
 /// Streams the JSON of writeWordJson: begin(), then for each time beginTime(t), the
 /// word's cells through the visitor and endTime(), then end().
 class WordJsonWriter final : public WordVisitor {
@@ -69,7 +79,15 @@ class WordJsonWriter final : public WordVisitor {
  private:
   void openList();
   void closeList();
+  const std::string& labelPrefix(std::string_view label);
+  struct LabelPrefix {
+    const char* data;
+    size_t size;
+    std::string prefix;
+  };
+  static constexpr size_t kLabelPrefixes = 64;  // more labels than a program has masters, as a rule
   BufferedOutput& out_;
+  std::vector<LabelPrefix> labels_;
   std::vector<size_t> cellsInList_;  // cells written in each open list, innermost last
 };
 
