@@ -172,6 +172,7 @@ int runEvolve(const EvolveOptions& options) {
       batch.sheet.tileWidth = size->first;
       batch.sheet.tileHeight = size->second;
     }
+    batch.labelColumns = fitnessColumn - 1;  // the genes
     batch.leading = [&](uint64_t index) {
       std::vector<std::string> leading;
       for (double value : genomes[index].values) leading.push_back(formatValue(value));
@@ -217,8 +218,16 @@ int runEvolve(const EvolveOptions& options) {
     summary.failed = result.failed;
     summaries.push_back(summary);
     const std::filesystem::path bestProgram = dir / "programs" / (variantStem(setup, summary.best) + ".cell");
-    bestTiles.push_back({dir / "thumbnails" / (variantStem(setup, summary.best) + ".png"),
-                         !std::isfinite(summary.bestFitness)});
+    // The best of each generation, labelled with its generation and genes.
+    const auto bestRow = std::find_if(result.table.rows.begin(), result.table.rows.end(),
+                                      [&](const SweepRow& row) { return row.variant == summary.best; });
+    const std::filesystem::path bestThumbnail = dir / "thumbnails" / (variantStem(setup, summary.best) + ".png");
+    ContactTile bestTile = bestRow != result.table.rows.end()
+                               ? galleryTile(bestThumbnail, result.table, *bestRow, fitnessColumn - 1)
+                               : ContactTile{bestThumbnail, false, {}, 0};
+    bestTile.failed = !std::isfinite(summary.bestFitness);
+    bestTile.label = "G" + std::to_string(generation) + (bestTile.label.empty() ? "" : " ") + bestTile.label;
+    bestTiles.push_back(std::move(bestTile));
     if (summary.bestFitness > bestEver || bestEverProgram.empty()) {
       bestEver = summary.bestFitness;
       bestEverProgram = bestProgram;
@@ -283,6 +292,7 @@ int runEvolve(const EvolveOptions& options) {
     }
     const Image gallery = contactSheet(bestTiles, sheet);
     writeFileAtomically(out / "gallery.png", [&](std::ostream& file) { writePng(gallery, file); });
+    writeFileAtomically(out / "gallery.json", [&](std::ostream& file) { writeContactSheetJson(bestTiles, sheet, file); });
   } catch (const OutputError& error) {
     std::cerr << "ontogen: error: " << error.what() << "\n";
     return kExitOutputError;
