@@ -138,17 +138,24 @@ void writeOutputs(const BatchDef& def, const SweepTable& table) {
   writeFileAtomically(def.dir / "results.csv", [&](std::ostream& out) { writeTableCsv(table, out); });
   writeFileAtomically(def.dir / "results.json", [&](std::ostream& out) { writeTableJson(table, out); });
   std::vector<ContactTile> tiles;
-  for (const SweepRow& row : table.rows) {
-    const std::filesystem::path picture = def.thumbnail(row.variant);
-    std::error_code error;
-    const bool exists = std::filesystem::is_regular_file(picture, error);
-    tiles.push_back({exists ? picture : std::filesystem::path(), !row.error.empty() && !exists});
-  }
+  for (const SweepRow& row : table.rows) tiles.push_back(galleryTile(def.thumbnail(row.variant), table, row, def.labelColumns));
   const Image sheet = contactSheet(tiles, def.sheet);
   writeFileAtomically(def.dir / "gallery.png", [&](std::ostream& out) { writePng(sheet, out); });
+  writeFileAtomically(def.dir / "gallery.json", [&](std::ostream& out) { writeContactSheetJson(tiles, def.sheet, out); });
 }
 
 }  // namespace
+
+ContactTile galleryTile(const std::filesystem::path& thumbnail, const SweepTable& table, const SweepRow& row,
+                        size_t labelColumns) {
+  std::error_code error;
+  const bool exists = std::filesystem::is_regular_file(thumbnail, error);
+  ContactTile tile{exists ? thumbnail : std::filesystem::path(), !row.error.empty() && !exists, {}, 0};
+  for (size_t c = 0; c < std::min({labelColumns, table.columns.size(), row.values.size()}); ++c)
+    tile.label += (tile.label.empty() ? "" : " ") + table.columns[c] + "=" + row.values[c];
+  if (exists) tile.pixelsPerUnit = readThumbnailScale(thumbnail);
+  return tile;
+}
 
 BatchResult runBatch(const BatchDef& def, Cluster& cluster) {
   BatchResult result;

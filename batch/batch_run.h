@@ -2,7 +2,8 @@
 // One table's worth of variants, run to completion across threads and ranks: what
 // `ontogen sweep` runs once and `ontogen evolve` once a generation. Rank 0 keeps the
 // journal (interpreters/sweep/sweep_table.h), appending each row as it arrives, and at
-// the end writes DIR/results.csv, DIR/results.json and DIR/gallery.png; every rank runs
+// the end writes DIR/results.csv, DIR/results.json, DIR/gallery.png and DIR/gallery.json
+// (interpreters/sweep/contact_sheet.h); every rank runs
 // its share of the variants not yet in the journal (the k-th of them on rank k mod K),
 // on its worker threads. When `stop` says so, no further variant starts: the running
 // ones finish and the table of what finished is written. Nothing here prints: progress
@@ -47,6 +48,9 @@ struct BatchDef {
   /// The thumbnail of variant i (for the gallery), whether or not it exists.
   std::function<std::filesystem::path(uint64_t)> thumbnail;
   ContactSheetDef sheet{};
+  /// The first this many columns label each tile of the gallery, `NAME=VALUE` apart by
+  /// spaces (the values as the table holds them, as the program's text writes them).
+  size_t labelColumns = 0;
   /// Asked between rows on the thread that called runBatch: true starts no further
   /// variant (Ctrl-C). Empty: never.
   std::function<bool()> stop;
@@ -68,6 +72,11 @@ struct BatchResult {
   SweepTable table;      ///< every row finished (all of them unless stopped), on every rank
   uint64_t failed = 0;   ///< rows with an error
 };
+
+/// The gallery's tile of `row`: its thumbnail (if written), whether it failed, its label
+/// (the first `labelColumns` columns) and its scale (written beside the thumbnail).
+ContactTile galleryTile(const std::filesystem::path& thumbnail, const SweepTable& table, const SweepRow& row,
+                        size_t labelColumns);
 
 /// Runs the batch; every rank calls it with the same definition.
 BatchResult runBatch(const BatchDef& def, Cluster& cluster);

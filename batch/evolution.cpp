@@ -200,6 +200,7 @@ EvolutionResult runEvolution(EvolutionDef def, Cluster& cluster) {
     batch.thumbnail = [&setup, dir](uint64_t i) { return dir / "thumbnails" / (variantStem(setup, i) + ".png"); };
     batch.sheet.tileWidth = def.settings.width;
     batch.sheet.tileHeight = def.settings.height;
+    batch.labelColumns = fitnessColumn - 1;  // the genes
     batch.leading = [&](uint64_t index) {
       std::vector<std::string> leading;
       for (double value : genomes[index].values) leading.push_back(formatValue(value));
@@ -229,8 +230,16 @@ EvolutionResult runEvolution(EvolutionDef def, Cluster& cluster) {
     const GenerationSummary summary = summaryOf(fitness, ranked, batchResult.failed);
     result.generations.push_back(summary);
     const std::filesystem::path bestProgram = dir / "programs" / (variantStem(setup, summary.best) + ".cell");
-    bestTiles.push_back({dir / "thumbnails" / (variantStem(setup, summary.best) + ".png"),
-                         !std::isfinite(summary.bestFitness)});
+    // The best of each generation, labelled with its generation and genes.
+    const auto bestRow = std::find_if(batchResult.table.rows.begin(), batchResult.table.rows.end(),
+                                      [&](const SweepRow& row) { return row.variant == summary.best; });
+    const std::filesystem::path bestThumbnail = dir / "thumbnails" / (variantStem(setup, summary.best) + ".png");
+    ContactTile bestTile = bestRow != batchResult.table.rows.end()
+                               ? galleryTile(bestThumbnail, batchResult.table, *bestRow, fitnessColumn - 1)
+                               : ContactTile{bestThumbnail, false, {}, 0};
+    bestTile.failed = !std::isfinite(summary.bestFitness);
+    bestTile.label = "G" + std::to_string(generation) + (bestTile.label.empty() ? "" : " ") + bestTile.label;
+    bestTiles.push_back(std::move(bestTile));
     if (summary.bestFitness > bestEver || bestEverProgram.empty()) {
       bestEver = summary.bestFitness;
       bestEverProgram = bestProgram;
@@ -267,6 +276,7 @@ EvolutionResult runEvolution(EvolutionDef def, Cluster& cluster) {
     sheet.tileHeight = def.settings.height;
     const Image gallery = contactSheet(bestTiles, sheet);
     writeFileAtomically(out / "gallery.png", [&](std::ostream& file) { writePng(gallery, file); });
+    writeFileAtomically(out / "gallery.json", [&](std::ostream& file) { writeContactSheetJson(bestTiles, sheet, file); });
   } catch (const OutputError& error) {
     return refuse(BatchStatus::OutputError, error.what());
   }

@@ -100,6 +100,8 @@ SweepResult runSweep(SweepDef def, Cluster& cluster) {
   batch.thumbnail = [&setup, dir](uint64_t i) { return dir / "thumbnails" / (variantStem(setup, i) + ".png"); };
   batch.sheet.tileWidth = def.settings.width;
   batch.sheet.tileHeight = def.settings.height;
+  // The tiles are labelled with the defines, and with the seed when there are several.
+  batch.labelColumns = defines.size() + (seedCount > 1 ? 1 : 0);
   // Mixed radix: the seed varies fastest, then the last define, ..., then the first.
   auto variantOf = [&](uint64_t index, std::vector<size_t>& choice) {
     uint64_t rest = index;

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "interpreters/output_file.h"
+#include "interpreters/sweep/contact_sheet.h"
 #include "interpreters/set_registry.h"
 
 namespace ontogen {
@@ -172,6 +173,9 @@ SweepRow runSweepVariant(const SweepSetup& setup, const std::filesystem::path& d
     const VariantResult result = runVariant(std::move(def));
     for (size_t i = 0; i < result.measures.size(); ++i) row.values[measuresAt + i] = formatValue(result.measures[i]);
     row.error = result.error;
+    const std::filesystem::path thumbnail = dir / "thumbnails" / (stem + ".png");
+    if (result.pixelsPerUnit > 0 && std::filesystem::is_regular_file(thumbnail))
+      writeThumbnailScale(thumbnail, result.pixelsPerUnit);
   } catch (const OutputError& error) {
     row.error = error.what();
   } catch (const std::exception& error) {

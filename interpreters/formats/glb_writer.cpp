@@ -616,7 +616,7 @@ void GlbAnimationWriter::writeWith(const Scene* still, std::ostream& out) const 
     writeSkinned(parts_, b, sceneNodes);
   else
     writeFramePerNode(parts_, b, sceneNodes);
-  gltf::addCameraAndKeyLight(b, box, sceneNodes);
+  gltf::addCamera(b, box, sceneNodes);
   nlohmann::json scene = {{"name", "ontogen"}};
   if (!sceneNodes.empty()) scene["nodes"] = sceneNodes;  // glTF allows no empty list
   nlohmann::json extras = nlohmann::json::object();

@@ -33,8 +33,8 @@
 //   run. The scene's extras say how: ontogen_time_start (developmental seconds at the
 //   first key), ontogen_time_scale (animation seconds per developmental second) and
 //   ontogen_bounds (min and max of every frame, model units).
-// - A perspective camera framing every frame and a directional key light
-//   (gltf::addCameraAndKeyLight).
+// - A perspective camera framing every frame (gltf::addCamera); no light, which viewers
+//   bring themselves.
 // - Parts that never move while they show are no joints: those in every frame are written
 //   in world coordinates in a mesh "still"; the others in world coordinates skinned to
 //   one joint per span of frames they show in ("frames A to B", extras frames and

@@ -195,7 +195,7 @@ double shortFloat(float value) {
   return std::strtod(text, nullptr);
 }
 
-void addCameraAndKeyLight(Builder& b, const Box& bounds, nlohmann::json& sceneNodes) {
+void addCamera(Builder& b, const Box& bounds, nlohmann::json& sceneNodes) {
   if (bounds.empty) return;
   const glm::dvec3 size = bounds.max - bounds.min;
   const glm::dvec3 centre = (bounds.min + bounds.max) * 0.5;
@@ -223,21 +223,6 @@ void addCameraAndKeyLight(Builder& b, const Box& bounds, nlohmann::json& sceneNo
                              {"camera", b.gltf["cameras"].size() - 1},
                              {"translation", {eye.x, eye.y, eye.z}},
                              {"rotation", rotationOf(right, up, towardsEye)}});
-  sceneNodes.push_back(b.gltf["nodes"].size() - 1);
-
-  // The key light comes from above-left of the viewer, as in the pictures; it shines
-  // down its -z axis.
-  const glm::dvec3 towardsLight = glm::normalize(towardsEye * 0.8 + up * 0.5 - right * 0.35);
-  const glm::dvec3 lightX = glm::normalize(glm::cross(up, towardsLight));
-  const glm::dvec3 lightY = glm::cross(towardsLight, lightX);
-  const glm::dvec3 lamp = centre + towardsLight * distance;
-  b.useExtension("KHR_lights_punctual");
-  nlohmann::json& lights = b.gltf["extensions"]["KHR_lights_punctual"]["lights"];
-  lights.push_back({{"name", "ontogen key light"}, {"type", "directional"}, {"intensity", kKeyLightLux}});
-  b.gltf["nodes"].push_back({{"name", "ontogen key light"},
-                             {"translation", {lamp.x, lamp.y, lamp.z}},
-                             {"rotation", rotationOf(lightX, lightY, towardsLight)},
-                             {"extensions", {{"KHR_lights_punctual", {{"light", lights.size() - 1}}}}}});
   sceneNodes.push_back(b.gltf["nodes"].size() - 1);
 }
 

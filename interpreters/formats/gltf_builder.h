@@ -1,7 +1,7 @@
 #pragma once
 // The parts every glTF binary ontogen writes shares: a binary buffer with the JSON that
-// points into it (buffer views and accessors), materials, the camera and key light that
-// frame a run, and the GLB container around both.
+// points into it (buffer views and accessors), materials, the camera that frames a run,
+// and the GLB container around both.
 
 #include <cstddef>
 #include <cstdint>
@@ -92,16 +92,14 @@ double shortFloat(float value);
 /// The vertical field of view of the camera written with a run, radians (40 degrees,
 /// a normal lens).
 inline constexpr double kCameraFov = 0.6981317007977318;
-/// The key light's illuminance, lux: Blender's importer (its standard lighting mode)
-/// divides by 683 lm/W, so it becomes a sun of 3 W/m^2, a daylight key.
-inline constexpr double kKeyLightLux = 3 * 683;
-
 /// Adds a perspective camera that frames `bounds` whole (the box a run's frames fill,
 /// model units) from the pictures' default view (formats/renderer.h: the front of a
-/// model flat in x-y, else azimuth 30, elevation 20 degrees), and a directional key
-/// light (KHR_lights_punctual) from above-left of it; their nodes are appended to
+/// model flat in x-y, else azimuth 30, elevation 20 degrees); its node is appended to
 /// sceneNodes. Nothing for an empty box.
-void addCameraAndKeyLight(Builder& builder, const Box& bounds, nlohmann::json& sceneNodes);
+/// No light is written: no one intensity suits every viewer (Blender reads glTF's lux
+/// divided by 683, three.js and model-viewer as they are, so a light right for one is
+/// black or white in the other), and each brings its own lights.
+void addCamera(Builder& builder, const Box& bounds, nlohmann::json& sceneNodes);
 
 /// Writes the GLB container of builder's JSON and buffer. Stream errors are left in out.
 void writeGlb(Builder& builder, std::ostream& out);

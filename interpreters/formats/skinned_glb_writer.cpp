@@ -269,7 +269,7 @@ void SkinnedGlbWriter::write(std::ostream& out) const {
       framed.add(bound.max + shift);
     }
   }
-  gltf::addCameraAndKeyLight(b, framed, sceneNodes);
+  gltf::addCamera(b, framed, sceneNodes);
   b.gltf["scenes"] = {{{"name", "ontogen"}, {"nodes", sceneNodes}}};
   b.gltf["scene"] = 0;
   gltf::writeGlb(b, out);

@@ -13,7 +13,7 @@
 //   root (and per joint whose offset from its parent is not rigid), sampled at every
 //   frame's time, linear. A run whose drivers are periodic over [from, until] loops
 //   without a jump in its joints.
-// - A camera and key light (gltf::addCameraAndKeyLight) framing the body as bound,
+// - A camera (gltf::addCamera; no light) framing the body as bound,
 //   carried along by its root over the frames.
 // The skeleton is the one of the frame with the most joints (the first such: a body that
 // grows is written grown). A joint that a frame lacks has scale 0 there (and so has

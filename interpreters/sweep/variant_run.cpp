@@ -10,6 +10,7 @@
 #include "core/word.h"
 #include "interpreters/creature/creature_set.h"
 #include "interpreters/dynamics/dynamics_set.h"
+#include "interpreters/formats/renderer.h"
 #include "interpreters/geometry/geometry_set.h"
 #include "interpreters/physics/physics_set.h"
 #include "interpreters/set_registry.h"
@@ -126,6 +127,7 @@ VariantResult runVariant(VariantDef def) {
   // Query modules are answered as `ontogen run` answers them (interpreters/set_registry.h).
   def.run.world.environment = queryEnvironmentOf(*compiled);
   def.run.program = std::move(compiled);
+  RenderDef render = def.run.setOptions.render;
   FrameWatch watch;
   def.run.frameDrawn = [&watch](const Scene& scene) { watch.see(scene); };
   Run run(std::move(def.run));
@@ -140,6 +142,18 @@ VariantResult runVariant(VariantDef def) {
       }
     if (result.error.empty()) result.error = "the run failed";
     return result;
+  }
+
+  if (watch.drawn && !watch.bounds.empty) {
+    // The camera the thumbnail was taken with depends on the framed box alone.
+    if (!render.framing) render.framing = watch.bounds;
+    try {
+      const CameraView view = cameraOf(Geometry{}, render);
+      const double scale = view.perspective ? view.focal / view.distance : view.focal;
+      if (std::isfinite(scale) && scale > 0) result.pixelsPerUnit = scale;
+    } catch (const std::invalid_argument&) {
+      // A picture size the run refused: no thumbnail, no scale.
+    }
   }
 
   RunQuantities q;

@@ -32,6 +32,9 @@ struct VariantDef {
 struct VariantResult {
   std::vector<double> measures;  ///< one per measure; NaN where it has no finite value
   std::string error;             ///< the first error, on one line; empty when none
+  /// The thumbnail's scale: pixels per model unit at the centre of the last frame's
+  /// model, as the picture's camera frames it; 0 when nothing was drawn.
+  double pixelsPerUnit = 0;
 };
 
 /// The one-line form of a run's diagnostic for a table: "file:line:col: message" where

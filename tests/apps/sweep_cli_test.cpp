@@ -49,7 +49,7 @@ std::string after(const std::string& row, int fields) {
 // Everything a sweep writes but its journal (whose rows are in the order they finished).
 std::string outputsOf(const fs::path& dir) {
   std::string all = readWholeFile(dir / "results.csv") + readWholeFile(dir / "results.json") +
-                    readWholeFile(dir / "gallery.png");
+                    readWholeFile(dir / "gallery.png") + readWholeFile(dir / "gallery.json");
   for (const char* folder : {"thumbnails", "programs"}) {
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(dir / folder)) files.push_back(entry.path());
@@ -448,6 +448,19 @@ TEST(EvolveCli, ReproducibleAndRewardingHeightGrowsTallerTrees) {
   // The best program grows as tall alone as its row says.
   EXPECT_TRUE(fs::exists(dir / "a" / "gallery.png"));
   EXPECT_TRUE(fs::exists(dir / "a" / "best" / "generation_009.cell"));
+  // The galleries label each tile with its genes as the table writes them; the gallery
+  // of the best, with its generation too.
+  const nlohmann::json generation0 = nlohmann::json::parse(readWholeFile(dir / "a" / "generation_000" / "gallery.json"));
+  ASSERT_EQ(generation0["tiles"].size(), 8u);
+  EXPECT_EQ(generation0["tiles"][0]["label"], "LEN=1 SHRINK=0.8 BRANCH=0.5");
+  EXPECT_GT(generation0["pixels_per_unit"].get<double>(), 0);
+  const nlohmann::json bests = nlohmann::json::parse(readWholeFile(dir / "a" / "gallery.json"));
+  ASSERT_EQ(bests["tiles"].size(), 10u);
+  const size_t bestVariant = std::stoul(after(summary[10], 1));
+  std::istringstream bestRow(lines(readWholeFile(dir / "a" / "generation_009" / "results.csv"))[bestVariant + 1]);
+  std::string len, shrink, branch;
+  for (std::string* field : {&len, &len, &shrink, &branch}) std::getline(bestRow, *field, ',');
+  EXPECT_EQ(bests["tiles"][9]["label"], "G9 LEN=" + len + " SHRINK=" + shrink + " BRANCH=" + branch);
 }
 
 // An evolution stopped in its third generation (a journal cut mid-line, the fourth never

@@ -319,7 +319,7 @@ TEST(CreatureModel, ABodyThatGrowsIsWrittenGrown) {
   for (const auto& channel : gltf["animations"][0]["channels"]) scales += channel["target"]["path"] == "scale";
   EXPECT_EQ(scales, 7 * 3) << "every joint but the root appears after the first frame";
   ASSERT_EQ(gltf["cameras"].size(), 1u) << "a camera framing the walk";
-  EXPECT_EQ(gltf["extensions"]["KHR_lights_punctual"]["lights"][0]["type"], "directional");
+  EXPECT_EQ(bytes.substr(20, length).find("KHR_lights_punctual"), std::string::npos) << "no light: viewers bring their own";
 }
 
 TEST(CreatureModel, TheSkinPassesTheKhronosValidatorAtThreeAndSixSegments) {

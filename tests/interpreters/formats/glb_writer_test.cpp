@@ -376,9 +376,9 @@ TEST(GlbWriter, ALongRunIsPlayedInTenSeconds) {
 }
 
 // The camera sees the centre of every frame's box down its -z axis, from the pictures'
-// default view, far enough for the box's sphere to fill its field of view; the key light
-// is a KHR_lights_punctual directional light.
-TEST(GlbWriter, ACameraFramesEveryFrameAndAKeyLightShines) {
+// default view, far enough for the box's sphere to fill its field of view. No light is
+// written: a light in lux right for Blender washes a model white in three.js (docs/LANGUAGE.md).
+TEST(GlbWriter, ACameraFramesEveryFrameAndNoLightIsWritten) {
   GlbAnimationWriter writer;
   for (int f = 0; f < 2; ++f) {
     SceneBuilder frame(f);
@@ -401,11 +401,8 @@ TEST(GlbWriter, ACameraFramesEveryFrameAndAKeyLightShines) {
   const double radius = 0.5 * glm::length(box.max - box.min);
   EXPECT_NEAR(glm::length(centre - eye), radius / std::sin(gltf::kCameraFov / 2) * 1.05, 1e-9);
   EXPECT_NEAR(looking.y, -std::sin(20 * M_PI / 180), 1e-9) << "20 degrees of elevation";
-  const auto& light = glb.json["extensions"]["KHR_lights_punctual"]["lights"][0];
-  EXPECT_EQ(light["type"], "directional");
-  EXPECT_EQ(light["intensity"].get<double>(), gltf::kKeyLightLux);
-  EXPECT_NE(std::find(glb.json["extensionsUsed"].begin(), glb.json["extensionsUsed"].end(), "KHR_lights_punctual"),
-            glb.json["extensionsUsed"].end());
+  EXPECT_FALSE(glb.json.contains("extensions") && glb.json["extensions"].contains("KHR_lights_punctual"));
+  EXPECT_EQ(glb.json.dump().find("KHR_lights_punctual"), std::string::npos) << "no light, nor its extension";
 }
 
 // ---- Runs of one frame: still meshes -------------------------------------------------
@@ -456,7 +453,7 @@ TEST(GlbWriter, PartsSteadyOverASpanOfFramesShareTheSpansJoint) {
   }
   const Glb glb(written(writer));
   EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"C 3", "frames 0 to 0", "frames 1 to 2", "cells", "parts",
-                                                      "ontogen camera", "ontogen key light"}));
+                                                      "ontogen camera"}));
   ASSERT_EQ(glb.json["skins"].size(), 1u);
   EXPECT_EQ(glb.json["skins"][0]["joints"], nlohmann::json({0, 1, 2}));
   EXPECT_EQ(glb.json["nodes"][2]["extras"]["parts"], 2);
@@ -495,7 +492,7 @@ TEST(GlbWriter, ARunOfOneFrameIsOneStillMeshInWorldCoordinates) {
   EXPECT_EQ(writer.frameCount(), 1u);
   EXPECT_TRUE(writer.parts().joints().empty()) << "one frame is not taken apart";
   const Glb glb(written(writer));
-  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"still", "ontogen camera", "ontogen key light"}));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"still", "ontogen camera"}));
   EXPECT_FALSE(glb.json.contains("skins"));
   EXPECT_FALSE(glb.json.contains("animations"));
   ASSERT_EQ(glb.json["meshes"].size(), 1u);
@@ -570,7 +567,7 @@ TEST(GlbWriter, ManyLinesAreInstancesOfOneTube) {
   GlbAnimationWriter writer;
   writer.addFrame(scene);
   const Glb glb(written(writer));
-  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"lines 0", "lines 2", "ontogen camera", "ontogen key light"}));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"lines 0", "lines 2", "ontogen camera"}));
   EXPECT_NE(std::find(glb.json["extensionsUsed"].begin(), glb.json["extensionsUsed"].end(), "EXT_mesh_gpu_instancing"),
             glb.json["extensionsUsed"].end());
   const Box& box = scene.geometry.bounds();
@@ -623,7 +620,7 @@ TEST(GlbWriter, ManyLinesThatNeverMoveAreInstancesShownInTheirFrames) {
   }
   const Glb glb(written(writer));
   EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"Ball 9999", "cells", "parts", "lines 0", "lines 0 frames 1 to 1",
-                                                      "ontogen camera", "ontogen key light"}));
+                                                      "ontogen camera"}));
   ASSERT_EQ(glb.json["skins"].size(), 1u);
   EXPECT_EQ(glb.json["skins"][0]["joints"], nlohmann::json::array({0}));
   const double radius = glm::length(writer.parts().bounds().max - writer.parts().bounds().min) * kLineRadiusFraction;
@@ -768,7 +765,7 @@ struct Obj {
 // its tubes the OBJ's line segments, kTubeSides sides each.
 TEST(GlbModels, OneFrameOfKochIsOneStillMeshOfTheObjsLines) {
   const Glb glb(fileBytes(models().koch));
-  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"still", "ontogen camera", "ontogen key light"}));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"still", "ontogen camera"}));
   EXPECT_FALSE(glb.json.contains("skins"));
   EXPECT_FALSE(glb.json.contains("animations"));
   const Obj obj(models().koch.parent_path() / "koch.obj");
@@ -785,7 +782,7 @@ TEST(GlbModels, OneFrameOfKochIsOneStillMeshOfTheObjsLines) {
 TEST(GlbModels, OneFrameOfKochAtSixIsInstancesOnTheObjsSegments) {
   const std::string bytes = fileBytes(models().koch6);
   const Glb glb(bytes);
-  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"lines 0", "ontogen camera", "ontogen key light"}));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"lines 0", "ontogen camera"}));
   EXPECT_FALSE(glb.json.contains("skins"));
   EXPECT_FALSE(glb.json.contains("animations"));
   const Obj obj(models().koch6.parent_path() / "koch.obj");
@@ -812,8 +809,7 @@ TEST(GlbModels, OneFrameOfKochAtSixIsInstancesOnTheObjsSegments) {
 TEST(GlbModels, KochGrownOverFramesIsAJointPerFrame) {
   const Glb glb(fileBytes(models().kochFrames));
   EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"frames 0 to 0", "frames 1 to 1", "frames 2 to 2", "frames 3 to 3",
-                                                      "frames 4 to 4", "cells", "parts", "ontogen camera",
-                                                      "ontogen key light"}));
+                                                      "frames 4 to 4", "cells", "parts", "ontogen camera"}));
   EXPECT_EQ(glb.json["skins"].size(), 1u);
   EXPECT_EQ(glb.json["nodes"][4]["extras"]["parts"], 625);
   EXPECT_EQ(glb.json["animations"].size(), 1u);
@@ -828,7 +824,7 @@ TEST(GlbModels, KochGrownOverFramesPastTheBakedLinesIsInstancesPerFrame) {
   const Glb glb(bytes);
   std::vector<std::string> names;
   for (int f = 0; f < 7; ++f) names.push_back("lines 0 frames " + std::to_string(f) + " to " + std::to_string(f));
-  names.insert(names.end(), {"ontogen camera", "ontogen key light"});
+  names.push_back("ontogen camera");
   EXPECT_EQ(nodeNames(glb), names);
   EXPECT_FALSE(glb.json.contains("skins"));
   std::size_t lines = 0;
@@ -860,7 +856,7 @@ TEST(GlbModels, KochGrownPastTheJointsIsANodePerFrameOfInstancedLines) {
   std::vector<std::string> names;
   for (int f = 0; f < 8; ++f)
     names.insert(names.end(), {"lines 0 frame " + std::to_string(f), "frame " + std::to_string(f)});
-  names.insert(names.end(), {"ontogen camera", "ontogen key light"});
+  names.push_back("ontogen camera");
   EXPECT_EQ(nodeNames(glb), names);
   std::size_t lines = 0;
   for (int f = 0; f < 8; ++f) {
@@ -890,7 +886,7 @@ TEST(GlbModels, KochGrownPastTheJointsIsANodePerFrameOfInstancedLines) {
 TEST(GlbModels, OneFrameOfTheCubeIsTheObjsTrianglesByValue) {
   const std::string bytes = fileBytes(models().cube);
   const Glb glb(bytes);
-  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"still", "ontogen camera", "ontogen key light"}));
+  EXPECT_EQ(nodeNames(glb), (std::vector<std::string>{"still", "ontogen camera"}));
   const Obj obj(models().cube.parent_path() / "cube.obj");
   const auto& primitives = glb.json["meshes"][0]["primitives"];
   ASSERT_EQ(primitives.size(), obj.corners.size());
@@ -948,10 +944,10 @@ TEST(GlbModels, BlenderImportsAFewObjectsWithOneActionAndRendersThePalette) {
   ONTOGEN_REQUIRE_CHECKER(runCommand("command -v blender >/dev/null 2>&1").first == 0, "Blender is missing");
   auto reports = blenderReports();
   ASSERT_EQ(reports.size(), 3u);
-  // The flower: an armature, one skinned mesh, the camera and the light; one action over
+  // The flower: an armature, one skinned mesh and the camera (no light); one action over
   // the run's 10 s at Blender's 24 frames a second.
   const nlohmann::json& flower = reports["flower.glb"];
-  EXPECT_EQ(flower["objects"], nlohmann::json({{"ARMATURE", 1}, {"MESH", 1}, {"CAMERA", 1}, {"LIGHT", 1}})) << flower.dump();
+  EXPECT_EQ(flower["objects"], nlohmann::json({{"ARMATURE", 1}, {"MESH", 1}, {"CAMERA", 1}})) << flower.dump();
   ASSERT_EQ(flower["actions"].size(), 1u) << flower.dump();
   EXPECT_EQ(flower["actions"][0]["range"], nlohmann::json({0.0, 240.0}));
   EXPECT_TRUE(flower["skinned"].get<bool>());
@@ -981,6 +977,28 @@ TEST(GlbModels, BlenderImportsAFewObjectsWithOneActionAndRendersThePalette) {
   const nlohmann::json& koch = reports["koch.glb"];
   EXPECT_GT(pixelsOf(koch, 0, 2), 96) << koch.dump();
   EXPECT_EQ(koch["objects"]["MESH"], 1) << "one frame: one still mesh";
+}
+
+// Blender lights a file that brings no light with its own scene (blender_lit.py: its
+// startup light and world, Cycles, through the file's camera): the colony and the flower
+// are drawn neither black nor washed white, and the only light is Blender's.
+TEST(GlbModels, BlenderLightsTheModelWithItsOwnSceneNeitherBlackNorWhite) {
+  ONTOGEN_REQUIRE_CHECKER(runCommand("command -v blender >/dev/null 2>&1").first == 0, "Blender is missing");
+  const fs::path script = fs::path(ONTOGEN_SOURCE_DIR) / "tests" / "interpreters" / "formats" / "blender_lit.py";
+  for (const fs::path& file : {models().colony, models().flower}) {
+    auto [status, output] = runCommand("blender -b --factory-startup --python '" + script.string() + "' -- 96 '" +
+                                       file.string() + "' 2>&1");
+    const auto at = output.find("ONTOGEN-REPORT ");
+    ASSERT_NE(at, std::string::npos) << output;
+    const nlohmann::json report = nlohmann::json::parse(output.substr(at + 15, output.find('\n', at) - at - 15));
+    EXPECT_EQ(report["from_file"], nlohmann::json::array()) << report.dump();
+    EXPECT_EQ(report["lights"], nlohmann::json({"Light"})) << report.dump();
+    const long model = report["model"].get<long>();
+    EXPECT_GT(model, 96 * 96 / 100) << report.dump();
+    EXPECT_LT(report["black"].get<long>(), model / 20) << report.dump();
+    EXPECT_LT(report["white"].get<long>(), model / 100) << report.dump();
+    EXPECT_GT(report["mean"].get<double>(), 0.05) << report.dump();
+  }
 }
 
 // The distance from p to the segment [a, b].
