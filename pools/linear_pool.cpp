@@ -1,6 +1,7 @@
 #include "pools/linear_pool.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace ontogen {
 
@@ -27,14 +28,48 @@ void LinearPool::indexBranches(std::span<const uint8_t> classOf) {
   }
 }
 
+// The base's pointer to the held word points at this pool's own holding, not the copied one's.
+LinearPool::LinearPool(const LinearPool& other)
+    : Pool(other), partner_(other.partner_), holding_(other.holding_) {
+  compact_ = other.compact_ ? &holding_ : nullptr;
+}
+
+LinearPool& LinearPool::operator=(const LinearPool& other) {
+  if (this == &other) return *this;
+  Pool::operator=(other);
+  partner_ = other.partner_;
+  holding_ = other.holding_;
+  compact_ = other.compact_ ? &holding_ : nullptr;
+  return *this;
+}
+
+void LinearPool::dropCompactWord() {
+  holding_.word = CompactWord(stateCounts_);
+  compact_ = nullptr;
+  forgetIdReplay();
+}
+
+void LinearPool::forgetIdReplay() {
+  holding_.ids.replay.reset();
+  holding_.ids.pending.store(false, std::memory_order_release);
+}
+
+void LinearPool::holdWithoutIds(std::shared_ptr<const IdReplay> replay) {
+  if (!compact_ || holding_.word.holdsIds() || !replay)
+    throw std::logic_error("ontogen: internal error: a replay of ids for a word that holds them");
+  holding_.ids.replay = std::move(replay);
+  holding_.ids.pending.store(true, std::memory_order_release);
+}
+
 void LinearPool::swapCompactWord(CompactWord& next) {
   if (!compact_) {
     CellArray().swap(cells_);
     StateArray().swap(state_);
     blockOffsets_.clear();
-    compact_ = true;
+    holding_.word = CompactWord(stateCounts_);
+    compact_ = &holding_;
   }
-  std::swap(word_, next);
+  std::swap(holding_.word, next);
   forgetIdReplay();  // the caller says when the word came without ids (holdWithoutIds)
   ++version_;
 }
@@ -57,10 +92,11 @@ void LinearPool::storeRecords() {
   readable();
   CellArray cells;
   StateArray state;
-  cells.reserve(word_.size());
-  state.reserve(word_.valueCount());
-  for (CompactWordCursor cell(word_); !cell.done(); cell.next()) {
-    const uint32_t count = word_.stateCount(cell.master());
+  const CompactWord& word = holding_.word;
+  cells.reserve(word.size());
+  state.reserve(word.valueCount());
+  for (CompactWordCursor cell(word); !cell.done(); cell.next()) {
+    const uint32_t count = word.stateCount(cell.master());
     cells.push_back(CellRecord{cell.master(), static_cast<uint32_t>(state.size()), cell.birth(), cell.id()});
     state.insert(state.end(), cell.state(), cell.state() + count);
   }

@@ -28,6 +28,10 @@ struct ContextItem {
 
 class LinearPool final : public Pool {
  public:
+  LinearPool() = default;
+  LinearPool(const LinearPool& other);
+  LinearPool& operator=(const LinearPool& other);
+
   PoolKind kind() const override { return PoolKind::Linear; }
   int contextDimension() const override { return 1; }
   std::unique_ptr<Pool> clone() const override { return std::make_unique<LinearPool>(*this); }
@@ -46,10 +50,13 @@ class LinearPool final : public Pool {
   void storeCompactWord(uint64_t seedKey);
   /// Decodes the compact word into records and frees it.
   void storeRecords();
+  /// For core/: the compact word just swapped in was written without ids, and `replay`
+  /// makes them again.
+  void holdWithoutIds(std::shared_ptr<const IdReplay> replay);
   /// The bytes storeRecords makes: the records of the compact word and their values (0
   /// for a pool of records).
   size_t recordBytes() const {
-    return compact_ ? word_.size() * sizeof(CellRecord) + word_.valueCount() * sizeof(double) : 0;
+    return compact_ ? holding_.word.size() * sizeof(CellRecord) + holding_.word.valueCount() * sizeof(double) : 0;
   }
 
   /// Computes the matching bracket of every `[` and `]` for the current cells.
@@ -81,14 +88,19 @@ class LinearPool final : public Pool {
 
   /// The master (label) of cell i, read from the records or from the compact word: the
   /// one view of a word that every context match reads, whichever form holds it.
-  uint32_t masterAt(size_t i) const { return compact_ ? word_.label(i) : cells_[i].master; }
+  uint32_t masterAt(size_t i) const { return compact_ ? holding_.word.label(i) : cells_[i].master; }
 
   /// Matching bracket of cell i, or kNoPartner (an unmatched bracket or not a bracket).
   uint32_t partnerOf(size_t i) const { return i < partner_.size() ? partner_[i] : kNoPartner; }
   static constexpr uint32_t kNoPartner = UINT32_MAX;
 
  private:
+  void dropCompactWord() override;
+  /// The word now held holds its ids (swapped in, or dropped).
+  void forgetIdReplay();
+
   std::vector<uint32_t> partner_;
+  CompactHolding holding_;  // the compact word, while Pool::compact_ points here
 };
 
 }  // namespace ontogen

@@ -38,36 +38,23 @@ void Pool::swapContents(CellArray& cells, StateArray& state) {
   ++version_;
 }
 
-void Pool::dropCompactWord() {
-  word_ = CompactWord(stateCounts_);
-  compact_ = false;
-  forgetIdReplay();
-}
-
-void Pool::holdWithoutIds(std::shared_ptr<const IdReplay> replay) {
-  if (!compact_ || word_.holdsIds() || !replay)
-    throw std::logic_error("ontogen: internal error: a replay of ids for a word that holds them");
-  ids_.replay = std::move(replay);
-  ids_.pending.store(true, std::memory_order_release);
-}
-
 // The replay is run by the first reader; the others wait on the lock. The cells do not
 // change (the structure version stays), only how the word holds them.
 void Pool::restoreIds() const {
-  std::lock_guard<std::mutex> hold(*ids_.lock);
-  if (!ids_.pending.load(std::memory_order_acquire)) return;
-  CompactWord withIds = ids_.replay->replay(word_.bytes());
-  if (withIds.size() != word_.size() || !withIds.holdsIds())
+  CompactHolding::IdsToRestore& ids = compact_->ids;
+  std::lock_guard<std::mutex> hold(*ids.lock);
+  if (!ids.pending.load(std::memory_order_acquire)) return;
+  CompactWord withIds = ids.replay->replay(compact_->word.bytes());
+  if (withIds.size() != compact_->word.size() || !withIds.holdsIds())
     throw std::logic_error("ontogen: internal error: a replay of ids gave another word");
-  word_ = std::move(withIds);
-  ids_.replay.reset();
-  ids_.pending.store(false, std::memory_order_release);
+  compact_->word = std::move(withIds);
+  ids.replay.reset();
+  ids.pending.store(false, std::memory_order_release);
 }
 
 void Pool::countValues(std::vector<uint32_t> perMaster) {
   if (compact_) noRecords();
   stateCounts_ = std::move(perMaster);
-  word_ = CompactWord(stateCounts_);
   counted_ = true;
   anyState_ = std::any_of(stateCounts_.begin(), stateCounts_.end(), [](uint32_t n) { return n > 0; });
   indexValues();

@@ -20,6 +20,30 @@
 
 namespace ontogen {
 
+/// A linear pool's compact word (docs/COMPACT_WORDS.md) and the replay that gives a word
+/// held without ids its ids again. Only LinearPool holds one; the base Pool reads it
+/// through a pointer that only the linear pool sets, so no other kind of pool can hold a
+/// compact word. Mutable: a word held without ids is replaced by the same word with ids
+/// when first read (Pool::restoreIds), which readers see as a const pool.
+struct CompactHolding {
+  mutable CompactWord word;
+  // The replay of a word held without ids; `pending` while it has not run. A copy shares
+  // the replay and has a lock of its own.
+  struct IdsToRestore {
+    std::shared_ptr<const IdReplay> replay;
+    std::atomic<bool> pending{false};
+    std::unique_ptr<std::mutex> lock = std::make_unique<std::mutex>();
+    IdsToRestore() = default;
+    IdsToRestore(const IdsToRestore& other) : replay(other.replay), pending(other.pending.load()) {}
+    IdsToRestore& operator=(const IdsToRestore& other) {
+      replay = other.replay;
+      pending.store(other.pending.load());
+      return *this;
+    }
+  };
+  mutable IdsToRestore ids;
+};
+
 /// The arrays a pool keeps its cells and their state in.
 using CellArray = std::vector<CellRecord, LargePageAllocator<CellRecord>>;
 using StateArray = std::vector<double, LargePageAllocator<double>>;
@@ -45,7 +69,7 @@ class Pool {
   /// A cursor at cell `first` (at most size()), for a pass over a chunk of the cells.
   CellCursor cursor(size_t first) const {
     readable();
-    if (compact_) return CellCursor(word_, first);
+    if (compact_) return CellCursor(compact_->word, first);
     if (!counted_) return CellCursor(cells_, state_.data(), first);
     return CellCursor(cells_, state_.data(), first, anyState_ ? stateCounts_.data() : nullptr,
                       first < cells_.size() ? stateOffset(first) : state_.size());
@@ -53,7 +77,7 @@ class Pool {
   /// Cell i (below size()).
   CellView cellAt(size_t i) const {
     readable();
-    if (compact_) return word_.cellAt(i);
+    if (compact_) return compact_->word.cellAt(i);
     const CellRecord& cell = cells_[i];
     return {cell.master, state_.data() + stateOffset(i), cell.birth, cell.id, i};
   }
@@ -62,7 +86,7 @@ class Pool {
   /// offset of its block of kStateBlock cells plus the values of the cells before it in
   /// the block.
   size_t stateOffset(size_t i) const {
-    if (compact_) return word_.locate(i).value;
+    if (compact_) return compact_->word.locate(i).value;
     if (!counted_) return cells_[i].state;
     if (!anyState_) return 0;
     const size_t block = i / kStateBlock;
@@ -113,12 +137,12 @@ class Pool {
       noRecords();
     return cells_;
   }
-  size_t size() const { return compact_ ? word_.size() : cells_.size(); }
+  size_t size() const { return compact_ ? compact_->word.size() : cells_.size(); }
   /// The state values of a cell (count given by its master).
   const double* stateOf(const CellRecord& cell) const { return state_.data() + cell.state; }
   double* stateOf(const CellRecord& cell) { return state_.data() + cell.state; }
   std::span<const double> stateArena() const {
-    return compact_ ? std::span<const double>(word_.values()) : std::span<const double>(state_);
+    return compact_ ? std::span<const double>(compact_->word.values()) : std::span<const double>(state_);
   }
   /// The state values themselves, for an integrator that advances them in place (a pool
   /// of records).
@@ -132,28 +156,25 @@ class Pool {
   /// counted: pages never written are never mapped.
   size_t bytes() const {
     if (!compact_) return cells_.size() * sizeof(CellRecord) + state_.size() * sizeof(double);
-    return word_.bytes() + (ids_.replay ? ids_.replay->bytes() : 0);
+    return compact_->word.bytes() + (compact_->ids.replay ? compact_->ids.replay->bytes() : 0);
   }
 
   /// Whether the cells are held as a compact word (docs/COMPACT_WORDS.md) rather than as
   /// records: a linear pool whose development rewrites its words in that form.
-  bool holdsCompactWord() const { return compact_; }
-  /// The compact word (holdsCompactWord()), as the development holds it: perhaps without
-  /// ids (holdsIds()).
-  const CompactWord& compactWord() const { return word_; }
+  bool holdsCompactWord() const { return compact_ != nullptr; }
+  /// The compact word, as the development holds it: perhaps without ids (holdsIds()).
+  /// Only while holdsCompactWord().
+  const CompactWord& compactWord() const { return compact_->word; }
 
   /// Whether the compact word holds its ids. A word held without them (CompactWord::
   /// holdsIds, docs/COMPACT_WORDS.md "Words without ids") is given its ids again by its
   /// replay, once, the first time a reader asks for a cell (cursor, cellAt) or the
   /// records: thread-safe, and invisible to readers but for the time it takes.
-  bool holdsIds() const { return !ids_.pending.load(std::memory_order_acquire); }
-  /// For core/: the compact word just swapped in was written without ids, and `replay`
-  /// makes them again.
-  void holdWithoutIds(std::shared_ptr<const IdReplay> replay);
+  bool holdsIds() const { return !compact_ || !compact_->ids.pending.load(std::memory_order_acquire); }
   /// Gives a word held without ids its ids now (as the first reader would).
   void ensureIds() const { readable(); }
   /// The replay of a word held without ids, or null.
-  std::shared_ptr<const IdReplay> idReplay() const { return holdsIds() ? nullptr : ids_.replay; }
+  std::shared_ptr<const IdReplay> idReplay() const { return holdsIds() ? nullptr : compact_->ids.replay; }
 
   /// Changes whenever cells are added, removed or reordered (not when state values
   /// change), so a caller can keep what it derived from the structure until then.
@@ -170,19 +191,15 @@ class Pool {
   /// The block offsets of the cells as they are now (countValues).
   void indexValues();
   [[noreturn]] static void noRecords();
-  /// Back to records: forgets the compact word and its storage.
-  void dropCompactWord();
+  /// Back to records: the linear pool forgets its compact word and its storage (called
+  /// only while holdsCompactWord(), which only a linear pool can).
+  virtual void dropCompactWord() {}
   /// Before a reader sees the cells: a word held without ids is given them.
   void readable() const {
-    if (ids_.pending.load(std::memory_order_acquire)) [[unlikely]]
+    if (compact_ && compact_->ids.pending.load(std::memory_order_acquire)) [[unlikely]]
       restoreIds();
   }
   void restoreIds() const;
-  /// The word in word_ now holds its ids (swapped in, or dropped).
-  void forgetIdReplay() {
-    ids_.replay.reset();
-    ids_.pending.store(false, std::memory_order_release);
-  }
 
   CellArray cells_;
   StateArray state_;
@@ -191,25 +208,12 @@ class Pool {
   bool anyState_ = false;               // some master has values
   std::vector<uint32_t> stateCounts_;   // values per master
   std::vector<uint32_t> blockOffsets_;  // where each block's first cell's values start
-  bool compact_ = false;                // the cells are word_, not cells_ and state_
-  // The compact word. Mutable: a word held without ids is replaced by the same word with
-  // ids when first read (restoreIds), which readers see as a const pool.
-  mutable CompactWord word_;
-  // The replay of a word held without ids; `pending` while it has not run. A copy of the
-  // pool shares the replay and has a lock of its own.
-  struct IdsToRestore {
-    std::shared_ptr<const IdReplay> replay;
-    std::atomic<bool> pending{false};
-    std::unique_ptr<std::mutex> lock = std::make_unique<std::mutex>();
-    IdsToRestore() = default;
-    IdsToRestore(const IdsToRestore& other) : replay(other.replay), pending(other.pending.load()) {}
-    IdsToRestore& operator=(const IdsToRestore& other) {
-      replay = other.replay;
-      pending.store(other.pending.load());
-      return *this;
-    }
-  };
-  mutable IdsToRestore ids_;
+
+ private:
+  friend class LinearPool;  // the one kind of pool that holds a compact word
+  // The linear pool's compact word while the cells are held so, not in cells_ and state_;
+  // null otherwise, and always in a grid or spatial pool.
+  const CompactHolding* compact_ = nullptr;
 };
 
 }  // namespace ontogen
