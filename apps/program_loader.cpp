@@ -60,15 +60,23 @@ ProgramText failed(ProgramText result, int exitCode, std::string error) {
   return result;
 }
 
-// Whether checking `bytes` of text read from `path` fits the memory limit.
-std::optional<std::string> pastMemoryLimit(const std::string& path, uint64_t bytes, const WorldLimits& limits) {
+// Whether checking `bytes` of text (`what`: "the N bytes of 'PATH'") fits the memory limit.
+std::optional<std::string> checkingPastMemoryLimit(const std::string& what, uint64_t bytes, const WorldLimits& limits) {
   try {
-    checkOutsideMemory("checking the " + std::to_string(bytes) + " bytes of '" + path + "'",
-                       bytes * kCheckBytesPerSourceByte, 0, limits);
+    checkOutsideMemory("checking " + what, bytes * kCheckBytesPerSourceByte, 0, limits);
   } catch (const LimitError& limit) {
     return limit.what();
   }
   return std::nullopt;
+}
+
+std::optional<std::string> pastMemoryLimit(const std::string& path, uint64_t bytes, const WorldLimits& limits) {
+  return checkingPastMemoryLimit("the " + std::to_string(bytes) + " bytes of '" + path + "'", bytes, limits);
+}
+
+// The most text that checking can take within the memory limit.
+uint64_t checkableBytes(const WorldLimits& limits) {
+  return limits.maxMemoryBytes / kCheckBytesPerSourceByte;
 }
 
 }  // namespace
@@ -107,7 +115,19 @@ ProgramText readProgramText(const std::string& path, uint64_t maxBytes, const Wo
     return failed(std::move(result), kExitModelError, *past);
   auto source = std::make_shared<const SourceFile>(path, std::move(*text));
   DiagnosticSink sink;
-  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, maxBytes);
+  // The converter stops as soon as its text passes what could be checked: a small file
+  // can expand far past memory (C blocks whose assignments double a value).
+  const uint64_t checkable = checkableBytes(limits);
+  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, std::min(maxBytes, checkable));
+  if (converted.pastLimit && checkable < maxBytes) {
+    // The memory limit stopped it, named as it is for a .cell of that size.
+    for (const Diagnostic& diagnostic : sink.diagnostics())
+      if (diagnostic.severity != Severity::Error) std::cerr << formatDiagnostic(diagnostic);
+    const std::string what =
+        "the text converted from '" + path + "' (more than " + std::to_string(checkable) + " bytes)";
+    // One byte more than `checkable` is past the limit by its definition.
+    return failed(std::move(result), kExitModelError, *checkingPastMemoryLimit(what, checkable + 1, limits));
+  }
   std::cerr << formatDiagnostics(sink);
   if (!converted.program) {
     std::cerr << "ontogen: " << path << " cannot be converted from " << convert::dialectName(*dialect) << "\n";

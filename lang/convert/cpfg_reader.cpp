@@ -69,8 +69,8 @@ std::optional<std::string> angleOfView(std::string_view view) {
 
 class CpfgReader {
  public:
-  CpfgReader(std::string_view text, std::string_view path)
-      : clean_(withoutComments(text)), syntax_(Dialect::Cpfg, clean_) {
+  CpfgReader(std::string_view text, std::string_view path, uint64_t maxBytes)
+      : clean_(withoutComments(text)), syntax_(Dialect::Cpfg, clean_, maxBytes) {
     file_.dialect = Dialect::Cpfg;
     file_.name = blockNameOf(path);
   }
@@ -600,8 +600,8 @@ class CpfgReader {
 
 }  // namespace
 
-LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view) {
-  CpfgReader reader(text, path);
+LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view, uint64_t maxBytes) {
+  CpfgReader reader(text, path, maxBytes);
   LSystemFile file = reader.read();
   file.angle = angleOfView(view);
   return file;

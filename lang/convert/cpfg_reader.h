@@ -6,14 +6,18 @@
 // `/* */` comments. Modules are one character each. The turn angle lives in the
 // view file (.v): `angle increment: D` (degrees) or `angle factor: N` (360 / N).
 
+#include <cstdint>
 #include <string_view>
 
 #include "lang/convert/lsystem_file.h"
+#include "lang/source_reader.h"
 
 namespace ontogen::convert {
 
 /// Reads a cpfg file; `view` is the text of its view file, or empty. Throws ConvertError
-/// (lang/convert/foreign_syntax.h) at the first construct it cannot translate.
-LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view);
+/// (lang/convert/foreign_syntax.h) at the first construct it cannot translate, and
+/// ConvertedTextTooLarge as soon as its text passes `maxBytes`.
+LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view,
+                     uint64_t maxBytes = kDefaultMaxSourceBytes);
 
 }  // namespace ontogen::convert
