@@ -52,7 +52,8 @@ MemoryCheck memoryCheckOf(const WorldLimits& limits) {
 ProgramText readProgramText(const std::string& path, uint64_t maxBytes, const WorldLimits& limits) {
   DiagnosticSink sink;
   ProgramText result;
-  static_cast<ProgramFileText&>(result) = readProgramFile(path, ProgramFileDef{maxBytes, memoryCheckOf(limits)}, sink);
+  static_cast<ProgramFileText&>(result) = readProgramFile(
+      path, ProgramFileDef{maxBytes, memoryCheckOf(limits), limits.maxMemoryBytes / kCheckBytesPerSourceByte}, sink);
   std::cerr << formatDiagnostics(sink);
   switch (result.failure) {
     case ProgramFileFailure::None: return result;

@@ -100,7 +100,16 @@ bool LinearDevelopment::anyExpires(double horizon) {
 
 uint64_t LinearDevelopment::heldBytes() const {
   return pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double) +
-         nextWord_.bytes();
+         nextWord_.bytes() + scratchBytes();
+}
+
+// By capacity: these grow by appending, so what they once held was written, and stays
+// resident though they are emptied. (The previous word counts by its size: the room
+// reserved past it for the next word is not written until that word is.)
+uint64_t LinearDevelopment::scratchBytes() const {
+  return (expandedCells_.capacity() + work_.capacity()) * sizeof(CellRecord) +
+         (expandedState_.capacity() + workState_.capacity() + parentValues_.capacity()) * sizeof(double) +
+         parentIndex_.capacity() * sizeof(int64_t) + dropped_.capacity();
 }
 
 void LinearDevelopment::seed(StepContext& context) {

@@ -30,7 +30,8 @@ class LinearDevelopment final : public Development {
   void seed(StepContext& context) override;
   void step(StepContext& context, double t1, bool stepRules) override;
   std::array<double, 3> positionOf(size_t i) const override { return {static_cast<double>(i), 0, 0}; }
-  /// The pool's word and the previous one, kept to write the next word into.
+  /// The pool's word, the previous one, kept to write the next word into, and the scratch
+  /// buffers a step keeps for the next (scratchBytes).
   uint64_t heldBytes() const override;
 
  private:
@@ -69,6 +70,11 @@ class LinearDevelopment final : public Development {
   /// Checks the limits with what the word holds, and `copying` bytes more of an array
   /// being copied as it grows.
   void checkLimits(uint64_t copying = 0);
+  /// The scratch buffers kept from step to step, by their capacity: the expansions within
+  /// a step, the cells still to expire (with the values of a whole chain of cells born and
+  /// expiring in one step) and the per-cell lists of a pass (parents, a cut's cells).
+  /// The rule frames are of a fixed size, counted in World::kWorldBytes.
+  uint64_t scratchBytes() const;
 
   const Program& program_;
   const SystemDefinition& system_;

@@ -71,7 +71,23 @@ ProgramFileText readProgramFile(const std::string& path, const ProgramFileDef& d
     SourceText side = readSourceFile(folder / name, kMaxViewBytes);
     return side.text;
   };
-  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink, maxBytes, readSideFile);
+  const uint64_t checkable = def.checkableBytes;
+  DiagnosticSink converterSink;
+  convert::ConvertResult converted =
+      convert::convertFile(*source, *dialect, view, converterSink, std::min(maxBytes, checkable), readSideFile);
+  if (converted.pastLimit && checkable < maxBytes && def.memory) {
+    // The memory limit stopped it: named as it is for a .cell of that size, in place of
+    // the converter's error about the source limit; its warnings are kept.
+    for (const Diagnostic& diagnostic : converterSink.diagnostics())
+      if (diagnostic.severity != Severity::Error) sink.report(diagnostic.severity, diagnostic.span, diagnostic.message);
+    const std::string what =
+        "checking the text converted from '" + path + "' (more than " + std::to_string(checkable) + " bytes)";
+    // One byte more than `checkable` is past the limit by its definition.
+    if (auto past = def.memory(what, (checkable + 1) * kCheckBytesPerSourceByte))
+      return failed(std::move(result), ProgramFileFailure::PastMemoryLimit, *past);
+  }
+  for (const Diagnostic& diagnostic : converterSink.diagnostics())
+    sink.report(diagnostic.severity, diagnostic.span, diagnostic.message);
   if (!converted.program)
     return failed(std::move(result),
                   converted.untranslatable ? ProgramFileFailure::Untranslatable : ProgramFileFailure::NotConverted,

@@ -32,6 +32,10 @@ using MemoryCheck = std::function<std::optional<std::string>(const std::string& 
 struct ProgramFileDef {
   uint64_t maxSourceBytes = kDefaultMaxSourceBytes;  ///< the file with its view file, bytes
   MemoryCheck memory;                                ///< empty: no memory limit
+  /// The most converted text checking can take within the memory limit (the limit over
+  /// kCheckBytesPerSourceByte): the converter stops as soon as its text passes it, since
+  /// a small file can expand far past memory (C blocks whose assignments double a value).
+  uint64_t checkableBytes = UINT64_MAX;
 };
 
 /// Why a program file gave no text.

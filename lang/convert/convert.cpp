@@ -20,8 +20,8 @@ ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_v
                           uint64_t maxBytes, const SideFileReader& readSideFile) {
   ConvertResult result;
   try {
-    LSystemFile read =
-        dialect == Dialect::Cpfg ? readCpfg(file.text(), file.name(), view, readSideFile) : readLPy(file.text(), file.name());
+    LSystemFile read = dialect == Dialect::Cpfg ? readCpfg(file.text(), file.name(), view, readSideFile, maxBytes)
+                                                : readLPy(file.text(), file.name(), maxBytes);
     // In the file's order: the readers find some (the hooks') before others above them.
     std::stable_sort(read.warnings.begin(), read.warnings.end(),
                      [](const ConvertWarning& a, const ConvertWarning& b) { return a.at.begin < b.at.begin; });
@@ -32,6 +32,7 @@ ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_v
       sink.error(SourceSpan{},
                  "the converted text (" + describeBytes(program.text.size()) + ") is larger than the limit of " +
                      describeBytes(maxBytes) + " of source text");
+      result.pastLimit = true;
       return result;
     }
     result.program = std::move(program.text);
@@ -39,6 +40,10 @@ ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_v
   } catch (const ConvertError& error) {
     sink.error(SourceSpan{&file, error.begin, error.end}, error.message);
     result.untranslatable = error.untranslatable;
+  } catch (const ConvertedTextTooLarge& tooLarge) {
+    sink.error(SourceSpan{}, "the converted text is larger than the limit of " + describeBytes(tooLarge.limit) +
+                                 " of source text (the converter stopped where it passed it)");
+    result.pastLimit = true;
   }
   return result;
 }

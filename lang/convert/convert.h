@@ -29,12 +29,16 @@ struct ConvertResult {
   /// The error was a construct ontogen cannot express (code of the other tool), rather
   /// than text the reader could not make out.
   bool untranslatable = false;
+  /// The text grew past the limit `maxBytes`: the converter stopped there.
+  bool pastLimit = false;
 };
 
 /// Converts `file`, written for `dialect`; `view` is cpfg's view file (.v), where cpfg
 /// keeps the turn angle and names its functions (read by `readSideFile`), or empty. The
 /// error, if any, and the warnings go to `sink` with their places. A program longer than
-/// `maxBytes` is an error: the source limit holds for the converted text too.
+/// `maxBytes` is an error: the source limit holds for the converted text too, and the
+/// converter stops as soon as its text passes it (an expansion of a small file can be far
+/// larger than memory).
 ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_view view, DiagnosticSink& sink,
                           uint64_t maxBytes = kDefaultMaxSourceBytes, const SideFileReader& readSideFile = {});
 

@@ -75,8 +75,8 @@ std::optional<std::string> angleOfView(std::string_view view) {
 
 class CpfgReader {
  public:
-  CpfgReader(std::string_view text, std::string_view path, std::vector<SampledFunction> functions)
-      : clean_(withoutComments(text)), syntax_(Dialect::Cpfg, clean_) {
+  CpfgReader(std::string_view text, std::string_view path, std::vector<SampledFunction> functions, uint64_t maxBytes)
+      : clean_(withoutComments(text)), syntax_(Dialect::Cpfg, clean_, maxBytes) {
     syntax_.splineFunctions = std::move(functions);
     file_.dialect = Dialect::Cpfg;
     file_.name = blockNameOf(path);
@@ -617,8 +617,8 @@ class CpfgReader {
 }  // namespace
 
 LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view,
-                     const SideFileReader& readSideFile) {
-  CpfgReader reader(text, path, viewFunctions(view, readSideFile));
+                     const SideFileReader& readSideFile, uint64_t maxBytes) {
+  CpfgReader reader(text, path, viewFunctions(view, readSideFile), maxBytes);
   LSystemFile file = reader.read();
   file.angle = angleOfView(view);
   return file;

@@ -6,17 +6,20 @@
 // `/* */` comments. Modules are one character each. The turn angle lives in the
 // view file (.v): `angle increment: D` (degrees) or `angle factor: N` (360 / N).
 
+#include <cstdint>
 #include <string_view>
 
 #include "lang/convert/cpfg_function.h"
 #include "lang/convert/lsystem_file.h"
+#include "lang/source_reader.h"
 
 namespace ontogen::convert {
 
 /// Reads a cpfg file; `view` is the text of its view file, or empty; `readSideFile` gives
 /// the function files the view file names (cpfg_function.h), or is empty. Throws
-/// ConvertError (lang/convert/foreign_syntax.h) at the first construct it cannot translate.
+/// ConvertError (lang/convert/foreign_syntax.h) at the first construct it cannot
+/// translate, and ConvertedTextTooLarge as soon as its text passes `maxBytes`.
 LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view,
-                     const SideFileReader& readSideFile = {});
+                     const SideFileReader& readSideFile = {}, uint64_t maxBytes = kDefaultMaxSourceBytes);
 
 }  // namespace ontogen::convert

@@ -1,5 +1,6 @@
 #include "lang/convert/foreign_syntax.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <optional>
@@ -469,7 +470,17 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   for (ModuleText& m : s.successors)
     for (std::string& arg : m.args) arg = substituted(arg, locals);
   if (!s.probability.empty()) s.probability = substituted(s.probability, locals);
+  written(statementLineBytes(s));
   return s;
+}
+
+void ForeignSyntax::written(uint64_t bytes) const {
+  fits(bytes);
+  writtenBytes_ += bytes;
+}
+
+void ForeignSyntax::fits(uint64_t bytes) const {
+  if (bytes > maxWrittenBytes_ - std::min(writtenBytes_, maxWrittenBytes_)) throw ConvertedTextTooLarge{maxWrittenBytes_};
 }
 
 std::string ForeignSyntax::substituted(const std::string& expr,
@@ -488,6 +499,7 @@ std::string ForeignSyntax::substituted(const std::string& expr,
     for (const auto& [local, text] : locals)
       if (local == name) value = &text;
     result += value && (stop == expr.size() || expr[stop] != '(') ? *value : name;
+    fits(result.size());
     i = stop;
   }
   return result;
@@ -602,6 +614,7 @@ uint32_t ForeignSyntax::block(uint32_t at, uint32_t end, const Statement& s, uin
       }
     }
     std::string value = substituted(expression(eq + 1, b), locals);
+    written(value.size());
     locals.emplace_back(cellName(name), "(" + value + ")");
   }
   return close + 1;

@@ -19,6 +19,7 @@
 #include "lang/convert/cpfg_function.h"
 #include "lang/convert/lsystem_file.h"
 #include "lang/convert/python_operators.h"
+#include "lang/source_reader.h"
 
 namespace ontogen::convert {
 
@@ -30,9 +31,17 @@ struct ConvertError {
   bool untranslatable = true;  ///< true: a construct ontogen cannot express (code); false: malformed text
 };
 
+/// The text the converter writes grew past the limit it is held to (ForeignSyntax's
+/// `maxWrittenBytes`): it stops there rather than build the rest.
+struct ConvertedTextTooLarge {
+  uint64_t limit = 0;  ///< bytes
+};
+
 class ForeignSyntax {
  public:
-  ForeignSyntax(Dialect dialect, std::string_view text) : dialect_(dialect), text_(text) {}
+  /// `maxWrittenBytes`: what the converted text may reach (convertFile's limit).
+  ForeignSyntax(Dialect dialect, std::string_view text, uint64_t maxWrittenBytes = kDefaultMaxSourceBytes)
+      : dialect_(dialect), text_(text), maxWrittenBytes_(maxWrittenBytes) {}
 
   /// L-Py's `module Name` declarations: names read as one module, not letter by letter.
   std::set<std::string, std::less<>> declaredNames;
@@ -137,6 +146,14 @@ class ForeignSyntax {
   /// The first `what` in [begin, end) outside parentheses, or `end`.
   uint32_t find(uint32_t begin, uint32_t end, std::string_view what) const;
 
+  /// Counts `bytes` the converter has written for good: a statement's line of the converted
+  /// text, or the value of a local it substitutes. Past `maxWrittenBytes` in all, throws
+  /// ConvertedTextTooLarge.
+  void written(uint64_t bytes) const;
+  /// Throws ConvertedTextTooLarge when a text of `bytes` being built would not fit in what
+  /// is left of `maxWrittenBytes`: no expansion grows far past the limit before it stops.
+  void fits(uint64_t bytes) const;
+
   [[noreturn]] void fail(uint32_t begin, uint32_t end, std::string message, bool untranslatable = true) const;
 
  private:
@@ -200,6 +217,8 @@ class ForeignSyntax {
   mutable int depth_ = 0;
   mutable bool truthNext_ = false;   // the next expression() is a condition()
   mutable size_t inlinedBytes_ = 0;  // written by inlining helper functions and macros
+  uint64_t maxWrittenBytes_;
+  mutable uint64_t writtenBytes_ = 0;  // counted by written()
   mutable std::set<std::string, std::less<>> bound_;  // the names of the Scope being read
 };
 

@@ -69,8 +69,8 @@ class AtLoading {
 
 class LPyReader {
  public:
-  LPyReader(std::string_view text, std::string_view path)
-      : original_(text), clean_(withoutComments(text)), syntax_(Dialect::LPy, clean_) {
+  LPyReader(std::string_view text, std::string_view path, uint64_t maxBytes)
+      : original_(text), clean_(withoutComments(text)), syntax_(Dialect::LPy, clean_, maxBytes) {
     file_.dialect = Dialect::LPy;
     file_.name = blockNameOf(path);
     file_.angle = std::string(kLPyDefaultAngle);
@@ -951,8 +951,8 @@ class LPyReader {
 
 }  // namespace
 
-LSystemFile readLPy(std::string_view text, std::string_view path) {
-  return LPyReader(text, path).read();
+LSystemFile readLPy(std::string_view text, std::string_view path, uint64_t maxBytes) {
+  return LPyReader(text, path, maxBytes).read();
 }
 
 }  // namespace ontogen::convert

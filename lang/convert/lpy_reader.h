@@ -7,9 +7,11 @@
 // Other Python code is an error at its line. The `###### INITIALISATION ######`
 // section the L-Py editor writes (materials, panels) ends what is read.
 
+#include <cstdint>
 #include <string_view>
 
 #include "lang/convert/lsystem_file.h"
+#include "lang/source_reader.h"
 
 namespace ontogen::convert {
 
@@ -17,7 +19,8 @@ namespace ontogen::convert {
 inline constexpr std::string_view kLPyDefaultAngle = "60";
 
 /// Reads an L-Py file. Throws ConvertError (lang/convert/foreign_syntax.h) at the first
-/// construct it cannot translate.
-LSystemFile readLPy(std::string_view text, std::string_view path);
+/// construct it cannot translate, and ConvertedTextTooLarge as soon as its text passes
+/// `maxBytes`.
+LSystemFile readLPy(std::string_view text, std::string_view path, uint64_t maxBytes = kDefaultMaxSourceBytes);
 
 }  // namespace ontogen::convert

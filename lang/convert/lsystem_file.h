@@ -103,6 +103,9 @@ struct CellProgram {
 /// file it came from. A block whose labels include digits gets `#letters`.
 CellProgram writeCellProgram(const LSystemFile& file, std::string_view sourceName);
 
+/// The bytes of the line writeCellProgram writes for `statement`, its newline included.
+size_t statementLineBytes(const Statement& statement);
+
 /// A block name from a file name: its stem, other characters than letters, digits and
 /// '_' made '_', a leading digit prefixed with "l_".
 std::string blockNameOf(std::string_view path);

@@ -84,6 +84,10 @@ std::string statementText(const Statement& s) {
 
 }  // namespace
 
+size_t statementLineBytes(const Statement& statement) {
+  return std::string_view("  ").size() + statementText(statement).size() + 1;
+}
+
 std::string_view dialectName(Dialect dialect) {
   return dialect == Dialect::Cpfg ? "cpfg" : "L-Py";
 }

@@ -284,6 +284,7 @@ class BodyTranslator {
                            "' used a second time: the cell language draws anew where it is written, so the values "
                            "would differ");
         result += local->second.text;
+        syntax_.fits(result.size());
       }
       i = stop;
     }
@@ -307,7 +308,10 @@ class BodyTranslator {
                    false);
     Statement s = head_;
     std::string condition;
-    for (const std::string& c : way.conditions) condition += (condition.empty() ? "" : " && ") + c;
+    for (const std::string& c : way.conditions) {
+      condition += (condition.empty() ? "" : " && ") + c;
+      syntax_.fits(condition.size());
+    }
     if (!head_.condition.empty()) condition = condition.empty() ? head_.condition : "(" + head_.condition + ") && " + condition;
     s.condition = condition;
     std::string weight;
@@ -316,6 +320,7 @@ class BodyTranslator {
     s.successors = way.produced;
     for (ModuleText& m : successors) s.successors.push_back(std::move(m));
     s.keepsModule = keeps;
+    syntax_.written(statementLineBytes(s));
     out_.push_back(std::move(s));
   }
 
@@ -401,6 +406,7 @@ class BodyTranslator {
             const std::string before = old != way.locals.end() ? old->second.text : stmt.name;
             value = before + " " + stmt.op + " (" + value + ")";
           }
+          syntax_.written(value.size());
           way.locals[stmt.name] = Value{"(" + value + ")", holdsRandom(value)};
           way.randomUses.erase(stmt.name);
           break;
@@ -516,6 +522,7 @@ class FunctionTranslator {
                            "' read a second time: the cell language draws anew where it is written, so the values "
                            "would differ");
         result += local->second.text;
+        syntax_.fits(result.size());
       }
       i = stop;
     }
@@ -588,6 +595,7 @@ class FunctionTranslator {
         if (old == locals.end() && !parameters_.count(name)) python(s, "'" + name + "' changed before it is set");
         v = (old == locals.end() ? name : old->second.text) + " " + kind + " (" + v + ")";
       }
+      syntax_.written(v.size());
       locals[name] = Local{"(" + v + ")", holdsRandom(v), 0};
     }
     syntax_.fail(last_.begin, last_.end, "a way through this helper function ends here and returns no value (None)");

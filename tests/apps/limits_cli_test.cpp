@@ -196,4 +196,32 @@ TEST(LimitsCli, RunawayGrowthStopsNearTheMemoryLimit) {
   }
 }
 
+// A .l or .lpy of a few lines whose C block or Python body multiplies a value twelve
+// times by four converts to 299 MiB: it was built whole (1.2 GB at the peak) and then
+// refused by the source limit (exit 1). The converter stops as its text passes what
+// checking may take of the memory limit, which names the limit as for a .cell that large.
+TEST(LimitsCli, AConvertedFileStopsAtTheMemoryLimitAsItsTextGrows) {
+  const fs::path dir = scratch("converted");
+  std::string cpfg = "Lsystem: 1\nderivation length: 1\nAxiom: A(1)\nA(x) : {a0=x+x+x+x;";
+  std::string lpy = "Axiom: A(1)\nderivation length: 1\nproduction:\nA(x):\n  a = x+x+x+x\n";
+  for (int i = 1; i <= 12; ++i) {
+    const std::string before = "a" + std::to_string(i - 1);
+    cpfg += " a" + std::to_string(i) + "=" + before + "+" + before + "+" + before + "+" + before + ";";
+    lpy += "  a = a+a+a+a\n";
+  }
+  cpfg += "} 1 --> A(a12)\nendlsystem\n";
+  lpy += "  produce A(a)\nendlsystem\n";
+  for (const std::string& program : {writeProgram(dir, cpfg, "grows.l").string(), writeProgram(dir, lpy, "grows.lpy").string()}) {
+    const Result result = ontogen(dir, {"word", program, "--at", "1", "--max-memory", "100"});
+    EXPECT_EQ(result.exitCode, 3) << program << ": " << result.err;
+    // 100 MiB / 128 bytes of checking a byte of text = 819200 bytes.
+    EXPECT_EQ(result.err, "ontogen: error: checking the text converted from '" + program +
+                              "' (more than 819200 bytes) needs about 101 MiB, past the memory limit of 100 MiB; "
+                              "raise it with --max-memory MIB\n");
+    if (!kAddressSanitized) {
+      EXPECT_LT(result.peakKib, 40u * 1024) << program << ": KiB at the peak";
+    }
+  }
+}
+
 }  // namespace

@@ -102,6 +102,27 @@ TEST(Limits, NestedWorldsCountThePreviousWordTheyKeep) {
   EXPECT_EQ(world.held().bytes, World::kWorldBytes + 2 * sizeof(CellRecord) + nested->held().bytes);
 }
 
+// A cell whose successors expire within the same step develops depth first on a work
+// list, whose values grow by the whole chain; the list is kept, emptied, for the next
+// step, and counts in held() (it did not: the world held its word and the one before).
+// A(x) lives 1/1024 s: a step of 1 s makes 1024 generations, 1024 values on the list.
+TEST(Limits, AChainWithinAStepCountsTheWorkListItKeeps) {
+  WorldDef def;
+  def.rewriteBySlices = false;  // words of records, 24 bytes a cell and 8 a value
+  World world(compileOrFail("cell A(x = 0) { lifetime 0.0009765625; rules { terminal: -> A(x + 1); } }\n"
+                            "system s { pool linear; axiom A; }\n"),
+              def);
+  world.advanceTo(1, 1);
+  ASSERT_EQ(world.rootPool().size(), 1u);
+  EXPECT_EQ(world.rootPool().cellAt(0).state[0], 1024);
+  // The word and the one before: a cell of one value each.
+  const uint64_t words = World::kWorldBytes + 2 * (sizeof(CellRecord) + sizeof(double));
+  // The list's 1024 values (grown by doubling, to 1024 exactly), the one cell waiting on
+  // it, and the one cell and value each expansion wrote.
+  const uint64_t scratch = 1024 * sizeof(double) + sizeof(CellRecord) + (sizeof(CellRecord) + sizeof(double));
+  EXPECT_EQ(world.held().bytes, words + scratch);
+}
+
 // A world that integrates rates and stops between two grid instants keeps a copy of
 // itself as it was at the last one (the next advance starts from there): its bytes count
 // in held(), and so against the memory limit, but not its cells.

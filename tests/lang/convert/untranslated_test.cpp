@@ -178,6 +178,45 @@ TEST(Untranslated, TheConvertedTextIsHeldToTheSourceLimit) {
       << sink.diagnostics()[0].message;
 }
 
+// A file of a few lines whose C block (cpfg) or Python body (L-Py) multiplies a value ten
+// times by four converts to 18.7 MiB: it was built whole before its size was compared
+// with the limit (a file of twelve such lines reached 1.2 GB), and now the converter
+// stops as its text passes the limit.
+std::string quadrupled(Dialect dialect, int times) {
+  if (dialect == Dialect::Cpfg) {
+    std::string text = "Lsystem: 1\nderivation length: 1\nAxiom: A(1)\nA(x) : {a0=x+x+x+x;";
+    for (int i = 1; i <= times; ++i)
+      text += " a" + std::to_string(i) + "=a" + std::to_string(i - 1) + "+a" + std::to_string(i - 1) + "+a" +
+              std::to_string(i - 1) + "+a" + std::to_string(i - 1) + ";";
+    return text + "} 1 --> A(a" + std::to_string(times) + ")\nendlsystem\n";
+  }
+  std::string text = "Axiom: A(1)\nderivation length: 1\nproduction:\nA(x):\n  a = x+x+x+x\n";
+  for (int i = 1; i <= times; ++i) text += "  a = a+a+a+a\n";
+  return text + "  produce A(a)\nendlsystem\n";
+}
+
+TEST(Untranslated, TheConverterStopsAsSoonAsItsTextPassesTheLimit) {
+  for (const Dialect dialect : {Dialect::Cpfg, Dialect::LPy}) {
+    SourceFile file(dialect == Dialect::Cpfg ? "a.l" : "a.lpy", quadrupled(dialect, 10));
+    DiagnosticSink sink;
+    const ConvertResult stopped = convertFile(file, dialect, "", sink, 1 << 20);
+    EXPECT_FALSE(stopped.program);
+    EXPECT_TRUE(stopped.pastLimit);
+    ASSERT_EQ(sink.diagnostics().size(), 1u);
+    EXPECT_EQ(sink.diagnostics()[0].message,
+              "the converted text is larger than the limit of 1 MiB of source text (the converter stopped where it "
+              "passed it)");
+    // Under a larger limit the same file converts whole.
+    DiagnosticSink roomy;
+    const ConvertResult whole = convertFile(file, dialect, "", roomy, 64 << 20);
+    ASSERT_TRUE(whole.program) << (roomy.diagnostics().empty() ? "" : roomy.diagnostics()[0].message);
+    EXPECT_FALSE(whole.pastLimit);
+    size_t xs = 0;
+    for (const char c : *whole.program) xs += c == 'x';
+    EXPECT_EQ(xs, (size_t{1} << 22) + 2);  // 4^11 in the argument, one in the predecessor, one in "axiom"
+  }
+}
+
 // Each line of the converted text knows the line of the file it came from.
 TEST(Untranslated, TheLinesOfTheConvertedTextKnowTheirOrigin) {
   SourceFile file("a.lpy", "N = 2\nAxiom: A\n\nproduction:\nA :\n  produce B(N)\nB(x) --> B(vlen(x))\n");
