@@ -93,7 +93,7 @@ struct Glb {
   }
 };
 
-std::vector<std::string> nodeNames(const Glb& glb) {
+inline std::vector<std::string> nodeNames(const Glb& glb) {
   std::vector<std::string> names;
   for (const auto& node : glb.json["nodes"]) names.push_back(node.value("name", ""));
   return names;
@@ -106,7 +106,7 @@ struct InstancedLine {
   glm::dvec3 from, to;
   double radius;
 };
-std::vector<InstancedLine> instancedLines(const Glb& glb, int node) {
+inline std::vector<InstancedLine> instancedLines(const Glb& glb, int node) {
   const auto& attributes = glb.json["nodes"][node]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
   const std::vector<double> t = glb.values(attributes["TRANSLATION"].get<int>());
   const std::vector<double> r = glb.values(attributes["ROTATION"].get<int>());
