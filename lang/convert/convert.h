@@ -10,7 +10,6 @@
 #include <string_view>
 #include <vector>
 
-#include "lang/convert/cpfg_function.h"
 #include "lang/convert/lsystem_file.h"
 #include "model/diagnostics.h"
 #include "model/source.h"

@@ -13,11 +13,9 @@
 #include <string_view>
 #include <vector>
 
-namespace ontogen::convert {
+#include "lang/convert/lsystem_file.h"
 
-/// The text of a file beside the converted one, named as the view file names it;
-/// nullopt where there is none or it cannot be read.
-using SideFileReader = std::function<std::optional<std::string>(const std::string& name)>;
+namespace ontogen::convert {
 
 /// One function of the view file, sampled as cpfg samples it.
 struct SampledFunction {

@@ -7,6 +7,7 @@
 // stay where the file put them.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -14,6 +15,10 @@
 #include <vector>
 
 namespace ontogen::convert {
+
+/// The text of a file beside the converted one, named as the view file names it;
+/// nullopt where there is none or it cannot be read.
+using SideFileReader = std::function<std::optional<std::string>(const std::string& name)>;
 
 /// The tool whose file this is.
 enum class Dialect { Cpfg, LPy };
