@@ -11,35 +11,12 @@
 #include "batch/evolution.h"
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
+#include "tests/batch/batch_test_support.h"
 
 namespace ontogen::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A chain whose height grows with LEN and S: the fitness the evolution maximises.
-const std::string kChain =
-    "lsystem chain {\n"
-    "  #define LEN 1\n"
-    "  #define S 0.5\n"
-    "  #until 3\n"
-    "  axiom A(1)\n"
-    "  A(s) -> F(LEN * s) A(s * S)\n"
-    "}\n";
-
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "batch_test" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string readAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 EvolutionDef chainEvolution(const fs::path& dir, const std::string& text = kChain) {
   EvolutionDef def;

@@ -23,6 +23,7 @@
 #include "tests/interpreters/external_tools.h"
 #include "interpreters/run.h"
 #include "tests/core/test_support.h"
+#include "tests/interpreters/creature/joint_tracks.h"
 
 namespace ontogen {
 namespace {
@@ -40,30 +41,7 @@ using testing_support::runCommand;
     }                                                                              \
   } while (false)
 
-struct Walk {
-  RunReport report;
-  nlohmann::json tracks;  // the joints.json
-  fs::path dir;
-
-  const nlohmann::json& joints() const { return tracks["joints"]; }
-  const nlohmann::json& frames() const { return tracks["frames"]; }
-  glm::dvec3 at(std::size_t frame, std::size_t joint) const {
-    const auto& p = tracks["frames"][frame]["positions"][joint];
-    return {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()};
-  }
-  double time(std::size_t frame) const { return tracks["frames"][frame]["t"].get<double>(); }
-  std::vector<std::size_t> feet() const {
-    std::vector<std::size_t> out;
-    for (std::size_t j = 0; j < joints().size(); ++j)
-      if (joints()[j]["foot"].get<bool>()) out.push_back(j);
-    return out;
-  }
-  std::size_t root() const {
-    for (std::size_t j = 0; j < joints().size(); ++j)
-      if (joints()[j]["parent"].get<int>() < 0) return j;
-    return 0;
-  }
-};
+using test::Walk;
 
 std::shared_ptr<const Program> compileWith(const std::string& model, const std::map<std::string, double>& defines) {
   DiagnosticSink sink;

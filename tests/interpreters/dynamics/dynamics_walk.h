@@ -19,39 +19,13 @@
 #include "interpreters/dynamics/dynamics_set.h"
 #include "interpreters/run.h"
 #include "tests/core/test_support.h"
+#include "tests/interpreters/creature/joint_tracks.h"
 
 namespace ontogen::dynamics_testing {
 
 namespace fs = std::filesystem;
 
-struct Walk {
-  RunReport report;
-  nlohmann::json tracks;  // the joints.json
-  fs::path dir;
-
-  const nlohmann::json& joints() const { return tracks["joints"]; }
-  const nlohmann::json& frames() const { return tracks["frames"]; }
-  glm::dvec3 at(std::size_t frame, std::size_t joint) const {
-    const auto& p = tracks["frames"][frame]["positions"][joint];
-    return {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()};
-  }
-  std::size_t root() const {
-    for (std::size_t j = 0; j < joints().size(); ++j)
-      if (joints()[j]["parent"].get<int>() < 0) return j;
-    return 0;
-  }
-  // The root's travel along the ground from the first frame to the last.
-  double distance() const {
-    const glm::dvec3 a = at(0, root()), b = at(frames().size() - 1, root());
-    return std::hypot(b.x - a.x, b.z - a.z);
-  }
-  double lowest() const {
-    double low = 1e300;
-    for (std::size_t f = 0; f < frames().size(); ++f)
-      for (std::size_t j = 0; j < joints().size(); ++j) low = std::min(low, at(f, j).y);
-    return low;
-  }
-};
+using test::Walk;
 
 inline std::shared_ptr<const Program> compileWith(const std::string& model, const std::map<std::string, double>& defines) {
   DiagnosticSink sink;
