@@ -77,15 +77,7 @@ void stream(const World& world, Cursor cell, SourceOf&& sourceOf, bool interpret
 // timeless (such a module keeps no birth of its own in a word without ids:
 // docs/COMPACT_WORDS.md, "Timeless modules join runs").
 bool labelsAlone(const World& world, bool visitorReadsIds) {
-  if (visitorReadsIds) return false;
-  const std::vector<MasterCell>& masters = world.program().masters;
-  std::vector<uint8_t> needsIds(masters.size());
-  for (size_t m = 0; m < masters.size(); ++m) {
-    const MasterCell& master = masters[m];
-    needsIds[m] =
-        master.system >= 0 || master.developmentFunction >= 0 || (master.timedNotation && master.lifetime == kForever);
-  }
-  return readableAsHeld(world, needsIds);
+  return !visitorReadsIds && readableWithoutIds(world);
 }
 
 // The world's own word (not a homomorphism's image) to `visitor`.
@@ -138,6 +130,17 @@ bool readableAsHeld(const World& world, std::span<const uint8_t> needsIds) {
   for (size_t m = 0; m < masters; ++m)
     if (needsIds[m] && counts[m] > 0) return false;
   return true;
+}
+
+bool readableWithoutIds(const World& world) {
+  const std::vector<MasterCell>& masters = world.program().masters;
+  std::vector<uint8_t> needsIds(masters.size());
+  for (size_t m = 0; m < masters.size(); ++m) {
+    const MasterCell& master = masters[m];
+    needsIds[m] =
+        master.system >= 0 || master.developmentFunction >= 0 || (master.timedNotation && master.lifetime == kForever);
+  }
+  return readableAsHeld(world, needsIds);
 }
 
 void visitWord(const World& world, WordVisitor& visitor) { streamPool(world, false, visitor); }

@@ -67,6 +67,11 @@ class WordVisitor {
 /// (pools/label_cursor.h), without the replay that makes its ids again.
 bool readableAsHeld(const World& world, std::span<const uint8_t> needsIds);
 
+/// Whether a reader of no ids may walk the world's word as it is held: readableAsHeld
+/// with the masters whose modules need ids marked (system cells, whose pool is found by
+/// their id; cells that develop their parameters; timeless ones printed with their ages).
+bool readableWithoutIds(const World& world);
+
 /// Streams the world's cells in pool order to `visitor`.
 void visitWord(const World& world, WordVisitor& visitor);
 /// Does now what visitWord would do first and may fail: the root pool's word held without

@@ -349,25 +349,11 @@ class HeldWordText {
   bool anyTimed_ = false;
 };
 
-// Whether visitWord streams the world's word to a reader of no ids as it is held: the
-// modules that need ids (core/word.cpp) are those of systems, of development functions
-// and timeless ones printed with their ages.
-bool heldWithoutIdsNeeded(const World& world) {
-  const std::vector<MasterCell>& masters = world.program().masters;
-  std::vector<uint8_t> needsIds(masters.size());
-  for (size_t m = 0; m < masters.size(); ++m) {
-    const MasterCell& master = masters[m];
-    needsIds[m] =
-        master.system >= 0 || master.developmentFunction >= 0 || (master.timedNotation && master.lifetime == kForever);
-  }
-  return readableAsHeld(world, needsIds);
-}
-
 }  // namespace
 
 void writeWordText(const World& world, BufferedOutput& out, int precision, bool interpreted) {
   const bool image = interpreted && world.rootSystem().homomorphism;
-  if (!image && heldWithoutIdsNeeded(world)) {
+  if (!image && readableWithoutIds(world)) {
     HeldWordText(world, out, precision).write();
     return;
   }

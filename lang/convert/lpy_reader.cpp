@@ -336,13 +336,7 @@ class LPyReader {
     }
     hook.begin = begin;
     hook.end = colon + 1;
-    size_t last = i;
-    for (size_t k = i + 1; k < lines.size(); ++k) {
-      const uint32_t first = firstNonSpace(clean_, lines[k]);
-      if (first == lines[k].end) continue;
-      if (first == lines[k].begin) break;
-      last = k;
-    }
+    const size_t last = lastIndentedLine(lines, i);
     hook.body = logicalLines(clean_, colon + 1, lines[last].end);
     hooks_.push_back(std::move(hook));
     return last;
@@ -498,13 +492,7 @@ class LPyReader {
       while (colon < end && std::isspace(static_cast<unsigned char>(clean_[colon]))) ++colon;
       if (!plain || colon >= end || clean_[colon] != ':') continue;
       // The body: the rest of the line, or the indented lines below.
-      size_t last = i;
-      for (size_t k = i + 1; k < lines.size(); ++k) {
-        const uint32_t first = firstNonSpace(clean_, lines[k]);
-        if (first == lines[k].end) continue;
-        if (first == lines[k].begin) break;
-        last = k;
-      }
+      const size_t last = lastIndentedLine(lines, i);
       const std::vector<BodyLine> body = logicalLines(clean_, colon + 1, lines[last].end);
       found[i] = last;
       auto value = body.size() == 1 ? afterKeyword(clean_, Line{body[0].begin, body[0].end}, "return") : std::nullopt;
@@ -613,13 +601,7 @@ class LPyReader {
   // `A(x) :` and a Python body: on the line (`A(x) : produce B`) or on the indented lines
   // after it. The index of the body's last line.
   size_t producedBody(const std::vector<Line>& lines, size_t i, uint32_t begin, uint32_t colon, bool below) {
-    size_t last = i;
-    for (size_t k = i + 1; k < lines.size(); ++k) {
-      const uint32_t first = firstNonSpace(clean_, lines[k]);
-      if (first == lines[k].end) continue;
-      if (first == lines[k].begin) break;
-      last = k;
-    }
+    const size_t last = lastIndentedLine(lines, i);
     if (below && last == i) syntax_.fail(begin, colon + 1, "a production head without a body", false);
     const uint32_t bodyEnd = lines[last].end;
     Statement head = headOf(begin, colon);
@@ -675,10 +657,9 @@ class LPyReader {
   // L-Py's functional axiom: `Axiom:` alone on its line and a Python body below it,
   // read as a production body (nproduce, produce, locals, loops over ranges) whose one
   // way, with no test and no random choice, is the axiom. The index of its last line.
-  std::optional<size_t> functionalAxiom(const std::vector<Line>& lines, size_t i, uint32_t at, uint32_t end) {
-    uint32_t a = at, b = end;
-    syntax_.trim(a, b);
-    if (a < b) return std::nullopt;
+  // The last of the lines indented below line i (blank lines skipped), or i if none is:
+  // the extent of a Python block that starts at the end of line i.
+  size_t lastIndentedLine(const std::vector<Line>& lines, size_t i) const {
     size_t last = i;
     for (size_t k = i + 1; k < lines.size(); ++k) {
       const uint32_t first = firstNonSpace(clean_, lines[k]);
@@ -686,6 +667,14 @@ class LPyReader {
       if (first == lines[k].begin) break;
       last = k;
     }
+    return last;
+  }
+
+  std::optional<size_t> functionalAxiom(const std::vector<Line>& lines, size_t i, uint32_t at, uint32_t end) {
+    uint32_t a = at, b = end;
+    syntax_.trim(a, b);
+    if (a < b) return std::nullopt;
+    const size_t last = lastIndentedLine(lines, i);
     if (last == i) return std::nullopt;
     const uint32_t bodyBegin = firstNonSpace(clean_, lines[i + 1]), bodyEnd = lines[last].end;
     Statement head;
