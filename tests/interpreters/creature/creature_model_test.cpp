@@ -65,6 +65,7 @@ Walk walk(const std::string& model, const std::map<std::string, double>& defines
   RunDef def;
   def.program = compileWith(model, defines);
   if (!def.program) return result;
+  result.program = def.program;
   def.stem = fs::path(model).stem().string();
   def.world.seed = seed;
   def.frames = frames;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -17,6 +18,8 @@
 namespace ontogen::test {
 
 struct Walk {
+  // The program run, kept: the report's diagnostics point into its source text.
+  std::shared_ptr<const Program> program;
   RunReport report;
   nlohmann::json tracks;  // the joints.json
   std::filesystem::path dir;

@@ -69,6 +69,7 @@ inline Walk walk(const WalkDef& w) {
     EXPECT_NE(def.program, nullptr) << formatDiagnostics(sink);
   }
   if (!def.program) return result;
+  result.program = def.program;
   def.stem = fs::path(w.model).stem().string();
   def.frames = w.frames;
   def.from = w.from;
