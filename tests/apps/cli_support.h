@@ -1,6 +1,6 @@
 #pragma once
 // Running the ontogen executable from a command-line test (through ontogen_process.h),
-// and the files such a test reads and writes.
+// and the files such a test reads and writes (tests/test_files.h).
 
 #include <filesystem>
 #include <fstream>
@@ -8,6 +8,7 @@
 #include <string>
 
 #include "tests/apps/ontogen_process.h"
+#include "tests/test_files.h"
 
 namespace ontogen::test {
 
@@ -17,21 +18,6 @@ namespace fs = std::filesystem;
 /// and stderr.
 using CliResult = OntogenRun;
 
-/// An empty folder of its own for a test, under the build tree.
-inline fs::path scratchDir(const std::string& name) {
-  fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "cli_test" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-inline std::string readWholeFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 /// Runs `ontogen ARGS` through the shell (so ARGS may quote and redirect), within
 /// `timeoutSeconds` (exit 124 past it), by the command-line tests' one spawner.
 inline CliResult runOntogen(const std::string& args, int timeoutSeconds = 60) {
@@ -40,11 +26,6 @@ inline CliResult runOntogen(const std::string& args, int timeoutSeconds = 60) {
 
 inline std::string modelPath(const std::string& name) {
   return std::string(ONTOGEN_SOURCE_DIR) + "/models/" + name;
-}
-
-inline fs::path writeFile(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
 }
 
 }  // namespace ontogen::test

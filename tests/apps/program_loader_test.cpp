@@ -10,23 +10,16 @@
 #include <string>
 
 #include "apps/program_loader.h"
+#include "tests/test_files.h"
 
 namespace ontogen::app {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "program_loader_test" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return test::scratchDir(name, "program_loader_test"); }
 
-fs::path write(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
+using test::writeFile;
 
 WorldLimits memoryLimit(uint64_t mebibytes) {
   WorldLimits limits;
@@ -46,7 +39,7 @@ TEST(ProgramLoader, AFileOfAnotherToolIsHeldToTheMemoryLimitBeforeItIsConverted)
   const std::string text = cpfgWithAxiomOf(10'000'000);
   const std::string expected = "checking the " + std::to_string(text.size()) + " bytes of '";
   for (const char* name : {"big.l", "big.lpy", "big.cell"}) {
-    const fs::path path = write(dir / name, text);
+    const fs::path path = writeFile(dir / name, text);
     const ProgramText read = readProgramText(path.string(), kDefaultMaxSourceBytes, memoryLimit(100));
     EXPECT_FALSE(read.text) << name;
     EXPECT_EQ(read.exitCode, kExitModelError) << name;
@@ -55,7 +48,7 @@ TEST(ProgramLoader, AFileOfAnotherToolIsHeldToTheMemoryLimitBeforeItIsConverted)
         << name;
   }
   // Within the limit it is converted as ever.
-  const fs::path small = write(dir / "small.l", cpfgWithAxiomOf(1000));
+  const fs::path small = writeFile(dir / "small.l", cpfgWithAxiomOf(1000));
   const ProgramText read = readProgramText(small.string(), kDefaultMaxSourceBytes, memoryLimit(100));
   ASSERT_TRUE(read.text) << read.error;
   EXPECT_TRUE(read.converted);
@@ -66,8 +59,8 @@ TEST(ProgramLoader, AFileOfAnotherToolIsHeldToTheMemoryLimitBeforeItIsConverted)
 // memory that checking them takes.
 TEST(ProgramLoader, AViewFileCountsWithItsFile) {
   const fs::path dir = scratch("view");
-  const fs::path path = write(dir / "tree.l", cpfgWithAxiomOf(600'000));
-  write(dir / "tree.v", "angle increment: 20\n" + std::string(600'000, ' ') + "\n");
+  const fs::path path = writeFile(dir / "tree.l", cpfgWithAxiomOf(600'000));
+  writeFile(dir / "tree.v", "angle increment: 20\n" + std::string(600'000, ' ') + "\n");
   const uint64_t both = fs::file_size(path) + fs::file_size(dir / "tree.v");
   const ProgramText sized = readProgramText(path.string(), 1 << 20, memoryLimit(1000));
   EXPECT_FALSE(sized.text);
@@ -88,14 +81,14 @@ TEST(ProgramLoader, AViewFileCountsWithItsFile) {
 // says why; raised on the page, the same reader converts it.
 TEST(ProgramLoader, TheStudioReadsThroughTheLimitsOfEachRead) {
   const fs::path dir = scratch("studio");
-  const fs::path path = write(dir / "grown.l", cpfgWithAxiomOf(10));
+  const fs::path path = writeFile(dir / "grown.l", cpfgWithAxiomOf(10));
   const studio::StudioReader read = studioReader();
   const studio::StudioSource before = read(path.string(), kDefaultMaxSourceBytes, memoryLimit(8));
   ASSERT_TRUE(before.text) << before.error;
   ASSERT_TRUE(before.original);
   EXPECT_EQ(before.original->name(), path.string());
   // Checking 100,000 letters takes about 13 MiB.
-  write(path, cpfgWithAxiomOf(100'000));
+  writeFile(path, cpfgWithAxiomOf(100'000));
   const studio::StudioSource after = read(path.string(), kDefaultMaxSourceBytes, memoryLimit(8));
   EXPECT_FALSE(after.text);
   EXPECT_NE(after.error.find("needs about 13 MiB, past the memory limit of 8 MiB"), std::string::npos) << after.error;

@@ -1,11 +1,11 @@
 #pragma once
 // What the batch library's tests share: the chain they sweep and evolve, a folder of
-// their own for each test, a file read whole.
+// their own for each test, a file read whole (tests/test_files.h).
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
+
+#include "tests/test_files.h"
 
 namespace ontogen::test {
 
@@ -21,18 +21,6 @@ inline const std::string kChain =
     "}\n";
 
 // An empty folder for one test, under the build's batch_test/.
-inline std::filesystem::path scratch(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(ONTOGEN_BINARY_DIR) / "batch_test" / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-inline std::string readAll(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+inline std::filesystem::path scratch(const std::string& name) { return scratchDir(name, "batch_test"); }
 
 }  // namespace ontogen::test

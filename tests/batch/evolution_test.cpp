@@ -61,10 +61,10 @@ TEST(Evolution, TheEliteKeepsTheBestFitnessFromFallingAndEveryGenerationIsReport
   // The original program is variant 0 of the first generation: LEN 1, S 0.5, three steps.
   EXPECT_GE(result.generations[0].bestFitness, 1 + 0.5 + 0.25);
   EXPECT_EQ(result.best, def.out / "best.cell");
-  const std::string best = readAll(result.best);
+  const std::string best = readWholeFile(result.best);
   EXPECT_NE(best.find("lsystem chain"), std::string::npos);
-  EXPECT_EQ(best, readAll(def.out / "best" / "generation_003.cell"));
-  const std::string csv = readAll(def.out / "evolution.csv");
+  EXPECT_EQ(best, readWholeFile(def.out / "best" / "generation_003.cell"));
+  const std::string csv = readWholeFile(def.out / "evolution.csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "generation,best_variant,best_h,mean_h,failed");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
   EXPECT_TRUE(fs::exists(def.out / "gallery.png"));
@@ -73,8 +73,8 @@ TEST(Evolution, TheEliteKeepsTheBestFitnessFromFallingAndEveryGenerationIsReport
   EvolutionDef again = chainEvolution(dir);
   again.out = dir / "again";
   ASSERT_EQ(runEvolution(again).status, BatchStatus::Done);
-  EXPECT_EQ(readAll(again.out / "evolution.csv"), csv);
-  EXPECT_EQ(readAll(again.out / "best.cell"), best);
+  EXPECT_EQ(readWholeFile(again.out / "evolution.csv"), csv);
+  EXPECT_EQ(readWholeFile(again.out / "best.cell"), best);
 }
 
 TEST(Evolution, WhatCannotEvolveIsRefusedWithWhy) {

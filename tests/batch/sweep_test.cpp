@@ -62,7 +62,7 @@ TEST(Sweep, RowsAreTheProductOfDefinesAndSeedsMeasured) {
     EXPECT_EQ(row.values[4], "1");
     EXPECT_TRUE(row.error.empty()) << row.error;
   }
-  EXPECT_TRUE(readAll(dir / "out" / "results.csv").starts_with("variant,LEN,S,seed,h,n,error\n"));
+  EXPECT_TRUE(readWholeFile(dir / "out" / "results.csv").starts_with("variant,LEN,S,seed,h,n,error\n"));
 }
 
 // A journal row whose checksum holds but whose values are another variant's (written by
@@ -71,7 +71,7 @@ TEST(Sweep, AJournalRowThatContradictsItsVariantRunsAgain) {
   const fs::path dir = scratch("contradiction");
   const SweepResult first = runSweep(chainSweep(dir));
   ASSERT_EQ(first.batch.status, BatchStatus::Done) << first.batch.message;
-  const std::string journal = readAll(dir / "out" / "journal.jsonl");
+  const std::string journal = readWholeFile(dir / "out" / "journal.jsonl");
   const std::string header = journal.substr(0, journal.find('\n'));
   SweepRow forged = first.batch.table.rows[5];  // LEN 2, S 0.5, seed 8 ...
   forged.variant = 0;                           // ... claiming to be LEN 1, S 0.5, seed 7
@@ -128,7 +128,7 @@ TEST(Sweep, TheGalleryDrawsEveryVariantAtOneScaleAndLabelsIt) {
   def.settings.width = def.settings.height = 96;
   const SweepResult result = runSweep(def);
   ASSERT_EQ(result.batch.status, BatchStatus::Done) << result.batch.message;
-  const nlohmann::json gallery = nlohmann::json::parse(readAll(dir / "out" / "gallery.json"));
+  const nlohmann::json gallery = nlohmann::json::parse(readWholeFile(dir / "out" / "gallery.json"));
   const std::optional<Image> sheet = readPng(dir / "out" / "gallery.png");
   ASSERT_TRUE(sheet);
   ASSERT_EQ(gallery["tiles"].size(), 2u) << gallery.dump();

@@ -12,22 +12,16 @@
 #include <string>
 #include <vector>
 
+#include "tests/test_files.h"
+
 namespace ontogen {
 namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "program_file_test" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch(const std::string& name) { return test::scratchDir(name, "program_file_test"); }
 
-fs::path write(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
+using test::writeFile;
 
 const std::string kCpfg = "Lsystem: 1\nderivation length: 1\nAxiom: FF\nF --> F\nendlsystem\n";
 
@@ -45,7 +39,7 @@ struct RecordingCheck {
 };
 
 TEST(ProgramFile, ACellFileIsReadAsItIsAfterOneCheckOfItsMemory) {
-  const fs::path path = write(scratch("cell") / "tree.cell", "lsystem tree {\n  axiom F\n}\n");
+  const fs::path path = writeFile(scratch("cell") / "tree.cell", "lsystem tree {\n  axiom F\n}\n");
   RecordingCheck memory;
   DiagnosticSink sink;
   const ProgramFileText read = readProgramFile(path.string(), {.memory = memory.check()}, sink);
@@ -60,7 +54,7 @@ TEST(ProgramFile, ACellFileIsReadAsItIsAfterOneCheckOfItsMemory) {
 }
 
 TEST(ProgramFile, AnotherToolsFileIsCheckedBeforeAndAfterItIsConverted) {
-  const fs::path path = write(scratch("cpfg") / "tree.l", kCpfg);
+  const fs::path path = writeFile(scratch("cpfg") / "tree.l", kCpfg);
   RecordingCheck memory;
   DiagnosticSink sink;
   const ProgramFileText read = readProgramFile(path.string(), {.memory = memory.check()}, sink);
@@ -95,11 +89,11 @@ TEST(ProgramFile, WhyThereIsNoTextComesBackWithItsKind) {
   EXPECT_EQ(missing.failure, ProgramFileFailure::Unreadable);
   EXPECT_EQ(missing.error.rfind("cannot read '" + (dir / "none.cell").string() + "': ", 0), 0u) << missing.error;
 
-  const fs::path big = write(dir / "big.cell", std::string(2000, ' '));
+  const fs::path big = writeFile(dir / "big.cell", std::string(2000, ' '));
   const ProgramFileText tooLarge = readProgramFile(big.string(), {.maxSourceBytes = 1000, .memory = {}}, sink);
   EXPECT_EQ(tooLarge.failure, ProgramFileFailure::Unreadable);
 
-  const fs::path bad = write(dir / "bad.l", "Lsystem: 1\nAxiom: F\nF --> F(\nendlsystem\n");
+  const fs::path bad = writeFile(dir / "bad.l", "Lsystem: 1\nAxiom: F\nF --> F(\nendlsystem\n");
   DiagnosticSink errors;
   const ProgramFileText notConverted = readProgramFile(bad.string(), {}, errors);
   EXPECT_FALSE(notConverted.text);
