@@ -1,5 +1,6 @@
 #include "studio/gallery.h"
 
+#include <algorithm>
 #include <cctype>
 #include <stdexcept>
 
@@ -31,8 +32,56 @@ void Gallery::reset(const std::string& text, const std::string& stem) {
   VariationOptions options;
   options.constants = def_.constants;
   space_ = std::make_unique<VariationSpace>(text, options);
+  text_ = text;
   stem_ = stem;
   generation_ = 1;
+  ++epoch_;
+  variants_.clear();
+  held_.clear();
+  // The program as written, then each define at the ends of its range that differ from
+  // its value, the low end first (probeNeeded skips the high one when the low one differed).
+  probes_.assign(1, Probe{});
+  for (std::size_t g = 0; g < space_->genes().size(); ++g) {
+    const Gene& gene = space_->genes()[g];
+    if (gene.kind != Gene::Kind::Define) continue;
+    for (const double end : {gene.low, gene.high})
+      if (end != gene.value) probes_.push_back({static_cast<int>(g), end, false, {}});
+  }
+  probing_ = probes_.size() > 1;
+  if (!probing_) {
+    // Nothing to probe: the program as written grows as variant 0.
+    probes_.clear();
+    decideFirstGeneration();
+  }
+}
+
+bool Gallery::changesThePicture(const Probe& probe) const {
+  const GalleryPicture& written = probes_.front().picture;
+  return probe.picture.png != written.png || (probe.picture.png.empty() && probe.picture.error != written.error);
+}
+
+bool Gallery::probeNeeded(std::size_t index) const {
+  // A high end is not needed when the low end of the same define already changed the picture.
+  for (std::size_t i = 1; i < index; ++i)
+    if (probes_[i].gene == probes_[index].gene && probes_[i].grown && changesThePicture(probes_[i])) return false;
+  return true;
+}
+
+void Gallery::decideFirstGeneration() {
+  probing_ = false;
+  std::vector<std::string> changing;
+  for (std::size_t i = 1; i < probes_.size(); ++i)
+    if (probes_[i].grown && changesThePicture(probes_[i]))
+      changing.push_back(space_->genes()[static_cast<std::size_t>(probes_[i].gene)].name);
+  for (const Gene& gene : space_->genes())
+    if (gene.kind == Gene::Kind::Define && std::find(changing.begin(), changing.end(), gene.name) == changing.end() &&
+        std::find(held_.begin(), held_.end(), gene.name) == held_.end())
+      held_.push_back(gene.name);
+  if (!held_.empty()) {
+    VariationOptions options = space_->options();
+    options.fixed = held_;
+    space_ = std::make_unique<VariationSpace>(text_, options);
+  }
   variants_.assign(static_cast<std::size_t>(def_.size), {});
   const Genome original = space_->original();
   for (int i = 0; i < def_.size; ++i) {
@@ -40,16 +89,26 @@ void Gallery::reset(const std::string& text, const std::string& stem) {
     // The first stays the program as written, so every gallery shows where it started.
     variant.genome = i == 0 || space_->genes().empty() ? original : space_->mutate(original, seedOf(i, kMutationSalt));
   }
-  startGeneration();
+  writeVariantTexts();
+  // The program as written grew as the first probe: its variants need not grow again.
+  if (probes_.empty() || !probes_.front().grown) return;
+  for (GalleryVariant& variant : variants_)
+    if (variant.text == text_) {
+      variant.png = probes_.front().picture.png;
+      variant.error = probes_.front().picture.error;
+      variant.grown = true;
+    }
 }
 
-void Gallery::startGeneration() {
-  ++epoch_;
+void Gallery::writeVariantTexts() {
   for (GalleryVariant& variant : variants_) variant.text = space_->programText(variant.genome);
 }
 
 void Gallery::breed(const std::vector<int>& picked) {
   if (!space_) throw std::invalid_argument("the gallery has no program yet");
+  if (probing_)
+    throw std::invalid_argument("the gallery is still finding which #defines change the picture; breed once it shows "
+                                "its variants");
   if (picked.empty()) throw std::invalid_argument("pick at least one variant to breed from");
   for (int index : picked)
     if (index < 0 || index >= static_cast<int>(variants_.size()))
@@ -73,12 +132,22 @@ void Gallery::breed(const std::vector<int>& picked) {
       child.parents = a == b ? std::vector<int>{a} : std::vector<int>{a, b};
     }
   }
-  startGeneration();
+  ++epoch_;
+  writeVariantTexts();
 }
 
 std::optional<GalleryTask> Gallery::nextTask() const {
+  if (probing_) {
+    for (std::size_t i = 0; i < probes_.size(); ++i) {
+      if (probes_[i].grown || !probeNeeded(i)) continue;
+      Genome genome = space_->original();
+      if (probes_[i].gene >= 0) genome.values[static_cast<std::size_t>(probes_[i].gene)] = probes_[i].value;
+      return GalleryTask{epoch_, static_cast<int>(i), true, space_->programText(genome), stem_};
+    }
+    return std::nullopt;
+  }
   for (std::size_t i = 0; i < variants_.size(); ++i)
-    if (!variants_[i].grown) return GalleryTask{epoch_, static_cast<int>(i), variants_[i].text, stem_};
+    if (!variants_[i].grown) return GalleryTask{epoch_, static_cast<int>(i), false, variants_[i].text, stem_};
   return std::nullopt;
 }
 
@@ -89,7 +158,16 @@ int Gallery::grown() const {
 }
 
 void Gallery::keep(const GalleryTask& task, GalleryPicture picture) {
-  if (task.epoch != epoch_ || task.index < 0 || task.index >= static_cast<int>(variants_.size())) return;
+  if (task.epoch != epoch_ || task.index < 0) return;
+  if (task.probe) {
+    if (!probing_ || task.index >= static_cast<int>(probes_.size())) return;
+    Probe& probe = probes_[static_cast<std::size_t>(task.index)];
+    probe.picture = std::move(picture);
+    probe.grown = true;
+    if (!nextTask()) decideFirstGeneration();
+    return;
+  }
+  if (probing_ || task.index >= static_cast<int>(variants_.size())) return;
   GalleryVariant& variant = variants_[static_cast<std::size_t>(task.index)];
   variant.png = std::move(picture.png);
   variant.error = std::move(picture.error);
@@ -133,7 +211,7 @@ GalleryPicture Gallery::grow(const GalleryTask& task, const std::atomic<bool>* c
   run.setOptions.formats = "png";
   run.setOptions.render.width = def_.thumbnailSide;
   run.setOptions.render.height = def_.thumbnailSide;
-  run.out = def_.work / ("variant" + std::to_string(task.index));
+  run.out = def_.work / ((task.probe ? "probe" : "variant") + std::to_string(task.index));
   std::filesystem::remove_all(run.out);
   Run grown(std::move(run));
   const RunReport report = grown.execute();
@@ -173,11 +251,20 @@ std::filesystem::path Gallery::save(int index) const {
 
 nlohmann::json Gallery::state() const {
   const int grownSoFar = grown();
+  int probes = 0, probed = 0;
+  for (std::size_t i = 0; i < probes_.size(); ++i) {
+    probes += probes_[i].grown || probeNeeded(i) ? 1 : 0;
+    probed += probes_[i].grown ? 1 : 0;
+  }
   nlohmann::json state = {{"generation", generation_},
                           {"epoch", epoch_},
                           {"seed", def_.seed},
                           {"grown", grownSoFar},
-                          {"growing", grownSoFar < static_cast<int>(variants_.size())}};
+                          {"growing", probing_ || grownSoFar < static_cast<int>(variants_.size())},
+                          {"probing", probing_},
+                          {"probes", probes},
+                          {"probed", probed},
+                          {"held", held_}};
   nlohmann::json genes = nlohmann::json::array();
   if (space_)
     for (const Gene& gene : space_->genes())
@@ -186,7 +273,13 @@ nlohmann::json Gallery::state() const {
   state["genes"] = genes;
   // A gallery of twelve of the same looks like a broken one: say why, and what would vary it.
   std::string warning;
-  if (space_ && space_->genes().empty())
+  std::string heldNames;
+  for (const std::string& name : held_) heldNames += (heldNames.empty() ? "" : ", ") + name;
+  if (space_ && space_->genes().empty() && !held_.empty())
+    warning = "no #define changes the picture between the ends of its range (" + heldNames +
+              "): every variant is the same" +
+              (def_.constants ? "" : " (vary its rules' numbers with --vary-constants)");
+  else if (space_ && space_->genes().empty() && !probing_)
     warning = def_.constants ? "the program has no #define NAME NUMBER and no number in its rules to vary: every "
                                "variant is the same"
                              : "the program has no #define NAME NUMBER to vary: every variant is the same (vary its "

@@ -20,6 +20,7 @@ const studio = {
   generation: 0,
   galleryEpoch: 0,     // of the generation shown (each reset and breed makes a new one)
   galleryGrown: 0,     // of its variants, those grown when it was shown
+  galleryProbed: 0,    // of its probes of what changes the picture, those grown when it was shown
   picked: new Set(),
   lastError: '',
   events: 0,           // states the server pushed
@@ -363,9 +364,14 @@ function showGallery(gallery) {
   }
   studio.generation = gallery.generation;
   studio.galleryGrown = gallery.grown;
-  $('generation').textContent = (gallery.growing
-    ? `generation ${gallery.generation}: ${gallery.grown} of ${gallery.variants.length} grown`
-    : `generation ${gallery.generation}`) + (gallery.warning ? ` (${gallery.warning})` : '');
+  studio.galleryProbed = gallery.probed;
+  const progress = gallery.probing
+    ? `: finding which #defines change the picture (${gallery.probed} of at most ${gallery.probes} grown)`
+    : gallery.growing ? `: ${gallery.grown} of ${gallery.variants.length} grown` : '';
+  const held = gallery.held.length && !gallery.warning
+    ? ` · held, as they change nothing pictured: ${gallery.held.join(', ')}` : '';
+  $('generation').textContent = `generation ${gallery.generation}${progress}` +
+    (gallery.warning ? ` (${gallery.warning})` : '') + held;
   $('breed').disabled = studio.picked.size === 0;
   $('gallery-restart').disabled = false;
   document.body.dataset.generation = String(gallery.generation);
@@ -384,11 +390,20 @@ function showGallery(gallery) {
     } else if (!variant.grown) {
       card.append(text('div', 'growing…', 'pending'));
     } else {
-      card.append(text('div', variant.error, 'failed'));
+      card.classList.add('failed');
+      const why = text('div', undefined, 'why');
+      why.append(text('strong', 'failed'), text('span', variant.error));
+      card.append(why);
     }
     const caption = text('div', undefined, 'caption');
-    const values = gallery.genes.map((g, i) => `${g.name}=${Number(variant.values[i].toPrecision(4))}`).join(' ');
-    caption.append(text('span', values));
+    // A value a line, as a person writes it: whole numbers whole, others to 3 digits.
+    const values = text('div', undefined, 'values');
+    gallery.genes.forEach((gene, i) => {
+      const value = variant.values[i];
+      const shown = gene.integer ? String(Math.round(value)) : String(Number(value.toPrecision(3)));
+      values.append(text('div', `${gene.name} ${shown}`));
+    });
+    caption.append(values);
     const save = text('button', 'save');
     save.type = 'button';
     save.addEventListener('click', async (event) => {
@@ -418,7 +433,8 @@ async function followGallery(epoch) {
     if (!response.ok) return;
     const gallery = await response.json();
     if (gallery.epoch !== epoch) return;
-    if (gallery.grown !== studio.galleryGrown || !gallery.growing) showGallery(gallery);
+    if (gallery.grown !== studio.galleryGrown || gallery.probed !== studio.galleryProbed || !gallery.growing)
+      showGallery(gallery);
     if (!gallery.growing) return;
   }
 }

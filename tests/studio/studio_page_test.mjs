@@ -8,7 +8,8 @@
 // model stays, that a growth without end shows its progress, is answered about all the
 // while and stops with Stop, that a runaway stops at the interactive limit the page
 // shows, that the music set's notes reach the page and play with the animation, and that
-// the gallery breeds a generation whose variants can be saved as programs that grow, and
+// the gallery breeds a generation whose variants can be saved as programs that grow, varies
+// only what changes the picture and shows a variant that failed as failed, and
 // that the page's changes carry the token the studio wrote into it (others are refused).
 //
 //   node studio_page_test.mjs ONTOGEN_EXECUTABLE OUTPUT_DIR
@@ -390,6 +391,43 @@ try {
     await stopStudio(pictured);
   }
 
+  // The gallery varies what changes the picture: a bush whose DEPTH does, past 8 beyond
+  // the cell limit of 3,000 (2,041 cells at 8, 4,089 at 9), and a SPARE define that
+  // changes nothing, held. The variants that pass the limit are shown as failed, with
+  // why; the others' labels read as a person writes their values.
+  {
+    const bush = path.join(work, 'bush.cell');
+    fs.writeFileSync(bush, '#define DEPTH 8\n#range DEPTH 1 14\n#define SPARE 3\nlsystem bush {\n  #until 16\n' +
+      '  axiom A(DEPTH)\n  A(n) : n > 0 -> F [ +(30) A(n - 1) ] [ -(30) A(n - 1) ]\n}\n');
+    const bred = await startStudio(bush, ['--max-cells', '3000', '--frames', '2']);
+    const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
+    await page.goto(bred.url);
+    await page.waitForSelector('body[data-model-version="1"]', { timeout: 20000 });
+    await page.click('#gallery-open');
+    await page.waitForSelector('body[data-gallery-grown="1"]', { timeout: 120000 });
+    const gallery = await (await fetch(bred.url + 'api/gallery')).json();
+    const cards = await page.$$eval('#gallery .variant', (all) => all.map((card) => ({
+      index: Number(card.dataset.index), failed: card.classList.contains('failed'), picture: !!card.querySelector('img'),
+      why: card.querySelector('.why') ? card.querySelector('.why').textContent : '',
+      values: [...card.querySelectorAll('.values div')].map((line) => line.textContent),
+    })));
+    const failed = gallery.variants.filter((v) => v.error !== '');
+    check(gallery.genes.map((g) => g.name).join() === 'DEPTH' && gallery.held.join() === 'SPARE' &&
+      /held, as they change nothing pictured: SPARE$/.test(await page.textContent('#generation')),
+      `the gallery varies DEPTH, which changes the picture, and holds SPARE (${await page.textContent('#generation')})`);
+    check(failed.length > 0 && failed.length < 12 && failed.every((v) => v.values[0] > 8) &&
+      cards.length === 12 && cards.every((card) => card.failed === (gallery.variants[card.index].error !== '') &&
+        card.picture === !card.failed && (!card.failed || /^failed.*past 3000 cells/.test(card.why))),
+      `the variants past the limit show as failed, the others pictured (${failed.length} failed: ` +
+      `${cards.filter((c) => c.failed).map((c) => c.why).slice(0, 1)})`);
+    check(cards.every((card) => card.values.length === 1 &&
+      card.values[0] === `DEPTH ${gallery.variants[card.index].values[0]}`) && cards[0].values[0] === 'DEPTH 8',
+      `each variant is labelled with its value (${cards.map((c) => c.values.join(' ')).join(', ')})`);
+    await page.screenshot({ path: path.join(outputDir, 'studio_gallery_failed.png'), fullPage: true });
+    await page.close();
+    await stopStudio(bred);
+  }
+
   const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
   const pageErrors = [];
   page.on('pageerror', (error) => pageErrors.push(String(error)));
@@ -516,9 +554,6 @@ try {
   // Evolution: a gallery of twelve, two picked, one generation bred.
   await page.click('#gallery-open');
   await page.waitForSelector('body[data-generation="1"]', { timeout: 60000 });
-  const answered = await (await fetch(url + 'api/gallery')).json();
-  check(answered.generation === 1 && answered.variants.length === 12,
-    `the first generation holds 12 variants (${answered.grown} grown when asked)`);
   await page.waitForSelector('body[data-gallery-grown="1"]', { timeout: 120000 });
   await page.waitForFunction(() => [...document.querySelectorAll('#gallery img')].every((i) => i.complete && i.naturalWidth > 0), null, { timeout: 20000 });
   const firstGeneration = await (await fetch(url + 'api/gallery')).json();

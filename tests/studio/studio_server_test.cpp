@@ -566,12 +566,12 @@ TEST_F(StudioFixture, RoutesAnswerThePage) {
   // Only a POST makes the gallery; a GET answers it as it stands.
   EXPECT_EQ(nlohmann::json::parse(ask("GET", "/api/gallery").body)["generation"], 0);
   EXPECT_FALSE(gallery.ready());
-  const nlohmann::json first = nlohmann::json::parse(ask("POST", "/api/gallery", "{}").body);
+  EXPECT_EQ(nlohmann::json::parse(ask("POST", "/api/gallery", "{}").body)["generation"], 1);
+  ASSERT_TRUE(server.waitForGallery(std::chrono::minutes(5)));
+  const nlohmann::json first = nlohmann::json::parse(ask("GET", "/api/gallery").body);
   ASSERT_EQ(first["variants"].size(), 12u);
-  EXPECT_EQ(first["generation"], 1);
   // The gallery starts from the sliders: variant 0 is the program as the page shows it.
   EXPECT_EQ(first["variants"][0]["values"], nlohmann::json::array({45.0, 1.0}));
-  ASSERT_TRUE(server.waitForGallery(std::chrono::minutes(5)));
   EXPECT_EQ(ask("GET", "/gallery/0.png").contentType, "image/png");
   EXPECT_TRUE(ask("GET", "/gallery/0.png").body.starts_with("\x89PNG"));
   EXPECT_EQ(ask("GET", "/gallery/12.png").status, 404);
@@ -614,6 +614,7 @@ struct StudioOverHttp : StudioFixture {
     fs::create_directories(def.saveTo);
     gallery = std::make_unique<Gallery>(def);
     gallery->reset(kTree, "tree");  // a gallery to save from
+    gallery->growAll();
     studio = std::make_unique<StudioServer>(*model, *gallery);
     http = std::make_unique<HttpServer>(HttpServerDef{}, [this](const HttpRequest& r) { return studio->handle(r); });
     http->start();
@@ -762,14 +763,22 @@ TEST_F(StudioFixture, AGalleryGrowsOffTheRequestsThreadAndANewGenerationReplaces
   auto ask = [&](std::string method, std::string path, std::string body = "") {
     return askAsThePage(*server, std::move(method), std::move(path), std::move(body));
   };
-  const nlohmann::json first = nlohmann::json::parse(ask("POST", "/api/gallery", "{}").body);
+  // Answered before any probe of what changes the picture grew: the variants come after.
+  const nlohmann::json asked = nlohmann::json::parse(ask("POST", "/api/gallery", "{}").body);
+  EXPECT_EQ(asked["probing"], true);
+  EXPECT_EQ(asked["probed"], 0);
+  EXPECT_EQ(asked["variants"].size(), 0u);
+  EXPECT_EQ(asked["growing"], true);
+  EXPECT_EQ(ask("POST", "/api/breed", R"({"picked": [0]})").status, 422);  // nothing to pick yet
+  nlohmann::json first = asked;
+  for (const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+       first["probing"] == true && std::chrono::steady_clock::now() < until;)
+    first = nlohmann::json::parse(ask("GET", "/api/gallery").body);
   ASSERT_EQ(first["variants"].size(), 12u);
-  EXPECT_EQ(first["grown"], 0);  // answered before any variant grew
-  EXPECT_EQ(first["growing"], true);
-  for (const nlohmann::json& variant : first["variants"]) {
-    EXPECT_EQ(variant["grown"], false);
-    EXPECT_EQ(variant["picture"], false);
-  }
+  EXPECT_EQ(first["epoch"], asked["epoch"]);
+  // The program as written grew as the first probe: variant 0 has its picture at once.
+  EXPECT_EQ(first["variants"][0]["grown"], true);
+  EXPECT_EQ(first["variants"][0]["picture"], true);
   // Picked before it has grown: a variant's values are known at once.
   const nlohmann::json second = nlohmann::json::parse(ask("POST", "/api/breed", R"({"picked": [3]})").body);
   EXPECT_EQ(second["generation"], 2);
@@ -788,7 +797,7 @@ TEST_F(StudioFixture, AGalleryGrowsOffTheRequestsThreadAndANewGenerationReplaces
     ASSERT_TRUE(variant.grown);
     ASSERT_FALSE(variant.png.empty()) << variant.error;
     EXPECT_EQ(ask("GET", "/gallery/" + std::to_string(i) + ".png").body, variant.png);
-    EXPECT_EQ(again.grow(GalleryTask{0, i, variant.text, "tree"}).png, variant.png) << "variant " << i;
+    EXPECT_EQ(again.grow(GalleryTask{0, i, false, variant.text, "tree"}).png, variant.png) << "variant " << i;
   }
   // A studio closed while its gallery grows cancels the variant growing and ends.
   EXPECT_EQ(nlohmann::json::parse(ask("POST", "/api/gallery/restart", "{}").body)["grown"], 0);
@@ -805,6 +814,7 @@ TEST_F(StudioFixture, ASavedVariantStaysInTheSaveFolderWhateverItsStem) {
   for (const std::string& stem : {std::string("../../escaped"), std::string("/etc/escaped"), std::string(".."),
                                   std::string("a/../b"), std::string("..\\x")}) {
     gallery.reset("#define A 1\nlsystem s {\n  #until 1\n  axiom F(A)\n}\n", stem);
+    gallery.growAll();
     const fs::path path = gallery.save(0);
     EXPECT_EQ(path.parent_path(), folder / "saved" / "here") << stem << " -> " << path;
     EXPECT_EQ(path.filename().string().find(".."), std::string::npos) << path;
@@ -834,6 +844,65 @@ TEST_F(StudioFixture, AGalleryWarnsWhenNothingWouldVary) {
                                      "every variant is the same");
 }
 
+// Variants must differ visibly: a define that does not change the picture (here one of
+// the music alone) is held at its value, and the gallery varies the one that does.
+TEST_F(StudioFixture, AGalleryVariesTheDefinesThatChangeThePictureAndHoldsTheOthers) {
+  const std::string music = R"(#define VOLUME 80
+#range VOLUME 1 127
+lsystem tree {
+  #until 3
+  axiom !(0.1) (A, 0)
+  (A, 1) -> F [ +(ANGLE) (A, 0) ] [ -(ANGLE) (A, 0) ]
+  interpret music A { pitch(60) note(0.25, VOLUME) }
+}
+)";
+  Gallery gallery(galleryDef());
+  gallery.reset("#define ANGLE 30\n" + music, "tree");
+  EXPECT_TRUE(gallery.probing());
+  EXPECT_TRUE(gallery.variants().empty());
+  // The program as written, then ANGLE at 0 and 60, VOLUME at 1 and 127.
+  EXPECT_EQ(gallery.state()["probes"], 5);
+  gallery.growAll();
+  const nlohmann::json state = gallery.state();
+  EXPECT_FALSE(gallery.probing());
+  // ANGLE at 0 pictured a straight stem: its high end was not needed.
+  EXPECT_EQ(state["probes"], 4);
+  EXPECT_EQ(state["probed"], 4);
+  EXPECT_EQ(state["held"], nlohmann::json::array({"VOLUME"}));
+  EXPECT_EQ(state["warning"], "");
+  ASSERT_EQ(state["genes"].size(), 1u);
+  EXPECT_EQ(state["genes"][0]["name"], "ANGLE");
+  std::set<double> angles;
+  std::set<std::string> pictures;
+  for (const GalleryVariant& variant : gallery.variants()) {
+    ASSERT_EQ(variant.genome.values.size(), 1u);
+    angles.insert(variant.genome.values[0]);
+    EXPECT_NE(variant.text.find("#define VOLUME 80\n"), std::string::npos) << variant.text;
+    EXPECT_TRUE(variant.error.empty()) << variant.error;
+    pictures.insert(variant.png);
+  }
+  // ANGLE is written as a whole number, so two variants may share one: each other one
+  // looks different.
+  EXPECT_GE(angles.size(), 10u);
+  EXPECT_EQ(pictures.size(), angles.size());
+
+  // A program whose only define changes nothing it pictures says so, and grows once.
+  Gallery quiet(galleryDef());
+  quiet.reset("#define ANGLE 30\n" + music.substr(0, music.find("lsystem")) +
+                  "lsystem tree {\n  #until 3\n  axiom F(1) A\n  interpret music A { pitch(60) note(0.25, VOLUME) }\n}\n",
+              "tree");
+  quiet.growAll();
+  EXPECT_EQ(quiet.state()["held"], nlohmann::json::array({"ANGLE", "VOLUME"}));
+  EXPECT_EQ(quiet.state()["warning"],
+            "no #define changes the picture between the ends of its range (ANGLE, VOLUME): every variant is the same "
+            "(vary its rules' numbers with --vary-constants)");
+  for (const GalleryVariant& variant : quiet.variants()) {
+    EXPECT_TRUE(variant.grown);
+    EXPECT_FALSE(variant.png.empty());
+    EXPECT_EQ(variant.png, quiet.variants()[0].png);
+  }
+}
+
 TEST_F(StudioFixture, GalleryIsTheSameForTheSameSeedAndPicks) {
   Gallery a(galleryDef(7)), b(galleryDef(7)), c(galleryDef(8));
   a.reset(kTree, "tree");
@@ -841,6 +910,7 @@ TEST_F(StudioFixture, GalleryIsTheSameForTheSameSeedAndPicks) {
   c.reset(kTree, "tree");
   a.growAll();
   b.growAll();
+  c.growAll();
   std::vector<Genome> genomesA, genomesC;
   for (std::size_t i = 0; i < a.variants().size(); ++i) {
     EXPECT_EQ(a.variants()[i].genome, b.variants()[i].genome);
