@@ -105,10 +105,9 @@ int runStudio(const StudioOptions& options) {
     modelDef.maxMemoryBytes = options.common.limits.maxMemoryBytes;
   studio::StudioModel model(modelDef);
 
+  // The gallery grows within the page's limits as the model does (StudioServer gives them).
   studio::GalleryDef galleryDef;
   galleryDef.program = modelDef.program;
-  galleryDef.program.limits.maxCells = std::min(modelDef.maxCells, defaults.maxCells);
-  galleryDef.program.limits.maxMemoryBytes = std::min(modelDef.maxMemoryBytes, defaults.maxMemoryBytes);
   galleryDef.until = options.until;
   galleryDef.seed = options.gallerySeed;
   galleryDef.constants = options.varyConstants;

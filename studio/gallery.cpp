@@ -20,7 +20,10 @@ constexpr uint64_t kCrossoverSalt = 0x63726f73736f7665ull;  // "crossove"
 
 }  // namespace
 
-Gallery::Gallery(GalleryDef def) : def_(std::move(def)) {
+Gallery::Gallery(GalleryDef def)
+    : def_(std::move(def)),
+      limits_{def_.program.limits.maxCells, def_.program.limits.maxMemoryBytes, def_.program.limits.maxCells,
+              def_.program.limits.maxMemoryBytes} {
   if (def_.size < 1 || def_.size > 64) throw std::invalid_argument("a gallery holds 1 to 64 variants");
 }
 
@@ -142,12 +145,13 @@ std::optional<GalleryTask> Gallery::nextTask() const {
       if (probes_[i].grown || !probeNeeded(i)) continue;
       Genome genome = space_->original();
       if (probes_[i].gene >= 0) genome.values[static_cast<std::size_t>(probes_[i].gene)] = probes_[i].value;
-      return GalleryTask{epoch_, static_cast<int>(i), true, space_->programText(genome), stem_};
+      return GalleryTask{epoch_, static_cast<int>(i), true, space_->programText(genome), stem_, limits_};
     }
     return std::nullopt;
   }
   for (std::size_t i = 0; i < variants_.size(); ++i)
-    if (!variants_[i].grown) return GalleryTask{epoch_, static_cast<int>(i), false, variants_[i].text, stem_};
+    if (!variants_[i].grown)
+      return GalleryTask{epoch_, static_cast<int>(i), false, variants_[i].text, stem_, limits_};
   return std::nullopt;
 }
 
@@ -202,6 +206,13 @@ GalleryPicture Gallery::grow(const GalleryTask& task, const std::atomic<bool>* c
   run.stem = "variant";
   run.world = worldDefOf(def_.program, *program);
   run.world.limits.cancel = cancel;
+  const WorldLimits& ceiling = def_.program.limits;
+  const InteractiveLimits limits =
+      task.limits.maxCells > 0
+          ? task.limits
+          : InteractiveLimits{ceiling.maxCells, ceiling.maxMemoryBytes, ceiling.maxCells, ceiling.maxMemoryBytes};
+  run.world.limits.maxCells = limits.maxCells;
+  run.world.limits.maxMemoryBytes = limits.maxMemoryBytes;
   run.until = def_.until;
   run.step = def_.program.step;
   run.frames = 1;
@@ -216,7 +227,7 @@ GalleryPicture Gallery::grow(const GalleryTask& task, const std::atomic<bool>* c
   Run grown(std::move(run));
   const RunReport report = grown.execute();
   if (!report.ok()) {
-    picture.error = report.diagnostics.empty() ? "the variant failed" : report.diagnostics.front().message;
+    picture.error = report.diagnostics.empty() ? "the variant failed" : limits.worded(report.diagnostics.front().message);
     return picture;
   }
   for (const std::filesystem::path& file : report.files)

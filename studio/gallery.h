@@ -35,12 +35,15 @@
 #include <nlohmann/json.hpp>
 
 #include "lang/variation.h"
+#include "studio/interactive_limits.h"
 #include "studio/program_options.h"
 
 namespace ontogen::studio {
 
 struct GalleryDef {
-  StudioProgramOptions program;  ///< seed, limits, threads of each variant's world
+  /// Seed, threads of each variant's world; its limits are the ceiling of the interactive
+  /// ones the variants grow within (Gallery::setLimits), which start at them.
+  StudioProgramOptions program;
   std::optional<double> until;   ///< empty: each variant's #until
   int size = 12;                 ///< variants a generation
   uint64_t seed = 1;             ///< of the mutations
@@ -67,6 +70,8 @@ struct GalleryTask {
   bool probe = false;  ///< a probe of what changes the picture (see above), not a variant
   std::string text;
   std::string stem;  ///< of the studio's file, which names the variant's program in its messages
+  /// The limits it grows within; none given (0 cells): the GalleryDef's.
+  InteractiveLimits limits = {};
 };
 
 /// What growing a variant gave: its picture, or why it has none.
@@ -100,6 +105,9 @@ class Gallery {
   void keep(const GalleryTask& task, GalleryPicture picture);
   /// Grows every probe and variant of this generation not grown yet, one after the other.
   void growAll();
+  /// The interactive limits the probes and variants to come grow within, as the page sets
+  /// them for the model; a variant past one says so by the page's control.
+  void setLimits(const InteractiveLimits& limits) { limits_ = limits; }
   /// The probes of reset() are still growing: the first generation has no variants yet.
   bool probing() const { return probing_; }
   /// The defines held at their value because no probe of theirs changed the picture.
@@ -142,6 +150,7 @@ class Gallery {
   void writeVariantTexts();
 
   GalleryDef def_;
+  InteractiveLimits limits_;
   std::unique_ptr<VariationSpace> space_;  // the genes varied (all, while probing)
   std::string text_;                       // as reset() was given it
   std::string stem_;

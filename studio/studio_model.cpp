@@ -182,6 +182,12 @@ void StudioModel::growOnce() {
       grown.diagnostics.push_back(
           {"error", 0, 0, error.what(), std::string("ontogen: error: ") + error.what() + "\n", ""});
     }
+    const InteractiveLimits wording{limits.maxCells, limits.maxMemoryBytes, def_.program.limits.maxCells,
+                                    def_.program.limits.maxMemoryBytes};
+    for (Diagnostic& diagnostic : grown.diagnostics) {
+      diagnostic.message = wording.worded(diagnostic.message);
+      diagnostic.formatted = wording.worded(diagnostic.formatted);
+    }
     // A text with errors may be a save caught half-written: an editor truncates the file,
     // then writes it, or writes it in pieces. Its errors are shown only once the files
     // held still a moment after the read; a file that changed meanwhile is read again.
@@ -339,6 +345,11 @@ void StudioModel::setLimits(uint64_t maxCells, uint64_t maxMemoryBytes) {
   maxCells_ = maxCells;
   maxMemoryBytes_ = maxMemoryBytes;
   changed();
+}
+
+InteractiveLimits StudioModel::limits() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return {maxCells_, maxMemoryBytes_, def_.program.limits.maxCells, def_.program.limits.maxMemoryBytes};
 }
 
 uint64_t StudioModel::version() const {

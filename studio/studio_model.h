@@ -41,6 +41,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "studio/interactive_limits.h"
 #include "studio/program_options.h"
 
 namespace ontogen::studio {
@@ -132,6 +133,9 @@ class StudioModel {
   /// Sets the interactive limits for the growths to come. Throws std::invalid_argument
   /// when one is 0 or above the ceiling the studio was started with.
   void setLimits(uint64_t maxCells, uint64_t maxMemoryBytes);
+  /// The interactive limits and their ceiling. A growth's limit messages name the page's
+  /// control, not the command line's flag (InteractiveLimits::worded).
+  InteractiveLimits limits() const;
 
   /// Counts every growth that ended, failed or not.
   uint64_t version() const;

@@ -72,6 +72,7 @@ void StudioServer::restartGallery() {
     if (gene.kind != Gene::Kind::Define) continue;
     if (auto value = values.find(gene.name); value != values.end()) genome.values[i] = value->second;
   }
+  gallery_.setLimits(model_.limits());
   gallery_.reset(space.programText(genome), model_.stem());
   galleryText_ = model_.text();
   grower_.wake();
@@ -163,6 +164,9 @@ HttpResponse StudioServer::handle(const HttpRequest& request) {
           return error(400, "limits take {\"maxCells\": N, \"maxMemoryMiB\": M}");
         model_.setLimits(body["maxCells"].get<uint64_t>(), body["maxMemoryMiB"].get<uint64_t>() << 20);
         model_.requestGrowth();
+        // The gallery's variants to come grow within the page's limits too.
+        const auto lock = grower_.lock();
+        gallery_.setLimits(model_.limits());
         return json(model_.state());
       }
       const auto lock = grower_.lock();

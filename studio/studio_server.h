@@ -15,7 +15,8 @@
 //                                     number in each `#define N`); answers {"path", "state"}
 //   POST /api/define/drop             {"name": N}: drop the slider's value, the file's is in effect again
 //   POST /api/stop                    cancel the growth at hand; the last model stays
-//   POST /api/limits                  {"maxCells": N, "maxMemoryMiB": M}: the interactive limits; grows again
+//   POST /api/limits                  {"maxCells": N, "maxMemoryMiB": M}: the interactive limits (of the
+//                                     model and the gallery's variants to come); grows again
 //   POST /api/gallery                 {}: the gallery, made at the first ask and again when the program changed
 //   POST /api/breed                   {"picked": [K, ...]}: the next generation (a variant need not be
 //                                     grown to be picked)

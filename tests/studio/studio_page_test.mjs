@@ -399,10 +399,14 @@ try {
     const bush = path.join(work, 'bush.cell');
     fs.writeFileSync(bush, '#define DEPTH 8\n#range DEPTH 1 14\n#define SPARE 3\nlsystem bush {\n  #until 16\n' +
       '  axiom A(DEPTH)\n  A(n) : n > 0 -> F [ +(30) A(n - 1) ] [ -(30) A(n - 1) ]\n}\n');
-    const bred = await startStudio(bush, ['--max-cells', '3000', '--frames', '2']);
+    const bred = await startStudio(bush, ['--frames', '2']);
     const page = await browser.newPage({ viewport: { width: 1100, height: 900 } });
     await page.goto(bred.url);
     await page.waitForSelector('body[data-model-version="1"]', { timeout: 20000 });
+    // The page's limit, which the gallery's variants grow within as the model does.
+    await page.locator('#max-cells').fill('3000');
+    await page.click('#limits-apply');
+    await page.waitForSelector('body[data-model-version="2"]', { timeout: 20000 });
     await page.click('#gallery-open');
     await page.waitForSelector('body[data-gallery-grown="1"]', { timeout: 120000 });
     const gallery = await (await fetch(bred.url + 'api/gallery')).json();
@@ -417,7 +421,8 @@ try {
       `the gallery varies DEPTH, which changes the picture, and holds SPARE (${await page.textContent('#generation')})`);
     check(failed.length > 0 && failed.length < 12 && failed.every((v) => v.values[0] > 8) &&
       cards.length === 12 && cards.every((card) => card.failed === (gallery.variants[card.index].error !== '') &&
-        card.picture === !card.failed && (!card.failed || /^failed.*past 3000 cells/.test(card.why))),
+        card.picture === !card.failed &&
+        (!card.failed || /^failed.*past 3000 cells, the cell limit; raise it under Limits on the page/.test(card.why))),
       `the variants past the limit show as failed, the others pictured (${failed.length} failed: ` +
       `${cards.filter((c) => c.failed).map((c) => c.why).slice(0, 1)})`);
     check(cards.every((card) => card.values.length === 1 &&
@@ -547,7 +552,9 @@ try {
   await page.waitForFunction(() => /past \d+ cells/.test(document.getElementById('diagnostics').textContent), null,
     { timeout: 60000 });
   const limited = await page.textContent('#diagnostics');
-  check(/past 1000000 cells/.test(limited), `the runaway stops at the page's limit (${limited.split('\n')[0]})`);
+  check(/past 1000000 cells, the cell limit; raise it under Limits on the page \(cells, up to 100000000\)/.test(limited) &&
+    !/--max-cells/.test(limited),
+    `the runaway stops at the page's limit, and its message names the page's control (${limited.split('\n')[0]})`);
   fs.writeFileSync(file, program(70, 1.5));
   await page.waitForSelector('body[data-model-version="8"]', { timeout: 20000 });
 

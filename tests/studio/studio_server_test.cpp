@@ -477,6 +477,50 @@ TEST_F(StudioFixture, InteractiveLimitsStopARunawayAndCanBeRaisedToTheCeiling) {
   EXPECT_EQ(state["limits"]["maxCells"], 1000);
 }
 
+// A growth in the studio passed the page's limit, not the command line's: its message
+// names the page's control (or, at the ceiling, the flag that raises the ceiling), for the
+// model and for the gallery's variants alike, which grow within the limits the page sets.
+TEST_F(StudioFixture, ALimitsMessageNamesThePagesControlNotTheCommandLinesFlag) {
+  StudioModelDef def = modelDef();
+  def.program.limits.maxCells = 50'000;  // the ceiling, as the command line gives it
+  def.program.limits.maxMemoryBytes = uint64_t{4} << 30;
+  StudioModel model(def);
+  model.setLimits(1000, 64 << 20);
+  write("#define SPARE 1\nlsystem runaway {\n  #until 40\n  axiom A\n  A -> F A A\n}\n");
+  auto firstDiagnostic = [&model] {
+    const nlohmann::json state = model.state();
+    return state["diagnostics"].empty() ? nlohmann::json::object() : state["diagnostics"][0];
+  };
+  model.regrow();
+  EXPECT_EQ(firstDiagnostic()["message"],
+            "the model grew past 1000 cells, the cell limit; raise it under Limits on the page (cells, up to 50000)");
+  EXPECT_EQ(firstDiagnostic()["text"].get<std::string>().find("--max"), std::string::npos) << firstDiagnostic();
+  model.setLimits(50'000, 64 << 20);
+  model.regrow();
+  EXPECT_EQ(firstDiagnostic()["message"],
+            "the model grew past 50000 cells, the cell limit; the page's cell limit is at its ceiling: start the "
+            "studio with a larger --max-cells N to raise it");
+  model.setLimits(50'000, 1 << 20);
+  model.regrow();
+  // (Which part passes 1 MiB first is the writer's: the message ends the same.)
+  const std::string memory = firstDiagnostic()["message"];
+  EXPECT_TRUE(memory.ends_with("1 MiB; raise it under Limits on the page (memory, up to 4096 MiB)") ||
+              memory.ends_with("1 MiB, the memory limit; raise it under Limits on the page (memory, up to 4096 MiB)"))
+      << memory;
+
+  GalleryDef gallerySettings = galleryDef();
+  gallerySettings.program.limits = def.program.limits;
+  Gallery gallery(gallerySettings);
+  StudioServer server(model, gallery);
+  ASSERT_EQ(askAsThePage(server, "POST", "/api/limits", R"({"maxCells": 2000, "maxMemoryMiB": 64})").status, 200);
+  ASSERT_EQ(askAsThePage(server, "POST", "/api/gallery", "{}").status, 200);
+  ASSERT_TRUE(server.waitForGallery(std::chrono::minutes(5)));
+  const nlohmann::json variants = nlohmann::json::parse(askAsThePage(server, "GET", "/api/gallery", "").body)["variants"];
+  ASSERT_EQ(variants.size(), 12u);
+  EXPECT_EQ(variants[0]["error"],
+            "the model grew past 2000 cells, the cell limit; raise it under Limits on the page (cells, up to 50000)");
+}
+
 // The interactive limits hold the reading of the program's file too, not only its growth:
 // the reader (which refuses a file whose checking would pass the memory limit, and
 // converts another tool's within it) is given the limits the page shows, and the ones
