@@ -555,6 +555,31 @@ TEST_F(StudioFixture, TheInteractiveLimitsHoldTheReadingOfTheFile) {
   EXPECT_EQ(model.modelVersion(), 1u) << model.state().dump(2);
 }
 
+// A define's #range bounds what the page may give it: a value outside is refused (one
+// such request grew a model until memory ran out) and nothing grows; the range's ends
+// are taken.
+TEST_F(StudioFixture, ADefineOutsideItsDeclaredRangeIsRefusedAndGrowsNothing) {
+  write("#define DEPTH 4\n#range DEPTH 2 6\nlsystem s {\n  #until 3\n  axiom A(DEPTH)\n"
+        "  A(n) : n > 0 -> F [ + A(n - 1) ] A(n - 1)\n}\n");
+  StudioModel model(modelDef());
+  model.regrow();
+  model.start();
+  Gallery gallery(galleryDef());
+  StudioServer server(model, gallery);
+  for (const char* value : {"1", "7", "1e308", "-6"}) {
+    const HttpResponse refused =
+        askAsThePage(server, "POST", "/api/define", std::string(R"({"name": "DEPTH", "value": )") + value + "}");
+    EXPECT_EQ(refused.status, 422) << value;
+    EXPECT_NE(refused.body.find("is outside its range [2, 6]"), std::string::npos) << refused.body;
+  }
+  EXPECT_EQ(model.version(), 1u);
+  EXPECT_EQ(model.defines().at(0).value, 4);
+  EXPECT_EQ(askAsThePage(server, "POST", "/api/define", R"({"name": "DEPTH", "value": 6})").status, 200);
+  ASSERT_TRUE(model.waitIdle());
+  EXPECT_EQ(model.modelVersion(), 2u);
+  EXPECT_EQ(model.defines().at(0).value, 6);
+}
+
 TEST_F(StudioFixture, RoutesAnswerThePage) {
   StudioModel model(modelDef());
   model.regrow();
