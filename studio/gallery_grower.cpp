@@ -42,6 +42,9 @@ void GalleryGrower::growInTurn() {
     GalleryPicture picture = gallery_.grow(*task, &cancel_);
     lock.lock();
     growingEpoch_.reset();
+    // Cancelled as the grower ends: the picture is no outcome of the variant or probe, and
+    // the gallery, which outlives the grower, grows it again under the next one.
+    if (stopping_) return;
     gallery_.keep(*task, std::move(picture));
     changed_.notify_all();
   }

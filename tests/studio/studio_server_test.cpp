@@ -1,6 +1,6 @@
 // The studio without a browser: the model re-grown as its file and defines change, the
-// routes the page uses, who may ask them over a real socket, the gallery. The HTTP server
-// alone is tests/studio/http_server_test.cpp.
+// routes the page uses, who may ask them over a real socket. The HTTP server alone is
+// tests/studio/http_server_test.cpp, the gallery tests/studio/gallery_test.cpp.
 
 #include <unistd.h>
 
@@ -24,6 +24,7 @@
 #include "studio/studio_model.h"
 #include "studio/studio_server.h"
 #include "tests/studio/socket_client.h"
+#include "tests/studio/studio_fixture.h"
 
 namespace ontogen::studio {
 namespace {
@@ -31,61 +32,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::exchange;
-
-const char* kTree = R"(#define ANGLE 30
-#define LEN 1
-lsystem tree {
-  #until 3
-  axiom !(0.1) (A, 0)
-  (A, 1) -> F(LEN) [ +(ANGLE) (A, 0) ] [ -(ANGLE) (A, 0) ]
-}
-)";
-
-struct StudioFixture : ::testing::Test {
-  fs::path folder;
-  fs::path file;
-  void SetUp() override {
-    folder = fs::temp_directory_path() / ("ontogen_studio_test_" + std::to_string(::getpid()) + "_" +
-                                          ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(folder);
-    fs::create_directories(folder);
-    file = folder / "tree.cell";
-    write(kTree);
-  }
-  void TearDown() override { fs::remove_all(folder); }
-  void write(const std::string& text) {
-    std::ofstream(file, std::ios::binary) << text;
-    // File times may be coarse: a rewrite must look different to refresh().
-    fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(++rewrites));
-  }
-  StudioModelDef modelDef() {
-    StudioModelDef def;
-    def.program.file = file.string();
-    def.frames = 4;
-    def.work = folder / "work";
-    return def;
-  }
-  // As the page asks: to the studio's address, its changes from its origin with the token.
-  static HttpResponse askAsThePage(StudioServer& server, std::string method, std::string path, std::string body) {
-    HttpRequest request;
-    request.method = std::move(method);
-    request.path = std::move(path);
-    request.body = std::move(body);
-    request.port = 8420;
-    request.headers = {{"host", "127.0.0.1:8420"}, {"origin", "http://127.0.0.1:8420"}, {"x-ontogen-token", server.token()}};
-    return server.handle(request);
-  }
-  GalleryDef galleryDef(uint64_t seed = 7) {
-    GalleryDef def;
-    def.program.file = file.string();
-    def.seed = seed;
-    def.thumbnailSide = 64;
-    def.work = folder / "gallery";
-    def.saveTo = folder;
-    return def;
-  }
-  int rewrites = 0;
-};
+using test::kTree;
+using test::StudioFixture;
 
 TEST_F(StudioFixture, ModelGrowsFollowsItsFileAndKeepsTheLastGoodModel) {
   StudioModel model(modelDef());
@@ -819,182 +767,6 @@ TEST_F(StudioOverHttp, TheStudioNamesWhatItSavesAndWritesNothingOutsideItsFolder
   EXPECT_NE(saved.find(nlohmann::json((folder / "saved" / "tree_g1_v3.cell").string()).dump()), std::string::npos)
       << saved;
   EXPECT_TRUE(fs::exists(folder / "saved" / "tree_g1_v3.cell"));
-}
-
-// A request that makes a generation is answered before its variants grow: they grow one
-// after the other on the gallery's own thread, and a generation made meanwhile replaces
-// the one growing, whose pictures are never shown as the new one's.
-TEST_F(StudioFixture, AGalleryGrowsOffTheRequestsThreadAndANewGenerationReplacesTheOneGrowing) {
-  StudioModel model(modelDef());
-  model.regrow();
-  Gallery gallery(galleryDef());
-  auto server = std::make_unique<StudioServer>(model, gallery);
-  auto ask = [&](std::string method, std::string path, std::string body = "") {
-    return askAsThePage(*server, std::move(method), std::move(path), std::move(body));
-  };
-  // Answered before any probe of what changes the picture grew: the variants come after.
-  const nlohmann::json asked = nlohmann::json::parse(ask("POST", "/api/gallery", "{}").body);
-  EXPECT_EQ(asked["probing"], true);
-  EXPECT_EQ(asked["probed"], 0);
-  EXPECT_EQ(asked["variants"].size(), 0u);
-  EXPECT_EQ(asked["growing"], true);
-  EXPECT_EQ(ask("POST", "/api/breed", R"({"picked": [0]})").status, 422);  // nothing to pick yet
-  nlohmann::json first = asked;
-  for (const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(5);
-       first["probing"] == true && std::chrono::steady_clock::now() < until;)
-    first = nlohmann::json::parse(ask("GET", "/api/gallery").body);
-  ASSERT_EQ(first["variants"].size(), 12u);
-  EXPECT_EQ(first["epoch"], asked["epoch"]);
-  // The program as written grew as the first probe: variant 0 has its picture at once.
-  EXPECT_EQ(first["variants"][0]["grown"], true);
-  EXPECT_EQ(first["variants"][0]["picture"], true);
-  // Picked before it has grown: a variant's values are known at once.
-  const nlohmann::json second = nlohmann::json::parse(ask("POST", "/api/breed", R"({"picked": [3]})").body);
-  EXPECT_EQ(second["generation"], 2);
-  EXPECT_EQ(second["grown"], 0);
-  EXPECT_EQ(second["variants"][0]["values"], first["variants"][3]["values"]);
-  ASSERT_TRUE(server->waitForGallery(std::chrono::minutes(5)));
-  const nlohmann::json grown = nlohmann::json::parse(ask("GET", "/api/gallery").body);
-  EXPECT_EQ(grown["generation"], 2);
-  EXPECT_EQ(grown["epoch"], second["epoch"]);
-  EXPECT_EQ(grown["grown"], 12);
-  EXPECT_EQ(grown["growing"], false);
-  // Each picture is its own variant's, grown again here on this thread.
-  Gallery again(galleryDef());
-  for (int i = 0; i < 12; ++i) {
-    const GalleryVariant& variant = gallery.variants()[static_cast<std::size_t>(i)];
-    ASSERT_TRUE(variant.grown);
-    ASSERT_FALSE(variant.png.empty()) << variant.error;
-    EXPECT_EQ(ask("GET", "/gallery/" + std::to_string(i) + ".png").body, variant.png);
-    EXPECT_EQ(again.grow(GalleryTask{0, i, false, variant.text, "tree"}).png, variant.png) << "variant " << i;
-  }
-  // A studio closed while its gallery grows cancels the variant growing and ends.
-  EXPECT_EQ(nlohmann::json::parse(ask("POST", "/api/gallery/restart", "{}").body)["grown"], 0);
-  server.reset();
-}
-
-// The name a variant is saved under is the gallery's: a stem with separators or ".."
-// (from a file named so) still lands in the save folder.
-TEST_F(StudioFixture, ASavedVariantStaysInTheSaveFolderWhateverItsStem) {
-  GalleryDef def = galleryDef();
-  def.saveTo = folder / "saved" / "here";
-  fs::create_directories(def.saveTo);
-  Gallery gallery(def);
-  for (const std::string& stem : {std::string("../../escaped"), std::string("/etc/escaped"), std::string(".."),
-                                  std::string("a/../b"), std::string("..\\x")}) {
-    gallery.reset("#define A 1\nlsystem s {\n  #until 1\n  axiom F(A)\n}\n", stem);
-    gallery.growAll();
-    const fs::path path = gallery.save(0);
-    EXPECT_EQ(path.parent_path(), folder / "saved" / "here") << stem << " -> " << path;
-    EXPECT_EQ(path.filename().string().find(".."), std::string::npos) << path;
-    EXPECT_NE(path.filename().string()[0], '.') << path;
-    EXPECT_TRUE(fs::exists(path)) << path;
-  }
-  EXPECT_FALSE(fs::exists(folder / "escaped_g1_v0.cell"));
-}
-
-// A program with nothing to vary makes a gallery of twelve of the same: the gallery says
-// so, and what would vary it.
-TEST_F(StudioFixture, AGalleryWarnsWhenNothingWouldVary) {
-  Gallery varied(galleryDef());
-  varied.reset(kTree, "tree");
-  EXPECT_EQ(varied.state()["warning"], "");
-  const std::string fixed = "lsystem fixed {\n  #until 2\n  axiom A\n  A -> F [ + A ] A\n}\n";
-  Gallery same(galleryDef());
-  same.reset(fixed, "fixed");
-  EXPECT_EQ(same.state()["warning"],
-            "the program has no #define NAME NUMBER to vary: every variant is the same (vary its rules' numbers "
-            "with --vary-constants)");
-  GalleryDef constants = galleryDef();
-  constants.constants = true;
-  Gallery none(constants);
-  none.reset("lsystem fixed {\n  #until 2\n  axiom A\n  A -> F [ + A ] A\n}\n", "fixed");
-  EXPECT_EQ(none.state()["warning"], "the program has no #define NAME NUMBER and no number in its rules to vary: "
-                                     "every variant is the same");
-}
-
-// Variants must differ visibly: a define that does not change the picture (here one of
-// the music alone) is held at its value, and the gallery varies the one that does.
-TEST_F(StudioFixture, AGalleryVariesTheDefinesThatChangeThePictureAndHoldsTheOthers) {
-  const std::string music = R"(#define VOLUME 80
-#range VOLUME 1 127
-lsystem tree {
-  #until 3
-  axiom !(0.1) (A, 0)
-  (A, 1) -> F [ +(ANGLE) (A, 0) ] [ -(ANGLE) (A, 0) ]
-  interpret music A { pitch(60) note(0.25, VOLUME) }
-}
-)";
-  Gallery gallery(galleryDef());
-  gallery.reset("#define ANGLE 30\n" + music, "tree");
-  EXPECT_TRUE(gallery.probing());
-  EXPECT_TRUE(gallery.variants().empty());
-  // The program as written, then ANGLE at 0 and 60, VOLUME at 1 and 127.
-  EXPECT_EQ(gallery.state()["probes"], 5);
-  gallery.growAll();
-  const nlohmann::json state = gallery.state();
-  EXPECT_FALSE(gallery.probing());
-  // ANGLE at 0 pictured a straight stem: its high end was not needed.
-  EXPECT_EQ(state["probes"], 4);
-  EXPECT_EQ(state["probed"], 4);
-  EXPECT_EQ(state["held"], nlohmann::json::array({"VOLUME"}));
-  EXPECT_EQ(state["warning"], "");
-  ASSERT_EQ(state["genes"].size(), 1u);
-  EXPECT_EQ(state["genes"][0]["name"], "ANGLE");
-  std::set<double> angles;
-  std::set<std::string> pictures;
-  for (const GalleryVariant& variant : gallery.variants()) {
-    ASSERT_EQ(variant.genome.values.size(), 1u);
-    angles.insert(variant.genome.values[0]);
-    EXPECT_NE(variant.text.find("#define VOLUME 80\n"), std::string::npos) << variant.text;
-    EXPECT_TRUE(variant.error.empty()) << variant.error;
-    pictures.insert(variant.png);
-  }
-  // ANGLE is written as a whole number, so two variants may share one: each other one
-  // looks different.
-  EXPECT_GE(angles.size(), 10u);
-  EXPECT_EQ(pictures.size(), angles.size());
-
-  // A program whose only define changes nothing it pictures says so, and grows once.
-  Gallery quiet(galleryDef());
-  quiet.reset("#define ANGLE 30\n" + music.substr(0, music.find("lsystem")) +
-                  "lsystem tree {\n  #until 3\n  axiom F(1) A\n  interpret music A { pitch(60) note(0.25, VOLUME) }\n}\n",
-              "tree");
-  quiet.growAll();
-  EXPECT_EQ(quiet.state()["held"], nlohmann::json::array({"ANGLE", "VOLUME"}));
-  EXPECT_EQ(quiet.state()["warning"],
-            "no #define changes the picture between the ends of its range (ANGLE, VOLUME): every variant is the same "
-            "(vary its rules' numbers with --vary-constants)");
-  for (const GalleryVariant& variant : quiet.variants()) {
-    EXPECT_TRUE(variant.grown);
-    EXPECT_FALSE(variant.png.empty());
-    EXPECT_EQ(variant.png, quiet.variants()[0].png);
-  }
-}
-
-TEST_F(StudioFixture, GalleryIsTheSameForTheSameSeedAndPicks) {
-  Gallery a(galleryDef(7)), b(galleryDef(7)), c(galleryDef(8));
-  a.reset(kTree, "tree");
-  b.reset(kTree, "tree");
-  c.reset(kTree, "tree");
-  a.growAll();
-  b.growAll();
-  c.growAll();
-  std::vector<Genome> genomesA, genomesC;
-  for (std::size_t i = 0; i < a.variants().size(); ++i) {
-    EXPECT_EQ(a.variants()[i].genome, b.variants()[i].genome);
-    EXPECT_EQ(a.variants()[i].png, b.variants()[i].png);
-    EXPECT_TRUE(a.variants()[i].error.empty()) << a.variants()[i].error;
-  }
-  EXPECT_EQ(a.variants()[0].genome, a.space().original());
-  bool differs = false;
-  for (std::size_t i = 1; i < a.variants().size(); ++i) differs = differs || a.variants()[i].genome != c.variants()[i].genome;
-  EXPECT_TRUE(differs);
-  a.breed({1, 4, 9});
-  b.breed({1, 4, 9});
-  for (std::size_t i = 0; i < a.variants().size(); ++i) EXPECT_EQ(a.variants()[i].genome, b.variants()[i].genome);
-  EXPECT_THROW(a.breed({}), std::invalid_argument);
-  EXPECT_THROW(a.save(12), std::invalid_argument);
 }
 
 }  // namespace
