@@ -150,8 +150,7 @@ std::optional<GalleryTask> Gallery::nextTask() const {
     return std::nullopt;
   }
   for (std::size_t i = 0; i < variants_.size(); ++i)
-    if (!variants_[i].grown)
-      return GalleryTask{epoch_, static_cast<int>(i), false, variants_[i].text, stem_, limits_};
+    if (!variants_[i].grown) return GalleryTask{epoch_, static_cast<int>(i), false, variants_[i].text, stem_, limits_};
   return std::nullopt;
 }
 
@@ -227,7 +226,8 @@ GalleryPicture Gallery::grow(const GalleryTask& task, const std::atomic<bool>* c
   Run grown(std::move(run));
   const RunReport report = grown.execute();
   if (!report.ok()) {
-    picture.error = report.diagnostics.empty() ? "the variant failed" : limits.worded(report.diagnostics.front().message);
+    picture.error =
+        report.diagnostics.empty() ? "the variant failed" : limits.worded(report.diagnostics.front().message);
     return picture;
   }
   for (const std::filesystem::path& file : report.files)

@@ -11,7 +11,8 @@ constexpr std::string_view kRaiseMemory = "raise it with --max-memory MIB";
 constexpr std::string_view kLowerBoth = "lower the limits with --max-memory MIB or --max-cells N";
 
 void replaceAll(std::string& text, std::string_view from, const std::string& to) {
-  for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size()) text.replace(at, from.size(), to);
+  for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size())
+    text.replace(at, from.size(), to);
 }
 }  // namespace
 

@@ -162,9 +162,10 @@ lsystem tree {
 
   // A program whose only define changes nothing it pictures says so, and grows once.
   Gallery quiet(galleryDef());
-  quiet.reset("#define ANGLE 30\n" + music.substr(0, music.find("lsystem")) +
-                  "lsystem tree {\n  #until 3\n  axiom F(1) A\n  interpret music A { pitch(60) note(0.25, VOLUME) }\n}\n",
-              "tree");
+  const std::string unseen = music.substr(0, music.find("lsystem")) +
+                             "lsystem tree {\n  #until 3\n  axiom F(1) A\n"
+                             "  interpret music A { pitch(60) note(0.25, VOLUME) }\n}\n";
+  quiet.reset("#define ANGLE 30\n" + unseen, "tree");
   quiet.growAll();
   EXPECT_EQ(quiet.state()["held"], nlohmann::json::array({"ANGLE", "VOLUME"}));
   EXPECT_EQ(quiet.state()["warning"],
@@ -185,7 +186,8 @@ TEST_F(StudioFixture, AGrowerThatEndsKeepsNothingOfTheGrowthItCancelled) {
   // 50 M steps of 1,000 cells: minutes, far longer than the wait below.
   std::string cells;
   for (int i = 0; i < 1000; ++i) cells += " A";
-  gallery.reset("#define SPARE 1\nlsystem endless {\n  #until 50000000\n  axiom" + cells + "\n  A -> A\n}\n", "endless");
+  gallery.reset("#define SPARE 1\nlsystem endless {\n  #until 50000000\n  axiom" + cells + "\n  A -> A\n}\n",
+                "endless");
   ASSERT_TRUE(gallery.probing());
   {
     GalleryGrower grower(gallery);
