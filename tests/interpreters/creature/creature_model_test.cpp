@@ -89,7 +89,7 @@ constexpr int kFramesPerCycle = 36;
 
 // A gait out of range (DUTY 1: a foot never off the ground; DUTY 0; a negative stride)
 // makes no creature, and the set says why once a frame, located at the gait's call in
-// models/creature.cell (line 63, column 5).
+// models/creature.cell (line 67, column 5).
 TEST(CreatureModel, AGaitOutOfRangeIsAWarningAtItsCallSayingWhy) {
   const std::map<double, std::string> reasons{{1.0, "the duty factor must be between 0 and 1"},
                                               {0.0, "the duty factor must be between 0 and 1"}};
@@ -104,7 +104,7 @@ TEST(CreatureModel, AGaitOutOfRangeIsAWarningAtItsCallSayingWhy) {
                                " out of range: " + reason + " (the first here)");
       EXPECT_GE(d.count, 1u);
       ASSERT_TRUE(d.span.valid());
-      EXPECT_EQ(d.span.line(), 63);
+      EXPECT_EQ(d.span.line(), 67);
       EXPECT_EQ(d.span.column(), 5);
     }
     EXPECT_EQ(named, 1) << "DUTY " << duty;

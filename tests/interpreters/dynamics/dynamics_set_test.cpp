@@ -81,6 +81,31 @@ TEST_P(CreatureWalks, AtLeastHalfAsFarAsItsKinematicWalk) {
 INSTANTIATE_TEST_SUITE_P(TripodAndWave, CreatureWalks,
                          ::testing::Values(Gait{4, 0.5}, Gait{6, 0.5}, Gait{4, 5.0 / 6}, Gait{6, 5.0 / 6}));
 
+// models/creature.cell steps a long body (more than 16 segments) at 0.005 s, a short one
+// at the set's 0.002 s: MuJoCo's work per step grows with the square of the body's length.
+// At the longer step the 64-segment creature still walks: 3 s from the first whole cycle,
+// at least half as far as its kinematic walk, its root never below half its height, no
+// joint more than 5 % of a leg below the ground.
+TEST(DynamicsSet, TheLongCreatureWalksAtItsLongerStep) {
+  auto stepOf = [](const fs::path& mjcf) {
+    const std::string text = bytesOf(mjcf);
+    const std::size_t at = text.find("timestep=\"");
+    return at == std::string::npos ? -1.0 : std::stod(text.substr(at + 10));
+  };
+  const Walk shortBody = walk({.defines = {{"SEGMENTS", 6}}, .from = kPeriod, .until = kPeriod + 0.1, .frames = 2,
+                               .formats = "mjcf"});
+  EXPECT_EQ(stepOf(shortBody.dir / "creature.xml"), 0.002);
+  const Walk w = walk({.defines = {{"SEGMENTS", 64}}, .from = kPeriod, .until = kPeriod + 3, .frames = 4,
+                       .formats = "joints,mjcf"});
+  EXPECT_EQ(stepOf(w.dir / "creature.xml"), 0.005);
+  ASSERT_EQ(w.frames().size(), 4u);
+  const double kinematic = kStride / (0.5 * kPeriod) * 3;
+  std::cout << "SEGMENTS 64: walked " << w.distance() << " of " << kinematic << "\n";
+  EXPECT_GE(w.distance(), kinematic / 2);
+  for (std::size_t f = 0; f < w.frames().size(); ++f) EXPECT_GT(w.at(f, w.root()).y, kHeight / 2) << f;
+  EXPECT_GE(w.lowest(), -0.05 * kLeg);
+}
+
 TEST(DynamicsSet, TheQuadrupedWalks) {
   constexpr double period = 1.1, duty = 0.75, stride = 0.55;
   const Walk w = walk({.model = "quadruped.cell", .defines = {}, .from = period, .until = period + 6, .frames = 7});
