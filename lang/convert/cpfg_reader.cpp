@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <filesystem>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <string>
@@ -54,23 +56,48 @@ std::vector<Line> statementLines(std::string_view text) {
   return result;
 }
 
-// The angle of a view file: `angle increment: D` or `angle factor: N`.
-std::optional<std::string> angleOfView(std::string_view view) {
+// The angle of a view file: `angle increment: D` or `angle factor: N`, the last of
+// them (cpfg reads its labels in order, each setting the angle); cpfg's 45 degrees when
+// it has neither.
+std::string angleOfView(std::string_view view) {
+  std::string angle = "45";
   for (const Line& line : splitLines(view)) {
-    if (auto at = afterKeyword(view, line, "angle increment:")) {
-      std::string value(view.substr(*at, line.end - *at));
-      value.erase(0, value.find_first_not_of(" \t"));
-      value.erase(value.find_last_not_of(" \t") + 1);
-      if (!value.empty()) return value;
-    }
-    if (auto at = afterKeyword(view, line, "angle factor:")) {
-      std::string value(view.substr(*at, line.end - *at));
-      value.erase(0, value.find_first_not_of(" \t"));
-      value.erase(value.find_last_not_of(" \t") + 1);
-      if (!value.empty()) return "360 / " + value;
-    }
+    for (std::string_view label : {"angle increment:", "angle factor:"})
+      if (auto at = afterKeyword(view, line, label)) {
+        std::string value(view.substr(*at, line.end - *at));
+        value.erase(0, value.find_first_not_of(" \t"));
+        value.erase(value.find_last_not_of(" \t") + 1);
+        if (!value.empty()) angle = label == "angle factor:" ? "360 / " + value : value;
+      }
   }
-  return std::nullopt;
+  return angle;
+}
+
+// A turn that takes the default angle: `+` rather than `+(30)`.
+bool turnsByDefault(const std::vector<ModuleText>& word) {
+  return std::any_of(word.begin(), word.end(), [](const ModuleText& module) {
+    static constexpr std::string_view kTurns[] = {"+", "-", "&", "^", "/", "\\"};
+    return !module.hasArgs && std::find(std::begin(kTurns), std::end(kTurns), module.label) != std::end(kTurns);
+  });
+}
+
+// Without a view file, the first line with a turn by the default angle warns: cpfg
+// would turn it by the view file's angle, which the converter cannot know.
+void warnOfMissingView(LSystemFile& file, std::string_view path) {
+  SourceRange first;
+  if (turnsByDefault(file.axiom)) first = file.axiomOrigin;
+  for (const Statement& s : file.statements)
+    if (s.kind == StatementKind::Production && turnsByDefault(s.successors) &&
+        (!first.known() || s.origin.begin < first.begin)) {
+      first = s.origin;
+      break;
+    }
+  if (!first.known()) return;
+  const std::string stem = std::filesystem::path(path).stem().string();
+  file.warnings.push_back(
+      {first, "no view file (neither one that a cpfg command in the folder's 'specifications' names with this "
+              "file, nor '" + stem + ".v' beside it): cpfg turns by its view file's angle increment, which is "
+              "unknown here, and the turns without an angle take ontogen's default of 90 degrees"});
 }
 
 class CpfgReader {
@@ -616,11 +643,14 @@ class CpfgReader {
 
 }  // namespace
 
-LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view,
+LSystemFile readCpfg(std::string_view text, std::string_view path, std::optional<std::string_view> view,
                      const SideFileReader& readSideFile, uint64_t maxBytes) {
-  CpfgReader reader(text, path, viewFunctions(view, readSideFile), maxBytes);
+  CpfgReader reader(text, path, viewFunctions(view.value_or(""), readSideFile), maxBytes);
   LSystemFile file = reader.read();
-  file.angle = angleOfView(view);
+  if (view)
+    file.angle = angleOfView(*view);
+  else
+    warnOfMissingView(file, path);
   return file;
 }
 

@@ -46,6 +46,30 @@ TEST(CpfgReader, IgnoreConsiderSectionsAndTheViewFilesAngle) {
             "  maximum depth: 3\n  B -> F\n");
 }
 
+// cpfg reads its turn angle from the view file: the last of its angle lines, else its
+// default of 45 degrees. Without a view file the angle is unknown: the first line that
+// turns by it warns.
+TEST(CpfgReader, TheViewFilesLastAngleElseCpfgsDefaultElseAWarning) {
+  const std::string text = "Lsystem: 1\nAxiom: A\nA --> F(1)\nA --> F+F\nendlsystem\n";
+  auto last = convertText(Dialect::Cpfg, "a.l", text, "angle increment: 30\nangle factor: 8\n");
+  EXPECT_NE(last.program.find("  #angle 360 / 8\n"), std::string::npos) << last.program;
+  EXPECT_TRUE(last.warnings.empty());
+  auto none = convertText(Dialect::Cpfg, "a.l", text, "viewpoint: 0,0,1\n");
+  EXPECT_NE(none.program.find("  #angle 45\n"), std::string::npos) << none.program;
+  EXPECT_TRUE(none.warnings.empty());
+  auto missing = convertText(Dialect::Cpfg, "tree.l", text);
+  EXPECT_EQ(missing.program.find("#angle"), std::string::npos) << missing.program;
+  ASSERT_EQ(missing.warnings.size(), 1u);
+  EXPECT_EQ(missing.warnings[0].rfind("4:1: no view file (neither one that a cpfg command in the folder's "
+                                      "'specifications' names with this file, nor 'tree.v' beside it)", 0),
+            0u)
+      << missing.warnings[0];
+  EXPECT_NE(missing.warnings[0].find("ontogen's default of 90 degrees"), std::string::npos);
+  // Turns given their angle need none.
+  auto given = convertText(Dialect::Cpfg, "tree.l", "Axiom: A\nA --> F+(30)F|\n");
+  EXPECT_TRUE(given.warnings.empty());
+}
+
 TEST(CpfgReader, ConditionalsBecomeIf) {
   auto c = convertText(Dialect::Cpfg, "a.l", "Axiom: A(1)\nA(x) --> A(x > 1 ? 1 : x < 0 ? 2 : 3)\n");
   ASSERT_EQ(c.error, "");
