@@ -271,6 +271,11 @@ std::string ForeignSyntax::splineCall(uint32_t at, uint32_t open, uint32_t end, 
     trim(ma, mb);
     number = std::string(text_.substr(ma, mb - ma));
   }
+  // A function set's names stand for the functions' numbers (cpfg defines them so).
+  for (size_t i = 0; i < splineFunctions.size(); ++i) {
+    if (splineFunctions[i].setUnread) fail(at, close + 1, "func(" + number + ", x): " + splineFunctions[i].error);
+    if (!splineFunctions[i].name.empty() && splineFunctions[i].name == number) number = std::to_string(i + 1);
+  }
   char* last = nullptr;
   const long n = std::strtol(number.c_str(), &last, 10);
   if (number.empty() || last != number.c_str() + number.size())
