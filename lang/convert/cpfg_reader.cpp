@@ -43,12 +43,27 @@ std::string withoutComments(std::string_view text) {
   return result;
 }
 
+// Whether the statement [begin, end) opens a C block it does not close: a `{` before any
+// `-->` (a block of Start: and the like, or of a production's condition) with fewer `}`
+// after it. Braces after the arrow are cpfg's polygon modules, which a successor may open
+// and another close.
+bool opensCBlock(std::string_view text, Line line) {
+  const std::string_view statement = text.substr(line.begin, line.end - line.begin);
+  const size_t arrow = statement.find("-->");
+  const std::string_view before = statement.substr(0, arrow);
+  if (arrow != std::string_view::npos) return false;  // the block, if any, closed before it
+  int depth = 0;
+  for (char c : before) depth += c == '{' ? 1 : c == '}' ? -1 : 0;
+  return depth > 0;
+}
+
 // cpfg's statements: a line and the lines after it that start with a tab (its reader
-// takes a line break followed by a tab as a space).
+// takes a line break followed by a tab as a space), and a C block over several lines, to
+// the line that closes it (the C code between its braces is read as one text).
 std::vector<Line> statementLines(std::string_view text) {
   std::vector<Line> result;
   for (const Line& line : splitLines(text)) {
-    if (!result.empty() && line.begin < line.end && text[line.begin] == '\t')
+    if (!result.empty() && ((line.begin < line.end && text[line.begin] == '\t') || opensCBlock(text, result.back())))
       result.back().end = line.end;
     else
       result.push_back(line);

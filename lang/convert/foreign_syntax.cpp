@@ -594,9 +594,18 @@ uint32_t ForeignSyntax::block(uint32_t at, uint32_t end, const Statement& s, uin
           continue;
         if (k >= statementBegin && k < statementEnd) continue;
         if (bindsParameter(k, name)) continue;
-        const size_t lineBegin = text_.rfind('\n', k) == std::string_view::npos ? 0 : text_.rfind('\n', k) + 1;
+        size_t lineBegin = text_.rfind('\n', k) == std::string_view::npos ? 0 : text_.rfind('\n', k) + 1;
         size_t lineEnd = text_.find('\n', k);
         if (lineEnd == std::string_view::npos) lineEnd = text_.size();
+        // The whole statement: cpfg continues one on the lines after it that start with a tab.
+        while (lineBegin >= 2 && text_[lineBegin] == '\t') {
+          const size_t previous = text_.rfind('\n', lineBegin - 2);
+          lineBegin = previous == std::string_view::npos ? 0 : previous + 1;
+        }
+        while (lineEnd + 1 < text_.size() && text_[lineEnd + 1] == '\t') {
+          lineEnd = text_.find('\n', lineEnd + 1);
+          if (lineEnd == std::string_view::npos) lineEnd = text_.size();
+        }
         const std::string_view line = text_.substr(lineBegin, lineEnd - lineBegin);
         const size_t brace = line.find('{');
         bool assigns = brace != std::string_view::npos && line.find("-->") != std::string_view::npos;

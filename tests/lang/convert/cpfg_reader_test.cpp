@@ -232,6 +232,22 @@ TEST(CpfgReader, BlocksWithinABlockAreItsStatements) {
 namespace ontogen::convert {
 namespace {
 
+// C over several lines: a Start: block read to the line that closes its brace, and a
+// variable that two productions set in their own blocks, read on their successors'
+// continued lines (a line break and a tab), is each production's own.
+TEST(CpfgReader, CBlocksAndStatementsOverSeveralLines) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "Lsystem: 1\nStart: {k =\n\t3;\n}\nAxiom: A(1)\nA(t) : 1 {x = t * k;} -->\n\tB(x) A(t + 1)\n"
+                       "B(t) : t < 5 {x = t + 1;} -->\n\tB(x)\nendlsystem\n");
+  ASSERT_EQ(c.error, "") << c.line << ":" << c.column;
+  EXPECT_EQ(body(c.program),
+            "  #define k 3\n  axiom A(1)\n  A(t) : 1 -> B((t * k)) A(t + 1)\n  B(t) : t < 5 -> B((t + 1))\n");
+  // A brace of a polygon that a successor opens and another closes joins no lines.
+  auto polygon = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A\nA --> {.B\nB --> .}\nendlsystem\n");
+  ASSERT_EQ(polygon.error, "");
+  EXPECT_NE(polygon.program.find("  B -> PP EP\n"), std::string::npos) << polygon.program;
+}
+
 // cpfg's macros with parameters, inlined where C's textual replacement reads the same:
 // parameters that stand alone or in parentheses, values that are one operand, calls
 // alone between delimiters, single-operand arguments.
