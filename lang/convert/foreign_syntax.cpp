@@ -65,6 +65,10 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
            "L-Py's query " + shown(label) +
                " has no cell-language counterpart: ontogen's turtle fills ?P, ?H, ?L and ?U only, so the word "
                "would differ");
+    if (label == "?E")
+      fail(at, at + 2,
+           "cpfg's ?E, the query an environmental program answers (cpfg -e FILE): ontogen runs no environment "
+           "process, so the values the query holds, and the word, would differ");
     return at + 2;
   }
   // '@' modules: the longest predefined name, as the tools read them (@GcI is @Gc I).
