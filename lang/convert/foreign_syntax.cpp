@@ -454,7 +454,8 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
     const uint32_t post = find(a, b, "{");
     uint32_t x = a, y = post;
     trim(x, y);
-    if (x < y) s.condition = substituted(condition(x, y), locals);
+    // cpfg's '*' between blocks is no condition, as it is alone.
+    if (x < y && text_.substr(x, y - x) != "*") s.condition = substituted(condition(x, y), locals);
     if (post < b && block(post, b, s, begin, end, locals) < b)
       fail(post, b, "a C block '{ ... }' in the condition: C code, which ontogen convert does not translate", false);
   }

@@ -114,8 +114,9 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
       // Start: {b = 1 - C; a = b / 2;} as constants: b = 0.5, a = 0.25.
       {"c_start.l", "1,2", "t = 1: B(0.25) A(1.5)\nt = 2: B(0.25) B(0.25) A(2)\n"},
       {"continued.l", "1,2", "t = 1: B [ C ] A\nt = 2: B [ C ] B [ C ] A\n"},
-      // k = 3 from a Start: block over three lines; x of each production's own block.
-      {"c_lines.l", "1,2", "t = 1: B(3) A(2)\nt = 2: B(4) B(6) A(3)\n"},
+      // k = 3 from a Start: block over three lines; x of each production's own block; C
+      // rewritten without a condition ('*'), y = 4.
+      {"c_lines.l", "1,2", "t = 1: B(3) A(2) D(4)\nt = 2: B(4) B(6) A(3) D(4)\n"},
       // Python bodies: if/elif/else, nproduce, locals, math, a word over lines, return,
       // and random choices of chance 1 and 0, as L-Py derives them.
       {"python_branches.lpy", "1,2,3",

@@ -242,6 +242,10 @@ TEST(CpfgReader, CBlocksAndStatementsOverSeveralLines) {
   ASSERT_EQ(c.error, "") << c.line << ":" << c.column;
   EXPECT_EQ(body(c.program),
             "  #define k 3\n  axiom A(1)\n  A(t) : 1 -> B((t * k)) A(t + 1)\n  B(t) : t < 5 -> B((t + 1))\n");
+  // cpfg's '*' before a block is no condition, as it is alone.
+  auto star = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: C(2)\nC(a) : * {y = a * 2;} --> D(y)\nendlsystem\n");
+  ASSERT_EQ(star.error, "");
+  EXPECT_EQ(body(star.program), "  axiom C(2)\n  C(a) -> D((a * 2))\n");
   // A brace of a polygon that a successor opens and another closes joins no lines.
   auto polygon = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A\nA --> {.B\nB --> .}\nendlsystem\n");
   ASSERT_EQ(polygon.error, "");
