@@ -543,11 +543,11 @@ class CpfgReader {
       return "(" + counter.start + ") + " + counter.step + " * " + (after ? "time" : "(time - 1)");
     };
     // Before StartEach: runs, each counter has its value of the step before.
-    for (const auto& [name, counter] : counters) syntax_.stepVariables[name] = {counterAt(counter, false), false};
+    for (const auto& [name, counter] : counters) syntax_.stepVariables[name] = {counterAt(counter, false), false, ""};
     for (const Assignment& assignment : blocks[kStartEach].assignments) {
       const std::string& name = assignment.name;
       if (auto counter = counters.find(name); counter != counters.end()) {
-        syntax_.stepVariables[name] = {counterAt(counter->second, true), false};
+        syntax_.stepVariables[name] = {counterAt(counter->second, true), false, ""};
         continue;
       }
       // A value of each step: of constants, counters and the values before it.
@@ -557,11 +557,13 @@ class CpfgReader {
         return false;
       }
       syntax_.stepVariables[name] = {syntax_.expression(assignment.begin, assignment.end),
-                                     count(blocks[kEndEach], name) > 0};
+                                     count(blocks[kEndEach], name) > 0, ""};
     }
     for (const Assignment& assignment : blocks[kEndEach].assignments) {
-      if (counters.count(assignment.name)) {
+      if (auto counter = counters.find(assignment.name); counter != counters.end()) {
+        // The homomorphism reads the word of `time` steps, each ended by this block.
         syntax_.stepVariables[assignment.name].stepEnd = true;
+        syntax_.stepVariables[assignment.name].afterStep = counterAt(counter->second, true);
         continue;
       }
       if (count(blocks[kStartEach], assignment.name) == 0) {  // read before EndEach: assigns it

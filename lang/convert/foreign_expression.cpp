@@ -402,6 +402,11 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
       }
       // cpfg's variables of the blocks around each step, unless a parameter hides one.
       if (auto variable = stepVariables.find(name); !python && variable != stepVariables.end() && !bound_.count(name)) {
+        if (variable->second.stepEnd && inHomomorphism && !variable->second.afterStep.empty()) {
+          emit("(" + variable->second.afterStep + ")", false, stop - at);
+          at = stop;
+          continue;
+        }
         if (variable->second.stepEnd && inHomomorphism)
           fail(at, stop,
                "the variable '" + name +

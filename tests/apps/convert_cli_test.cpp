@@ -299,19 +299,21 @@ TEST(Convert, CpfgStepCountersGrowAsCpfgCountsTheSteps) {
             "t = 4: B(1, 10, 21) B(2, 9, 19) C(3, 8, 17) E(4)\n");
   const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "steps";
   fs::create_directories(dir);
-  // After the last step the homomorphism reads n as it stands (2), but m one step on,
-  // which the converter refuses.
+  // The homomorphism reads the word after k steps, each ended by EndEach: n and m are
+  // both k there (cpfg interprets after EndEach:), where a production of step k reads m
+  // as k - 1.
   std::ofstream(dir / "after.l") << "Lsystem: 1\nderivation length: 2\nStart: {n = 0; m = 0;}\n"
                                     "StartEach: {n = n + 1;}\nEndEach: {m = m + 1;}\nAxiom: A\nA --> A\n"
-                                    "homomorphism\nA --> B(n)\n";
-  Result after = ontogen("word --interpreted " + (dir / "after.l").string() + " --at 2");
+                                    "homomorphism\nA --> B(n)C(m)\n";
+  Result after = ontogen("word --interpreted " + (dir / "after.l").string() + " --at 0,1,2");
   ASSERT_EQ(after.exitCode, 0) << after.err;
-  EXPECT_EQ(after.out, "t = 2: B(2)\n");
-  std::ofstream(dir / "end.l") << "Lsystem: 1\nStart: {m = 0;}\nEndEach: {m = m + 1;}\nAxiom: A\n"
-                                  "homomorphism\nA --> C(m)\n";
+  EXPECT_EQ(after.out, "t = 0: B(0) C(0)\nt = 1: B(1) C(1)\nt = 2: B(2) C(2)\n");
+  // A value of StartEach: that EndEach: sets too is refused there.
+  std::ofstream(dir / "end.l") << "Lsystem: 1\nStartEach: {s = 0;}\nEndEach: {s = 1;}\nAxiom: A\n"
+                                  "homomorphism\nA --> C(s)\n";
   Result end = ontogen("convert " + (dir / "end.l").string());
   EXPECT_EQ(end.exitCode, 6) << end.err;
-  EXPECT_NE(end.err.find("end.l:6:9: error: the variable 'm', which cpfg's EndEach: block changes"),
+  EXPECT_NE(end.err.find("end.l:6:9: error: the variable 's', which cpfg's EndEach: block changes"),
             std::string::npos)
       << end.err;
 }
