@@ -165,7 +165,12 @@ class CpfgReader {
         continue;
       }
       if (auto at = afterLabel(clean_, line, "derivation length")) {
-        file_.derivationLength = syntax_.expression(*at, end);
+        uint32_t a = *at, b = end;
+        syntax_.trim(a, b);
+        // 0: cpfg shows the axiom, interpreted; ontogen's #until is at least 1, the same
+        // word where no production rewrites it (checked at the end).
+        if (clean_.substr(a, b - a) == "0") zeroLength_ = SourceRange{a, b};
+        file_.derivationLength = zeroLength_ ? "1" : syntax_.expression(*at, end);
         file_.derivationLengthOrigin = line_;
         continue;
       }
@@ -229,6 +234,17 @@ class CpfgReader {
       }
     }
     stamp();
+    if (zeroLength_) {
+      bool rewrites = false, homomorphism = false;
+      for (const Statement& s : file_.statements) {
+        if (s.kind == StatementKind::Section) homomorphism = s.word == "homomorphism";
+        rewrites = rewrites || (s.kind == StatementKind::Production && !homomorphism);
+      }
+      if (rewrites)
+        syntax_.fail(zeroLength_->begin, zeroLength_->end,
+                     "derivation length 0 (the word is the axiom) where productions or decompositions would "
+                     "rewrite it: ontogen's #until is at least 1; ask for the axiom with word --at 0");
+    }
     file_.warnings = std::move(syntax_.warnings);
     return std::move(file_);
   }
@@ -656,6 +672,7 @@ class CpfgReader {
   size_t stamped_ = 0;
   bool stepBlocksRead_ = false;
   bool stepBlocksOk_ = false;
+  std::optional<SourceRange> zeroLength_;  ///< `derivation length: 0`, its value
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "lang/convert/cpfg_macro_text.h"
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/foreign_text.h"
 #include "lang/convert/python_operators.h"
@@ -113,7 +114,14 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
     auto alone = [](char before, char after) {
       return (before == '\0' || before == '(' || before == ',') && (after == '\0' || after == ')' || after == ',');
     };
-    if (!atomic(function.begin, function.end) && !alone(previous(at, begin), following(close + 1, end)))
+    auto compound = [this](std::string_view macro) {
+      auto found = macros.find(macro);
+      return found != macros.end() && !plainMacro(found->second, 0);
+    };
+    if (!atomic(function.begin, function.end) && !alone(previous(at, begin), following(close + 1, end)) &&
+        !replacementReadsAsParenthesised(text_.substr(function.begin, function.end - function.begin),
+                                         text_.substr(begin, at - begin), text_.substr(close + 1, end - close - 1),
+                                         compound))
       fail(at, close + 1,
            "the macro '" + name +
                "' is replaced as text by C: its value, which is no single operand, would join the operators around "

@@ -318,6 +318,16 @@ TEST(Convert, CpfgStepCountersGrowAsCpfgCountsTheSteps) {
       << end.err;
 }
 
+// rot(x) of c_macro_text.l between + and *: phi = 2 + 3 * 1 * 0.5 * 4 / 0.5 = 14 in
+// the homomorphism of the axiom, which derivation length 0 leaves as it is.
+TEST(Convert, ACpfgMacroReplacedAsTextAndTheAxiomAlone) {
+  Result result = ontogen("word --interpreted " + file("c_macro_text.l") + " --at 0,1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 0: F(14)\nt = 1: F(14)\n");
+  Result word = ontogen("word " + file("c_macro_text.l") + " --at 1");
+  EXPECT_EQ(word.out, "t = 1: C(1, 2)\n");
+}
+
 // cpfg's @Tx and @Ts stay modules (Texture, SetElasticity) that contexts read as cpfg
 // does; '=]' lets A's context [B=]C match the branch [+BD] (+ ignored, D skipped), the
 // ignore: list's digit 0 names no module; func(1, 0.5) is the view file's function's
