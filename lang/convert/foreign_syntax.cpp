@@ -435,6 +435,15 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   if (predecessor.size() != 1) {
     uint32_t a = predBegin, b = predEnd;
     trim(a, b);
+    // cpfg rewrites modules that stand strictly side by side together; the cell language
+    // one module a production, and contexts would match across ignored modules and
+    // branches, and overlapping occurrences, where cpfg's predecessor does not.
+    if (!predecessor.empty() && dialect_ == Dialect::Cpfg)
+      fail(a, b,
+           "cpfg's predecessor of " + std::to_string(predecessor.size()) + " modules (" +
+               std::string(text_.substr(a, b - a)) +
+               "): the cell language rewrites one module a production, and contexts would also match across "
+               "ignored modules and branches, where cpfg's modules must stand side by side");
     fail(a, b,
          predecessor.empty() ? std::string("expected a predecessor before the arrow")
                              : "a production has one predecessor module, found " + std::to_string(predecessor.size()) +

@@ -252,6 +252,18 @@ TEST(CpfgReader, CBlocksAndStatementsOverSeveralLines) {
   EXPECT_NE(polygon.program.find("  B -> PP EP\n"), std::string::npos) << polygon.program;
 }
 
+// A predecessor of several modules (cpfg rewrites them together where they stand side by
+// side) has no exact counterpart: refused at its place as cpfg's construct (exit 6).
+TEST(CpfgReader, APredecessorOfSeveralModulesIsRefusedAsCpfgs) {
+  auto c = convertText(Dialect::Cpfg, "a.l", "Lsystem: 0\nAxiom: XF(1)\nXF(x) --> F(x/3)+F(x/3)\nendlsystem\n");
+  EXPECT_EQ(c.program, "");
+  EXPECT_TRUE(c.untranslatable);
+  EXPECT_EQ(c.line, 3);
+  EXPECT_EQ(c.column, 1);
+  EXPECT_EQ(c.error.rfind("cpfg's predecessor of 2 modules (XF(x)): the cell language rewrites one module", 0), 0u)
+      << c.error;
+}
+
 // cpfg's macros with parameters, inlined where C's textual replacement reads the same:
 // parameters that stand alone or in parentheses, values that are one operand, calls
 // alone between delimiters, single-operand arguments.
