@@ -504,6 +504,11 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
           }
           if (name == "fabs") name = "abs";
           if (name == "nran") name = "gaussian";  // cpfg's nran(mean, deviation)
+          if (name == "bran" || name == "biran")
+            fail(at, stop,
+                 "cpfg's " + name + (name == "bran" ? "(a, b), a random number of the beta distribution" :
+                                                      "(n, p), a random number of the binomial distribution") +
+                     ": the cell language draws uniform, normal and Bernoulli numbers only");
         }
       }
       if (python) {

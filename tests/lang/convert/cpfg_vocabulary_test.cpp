@@ -141,5 +141,20 @@ TEST(CpfgVocabulary, TheEnvironmentsQueryIsRefusedAtItsPlace) {
   }
 }
 
+// cpfg's random numbers of the beta and binomial distributions have no counterpart
+// among the cell language's draws: refused at the call, where they reached the compiler
+// as unknown functions.
+TEST(CpfgVocabulary, BetaAndBinomialDrawsAreRefusedAtTheCall) {
+  auto beta = test::convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A(2)\nA(n) --> B(n*bran(5,16))\nendlsystem\n");
+  EXPECT_TRUE(beta.untranslatable);
+  EXPECT_EQ(beta.line, 3);
+  EXPECT_EQ(beta.column, 14);
+  EXPECT_EQ(beta.error.rfind("cpfg's bran(a, b), a random number of the beta distribution", 0), 0u) << beta.error;
+  auto binomial = test::convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A(biran(4, 0.5))\nendlsystem\n");
+  EXPECT_EQ(binomial.line, 2);
+  EXPECT_EQ(binomial.column, 10);
+  EXPECT_NE(binomial.error.find("binomial"), std::string::npos) << binomial.error;
+}
+
 }  // namespace
 }  // namespace ontogen::convert
