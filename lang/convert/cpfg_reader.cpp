@@ -219,7 +219,8 @@ class CpfgReader {
       if (codeBlock(line)) {
         syntax_.fail(begin, end,
                      "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code, which ontogen convert "
-                     "does not translate");
+                     "does not translate" +
+                         (stepBlocksWhy_.empty() ? std::string() : " (" + stepBlocksWhy_ + ")"));
         continue;
       }
       if (syntax_.find(begin, end, "->") < end) {
@@ -420,10 +421,13 @@ class CpfgReader {
   enum Hook { kStart, kStartEach, kEndEach, kEnd, kHooks };
 
   // The statements of `{ ... }` at [at, end).
-  bool readStepBlock(uint32_t at, uint32_t end, StepBlock& block) const {
+  bool readStepBlock(uint32_t at, uint32_t end, StepBlock& block, std::string& why) const {
     uint32_t a = at, b = end;
     syntax_.trim(a, b);
-    if (block.seen || b - a < 2 || clean_[a] != '{' || clean_[b - 1] != '}') return false;
+    if (block.seen || b - a < 2 || clean_[a] != '{' || clean_[b - 1] != '}') {
+      why = block.seen ? "a second block of one kind" : "a block other than '{ ... }'";
+      return false;
+    }
     block.seen = true;
     block.begin = a;
     block.end = b;
@@ -439,6 +443,8 @@ class CpfgReader {
       while (stop < y && isNameChar(clean_[stop])) ++stop;
       uint32_t op = stop;
       while (op < y && std::isspace(static_cast<unsigned char>(clean_[op]))) ++op;
+      const std::string statement(clean_.substr(x, y - x));
+      why = "the statement '" + statement + "', which is no assignment, printf or srand";
       if (stop == x || std::isdigit(static_cast<unsigned char>(clean_[x])) || op >= y) return false;
       const std::string name(clean_.substr(x, stop - x));
       if (clean_[op] == '(' && clean_[y - 1] == ')') {
@@ -512,8 +518,12 @@ class CpfgReader {
     for (const Line& line : statementLines(clean_))
       for (int hook = 0; hook < kHooks; ++hook)
         if (auto at = afterKeyword(clean_, line, kWords[hook]))
-          if (!readStepBlock(*at, line.end, blocks[hook])) return false;
-    if (!blocks[kEnd].assignments.empty() || blocks[kStartEach].seed || blocks[kEndEach].seed) return false;
+          if (!readStepBlock(*at, line.end, blocks[hook], stepBlocksWhy_)) return false;
+    if (!blocks[kEnd].assignments.empty() || blocks[kStartEach].seed || blocks[kEndEach].seed) {
+      stepBlocksWhy_ = blocks[kEnd].assignments.empty() ? "srand in StartEach: or EndEach: (a seed each step)"
+                                                        : "assignments in End: (after the derivation)";
+      return false;
+    }
     // Each name: the assignments of each block.
     auto count = [](const StepBlock& block, const std::string& name) {
       size_t n = 0;
@@ -524,10 +534,17 @@ class CpfgReader {
     for (const StepBlock& block : blocks)
       for (const Assignment& assignment : block.assignments)
         if (std::find(names.begin(), names.end(), assignment.name) == names.end()) names.push_back(assignment.name);
-    for (const std::string& name : names)
-      if (assignedElsewhere(name, blocks) || count(blocks[kStart], name) > 1 || count(blocks[kStartEach], name) > 1 ||
-          count(blocks[kEndEach], name) > 1)
+    for (const std::string& name : names) {
+      if (assignedElsewhere(name, blocks)) {
+        stepBlocksWhy_ = "the variable '" + name + "', which a production's block assigns too (state between "
+                         "productions)";
         return false;
+      }
+      if (count(blocks[kStart], name) > 1 || count(blocks[kStartEach], name) > 1 || count(blocks[kEndEach], name) > 1) {
+        stepBlocksWhy_ = "the variable '" + name + "', assigned twice in one block";
+        return false;
+      }
+    }
     std::vector<Define> defines;
     struct Counter {
       std::string start, step;
@@ -542,7 +559,10 @@ class CpfgReader {
         file_.defines.push_back({name, syntax_.expression(assignment.begin, assignment.end), line_});
         continue;
       }
-      if (each && end) return false;
+      if (each && end) {
+        stepBlocksWhy_ = "the variable '" + name + "', which both StartEach: and EndEach: change";
+        return false;
+      }
       const StepBlock& block = blocks[each ? kStartEach : kEndEach];
       const Assignment& change =
           *std::find_if(block.assignments.begin(), block.assignments.end(), [&](const Assignment& x) { return x.name == name; });
@@ -550,6 +570,7 @@ class CpfgReader {
       // A counter (not a value of StartEach: that reads the Start: value).
       if (!step && each) continue;
       if (!step || !namesConstantsOnly(assignment.begin, assignment.end)) {
+        stepBlocksWhy_ = "the variable '" + name + "', which EndEach: changes otherwise than by a constant step";
         file_.defines.resize(defined);
         return false;
       }
@@ -568,6 +589,8 @@ class CpfgReader {
       }
       // A value of each step: of constants, counters and the values before it.
       if (!valueOfStep(assignment)) {
+        stepBlocksWhy_ = "the variable '" + name + "', whose value of each step reads its own value or a variable "
+                         "that is no constant, counter or value of the step";
         file_.defines.resize(defined);
         syntax_.stepVariables.clear();
         return false;
@@ -583,6 +606,7 @@ class CpfgReader {
         continue;
       }
       if (count(blocks[kStartEach], assignment.name) == 0) {  // read before EndEach: assigns it
+        stepBlocksWhy_ = "the variable '" + assignment.name + "', which EndEach: sets and the next step reads";
         file_.defines.resize(defined);
         syntax_.stepVariables.clear();
         return false;
@@ -672,6 +696,7 @@ class CpfgReader {
   size_t stamped_ = 0;
   bool stepBlocksRead_ = false;
   bool stepBlocksOk_ = false;
+  std::string stepBlocksWhy_;  ///< why the blocks stay C code
   std::optional<SourceRange> zeroLength_;  ///< `derivation length: 0`, its value
 };
 

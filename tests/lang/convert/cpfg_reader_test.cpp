@@ -296,9 +296,19 @@ TEST(CpfgReader, AStartBlockOfConstants) {
   EXPECT_EQ(state.column, 1);
   EXPECT_TRUE(state.untranslatable);
   EXPECT_NE(state.error.find("a C block (Start:"), std::string::npos) << state.error;
+  // The message says why the blocks stay C code.
+  EXPECT_NE(state.error.find("(the variable 'n', which EndEach: changes otherwise than by a constant step)"),
+            std::string::npos)
+      << state.error;
   auto call = convertText(Dialect::Cpfg, "a.l", "Axiom: A\nStart: {n = 0; fclose(fp);}\n");
   EXPECT_EQ(call.line, 2);
   EXPECT_NE(call.error.find("a C block (Start:"), std::string::npos) << call.error;
+  EXPECT_NE(call.error.find("(the statement 'fclose(fp)', which is no assignment, printf or srand)"),
+            std::string::npos)
+      << call.error;
+  auto shared = convertText(Dialect::Cpfg, "a.l", "Start: {c = 0;}\nAxiom: A\nA : 1 {c = c + 1;} --> A\n");
+  EXPECT_NE(shared.error.find("(the variable 'c', which a production's block assigns too"), std::string::npos)
+      << shared.error;
 }
 
 }  // namespace
