@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "lang/convert/convert.h"
+#include "lang/convert/cpfg_view_file.h"
 
 namespace ontogen {
 
@@ -25,6 +26,26 @@ std::optional<std::string> pastMemoryLimit(const ProgramFileDef& def, const std:
                     bytes * kCheckBytesPerSourceByte);
 }
 
+bool pathExists(const std::filesystem::path& path) {
+  std::error_code missing;
+  return std::filesystem::exists(std::filesystem::symlink_status(path, missing));
+}
+
+// The view file cpfg would read with the L-system at `path`, if there is one.
+std::optional<std::filesystem::path> viewPathOf(const std::string& path) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (pathExists(folder / "specifications")) {
+    SourceText specifications = readSourceFile(folder / "specifications", kMaxViewBytes);
+    if (specifications.text)
+      if (auto name = convert::viewFileInSpecifications(*specifications.text,
+                                                        std::filesystem::path(path).filename().string()))
+        if (pathExists(folder / *name)) return folder / *name;
+  }
+  std::filesystem::path sameName = std::filesystem::path(path).replace_extension(".v");
+  if (pathExists(sameName)) return sameName;
+  return std::nullopt;
+}
+
 }  // namespace
 
 ProgramFileText readProgramFile(const std::string& path, const ProgramFileDef& def, DiagnosticSink& sink) {
@@ -42,25 +63,24 @@ ProgramFileText readProgramFile(const std::string& path, const ProgramFileDef& d
     result.text = std::move(text);
     return result;
   }
-  // cpfg keeps the turn angle in the view file beside the L-system, named alike. It is
-  // read as a program is, a regular file up to a limit: a FIFO or a device named .v
-  // must neither block nor fill memory.
-  std::string view;
+  // cpfg keeps the turn angle in its view file, the one its command in the folder's
+  // `specifications` names, else the one named as the L-system (cpfg_view_file.h). It is
+  // read as a program is, a regular file up to a limit: a FIFO or a device named .v must
+  // neither block nor fill memory.
+  std::optional<std::string> view;
   if (*dialect == convert::Dialect::Cpfg) {
-    const std::filesystem::path viewPath = std::filesystem::path(path).replace_extension(".v");
-    std::error_code missing;
-    if (std::filesystem::exists(std::filesystem::symlink_status(viewPath, missing))) {
+    if (auto viewPath = viewPathOf(path)) {
       // The view file counts with the file toward the source limit.
-      SourceText viewText = readSourceFile(viewPath, std::min(kMaxViewBytes, maxBytes - text->size()));
+      SourceText viewText = readSourceFile(*viewPath, std::min(kMaxViewBytes, maxBytes - text->size()));
       if (!viewText.text)
         return failed(std::move(result), ProgramFileFailure::Unreadable,
-                      "cannot read the view file '" + viewPath.string() + "': " + viewText.error);
+                      "cannot read the view file '" + viewPath->string() + "': " + viewText.error);
       view = std::move(*viewText.text);
     }
   }
   // Converting takes memory as checking does: a file that could not be checked within the
   // limit is refused before it is converted (a 10 MB line took 36 s and 866 MB first).
-  if (auto past = pastMemoryLimit(def, path, text->size() + view.size()))
+  if (auto past = pastMemoryLimit(def, path, text->size() + (view ? view->size() : 0)))
     return failed(std::move(result), ProgramFileFailure::PastMemoryLimit, *past);
   auto source = std::make_shared<const SourceFile>(path, std::move(*text));
   result.original = source;  // the converter's diagnostics point into it, also when it fails

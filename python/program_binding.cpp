@@ -4,16 +4,14 @@
 // ontogen.CompileError.
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <pybind11/stl.h>
 
 #include "interpreters/set_registry.h"
 #include "lang/compiler.h"
 #include "lang/convert/convert.h"
+#include "lang/program_file.h"
 #include "model/diagnostics.h"
-#include "lang/source_reader.h"
 #include "python/bindings.h"
 #include "python/handles.h"
 
@@ -68,33 +66,29 @@ py::tuple compileText(std::string name, std::string text, const py::object& defi
   return py::make_tuple(result, diagnosticList(sink), formatDiagnostics(sink));
 }
 
-// A file's text, converted when it is cpfg's (.l) or L-Py's (.lpy): (name, text) or, when
+// A file's text, converted when it is cpfg's (.l, with its view file and the function
+// files that names) or L-Py's (.lpy), read as the command line reads it
+// (lang/program_file.h: regular files, the source limit): (name, text) or, when
 // conversion fails, (None, diagnostics, their text). Raises OSError when it cannot be read.
 py::tuple readProgram(const std::string& path) {
-  SourceText read = readSourceFile(path, kDefaultMaxSourceBytes);
-  if (!read.text) {
-    PyErr_SetString(PyExc_OSError, ("cannot read '" + path + "': " + read.error).c_str());
+  DiagnosticSink sink;
+  ProgramFileText read;
+  {
+    py::gil_scoped_release release;
+    read = readProgramFile(path, ProgramFileDef{}, sink);
+  }
+  if (read.failure == ProgramFileFailure::Unreadable || (!read.text && !read.original)) {
+    PyErr_SetString(PyExc_OSError, read.error.c_str());
     throw py::error_already_set();
   }
-  const std::optional<convert::Dialect> dialect = convert::dialectOfPath(path);
-  if (!dialect) return py::make_tuple(path, *read.text);
-  // cpfg keeps the turn angle in the view file beside the L-system, named alike.
-  std::string view;
-  if (*dialect == convert::Dialect::Cpfg) {
-    std::ifstream in(std::filesystem::path(path).replace_extension(".v"), std::ios::binary);
-    std::ostringstream text;
-    if (in) text << in.rdbuf();
-    view = text.str();
-  }
-  auto source = std::make_shared<const SourceFile>(path, std::move(*read.text));
-  DiagnosticSink sink;
-  convert::ConvertResult converted = convert::convertFile(*source, *dialect, view, sink);
-  if (!converted.program) {
+  if (!read.text) {
+    // The diagnostics point into read.original, alive until they are written out here.
     std::string text = formatDiagnostics(sink);
-    text += "ontogen: " + path + " cannot be converted from " + std::string(convert::dialectName(*dialect)) + "\n";
+    text += "ontogen: " + path + " cannot be converted from " +
+            std::string(convert::dialectName(*convert::dialectOfPath(path))) + "\n";
     return py::make_tuple(py::none(), diagnosticList(sink), text);
   }
-  return py::make_tuple(path + " (converted)", *converted.program);
+  return py::make_tuple(read.name, *read.text);
 }
 
 py::dict definesDict(const ProgramHandle& handle) {

@@ -16,8 +16,8 @@ std::optional<Dialect> dialectOfPath(std::string_view path) {
   return std::nullopt;
 }
 
-ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_view view, DiagnosticSink& sink,
-                          uint64_t maxBytes, const SideFileReader& readSideFile) {
+ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::optional<std::string_view> view,
+                          DiagnosticSink& sink, uint64_t maxBytes, const SideFileReader& readSideFile) {
   ConvertResult result;
   try {
     LSystemFile read = dialect == Dialect::Cpfg ? readCpfg(file.text(), file.name(), view, readSideFile, maxBytes)

@@ -32,13 +32,15 @@ struct ConvertResult {
   bool pastLimit = false;
 };
 
-/// Converts `file`, written for `dialect`; `view` is cpfg's view file (.v), where cpfg
-/// keeps the turn angle and names its functions (read by `readSideFile`), or empty. The
+/// Converts `file`, written for `dialect`; `view` is the text of cpfg's view file (.v),
+/// where cpfg keeps the turn angle and names its functions (read by `readSideFile`), or
+/// nothing when there is none (its turns then warn: see readCpfg). The
 /// error, if any, and the warnings go to `sink` with their places. A program longer than
 /// `maxBytes` is an error: the source limit holds for the converted text too, and the
 /// converter stops as soon as its text passes it (an expansion of a small file can be far
 /// larger than memory).
-ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::string_view view, DiagnosticSink& sink,
+ConvertResult convertFile(const SourceFile& file, Dialect dialect, std::optional<std::string_view> view,
+                          DiagnosticSink& sink,
                           uint64_t maxBytes = kDefaultMaxSourceBytes, const SideFileReader& readSideFile = {});
 
 /// A diagnostic of the compiler in converted text, at the place of the file it was

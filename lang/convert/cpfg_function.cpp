@@ -16,6 +16,8 @@ namespace {
 constexpr int kMaxSamples = 1024;
 // Control points of one function (multiplicities counted): the editor's curves have few.
 constexpr size_t kMaxPoints = 4096;
+// Functions of one set: the function editor's galleries hold a few.
+constexpr long kMaxSetItems = 256;
 // Halvings of the curve's parameter before the search for an x gives up: a double has
 // 53 bits, so past that the parameter no longer moves.
 constexpr int kMaxHalvings = 200;
@@ -112,9 +114,12 @@ std::optional<long> countAfter(const std::string& line, std::string_view key) {
 
 }  // namespace
 
-std::optional<std::vector<double>> sampleFunctionFile(std::string_view text, std::string& error) {
-  const std::vector<std::string> lines = linesOf(text);
-  size_t at = 0;
+namespace {
+
+// The function whose `fver 1 1` line is lines[at], sampled; `at` moves past it, and
+// `name` is its `name:`.
+std::optional<std::vector<double>> sampleFunctionAt(const std::vector<std::string>& lines, size_t& at,
+                                                    std::string& name, std::string& error) {
   auto next = [&]() -> const std::string* { return at < lines.size() ? &lines[at++] : nullptr; };
   const std::string* line = next();
   if (!line || words(*line) != std::vector<std::string>{"fver", "1", "1"}) {
@@ -125,6 +130,8 @@ std::optional<std::vector<double>> sampleFunctionFile(std::string_view text, std
     error = "expected 'name:' on its second line";
     return std::nullopt;
   }
+  const std::vector<std::string> named = words(line->substr(5));
+  name = named.empty() ? "" : named[0];
   std::optional<long> samples;
   if (!(line = next()) || !(samples = countAfter(*line, "samples:"))) {
     error = "expected 'samples: N' on its third line";
@@ -193,9 +200,69 @@ std::optional<std::vector<double>> sampleFunctionFile(std::string_view text, std
   return values;
 }
 
+}  // namespace
+
+std::optional<std::vector<double>> sampleFunctionFile(std::string_view text, std::string& error) {
+  size_t at = 0;
+  std::string name;
+  return sampleFunctionAt(linesOf(text), at, name, error);
+}
+
+std::optional<std::vector<SampledFunction>> sampleFunctionSet(std::string_view text, const std::string& file,
+                                                             std::string& error) {
+  const std::vector<std::string> lines = linesOf(text);
+  std::optional<long> items;
+  if (lines.empty() || words(lines[0]) != std::vector<std::string>{"funcgalleryver", "1", "1"}) {
+    error = "it is no function set of the format 'funcgalleryver 1 1' (the one the function editor writes)";
+    return std::nullopt;
+  }
+  if (lines.size() < 2 || !(items = countAfter(lines[1], "items:")) || *items < 0 || *items > kMaxSetItems) {
+    error = "expected 'items: N' (N from 0 to " + std::to_string(kMaxSetItems) + ") on its second line";
+    return std::nullopt;
+  }
+  std::vector<SampledFunction> functions;
+  size_t at = 2;
+  for (long item = 0; item < *items; ++item) {
+    SampledFunction function;
+    function.file = file;
+    std::string why;
+    std::optional<std::vector<double>> samples = sampleFunctionAt(lines, at, function.name, why);
+    if (!samples) {
+      error = "its function " + std::to_string(item + 1) + ": " + why;
+      return std::nullopt;
+    }
+    // cpfg defines the name without what follows its last '.' (`leaf.func` is `leaf`).
+    if (const size_t dot = function.name.rfind('.'); dot != std::string::npos) function.name.resize(dot);
+    function.samples = std::move(*samples);
+    functions.push_back(std::move(function));
+  }
+  return functions;
+}
+
 std::vector<SampledFunction> viewFunctions(std::string_view view, const SideFileReader& read) {
   std::vector<SampledFunction> functions;
   for (const Line& line : splitLines(view)) {
+    if (const std::optional<uint32_t> set = afterKeyword(view, line, "function set:")) {
+      // A set takes the place of the functions before it (cpfg's ReadFunctionSet).
+      functions.clear();
+      const std::vector<std::string> values = words(std::string(view.substr(*set, line.end - *set)));
+      SampledFunction failed;
+      failed.file = values.empty() ? "" : values[0];
+      std::optional<std::string> text;
+      if (failed.file.empty())
+        failed.error = "the view file's 'function set:' line names no file";
+      else if (!read || !(text = read(failed.file)))
+        failed.error = "the function set '" + failed.file + "' cannot be read";
+      else if (auto members = sampleFunctionSet(*text, failed.file, failed.error))
+        functions = std::move(*members);
+      if (!failed.error.empty()) {
+        if (text) failed.error = "the function set '" + failed.file + "': " + failed.error;
+        // Whichever function a call names, the set could not be read.
+        failed.setUnread = true;
+        functions.push_back(std::move(failed));
+      }
+      continue;
+    }
     const std::optional<uint32_t> at = afterKeyword(view, line, "function:");
     if (!at) continue;
     const std::vector<std::string> values = words(std::string(view.substr(*at, line.end - *at)));
@@ -210,6 +277,8 @@ std::vector<SampledFunction> viewFunctions(std::string_view view, const SideFile
       function.samples = std::move(*samples);
     if (!function.error.empty() && !function.file.empty() && text)
       function.error = "the function file '" + function.file + "': " + function.error;
+    // Named only while a set is the view file's last word on functions.
+    for (SampledFunction& earlier : functions) earlier.name.clear();
     functions.push_back(std::move(function));
   }
   return functions;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <filesystem>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <string>
@@ -41,12 +43,27 @@ std::string withoutComments(std::string_view text) {
   return result;
 }
 
+// Whether the statement [begin, end) opens a C block it does not close: a `{` before any
+// `-->` (a block of Start: and the like, or of a production's condition) with fewer `}`
+// after it. Braces after the arrow are cpfg's polygon modules, which a successor may open
+// and another close.
+bool opensCBlock(std::string_view text, Line line) {
+  const std::string_view statement = text.substr(line.begin, line.end - line.begin);
+  const size_t arrow = statement.find("-->");
+  const std::string_view before = statement.substr(0, arrow);
+  if (arrow != std::string_view::npos) return false;  // the block, if any, closed before it
+  int depth = 0;
+  for (char c : before) depth += c == '{' ? 1 : c == '}' ? -1 : 0;
+  return depth > 0;
+}
+
 // cpfg's statements: a line and the lines after it that start with a tab (its reader
-// takes a line break followed by a tab as a space).
+// takes a line break followed by a tab as a space), and a C block over several lines, to
+// the line that closes it (the C code between its braces is read as one text).
 std::vector<Line> statementLines(std::string_view text) {
   std::vector<Line> result;
   for (const Line& line : splitLines(text)) {
-    if (!result.empty() && line.begin < line.end && text[line.begin] == '\t')
+    if (!result.empty() && ((line.begin < line.end && text[line.begin] == '\t') || opensCBlock(text, result.back())))
       result.back().end = line.end;
     else
       result.push_back(line);
@@ -54,23 +71,48 @@ std::vector<Line> statementLines(std::string_view text) {
   return result;
 }
 
-// The angle of a view file: `angle increment: D` or `angle factor: N`.
-std::optional<std::string> angleOfView(std::string_view view) {
+// The angle of a view file: `angle increment: D` or `angle factor: N`, the last of
+// them (cpfg reads its labels in order, each setting the angle); cpfg's 45 degrees when
+// it has neither.
+std::string angleOfView(std::string_view view) {
+  std::string angle = "45";
   for (const Line& line : splitLines(view)) {
-    if (auto at = afterKeyword(view, line, "angle increment:")) {
-      std::string value(view.substr(*at, line.end - *at));
-      value.erase(0, value.find_first_not_of(" \t"));
-      value.erase(value.find_last_not_of(" \t") + 1);
-      if (!value.empty()) return value;
-    }
-    if (auto at = afterKeyword(view, line, "angle factor:")) {
-      std::string value(view.substr(*at, line.end - *at));
-      value.erase(0, value.find_first_not_of(" \t"));
-      value.erase(value.find_last_not_of(" \t") + 1);
-      if (!value.empty()) return "360 / " + value;
-    }
+    for (std::string_view label : {"angle increment:", "angle factor:"})
+      if (auto at = afterKeyword(view, line, label)) {
+        std::string value(view.substr(*at, line.end - *at));
+        value.erase(0, value.find_first_not_of(" \t"));
+        value.erase(value.find_last_not_of(" \t") + 1);
+        if (!value.empty()) angle = label == "angle factor:" ? "360 / " + value : value;
+      }
   }
-  return std::nullopt;
+  return angle;
+}
+
+// A turn that takes the default angle: `+` rather than `+(30)`.
+bool turnsByDefault(const std::vector<ModuleText>& word) {
+  return std::any_of(word.begin(), word.end(), [](const ModuleText& module) {
+    static constexpr std::string_view kTurns[] = {"+", "-", "&", "^", "/", "\\"};
+    return !module.hasArgs && std::find(std::begin(kTurns), std::end(kTurns), module.label) != std::end(kTurns);
+  });
+}
+
+// Without a view file, the first line with a turn by the default angle warns: cpfg
+// would turn it by the view file's angle, which the converter cannot know.
+void warnOfMissingView(LSystemFile& file, std::string_view path) {
+  SourceRange first;
+  if (turnsByDefault(file.axiom)) first = file.axiomOrigin;
+  for (const Statement& s : file.statements)
+    if (s.kind == StatementKind::Production && turnsByDefault(s.successors) &&
+        (!first.known() || s.origin.begin < first.begin)) {
+      first = s.origin;
+      break;
+    }
+  if (!first.known()) return;
+  const std::string stem = std::filesystem::path(path).stem().string();
+  file.warnings.push_back(
+      {first, "no view file (neither one that a cpfg command in the folder's 'specifications' names with this "
+              "file, nor '" + stem + ".v' beside it): cpfg turns by its view file's angle increment, which is "
+              "unknown here, and the turns without an angle take ontogen's default of 90 degrees"});
 }
 
 class CpfgReader {
@@ -123,7 +165,12 @@ class CpfgReader {
         continue;
       }
       if (auto at = afterLabel(clean_, line, "derivation length")) {
-        file_.derivationLength = syntax_.expression(*at, end);
+        uint32_t a = *at, b = end;
+        syntax_.trim(a, b);
+        // 0: cpfg shows the axiom, interpreted; ontogen's #until is at least 1, the same
+        // word where no production rewrites it (checked at the end).
+        if (clean_.substr(a, b - a) == "0") zeroLength_ = SourceRange{a, b};
+        file_.derivationLength = zeroLength_ ? "1" : syntax_.expression(*at, end);
         file_.derivationLengthOrigin = line_;
         continue;
       }
@@ -172,7 +219,8 @@ class CpfgReader {
       if (codeBlock(line)) {
         syntax_.fail(begin, end,
                      "a C block (Start:, End:, StartEach:, EndEach: or '{ ... }'): C code, which ontogen convert "
-                     "does not translate");
+                     "does not translate" +
+                         (stepBlocksWhy_.empty() ? std::string() : " (" + stepBlocksWhy_ + ")"));
         continue;
       }
       if (syntax_.find(begin, end, "->") < end) {
@@ -187,6 +235,17 @@ class CpfgReader {
       }
     }
     stamp();
+    if (zeroLength_) {
+      bool rewrites = false, homomorphism = false;
+      for (const Statement& s : file_.statements) {
+        if (s.kind == StatementKind::Section) homomorphism = s.word == "homomorphism";
+        rewrites = rewrites || (s.kind == StatementKind::Production && !homomorphism);
+      }
+      if (rewrites)
+        syntax_.fail(zeroLength_->begin, zeroLength_->end,
+                     "derivation length 0 (the word is the axiom) where productions or decompositions would "
+                     "rewrite it: ontogen's #until is at least 1; ask for the axiom with word --at 0");
+    }
     file_.warnings = std::move(syntax_.warnings);
     return std::move(file_);
   }
@@ -362,10 +421,13 @@ class CpfgReader {
   enum Hook { kStart, kStartEach, kEndEach, kEnd, kHooks };
 
   // The statements of `{ ... }` at [at, end).
-  bool readStepBlock(uint32_t at, uint32_t end, StepBlock& block) const {
+  bool readStepBlock(uint32_t at, uint32_t end, StepBlock& block, std::string& why) const {
     uint32_t a = at, b = end;
     syntax_.trim(a, b);
-    if (block.seen || b - a < 2 || clean_[a] != '{' || clean_[b - 1] != '}') return false;
+    if (block.seen || b - a < 2 || clean_[a] != '{' || clean_[b - 1] != '}') {
+      why = block.seen ? "a second block of one kind" : "a block other than '{ ... }'";
+      return false;
+    }
     block.seen = true;
     block.begin = a;
     block.end = b;
@@ -381,6 +443,8 @@ class CpfgReader {
       while (stop < y && isNameChar(clean_[stop])) ++stop;
       uint32_t op = stop;
       while (op < y && std::isspace(static_cast<unsigned char>(clean_[op]))) ++op;
+      const std::string statement(clean_.substr(x, y - x));
+      why = "the statement '" + statement + "', which is no assignment, printf or srand";
       if (stop == x || std::isdigit(static_cast<unsigned char>(clean_[x])) || op >= y) return false;
       const std::string name(clean_.substr(x, stop - x));
       if (clean_[op] == '(' && clean_[y - 1] == ')') {
@@ -454,8 +518,12 @@ class CpfgReader {
     for (const Line& line : statementLines(clean_))
       for (int hook = 0; hook < kHooks; ++hook)
         if (auto at = afterKeyword(clean_, line, kWords[hook]))
-          if (!readStepBlock(*at, line.end, blocks[hook])) return false;
-    if (!blocks[kEnd].assignments.empty() || blocks[kStartEach].seed || blocks[kEndEach].seed) return false;
+          if (!readStepBlock(*at, line.end, blocks[hook], stepBlocksWhy_)) return false;
+    if (!blocks[kEnd].assignments.empty() || blocks[kStartEach].seed || blocks[kEndEach].seed) {
+      stepBlocksWhy_ = blocks[kEnd].assignments.empty() ? "srand in StartEach: or EndEach: (a seed each step)"
+                                                        : "assignments in End: (after the derivation)";
+      return false;
+    }
     // Each name: the assignments of each block.
     auto count = [](const StepBlock& block, const std::string& name) {
       size_t n = 0;
@@ -466,10 +534,17 @@ class CpfgReader {
     for (const StepBlock& block : blocks)
       for (const Assignment& assignment : block.assignments)
         if (std::find(names.begin(), names.end(), assignment.name) == names.end()) names.push_back(assignment.name);
-    for (const std::string& name : names)
-      if (assignedElsewhere(name, blocks) || count(blocks[kStart], name) > 1 || count(blocks[kStartEach], name) > 1 ||
-          count(blocks[kEndEach], name) > 1)
+    for (const std::string& name : names) {
+      if (assignedElsewhere(name, blocks)) {
+        stepBlocksWhy_ = "the variable '" + name + "', which a production's block assigns too (state between "
+                         "productions)";
         return false;
+      }
+      if (count(blocks[kStart], name) > 1 || count(blocks[kStartEach], name) > 1 || count(blocks[kEndEach], name) > 1) {
+        stepBlocksWhy_ = "the variable '" + name + "', assigned twice in one block";
+        return false;
+      }
+    }
     std::vector<Define> defines;
     struct Counter {
       std::string start, step;
@@ -484,7 +559,10 @@ class CpfgReader {
         file_.defines.push_back({name, syntax_.expression(assignment.begin, assignment.end), line_});
         continue;
       }
-      if (each && end) return false;
+      if (each && end) {
+        stepBlocksWhy_ = "the variable '" + name + "', which both StartEach: and EndEach: change";
+        return false;
+      }
       const StepBlock& block = blocks[each ? kStartEach : kEndEach];
       const Assignment& change =
           *std::find_if(block.assignments.begin(), block.assignments.end(), [&](const Assignment& x) { return x.name == name; });
@@ -492,6 +570,7 @@ class CpfgReader {
       // A counter (not a value of StartEach: that reads the Start: value).
       if (!step && each) continue;
       if (!step || !namesConstantsOnly(assignment.begin, assignment.end)) {
+        stepBlocksWhy_ = "the variable '" + name + "', which EndEach: changes otherwise than by a constant step";
         file_.defines.resize(defined);
         return false;
       }
@@ -501,28 +580,33 @@ class CpfgReader {
       return "(" + counter.start + ") + " + counter.step + " * " + (after ? "time" : "(time - 1)");
     };
     // Before StartEach: runs, each counter has its value of the step before.
-    for (const auto& [name, counter] : counters) syntax_.stepVariables[name] = {counterAt(counter, false), false};
+    for (const auto& [name, counter] : counters) syntax_.stepVariables[name] = {counterAt(counter, false), false, ""};
     for (const Assignment& assignment : blocks[kStartEach].assignments) {
       const std::string& name = assignment.name;
       if (auto counter = counters.find(name); counter != counters.end()) {
-        syntax_.stepVariables[name] = {counterAt(counter->second, true), false};
+        syntax_.stepVariables[name] = {counterAt(counter->second, true), false, ""};
         continue;
       }
       // A value of each step: of constants, counters and the values before it.
       if (!valueOfStep(assignment)) {
+        stepBlocksWhy_ = "the variable '" + name + "', whose value of each step reads its own value or a variable "
+                         "that is no constant, counter or value of the step";
         file_.defines.resize(defined);
         syntax_.stepVariables.clear();
         return false;
       }
       syntax_.stepVariables[name] = {syntax_.expression(assignment.begin, assignment.end),
-                                     count(blocks[kEndEach], name) > 0};
+                                     count(blocks[kEndEach], name) > 0, ""};
     }
     for (const Assignment& assignment : blocks[kEndEach].assignments) {
-      if (counters.count(assignment.name)) {
+      if (auto counter = counters.find(assignment.name); counter != counters.end()) {
+        // The homomorphism reads the word of `time` steps, each ended by this block.
         syntax_.stepVariables[assignment.name].stepEnd = true;
+        syntax_.stepVariables[assignment.name].afterStep = counterAt(counter->second, true);
         continue;
       }
       if (count(blocks[kStartEach], assignment.name) == 0) {  // read before EndEach: assigns it
+        stepBlocksWhy_ = "the variable '" + assignment.name + "', which EndEach: sets and the next step reads";
         file_.defines.resize(defined);
         syntax_.stepVariables.clear();
         return false;
@@ -612,15 +696,20 @@ class CpfgReader {
   size_t stamped_ = 0;
   bool stepBlocksRead_ = false;
   bool stepBlocksOk_ = false;
+  std::string stepBlocksWhy_;  ///< why the blocks stay C code
+  std::optional<SourceRange> zeroLength_;  ///< `derivation length: 0`, its value
 };
 
 }  // namespace
 
-LSystemFile readCpfg(std::string_view text, std::string_view path, std::string_view view,
+LSystemFile readCpfg(std::string_view text, std::string_view path, std::optional<std::string_view> view,
                      const SideFileReader& readSideFile, uint64_t maxBytes) {
-  CpfgReader reader(text, path, viewFunctions(view, readSideFile), maxBytes);
+  CpfgReader reader(text, path, viewFunctions(view.value_or(""), readSideFile), maxBytes);
   LSystemFile file = reader.read();
-  file.angle = angleOfView(view);
+  if (view)
+    file.angle = angleOfView(*view);
+  else
+    warnOfMissingView(file, path);
   return file;
 }
 

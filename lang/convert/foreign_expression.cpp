@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "lang/convert/cpfg_macro_text.h"
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/foreign_text.h"
 #include "lang/convert/python_operators.h"
@@ -113,7 +114,14 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
     auto alone = [](char before, char after) {
       return (before == '\0' || before == '(' || before == ',') && (after == '\0' || after == ')' || after == ',');
     };
-    if (!atomic(function.begin, function.end) && !alone(previous(at, begin), following(close + 1, end)))
+    auto compound = [this](std::string_view macro) {
+      auto found = macros.find(macro);
+      return found != macros.end() && !plainMacro(found->second, 0);
+    };
+    if (!atomic(function.begin, function.end) && !alone(previous(at, begin), following(close + 1, end)) &&
+        !replacementReadsAsParenthesised(text_.substr(function.begin, function.end - function.begin),
+                                         text_.substr(begin, at - begin), text_.substr(close + 1, end - close - 1),
+                                         compound))
       fail(at, close + 1,
            "the macro '" + name +
                "' is replaced as text by C: its value, which is no single operand, would join the operators around "
@@ -271,6 +279,11 @@ std::string ForeignSyntax::splineCall(uint32_t at, uint32_t open, uint32_t end, 
     trim(ma, mb);
     number = std::string(text_.substr(ma, mb - ma));
   }
+  // A function set's names stand for the functions' numbers (cpfg defines them so).
+  for (size_t i = 0; i < splineFunctions.size(); ++i) {
+    if (splineFunctions[i].setUnread) fail(at, close + 1, "func(" + number + ", x): " + splineFunctions[i].error);
+    if (!splineFunctions[i].name.empty() && splineFunctions[i].name == number) number = std::to_string(i + 1);
+  }
   char* last = nullptr;
   const long n = std::strtol(number.c_str(), &last, 10);
   if (number.empty() || last != number.c_str() + number.size())
@@ -397,6 +410,11 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
       }
       // cpfg's variables of the blocks around each step, unless a parameter hides one.
       if (auto variable = stepVariables.find(name); !python && variable != stepVariables.end() && !bound_.count(name)) {
+        if (variable->second.stepEnd && inHomomorphism && !variable->second.afterStep.empty()) {
+          emit("(" + variable->second.afterStep + ")", false, stop - at);
+          at = stop;
+          continue;
+        }
         if (variable->second.stepEnd && inHomomorphism)
           fail(at, stop,
                "the variable '" + name +
@@ -486,6 +504,11 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
           }
           if (name == "fabs") name = "abs";
           if (name == "nran") name = "gaussian";  // cpfg's nran(mean, deviation)
+          if (name == "bran" || name == "biran")
+            fail(at, stop,
+                 "cpfg's " + name + (name == "bran" ? "(a, b), a random number of the beta distribution" :
+                                                      "(n, p), a random number of the binomial distribution") +
+                     ": the cell language draws uniform, normal and Bernoulli numbers only");
         }
       }
       if (python) {

@@ -65,6 +65,10 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
            "L-Py's query " + shown(label) +
                " has no cell-language counterpart: ontogen's turtle fills ?P, ?H, ?L and ?U only, so the word "
                "would differ");
+    if (label == "?E")
+      fail(at, at + 2,
+           "cpfg's ?E, the query an environmental program answers (cpfg -e FILE): ontogen runs no environment "
+           "process, so the values the query holds, and the word, would differ");
     return at + 2;
   }
   // '@' modules: the longest predefined name, as the tools read them (@GcI is @Gc I).
@@ -431,6 +435,15 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   if (predecessor.size() != 1) {
     uint32_t a = predBegin, b = predEnd;
     trim(a, b);
+    // cpfg rewrites modules that stand strictly side by side together; the cell language
+    // one module a production, and contexts would match across ignored modules and
+    // branches, and overlapping occurrences, where cpfg's predecessor does not.
+    if (!predecessor.empty() && dialect_ == Dialect::Cpfg)
+      fail(a, b,
+           "cpfg's predecessor of " + std::to_string(predecessor.size()) + " modules (" +
+               std::string(text_.substr(a, b - a)) +
+               "): the cell language rewrites one module a production, and contexts would also match across "
+               "ignored modules and branches, where cpfg's modules must stand side by side");
     fail(a, b,
          predecessor.empty() ? std::string("expected a predecessor before the arrow")
                              : "a production has one predecessor module, found " + std::to_string(predecessor.size()) +
@@ -450,7 +463,8 @@ Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
     const uint32_t post = find(a, b, "{");
     uint32_t x = a, y = post;
     trim(x, y);
-    if (x < y) s.condition = substituted(condition(x, y), locals);
+    // cpfg's '*' between blocks is no condition, as it is alone.
+    if (x < y && text_.substr(x, y - x) != "*") s.condition = substituted(condition(x, y), locals);
     if (post < b && block(post, b, s, begin, end, locals) < b)
       fail(post, b, "a C block '{ ... }' in the condition: C code, which ontogen convert does not translate", false);
   }
@@ -594,9 +608,18 @@ uint32_t ForeignSyntax::block(uint32_t at, uint32_t end, const Statement& s, uin
           continue;
         if (k >= statementBegin && k < statementEnd) continue;
         if (bindsParameter(k, name)) continue;
-        const size_t lineBegin = text_.rfind('\n', k) == std::string_view::npos ? 0 : text_.rfind('\n', k) + 1;
+        size_t lineBegin = text_.rfind('\n', k) == std::string_view::npos ? 0 : text_.rfind('\n', k) + 1;
         size_t lineEnd = text_.find('\n', k);
         if (lineEnd == std::string_view::npos) lineEnd = text_.size();
+        // The whole statement: cpfg continues one on the lines after it that start with a tab.
+        while (lineBegin >= 2 && text_[lineBegin] == '\t') {
+          const size_t previous = text_.rfind('\n', lineBegin - 2);
+          lineBegin = previous == std::string_view::npos ? 0 : previous + 1;
+        }
+        while (lineEnd + 1 < text_.size() && text_[lineEnd + 1] == '\t') {
+          lineEnd = text_.find('\n', lineEnd + 1);
+          if (lineEnd == std::string_view::npos) lineEnd = text_.size();
+        }
         const std::string_view line = text_.substr(lineBegin, lineEnd - lineBegin);
         const size_t brace = line.find('{');
         bool assigns = brace != std::string_view::npos && line.find("-->") != std::string_view::npos;

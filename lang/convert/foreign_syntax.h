@@ -71,10 +71,12 @@ class ForeignSyntax {
   /// read as a cell-language expression of `time` (the step a production fires at):
   /// a counter `n = n + 1` is its value at that step. `stepEnd`: EndEach: changes it
   /// after each step, so after the last one (where the homomorphism reads it) it is
-  /// one step on.
+  /// one step on: `afterStep` is its value there (an EndEach: counter's, of `time`, the
+  /// steps made), or empty where the converter cannot write it.
   struct StepVariable {
     std::string value;
     bool stepEnd = false;
+    std::string afterStep;
   };
   std::map<std::string, StepVariable, std::less<>> stepVariables;
   /// cpfg's arrays of a `Define:` block, `array c[3] = {1, 3, 2};`: each element a

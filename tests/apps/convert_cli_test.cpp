@@ -114,6 +114,9 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
       // Start: {b = 1 - C; a = b / 2;} as constants: b = 0.5, a = 0.25.
       {"c_start.l", "1,2", "t = 1: B(0.25) A(1.5)\nt = 2: B(0.25) B(0.25) A(2)\n"},
       {"continued.l", "1,2", "t = 1: B [ C ] A\nt = 2: B [ C ] B [ C ] A\n"},
+      // k = 3 from a Start: block over three lines; x of each production's own block; C
+      // rewritten without a condition ('*'), y = 4.
+      {"c_lines.l", "1,2", "t = 1: B(3) A(2) D(4)\nt = 2: B(4) B(6) A(3) D(4)\n"},
       // Python bodies: if/elif/else, nproduce, locals, math, a word over lines, return,
       // and random choices of chance 1 and 0, as L-Py derives them.
       {"python_branches.lpy", "1,2,3",
@@ -296,21 +299,33 @@ TEST(Convert, CpfgStepCountersGrowAsCpfgCountsTheSteps) {
             "t = 4: B(1, 10, 21) B(2, 9, 19) C(3, 8, 17) E(4)\n");
   const fs::path dir = fs::path(ONTOGEN_BINARY_DIR) / "convert_cli_test" / "steps";
   fs::create_directories(dir);
-  // After the last step the homomorphism reads n as it stands (2), but m one step on,
-  // which the converter refuses.
+  // The homomorphism reads the word after k steps, each ended by EndEach: n and m are
+  // both k there (cpfg interprets after EndEach:), where a production of step k reads m
+  // as k - 1.
   std::ofstream(dir / "after.l") << "Lsystem: 1\nderivation length: 2\nStart: {n = 0; m = 0;}\n"
                                     "StartEach: {n = n + 1;}\nEndEach: {m = m + 1;}\nAxiom: A\nA --> A\n"
-                                    "homomorphism\nA --> B(n)\n";
-  Result after = ontogen("word --interpreted " + (dir / "after.l").string() + " --at 2");
+                                    "homomorphism\nA --> B(n)C(m)\n";
+  Result after = ontogen("word --interpreted " + (dir / "after.l").string() + " --at 0,1,2");
   ASSERT_EQ(after.exitCode, 0) << after.err;
-  EXPECT_EQ(after.out, "t = 2: B(2)\n");
-  std::ofstream(dir / "end.l") << "Lsystem: 1\nStart: {m = 0;}\nEndEach: {m = m + 1;}\nAxiom: A\n"
-                                  "homomorphism\nA --> C(m)\n";
+  EXPECT_EQ(after.out, "t = 0: B(0) C(0)\nt = 1: B(1) C(1)\nt = 2: B(2) C(2)\n");
+  // A value of StartEach: that EndEach: sets too is refused there.
+  std::ofstream(dir / "end.l") << "Lsystem: 1\nStartEach: {s = 0;}\nEndEach: {s = 1;}\nAxiom: A\n"
+                                  "homomorphism\nA --> C(s)\n";
   Result end = ontogen("convert " + (dir / "end.l").string());
   EXPECT_EQ(end.exitCode, 6) << end.err;
-  EXPECT_NE(end.err.find("end.l:6:9: error: the variable 'm', which cpfg's EndEach: block changes"),
+  EXPECT_NE(end.err.find("end.l:6:9: error: the variable 's', which cpfg's EndEach: block changes"),
             std::string::npos)
       << end.err;
+}
+
+// rot(x) of c_macro_text.l between + and *: phi = 2 + 3 * 1 * 0.5 * 4 / 0.5 = 14 in
+// the homomorphism of the axiom, which derivation length 0 leaves as it is.
+TEST(Convert, ACpfgMacroReplacedAsTextAndTheAxiomAlone) {
+  Result result = ontogen("word --interpreted " + file("c_macro_text.l") + " --at 0,1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 0: F(14)\nt = 1: F(14)\n");
+  Result word = ontogen("word " + file("c_macro_text.l") + " --at 1");
+  EXPECT_EQ(word.out, "t = 1: C(1, 2)\n");
 }
 
 // cpfg's @Tx and @Ts stay modules (Texture, SetElasticity) that contexts read as cpfg

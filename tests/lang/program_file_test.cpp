@@ -82,6 +82,37 @@ TEST(ProgramFile, AnotherToolsFileIsCheckedBeforeAndAfterItIsConverted) {
   EXPECT_TRUE(quiet.diagnostics().empty());
 }
 
+// cpfg reads the view file its command line names, which a vlab object keeps in its
+// `specifications`; without one, the view file of the L-system's name.
+TEST(ProgramFile, ACpfgFilesViewIsTheOneItsSpecificationsNameElseItsOwnName) {
+  const fs::path dir = scratch("specifications");
+  const std::string lsystem = "Lsystem: 1\nAxiom: F+F\nendlsystem\n";
+  const fs::path lamp = writeFile(dir / "lamp.l", lsystem);
+  writeFile(dir / "view.v", "angle increment: 20\n");
+  writeFile(dir / "lamp.v", "angle increment: 60\n");
+  writeFile(dir / "specifications", "lamp.l\nmodel:\n\tgenerate:\n\t\tcpfg -M materials.mat lamp.l view.v anim.a\n");
+  DiagnosticSink sink;
+  const ProgramFileText named = readProgramFile(lamp.string(), {}, sink);
+  ASSERT_TRUE(named.text) << named.error;
+  EXPECT_NE(named.text->find("  #angle 20\n"), std::string::npos) << *named.text;
+  EXPECT_TRUE(sink.diagnostics().empty());
+
+  const fs::path other = writeFile(dir / "other.l", lsystem);
+  writeFile(dir / "other.v", "angle factor: 12\n");
+  const ProgramFileText own = readProgramFile(other.string(), {}, sink);
+  ASSERT_TRUE(own.text) << own.error;
+  EXPECT_NE(own.text->find("  #angle 360 / 12\n"), std::string::npos) << *own.text;
+
+  const fs::path alone = writeFile(dir / "alone.l", lsystem);
+  DiagnosticSink warned;
+  const ProgramFileText without = readProgramFile(alone.string(), {}, warned);
+  ASSERT_TRUE(without.text) << without.error;
+  EXPECT_EQ(without.text->find("#angle"), std::string::npos) << *without.text;
+  ASSERT_EQ(warned.diagnostics().size(), 1u);
+  EXPECT_EQ(formatDiagnostics(warned).rfind(alone.string() + ":2:1: warning: no view file", 0), 0u)
+      << formatDiagnostics(warned);
+}
+
 TEST(ProgramFile, WhyThereIsNoTextComesBackWithItsKind) {
   const fs::path dir = scratch("failures");
   DiagnosticSink sink;

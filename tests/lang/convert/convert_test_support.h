@@ -1,7 +1,9 @@
 #pragma once
 // Converting a text of another tool's notation in a test: the program, or the error's
-// line, column and message.
+// line, column and message. A cpfg text without a view file is converted as one whose
+// view file could not be found.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,7 +21,7 @@ struct Converted {
 };
 
 inline Converted convertText(Dialect dialect, const std::string& name, const std::string& text,
-                             const std::string& view = "") {
+                             const std::optional<std::string>& view = std::nullopt) {
   SourceFile file(name, text);
   DiagnosticSink sink;
   ConvertResult result = convertFile(file, dialect, view, sink);

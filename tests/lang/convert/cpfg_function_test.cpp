@@ -41,7 +41,9 @@ TEST(CpfgFunction, APointsMultiplicityRepeatsIt) {
 }
 
 TEST(CpfgFunction, ValuesBetweenSamplesAreTheLineBetweenThem) {
-  SampledFunction function{"f.func", {2, 3, 0}, ""};
+  SampledFunction function;
+  function.file = "f.func";
+  function.samples = {2, 3, 0};
   EXPECT_EQ(sampledValue(function, "x"),
             "((2) * max(0, 1 - abs(clamp(x, 0, 1) * 2 - 0)) + (3) * max(0, 1 - abs(clamp(x, 0, 1) * 2 - 1)))");
 }
@@ -101,6 +103,49 @@ TEST(CpfgFunction, CallsOfAFileAreTheirValuesOrErrorsAtTheCall) {
             "2:9: func(1, x): the function file 'b.func' cannot be read");
   EXPECT_EQ(convert("Axiom: A\nA --> F(func(1, ran(1)))\n", "function: a.func 100\n").second.substr(0, 70),
             "2:17: an argument of func that draws a random number: the converter wr");
+}
+
+// A function set (.fset, `function set:` in the view file): the editor's gallery of
+// functions, `func(n, x)` by number or by the name cpfg defines for each; a `function:`
+// line after it keeps the numbers but not the names.
+TEST(CpfgFunction, AFunctionSetsFunctionsAreCalledByNumberOrName) {
+  const std::string flat = "fver 1 1\nname: FLAT.func\nsamples: 3\nflip: off\npoints: 4\n0 5\n0.3 5\n0.6 5\n1 5\n";
+  const std::string set = "funcgalleryver 1 1\nitems: 2\n" + flat + std::string(kBezier);
+  auto reader = [&](const std::string& name) -> std::optional<std::string> {
+    if (name == "f.fset") return set;
+    if (name == "bad.fset") return std::string("funcgalleryver 1 1\nitems: 2\n") + flat;
+    return std::nullopt;
+  };
+  auto convert = [&](const std::string& text, const std::string& view) {
+    SourceFile file("a.l", text);
+    DiagnosticSink sink;
+    ConvertResult result = convertFile(file, Dialect::Cpfg, view, sink, kDefaultMaxSourceBytes, reader);
+    std::string error;
+    for (const Diagnostic& d : sink.diagnostics())
+      if (d.severity != Severity::Warning)
+        error = std::to_string(d.span.line()) + ":" + std::to_string(d.span.column()) + ": " + d.message;
+    return std::make_pair(result.program.value_or(""), error);
+  };
+  auto functions = viewFunctions("function set: f.fset\n", reader);
+  ASSERT_EQ(functions.size(), 2u);
+  EXPECT_EQ(functions[0].name, "FLAT");  // cpfg drops the name's '.func'
+  EXPECT_EQ(functions[1].name, "bezier");
+  EXPECT_EQ(functions[1].samples[1], 3.0);
+  auto [program, error] = convert("Axiom: A\nA --> F(func(bezier, 0.5)) F(func(1, 0))\n", "function set: f.fset\n");
+  ASSERT_EQ(error, "");
+  EXPECT_NE(program.find("A -> F(((2.0000"), std::string::npos) << program;
+  EXPECT_NE(program.find(") F(((5) * max(0, 1 - abs(clamp(0, 0, 1) * 2 - 0))"), std::string::npos) << program;
+  // After a function: line the names are gone, the numbers stay.
+  auto after = viewFunctions("function set: f.fset\nfunction: g.func 100\n", reader);
+  ASSERT_EQ(after.size(), 3u);
+  EXPECT_EQ(after[0].name, "");
+  EXPECT_EQ(convert("Axiom: A\nA --> F(func(bezier, 0.5))\n", "function set: f.fset\nfunction: g.func 100\n").second,
+            "2:14: the number of cpfg's function, func(n, x), is a whole number written in the file or a macro of one");
+  EXPECT_EQ(convert("Axiom: A\nA --> F(func(1, 0.5))\n", "function set: bad.fset\n").second,
+            "2:9: func(1, x): the function set 'bad.fset': its function 2: it is no function file of the format "
+            "'fver 1 1' (the one the function editor writes)");
+  EXPECT_EQ(convert("Axiom: A\nA --> F(func(1, 0.5))\n", "function set: none.fset\n").second,
+            "2:9: func(1, x): the function set 'none.fset' cannot be read");
 }
 
 }  // namespace

@@ -46,6 +46,30 @@ TEST(CpfgReader, IgnoreConsiderSectionsAndTheViewFilesAngle) {
             "  maximum depth: 3\n  B -> F\n");
 }
 
+// cpfg reads its turn angle from the view file: the last of its angle lines, else its
+// default of 45 degrees. Without a view file the angle is unknown: the first line that
+// turns by it warns.
+TEST(CpfgReader, TheViewFilesLastAngleElseCpfgsDefaultElseAWarning) {
+  const std::string text = "Lsystem: 1\nAxiom: A\nA --> F(1)\nA --> F+F\nendlsystem\n";
+  auto last = convertText(Dialect::Cpfg, "a.l", text, "angle increment: 30\nangle factor: 8\n");
+  EXPECT_NE(last.program.find("  #angle 360 / 8\n"), std::string::npos) << last.program;
+  EXPECT_TRUE(last.warnings.empty());
+  auto none = convertText(Dialect::Cpfg, "a.l", text, "viewpoint: 0,0,1\n");
+  EXPECT_NE(none.program.find("  #angle 45\n"), std::string::npos) << none.program;
+  EXPECT_TRUE(none.warnings.empty());
+  auto missing = convertText(Dialect::Cpfg, "tree.l", text);
+  EXPECT_EQ(missing.program.find("#angle"), std::string::npos) << missing.program;
+  ASSERT_EQ(missing.warnings.size(), 1u);
+  EXPECT_EQ(missing.warnings[0].rfind("4:1: no view file (neither one that a cpfg command in the folder's "
+                                      "'specifications' names with this file, nor 'tree.v' beside it)", 0),
+            0u)
+      << missing.warnings[0];
+  EXPECT_NE(missing.warnings[0].find("ontogen's default of 90 degrees"), std::string::npos);
+  // Turns given their angle need none.
+  auto given = convertText(Dialect::Cpfg, "tree.l", "Axiom: A\nA --> F+(30)F|\n");
+  EXPECT_TRUE(given.warnings.empty());
+}
+
 TEST(CpfgReader, ConditionalsBecomeIf) {
   auto c = convertText(Dialect::Cpfg, "a.l", "Axiom: A(1)\nA(x) --> A(x > 1 ? 1 : x < 0 ? 2 : 3)\n");
   ASSERT_EQ(c.error, "");
@@ -208,6 +232,38 @@ TEST(CpfgReader, BlocksWithinABlockAreItsStatements) {
 namespace ontogen::convert {
 namespace {
 
+// C over several lines: a Start: block read to the line that closes its brace, and a
+// variable that two productions set in their own blocks, read on their successors'
+// continued lines (a line break and a tab), is each production's own.
+TEST(CpfgReader, CBlocksAndStatementsOverSeveralLines) {
+  auto c = convertText(Dialect::Cpfg, "a.l",
+                       "Lsystem: 1\nStart: {k =\n\t3;\n}\nAxiom: A(1)\nA(t) : 1 {x = t * k;} -->\n\tB(x) A(t + 1)\n"
+                       "B(t) : t < 5 {x = t + 1;} -->\n\tB(x)\nendlsystem\n");
+  ASSERT_EQ(c.error, "") << c.line << ":" << c.column;
+  EXPECT_EQ(body(c.program),
+            "  #define k 3\n  axiom A(1)\n  A(t) : 1 -> B((t * k)) A(t + 1)\n  B(t) : t < 5 -> B((t + 1))\n");
+  // cpfg's '*' before a block is no condition, as it is alone.
+  auto star = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: C(2)\nC(a) : * {y = a * 2;} --> D(y)\nendlsystem\n");
+  ASSERT_EQ(star.error, "");
+  EXPECT_EQ(body(star.program), "  axiom C(2)\n  C(a) -> D((a * 2))\n");
+  // A brace of a polygon that a successor opens and another closes joins no lines.
+  auto polygon = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A\nA --> {.B\nB --> .}\nendlsystem\n");
+  ASSERT_EQ(polygon.error, "");
+  EXPECT_NE(polygon.program.find("  B -> PP EP\n"), std::string::npos) << polygon.program;
+}
+
+// A predecessor of several modules (cpfg rewrites them together where they stand side by
+// side) has no exact counterpart: refused at its place as cpfg's construct (exit 6).
+TEST(CpfgReader, APredecessorOfSeveralModulesIsRefusedAsCpfgs) {
+  auto c = convertText(Dialect::Cpfg, "a.l", "Lsystem: 0\nAxiom: XF(1)\nXF(x) --> F(x/3)+F(x/3)\nendlsystem\n");
+  EXPECT_EQ(c.program, "");
+  EXPECT_TRUE(c.untranslatable);
+  EXPECT_EQ(c.line, 3);
+  EXPECT_EQ(c.column, 1);
+  EXPECT_EQ(c.error.rfind("cpfg's predecessor of 2 modules (XF(x)): the cell language rewrites one module", 0), 0u)
+      << c.error;
+}
+
 // cpfg's macros with parameters, inlined where C's textual replacement reads the same:
 // parameters that stand alone or in parentheses, values that are one operand, calls
 // alone between delimiters, single-operand arguments.
@@ -240,9 +296,19 @@ TEST(CpfgReader, AStartBlockOfConstants) {
   EXPECT_EQ(state.column, 1);
   EXPECT_TRUE(state.untranslatable);
   EXPECT_NE(state.error.find("a C block (Start:"), std::string::npos) << state.error;
+  // The message says why the blocks stay C code.
+  EXPECT_NE(state.error.find("(the variable 'n', which EndEach: changes otherwise than by a constant step)"),
+            std::string::npos)
+      << state.error;
   auto call = convertText(Dialect::Cpfg, "a.l", "Axiom: A\nStart: {n = 0; fclose(fp);}\n");
   EXPECT_EQ(call.line, 2);
   EXPECT_NE(call.error.find("a C block (Start:"), std::string::npos) << call.error;
+  EXPECT_NE(call.error.find("(the statement 'fclose(fp)', which is no assignment, printf or srand)"),
+            std::string::npos)
+      << call.error;
+  auto shared = convertText(Dialect::Cpfg, "a.l", "Start: {c = 0;}\nAxiom: A\nA : 1 {c = c + 1;} --> A\n");
+  EXPECT_NE(shared.error.find("(the variable 'c', which a production's block assigns too"), std::string::npos)
+      << shared.error;
 }
 
 }  // namespace

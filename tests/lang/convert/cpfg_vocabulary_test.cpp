@@ -114,3 +114,47 @@ TEST(CpfgVocabulary, AMacroOfModulesIsItsModulesWhereItsNameStands) {
 
 }  // namespace
 }  // namespace ontogen::convert
+
+namespace ontogen::convert {
+namespace {
+
+// cpfg's ?E is answered by an environmental program (cpfg -e): wherever it stands (a
+// word, a predecessor of several modules, a consider: list) it is refused at its place.
+TEST(CpfgVocabulary, TheEnvironmentsQueryIsRefusedAtItsPlace) {
+  struct Case {
+    const char* text;
+    int line, column;
+  };
+  const Case cases[] = {
+      {"Lsystem: 1\nAxiom: |+(30)?E(0)\nendlsystem\n", 2, 14},
+      {"Lsystem: 1\nAxiom: fA\nf?E(x) : x==1 --> ;FA\nendlsystem\n", 3, 2},
+      {"Lsystem: 1\nconsider: ?E[]\nAxiom: A\nendlsystem\n", 2, 11},
+  };
+  for (const Case& c : cases) {
+    auto converted = test::convertText(Dialect::Cpfg, "a.l", c.text);
+    EXPECT_EQ(converted.program, "") << c.text;
+    EXPECT_TRUE(converted.untranslatable) << c.text;
+    EXPECT_EQ(converted.line, c.line) << c.text << converted.error;
+    EXPECT_EQ(converted.column, c.column) << c.text << converted.error;
+    EXPECT_EQ(converted.error.rfind("cpfg's ?E, the query an environmental program answers (cpfg -e FILE)", 0), 0u)
+        << converted.error;
+  }
+}
+
+// cpfg's random numbers of the beta and binomial distributions have no counterpart
+// among the cell language's draws: refused at the call, where they reached the compiler
+// as unknown functions.
+TEST(CpfgVocabulary, BetaAndBinomialDrawsAreRefusedAtTheCall) {
+  auto beta = test::convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A(2)\nA(n) --> B(n*bran(5,16))\nendlsystem\n");
+  EXPECT_TRUE(beta.untranslatable);
+  EXPECT_EQ(beta.line, 3);
+  EXPECT_EQ(beta.column, 14);
+  EXPECT_EQ(beta.error.rfind("cpfg's bran(a, b), a random number of the beta distribution", 0), 0u) << beta.error;
+  auto binomial = test::convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A(biran(4, 0.5))\nendlsystem\n");
+  EXPECT_EQ(binomial.line, 2);
+  EXPECT_EQ(binomial.column, 10);
+  EXPECT_NE(binomial.error.find("binomial"), std::string::npos) << binomial.error;
+}
+
+}  // namespace
+}  // namespace ontogen::convert
