@@ -1,8 +1,9 @@
-// Writing a word: what `ontogen word` does after developing, as text (writeWordText) and
-// as JSON (WordJsonWriter), into a stream that counts and drops its bytes, so the figures
-// do not measure a disk or a pipe. The baseline writes the same text of the same Koch
-// word by hand, from a byte per module, through the same kind of buffer; the
-// derive-and-write pair times what `ontogen word` does as a whole, derivation included.
+// Writing a word: what `ontogen word` does after developing, as text (writeWordText), as
+// JSON (WordJsonWriter) and as compact JSON (CompactWordJsonWriter, `--json=compact`), into
+// a stream that counts and drops its bytes, so the figures do not measure a disk or a
+// pipe. The baseline writes the same text of the same Koch word by hand, from a byte per
+// module, through the same kind of buffer; the derive-and-write pair times what `ontogen
+// word` does as a whole, derivation included.
 
 #include <benchmark/benchmark.h>
 
@@ -10,6 +11,7 @@
 #include <sstream>
 #include <streambuf>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bench/bench_support.h"
@@ -91,6 +93,24 @@ void BM_KochWordJson(benchmark::State& state) {
       [](size_t modules, size_t bytes) { return bytes > 100 * modules; });  // a record of ~110 bytes each
 }
 BENCHMARK(BM_KochWordJson)->Arg(8)->Unit(benchmark::kMillisecond);
+
+void BM_KochWordJsonCompact(benchmark::State& state) {
+  writeKochWord(
+      state,
+      [](const World& world, BufferedOutput& buffered) {
+        CompactWordJsonWriter writer(buffered);
+        writer.begin();
+        writer.beginTime(world.time(), true);
+        writer.writeWord(world);
+        writer.endTime();
+        writer.end();
+      },
+      // 4 bytes a module ("F", or "+",), less the last comma, and the frame around them.
+      [](size_t modules, size_t bytes) {
+        return bytes == 4 * modules - 1 + std::string_view("{\"form\": \"compact\", \"times\": [\n  {\"t\": 8, \"cells\": []}\n]}\n").size();
+      });
+}
+BENCHMARK(BM_KochWordJsonCompact)->Arg(8)->Unit(benchmark::kMillisecond);
 
 // Koch's word derived by hand, a byte per module, both words reserved for the final size.
 std::vector<char> kochByHand(int n) {
