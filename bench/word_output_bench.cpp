@@ -7,6 +7,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <ostream>
 #include <sstream>
 #include <streambuf>
@@ -18,6 +19,7 @@
 #include "core/word.h"
 #include "core/world.h"
 #include "interpreters/text/word_text.h"
+#include "pools/large_block_cache.h"
 
 namespace ontogen::bench {
 namespace {
@@ -111,6 +113,45 @@ void BM_KochWordJsonCompact(benchmark::State& state) {
       });
 }
 BENCHMARK(BM_KochWordJsonCompact)->Arg(8)->Unit(benchmark::kMillisecond);
+
+// Giving Koch's word at generation range(0), grown without ids, its ids (the replay of
+// core/table_replay.h that every reader of ids pays first): each iteration grows a fresh
+// world, outside the timed region, then times Pool::ensureIds. Reports the replay's and
+// the derivation's processor times (median over iterations) and their ratio, and the
+// blocks the replay took fresh from the system rather than from the large block cache.
+void BM_KochIdReplay(benchmark::State& state) {
+  if (!koch().program) return state.SkipWithError(koch().error.c_str());
+  const int n = static_cast<int>(state.range(0));
+  std::vector<double> derivations, replays;
+  uint64_t freshBlocks = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    {
+      double start = processSeconds();
+      World world(koch().program, kBenchWorld);
+      world.advanceTo(n, 1.0);
+      derivations.push_back(processSeconds() - start);
+      const uint64_t fresh = largeBlockCacheStats().fresh;
+      state.ResumeTiming();
+      start = processSeconds();
+      world.rootPool().ensureIds();
+      replays.push_back(processSeconds() - start);
+      state.PauseTiming();
+      freshBlocks += largeBlockCacheStats().fresh - fresh;
+      if (!world.rootPool().holdsIds()) return state.SkipWithError("no ids after the replay");
+    }
+    state.ResumeTiming();
+  }
+  auto median = [](std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values[values.size() / 2];
+  };
+  state.counters["derivation_ms"] = 1e3 * median(derivations);
+  state.counters["replay_ms"] = 1e3 * median(replays);
+  state.counters["replay/derivation"] = median(replays) / median(derivations);
+  state.counters["fresh_blocks"] = static_cast<double>(freshBlocks) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_KochIdReplay)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 // Koch's word derived by hand, a byte per module, both words reserved for the final size.
 std::vector<char> kochByHand(int n) {
