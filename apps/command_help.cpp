@@ -82,7 +82,7 @@ int runHelp(const HelpOptions& options) {
   constexpr std::pair<std::string_view, std::string_view> kUsage[] = {
       {"ontogen check FILE", "parse and check a program"},
       {"ontogen run FILE [options]", "develop and write one output per frame"},
-      {"ontogen word FILE --at T1,T2 [--json]", "print the derivation word at those times"},
+      {"ontogen word FILE --at T1,T2 [--json[=compact]]", "print the derivation word at those times"},
       {"ontogen statics FILE [--at T] [--json]", "solve the rods' statics (physics set) at a time"},
       {"ontogen timeline FILE --out F.svg", "draw the time-state diagram of the development"},
       {"ontogen sweep FILE --out DIR [options]", "every combination of --define lists and --seeds, measured"},

@@ -23,7 +23,14 @@ int runWord(const WordOptions& options) {
   std::unique_ptr<World> world;
   auto writeWord = [&](std::ostream& out, double t, bool first, bool last) {
     BufferedOutput buffered(out);
-    if (options.json) {
+    if (options.json == "compact") {
+      CompactWordJsonWriter writer(buffered);
+      if (first) writer.begin();
+      writer.beginTime(t, first);
+      writer.writeWord(*world, options.interpreted);
+      writer.endTime();
+      if (last) writer.end();
+    } else if (options.json == "full") {
       WordJsonWriter writer(buffered);
       if (first) writer.begin();
       writer.beginTime(t, first);
@@ -51,8 +58,8 @@ int runWord(const WordOptions& options) {
       const bool stream = last && !options.interpreted;
       if (stream) {
         // Giving a word grown without ids its ids again can still pass the memory limit.
-        // JSON prints the ids, text does not (WordVisitor::readsIds).
-        prepareToVisit(*world, options.json);
+        // The full JSON prints the ids, the compact JSON and text do not (WordVisitor::readsIds).
+        prepareToVisit(*world, options.json == "full");
         std::cout << earlier.str();
         earlier = std::ostringstream();
       }

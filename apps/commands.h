@@ -75,7 +75,9 @@ struct RunOptions {
 struct WordOptions {
   CommonOptions common;
   std::vector<double> times;
-  bool json = false;
+  /// "full" (--json) or "compact" (--json=compact, docs/LANGUAGE.md "The word as JSON");
+  /// empty: the text.
+  std::string json;
   int precision = 6;
   bool interpreted = false;  ///< print the homomorphism's image, as interpretation reads it
 };

@@ -228,7 +228,11 @@ int dispatch(int argc, char** argv) {
   addDevelopment(*wordCommand, word.common);
   addRealListOption(*wordCommand, "--at", word.times, {RealRange::atLeast(0)}, "Global times, seconds, comma-separated")
       ->required();
-  wordCommand->add_flag("--json", word.json, "Print one JSON object");
+  wordCommand
+      ->add_flag("--json{full}", word.json,
+                 "Print one JSON object: --json every field, ids and parents included; --json=compact "
+                 "labels, values and the ages of timed cells, without ids")
+      ->check(CLI::IsMember({"full", "compact"}));
   wordCommand->add_flag("--interpreted", word.interpreted,
                         "Print the word as interpretation reads it, after the homomorphism rules");
   addWholeOption(*wordCommand, "--precision", word.precision, WholeRange::between(1, 17),

@@ -1,21 +1,25 @@
-// Writing a word: what `ontogen word` does after developing, as text (writeWordText) and
-// as JSON (WordJsonWriter), into a stream that counts and drops its bytes, so the figures
-// do not measure a disk or a pipe. The baseline writes the same text of the same Koch
-// word by hand, from a byte per module, through the same kind of buffer; the
-// derive-and-write pair times what `ontogen word` does as a whole, derivation included.
+// Writing a word: what `ontogen word` does after developing, as text (writeWordText), as
+// JSON (WordJsonWriter) and as compact JSON (CompactWordJsonWriter, `--json=compact`), into
+// a stream that counts and drops its bytes, so the figures do not measure a disk or a
+// pipe. The baseline writes the same text of the same Koch word by hand, from a byte per
+// module, through the same kind of buffer; the derive-and-write pair times what `ontogen
+// word` does as a whole, derivation included.
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <ostream>
 #include <sstream>
 #include <streambuf>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bench/bench_support.h"
 #include "core/word.h"
 #include "core/world.h"
 #include "interpreters/text/word_text.h"
+#include "pools/large_block_cache.h"
 
 namespace ontogen::bench {
 namespace {
@@ -91,6 +95,63 @@ void BM_KochWordJson(benchmark::State& state) {
       [](size_t modules, size_t bytes) { return bytes > 100 * modules; });  // a record of ~110 bytes each
 }
 BENCHMARK(BM_KochWordJson)->Arg(8)->Unit(benchmark::kMillisecond);
+
+void BM_KochWordJsonCompact(benchmark::State& state) {
+  writeKochWord(
+      state,
+      [](const World& world, BufferedOutput& buffered) {
+        CompactWordJsonWriter writer(buffered);
+        writer.begin();
+        writer.beginTime(world.time(), true);
+        writer.writeWord(world);
+        writer.endTime();
+        writer.end();
+      },
+      // 4 bytes a module ("F", or "+",), less the last comma, and the frame around them.
+      [](size_t modules, size_t bytes) {
+        return bytes == 4 * modules - 1 + std::string_view("{\"form\": \"compact\", \"times\": [\n  {\"t\": 8, \"cells\": []}\n]}\n").size();
+      });
+}
+BENCHMARK(BM_KochWordJsonCompact)->Arg(8)->Unit(benchmark::kMillisecond);
+
+// Giving Koch's word at generation range(0), grown without ids, its ids (the replay of
+// core/table_replay.h that every reader of ids pays first): each iteration grows a fresh
+// world, outside the timed region, then times Pool::ensureIds. Reports the replay's and
+// the derivation's processor times (median over iterations) and their ratio, and the
+// blocks the replay took fresh from the system rather than from the large block cache.
+void BM_KochIdReplay(benchmark::State& state) {
+  if (!koch().program) return state.SkipWithError(koch().error.c_str());
+  const int n = static_cast<int>(state.range(0));
+  std::vector<double> derivations, replays;
+  uint64_t freshBlocks = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    {
+      double start = processSeconds();
+      World world(koch().program, kBenchWorld);
+      world.advanceTo(n, 1.0);
+      derivations.push_back(processSeconds() - start);
+      const uint64_t fresh = largeBlockCacheStats().fresh;
+      state.ResumeTiming();
+      start = processSeconds();
+      world.rootPool().ensureIds();
+      replays.push_back(processSeconds() - start);
+      state.PauseTiming();
+      freshBlocks += largeBlockCacheStats().fresh - fresh;
+      if (!world.rootPool().holdsIds()) return state.SkipWithError("no ids after the replay");
+    }
+    state.ResumeTiming();
+  }
+  auto median = [](std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    return values[values.size() / 2];
+  };
+  state.counters["derivation_ms"] = 1e3 * median(derivations);
+  state.counters["replay_ms"] = 1e3 * median(replays);
+  state.counters["replay/derivation"] = median(replays) / median(derivations);
+  state.counters["fresh_blocks"] = static_cast<double>(freshBlocks) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_KochIdReplay)->Arg(10)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 // Koch's word derived by hand, a byte per module, both words reserved for the final size.
 std::vector<char> kochByHand(int n) {

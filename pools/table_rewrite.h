@@ -239,20 +239,25 @@ class TableRewrite {
       labels[at] = static_cast<uint8_t>(label);
       ++at;
     }
-    // As CompactWord::Slice::appendFreshRun, with the labels also as packed bytes.
-    void putFresh(const uint32_t* successors, uint64_t packed, uint32_t n, uint64_t key, uint32_t index, double birth) {
+    // As CompactWord::Slice::appendFreshRun, with the labels also as packed bytes and as
+    // bytes padded for a store of 16 (RewriteTable::bytes).
+    void putFresh(const uint32_t* successors, uint64_t packed, const uint8_t* padded, uint32_t n, uint64_t key,
+                  uint32_t index, double birth) {
       const size_t place = at % CompactWord::kBlock;
-      // Most runs: eight labels or fewer, inside the bitmap word under way (not the first
-      // of the slice, which starts one), with room in the slice for a store of eight bytes
-      // (the bytes past n are written over next).
-      if (n <= 8 && place != 0 && place + n <= CompactWord::kBlock && bitsWord != SIZE_MAX && at + 8 <= sliceEnd)
+      // Most runs: sixteen labels or fewer (Koch's nine), inside the bitmap word under way
+      // (not the first of the slice, which starts one), with room in the slice for a store
+      // of eight or sixteen bytes (the bytes past n are written over next).
+      if (n <= 16 && place != 0 && place + n <= CompactWord::kBlock && bitsWord != SIZE_MAX && at + 16 <= sliceEnd)
           [[likely]] {
         bits |= uint64_t{1} << place;
         keys[runs] = key;
         birthIndex[runs] = index;
         firstK[runs] = 1;
         ++runs;
-        std::memcpy(labels + at, &packed, 8);
+        if (n <= 8)
+          std::memcpy(labels + at, &packed, 8);
+        else
+          std::memcpy(labels + at, padded, 16);
         at += n;
         runJ = n - 1;
         return;
@@ -597,6 +602,7 @@ class TableRewrite {
     const uint64_t* starts = from.runStarts_.data();
     const RewriteTable::Entry* entries = table.entries.data();
     const uint32_t* successors = table.labels.data();
+    const uint8_t* padded = table.bytes.data();  // the successors' labels as bytes, padded
 
     // The run of the module under way.
     const CompactWord::Place place = from.locate(begin);
@@ -670,7 +676,7 @@ class TableRewrite {
           counts.born += entry.count;
           tail = false;
           if constexpr (kWriting) {
-            writer.putFresh(successors + entry.first, entry.packed, entry.count,
+            writer.putFresh(successors + entry.first, entry.packed, padded + entry.first, entry.count,
                             lineage(parentFirstOf(key, k, keyFirst, keyFirstKnown), death), deathIndexOf(death), death);
           } else {
             modules += entry.count;

@@ -91,6 +91,48 @@ class WordJsonWriter final : public WordVisitor {
   std::vector<size_t> cellsInList_;  // cells written in each open list, innermost last
 };
 
+/// Streams the compact JSON of `ontogen word --json=compact` (docs/LANGUAGE.md, "The
+/// word as JSON"): {"form": "compact", "times": [{"t": T, "cells": [...]}, ...]}, where a
+/// cell that is its label alone (no values, no age, no position, no pool) is that label as
+/// a string, and any other an object of the full form's fields less its defaults:
+/// "params" when it has values, "developed" when it differs from "params", "age" when the
+/// cell is timed, "position", "pool". No ids, no parents, no ages of untimed cells: a word
+/// grown without ids is written as held, without making them again.
+class CompactWordJsonWriter final : public WordVisitor {
+ public:
+  explicit CompactWordJsonWriter(BufferedOutput& out) : out_(out) {}
+  void begin();
+  /// `first`: the first time of the document.
+  void beginTime(double t, bool first);
+  /// The world's word (`interpreted`: its homomorphism's image) as the cells of the time
+  /// begun, to the byte as visitWord or visitInterpretedWord would stream it through this
+  /// writer; a word held compactly without ids is written as it is held, as writeWordText
+  /// writes it.
+  void writeWord(const World& world, bool interpreted = false);
+  void endTime();
+  void end();
+  void cell(const WordCellView& cell) override;
+  void enterPool() override;
+  void leavePool() override;
+  /// Labels, values, positions, and ages of timed cells alone.
+  bool readsIds() const override { return false; }
+
+ private:
+  const std::string& quotedLabel(std::string_view label);
+  struct QuotedLabel {
+    const char* data;
+    size_t size;
+    std::string quoted;
+  };
+  static constexpr size_t kQuotedLabels = 64;  // as WordJsonWriter's label prefixes
+  BufferedOutput& out_;
+  std::vector<QuotedLabel> labels_;
+  std::vector<size_t> cellsInList_;  // cells written in each open list, innermost last
+};
+
+/// The compact JSON of captured words, as CompactWordJsonWriter streams it.
+void writeCompactWordJson(std::ostream& out, const std::vector<WordAtTime>& words);
+
 /// {"times": [{"t": T, "cells": [{"label": ..., "params": [...], "developed": [...],
 /// "age": A, "id": I, "parent": P}, ...]}, ...]} (ids' low 53 bits; P is -1 for none), a system cell with "pool": [its cells], numbers in the shortest form that reads back exactly;
 /// infinities and NaN as null.

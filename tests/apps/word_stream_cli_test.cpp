@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <string>
 
 #include "tests/apps/cli_support.h"
@@ -55,8 +56,51 @@ TEST(WordStream, NestedPoolsInJsonAndText) {
   EXPECT_EQ(text.out, "t = 2: tree(5) { Trunk(0.998) Bud(0) } Gap tree(7) { Trunk(1.4) Bud(0) } Gap tree(4) { Trunk(0.798) Bud(0) }\n");
 }
 
+// The compact JSON is the full one less ids, parents and defaults: a cell of a label
+// alone is its label, any other an object of the fields that differ from their defaults.
+TEST(WordStream, CompactJsonIsTheFullOneLessItsDefaults) {
+  const CliResult koch = runOntogen("word " + modelPath("koch.cell") + " --at 0,1 --json=compact");
+  ASSERT_EQ(koch.exitCode, 0) << koch.err;
+  EXPECT_EQ(koch.out,
+            "{\"form\": \"compact\", \"times\": [\n  {\"t\": 0, \"cells\": [\"F\"]},\n"
+            "  {\"t\": 1, \"cells\": [\"F\",\"+\",\"F\",\"-\",\"F\",\"-\",\"F\",\"+\",\"F\"]}\n]}\n");
+
+  const std::string orchard = "word " + modelPath("orchard.cell") + " --at 0,2";
+  const CliResult full = runOntogen(orchard + " --json");
+  const CliResult compact = runOntogen(orchard + " --json=compact");
+  ASSERT_EQ(full.exitCode, 0) << full.err;
+  ASSERT_EQ(compact.exitCode, 0) << compact.err;
+  // Each full cell less its ids, parents and defaults is the compact one.
+  std::function<nlohmann::json(const nlohmann::json&)> lessDefaults = [&](const nlohmann::json& cell) {
+    nlohmann::json kept = {{"label", cell["label"]}};
+    if (!cell["params"].empty()) kept["params"] = cell["params"];
+    if (cell["developed"] != cell["params"]) kept["developed"] = cell["developed"];
+    if (cell.contains("position")) kept["position"] = cell["position"];
+    if (cell.contains("pool")) {
+      kept["pool"] = nlohmann::json::array();
+      for (const auto& inner : cell["pool"]) kept["pool"].push_back(lessDefaults(inner));
+    }
+    return kept.size() == 1 ? kept["label"] : kept;
+  };
+  nlohmann::json expected = {{"form", "compact"}, {"times", nlohmann::json::array()}};
+  const nlohmann::json fullDocument = nlohmann::json::parse(full.out);
+  for (const auto& time : fullDocument["times"]) {
+    nlohmann::json cells = nlohmann::json::array();
+    for (const auto& cell : time["cells"]) cells.push_back(lessDefaults(cell));
+    expected["times"].push_back(nlohmann::json::object({{"t", time["t"]}, {"cells", cells}}));
+  }
+  EXPECT_EQ(nlohmann::json::parse(compact.out), expected) << compact.out;
+  EXPECT_NE(compact.out.find("{\"label\": \"tree\", \"params\": [5], \"pool\": [{\"label\": \"Trunk\""), std::string::npos)
+      << compact.out;
+
+  const CliResult wrong = runOntogen("word " + modelPath("koch.cell") + " --at 1 --json=short");
+  EXPECT_EQ(wrong.exitCode, 2);
+  EXPECT_EQ(wrong.out, "");
+  EXPECT_NE(wrong.err.find("--json: short not in {full,compact}"), std::string::npos) << wrong.err;
+}
+
 TEST(WordStream, NothingPrintedWhenALaterTimeFails) {
-  for (const char* format : {"", " --json"}) {
+  for (const char* format : {"", " --json", " --json=compact"}) {
     const CliResult result = runOntogen("word " + modelPath("koch.cell") + " --at 1,3 --max-cells 20" + format);
     EXPECT_EQ(result.exitCode, 3) << format;
     EXPECT_EQ(result.out, "") << format;
@@ -77,6 +121,13 @@ TEST(WordStream, NothingPrintedWhenGivingTheWordItsIdsPassesTheMemoryLimit) {
   const CliResult text = runOntogen(command + " --max-memory 19");
   ASSERT_EQ(text.exitCode, 0) << text.err;
   EXPECT_EQ(countOf(text.out, "F"), 5u + 390'625u);  // 5 at t = 1, 5^8 at t = 8
+  // The compact JSON prints no ids either.
+  const CliResult compact = runOntogen(command + " --json=compact --max-memory 19");
+  ASSERT_EQ(compact.exitCode, 0) << compact.err;
+  const auto document = nlohmann::json::parse(compact.out);
+  ASSERT_EQ(document["times"].size(), 2u);
+  EXPECT_EQ(document["times"][1]["cells"].size(), 2 * 390'625u - 1);
+  EXPECT_EQ(countOf(compact.out, "\"F\""), 5u + 390'625u);
   const CliResult roomier = runOntogen(command + " --json --max-memory 24");
   ASSERT_EQ(roomier.exitCode, 0) << roomier.err;
   EXPECT_EQ(countOf(roomier.out, "\"label\": \"F\""), 5u + 390'625u);

@@ -192,6 +192,132 @@ TEST(WordJson, ReadsBackToTheCapturedWord) {
   }
 }
 
+// The compact JSON of one time as `ontogen word --json=compact` streams it: a word held
+// without ids written as held (CompactWordJsonWriter::writeWord), or cell by cell.
+std::string compactJson(const World& world, bool asHeld, bool interpreted = false) {
+  std::ostringstream text;
+  {
+    BufferedOutput out(text);
+    CompactWordJsonWriter writer(out);
+    writer.begin();
+    writer.beginTime(world.time(), true);
+    if (asHeld)
+      writer.writeWord(world, interpreted);
+    else if (interpreted)
+      visitInterpretedWord(world, writer);
+    else
+      visitWord(world, writer);
+    writer.endTime();
+    writer.end();
+  }
+  return text.str();
+}
+
+// The compact form's cells are the full form's less its defaults: a bare string is a
+// label alone; "params" absent is none, "developed" absent is "params", "age" is there
+// for timed cells alone; no ids, no parents.
+void expectCompactReadsBack(const nlohmann::json& cells, const std::vector<WordCell>& word, const std::string& what) {
+  ASSERT_TRUE(cells.is_array()) << what;
+  ASSERT_EQ(cells.size(), word.size()) << what;
+  auto sameArray = [&](const nlohmann::json& values, const std::vector<double>& expected, const std::string& field) {
+    ASSERT_EQ(values.size(), expected.size()) << what << ": " << field;
+    for (size_t k = 0; k < expected.size(); ++k) {
+      if (!std::isfinite(expected[k]))
+        EXPECT_TRUE(values[k].is_null()) << what << ": " << field;
+      else
+        EXPECT_EQ(std::bit_cast<uint64_t>(values[k].get<double>() + 0.0), std::bit_cast<uint64_t>(expected[k] + 0.0))
+            << what << ": " << field;
+    }
+  };
+  for (size_t i = 0; i < word.size(); ++i) {
+    const nlohmann::json& cell = cells[i];
+    const WordCell& expected = word[i];
+    const bool alone = expected.params.empty() && expected.developed.empty() && !expected.timed &&
+                       expected.position.empty() && !expected.system;
+    if (alone) {
+      ASSERT_TRUE(cell.is_string()) << what << ": " << cell.dump();
+      EXPECT_EQ(cell.get<std::string>(), expected.label) << what;
+      continue;
+    }
+    ASSERT_TRUE(cell.is_object()) << what << ": " << cell.dump();
+    EXPECT_EQ(cell["label"].get<std::string>(), expected.label) << what;
+    EXPECT_FALSE(cell.contains("id")) << what;
+    EXPECT_FALSE(cell.contains("parent")) << what;
+    EXPECT_EQ(cell.contains("params"), !expected.params.empty()) << what;
+    const nlohmann::json params = cell.contains("params") ? cell["params"] : nlohmann::json::array();
+    sameArray(params, expected.params, "params");
+    sameArray(cell.contains("developed") ? cell["developed"] : params, expected.developed, "developed");
+    ASSERT_EQ(cell.contains("age"), expected.timed) << what;
+    if (expected.timed) sameArray(nlohmann::json::array({cell["age"]}), {expected.age}, "age");
+    EXPECT_EQ(cell.contains("position"), !expected.position.empty()) << what;
+    if (!expected.position.empty()) sameArray(cell["position"], expected.position, "position");
+    EXPECT_EQ(cell.contains("pool"), expected.system) << what;
+    if (expected.system) expectCompactReadsBack(cell["pool"], expected.pool, what + " in " + expected.label);
+  }
+}
+
+TEST(CompactWordJson, ReadsBackToTheCapturedWord) {
+  for (const Case& c : cases()) {
+    auto program = compileOrFail(c.program, c.name + ".cell");
+    ASSERT_NE(program, nullptr) << c.name;
+    WorldDef def;
+    def.seed = 3;
+    def.wordsWithoutIds = !c.withIds;
+    // Streamed from one world, captured from another: capturing gives a word its ids.
+    World streamed(program, def), captured(program, def);
+    std::vector<WordAtTime> words;
+    for (double t : c.times) {
+      streamed.advanceTo(t, 1.0);
+      captured.advanceTo(t, 1.0);
+      const std::string what = c.name + " at t = " + std::to_string(t);
+      for (bool interpreted : {false, true}) {
+        const std::string asHeld = compactJson(streamed, true, interpreted);
+        EXPECT_EQ(asHeld, compactJson(streamed, false, interpreted)) << what << (interpreted ? ", interpreted" : "");
+        const nlohmann::json document = nlohmann::json::parse(asHeld);
+        EXPECT_EQ(document["form"], "compact") << what;
+        ASSERT_EQ(document["times"].size(), 1u) << what;
+        EXPECT_EQ(document["times"][0]["t"].get<double>(), streamed.time()) << what;
+        expectCompactReadsBack(document["times"][0]["cells"],
+                               interpreted ? captureInterpretedWord(captured) : captureWord(captured),
+                               what + (interpreted ? ", interpreted" : ""));
+      }
+      words.push_back({captured.time(), captureWord(captured)});
+    }
+    std::ostringstream all;
+    writeCompactWordJson(all, words);
+    const nlohmann::json document = nlohmann::json::parse(all.str());
+    ASSERT_EQ(document["times"].size(), words.size()) << c.name;
+    for (size_t k = 0; k < words.size(); ++k)
+      expectCompactReadsBack(document["times"][k]["cells"], words[k].cells,
+                             c.name + " at t = " + std::to_string(words[k].time) + ", captured");
+  }
+}
+
+TEST(CompactWordJson, GoldenWords) {
+  const std::string koch = "lsystem koch {\n  axiom F\n  F -> F + F - F - F + F\n}\n";
+  World kochWorld(compileOrFail(koch, "koch.cell"), WorldDef{});
+  kochWorld.advanceTo(1, 1.0);
+  EXPECT_EQ(compactJson(kochWorld, true),
+            "{\"form\": \"compact\", \"times\": [\n  {\"t\": 1, \"cells\": "
+            "[\"F\",\"+\",\"F\",\"-\",\"F\",\"-\",\"F\",\"+\",\"F\"]}\n]}\n");
+  World parametric(compileOrFail(testing_support::kParametric, "parametric.cell"), WorldDef{});
+  parametric.advanceTo(2, 1.0);
+  EXPECT_EQ(compactJson(parametric, true),
+            "{\"form\": \"compact\", \"times\": [\n  {\"t\": 2, \"cells\": [{\"label\": \"A\", \"params\": [3]},"
+            "{\"label\": \"B\", \"params\": [1]},{\"label\": \"B\", \"params\": [1.5]},"
+            "{\"label\": \"B\", \"params\": [0.25]}]}\n]}\n");
+  // Labels that JSON escapes, a timed cell's age, and a label too long to be copied whole.
+  const std::string timed =
+      "cell Q(x = 1) { lifetime 2; rules { terminal: -> Q(x) LongerThanSixteenBytes; } }\n"
+      "cell LongerThanSixteenBytes { }\n"
+      "system s { pool linear; axiom Q(0.5) LongerThanSixteenBytes; }\n";
+  World timedWorld(compileOrFail(timed, "timed.cell"), WorldDef{});
+  timedWorld.advanceTo(2.5, 0.5);
+  EXPECT_EQ(compactJson(timedWorld, true),
+            "{\"form\": \"compact\", \"times\": [\n  {\"t\": 2.5, \"cells\": [{\"label\": \"Q\", \"params\": [0.5], "
+            "\"age\": 0.5},\"LongerThanSixteenBytes\",\"LongerThanSixteenBytes\"]}\n]}\n");
+}
+
 // The shortest form that reads back is std::to_chars's, whole numbers included: digits
 // up to four trailing zeros, the exponent form from five on (a tie goes to the digits).
 TEST(WordJson, NumbersAreTheShortestFormThatReadsBack) {
@@ -201,6 +327,13 @@ TEST(WordJson, NumbersAreTheShortestFormThatReadsBack) {
                                 std::nextafter(1.0, 2.0), std::numeric_limits<double>::max(),
                                 std::numeric_limits<double>::denorm_min()};
   for (double scale = 1; scale < 1e17; scale *= 7) values.push_back(std::round(scale * 1.37));
+  // Every count of digits an id has, at its bounds and with zeros inside.
+  for (double power = 1; power <= 1e15; power *= 10)
+    for (double v : {power, power - 1, power + 1, 2 * power + 3, 9 * power + power / 10 + 7})
+      if (v >= 1) values.push_back(v);
+  for (double v : {1234567890123456.0, 9876543210987654.0, 1000000000000001.0, 1000000010000000.0, 100000000.0,
+                   99999999.0, 4000000012345678.0})
+    values.push_back(v);
   for (double v : values) {
     char expected[64];
     const auto end = std::to_chars(expected, expected + sizeof expected, v);
