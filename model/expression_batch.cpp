@@ -100,6 +100,27 @@ void fused(const BatchCode&, const Instruction& in, double* const* results, cons
   for (; l < n; ++l) r[l] = both(a[l], b[l], c[l]);
 }
 
+// Three operations in a chain, each result only feeding the next:
+// third(second(first(a, b), c), d), each intermediate on either side.
+template <int N, Arithmetic first, Arithmetic second, bool firstOnLeft, Arithmetic third, bool secondOnLeft>
+void chained(const BatchCode&, const Instruction& in, double* const* results, const double* const* inputs, int lanes,
+             const EvalContext&) {
+  const int n = lanesOf<N>(lanes);
+  const double* a = inputs[in.a];
+  const double* b = inputs[in.b];
+  const double* c = inputs[in.c];
+  const double* d = inputs[in.d];
+  double* r = results[in.result];
+  auto all = [](auto w, auto x, auto y, auto z) {
+    const auto inner = apply<first>(w, x);
+    decltype(inner) middle = firstOnLeft ? apply<second>(inner, y) : apply<second>(y, inner);
+    return secondOnLeft ? apply<third>(middle, z) : apply<third>(z, middle);
+  };
+  int l = 0;
+  for (; l + 2 <= n; l += 2) store(r + l, all(load(a + l), load(b + l), load(c + l), load(d + l)));
+  for (; l < n; ++l) r[l] = all(a[l], b[l], c[l], d[l]);
+}
+
 // The other operations of two operands, as run() computes them.
 template <OpCode op>
 double scalar(double a, double b) {
@@ -177,6 +198,53 @@ Kernel fusedKernel(Arithmetic first, Arithmetic second, bool resultFirst) {
       return fusedWith<N, Arithmetic::Mul>(second, resultFirst);
     case Arithmetic::Div:
       return fusedWith<N, Arithmetic::Div>(second, resultFirst);
+  }
+  return nullptr;
+}
+
+template <int N, Arithmetic first, Arithmetic second, bool firstOnLeft>
+Kernel chainedWith(Arithmetic third, bool secondOnLeft) {
+  switch (third) {
+#define ONTOGEN_BATCH_THIRD(OP)                                                        \
+  case Arithmetic::OP:                                                                 \
+    return secondOnLeft ? chained<N, first, second, firstOnLeft, Arithmetic::OP, true> \
+                        : chained<N, first, second, firstOnLeft, Arithmetic::OP, false>;
+    ONTOGEN_BATCH_THIRD(Add)
+    ONTOGEN_BATCH_THIRD(Sub)
+    ONTOGEN_BATCH_THIRD(Mul)
+    ONTOGEN_BATCH_THIRD(Div)
+#undef ONTOGEN_BATCH_THIRD
+  }
+  return nullptr;
+}
+
+template <int N, Arithmetic first>
+Kernel chainedFrom(Arithmetic second, bool firstOnLeft, Arithmetic third, bool secondOnLeft) {
+  switch (second) {
+#define ONTOGEN_BATCH_SECOND(OP)                                                          \
+  case Arithmetic::OP:                                                                    \
+    return firstOnLeft ? chainedWith<N, first, Arithmetic::OP, true>(third, secondOnLeft) \
+                       : chainedWith<N, first, Arithmetic::OP, false>(third, secondOnLeft);
+    ONTOGEN_BATCH_SECOND(Add)
+    ONTOGEN_BATCH_SECOND(Sub)
+    ONTOGEN_BATCH_SECOND(Mul)
+    ONTOGEN_BATCH_SECOND(Div)
+#undef ONTOGEN_BATCH_SECOND
+  }
+  return nullptr;
+}
+
+template <int N>
+Kernel chainedKernel(Arithmetic first, Arithmetic second, bool firstOnLeft, Arithmetic third, bool secondOnLeft) {
+  switch (first) {
+    case Arithmetic::Add:
+      return chainedFrom<N, Arithmetic::Add>(second, firstOnLeft, third, secondOnLeft);
+    case Arithmetic::Sub:
+      return chainedFrom<N, Arithmetic::Sub>(second, firstOnLeft, third, secondOnLeft);
+    case Arithmetic::Mul:
+      return chainedFrom<N, Arithmetic::Mul>(second, firstOnLeft, third, secondOnLeft);
+    case Arithmetic::Div:
+      return chainedFrom<N, Arithmetic::Div>(second, firstOnLeft, third, secondOnLeft);
   }
   return nullptr;
 }
@@ -333,22 +401,36 @@ bool BatchCode::compile(const CompiledExpression& expression, int slots, int agg
     in.count = step.count;
     in.operand = step.operand;
     in.argumentsAt = step.argumentsAt;
-    Arithmetic first, second;
-    if (i + 1 < steps.size() && arithmetic(step.op, first) && arithmetic(steps[i + 1].op, second)) {
-      // The next operation reads this one's result (a result's array is read once, by
-      // the operation that pops it): fused, the result stays in registers.
-      const Step& next = steps[i + 1];
-      const bool resultFirst = next.a == step.result && next.b != step.result;
-      const bool resultSecond = next.b == step.result && next.a != step.result;
-      if (step.result < output && (resultFirst || resultSecond)) {
-        in.c = resultFirst ? next.b : next.a;
-        in.result = next.result;
-        in.full = fusedKernel<kLanes>(first, second, resultFirst);
-        in.partial = fusedKernel<0>(first, second, resultFirst);
+    // The next operation reads this one's result (a result's array is read once, by the
+    // operation that pops it): fused, the result stays in registers.
+    auto feeds = [&](const Step& from, const Step& into, bool& onLeft, Place& other) {
+      Arithmetic kind;
+      if (from.result >= output || !arithmetic(from.op, kind) || !arithmetic(into.op, kind)) return false;
+      if ((into.a == from.result) == (into.b == from.result)) return false;
+      onLeft = into.a == from.result;
+      other = onLeft ? into.b : into.a;
+      return true;
+    };
+    Arithmetic first, second, third;
+    bool firstOnLeft, secondOnLeft;
+    if (i + 1 < steps.size() && feeds(step, steps[i + 1], firstOnLeft, in.c)) {
+      arithmetic(step.op, first);
+      arithmetic(steps[i + 1].op, second);
+      if (i + 2 < steps.size() && feeds(steps[i + 1], steps[i + 2], secondOnLeft, in.d) && in.d != step.result) {
+        arithmetic(steps[i + 2].op, third);
+        in.result = steps[i + 2].result;
+        in.full = chainedKernel<kLanes>(first, second, firstOnLeft, third, secondOnLeft);
+        in.partial = chainedKernel<0>(first, second, firstOnLeft, third, secondOnLeft);
         code_.push_back(in);
-        ++i;
+        i += 2;
         continue;
       }
+      in.result = steps[i + 1].result;
+      in.full = fusedKernel<kLanes>(first, second, firstOnLeft);
+      in.partial = fusedKernel<0>(first, second, firstOnLeft);
+      code_.push_back(in);
+      ++i;
+      continue;
     }
     in.full = kernelOf<kLanes>(step.op);
     in.partial = kernelOf<0>(step.op);

@@ -8,8 +8,8 @@
 // variable's lanes and each aggregate's lanes in arrays (a variable at a time): an
 // instruction reads its operands where they are (a variable's lanes, an aggregate's, a
 // constant's, an earlier result) instead of pushing copies, and an arithmetic operation
-// whose result only feeds the next one is fused with it, so the intermediate never goes
-// to memory. Lanes run two at a time, as vectors.
+// whose result only feeds the next one is fused with it (two or three in a chain), so the
+// intermediates never go to memory. Lanes run two at a time, as vectors.
 //
 // Either way the arithmetic of each lane is the one run() does, operation for operation
 // and rounding for rounding, so each lane's value is the bits a one-cell evaluation
@@ -57,7 +57,7 @@ class BatchCode {
     Kernel full = nullptr;     ///< for lanes == kLanes
     Kernel partial = nullptr;  ///< for fewer
     Place result = 0;          ///< into the writable part of the table
-    Place a = 0, b = 0, c = 0;  ///< operands; a fused pair reads all three
+    Place a = 0, b = 0, c = 0, d = 0;  ///< operands; a fused pair reads a, b, c and a fused three d too
     uint8_t count = 0;         ///< a built-in's arguments
     int32_t operand = 0;       ///< a built-in's number, an ancestor's value
     uint32_t argumentsAt = 0;  ///< where a built-in's argument places start in argumentPlaces()
