@@ -6,6 +6,7 @@
 #include "core/growth_meter.h"
 #include "core/pool_view.h"
 #include "core/rate_integrator.h"
+#include "core/rate_stencil.h"
 #include "core/rule_evaluator.h"
 #include "core/step_rule_pass.h"
 
@@ -39,7 +40,12 @@ uint64_t gridBytesPerSite(const Program& program, const SystemDefinition& system
   uint64_t values = 0;
   for (const MasterCell& master : program.masters) values = std::max<uint64_t>(values, master.stateCount());
   const uint64_t cell = sizeof(CellRecord) + sizeof(uint32_t) + values * sizeof(double);
-  return sizeof(uint32_t) + sizeof(int64_t) + 3 * cell + (system.rates ? 8 * values * sizeof(double) : 0);
+  uint64_t rates = 0;
+  if (system.rates) {
+    const uint64_t sites = std::max<uint64_t>(system.grid.siteCount(), 1);
+    rates = 8 * values * sizeof(double) + (RateStencil::edgeTableBytes(system.grid) + sites - 1) / sites;
+  }
+  return sizeof(uint32_t) + sizeof(int64_t) + 3 * cell + rates;
 }
 
 GridDevelopment::GridDevelopment(const Program& program, const SystemDefinition& system)

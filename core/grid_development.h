@@ -18,7 +18,8 @@ namespace ontogen {
 /// before the grid is made: its index (4), the seeding's source (8), and three copies of
 /// a cell (its record, site and values: the pool's, the step's chunks' and the merged
 /// next word), with the integrator's stages when the system integrates rates (eight
-/// arrays of values at most, Dormand-Prince's).
+/// arrays of values at most, Dormand-Prince's) and the rate stencil's tables of the
+/// cells at an edge and their neighbours, shared out over the sites.
 uint64_t gridBytesPerSite(const Program& program, const SystemDefinition& system);
 
 class GridDevelopment final : public Development {

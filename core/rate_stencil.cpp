@@ -48,12 +48,17 @@ bool RateStencil::prepare(const Program& program, const GridPool& grid) {
     }
   }
   if (equations_.empty() || equations_.size() > kMaxEquations) return false;
+  code_.clear();
   equationOf_.assign(stride_, -1);
   for (size_t e = 0; e < equations_.size(); ++e) {
     const StateCalculation& calculation = *equations_[e].calculation;
     if (calculation.slot < 0 || calculation.slot >= static_cast<int>(stride_)) return false;
     equationOf_[static_cast<size_t>(calculation.slot)] = static_cast<int>(e);
     if (equations_[e].rule->aggregates.size() > kMaxQueries) return false;
+    if (stride_ <= kMaxTransposed &&
+        !code_.emplace_back().compile(calculation.value, static_cast<int>(stride_),
+                                      static_cast<int>(equations_[e].rule->aggregates.size())))
+      return false;
     std::vector<Query>& queries = queries_.emplace_back();
     for (const AggregateQuery& query : equations_[e].rule->aggregates) {
       const bool matches = query.label < 0 || query.label == static_cast<int>(master_);
@@ -61,6 +66,16 @@ bool RateStencil::prepare(const Program& program, const GridPool& grid) {
       queries.push_back({&query, matches, slot});
     }
   }
+  // A variable at a time when every aggregate is a sum or a count (the sums over
+  // neighbours and the equations' operands are then runs of consecutive values); cell
+  // after cell, as the grid holds them, when a rule asks for a mean, a minimum or a maximum.
+  byVariable_ = stride_ <= kMaxTransposed;
+  for (const std::vector<Query>& queries : queries_)
+    for (const Query& q : queries)
+      if (q.query->kind != AggregateKind::Sum && q.query->kind != AggregateKind::Count) byVariable_ = false;
+  cells_ = cells.size();
+  cellStep_ = byVariable_ ? 1 : stride_;
+  slotStep_ = byVariable_ ? cells_ : 1;
   const GridShape& shape = grid.shape();
   dimensions_ = shape.dimensions;
   size_ = shape.size;
@@ -68,9 +83,8 @@ bool RateStencil::prepare(const Program& program, const GridPool& grid) {
   strideDeltas_.clear();
   for (const GridCoordinates& offset : grid.offsets()) {
     deltas_.push_back(offset[0] + offset[1] * int64_t{size_[0]} + offset[2] * int64_t{size_[0]} * size_[1]);
-    strideDeltas_.push_back(deltas_.back() * static_cast<int64_t>(stride_));
+    strideDeltas_.push_back(deltas_.back() * static_cast<int64_t>(cellStep_));
   }
-  cells_ = cells.size();
   // The neighbours of the cells at an edge, found once: the structure does not change
   // while the plan holds, and asking the grid for them in every stage cost more than the
   // rates of a small grid. A row inside has its first and last cell at an edge.
@@ -81,7 +95,8 @@ bool RateStencil::prepare(const Program& program, const GridPool& grid) {
   auto addEdge = [&](size_t cell) {
     const int offsets = grid.neighbourSites(static_cast<uint32_t>(cell), sites);  // full: site i holds cell i
     for (int k = 0; k < offsets; ++k)
-      if (sites[k] != GridPool::kEmpty) edgeRefs_.push_back(NeighbourRef{master_, grid.cellAt(sites[k]) * stride_});
+      if (sites[k] != GridPool::kEmpty)
+        edgeRefs_.push_back(NeighbourRef{master_, static_cast<uint32_t>(grid.cellAt(sites[k]) * cellStep_)});
     edgeCells_.push_back(static_cast<uint32_t>(cell));
     edgeStart_.push_back(static_cast<uint32_t>(edgeRefs_.size()));
   };
@@ -96,6 +111,23 @@ bool RateStencil::prepare(const Program& program, const GridPool& grid) {
   }
   applies_ = true;
   return true;
+}
+
+uint64_t RateStencil::edgeTableBytes(const GridShape& shape) {
+  // prepare()'s edge cells: the first and last of a row inside the grid along y and z,
+  // every cell of another row.
+  const uint64_t width = shape.size[0], height = shape.size[1], depth = shape.size[2];
+  const uint64_t insideY = shape.dimensions < 2 ? height : (height > 2 ? height - 2 : 0);
+  const uint64_t insideZ = shape.dimensions < 3 ? depth : (depth > 2 ? depth - 2 : 0);
+  const uint64_t rowsInside = insideY * insideZ;
+  const uint64_t edges = rowsInside * std::min<uint64_t>(width, 2) + (height * depth - rowsInside) * width;
+  uint64_t neighbours = 2 * static_cast<uint64_t>(shape.dimensions);  // von Neumann
+  if (shape.neighbourhood == GridNeighbourhood::Moore) {
+    neighbours = 1;
+    for (int axis = 0; axis < shape.dimensions; ++axis) neighbours *= 3;
+    --neighbours;
+  }
+  return (2 * edges + 1) * sizeof(uint32_t) + edges * neighbours * sizeof(NeighbourRef);
 }
 
 // Whether the row that starts at cell `first` is inside the grid along y and z (the
@@ -114,7 +146,8 @@ double RateStencil::inside(const Query& q, size_t cell, const double* in) const 
   if (query.kind == AggregateKind::Sum) {
     if (!q.matches || q.slot < 0) return 0.0;
     double sum = 0;  // in the neighbourhood's order, from 0, as aggregateOver sums
-    for (int64_t delta : deltas_) sum += in[static_cast<size_t>(here + delta) * stride_ + static_cast<size_t>(q.slot)];
+    for (int64_t delta : deltas_)
+      sum += in[static_cast<size_t>(here + delta) * cellStep_ + static_cast<size_t>(q.slot) * slotStep_];
     return sum;
   }
   return aggregateOver(
@@ -130,14 +163,14 @@ double RateStencil::atEdge(const Query& q, size_t edge, const double* in) const 
   const NeighbourRef* around = edgeRefs_.data() + edgeStart_[edge];
   const int count = static_cast<int>(edgeStart_[edge + 1] - edgeStart_[edge]);
   const AggregateQuery& query = *q.query;
-  // aggregateOver's plain sum and count, for neighbours all of the grid's master.
-  if (query.label < 0 && query.kind == AggregateKind::Sum) {
+  // aggregateOver's sum and count, for neighbours all of the grid's master.
+  if (query.kind == AggregateKind::Sum) {
     double sum = 0;
-    if (q.slot >= 0)
-      for (int k = 0; k < count; ++k) sum += in[around[k].state + static_cast<uint32_t>(q.slot)];
+    if (q.matches && q.slot >= 0)
+      for (int k = 0; k < count; ++k) sum += in[around[k].state + static_cast<size_t>(q.slot) * slotStep_];
     return sum;
   }
-  if (query.label < 0 && query.kind == AggregateKind::Count) return count;
+  if (query.kind == AggregateKind::Count) return q.matches ? count : 0;
   return aggregateOver(
       query, count, [&](int k) -> const NeighbourRef& { return around[k]; }, in);
 }
@@ -165,7 +198,7 @@ void RateStencil::gather(const Query& q, size_t first, int lanes, bool insideRow
   if (query.kind == AggregateKind::Sum && q.matches && q.slot >= 0) {
     // Lane by lane, each lane's neighbours added in the neighbourhood's order from 0, as
     // aggregateOver sums: the loop over lanes is the one that vectorises.
-    const double* at = in + first * stride_ + static_cast<size_t>(q.slot);
+    const double* at = in + first * cellStep_ + static_cast<size_t>(q.slot) * slotStep_;
     const int64_t* delta = strideDeltas_.data();
     if (strideDeltas_.size() == 4) {  // von Neumann in 2-D: the sum in registers
       const int64_t d0 = delta[0], d1 = delta[1], d2 = delta[2], d3 = delta[3];
@@ -175,21 +208,21 @@ void RateStencil::gather(const Query& q, size_t first, int lanes, bool insideRow
           out[lane] = 0.0 + cell[d0] + cell[d1] + cell[d2] + cell[d3];
         }
       };
-      if (stride_ == 1)
+      if (cellStep_ == 1)
         sum(std::integral_constant<size_t, 1>{});
-      else if (stride_ == 2)
+      else if (cellStep_ == 2)
         sum(std::integral_constant<size_t, 2>{});
       else
-        sum(size_t{stride_});
+        sum(size_t{cellStep_});
       return;
     }
     for (int lane = lo; lane < hi; ++lane) out[lane] = 0;
     for (int64_t d : strideDeltas_) {
       const double* from = at + d;
-      if (stride_ == 1)
+      if (cellStep_ == 1)
         for (int lane = lo; lane < hi; ++lane) out[lane] += from[lane];
       else
-        for (int lane = lo; lane < hi; ++lane) out[lane] += from[static_cast<size_t>(lane) * stride_];
+        for (int lane = lo; lane < hi; ++lane) out[lane] += from[static_cast<size_t>(lane) * cellStep_];
     }
     return;
   }
@@ -197,59 +230,71 @@ void RateStencil::gather(const Query& q, size_t first, int lanes, bool insideRow
 }
 
 void RateStencil::rates(size_t first, int lanes, const double* in, const EvalContext& context,
-                        double (*values)[CompiledExpression::kBatchLanes]) const {
+                        double (*values)[kLanes]) const {
   const bool inside = rowInside(first);
   const size_t firstEdge = static_cast<size_t>(
       std::lower_bound(edgeCells_.begin(), edgeCells_.end(), static_cast<uint32_t>(first)) - edgeCells_.begin());
-  double aggregates[kMaxQueries][CompiledExpression::kBatchLanes];
-  auto evaluate = [&](auto&& load) {
+  double aggregates[kMaxQueries][kLanes];
+  const double* aggregateLanes[kMaxQueries];
+  for (size_t q = 0; q < kMaxQueries; ++q) aggregateLanes[q] = aggregates[q];
+  const double* cells = in + first * stride_;  // cell after cell
+  if (stride_ > kMaxTransposed) {
     for (size_t e = 0; e < equations_.size(); ++e) {
       const std::vector<Query>& queries = queries_[e];
       for (size_t q = 0; q < queries.size(); ++q)
         gather(queries[q], first, lanes, inside, firstEdge, in, aggregates[q]);
-      equations_[e].calculation->value.evaluateBatch(
-          lanes, load, [&](int lane, int q) { return aggregates[q][lane]; }, context, values[e]);
+      for (int from = 0; from < lanes; from += CompiledExpression::kBatchLanes)
+        equations_[e].calculation->value.evaluateBatch(
+            std::min(lanes - from, CompiledExpression::kBatchLanes),
+            [&](int lane, int slot) {
+              return cells[static_cast<size_t>(from + lane) * stride_ + static_cast<size_t>(slot)];
+            },
+            [&](int lane, int q) { return aggregates[q][from + lane]; }, context, values[e] + from);
     }
-  };
-  const double* cells = in + first * stride_;
-  if (stride_ > kMaxTransposed) {
-    evaluate(
-        [&](int lane, int slot) { return cells[static_cast<size_t>(lane) * stride_ + static_cast<size_t>(slot)]; });
     return;
   }
-  // The batch's state a variable at a time, read once: each load of the equations is
-  // then a copy of consecutive values, not a stride through the cells.
-  double variables[kMaxTransposed][CompiledExpression::kBatchLanes];
-  for (int lane = 0; lane < lanes; ++lane)
-    for (size_t slot = 0; slot < stride_; ++slot)
-      variables[slot][lane] = cells[static_cast<size_t>(lane) * stride_ + slot];
-  evaluate([&](int lane, int slot) { return variables[slot][lane]; });
+  // The equations' code reads each variable's lanes where they are; cell after cell, the
+  // batch's state is copied a variable at a time first.
+  double variables[kMaxTransposed][kLanes];
+  const double* slotLanes[kMaxTransposed];
+  for (size_t slot = 0; slot < stride_; ++slot)
+    slotLanes[slot] = byVariable_ ? in + slot * slotStep_ + first : variables[slot];
+  if (!byVariable_)
+    for (int lane = 0; lane < lanes; ++lane)
+      for (size_t slot = 0; slot < stride_; ++slot)
+        variables[slot][lane] = cells[static_cast<size_t>(lane) * stride_ + slot];
+  for (size_t e = 0; e < equations_.size(); ++e) {
+    const std::vector<Query>& queries = queries_[e];
+    for (size_t q = 0; q < queries.size(); ++q) gather(queries[q], first, lanes, inside, firstEdge, in, aggregates[q]);
+    code_[e].evaluate(lanes, slotLanes, aggregateLanes, context, values[e]);
+  }
 }
 
 template <RateStencil::Stage which>
-void RateStencil::stage(const double* in, double* x, double dt, const EvalContext& context, size_t begin, size_t end) {
+void RateStencil::stage(const double* in, double* x, double* out, double dt, const EvalContext& context, size_t begin,
+                        size_t end) {
   // odeint's runge_kutta4 coefficients (a, b) times dt, as its generic_rk_scale_sum makes them.
   const double half = 0.5 * dt, zero = 0.0 * dt, whole = 1.0 * dt, sixth = (1.0 / 6.0) * dt, third = (1.0 / 3.0) * dt;
   double* a = stageA_.data();
   double* zeros = zeroSum_.data();
   double* result = result_.data();
   const size_t width = size_[0];
-  double values[kMaxEquations][CompiledExpression::kBatchLanes];
+  double values[kMaxEquations][kLanes];
   for (size_t first = begin; first < end;) {
     // A batch stays within a row, so that whether its row is inside is known at once.
     const size_t rowEnd = (first / width + 1) * width;
-    const int lanes =
-        static_cast<int>(std::min({size_t{CompiledExpression::kBatchLanes}, end - first, rowEnd - first}));
+    const int lanes = static_cast<int>(std::min({size_t{kLanes}, end - first, rowEnd - first}));
     rates(first, lanes, in, context, values);
     // A constant's derivative is 0, as the general path's fill.
-    static constexpr double kConstant[CompiledExpression::kBatchLanes] = {};
-    auto sums = [&](auto stride) {  // a stride known to the compiler vectorises
-      for (size_t slot = 0; slot < stride; ++slot) {
+    static constexpr double kConstant[kLanes] = {};
+    auto sums = [&](auto cellStep) {  // a step known to the compiler vectorises
+      for (size_t slot = 0; slot < stride_; ++slot) {
         const int e = equationOf_[slot];
         const double* rate = e >= 0 ? values[e] : kConstant;
+        const size_t base = first * cellStep + slot * slotStep_;
         for (int lane = 0; lane < lanes; ++lane) {
           const double k = rate[lane];
-          const size_t i = (first + static_cast<size_t>(lane)) * stride + slot;
+          const size_t i = base + static_cast<size_t>(lane) * cellStep;
           if constexpr (which == Stage::First) {  // x + a1 dt k1
             a[i] = 1.0 * x[i] + half * k;
             zeros[i] = 1.0 * x[i] + zero * k;
@@ -261,18 +306,18 @@ void RateStencil::stage(const double* in, double* x, double dt, const EvalContex
           } else if constexpr (which == Stage::Third) {  // x + 0 dt k1 + 0 dt k2 + dt k3
             a[i] = zeros[i] + whole * k;
             result[i] = result[i] + third * k;
-          } else {  // x + dt (k1 / 6 + k2 / 3 + k3 / 3 + k4 / 6), summed left to right
-            x[i] = result[i] + sixth * k;
+          } else {  // x + dt (k1 / 6 + k2 / 3 + k3 / 3 + k4 / 6), summed left to right, into the grid
+            out[(first + static_cast<size_t>(lane)) * stride_ + slot] = result[i] + sixth * k;
           }
         }
       }
     };
-    if (stride_ == 1)
+    if (cellStep_ == 1)
       sums(std::integral_constant<size_t, 1>{});
-    else if (stride_ == 2)
+    else if (cellStep_ == 2)
       sums(std::integral_constant<size_t, 2>{});
     else
-      sums(size_t{stride_});
+      sums(size_t{cellStep_});
     first += static_cast<size_t>(lanes);
   }
 }
@@ -282,16 +327,28 @@ void RateStencil::step(StateArray& x, double dt, const EvalContext& context, uns
   resizeForOverwrite(stageA_, x.size());
   resizeForOverwrite(zeroSum_, x.size());
   resizeForOverwrite(result_, x.size());
-  double* state = x.data();
-  parallelFor(cells_, threads,
-              [&](size_t begin, size_t end, unsigned) { stage<Stage::First>(state, state, dt, context, begin, end); });
+  double* grid = x.data();
+  // The step's input in the stencil's layout: the grid's own state when the layouts agree.
+  double* state = grid;
+  if (cellStep_ != stride_) {
+    resizeForOverwrite(stateByVariable_, x.size());
+    state = stateByVariable_.data();
+    parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
+      for (size_t slot = 0; slot < stride_; ++slot)
+        for (size_t cell = begin; cell < end; ++cell) state[slot * slotStep_ + cell] = grid[cell * stride_ + slot];
+    });
+  }
   parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
-    stage<Stage::Second>(stageA_.data(), state, dt, context, begin, end);
+    stage<Stage::First>(state, state, grid, dt, context, begin, end);
   });
-  parallelFor(cells_, threads,
-              [&](size_t begin, size_t end, unsigned) { stage<Stage::Third>(state, state, dt, context, begin, end); });
   parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
-    stage<Stage::Fourth>(stageA_.data(), state, dt, context, begin, end);
+    stage<Stage::Second>(stageA_.data(), state, grid, dt, context, begin, end);
+  });
+  parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
+    stage<Stage::Third>(state, state, grid, dt, context, begin, end);
+  });
+  parallelFor(cells_, threads, [&](size_t begin, size_t end, unsigned) {
+    stage<Stage::Fourth>(stageA_.data(), state, grid, dt, context, begin, end);
   });
 }
 

@@ -9,8 +9,15 @@
 // RK4's stages are fused with the evaluation of the rates: each pass over the cells
 // evaluates the derivative at one stage and, in the same pass, writes the next stage's
 // input and adds the stage to the step's result. No derivative array is kept; three
-// arrays the size of the state are, from step to step (and, through the large block
-// cache, from world to world): a step allocates nothing.
+// arrays the size of the state are, and a copy of the state where the stencil holds it a
+// variable at a time, from step to step (and, through the large block cache, from world
+// to world): a step allocates nothing.
+//
+// Where every aggregate is a sum or a count, the stencil's arrays hold the state a
+// variable at a time (all cells' u, then all cells' v): a neighbour sum is then a run of
+// consecutive values and each equation's code (model/expression_batch.h) reads its
+// operands where they lie. The grid's state is copied in at the start of a step and the
+// last stage writes it back.
 //
 // The arithmetic is Boost.Odeint's runge_kutta4, operation for operation, zero
 // coefficients included (1.0 * x + 0.0 * k is not x when x is -0 or k is not finite),
@@ -23,6 +30,7 @@
 
 #include "core/rule_evaluator.h"
 #include "model/expression.h"
+#include "model/expression_batch.h"
 #include "model/program.h"
 #include "pools/grid_pool.h"
 
@@ -36,6 +44,13 @@ class RateStencil {
   /// draws random numbers or reads more than its cell's state and its neighbours'
   /// aggregates. The caller then takes the general path.
   bool prepare(const Program& program, const GridPool& grid);
+  /// Bytes of the tables of edge cells and their neighbours prepare() makes for a full
+  /// grid of `shape`, at most (a closed boundary leaves out the neighbours it has not).
+  static uint64_t edgeTableBytes(const GridShape& shape);
+  /// Bytes of the prepared grid's edge tables.
+  uint64_t edgeTableBytes() const {
+    return (edgeCells_.size() + edgeStart_.size()) * sizeof(uint32_t) + edgeRefs_.size() * sizeof(NeighbourRef);
+  }
   /// Rate equations of the prepared grid: its cells times its master's rate variables.
   size_t equations() const { return cells_ * equations_.size(); }
   /// One classic RK4 step of length dt of the prepared grid's state `x`, in place.
@@ -43,6 +58,8 @@ class RateStencil {
   void step(StateArray& x, double dt, const EvalContext& context, unsigned threads);
 
  private:
+  /// Cells a batch takes at most: a batch stays within a row of the grid.
+  static constexpr int kLanes = BatchCode::kLanes;
   struct Equation {
     const CompiledRule* rule;
     const StateCalculation* calculation;
@@ -54,12 +71,14 @@ class RateStencil {
     int slot;      ///< the variable summed in a neighbour's state, -1: none
   };
   enum class Stage : uint8_t { First, Second, Third, Fourth };
-  /// One stage over cells [begin, end): their rates from `in`, then the stage's sums.
+  /// One stage over cells [begin, end): their rates from `in`, then the stage's sums, the
+  /// last into the grid's state `out`.
   template <Stage which>
-  void stage(const double* in, double* x, double dt, const EvalContext& context, size_t begin, size_t end);
+  void stage(const double* in, double* x, double* out, double dt, const EvalContext& context, size_t begin,
+             size_t end);
   /// The rates of `lanes` cells from `first`, within one row of the grid, from `in`.
   void rates(size_t first, int lanes, const double* in, const EvalContext& context,
-             double (*values)[CompiledExpression::kBatchLanes]) const;
+             double (*values)[BatchCode::kLanes]) const;
   /// Aggregate `q` of the lanes from `first` (within one row) into out[lane]: a stencil
   /// over the state for the lanes whose neighbours are inside the grid, the neighbours
   /// the grid gave prepare() for the lanes at an edge.
@@ -78,7 +97,12 @@ class RateStencil {
   uint32_t master_ = 0;
   uint32_t stride_ = 0;  // state values per cell
   size_t cells_ = 0;
+  // The stencil's arrays hold variable s of cell i at i * cellStep_ + s * slotStep_: a
+  // variable at a time (1, cells_) where byVariable_, else as the grid does (stride_, 1).
+  bool byVariable_ = false;
+  size_t cellStep_ = 1, slotStep_ = 1;
   std::vector<Equation> equations_;
+  std::vector<BatchCode> code_;                // per equation: its rate as batch code (read a variable at a time)
   std::vector<int> equationOf_;                // per state slot: its equation, -1: constant while integrating
   std::vector<std::vector<Query>> queries_;    // per equation: its rule's aggregates
   std::vector<int64_t> deltas_;                // per neighbourhood offset: cells away
@@ -92,6 +116,8 @@ class RateStencil {
   // the step needs x only through the two sums), the running zero-coefficient sum
   // odeint's stages 2 and 3 start from, and the step's result being summed.
   StateArray stageA_, zeroSum_, result_;
+  // The state at the step's start a variable at a time, where the grid's layout is not the stencil's.
+  StateArray stateByVariable_;
 };
 
 }  // namespace ontogen

@@ -118,6 +118,7 @@ class CompiledExpression {
 
  private:
   friend class ExpressionBuilder;
+  friend class BatchCode;
   double run(const EvalContext& context) const;
 
   std::vector<Bytecode> code_;

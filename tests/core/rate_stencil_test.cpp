@@ -5,12 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include "core/grid_development.h"
+#include "core/rate_stencil.h"
 #include "core/world.h"
 #include "test_support.h"
 
@@ -73,6 +76,17 @@ system block { pool grid(5, 4, 6) wrap moore; fill C(me.x * me.y - me.z); }
 cell L(v = 1) { rules { rate(v) = -v; rate(v) = 0.3 * (sum(v) - 2 * v); } }
 system ring { pool grid(50) wrap vonneumann; fill L(me.x % 7); }
 )"},
+    // Sums and counts only, several variables: the stencil holds them a variable at a
+    // time; rows of 70 take a full batch and a partial one; a labelled sum and count.
+    {"2-D clamp, Gray-Scott's kind, a variable at a time", R"(
+cell G(u = 1, c = 0.5, v = 0) {
+  rules {
+    rate(u) = 0.2 * (sum(u) - count() * u) - u * v * v + 0.0367 * (1 - u) + c * 0.001;
+    rate(v) = 0.1 * (sum(G.v) - count(G) * v) + u * v * v - (0.0367 + 0.0649) * v;
+  }
+}
+system dish { pool grid(70, 9) clamp vonneumann; fill G(1 - 0.01 * me.x, -0, 0.02 * me.y + 0.001 * me.x); }
+)"},
     // No cell has all its neighbours inside: every one asks the grid.
     {"2 x 2, all at the edge", R"(
 cell C(w = 0) { rules { rate(w) = sum(w) - count() * w; } }
@@ -98,6 +112,45 @@ TEST(RateStencil, TheBitsOfTheGeneralPathOnAnyThreads) {
       EXPECT_EQ(differing, 0u) << test.name << " on " << threads << " threads";
     }
   }
+}
+
+// The tables of the cells at an edge that prepare() makes are what edgeTableBytes
+// counts for the grid's shape (a closed boundary leaves some neighbours out).
+TEST(RateStencil, TheEdgeTablesAreTheirCountedBytes) {
+  for (const Case& test : kCases) {
+    auto program = compileOrFail(test.text, test.name);
+    ASSERT_NE(program, nullptr) << test.name;
+    World world(program, WorldDef{});
+    const auto* grid = dynamic_cast<const GridPool*>(&world.rootPool());
+    ASSERT_NE(grid, nullptr) << test.name;
+    RateStencil stencil;
+    ASSERT_TRUE(stencil.prepare(*program, *grid)) << test.name;
+    const uint64_t counted = RateStencil::edgeTableBytes(grid->shape());
+    if (grid->shape().boundary == GridBoundary::Closed)
+      EXPECT_LT(stencil.edgeTableBytes(), counted) << test.name;
+    else
+      EXPECT_EQ(stencil.edgeTableBytes(), counted) << test.name;
+  }
+}
+
+// The memory limit's bytes of a site count the edge tables, shared out over the sites:
+// an 8 x 8 wrapped von Neumann grid has 28 edge cells (the 2 ends of the 6 rows inside
+// and the 16 cells of the first and last rows), 4 + 4 bytes each, one more start, and 4
+// neighbours of 8 bytes each: 1124 bytes, 18 a site (rounded up).
+TEST(RateStencil, TheMemoryLimitCountsTheEdgeTables) {
+  auto program = compileOrFail(R"(
+cell U(u = 0) { rules { rate(u) = sum(u) - count() * u; } }
+system s { pool grid(8, 8) wrap vonneumann; fill U(me.x); }
+)");
+  ASSERT_NE(program, nullptr);
+  const SystemDefinition& system = program->systems[program->root];
+  ASSERT_TRUE(system.rates);
+  EXPECT_EQ(RateStencil::edgeTableBytes(system.grid), 1124u);
+  uint64_t values = 0;
+  for (const MasterCell& master : program->masters) values = std::max<uint64_t>(values, master.stateCount());
+  // The index, the seeding's source, three copies of a cell, eight arrays of stages.
+  const uint64_t before = 4 + 8 + 3 * (sizeof(CellRecord) + 4 + 8 * values) + 8 * 8 * values;
+  EXPECT_EQ(gridBytesPerSite(*program, system), before + 18);
 }
 
 TEST(RateStencil, ANegativeZeroConstantBecomesPositiveAsInOdeint) {
