@@ -137,6 +137,7 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
     }
   }
   std::string body;
+  if (function.untranslatable) throw *function.untranslatable;
   if (function.translated) {
     body = *function.translated;
   } else if (dialect_ == Dialect::LPy) {

@@ -10,6 +10,7 @@
 #include "lang/convert/foreign_text.h"
 #include "lang/convert/foreign_vocabulary.h"
 #include "lang/convert/python_operators.h"
+#include "model/builtins.h"
 #include "model/program.h"
 
 namespace ontogen::convert {
@@ -21,7 +22,9 @@ using chars::isSpace;
 using chars::shown;
 
 std::string cellName(std::string_view name) {
-  return detail::isReadOnlyName(name) ? std::string(name) + "_" : std::string(name);
+  // A built-in function's name (`step`, `max`) read as a value is the file's own
+  // constant or parameter, which the cell language would refuse to define.
+  return detail::isReadOnlyName(name) || findBuiltin(name) ? std::string(name) + "_" : std::string(name);
 }
 
 ForeignSyntax::Nested::Nested(const ForeignSyntax& syntax, uint32_t begin, uint32_t end) : depth(syntax.depth_) {
@@ -75,6 +78,18 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
       if (p.name[0] == '@' && inDialect(p, dialect_) && p.name.size() > best &&
           at + p.name.size() <= end && text_.compare(at, p.name.size(), p.name) == 0)
         best = p.name.size();
+    if (best == 0 && dialect_ == Dialect::LPy) {
+      // L-Py reads the longest name it knows and else one character: `@c` is the
+      // modules @ and c, both of no meaning to its turtle (cpfg's @c is a circle).
+      uint32_t stop = at + 1;
+      while (stop < end && isNameChar(text_[stop])) ++stop;
+      const std::string name(text_.substr(at, stop - at));
+      warnOnce(name, at, stop,
+               "L-Py predefines no module " + shown(name) + ": it reads '@' and the letters after it as modules of "
+               "their own, which draw nothing, and so does the converted word");
+      label = "@";
+      return at + 1;
+    }
     if (best == 0) {
       uint32_t stop = at + 1;
       while (stop < end && isNameChar(text_[stop])) ++stop;
@@ -322,6 +337,8 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
             skippedLabel = true;
           else
             module.args.push_back(isNumber ? std::string(name) : cellName(name));
+        } else if (const uint32_t inner = labelText(module.label, a, b)) {
+          module.args.push_back(expression(inner, b - 1));
         } else {
           module.args.push_back(expression(a, b));
         }
@@ -334,6 +351,16 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
     result.push_back(std::move(module));
   }
   return result;
+}
+
+uint32_t ForeignSyntax::labelText(const std::string& label, uint32_t a, uint32_t b) const {
+  if (dialect_ != Dialect::LPy || (label != "@L" && label != "Label") || text_.compare(a, 4, "str(") != 0 ||
+      find(a + 3, b, ")") != b - 1)
+    return 0;
+  warnOnce("str() in a Label", a, b,
+           "L-Py's Label shows the text str(x): the converted Label holds the number x (the word writes it as a "
+           "number, not as Python's text of it), and draws nothing");
+  return a + 4;
 }
 
 std::string ForeignSyntax::maximumDepth(uint32_t begin, uint32_t end) const {

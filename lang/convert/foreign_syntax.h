@@ -61,6 +61,10 @@ class ForeignSyntax {
     /// L-Py's function of several lines (ifs, locals, returns), already translated: its
     /// value as a cell-language expression of the parameters, read in place of [begin, end).
     std::optional<std::string> translated;
+    /// L-Py's function of several lines the converter cannot translate: the error at its
+    /// statement, raised where a production, the axiom or a value calls it (Python runs
+    /// no function that nothing calls).
+    std::optional<ConvertError> untranslatable;
   };
   std::map<std::string, Function, std::less<>> functions;
   /// cpfg's macros without parameters, `#define X 1+2` (no parameters; the value at
@@ -160,6 +164,9 @@ class ForeignSyntax {
   uint32_t moduleEnd(uint32_t at, uint32_t end, std::string& label) const;
   void vocabulary(ModuleText& module, uint32_t begin, uint32_t end, bool pattern) const;
   void warnOnce(const std::string& label, uint32_t begin, uint32_t end, std::string message) const;
+  /// L-Py's `str(x)`, the whole parameter [a, b) of a Label (`@L(str(x))`): the offset of
+  /// x, with a warning (the word holds the number); 0 for any other parameter.
+  uint32_t labelText(const std::string& label, uint32_t a, uint32_t b) const;
   /// One level deeper of conditionals or alternatives; past kMaxNesting an error at
   /// [begin, end), so that no file exhausts the stack.
   struct Nested {
@@ -224,7 +231,8 @@ class ForeignSyntax {
 
 /// A name of the other tool's file as the cell language may write it: the names of a
 /// cell's internal state (`age`, `time`, `status`, ...), which the cell language reads
-/// before a file's own names and refuses as parameters, get a trailing '_'.
+/// before a file's own names and refuses as parameters, and of its built-in functions
+/// (`step`, `max`, ...), which no #define may take, get a trailing '_'.
 std::string cellName(std::string_view name);
 
 /// The parameters a production binds: its predecessor's and contexts' (as cellName

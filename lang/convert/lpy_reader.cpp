@@ -510,7 +510,13 @@ class LPyReader {
       longer.push_back({std::move(name), std::move(function), body});
     }
     for (auto& [name, function, body] : longer) {
-      function.translated = translatePythonFunction(syntax_, clean_, function.parameters, body);
+      const size_t warned = syntax_.warnings.size();
+      try {
+        function.translated = translatePythonFunction(syntax_, clean_, function.parameters, body);
+      } catch (const ConvertError& error) {
+        function.untranslatable = error;
+        syntax_.warnings.resize(warned);  // of a function no word may read
+      }
       syntax_.functions[name] = std::move(function);
     }
     return found;

@@ -128,6 +128,53 @@ TEST(LPyReader, HelperFunctionsOfSeveralLinesAreOneExpression) {
   EXPECT_NE(other.error.find("'while' in a helper function"), std::string::npos) << other.error;
 }
 
+// Python runs a function only where it is called: a helper of several lines the
+// converter cannot translate stops the conversion where a value calls it, and nowhere
+// else (a production's call, the axiom's, another helper's).
+TEST(LPyReader, AHelperFunctionNothingCallsIsNotTranslated) {
+  const std::string helper = "def f(x):\n  while x > 1:\n    x -= 1\n  return x\n";
+  auto unused = convertText(Dialect::LPy, "a.lpy", helper + "Axiom: A(1)\nA(x) --> B(x)\n");
+  ASSERT_EQ(unused.error, "");
+  EXPECT_EQ(unused.warnings.size(), 0u);
+  EXPECT_NE(unused.program.find("  A(x) -> B(x)\n"), std::string::npos) << unused.program;
+  auto called = convertText(Dialect::LPy, "a.lpy", helper + "Axiom: A(1)\nA(x) --> B(f(x))\n");
+  EXPECT_EQ(called.program, "");
+  EXPECT_EQ(called.line, 2);
+  EXPECT_EQ(called.column, 3);
+  EXPECT_TRUE(called.untranslatable);
+  EXPECT_NE(called.error.find("'while' in a helper function"), std::string::npos) << called.error;
+  auto through = convertText(Dialect::LPy, "a.lpy", helper + "def g(y):\n  return f(y) + 1\nAxiom: A(g(2))\n");
+  EXPECT_EQ(through.line, 2);
+  EXPECT_NE(through.error.find("'while' in a helper function"), std::string::npos) << through.error;
+}
+
+// A name of the file that is one of the cell language's built-in functions (`step`,
+// `max`) is the file's own constant or parameter, written with a trailing '_'; a call of
+// the function keeps its name.
+TEST(LPyReader, NamesOfBuiltInFunctionsAreTheFilesOwn) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "step = 0.3\nAxiom: A(step)\nA(max) --> F(max(max, step))\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #define step_ 0.3\n  #angle 60\n  #until 1\n  axiom A(step_)\n  A(max_) -> F(max(max_, step_))\n");
+}
+
+// L-Py's Label of str(x): the Label holds the number, with a warning at the parameter;
+// str() anywhere else stays Python the converter refuses.
+TEST(LPyReader, StrOfANumberInALabelIsTheNumber) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: A(2)\nA(x) --> @L(str(x + 1)) Label(str(x)) B\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  A(x) -> Label(x + 1) Label(x) B\n"), std::string::npos) << c.program;
+  bool warned = false;
+  for (const std::string& w : c.warnings) warned = warned || w.rfind("2:13: L-Py's Label shows the text str(x)", 0) == 0;
+  EXPECT_TRUE(warned) << testing::PrintToString(c.warnings);
+  auto elsewhere = convertText(Dialect::LPy, "a.lpy", "Axiom: A(2)\nA(x) --> B(str(x))\n");
+  EXPECT_EQ(elsewhere.line, 2);
+  EXPECT_EQ(elsewhere.column, 12);
+  EXPECT_NE(elsewhere.error.find("Python's 'str'"), std::string::npos) << elsewhere.error;
+  auto more = convertText(Dialect::LPy, "a.lpy", "Axiom: A(2)\nA(x) --> @L(str(x) + 'a')\n");
+  EXPECT_NE(more.error, "");
+}
+
 // A loop over a range of written numbers in a helper function is written out turn by
 // turn, as in a production body; a parameter may be changed as a local.
 TEST(LPyReader, HelperFunctionsLoopOverRangesOfWrittenNumbers) {
@@ -163,7 +210,7 @@ TEST(LPyReader, AHelperFunctionReadsTheGlobalsNotItsCallersNames) {
 }
 
 TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
-  auto def = convertText(Dialect::LPy, "a.lpy", "Axiom: A\n\ndef f(x):\n    global y\n    return x\n");
+  auto def = convertText(Dialect::LPy, "a.lpy", "Axiom: A(f(1))\n\ndef f(x):\n    global y\n    return x\n");
   EXPECT_EQ(def.line, 4);
   EXPECT_EQ(def.column, 5);
   EXPECT_TRUE(def.untranslatable);
