@@ -105,6 +105,9 @@ class ForeignSyntax {
   bool futureDivision = false;
   /// Python's `import random as rd`: rd. is read as random. (and likewise for math).
   std::map<std::string, std::string, std::less<>> moduleAliases;
+  /// L-Py: the globals production bodies set (`global n` and an assignment to n), each
+  /// at its first `global` line (lpy_globals.h).
+  mutable std::map<std::string, SourceRange, std::less<>> bodyGlobals;
   /// Constructs converted with a loss (a drawing command ontogen's turtle has not), each
   /// label once, at its first place.
   mutable std::vector<ConvertWarning> warnings;

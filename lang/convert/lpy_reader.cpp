@@ -10,6 +10,7 @@
 
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
+#include "lang/convert/lpy_globals.h"
 #include "lang/convert/lpy_hooks.h"
 #include "lang/convert/lpy_imports.h"
 #include "lang/convert/python_body.h"
@@ -222,6 +223,7 @@ class LPyReader {
                    "starts");
     }
     applyHooks();
+    leaveOutUnreadBodyGlobals(syntax_, file_);
     loadedOnce();
     checkChoices();
     if (zeroLength_) {

@@ -213,18 +213,16 @@ class BodyTranslator {
                                     "L-Py stops at an assertion that fails"});
       return stmt;
     }
-    // `global n` where the body only reads n: Python reads the global anyway.
+    // `global n` where the body only reads n: Python reads the global anyway. One the
+    // body sets is a local of the body here, and must be read by nothing else (checked
+    // when the whole file is read: lpy_globals.h).
     if (startsWith(b, e, "global")) {
       for (uint32_t at = b + 6; at < e;) {
         while (at < e && !isNameChar(text_[at])) ++at;
         uint32_t stop = at;
         while (stop < e && isNameChar(text_[stop])) ++stop;
         const std::string_view name = text_.substr(at, stop - at);
-        if (!name.empty() && assigned_.count(name))
-          syntax_.fail(b, e,
-                       "'" + std::string(name) +
-                           "' declared global and set in a production body: state carried from production to "
-                           "production, which the converter does not write");
+        if (!name.empty() && assigned_.count(name)) syntax_.bodyGlobals.emplace(name, SourceRange{b, e});
         at = stop;
       }
       return stmt;

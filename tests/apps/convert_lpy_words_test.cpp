@@ -34,4 +34,17 @@ TEST(ConvertLPyWords, NamesTheCellLanguageSpellsOtherwise) {
       << result.err;
 }
 
+// A global the productions set and the hooks only assert, as L-Py's
+// test_simple_matching.lpy has it, is left out: L-Py derives F(2) I(2), then F(2) F(2)
+// F(2) I(0) at step 3 and F(2) F(2) F(2) at step 4, where I(0) produces nothing.
+TEST(ConvertLPyWords, AGlobalOnlyTheHooksAssertChangesNoWord) {
+  Result result = ontogen("word " + file("lpy_body_globals.lpy") + " --at 1,3,4");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 1: F(2) I(2)\nt = 3: F(2) F(2) F(2) I(0)\nt = 4: F(2) F(2) F(2)\n");
+  EXPECT_NE(result.err.find("lpy_body_globals.lpy:22:5: warning: 'matched' set in a production body is read by "
+                            "nothing the word depends on"),
+            std::string::npos)
+      << result.err;
+}
+
 }  // namespace

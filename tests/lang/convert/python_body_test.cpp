@@ -146,6 +146,47 @@ TEST(PythonBody, AKeptModuleBeforeALaterProductionIsRefused) {
   EXPECT_NE(two.error.find("a second body with a random choice for A"), std::string::npos) << two.error;
 }
 
+// L-Py's tests set a global in a body for their hooks to assert: nothing the word
+// depends on reads it, so it is left out (the file's constant and the hooks' values of
+// it too), with a warning at the body's `global` line. Read by a production, the axiom
+// or a hook's group, it is state between productions: refused at that line.
+TEST(PythonBody, AGlobalABodySetsIsLeftOutWhereOnlyAssertsReadIt) {
+  const std::string hooks =
+      "matched = None\ndef StartEach():\n  global matched\n  matched = None\n"
+      "def EndEach():\n  if getIterationNb() == 1:\n    assert matched == 1\n  print(matched)\n";
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       hooks + "Axiom: I(2)\nderivation length: 3\nproduction:\nI(0) :\n  global matched\n"
+                               "  matched = 1\n  produce *\nI(x) :\n  global matched\n  matched = 2\n"
+                               "  produce I(x - 1) F(matched)\nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(c.program.find("matched"), std::string::npos) << c.program;
+  EXPECT_NE(c.program.find("  I(0) -> ∅\n  I(x) -> I(x - 1) F(2)\n"), std::string::npos) << c.program;
+  bool warned = false;
+  for (const std::string& w : c.warnings)
+    warned = warned || w.rfind("13:3: 'matched' set in a production body is read by nothing the word depends on", 0) == 0;
+  EXPECT_TRUE(warned) << testing::PrintToString(c.warnings);
+
+  const std::string body = "I(x) :\n  global n\n  n = x\n  produce I(x)\n";
+  struct Reader {
+    const char* text;
+    int line;
+  };
+  const Reader readers[] = {
+      {"n = 1\nAxiom: I(1)\nproduction:\nJ(y) --> J(n)\n", 6},
+      {"n = 1\nAxiom: I(1)\nproduction:\nJ(y) : y > n --> J(y)\n", 6},
+      {"n = 1\nm = n * 2\nAxiom: I(m)\nproduction:\n", 6},
+      {"n = 1\ndef StartEach():\n  useGroup(n)\nAxiom: I(1)\nproduction:\n", 7},
+  };
+  for (const Reader& r : readers) {
+    auto read = convertText(Dialect::LPy, "a.lpy", r.text + body);
+    EXPECT_EQ(read.program, "") << r.text;
+    EXPECT_EQ(read.line, r.line) << r.text << read.error;
+    EXPECT_EQ(read.column, 3) << r.text << read.error;
+    EXPECT_NE(read.error.find("'n' declared global and set in a production body, and read by"), std::string::npos)
+        << read.error;
+  }
+}
+
 TEST(PythonBody, OtherPythonIsALocatedError) {
   struct Case {
     const char* body;
@@ -163,7 +204,7 @@ TEST(PythonBody, OtherPythonIsALocatedError) {
       {"A(x) :\n  for i in range(3):\n    break\n", 7, 5, "'break': Python which ontogen"},
       {"A(x) :\n  for (i, j) in range(3): nproduce F\n", 6, 3, "a 'for' over other than one name"},
       {"A(x) :\n  while x > 1:\n    produce B\n", 6, 3, "'while': Python which ontogen"},
-      {"A(x) :\n  global n, m\n  m += 1\n  produce B\n", 6, 3, "'m' declared global and set in a production body"},
+      {"A(x) :\n  global n, m\n  m += 1\n  produce B(m)\n", 6, 3, "'m' declared global and set in a production body"},
       {"A(x) :\n  return [B]\n", 6, 3, "a 'return' of a value"},
       {"A(x) :\n  produce B(randint(1, 3))\n", 6, 13, "Python's 'randint'"},
       {"A(x) :\n  a, b = 1, 2\n  produce B\n", 6, 3, "'a': Python which ontogen"},
