@@ -95,7 +95,8 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
       std::string value = expression(from, comma);
       bool single = true;  // a name or a number needs no parentheses
       for (char c : value) single = single && (isNameChar(c) || c == '.');
-      arguments.emplace_back(function.parameters[arguments.size()], single ? value : "(" + value + ")");
+      // The body spells the parameter as the cell language does (`time` is `time_`).
+      arguments.emplace_back(cellName(function.parameters[arguments.size()]), single ? value : "(" + value + ")");
     }
     else
       arguments.emplace_back("", "");

@@ -105,6 +105,18 @@ class ForeignSyntax {
   bool futureDivision = false;
   /// Python's `import random as rd`: rd. is read as random. (and likewise for math).
   std::map<std::string, std::string, std::less<>> moduleAliases;
+  /// L-Py: the file's top-level constants whose value is a number, by name (as cellName
+  /// spells it): the number and the constants it was computed from (lpy_constants.h).
+  struct FileConstant {
+    double value = 0;
+    std::set<std::string, std::less<>> from;
+  };
+  std::map<std::string, FileConstant, std::less<>> fileConstants;
+  /// L-Py: names the file sets more than once, no constants of one value.
+  std::set<std::string, std::less<>> setAgain;
+  /// L-Py: the constants fixedNumber() read as their numbers, each at its first use: the
+  /// block writes them in place (lpy_constants.h).
+  mutable std::map<std::string, SourceRange, std::less<>> fixedConstants;
   /// L-Py: the globals production bodies set (`global n` and an assignment to n), each
   /// at its first `global` line (lpy_globals.h).
   mutable std::map<std::string, SourceRange, std::less<>> bodyGlobals;
@@ -127,6 +139,11 @@ class ForeignSyntax {
     std::set<std::string, std::less<>> saved_;
   };
 
+  /// The number of a cell-language expression of written numbers and of the file's
+  /// constants (not those a parameter or local of the Scope hides), read at [begin, end)
+  /// of the file: the constants it reads are fixed there (lpy_constants.h). nullopt where
+  /// it reads anything else.
+  std::optional<double> fixedNumber(const std::string& expr, uint32_t begin, uint32_t end) const;
   /// The modules of text [begin, end); `pattern`: a predecessor or context, whose
   /// parameters are names. Throws ConvertError.
   std::vector<ModuleText> modules(uint32_t begin, uint32_t end, bool pattern) const;

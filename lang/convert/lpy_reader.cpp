@@ -10,6 +10,7 @@
 
 #include "lang/convert/foreign_syntax.h"
 #include "lang/convert/line_reader.h"
+#include "lang/convert/lpy_constants.h"
 #include "lang/convert/lpy_globals.h"
 #include "lang/convert/lpy_hooks.h"
 #include "lang/convert/lpy_imports.h"
@@ -224,6 +225,7 @@ class LPyReader {
     }
     applyHooks();
     leaveOutUnreadBodyGlobals(syntax_, file_);
+    writeFixedConstantsInPlace(syntax_, file_);
     loadedOnce();
     checkChoices();
     if (zeroLength_) {
@@ -351,6 +353,7 @@ class LPyReader {
     std::map<std::string, std::string, std::less<>> initial;
     for (const Define& d : file_.defines) initial[cellName(d.name)] = d.value;
     HookEffects effects = translateHooks(syntax_, clean_, hooks_, initial);
+    checkFixedConstantsAgainstHooks(syntax_, effects);
     if (!effects.backward) effects.backward = direction_;
     keepLoadTimeValues(effects, initial);
     for (const auto& [key, value] : effects.defines) {
@@ -797,7 +800,9 @@ class LPyReader {
         return;
       }
     }
-    file_.defines.push_back({std::move(name), syntax_.expression(value, end), line_});
+    std::string text = syntax_.expression(value, end);
+    recordFileConstant(syntax_, cellName(name), text);
+    file_.defines.push_back({std::move(name), std::move(text), line_});
   }
 
   // `color = [1, 3, 2]`: a list of constants, which `color[i]` reads
@@ -849,8 +854,9 @@ class LPyReader {
             syntax_.fail(values[k].first, values[k].second,
                          "a value naming '" + other + "', which this line sets: Python computes every value first");
       }
-      file_.defines.push_back({std::string(clean_.substr(names[k].first, names[k].second - names[k].first)), value,
-                               line_});
+      const std::string name(clean_.substr(names[k].first, names[k].second - names[k].first));
+      recordFileConstant(syntax_, cellName(name), value);
+      file_.defines.push_back({name, value, line_});
     }
     return true;
   }

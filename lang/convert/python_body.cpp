@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <optional>
@@ -398,6 +399,18 @@ class BodyTranslator {
           for (ModuleText& m : word(stmt, read, way)) way.produced.push_back(std::move(m));
           break;
         case StmtKind::Assign: {
+          if (std::optional<std::pair<long long, long long>> range = randint(stmt, read, way)) {
+            // Each whole number of the range a way of its own, chosen with an equal chance.
+            const long long count = range->second - range->first + 1;
+            for (long long k = range->first; k <= range->second; ++k) {
+              Way chosen = way;
+              if (count > 1) chosen.weights.push_back("1 / " + std::to_string(count));
+              chosen.locals[stmt.name] = Value{std::to_string(k), false};
+              chosen.randomUses.erase(stmt.name);
+              follow(frames, std::move(chosen));
+            }
+            return;
+          }
           std::string value = substitute(syntax_.expression(stmt.argBegin, stmt.argEnd), way, read);
           if (stmt.op != '=') {
             auto old = way.locals.find(stmt.name);
@@ -419,6 +432,47 @@ class BodyTranslator {
       ModuleText self = head_.predecessor;
       emit(way, {self}, true);
     }
+  }
+
+  // `n = randint(a, b)` (also `random.randint`, or through `import random as rd`) with
+  // bounds of written numbers or constants: [a, b], Python's whole numbers from a to b.
+  std::optional<std::pair<long long, long long>> randint(const Simple& stmt, const PythonStatement& where,
+                                                         Way& way) const {
+    if (stmt.op != '=') return std::nullopt;
+    uint32_t b = stmt.argBegin, e = stmt.argEnd;
+    syntax_.trim(b, e);
+    uint32_t open = b;
+    while (open < e && (isNameChar(text_[open]) || text_[open] == '.')) ++open;
+    const std::string_view call = text_.substr(b, open - b);
+    const size_t dot = call.rfind('.');
+    const std::string_view module = dot == std::string_view::npos ? "" : call.substr(0, dot);
+    const auto alias = syntax_.moduleAliases.find(module);
+    const bool fromRandom = module.empty() || module == "random" ||
+                            (alias != syntax_.moduleAliases.end() && alias->second == "random");
+    if (call.substr(dot == std::string_view::npos ? 0 : dot + 1) != "randint" || !fromRandom || open >= e ||
+        text_[open] != '(' || syntax_.find(open, e, ")") != e - 1)
+      return std::nullopt;
+    std::vector<long long> bounds;
+    for (uint32_t from = open + 1; from < e;) {
+      const uint32_t comma = syntax_.find(from, e - 1, ",");
+      uint32_t x = from, y = comma;
+      syntax_.trim(x, y);
+      const std::string value = substitute(syntax_.expression(x, y), way, where);
+      const std::optional<double> number = syntax_.fixedNumber(value, x, y);
+      if (!number || *number != std::floor(*number) || std::fabs(*number) > 1e15)
+        syntax_.fail(x, y,
+                     "a bound of randint that is no whole number written in the file or a constant of one: the "
+                     "converter writes one random choice per number of the range");
+      bounds.push_back(static_cast<long long>(*number));
+      from = comma + 1;
+    }
+    if (bounds.size() != 2) syntax_.fail(b, e, "randint of other than two bounds");
+    if (bounds[1] < bounds[0]) syntax_.fail(b, e, "randint(a, b) with b below a (Python refuses it)");
+    if (bounds[1] - bounds[0] >= static_cast<long long>(kMaxRandintChoices))
+      syntax_.fail(b, e,
+                   "randint over more than " + std::to_string(kMaxRandintChoices) +
+                       " numbers: the converter writes one random choice per number");
+    return std::pair{bounds[0], bounds[1]};
   }
 
   void holds(Way& way, const std::string& test, const PythonBranch& branch) const {

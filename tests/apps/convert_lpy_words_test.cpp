@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <regex>
+#include <sstream>
 #include <string>
 
 #include "tests/apps/ontogen_process.h"
@@ -45,6 +48,41 @@ TEST(ConvertLPyWords, AGlobalOnlyTheHooksAssertChangesNoWord) {
                             "nothing the word depends on"),
             std::string::npos)
       << result.err;
+}
+
+// A loop over a range of constants in the axiom and randint's bounds of constants: L-Py
+// derives A(0) A(1) A(2) A(3), then B(k, 0) B(k, 3) B(k, 6) B(k, 9) with each k from 1
+// to 3, then each y one more (derivation length N - 1 = 2). The constants are written
+// in place: --define cannot change them apart from the turns written out.
+TEST(ConvertLPyWords, ConstantsWhereTheConverterWritesOutANumber) {
+  Result result = ontogen("word " + file("lpy_constants.lpy") + " --at 0,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const std::string out = result.out;
+  ASSERT_EQ(out.rfind("t = 0: A(0) A(1) A(2) A(3)\nt = 2: ", 0), 0u) << out;
+  const std::string word = out.substr(out.find("t = 2: ") + 7);
+  const std::regex module(R"(B\(([123]), (\d+)\) ?)");
+  int y = 1;
+  for (auto m = std::sregex_iterator(word.begin(), word.end(), module); m != std::sregex_iterator(); ++m, y += 3)
+    EXPECT_EQ((*m)[2].str(), std::to_string(y)) << out;
+  EXPECT_EQ(y, 13) << out;
+  Result defined = ontogen("word " + file("lpy_constants.lpy") + " --at 1 --define N=5");
+  EXPECT_EQ(defined.exitCode, 2) << defined.err;
+  EXPECT_NE(defined.err.find("cannot set 'N'"), std::string::npos) << defined.err;
+}
+
+// randint(1, 3) drawn for 240 modules: only 1, 2 and 3, each near a third (80) of them.
+TEST(ConvertLPyWords, RandintChoosesEachWholeNumberOfItsRangeAlike) {
+  Result result = ontogen("word " + file("lpy_randint.lpy") + " --at 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  std::istringstream words(result.out.substr(result.out.find(": ") + 2));
+  std::map<std::string, int> counts;
+  std::string module;
+  while (words >> module) ++counts[module];
+  ASSERT_EQ(counts.size(), 3u) << result.out;
+  for (const char* drawn : {"B(1)", "B(2)", "B(3)"}) {
+    EXPECT_GT(counts[drawn], 50) << drawn;
+    EXPECT_LT(counts[drawn], 110) << drawn;
+  }
 }
 
 }  // namespace

@@ -156,6 +156,10 @@ TEST(LPyReader, NamesOfBuiltInFunctionsAreTheFilesOwn) {
   ASSERT_EQ(c.error, "");
   EXPECT_EQ(body(c.program),
             "  #define step_ 0.3\n  #angle 60\n  #until 1\n  axiom A(step_)\n  A(max_) -> F(max(max_, step_))\n");
+  // A helper's parameter named as a cell's state (time) takes the call's argument.
+  auto helper = convertText(Dialect::LPy, "a.lpy", "def f(time):\n  return time * 2\nAxiom: A(1)\nA(x) --> B(f(x + 1))\n");
+  ASSERT_EQ(helper.error, "");
+  EXPECT_NE(helper.program.find("  A(x) -> B(((x + 1) * 2))\n"), std::string::npos) << helper.program;
 }
 
 // L-Py's Label of str(x): the Label holds the number, with a warning at the parameter;

@@ -187,6 +187,79 @@ TEST(PythonBody, AGlobalABodySetsIsLeftOutWhereOnlyAssertsReadIt) {
   }
 }
 
+// `n = randint(a, b)`: one way per whole number from a to b, each weighted 1/(b - a + 1),
+// n that number on its way. Bounds that are no numbers, a bound a parameter hides, and
+// randint elsewhere than alone in an assignment are refused at their place.
+TEST(PythonBody, RandintChoosesAmongTheWholeNumbersOfItsRange) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  if x > 1:\n    n = random.randint(2, 4)\n    for i in range(n):\n"
+                           "      nproduce F(i)\n  produce B(x)\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program),
+            "  A(x) : x > 1 -> F(0) F(1) B(x) : 1 / 3\n  A(x) : x > 1 -> F(0) F(1) F(2) B(x) : 1 / 3\n"
+            "  A(x) : x > 1 -> F(0) F(1) F(2) F(3) B(x) : 1 / 3\n  A(x) : !(x > 1) -> B(x)\n");
+  auto one = convertText(Dialect::LPy, "a.lpy", lpy("A(x) :\n  n = randint(5, 5)\n  produce B(n)\n"));
+  ASSERT_EQ(one.error, "");
+  EXPECT_EQ(rules(one.program), "  A(x) -> B(5)\n");
+  struct Case {
+    const char* body;
+    int line, column;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"A(x) :\n  n = randint(1, x)\n  produce B(n)\n", 6, 18, "a bound of randint that is no whole number"},
+      {"A(x) :\n  n = randint(1, 2.5)\n  produce B(n)\n", 6, 18, "a bound of randint that is no whole number"},
+      {"A(x) :\n  n = randint(3, 1)\n  produce B(n)\n", 6, 7, "randint(a, b) with b below a"},
+      {"A(x) :\n  n = randint(1, 100)\n  produce B(n)\n", 6, 7, "randint over more than 64 numbers"},
+      {"A(x) :\n  n = randint(1, 2) + 1\n  produce B(n)\n", 6, 7, "Python's 'randint'"},
+  };
+  for (const Case& k : cases) {
+    auto r = convertText(Dialect::LPy, "a.lpy", lpy(k.body));
+    EXPECT_EQ(r.program, "") << k.body;
+    EXPECT_EQ(r.line, k.line) << k.body << r.error;
+    EXPECT_EQ(r.column, k.column) << k.body << r.error;
+    EXPECT_NE(r.error.find(k.message), std::string::npos) << k.body << r.error;
+  }
+  // numpy's randint leaves out its upper bound: a randint of another module is refused.
+  auto numpy = convertText(Dialect::LPy, "a.lpy", "from numpy.random import randint\nAxiom: A\n");
+  EXPECT_EQ(numpy.line, 1);
+  EXPECT_NE(numpy.error.find("'randint' imported from numpy.random"), std::string::npos) << numpy.error;
+}
+
+// A loop's range and randint's bounds read the file's constants (set once, before the
+// body): the number is written out, and the constant in place of its name everywhere,
+// with no #define. A constant a hook sets, set again, or hidden by a parameter is refused.
+TEST(PythonBody, ConstantsWhereANumberIsWrittenOutAreWrittenInPlace) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "N = 2\nM = N + 1\nK = 7\nAxiom: A(N)\nderivation length: M\nproduction:\n"
+                       "A(x) :\n  for i in range(M):\n    nproduce F(i * K)\n  produce A(x + N)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(c.program.substr(c.program.find("{\n") + 2),
+            "  #define K 7\n  #angle 60\n  #until (3)\n  axiom A((2))\n  production:\n"
+            "  A(x) -> F(0 * K) F(1 * K) F(2 * K) A(x + (2))\n}\n");
+  const std::string loop = "Axiom: A(1)\nproduction:\nA(x) :\n  for i in range(N):\n    nproduce F\n  produce B\n";
+  std::string hidden = "N = 2\n" + loop;
+  hidden.replace(hidden.find("A(x) :"), 6, "A(N) :");
+  struct Case {
+    std::string text;
+    int line, column;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"N = 2\ndef Start():\n  global N\n  N = 3\n" + loop, 8, 18, "'N', which a hook of L-Py sets"},
+      {"N = 2\n" + loop + "N = 3\n", 5, 18, "'N' is set more than once"},
+      {hidden, 5, 18, "a range over a value that is no written number"},
+      {loop + "N = 2\n", 4, 18, "a range over a value that is no written number"},
+  };
+  for (const Case& k : cases) {
+    auto r = convertText(Dialect::LPy, "a.lpy", k.text);
+    EXPECT_EQ(r.program, "") << k.text;
+    EXPECT_EQ(r.line, k.line) << k.text << r.error;
+    EXPECT_EQ(r.column, k.column) << k.text << r.error;
+    EXPECT_NE(r.error.find(k.message), std::string::npos) << k.text << r.error;
+  }
+}
+
 TEST(PythonBody, OtherPythonIsALocatedError) {
   struct Case {
     const char* body;
