@@ -337,8 +337,8 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
             skippedLabel = true;
           else
             module.args.push_back(isNumber ? std::string(name) : cellName(name));
-        } else if (const uint32_t inner = labelText(module.label, a, b)) {
-          module.args.push_back(expression(inner, b - 1));
+        } else if (std::optional<std::string> number = labelText(module.label, a, b)) {
+          module.args.push_back(std::move(*number));
         } else {
           module.args.push_back(expression(a, b));
         }
@@ -353,14 +353,51 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
   return result;
 }
 
-uint32_t ForeignSyntax::labelText(const std::string& label, uint32_t a, uint32_t b) const {
-  if (dialect_ != Dialect::LPy || (label != "@L" && label != "Label") || text_.compare(a, 4, "str(") != 0 ||
-      find(a + 3, b, ")") != b - 1)
-    return 0;
-  warnOnce("str() in a Label", a, b,
-           "L-Py's Label shows the text str(x): the converted Label holds the number x (the word writes it as a "
-           "number, not as Python's text of it), and draws nothing");
-  return a + 4;
+std::optional<std::pair<uint32_t, uint32_t>> ForeignSyntax::textOfNumber(uint32_t a, uint32_t b) const {
+  trim(a, b);
+  if (text_.compare(a, 4, "str(") != 0) return std::nullopt;
+  uint32_t close = find(a + 3, b, ")");
+  if (close >= b) return std::nullopt;
+  // str(x)[:5]: the text cut, still of the number x.
+  if (close + 1 < b && (text_[close + 1] != '[' || text_[b - 1] != ']' || find(close + 1, b, "]") != b - 1))
+    return std::nullopt;
+  uint32_t x = a + 4, y = close;
+  trim(x, y);
+  // str(round(x, 2)): the text of x rounded, still of the number x.
+  if (text_.compare(x, 6, "round(") == 0 && find(x + 5, y, ")") == y - 1) {
+    const uint32_t comma = find(x + 6, y - 1, ",");
+    if (comma < y - 1) y = comma;
+    x += 6;
+    trim(x, y);
+  }
+  return std::pair{x, y};
+}
+
+std::optional<std::string> ForeignSyntax::labelText(const std::string& label, uint32_t a, uint32_t b) const {
+  if (dialect_ != Dialect::LPy || (label != "@L" && label != "Label")) return std::nullopt;
+  std::optional<std::string> number;
+  if (auto x = textOfNumber(a, b)) {
+    number = expression(x->first, x->second);
+  } else {
+    // A helper function of one line returning such a text, `def txt(v): return str(v)`.
+    uint32_t open = a;
+    while (open < b && isNameChar(text_[open])) ++open;
+    const auto function = functions.find(text_.substr(a, open - a));
+    if (function == functions.end() || function->second.translated || open >= b || text_[open] != '(' ||
+        find(open, b, ")") != b - 1)
+      return std::nullopt;
+    const auto inner = textOfNumber(function->second.begin, function->second.end);
+    if (!inner) return std::nullopt;
+    Function value = function->second;
+    value.begin = inner->first;
+    value.end = inner->second;
+    uint32_t stop = b;
+    number = inlined(value, a, a, open, b, stop);
+  }
+  warnOnce("the text of a number in a Label", a, b,
+           "L-Py's Label shows the text of a number (str(x), rounded or cut): the converted Label holds the number "
+           "x itself (the word writes it as a number, not as Python's text of it), and draws nothing");
+  return number;
 }
 
 std::string ForeignSyntax::maximumDepth(uint32_t begin, uint32_t end) const {

@@ -184,9 +184,13 @@ class ForeignSyntax {
   uint32_t moduleEnd(uint32_t at, uint32_t end, std::string& label) const;
   void vocabulary(ModuleText& module, uint32_t begin, uint32_t end, bool pattern) const;
   void warnOnce(const std::string& label, uint32_t begin, uint32_t end, std::string message) const;
-  /// L-Py's `str(x)`, the whole parameter [a, b) of a Label (`@L(str(x))`): the offset of
-  /// x, with a warning (the word holds the number); 0 for any other parameter.
-  uint32_t labelText(const std::string& label, uint32_t a, uint32_t b) const;
+  /// L-Py's text of a number, the whole parameter [a, b) of a Label: `str(x)`,
+  /// `str(round(x, 2))[:5]`, or a call of a helper function of one line returning one:
+  /// x as a cell-language expression, with a warning (the word holds the number);
+  /// nullopt for any other parameter.
+  std::optional<std::string> labelText(const std::string& label, uint32_t a, uint32_t b) const;
+  /// [x, y) of `str(x)`, `str(x)[...]`, `str(round(x, n))` at [a, b), or nullopt.
+  std::optional<std::pair<uint32_t, uint32_t>> textOfNumber(uint32_t a, uint32_t b) const;
   /// One level deeper of conditionals or alternatives; past kMaxNesting an error at
   /// [begin, end), so that no file exhausts the stack.
   struct Nested {

@@ -22,18 +22,18 @@ std::string file(const std::string& name) {
 }
 
 // step = 0.5 is the file's constant (step_, as the cell language's step() is built in);
-// @c is L-Py's modules @ and c; @L(str(x)) a Label of the number; the helper nothing
-// calls (a while loop) changes nothing. L-Py derives F(0.5) @ c @L('1') A(2), then
-// F(0.5) @ c @L('1') F(1.0) @ c @L('2') A(3).
+// @c is L-Py's modules @ and c; @L(str(x)) and @L(txt(x / 4)) Labels of the numbers; the
+// helper nothing calls (a while loop) changes nothing. L-Py derives F(0.5) @ c @L('1')
+// @L('0.25') A(2), then F(0.5) @ c @L('1') @L('0.25') F(1.0) @ c @L('2') @L('0.5') A(3).
 TEST(ConvertLPyWords, NamesTheCellLanguageSpellsOtherwise) {
   Result result = ontogen("word " + file("lpy_names.lpy") + " --at 1,2");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.out,
-            "t = 1: F(0.5) @ c Label(1) A(2)\n"
-            "t = 2: F(0.5) @ c Label(1) F(1) @ c Label(2) A(3)\n");
-  EXPECT_NE(result.err.find("lpy_names.lpy:13:22: warning: L-Py predefines no module '@c'"), std::string::npos)
+            "t = 1: F(0.5) @ c Label(1) Label(0.25) A(2)\n"
+            "t = 2: F(0.5) @ c Label(1) Label(0.25) F(1) @ c Label(2) Label(0.5) A(3)\n");
+  EXPECT_NE(result.err.find("lpy_names.lpy:16:22: warning: L-Py predefines no module '@c'"), std::string::npos)
       << result.err;
-  EXPECT_NE(result.err.find("lpy_names.lpy:13:28: warning: L-Py's Label shows the text str(x)"), std::string::npos)
+  EXPECT_NE(result.err.find("lpy_names.lpy:16:28: warning: L-Py's Label shows the text of a number"), std::string::npos)
       << result.err;
 }
 

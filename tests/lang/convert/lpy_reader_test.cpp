@@ -169,7 +169,8 @@ TEST(LPyReader, StrOfANumberInALabelIsTheNumber) {
   ASSERT_EQ(c.error, "");
   EXPECT_NE(c.program.find("  A(x) -> Label(x + 1) Label(x) B\n"), std::string::npos) << c.program;
   bool warned = false;
-  for (const std::string& w : c.warnings) warned = warned || w.rfind("2:13: L-Py's Label shows the text str(x)", 0) == 0;
+  for (const std::string& w : c.warnings)
+    warned = warned || w.rfind("2:13: L-Py's Label shows the text of a number", 0) == 0;
   EXPECT_TRUE(warned) << testing::PrintToString(c.warnings);
   auto elsewhere = convertText(Dialect::LPy, "a.lpy", "Axiom: A(2)\nA(x) --> B(str(x))\n");
   EXPECT_EQ(elsewhere.line, 2);
@@ -177,6 +178,17 @@ TEST(LPyReader, StrOfANumberInALabelIsTheNumber) {
   EXPECT_NE(elsewhere.error.find("Python's 'str'"), std::string::npos) << elsewhere.error;
   auto more = convertText(Dialect::LPy, "a.lpy", "Axiom: A(2)\nA(x) --> @L(str(x) + 'a')\n");
   EXPECT_NE(more.error, "");
+  // Rounded and cut, directly or through a helper function of one line (L-Py's tutorials'
+  // `def txt(val): return str(round(val,2))[:5]`): still the number.
+  auto cut = convertText(Dialect::LPy, "a.lpy",
+                         "def txt(val):\n  return str(round(val,2))[:5]\nAxiom: A(2)\n"
+                         "A(x) --> @L(str(round(x / 3, 2))[:4]) @L(txt(x * 2))\n");
+  ASSERT_EQ(cut.error, "");
+  EXPECT_NE(cut.program.find("  A(x) -> Label(x / 3) Label(((x * 2)))\n"), std::string::npos) << cut.program;
+  auto elsewhere2 = convertText(Dialect::LPy, "a.lpy",
+                                "def txt(val):\n  return str(round(val,2))[:5]\nAxiom: A(2)\nA(x) --> B(txt(x))\n");
+  EXPECT_EQ(elsewhere2.line, 2);
+  EXPECT_NE(elsewhere2.error.find("Python's 'str'"), std::string::npos) << elsewhere2.error;
 }
 
 // A loop over a range of written numbers in a helper function is written out turn by
