@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "lang/convert/foreign_syntax.h"
+#include "lang/convert/foreign_text.h"
 #include "lang/convert/line_reader.h"
 #include "lang/convert/lpy_constants.h"
 #include "lang/convert/lpy_globals.h"
@@ -111,6 +112,13 @@ class LPyReader {
       stamp();
       line_ = {begin, end};
       const bool indented = begin > line.begin;
+      // A string alone, as a comment (`' --> titi )'`): Python evaluates it and drops it.
+      // A name given a string (`a = ' --> b'`) is no number of the block: a production or
+      // value that reads it names what the block does not define, an error the compiler
+      // shows at the line that reads it.
+      if (!indented && (chars::isStringLiteral(std::string_view(clean_).substr(begin, end - begin)) ||
+                        (isAssignment(begin, end) && stringValue(begin, end))))
+        continue;
       if (ended || indented) python(begin, end);
       if (auto last = hook(lines, i, begin, end)) {
         i = *last;
@@ -780,6 +788,15 @@ class LPyReader {
     while (at < end && isNameChar(clean_[at])) ++at;
     while (at < end && std::isspace(static_cast<unsigned char>(clean_[at]))) ++at;
     return at + 1 < end && clean_[at] == '=' && clean_[at + 1] != '=';
+  }
+
+  // Whether the assignment [begin, end) gives its name a string.
+  bool stringValue(uint32_t begin, uint32_t end) const {
+    uint32_t a = begin;
+    while (a < end && clean_[a] != '=') ++a;
+    uint32_t b = end;
+    syntax_.trim(++a, b);
+    return a < b && chars::isStringLiteral(std::string_view(clean_).substr(a, b - a));
   }
 
   // `NAME = EXPR` (Python) or `#define NAME EXPR`.

@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 
+#include "lang/convert/foreign_text.h"
 #include "lang/convert/python_loop.h"
 #include "lang/convert/written_number.h"
 
@@ -228,6 +229,8 @@ class BodyTranslator {
       }
       return stmt;
     }
+    // A string alone, as a comment: Python evaluates it and drops it.
+    if (chars::isStringLiteral(text_.substr(b, e - b))) return stmt;
     if (startsWith(b, e, "pass")) {
       if (e != b + 4) python(b, e, "this line");
       return stmt;

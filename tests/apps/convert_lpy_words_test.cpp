@@ -85,4 +85,12 @@ TEST(ConvertLPyWords, RandintChoosesEachWholeNumberOfItsRangeAlike) {
   }
 }
 
+// Strings alone on a line (holding an arrow or produce) and a string given to a name
+// nothing reads change no word: L-Py derives B(2), then A(4).
+TEST(ConvertLPyWords, StringsPythonDropsChangeNoWord) {
+  Result result = ontogen("word " + file("lpy_strings.lpy") + " --at 1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 1: B(2)\nt = 2: A(4)\n");
+}
+
 }  // namespace

@@ -191,6 +191,23 @@ TEST(LPyReader, StrOfANumberInALabelIsTheNumber) {
   EXPECT_NE(elsewhere2.error.find("Python's 'str'"), std::string::npos) << elsewhere2.error;
 }
 
+// A string alone on a line is dropped, as Python drops it, even holding an arrow; a
+// name given a string is no constant of the block: where a value reads it, the compiler
+// finds a name the block does not define, at the line that reads it.
+TEST(LPyReader, StringsAloneAndStringConstantsAreNoStatements) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "' --> B'\nu\"produce C\"\nt = 'A --> B'\nAxiom: A\nA :\n  'produce B'\n  produce C\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  #until 1\n  axiom A\n  A -> C\n");
+  auto read = convertText(Dialect::LPy, "a.lpy", "t = 'a'\nAxiom: A(t)\n");
+  ASSERT_EQ(read.error, "");
+  EXPECT_NE(read.program.find("axiom A(t)"), std::string::npos) << read.program;
+  EXPECT_EQ(read.program.find("#define t"), std::string::npos) << read.program;
+  auto more = convertText(Dialect::LPy, "a.lpy", "t = 'a' + 'b'\nAxiom: A\n");
+  EXPECT_EQ(more.line, 1);
+  EXPECT_NE(more.error, "");
+}
+
 // A loop over a range of written numbers in a helper function is written out turn by
 // turn, as in a production body; a parameter may be changed as a local.
 TEST(LPyReader, HelperFunctionsLoopOverRangesOfWrittenNumbers) {
