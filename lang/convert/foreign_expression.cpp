@@ -445,6 +445,23 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
           continue;
         }
       }
+      if (auto vector = vectorNames.find(cellName(name)); vector != vectorNames.end()) {
+        // L-Py's v[0] of a vector parameter: its component v_0.
+        uint32_t open = stop;
+        while (open < end && isSpace(text_[open])) ++open;
+        const uint32_t close = open < end && text_[open] == '[' ? find(open, end, "]") : end;
+        if (close < end) {
+          uint32_t x = open + 1, y = close;
+          trim(x, y);
+          const std::string index(text_.substr(x, y - x));
+          if (index.size() != 1 || index[0] < '0' || index[0] >= '0' + vector->second)
+            fail(x, y, "an index of the vector " + shown(name) + " other than a written 0 to " +
+                           std::to_string(vector->second - 1));
+          emit(vector->first + "_" + index, false, close + 1 - at);
+          at = close + 1;
+          continue;
+        }
+      }
       if (auto array = arrays.find(name); array != arrays.end()) {
         uint32_t open = stop;
         while (open < end && isSpace(text_[open])) ++open;

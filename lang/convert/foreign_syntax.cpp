@@ -298,6 +298,15 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
       module.hasArgs = true;
       bool skippedLabel = false;  // L-Py's *(name, ...)
       uint32_t argBegin = at + 1;
+      // L-Py's vector parameters (foreign_vectors.cpp), by the number of parameters.
+      size_t count = 0;
+      for (uint32_t from = argBegin; from <= stop; from = find(from, stop, ",") + 1) ++count;
+      const std::pair<std::string, size_t> key{module.label, count};
+      size_t index = 0;
+      auto dimension = [&]() {
+        const auto slots = vectorParameters.find(key);
+        return slots == vectorParameters.end() ? 0 : slots->second[index];
+      };
       // Parameters split at commas outside inner parentheses.
       for (uint32_t comma = find(argBegin, stop, ","); argBegin <= stop; comma = find(argBegin, stop, ",")) {
         uint32_t a = argBegin, b = comma;
@@ -325,6 +334,15 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
             fail(a, b,
                  "L-Py's '*args' takes any number of parameters; a pattern of the cell language takes a "
                  "fixed number, as in *(x, y)");
+          if (const int d = dialect_ == Dialect::LPy ? dimension() : 0; d > 0) {
+            if (!isName) fail(a, b, "a vector parameter's pattern other than a name");
+            for (int k = 0; k < d; ++k) module.args.push_back(cellName(name) + "_" + std::to_string(k));
+            vectorNames[cellName(name)] = d;
+            ++index;
+            if (comma == stop) break;
+            argBegin = comma + 1;
+            continue;
+          }
           if (!isName && !isNumber)
             fail(a, b,
                  "a pattern's parameter " + shown(std::string(name)) +
@@ -339,12 +357,24 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
             module.args.push_back(isNumber ? std::string(name) : cellName(name));
         } else if (std::optional<std::string> number = labelText(module.label, a, b)) {
           module.args.push_back(std::move(*number));
+        } else if (const std::optional<int> call = dialect_ == Dialect::LPy ? vectorCall(a, b) : std::nullopt;
+                   call || dimension() > 0) {
+          if (!dimension()) {
+            if (readModules_.count(key))
+              fail(a, b, "a vector where the file gave this parameter of " + shown(module.label) + " a number before");
+            vectorParameters[key].resize(count);
+            vectorParameters[key][index] = *call;
+          }
+          for (std::string& c : vectorComponents(a, b, dimension())) module.args.push_back(std::move(c));
         } else {
           module.args.push_back(expression(a, b));
+          if (dialect_ == Dialect::LPy) noVectorRead(module.args.back(), a, b);
         }
+        ++index;
         if (comma == stop) break;
         argBegin = comma + 1;
       }
+      if (dialect_ == Dialect::LPy) readModules_.insert(key);
       at = stop + 1;
     }
     vocabulary(module, moduleBegin, at, pattern);
@@ -434,6 +464,7 @@ void ForeignSyntax::checkPredecessor(const ModuleText& predecessor, uint32_t beg
 
 Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   Statement s;
+  vectorNames.clear();
   uint32_t arrow = find(begin, end, "-->");
   uint32_t arrowEnd = arrow + 3;
   if (arrow == end) {

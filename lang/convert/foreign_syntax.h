@@ -117,6 +117,13 @@ class ForeignSyntax {
   /// L-Py: the constants fixedNumber() read as their numbers, each at its first use: the
   /// block writes them in place (lpy_constants.h).
   mutable std::map<std::string, SourceRange, std::less<>> fixedConstants;
+  /// L-Py: modules whose parameters hold PlantGL vectors, `P(Vector2(0, 1))`, by label
+  /// and number of parameters: each parameter's dimension (0: a number). Each vector is
+  /// written as its components (foreign_vectors.cpp).
+  mutable std::map<std::pair<std::string, size_t>, std::vector<int>> vectorParameters;
+  /// L-Py: the vector parameters of the production being read (as cellName spells them),
+  /// each with its dimension: `v` is written v_0, v_1, and `v[0]` reads v_0.
+  mutable std::map<std::string, int, std::less<>> vectorNames;
   /// L-Py: the globals production bodies set (`global n` and an assignment to n), each
   /// at its first `global` line (lpy_globals.h).
   mutable std::map<std::string, SourceRange, std::less<>> bodyGlobals;
@@ -189,6 +196,13 @@ class ForeignSyntax {
   /// x as a cell-language expression, with a warning (the word holds the number);
   /// nullopt for any other parameter.
   std::optional<std::string> labelText(const std::string& label, uint32_t a, uint32_t b) const;
+  /// 2 or 3 where [a, b) is `Vector2(...)` or `Vector3(...)`.
+  std::optional<int> vectorCall(uint32_t a, uint32_t b) const;
+  /// The components of the vector parameter [a, b) of `dimension`: a Vector2/3 call's
+  /// arguments, or a linear expression of the production's vectors per component.
+  std::vector<std::string> vectorComponents(uint32_t a, uint32_t b, int dimension) const;
+  /// Throws at [a, b) where the number `value` reads a vector parameter whole.
+  void noVectorRead(const std::string& value, uint32_t a, uint32_t b) const;
   /// [x, y) of `str(x)`, `str(x)[...]`, `str(round(x, n))` at [a, b), or nullopt.
   std::optional<std::pair<uint32_t, uint32_t>> textOfNumber(uint32_t a, uint32_t b) const;
   /// One level deeper of conditionals or alternatives; past kMaxNesting an error at
@@ -251,6 +265,8 @@ class ForeignSyntax {
   uint64_t maxWrittenBytes_;
   mutable uint64_t writtenBytes_ = 0;  // counted by written()
   mutable std::set<std::string, std::less<>> bound_;  // the names of the Scope being read
+  // L-Py: modules read so far by label and number of parameters (vectorParameters).
+  mutable std::set<std::pair<std::string, size_t>> readModules_;
 };
 
 /// A name of the other tool's file as the cell language may write it: the names of a

@@ -716,6 +716,7 @@ class LPyReader {
   // The contexts and predecessor of a production head [begin, end).
   Statement headOf(uint32_t begin, uint32_t end) {
     Statement s;
+    syntax_.vectorNames.clear();
     uint32_t a = begin, b = end;
     syntax_.trim(a, b);
     uint32_t predBegin = a, predEnd = b;

@@ -93,4 +93,16 @@ TEST(ConvertLPyWords, StringsPythonDropsChangeNoWord) {
   EXPECT_EQ(result.out, "t = 1: B(2)\nt = 2: A(4)\n");
 }
 
+// L-Py's vectors as parameters (its tutorial chaikin.lpy): Chaikin's corner cutting of
+// (0,0), (0,4), (4,4), as Python and PlantGL compute it: each cut at 1/4 and 3/4 of an
+// edge, the ends kept.
+TEST(ConvertLPyWords, VectorParametersAreTheirComponents) {
+  Result result = ontogen("word " + file("lpy_vectors.lpy") + " --at 1,2");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out,
+            "t = 1: P(0, 0) E P(0, 1) E P(0, 3) E P(1, 4) E P(3, 4) E P(4, 4)\n"
+            "t = 2: P(0, 0) E P(0, 0.25) E P(0, 0.75) E P(0, 1.5) E P(0, 2.5) E P(0.25, 3.25) E P(0.75, 3.75) "
+            "E P(1.5, 4) E P(2.5, 4) E P(3.25, 4) E P(3.75, 4) E P(4, 4)\n");
+}
+
 }  // namespace

@@ -208,6 +208,41 @@ TEST(LPyReader, StringsAloneAndStringConstantsAreNoStatements) {
   EXPECT_NE(more.error, "");
 }
 
+// PlantGL's vectors as module parameters: written as their components; a sum of vectors
+// times numbers one expression per component, v[k] a component. A product of two vectors
+// (PlantGL's dot product), a vector read as a number, compared or passed to a function,
+// an index out of its range and a vector where the file gave a number are refused.
+TEST(LPyReader, VectorParametersAreWrittenAsTheirComponents) {
+  const std::string head = "Axiom: P(Vector3(1, 2, 3), 4)\nproduction:\n";
+  auto c = convertText(Dialect::LPy, "a.lpy", head + "P(v, s) --> P(v * s - (v + Vector3(0,0,1)) / 2, v[2]) F(v[0])\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #angle 60\n  #until 1\n  axiom P(1, 2, 3, 4)\n  production:\n"
+            "  P(v_0, v_1, v_2, s) -> P(v_0 * s - (v_0 + (0)) / 2, v_1 * s - (v_1 + (0)) / 2, v_2 * s - (v_2 + (1)) / 2, "
+            "v_2) F(v_0)\n");
+  struct Case {
+    const char* production;
+    int column;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"P(v, s) --> P(v * v, s)\n", 15, "a vector parameter given other than a sum of vectors times numbers"},
+      {"P(v, s) --> P(v / s + 1, s)\n", 15, "a vector parameter given other than a sum"},
+      {"P(v, s) --> P(sqrt(v), s)\n", 15, "a vector parameter given other than a sum"},
+      {"P(v, s) --> F(v)\n", 15, "the vector 'v' read as a number"},
+      {"P(v, s) --> F(v[3])\n", 17, "an index of the vector 'v' other than a written 0 to 2"},
+      {"P(v, s) --> P(s, s)\n", 15, "a vector parameter given other than a sum"},
+      {"P(v, s) --> A(1) A(Vector2(1, 2))\n", 20, "a vector where the file gave this parameter of 'A' a number"},
+  };
+  for (const Case& k : cases) {
+    auto r = convertText(Dialect::LPy, "a.lpy", head + k.production);
+    EXPECT_EQ(r.program, "") << k.production;
+    EXPECT_EQ(r.line, 3) << k.production << r.error;
+    EXPECT_EQ(r.column, k.column) << k.production << r.error;
+    EXPECT_NE(r.error.find(k.message), std::string::npos) << k.production << r.error;
+  }
+}
+
 // A loop over a range of written numbers in a helper function is written out turn by
 // turn, as in a production body; a parameter may be changed as a local.
 TEST(LPyReader, HelperFunctionsLoopOverRangesOfWrittenNumbers) {
