@@ -360,6 +360,21 @@ class BodyTranslator {
         continue;
       }
       if (read.isIf()) {
+        if (std::optional<std::vector<std::string>> weights = drawnChoice(read, way)) {
+          // One draw against rising thresholds: each branch a choice of its own chance.
+          bool otherwise = false;
+          for (size_t k = 0; k < read.branches.size(); ++k) {
+            Way chosen = way;
+            chosen.weights.push_back((*weights)[k]);
+            std::vector<Frame> more = frames;
+            more.push_back({&read.branches[k].body, 0});
+            follow(std::move(more), std::move(chosen));
+            otherwise = otherwise || !read.branches[k].testEnd;
+          }
+          if (otherwise) return;
+          way.weights.push_back(weights->back());  // no `else`: every test failed
+          continue;
+        }
         // Each branch continues with what follows the `if`. A random value is counted once
         // per test it appears in: two tests of one draw are not independent choices. A test
         // of written numbers alone (a loop's turn, `i == 0`) is decided here.
@@ -435,6 +450,54 @@ class BodyTranslator {
       ModuleText self = head_.predecessor;
       emit(way, {self}, true);
     }
+  }
+
+  // `r = random()` tested in `if r <= p1: ... elif r <= p2: ... else: ...`, one uniform
+  // draw against thresholds (`<` or `<=`, the draw on the left), read nowhere before: the
+  // chance of each branch, max(0, p_k - max(p_1 .. p_k-1)) with each p clamped to [0, 1],
+  // and last that of the way where every test fails, 1 - max(p_1 .. p_n). nullopt for
+  // any other `if`.
+  std::optional<std::vector<std::string>> drawnChoice(const PythonStatement& read, Way& way) const {
+    std::string draw;
+    std::vector<std::string> thresholds;
+    for (const PythonBranch& branch : read.branches) {
+      if (!branch.testEnd) continue;
+      const std::string test(bare(syntax_.condition(branch.testBegin, branch.testEnd)));
+      size_t stop = 0;
+      while (stop < test.size() && isNameChar(test[stop])) ++stop;
+      const std::string name = test.substr(0, stop);
+      size_t op = stop;
+      while (op < test.size() && isSpace(test[op])) ++op;
+      if (name.empty() || (!draw.empty() && name != draw) || test.compare(op, 1, "<") != 0 ||
+          test.compare(op, 2, "<<") == 0)
+        return std::nullopt;
+      const auto local = way.locals.find(name);
+      if (local == way.locals.end() || !isUniformDraw(local->second.text) || way.randomUses.count(name))
+        return std::nullopt;
+      draw = name;
+      const size_t value = op + (test.compare(op, 2, "<=") == 0 ? 2 : 1);
+      const std::string threshold(bare(substitute(test.substr(value), way, read)));
+      if (holdsRandom(threshold)) return std::nullopt;
+      for (size_t at = threshold.find(name); at != std::string::npos; at = threshold.find(name, at + 1))
+        if ((at == 0 || !isNameChar(threshold[at - 1])) &&
+            (at + name.size() == threshold.size() || !isNameChar(threshold[at + name.size()])))
+          return std::nullopt;
+      char* end = nullptr;
+      const double number = std::strtod(threshold.c_str(), &end);
+      thresholds.push_back(end == threshold.c_str() + threshold.size() && number >= 0 && number <= 1
+                               ? threshold
+                               : "clamp(" + threshold + ", 0, 1)");
+    }
+    if (thresholds.size() < 2) return std::nullopt;
+    std::vector<std::string> weights{thresholds[0]};
+    std::string below = thresholds[0];  // the largest threshold before
+    for (size_t k = 1; k < thresholds.size(); ++k) {
+      weights.push_back("max(0, " + thresholds[k] + " - " + below + ")");
+      below = "max(" + below + ", " + thresholds[k] + ")";
+    }
+    weights.push_back("1 - " + below);
+    way.randomUses[draw] = 1;
+    return weights;
   }
 
   // `n = randint(a, b)` (also `random.randint`, or through `import random as rd`) with

@@ -18,8 +18,9 @@
 // condition but a choice: the ways it splits become stochastic productions weighted p and
 // 1 - p, and a way of such a choice that produces nothing keeps the module (L-Py leaves it
 // unchanged). `n = randint(a, b)` over written numbers or constants (lpy_constants.h) is
-// a choice too: one way per number, each weighted 1/(b - a + 1). Any other Python is an
-// error at its place.
+// a choice too: one way per number, each weighted 1/(b - a + 1); so is one draw
+// `r = random()` tested against rising thresholds, `if r <= p1: ... elif r <= p2: ...`.
+// Any other Python is an error at its place.
 
 #include <cstdint>
 #include <string>

@@ -105,4 +105,22 @@ TEST(ConvertLPyWords, VectorParametersAreTheirComponents) {
             "E P(1.5, 4) E P(2.5, 4) E P(3.25, 4) E P(3.75, 4) E P(4, 4)\n");
 }
 
+// One draw against rising thresholds, 0.2 and 0.7, for 250 modules: B, C and D with
+// chances 0.2, 0.5 and 0.3 (50, 125 and 75 expected).
+TEST(ConvertLPyWords, OneDrawAgainstRisingThresholdsChoosesEachBranchWithItsChance) {
+  Result result = ontogen("word " + file("lpy_drawn_choice.lpy") + " --at 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  std::istringstream words(result.out.substr(result.out.find(": ") + 2));
+  std::map<std::string, int> counts;
+  std::string module;
+  while (words >> module) ++counts[module];
+  ASSERT_EQ(counts.size(), 3u) << result.out;
+  EXPECT_GT(counts["B"], 25);
+  EXPECT_LT(counts["B"], 80);
+  EXPECT_GT(counts["C"], 90);
+  EXPECT_LT(counts["C"], 160);
+  EXPECT_GT(counts["D"], 45);
+  EXPECT_LT(counts["D"], 110);
+}
+
 }  // namespace

@@ -123,9 +123,10 @@ TEST(PythonBody, ARandomValueUsedTwiceIsRefused) {
   EXPECT_EQ(c.line, 7);
   EXPECT_EQ(c.column, 3);
   EXPECT_NE(c.error.find("the random value 'r' used a second time"), std::string::npos) << c.error;
-  // Two tests of one draw are not two choices.
+  // Two tests of one draw are not two choices, unless against rising thresholds
+  // (OneDrawAgainstRisingThresholdsIsAChoice).
   auto chain = convertText(Dialect::LPy, "a.lpy",
-                           lpy("A(x) :\n  r = random()\n  if r < 0.3: produce B\n  elif r < 0.6: produce C\n"));
+                           lpy("A(x) :\n  r = random()\n  if r < 0.3: produce B\n  elif r > 0.6: produce C\n"));
   EXPECT_EQ(chain.line, 7);
   EXPECT_NE(chain.error.find("the random value 'r' used a second time"), std::string::npos) << chain.error;
 }
@@ -258,6 +259,27 @@ TEST(PythonBody, ConstantsWhereANumberIsWrittenOutAreWrittenInPlace) {
     EXPECT_EQ(r.column, k.column) << k.text << r.error;
     EXPECT_NE(r.error.find(k.message), std::string::npos) << k.text << r.error;
   }
+}
+
+// `r = random()` then `if r <= p1: ... elif r <= p2: ... else: ...`: one draw, each
+// branch a stochastic production of its chance. The draw read again after, or tested
+// otherwise than on the left of `<` or `<=`, stays a second use, refused.
+TEST(PythonBody, OneDrawAgainstRisingThresholdsIsAChoice) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  r = random()\n  if r <= 0.2: produce B\n  elif r < x: produce C\n"
+                           "  produce D\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program),
+            "  A(x) -> B : 0.2\n  A(x) -> C : max(0, clamp(x, 0, 1) - 0.2)\n"
+            "  A(x) -> D : 1 - max(0.2, clamp(x, 0, 1))\n");
+  auto again = convertText(Dialect::LPy, "a.lpy",
+                           lpy("A(x) :\n  r = random()\n  if r <= 0.2: produce B\n  elif r < 0.5: produce C\n"
+                               "  produce D(r)\n"));
+  EXPECT_EQ(again.line, 9);
+  EXPECT_NE(again.error.find("the random value 'r' used a second time"), std::string::npos) << again.error;
+  auto right = convertText(Dialect::LPy, "a.lpy",
+                           lpy("A(x) :\n  r = random()\n  if 0.2 > r: produce B\n  elif r < 0.5: produce C\n"));
+  EXPECT_NE(right.error.find("the random value 'r' used a second time"), std::string::npos) << right.error;
 }
 
 TEST(PythonBody, OtherPythonIsALocatedError) {
