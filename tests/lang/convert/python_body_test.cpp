@@ -277,6 +277,10 @@ TEST(PythonBody, OneDrawAgainstRisingThresholdsIsAChoice) {
                                "  produce D(r)\n"));
   EXPECT_EQ(again.line, 9);
   EXPECT_NE(again.error.find("the random value 'r' used a second time"), std::string::npos) << again.error;
+  auto both = convertText(Dialect::LPy, "a.lpy",
+                          lpy("A(x) :\n  r = random()\n  if r <= 0.2 and x > 1: produce B\n"
+                              "  elif r < 0.5: produce C\n"));
+  EXPECT_NE(both.error.find("the random value 'r' used a second time"), std::string::npos) << both.error;
   auto right = convertText(Dialect::LPy, "a.lpy",
                            lpy("A(x) :\n  r = random()\n  if 0.2 > r: produce B\n  elif r < 0.5: produce C\n"));
   EXPECT_NE(right.error.find("the random value 'r' used a second time"), std::string::npos) << right.error;
