@@ -79,6 +79,35 @@ void recordFileConstant(ForeignSyntax& syntax, const std::string& name, const st
   if (number) syntax.fileConstants[name] = {*number, std::move(used)};
 }
 
+bool setAgain(ForeignSyntax& syntax, LSystemFile& file, const std::string& name, char op, const std::string& value,
+              SourceRange line) {
+  const std::string cell = cellName(name);
+  const auto before = std::find_if(file.defines.begin(), file.defines.end(),
+                                   [&](const Define& d) { return cellName(d.name) == cell; });
+  if (before == file.defines.end()) return false;
+  std::map<std::string, HookValue, std::less<>> earlier{{cell, {"(" + before->value + ")", before->origin}}};
+  auto reads = [&](const std::string& text) {
+    bool read = false;
+    withHookValues(text, earlier, {}, &read);
+    return read;
+  };
+  bool read = std::any_of(before + 1, file.defines.end(), [&](const Define& d) { return reads(d.value); });
+  for (const ModuleText& m : file.axiom)
+    for (const std::string& arg : m.args) read = read || reads(arg);
+  read = read || (file.derivationLength && reads(*file.derivationLength));
+  if (read)
+    syntax.fail(line.begin, line.end,
+                "'" + name +
+                    "' set again after the file's values, axiom or derivation length read it (Python read its "
+                    "earlier value there): give the new value another name");
+  std::string now = withHookValues(value, earlier, {});
+  if (op != '=') now = "(" + before->value + ") " + op + " (" + now + ")";
+  recordFileConstant(syntax, cell, now);
+  file.defines.erase(before);
+  file.defines.push_back({name, now, line});
+  return true;
+}
+
 void checkFixedConstantsAgainstHooks(const ForeignSyntax& syntax, const HookEffects& effects) {
   for (const auto& [name, where] : syntax.fixedConstants)
     if (effects.defines.count(name) || effects.stepValues.count(name))

@@ -20,6 +20,15 @@ namespace ontogen::convert {
 /// constants recorded before; a name set again is no constant of one value.
 void recordFileConstant(ForeignSyntax& syntax, const std::string& name, const std::string& value);
 
+/// Python's top-level `NAME = value` for a NAME the file set before (or `NAME op= value`,
+/// `op` not '='), `value` a cell-language expression, at `line`: the later value in
+/// place of the earlier #define (the productions read it when they run), the earlier
+/// value put in where `value` reads NAME. Throws ConvertError at `line` where the file's
+/// values, axiom or derivation length read NAME between the two (Python read the earlier
+/// value there); false where NAME was not set before.
+bool setAgain(ForeignSyntax& syntax, LSystemFile& file, const std::string& name, char op, const std::string& value,
+              SourceRange line);
+
 /// Throws ConvertError at the first use of a fixed constant that a hook sets (its value
 /// would change where the turns written out do not).
 void checkFixedConstantsAgainstHooks(const ForeignSyntax& syntax, const HookEffects& effects);

@@ -15,6 +15,7 @@
 #include "lang/convert/lpy_globals.h"
 #include "lang/convert/lpy_hooks.h"
 #include "lang/convert/lpy_imports.h"
+#include "lang/convert/python_block.h"
 #include "lang/convert/python_body.h"
 
 namespace ontogen::convert {
@@ -214,9 +215,15 @@ class LPyReader {
         }
       }
       const AtLoading loading(syntax_);
-      if (isAssignment(begin, end)) {
-        define(begin, end, "=");
-        continue;
+      if (auto set = readAssignment(clean_, begin, end); set && (set->op != '=' || isAssignment(begin, end))) {
+        const bool again = std::any_of(file_.defines.begin(), file_.defines.end(),
+                                       [&](const Define& d) { return cellName(d.name) == cellName(set->name); });
+        if (again && setAgain(syntax_, file_, set->name, set->op, syntax_.expression(set->valueBegin, end), line_))
+          continue;
+        if (set->op == '=') {
+          define(begin, end, "=");
+          continue;
+        }
       }
       if (tupleAssignment(begin, end)) continue;
       { python(begin, end); }

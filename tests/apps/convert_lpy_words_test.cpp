@@ -123,4 +123,12 @@ TEST(ConvertLPyWords, OneDrawAgainstRisingThresholdsChoosesEachBranchWithItsChan
   EXPECT_LT(counts["D"], 110);
 }
 
+// Constants set again at the top level (R = 1.5; R *= R; N = 2; N += N; N = N * 10):
+// Python's productions read R = 2.25 and N = 40 when they run.
+TEST(ConvertLPyWords, AConstantSetAgainIsItsLastValue) {
+  Result result = ontogen("word " + file("lpy_set_again.lpy") + " --at 1");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, "t = 1: B(2.25, 40)\n");
+}
+
 }  // namespace

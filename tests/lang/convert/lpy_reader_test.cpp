@@ -243,6 +243,29 @@ TEST(LPyReader, VectorParametersAreWrittenAsTheirComponents) {
   }
 }
 
+// A constant set again at the top level is one #define of its last value, the earlier
+// value put in where the new one reads it; set again after a value, the axiom or the
+// derivation length read it (Python read the earlier value there), it is refused; an
+// augmented assignment of a name never set is Python the converter does not read.
+TEST(LPyReader, AConstantSetAgainIsOneDefineOfItsLastValue) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "R = 1.5\nK = 3\nR *= R\nR = R + K\nAxiom: A(1)\nA(x) --> B(R)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #define K 3\n  #define R ((1.5) * ((1.5))) + K\n  #angle 60\n  #until 1\n  axiom A(1)\n"
+            "  A(x) -> B(R)\n");
+  for (const char* text : {"N = 2\nM = N\nN = 3\nAxiom: A\n", "N = 2\nAxiom: A(N)\nN = 3\n",
+                           "N = 2\nderivation length: N\nN = 3\nAxiom: A\n"}) {
+    auto read = convertText(Dialect::LPy, "a.lpy", text);
+    EXPECT_EQ(read.line, 3) << text << read.error;
+    EXPECT_NE(read.error.find("'N' set again after the file's values, axiom or derivation length read it"),
+              std::string::npos)
+        << read.error;
+  }
+  auto unset = convertText(Dialect::LPy, "a.lpy", "x += 1\nAxiom: A\n");
+  EXPECT_EQ(unset.line, 1);
+  EXPECT_NE(unset.error.find("'x': Python code"), std::string::npos) << unset.error;
+}
+
 // A loop over a range of written numbers in a helper function is written out turn by
 // turn, as in a production body; a parameter may be changed as a local.
 TEST(LPyReader, HelperFunctionsLoopOverRangesOfWrittenNumbers) {
