@@ -478,7 +478,8 @@ class BodyTranslator {
       const size_t value = op + (test.compare(op, 2, "<=") == 0 ? 2 : 1);
       const std::string threshold(bare(substitute(test.substr(value), way, read)));
       // `r <= p and x > 1` is (r <= p) and (x > 1): a threshold holds no other operator of truth.
-      if (holdsRandom(threshold) || threshold.find_first_of("&|<>=!?") != std::string::npos) return std::nullopt;
+      if (threshold.empty() || holdsRandom(threshold) || threshold.find_first_of("&|<>=!?") != std::string::npos)
+        return std::nullopt;
       for (size_t at = threshold.find(name); at != std::string::npos; at = threshold.find(name, at + 1))
         if ((at == 0 || !isNameChar(threshold[at - 1])) &&
             (at + name.size() == threshold.size() || !isNameChar(threshold[at + name.size()])))
