@@ -96,7 +96,8 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
       std::string value = expression(from, comma);
       bool single = true;  // a name or a number needs no parentheses
       for (char c : value) single = single && (isNameChar(c) || c == '.');
-      arguments.emplace_back(function.parameters[arguments.size()], single ? value : "(" + value + ")");
+      // The body spells the parameter as the cell language does (`time` is `time_`).
+      arguments.emplace_back(cellName(function.parameters[arguments.size()]), single ? value : "(" + value + ")");
     }
     else
       arguments.emplace_back("", "");
@@ -145,6 +146,7 @@ std::string ForeignSyntax::inlined(const Function& function, uint32_t begin, uin
     }
   }
   std::string body;
+  if (function.untranslatable) throw *function.untranslatable;
   if (function.translated) {
     body = *function.translated;
   } else if (dialect_ == Dialect::LPy) {
@@ -458,6 +460,23 @@ std::string ForeignSyntax::expression(uint32_t begin, uint32_t end, std::vector<
             out += token.text;
           }
           at = stop;
+          continue;
+        }
+      }
+      if (auto vector = vectorNames.find(cellName(name)); vector != vectorNames.end()) {
+        // L-Py's v[0] of a vector parameter: its component v_0.
+        uint32_t open = stop;
+        while (open < end && isSpace(text_[open])) ++open;
+        const uint32_t close = open < end && text_[open] == '[' ? find(open, end, "]") : end;
+        if (close < end) {
+          uint32_t x = open + 1, y = close;
+          trim(x, y);
+          const std::string index(text_.substr(x, y - x));
+          if (index.size() != 1 || index[0] < '0' || index[0] >= '0' + vector->second)
+            fail(x, y, "an index of the vector " + shown(name) + " other than a written 0 to " +
+                           std::to_string(vector->second - 1));
+          emit(vector->first + "_" + index, false, close + 1 - at);
+          at = close + 1;
           continue;
         }
       }

@@ -10,6 +10,7 @@
 #include "lang/convert/foreign_text.h"
 #include "lang/convert/foreign_vocabulary.h"
 #include "lang/convert/python_operators.h"
+#include "model/builtins.h"
 #include "model/program.h"
 
 namespace ontogen::convert {
@@ -21,7 +22,9 @@ using chars::isSpace;
 using chars::shown;
 
 std::string cellName(std::string_view name) {
-  return detail::isReadOnlyName(name) ? std::string(name) + "_" : std::string(name);
+  // A built-in function's name (`step`, `max`) read as a value is the file's own
+  // constant or parameter, which the cell language would refuse to define.
+  return detail::isReadOnlyName(name) || findBuiltin(name) ? std::string(name) + "_" : std::string(name);
 }
 
 ForeignSyntax::Nested::Nested(const ForeignSyntax& syntax, uint32_t begin, uint32_t end) : depth(syntax.depth_) {
@@ -79,6 +82,18 @@ uint32_t ForeignSyntax::moduleEnd(uint32_t at, uint32_t end, std::string& label)
       if (p.name[0] == '@' && inDialect(p, dialect_) && p.name.size() > best &&
           at + p.name.size() <= end && text_.compare(at, p.name.size(), p.name) == 0)
         best = p.name.size();
+    if (best == 0 && dialect_ == Dialect::LPy) {
+      // L-Py reads the longest name it knows and else one character: `@c` is the
+      // modules @ and c, both of no meaning to its turtle (cpfg's @c is a circle).
+      uint32_t stop = at + 1;
+      while (stop < end && isNameChar(text_[stop])) ++stop;
+      const std::string name(text_.substr(at, stop - at));
+      warnOnce(name, at, stop,
+               "L-Py predefines no module " + shown(name) + ": it reads '@' and the letters after it as modules of "
+               "their own, which draw nothing, and so does the converted word");
+      label = "@";
+      return at + 1;
+    }
     if (best == 0) {
       uint32_t stop = at + 1;
       while (stop < end && isNameChar(text_[stop])) ++stop;
@@ -287,6 +302,15 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
       module.hasArgs = true;
       bool skippedLabel = false;  // L-Py's *(name, ...)
       uint32_t argBegin = at + 1;
+      // L-Py's vector parameters (foreign_vectors.cpp), by the number of parameters.
+      size_t count = 0;
+      for (uint32_t from = argBegin; from <= stop; from = find(from, stop, ",") + 1) ++count;
+      const std::pair<std::string, size_t> key{module.label, count};
+      size_t index = 0;
+      auto dimension = [&]() {
+        const auto slots = vectorParameters.find(key);
+        return slots == vectorParameters.end() ? 0 : slots->second[index];
+      };
       // Parameters split at commas outside inner parentheses.
       for (uint32_t comma = find(argBegin, stop, ","); argBegin <= stop; comma = find(argBegin, stop, ",")) {
         uint32_t a = argBegin, b = comma;
@@ -314,6 +338,15 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
             fail(a, b,
                  "L-Py's '*args' takes any number of parameters; a pattern of the cell language takes a "
                  "fixed number, as in *(x, y)");
+          if (const int d = dialect_ == Dialect::LPy ? dimension() : 0; d > 0) {
+            if (!isName) fail(a, b, "a vector parameter's pattern other than a name");
+            for (int k = 0; k < d; ++k) module.args.push_back(cellName(name) + "_" + std::to_string(k));
+            vectorNames[cellName(name)] = d;
+            ++index;
+            if (comma == stop) break;
+            argBegin = comma + 1;
+            continue;
+          }
           if (!isName && !isNumber)
             fail(a, b,
                  "a pattern's parameter " + shown(std::string(name)) +
@@ -326,18 +359,79 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
             skippedLabel = true;
           else
             module.args.push_back(isNumber ? std::string(name) : cellName(name));
+        } else if (std::optional<std::string> number = labelText(module.label, a, b)) {
+          module.args.push_back(std::move(*number));
+        } else if (const std::optional<int> call = dialect_ == Dialect::LPy ? vectorCall(a, b) : std::nullopt;
+                   call || dimension() > 0) {
+          if (!dimension()) {
+            if (readModules_.count(key))
+              fail(a, b, "a vector where the file gave this parameter of " + shown(module.label) + " a number before");
+            vectorParameters[key].resize(count);
+            vectorParameters[key][index] = *call;
+          }
+          for (std::string& c : vectorComponents(a, b, dimension())) module.args.push_back(std::move(c));
         } else {
           module.args.push_back(expression(a, b));
+          if (dialect_ == Dialect::LPy) noVectorRead(module.args.back(), a, b);
         }
+        ++index;
         if (comma == stop) break;
         argBegin = comma + 1;
       }
+      if (dialect_ == Dialect::LPy) readModules_.insert(key);
       at = stop + 1;
     }
     vocabulary(module, moduleBegin, at, pattern);
     result.push_back(std::move(module));
   }
   return result;
+}
+
+std::optional<std::pair<uint32_t, uint32_t>> ForeignSyntax::textOfNumber(uint32_t a, uint32_t b) const {
+  trim(a, b);
+  if (text_.compare(a, 4, "str(") != 0) return std::nullopt;
+  uint32_t close = find(a + 3, b, ")");
+  if (close >= b) return std::nullopt;
+  // str(x)[:5]: the text cut, still of the number x.
+  if (close + 1 < b && (text_[close + 1] != '[' || text_[b - 1] != ']' || find(close + 1, b, "]") != b - 1))
+    return std::nullopt;
+  uint32_t x = a + 4, y = close;
+  trim(x, y);
+  // str(round(x, 2)): the text of x rounded, still of the number x.
+  if (text_.compare(x, 6, "round(") == 0 && find(x + 5, y, ")") == y - 1) {
+    const uint32_t comma = find(x + 6, y - 1, ",");
+    if (comma < y - 1) y = comma;
+    x += 6;
+    trim(x, y);
+  }
+  return std::pair{x, y};
+}
+
+std::optional<std::string> ForeignSyntax::labelText(const std::string& label, uint32_t a, uint32_t b) const {
+  if (dialect_ != Dialect::LPy || (label != "@L" && label != "Label")) return std::nullopt;
+  std::optional<std::string> number;
+  if (auto x = textOfNumber(a, b)) {
+    number = expression(x->first, x->second);
+  } else {
+    // A helper function of one line returning such a text, `def txt(v): return str(v)`.
+    uint32_t open = a;
+    while (open < b && isNameChar(text_[open])) ++open;
+    const auto function = functions.find(text_.substr(a, open - a));
+    if (function == functions.end() || function->second.translated || open >= b || text_[open] != '(' ||
+        find(open, b, ")") != b - 1)
+      return std::nullopt;
+    const auto inner = textOfNumber(function->second.begin, function->second.end);
+    if (!inner) return std::nullopt;
+    Function value = function->second;
+    value.begin = inner->first;
+    value.end = inner->second;
+    uint32_t stop = b;
+    number = inlined(value, a, a, open, b, stop);
+  }
+  warnOnce("the text of a number in a Label", a, b,
+           "L-Py's Label shows the text of a number (str(x), rounded or cut): the converted Label holds the number "
+           "x itself (the word writes it as a number, not as Python's text of it), and draws nothing");
+  return number;
 }
 
 std::string ForeignSyntax::maximumDepth(uint32_t begin, uint32_t end) const {
@@ -374,6 +468,7 @@ void ForeignSyntax::checkPredecessor(const ModuleText& predecessor, uint32_t beg
 
 Statement ForeignSyntax::production(uint32_t begin, uint32_t end) const {
   Statement s;
+  vectorNames.clear();
   uint32_t arrow = find(begin, end, "-->");
   uint32_t arrowEnd = arrow + 3;
   if (arrow == end) {

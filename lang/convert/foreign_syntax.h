@@ -61,6 +61,10 @@ class ForeignSyntax {
     /// L-Py's function of several lines (ifs, locals, returns), already translated: its
     /// value as a cell-language expression of the parameters, read in place of [begin, end).
     std::optional<std::string> translated;
+    /// L-Py's function of several lines the converter cannot translate: the error at its
+    /// statement, raised where a production, the axiom or a value calls it (Python runs
+    /// no function that nothing calls).
+    std::optional<ConvertError> untranslatable;
   };
   std::map<std::string, Function, std::less<>> functions;
   /// cpfg's macros without parameters, `#define X 1+2` (no parameters; the value at
@@ -103,6 +107,28 @@ class ForeignSyntax {
   bool futureDivision = false;
   /// Python's `import random as rd`: rd. is read as random. (and likewise for math).
   std::map<std::string, std::string, std::less<>> moduleAliases;
+  /// L-Py: the file's top-level constants whose value is a number, by name (as cellName
+  /// spells it): the number and the constants it was computed from (lpy_constants.h).
+  struct FileConstant {
+    double value = 0;
+    std::set<std::string, std::less<>> from;
+  };
+  std::map<std::string, FileConstant, std::less<>> fileConstants;
+  /// L-Py: names the file sets more than once, no constants of one value.
+  std::set<std::string, std::less<>> setAgain;
+  /// L-Py: the constants fixedNumber() read as their numbers, each at its first use: the
+  /// block writes them in place (lpy_constants.h).
+  mutable std::map<std::string, SourceRange, std::less<>> fixedConstants;
+  /// L-Py: modules whose parameters hold PlantGL vectors, `P(Vector2(0, 1))`, by label
+  /// and number of parameters: each parameter's dimension (0: a number). Each vector is
+  /// written as its components (foreign_vectors.cpp).
+  mutable std::map<std::pair<std::string, size_t>, std::vector<int>> vectorParameters;
+  /// L-Py: the vector parameters of the production being read (as cellName spells them),
+  /// each with its dimension: `v` is written v_0, v_1, and `v[0]` reads v_0.
+  mutable std::map<std::string, int, std::less<>> vectorNames;
+  /// L-Py: the globals production bodies set (`global n` and an assignment to n), each
+  /// at its first `global` line (lpy_globals.h).
+  mutable std::map<std::string, SourceRange, std::less<>> bodyGlobals;
   /// Constructs converted with a loss (a drawing command ontogen's turtle has not), each
   /// label once, at its first place.
   mutable std::vector<ConvertWarning> warnings;
@@ -122,6 +148,11 @@ class ForeignSyntax {
     std::set<std::string, std::less<>> saved_;
   };
 
+  /// The number of a cell-language expression of written numbers and of the file's
+  /// constants (not those a parameter or local of the Scope hides), read at [begin, end)
+  /// of the file: the constants it reads are fixed there (lpy_constants.h). nullopt where
+  /// it reads anything else.
+  std::optional<double> fixedNumber(const std::string& expr, uint32_t begin, uint32_t end) const;
   /// The modules of text [begin, end); `pattern`: a predecessor or context, whose
   /// parameters are names. Throws ConvertError.
   std::vector<ModuleText> modules(uint32_t begin, uint32_t end, bool pattern) const;
@@ -162,6 +193,20 @@ class ForeignSyntax {
   uint32_t moduleEnd(uint32_t at, uint32_t end, std::string& label) const;
   void vocabulary(ModuleText& module, uint32_t begin, uint32_t end, bool pattern) const;
   void warnOnce(const std::string& label, uint32_t begin, uint32_t end, std::string message) const;
+  /// L-Py's text of a number, the whole parameter [a, b) of a Label: `str(x)`,
+  /// `str(round(x, 2))[:5]`, or a call of a helper function of one line returning one:
+  /// x as a cell-language expression, with a warning (the word holds the number);
+  /// nullopt for any other parameter.
+  std::optional<std::string> labelText(const std::string& label, uint32_t a, uint32_t b) const;
+  /// 2 or 3 where [a, b) is `Vector2(...)` or `Vector3(...)`.
+  std::optional<int> vectorCall(uint32_t a, uint32_t b) const;
+  /// The components of the vector parameter [a, b) of `dimension`: a Vector2/3 call's
+  /// arguments, or a linear expression of the production's vectors per component.
+  std::vector<std::string> vectorComponents(uint32_t a, uint32_t b, int dimension) const;
+  /// Throws at [a, b) where the number `value` reads a vector parameter whole.
+  void noVectorRead(const std::string& value, uint32_t a, uint32_t b) const;
+  /// [x, y) of `str(x)`, `str(x)[...]`, `str(round(x, n))` at [a, b), or nullopt.
+  std::optional<std::pair<uint32_t, uint32_t>> textOfNumber(uint32_t a, uint32_t b) const;
   /// One level deeper of conditionals or alternatives; past kMaxNesting an error at
   /// [begin, end), so that no file exhausts the stack.
   struct Nested {
@@ -222,11 +267,14 @@ class ForeignSyntax {
   uint64_t maxWrittenBytes_;
   mutable uint64_t writtenBytes_ = 0;  // counted by written()
   mutable std::set<std::string, std::less<>> bound_;  // the names of the Scope being read
+  // L-Py: modules read so far by label and number of parameters (vectorParameters).
+  mutable std::set<std::pair<std::string, size_t>> readModules_;
 };
 
 /// A name of the other tool's file as the cell language may write it: the names of a
 /// cell's internal state (`age`, `time`, `status`, ...), which the cell language reads
-/// before a file's own names and refuses as parameters, get a trailing '_'.
+/// before a file's own names and refuses as parameters, and of its built-in functions
+/// (`step`, `max`, ...), which no #define may take, get a trailing '_'.
 std::string cellName(std::string_view name);
 
 /// The parameters a production binds: its predecessor's and contexts' (as cellName

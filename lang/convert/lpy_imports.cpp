@@ -19,7 +19,7 @@ bool isNameChar(char c) {
 bool translatedName(const std::string& name) {
   for (std::string_view python :
        {"math", "random", "uniform", "gauss", "normalvariate", "normal", "int", "float", "round", "radians", "degrees",
-        "fabs", "getIterationNb", "seed", "True", "False", "None", "pi", "e"})
+        "fabs", "getIterationNb", "seed", "randint", "True", "False", "None", "pi", "e"})
     if (name == python) return true;
   return findBuiltin(name) || findConstant(name);
 }

@@ -9,9 +9,13 @@
 #include <tuple>
 
 #include "lang/convert/foreign_syntax.h"
+#include "lang/convert/foreign_text.h"
 #include "lang/convert/line_reader.h"
+#include "lang/convert/lpy_constants.h"
+#include "lang/convert/lpy_globals.h"
 #include "lang/convert/lpy_hooks.h"
 #include "lang/convert/lpy_imports.h"
+#include "lang/convert/python_block.h"
 #include "lang/convert/python_body.h"
 
 namespace ontogen::convert {
@@ -109,6 +113,13 @@ class LPyReader {
       stamp();
       line_ = {begin, end};
       const bool indented = begin > line.begin;
+      // A string alone, as a comment (`' --> titi )'`): Python evaluates it and drops it.
+      // A name given a string (`a = ' --> b'`) is no number of the block: a production or
+      // value that reads it names what the block does not define, an error the compiler
+      // shows at the line that reads it.
+      if (!indented && (chars::isStringLiteral(std::string_view(clean_).substr(begin, end - begin)) ||
+                        (isAssignment(begin, end) && stringValue(begin, end))))
+        continue;
       if (ended || indented) python(begin, end);
       if (auto last = hook(lines, i, begin, end)) {
         i = *last;
@@ -204,9 +215,15 @@ class LPyReader {
         }
       }
       const AtLoading loading(syntax_);
-      if (isAssignment(begin, end)) {
-        define(begin, end, "=");
-        continue;
+      if (auto set = readAssignment(clean_, begin, end); set && (set->op != '=' || isAssignment(begin, end))) {
+        const bool again = std::any_of(file_.defines.begin(), file_.defines.end(),
+                                       [&](const Define& d) { return cellName(d.name) == cellName(set->name); });
+        if (again && setAgain(syntax_, file_, set->name, set->op, syntax_.expression(set->valueBegin, end), line_))
+          continue;
+        if (set->op == '=') {
+          define(begin, end, "=");
+          continue;
+        }
       }
       if (tupleAssignment(begin, end)) continue;
       { python(begin, end); }
@@ -222,6 +239,8 @@ class LPyReader {
                    "starts");
     }
     applyHooks();
+    leaveOutUnreadBodyGlobals(syntax_, file_);
+    writeFixedConstantsInPlace(syntax_, file_);
     loadedOnce();
     checkChoices();
     if (zeroLength_) {
@@ -349,6 +368,7 @@ class LPyReader {
     std::map<std::string, std::string, std::less<>> initial;
     for (const Define& d : file_.defines) initial[cellName(d.name)] = d.value;
     HookEffects effects = translateHooks(syntax_, clean_, hooks_, initial);
+    checkFixedConstantsAgainstHooks(syntax_, effects);
     if (!effects.backward) effects.backward = direction_;
     keepLoadTimeValues(effects, initial);
     for (const auto& [key, value] : effects.defines) {
@@ -510,7 +530,13 @@ class LPyReader {
       longer.push_back({std::move(name), std::move(function), body});
     }
     for (auto& [name, function, body] : longer) {
-      function.translated = translatePythonFunction(syntax_, clean_, function.parameters, body);
+      const size_t warned = syntax_.warnings.size();
+      try {
+        function.translated = translatePythonFunction(syntax_, clean_, function.parameters, body);
+      } catch (const ConvertError& error) {
+        function.untranslatable = error;
+        syntax_.warnings.resize(warned);  // of a function no word may read
+      }
       syntax_.functions[name] = std::move(function);
     }
     return found;
@@ -697,6 +723,7 @@ class LPyReader {
   // The contexts and predecessor of a production head [begin, end).
   Statement headOf(uint32_t begin, uint32_t end) {
     Statement s;
+    syntax_.vectorNames.clear();
     uint32_t a = begin, b = end;
     syntax_.trim(a, b);
     uint32_t predBegin = a, predEnd = b;
@@ -771,6 +798,15 @@ class LPyReader {
     return at + 1 < end && clean_[at] == '=' && clean_[at + 1] != '=';
   }
 
+  // Whether the assignment [begin, end) gives its name a string.
+  bool stringValue(uint32_t begin, uint32_t end) const {
+    uint32_t a = begin;
+    while (a < end && clean_[a] != '=') ++a;
+    uint32_t b = end;
+    syntax_.trim(++a, b);
+    return a < b && chars::isStringLiteral(std::string_view(clean_).substr(a, b - a));
+  }
+
   // `NAME = EXPR` (Python) or `#define NAME EXPR`.
   void define(uint32_t at, uint32_t end, std::string_view form) {
     while (at < end && std::isspace(static_cast<unsigned char>(clean_[at]))) ++at;
@@ -789,7 +825,9 @@ class LPyReader {
         return;
       }
     }
-    file_.defines.push_back({std::move(name), syntax_.expression(value, end), line_});
+    std::string text = syntax_.expression(value, end);
+    recordFileConstant(syntax_, cellName(name), text);
+    file_.defines.push_back({std::move(name), std::move(text), line_});
   }
 
   // `color = [1, 3, 2]`: a list of constants, which `color[i]` reads
@@ -841,8 +879,9 @@ class LPyReader {
             syntax_.fail(values[k].first, values[k].second,
                          "a value naming '" + other + "', which this line sets: Python computes every value first");
       }
-      file_.defines.push_back({std::string(clean_.substr(names[k].first, names[k].second - names[k].first)), value,
-                               line_});
+      const std::string name(clean_.substr(names[k].first, names[k].second - names[k].first));
+      recordFileConstant(syntax_, cellName(name), value);
+      file_.defines.push_back({name, value, line_});
     }
     return true;
   }

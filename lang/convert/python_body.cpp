@@ -3,12 +3,14 @@
 #include <algorithm>
 
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
 
+#include "lang/convert/foreign_text.h"
 #include "lang/convert/python_loop.h"
 #include "lang/convert/written_number.h"
 
@@ -213,22 +215,22 @@ class BodyTranslator {
                                     "L-Py stops at an assertion that fails"});
       return stmt;
     }
-    // `global n` where the body only reads n: Python reads the global anyway.
+    // `global n` where the body only reads n: Python reads the global anyway. One the
+    // body sets is a local of the body here, and must be read by nothing else (checked
+    // when the whole file is read: lpy_globals.h).
     if (startsWith(b, e, "global")) {
       for (uint32_t at = b + 6; at < e;) {
         while (at < e && !isNameChar(text_[at])) ++at;
         uint32_t stop = at;
         while (stop < e && isNameChar(text_[stop])) ++stop;
         const std::string_view name = text_.substr(at, stop - at);
-        if (!name.empty() && assigned_.count(name))
-          syntax_.fail(b, e,
-                       "'" + std::string(name) +
-                           "' declared global and set in a production body: state carried from production to "
-                           "production, which the converter does not write");
+        if (!name.empty() && assigned_.count(name)) syntax_.bodyGlobals.emplace(name, SourceRange{b, e});
         at = stop;
       }
       return stmt;
     }
+    // A string alone, as a comment: Python evaluates it and drops it.
+    if (chars::isStringLiteral(text_.substr(b, e - b))) return stmt;
     if (startsWith(b, e, "pass")) {
       if (e != b + 4) python(b, e, "this line");
       return stmt;
@@ -358,6 +360,21 @@ class BodyTranslator {
         continue;
       }
       if (read.isIf()) {
+        if (std::optional<std::vector<std::string>> weights = drawnChoice(read, way)) {
+          // One draw against rising thresholds: each branch a choice of its own chance.
+          bool otherwise = false;
+          for (size_t k = 0; k < read.branches.size(); ++k) {
+            Way chosen = way;
+            chosen.weights.push_back((*weights)[k]);
+            std::vector<Frame> more = frames;
+            more.push_back({&read.branches[k].body, 0});
+            follow(std::move(more), std::move(chosen));
+            otherwise = otherwise || !read.branches[k].testEnd;
+          }
+          if (otherwise) return;
+          way.weights.push_back(weights->back());  // no `else`: every test failed
+          continue;
+        }
         // Each branch continues with what follows the `if`. A random value is counted once
         // per test it appears in: two tests of one draw are not independent choices. A test
         // of written numbers alone (a loop's turn, `i == 0`) is decided here.
@@ -400,6 +417,18 @@ class BodyTranslator {
           for (ModuleText& m : word(stmt, read, way)) way.produced.push_back(std::move(m));
           break;
         case StmtKind::Assign: {
+          if (std::optional<std::pair<long long, long long>> range = randint(stmt, read, way)) {
+            // Each whole number of the range a way of its own, chosen with an equal chance.
+            const long long count = range->second - range->first + 1;
+            for (long long k = range->first; k <= range->second; ++k) {
+              Way chosen = way;
+              if (count > 1) chosen.weights.push_back("1 / " + std::to_string(count));
+              chosen.locals[stmt.name] = Value{std::to_string(k), false};
+              chosen.randomUses.erase(stmt.name);
+              follow(frames, std::move(chosen));
+            }
+            return;
+          }
           std::string value = substitute(syntax_.expression(stmt.argBegin, stmt.argEnd), way, read);
           if (stmt.op != '=') {
             auto old = way.locals.find(stmt.name);
@@ -421,6 +450,97 @@ class BodyTranslator {
       ModuleText self = head_.predecessor;
       emit(way, {self}, true);
     }
+  }
+
+  // `r = random()` tested in `if r <= p1: ... elif r <= p2: ... else: ...`, one uniform
+  // draw against thresholds (`<` or `<=`, the draw on the left), read nowhere before: the
+  // chance of each branch, max(0, p_k - max(p_1 .. p_k-1)) with each p clamped to [0, 1],
+  // and last that of the way where every test fails, 1 - max(p_1 .. p_n). nullopt for
+  // any other `if`.
+  std::optional<std::vector<std::string>> drawnChoice(const PythonStatement& read, Way& way) const {
+    std::string draw;
+    std::vector<std::string> thresholds;
+    for (const PythonBranch& branch : read.branches) {
+      if (!branch.testEnd) continue;
+      const std::string test(bare(syntax_.condition(branch.testBegin, branch.testEnd)));
+      size_t stop = 0;
+      while (stop < test.size() && isNameChar(test[stop])) ++stop;
+      const std::string name = test.substr(0, stop);
+      size_t op = stop;
+      while (op < test.size() && isSpace(test[op])) ++op;
+      if (name.empty() || (!draw.empty() && name != draw) || test.compare(op, 1, "<") != 0 ||
+          test.compare(op, 2, "<<") == 0)
+        return std::nullopt;
+      const auto local = way.locals.find(name);
+      if (local == way.locals.end() || !isUniformDraw(local->second.text) || way.randomUses.count(name))
+        return std::nullopt;
+      draw = name;
+      const size_t value = op + (test.compare(op, 2, "<=") == 0 ? 2 : 1);
+      const std::string threshold(bare(substitute(test.substr(value), way, read)));
+      // `r <= p and x > 1` is (r <= p) and (x > 1): a threshold holds no other operator of truth.
+      if (threshold.empty() || holdsRandom(threshold) || threshold.find_first_of("&|<>=!?") != std::string::npos)
+        return std::nullopt;
+      for (size_t at = threshold.find(name); at != std::string::npos; at = threshold.find(name, at + 1))
+        if ((at == 0 || !isNameChar(threshold[at - 1])) &&
+            (at + name.size() == threshold.size() || !isNameChar(threshold[at + name.size()])))
+          return std::nullopt;
+      char* end = nullptr;
+      const double number = std::strtod(threshold.c_str(), &end);
+      thresholds.push_back(end == threshold.c_str() + threshold.size() && number >= 0 && number <= 1
+                               ? threshold
+                               : "clamp(" + threshold + ", 0, 1)");
+    }
+    if (thresholds.size() < 2) return std::nullopt;
+    std::vector<std::string> weights{thresholds[0]};
+    std::string below = thresholds[0];  // the largest threshold before
+    for (size_t k = 1; k < thresholds.size(); ++k) {
+      weights.push_back("max(0, " + thresholds[k] + " - " + below + ")");
+      below = "max(" + below + ", " + thresholds[k] + ")";
+    }
+    weights.push_back("1 - " + below);
+    way.randomUses[draw] = 1;
+    return weights;
+  }
+
+  // `n = randint(a, b)` (also `random.randint`, or through `import random as rd`) with
+  // bounds of written numbers or constants: [a, b], Python's whole numbers from a to b.
+  std::optional<std::pair<long long, long long>> randint(const Simple& stmt, const PythonStatement& where,
+                                                         Way& way) const {
+    if (stmt.op != '=') return std::nullopt;
+    uint32_t b = stmt.argBegin, e = stmt.argEnd;
+    syntax_.trim(b, e);
+    uint32_t open = b;
+    while (open < e && (isNameChar(text_[open]) || text_[open] == '.')) ++open;
+    const std::string_view call = text_.substr(b, open - b);
+    const size_t dot = call.rfind('.');
+    const std::string_view module = dot == std::string_view::npos ? "" : call.substr(0, dot);
+    const auto alias = syntax_.moduleAliases.find(module);
+    const bool fromRandom = module.empty() || module == "random" ||
+                            (alias != syntax_.moduleAliases.end() && alias->second == "random");
+    if (call.substr(dot == std::string_view::npos ? 0 : dot + 1) != "randint" || !fromRandom || open >= e ||
+        text_[open] != '(' || syntax_.find(open, e, ")") != e - 1)
+      return std::nullopt;
+    std::vector<long long> bounds;
+    for (uint32_t from = open + 1; from < e;) {
+      const uint32_t comma = syntax_.find(from, e - 1, ",");
+      uint32_t x = from, y = comma;
+      syntax_.trim(x, y);
+      const std::string value = substitute(syntax_.expression(x, y), way, where);
+      const std::optional<double> number = syntax_.fixedNumber(value, x, y);
+      if (!number || *number != std::floor(*number) || std::fabs(*number) > 1e15)
+        syntax_.fail(x, y,
+                     "a bound of randint that is no whole number written in the file or a constant of one: the "
+                     "converter writes one random choice per number of the range");
+      bounds.push_back(static_cast<long long>(*number));
+      from = comma + 1;
+    }
+    if (bounds.size() != 2) syntax_.fail(b, e, "randint of other than two bounds");
+    if (bounds[1] < bounds[0]) syntax_.fail(b, e, "randint(a, b) with b below a (Python refuses it)");
+    if (bounds[1] - bounds[0] >= static_cast<long long>(kMaxRandintChoices))
+      syntax_.fail(b, e,
+                   "randint over more than " + std::to_string(kMaxRandintChoices) +
+                       " numbers: the converter writes one random choice per number");
+    return std::pair{bounds[0], bounds[1]};
   }
 
   void holds(Way& way, const std::string& test, const PythonBranch& branch) const {

@@ -17,7 +17,10 @@
 // turn (python_loop.h). A test of a uniform draw against a value, `random() < p`, is not a
 // condition but a choice: the ways it splits become stochastic productions weighted p and
 // 1 - p, and a way of such a choice that produces nothing keeps the module (L-Py leaves it
-// unchanged). Any other Python is an error at its place.
+// unchanged). `n = randint(a, b)` over written numbers or constants (lpy_constants.h) is
+// a choice too: one way per number, each weighted 1/(b - a + 1); so is one draw
+// `r = random()` tested against rising thresholds, `if r <= p1: ... elif r <= p2: ...`.
+// Any other Python is an error at its place.
 
 #include <cstdint>
 #include <string>
@@ -32,6 +35,9 @@ namespace ontogen::convert {
 /// Most productions one body becomes; more is a located error (a body of many tests in a
 /// row multiplies its ways, and no model writes a tenth as many).
 inline constexpr size_t kMaxBodyProductions = 256;
+/// Most numbers `n = randint(a, b)` in a body chooses among: one production per number
+/// (and per way after it), within kMaxBodyProductions with room for other tests.
+inline constexpr size_t kMaxRandintChoices = 64;
 /// Most ways through one body's tests the converter follows, those that give no
 /// production among them (a way that neither produces nor chooses gives none).
 inline constexpr size_t kMaxBodyWays = 16 * kMaxBodyProductions;

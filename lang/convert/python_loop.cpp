@@ -15,8 +15,9 @@ using chars::isSpace;
 [[noreturn]] void refuse(const ForeignSyntax& syntax, uint32_t begin, uint32_t end, const std::string& what) {
   syntax.fail(begin, end,
               what +
-                  ": the converter writes out a loop `for NAME in range(...)` over numbers written in the file, "
-                  "turn by turn (a parameter varies from module to module; a name a hook or --define may change)");
+                  ": the converter writes out a loop `for NAME in range(...)` over numbers written in the file "
+                  "and its constants set once before the loop, turn by turn (a parameter varies from module to "
+                  "module)");
 }
 
 }  // namespace
@@ -62,7 +63,7 @@ std::vector<std::string> loopTurns(const ForeignSyntax& syntax, const RangeLoop&
   std::vector<long long> bounds;
   for (size_t k = 0; k < arguments.size(); ++k) {
     const auto [x, y] = loop.arguments[k];
-    const std::optional<double> value = writtenNumber(arguments[k]);
+    const std::optional<double> value = syntax.fixedNumber(arguments[k], x, y);
     if (!value) refuse(syntax, x, y, "a range over a value that is no written number");
     if (*value != std::floor(*value)) refuse(syntax, x, y, "a range over a number that is not whole (Python refuses it)");
     // Far beyond any range of kMaxLoopTurns turns a file writes, and within long long.

@@ -128,6 +128,144 @@ TEST(LPyReader, HelperFunctionsOfSeveralLinesAreOneExpression) {
   EXPECT_NE(other.error.find("'while' in a helper function"), std::string::npos) << other.error;
 }
 
+// Python runs a function only where it is called: a helper of several lines the
+// converter cannot translate stops the conversion where a value calls it, and nowhere
+// else (a production's call, the axiom's, another helper's).
+TEST(LPyReader, AHelperFunctionNothingCallsIsNotTranslated) {
+  const std::string helper = "def f(x):\n  while x > 1:\n    x -= 1\n  return x\n";
+  auto unused = convertText(Dialect::LPy, "a.lpy", helper + "Axiom: A(1)\nA(x) --> B(x)\n");
+  ASSERT_EQ(unused.error, "");
+  EXPECT_EQ(unused.warnings.size(), 0u);
+  EXPECT_NE(unused.program.find("  A(x) -> B(x)\n"), std::string::npos) << unused.program;
+  auto called = convertText(Dialect::LPy, "a.lpy", helper + "Axiom: A(1)\nA(x) --> B(f(x))\n");
+  EXPECT_EQ(called.program, "");
+  EXPECT_EQ(called.line, 2);
+  EXPECT_EQ(called.column, 3);
+  EXPECT_TRUE(called.untranslatable);
+  EXPECT_NE(called.error.find("'while' in a helper function"), std::string::npos) << called.error;
+  auto through = convertText(Dialect::LPy, "a.lpy", helper + "def g(y):\n  return f(y) + 1\nAxiom: A(g(2))\n");
+  EXPECT_EQ(through.line, 2);
+  EXPECT_NE(through.error.find("'while' in a helper function"), std::string::npos) << through.error;
+}
+
+// A name of the file that is one of the cell language's built-in functions (`step`,
+// `max`) is the file's own constant or parameter, written with a trailing '_'; a call of
+// the function keeps its name.
+TEST(LPyReader, NamesOfBuiltInFunctionsAreTheFilesOwn) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "step = 0.3\nAxiom: A(step)\nA(max) --> F(max(max, step))\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #define step_ 0.3\n  #angle 60\n  #until 1\n  axiom A(step_)\n  A(max_) -> F(max(max_, step_))\n");
+  // A helper's parameter named as a cell's state (time) takes the call's argument.
+  auto helper = convertText(Dialect::LPy, "a.lpy", "def f(time):\n  return time * 2\nAxiom: A(1)\nA(x) --> B(f(x + 1))\n");
+  ASSERT_EQ(helper.error, "");
+  EXPECT_NE(helper.program.find("  A(x) -> B(((x + 1) * 2))\n"), std::string::npos) << helper.program;
+}
+
+// L-Py's Label of str(x): the Label holds the number, with a warning at the parameter;
+// str() anywhere else stays Python the converter refuses.
+TEST(LPyReader, StrOfANumberInALabelIsTheNumber) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "Axiom: A(2)\nA(x) --> @L(str(x + 1)) Label(str(x)) B\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_NE(c.program.find("  A(x) -> Label(x + 1) Label(x) B\n"), std::string::npos) << c.program;
+  bool warned = false;
+  for (const std::string& w : c.warnings)
+    warned = warned || w.rfind("2:13: L-Py's Label shows the text of a number", 0) == 0;
+  EXPECT_TRUE(warned) << testing::PrintToString(c.warnings);
+  auto elsewhere = convertText(Dialect::LPy, "a.lpy", "Axiom: A(2)\nA(x) --> B(str(x))\n");
+  EXPECT_EQ(elsewhere.line, 2);
+  EXPECT_EQ(elsewhere.column, 12);
+  EXPECT_NE(elsewhere.error.find("Python's 'str'"), std::string::npos) << elsewhere.error;
+  auto more = convertText(Dialect::LPy, "a.lpy", "Axiom: A(2)\nA(x) --> @L(str(x) + 'a')\n");
+  EXPECT_NE(more.error, "");
+  // Rounded and cut, directly or through a helper function of one line (L-Py's tutorials'
+  // `def txt(val): return str(round(val,2))[:5]`): still the number.
+  auto cut = convertText(Dialect::LPy, "a.lpy",
+                         "def txt(val):\n  return str(round(val,2))[:5]\nAxiom: A(2)\n"
+                         "A(x) --> @L(str(round(x / 3, 2))[:4]) @L(txt(x * 2))\n");
+  ASSERT_EQ(cut.error, "");
+  EXPECT_NE(cut.program.find("  A(x) -> Label(x / 3) Label(((x * 2)))\n"), std::string::npos) << cut.program;
+  auto elsewhere2 = convertText(Dialect::LPy, "a.lpy",
+                                "def txt(val):\n  return str(round(val,2))[:5]\nAxiom: A(2)\nA(x) --> B(txt(x))\n");
+  EXPECT_EQ(elsewhere2.line, 2);
+  EXPECT_NE(elsewhere2.error.find("Python's 'str'"), std::string::npos) << elsewhere2.error;
+}
+
+// A string alone on a line is dropped, as Python drops it, even holding an arrow; a
+// name given a string is no constant of the block: where a value reads it, the compiler
+// finds a name the block does not define, at the line that reads it.
+TEST(LPyReader, StringsAloneAndStringConstantsAreNoStatements) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "' --> B'\nu\"produce C\"\nt = 'A --> B'\nAxiom: A\nA :\n  'produce B'\n  produce C\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program), "  #angle 60\n  #until 1\n  axiom A\n  A -> C\n");
+  auto read = convertText(Dialect::LPy, "a.lpy", "t = 'a'\nAxiom: A(t)\n");
+  ASSERT_EQ(read.error, "");
+  EXPECT_NE(read.program.find("axiom A(t)"), std::string::npos) << read.program;
+  EXPECT_EQ(read.program.find("#define t"), std::string::npos) << read.program;
+  auto more = convertText(Dialect::LPy, "a.lpy", "t = 'a' + 'b'\nAxiom: A\n");
+  EXPECT_EQ(more.line, 1);
+  EXPECT_NE(more.error, "");
+}
+
+// PlantGL's vectors as module parameters: written as their components; a sum of vectors
+// times numbers one expression per component, v[k] a component. A product of two vectors
+// (PlantGL's dot product), a vector read as a number, compared or passed to a function,
+// an index out of its range and a vector where the file gave a number are refused.
+TEST(LPyReader, VectorParametersAreWrittenAsTheirComponents) {
+  const std::string head = "Axiom: P(Vector3(1, 2, 3), 4)\nproduction:\n";
+  auto c = convertText(Dialect::LPy, "a.lpy", head + "P(v, s) --> P(v * s - (v + Vector3(0,0,1)) / 2, v[2]) F(v[0])\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #angle 60\n  #until 1\n  axiom P(1, 2, 3, 4)\n  production:\n"
+            "  P(v_0, v_1, v_2, s) -> P(v_0 * s - (v_0 + (0)) / 2, v_1 * s - (v_1 + (0)) / 2, v_2 * s - (v_2 + (1)) / 2, "
+            "v_2) F(v_0)\n");
+  struct Case {
+    const char* production;
+    int column;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"P(v, s) --> P(v * v, s)\n", 15, "a vector parameter given other than a sum of vectors times numbers"},
+      {"P(v, s) --> P(v / s + 1, s)\n", 15, "a vector parameter given other than a sum"},
+      {"P(v, s) --> P(sqrt(v), s)\n", 15, "a vector parameter given other than a sum"},
+      {"P(v, s) --> F(v)\n", 15, "the vector 'v' read as a number"},
+      {"P(v, s) --> F(v[3])\n", 17, "an index of the vector 'v' other than a written 0 to 2"},
+      {"P(v, s) --> P(s, s)\n", 15, "a vector parameter given other than a sum"},
+      {"P(v, s) --> A(1) A(Vector2(1, 2))\n", 20, "a vector where the file gave this parameter of 'A' a number"},
+  };
+  for (const Case& k : cases) {
+    auto r = convertText(Dialect::LPy, "a.lpy", head + k.production);
+    EXPECT_EQ(r.program, "") << k.production;
+    EXPECT_EQ(r.line, 3) << k.production << r.error;
+    EXPECT_EQ(r.column, k.column) << k.production << r.error;
+    EXPECT_NE(r.error.find(k.message), std::string::npos) << k.production << r.error;
+  }
+}
+
+// A constant set again at the top level is one #define of its last value, the earlier
+// value put in where the new one reads it; set again after a value, the axiom or the
+// derivation length read it (Python read the earlier value there), it is refused; an
+// augmented assignment of a name never set is Python the converter does not read.
+TEST(LPyReader, AConstantSetAgainIsOneDefineOfItsLastValue) {
+  auto c = convertText(Dialect::LPy, "a.lpy", "R = 1.5\nK = 3\nR *= R\nR = R + K\nAxiom: A(1)\nA(x) --> B(R)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(body(c.program),
+            "  #define K 3\n  #define R ((1.5) * ((1.5))) + K\n  #angle 60\n  #until 1\n  axiom A(1)\n"
+            "  A(x) -> B(R)\n");
+  for (const char* text : {"N = 2\nM = N\nN = 3\nAxiom: A\n", "N = 2\nAxiom: A(N)\nN = 3\n",
+                           "N = 2\nderivation length: N\nN = 3\nAxiom: A\n"}) {
+    auto read = convertText(Dialect::LPy, "a.lpy", text);
+    EXPECT_EQ(read.line, 3) << text << read.error;
+    EXPECT_NE(read.error.find("'N' set again after the file's values, axiom or derivation length read it"),
+              std::string::npos)
+        << read.error;
+  }
+  auto unset = convertText(Dialect::LPy, "a.lpy", "x += 1\nAxiom: A\n");
+  EXPECT_EQ(unset.line, 1);
+  EXPECT_NE(unset.error.find("'x': Python code"), std::string::npos) << unset.error;
+}
+
 // A loop over a range of written numbers in a helper function is written out turn by
 // turn, as in a production body; a parameter may be changed as a local.
 TEST(LPyReader, HelperFunctionsLoopOverRangesOfWrittenNumbers) {
@@ -163,7 +301,7 @@ TEST(LPyReader, AHelperFunctionReadsTheGlobalsNotItsCallersNames) {
 }
 
 TEST(LPyReader, PythonCodeIsAnErrorAtItsLine) {
-  auto def = convertText(Dialect::LPy, "a.lpy", "Axiom: A\n\ndef f(x):\n    global y\n    return x\n");
+  auto def = convertText(Dialect::LPy, "a.lpy", "Axiom: A(f(1))\n\ndef f(x):\n    global y\n    return x\n");
   EXPECT_EQ(def.line, 4);
   EXPECT_EQ(def.column, 5);
   EXPECT_TRUE(def.untranslatable);

@@ -123,9 +123,10 @@ TEST(PythonBody, ARandomValueUsedTwiceIsRefused) {
   EXPECT_EQ(c.line, 7);
   EXPECT_EQ(c.column, 3);
   EXPECT_NE(c.error.find("the random value 'r' used a second time"), std::string::npos) << c.error;
-  // Two tests of one draw are not two choices.
+  // Two tests of one draw are not two choices, unless against rising thresholds
+  // (OneDrawAgainstRisingThresholdsIsAChoice).
   auto chain = convertText(Dialect::LPy, "a.lpy",
-                           lpy("A(x) :\n  r = random()\n  if r < 0.3: produce B\n  elif r < 0.6: produce C\n"));
+                           lpy("A(x) :\n  r = random()\n  if r < 0.3: produce B\n  elif r > 0.6: produce C\n"));
   EXPECT_EQ(chain.line, 7);
   EXPECT_NE(chain.error.find("the random value 'r' used a second time"), std::string::npos) << chain.error;
 }
@@ -146,6 +147,145 @@ TEST(PythonBody, AKeptModuleBeforeALaterProductionIsRefused) {
   EXPECT_NE(two.error.find("a second body with a random choice for A"), std::string::npos) << two.error;
 }
 
+// L-Py's tests set a global in a body for their hooks to assert: nothing the word
+// depends on reads it, so it is left out (the file's constant and the hooks' values of
+// it too), with a warning at the body's `global` line. Read by a production, the axiom
+// or a hook's group, it is state between productions: refused at that line.
+TEST(PythonBody, AGlobalABodySetsIsLeftOutWhereOnlyAssertsReadIt) {
+  const std::string hooks =
+      "matched = None\ndef StartEach():\n  global matched\n  matched = None\n"
+      "def EndEach():\n  if getIterationNb() == 1:\n    assert matched == 1\n  print(matched)\n";
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       hooks + "Axiom: I(2)\nderivation length: 3\nproduction:\nI(0) :\n  global matched\n"
+                               "  matched = 1\n  produce *\nI(x) :\n  global matched\n  matched = 2\n"
+                               "  produce I(x - 1) F(matched)\nendlsystem\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(c.program.find("matched"), std::string::npos) << c.program;
+  EXPECT_NE(c.program.find("  I(0) -> ∅\n  I(x) -> I(x - 1) F(2)\n"), std::string::npos) << c.program;
+  bool warned = false;
+  for (const std::string& w : c.warnings)
+    warned = warned || w.rfind("13:3: 'matched' set in a production body is read by nothing the word depends on", 0) == 0;
+  EXPECT_TRUE(warned) << testing::PrintToString(c.warnings);
+
+  const std::string body = "I(x) :\n  global n\n  n = x\n  produce I(x)\n";
+  struct Reader {
+    const char* text;
+    int line;
+  };
+  const Reader readers[] = {
+      {"n = 1\nAxiom: I(1)\nproduction:\nJ(y) --> J(n)\n", 6},
+      {"n = 1\nAxiom: I(1)\nproduction:\nJ(y) : y > n --> J(y)\n", 6},
+      {"n = 1\nm = n * 2\nAxiom: I(m)\nproduction:\n", 6},
+      {"n = 1\ndef StartEach():\n  useGroup(n)\nAxiom: I(1)\nproduction:\n", 7},
+  };
+  for (const Reader& r : readers) {
+    auto read = convertText(Dialect::LPy, "a.lpy", r.text + body);
+    EXPECT_EQ(read.program, "") << r.text;
+    EXPECT_EQ(read.line, r.line) << r.text << read.error;
+    EXPECT_EQ(read.column, 3) << r.text << read.error;
+    EXPECT_NE(read.error.find("'n' declared global and set in a production body, and read by"), std::string::npos)
+        << read.error;
+  }
+}
+
+// `n = randint(a, b)`: one way per whole number from a to b, each weighted 1/(b - a + 1),
+// n that number on its way. Bounds that are no numbers, a bound a parameter hides, and
+// randint elsewhere than alone in an assignment are refused at their place.
+TEST(PythonBody, RandintChoosesAmongTheWholeNumbersOfItsRange) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  if x > 1:\n    n = random.randint(2, 4)\n    for i in range(n):\n"
+                           "      nproduce F(i)\n  produce B(x)\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program),
+            "  A(x) : x > 1 -> F(0) F(1) B(x) : 1 / 3\n  A(x) : x > 1 -> F(0) F(1) F(2) B(x) : 1 / 3\n"
+            "  A(x) : x > 1 -> F(0) F(1) F(2) F(3) B(x) : 1 / 3\n  A(x) : !(x > 1) -> B(x)\n");
+  auto one = convertText(Dialect::LPy, "a.lpy", lpy("A(x) :\n  n = randint(5, 5)\n  produce B(n)\n"));
+  ASSERT_EQ(one.error, "");
+  EXPECT_EQ(rules(one.program), "  A(x) -> B(5)\n");
+  struct Case {
+    const char* body;
+    int line, column;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"A(x) :\n  n = randint(1, x)\n  produce B(n)\n", 6, 18, "a bound of randint that is no whole number"},
+      {"A(x) :\n  n = randint(1, 2.5)\n  produce B(n)\n", 6, 18, "a bound of randint that is no whole number"},
+      {"A(x) :\n  n = randint(3, 1)\n  produce B(n)\n", 6, 7, "randint(a, b) with b below a"},
+      {"A(x) :\n  n = randint(1, 100)\n  produce B(n)\n", 6, 7, "randint over more than 64 numbers"},
+      {"A(x) :\n  n = randint(1, 2) + 1\n  produce B(n)\n", 6, 7, "Python's 'randint'"},
+  };
+  for (const Case& k : cases) {
+    auto r = convertText(Dialect::LPy, "a.lpy", lpy(k.body));
+    EXPECT_EQ(r.program, "") << k.body;
+    EXPECT_EQ(r.line, k.line) << k.body << r.error;
+    EXPECT_EQ(r.column, k.column) << k.body << r.error;
+    EXPECT_NE(r.error.find(k.message), std::string::npos) << k.body << r.error;
+  }
+  // numpy's randint leaves out its upper bound: a randint of another module is refused.
+  auto numpy = convertText(Dialect::LPy, "a.lpy", "from numpy.random import randint\nAxiom: A\n");
+  EXPECT_EQ(numpy.line, 1);
+  EXPECT_NE(numpy.error.find("'randint' imported from numpy.random"), std::string::npos) << numpy.error;
+}
+
+// A loop's range and randint's bounds read the file's constants (set once, before the
+// body): the number is written out, and the constant in place of its name everywhere,
+// with no #define. A constant a hook sets, set again, or hidden by a parameter is refused.
+TEST(PythonBody, ConstantsWhereANumberIsWrittenOutAreWrittenInPlace) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       "N = 2\nM = N + 1\nK = 7\nAxiom: A(N)\nderivation length: M\nproduction:\n"
+                       "A(x) :\n  for i in range(M):\n    nproduce F(i * K)\n  produce A(x + N)\n");
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(c.program.substr(c.program.find("{\n") + 2),
+            "  #define K 7\n  #angle 60\n  #until (3)\n  axiom A((2))\n  production:\n"
+            "  A(x) -> F(0 * K) F(1 * K) F(2 * K) A(x + (2))\n}\n");
+  const std::string loop = "Axiom: A(1)\nproduction:\nA(x) :\n  for i in range(N):\n    nproduce F\n  produce B\n";
+  std::string hidden = "N = 2\n" + loop;
+  hidden.replace(hidden.find("A(x) :"), 6, "A(N) :");
+  struct Case {
+    std::string text;
+    int line, column;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"N = 2\ndef Start():\n  global N\n  N = 3\n" + loop, 8, 18, "'N', which a hook of L-Py sets"},
+      {"N = 2\n" + loop + "N = 3\n", 5, 18, "'N' is set more than once"},
+      {hidden, 5, 18, "a range over a value that is no written number"},
+      {loop + "N = 2\n", 4, 18, "a range over a value that is no written number"},
+  };
+  for (const Case& k : cases) {
+    auto r = convertText(Dialect::LPy, "a.lpy", k.text);
+    EXPECT_EQ(r.program, "") << k.text;
+    EXPECT_EQ(r.line, k.line) << k.text << r.error;
+    EXPECT_EQ(r.column, k.column) << k.text << r.error;
+    EXPECT_NE(r.error.find(k.message), std::string::npos) << k.text << r.error;
+  }
+}
+
+// `r = random()` then `if r <= p1: ... elif r <= p2: ... else: ...`: one draw, each
+// branch a stochastic production of its chance. The draw read again after, or tested
+// otherwise than on the left of `<` or `<=`, stays a second use, refused.
+TEST(PythonBody, OneDrawAgainstRisingThresholdsIsAChoice) {
+  auto c = convertText(Dialect::LPy, "a.lpy",
+                       lpy("A(x) :\n  r = random()\n  if r <= 0.2: produce B\n  elif r < x: produce C\n"
+                           "  produce D\n"));
+  ASSERT_EQ(c.error, "");
+  EXPECT_EQ(rules(c.program),
+            "  A(x) -> B : 0.2\n  A(x) -> C : max(0, clamp(x, 0, 1) - 0.2)\n"
+            "  A(x) -> D : 1 - max(0.2, clamp(x, 0, 1))\n");
+  auto again = convertText(Dialect::LPy, "a.lpy",
+                           lpy("A(x) :\n  r = random()\n  if r <= 0.2: produce B\n  elif r < 0.5: produce C\n"
+                               "  produce D(r)\n"));
+  EXPECT_EQ(again.line, 9);
+  EXPECT_NE(again.error.find("the random value 'r' used a second time"), std::string::npos) << again.error;
+  auto both = convertText(Dialect::LPy, "a.lpy",
+                          lpy("A(x) :\n  r = random()\n  if r <= 0.2 and x > 1: produce B\n"
+                              "  elif r < 0.5: produce C\n"));
+  EXPECT_NE(both.error.find("the random value 'r' used a second time"), std::string::npos) << both.error;
+  auto right = convertText(Dialect::LPy, "a.lpy",
+                           lpy("A(x) :\n  r = random()\n  if 0.2 > r: produce B\n  elif r < 0.5: produce C\n"));
+  EXPECT_NE(right.error.find("the random value 'r' used a second time"), std::string::npos) << right.error;
+}
+
 TEST(PythonBody, OtherPythonIsALocatedError) {
   struct Case {
     const char* body;
@@ -163,7 +303,7 @@ TEST(PythonBody, OtherPythonIsALocatedError) {
       {"A(x) :\n  for i in range(3):\n    break\n", 7, 5, "'break': Python which ontogen"},
       {"A(x) :\n  for (i, j) in range(3): nproduce F\n", 6, 3, "a 'for' over other than one name"},
       {"A(x) :\n  while x > 1:\n    produce B\n", 6, 3, "'while': Python which ontogen"},
-      {"A(x) :\n  global n, m\n  m += 1\n  produce B\n", 6, 3, "'m' declared global and set in a production body"},
+      {"A(x) :\n  global n, m\n  m += 1\n  produce B(m)\n", 6, 3, "'m' declared global and set in a production body"},
       {"A(x) :\n  return [B]\n", 6, 3, "a 'return' of a value"},
       {"A(x) :\n  produce B(randint(1, 3))\n", 6, 13, "Python's 'randint'"},
       {"A(x) :\n  a, b = 1, 2\n  produce B\n", 6, 3, "'a': Python which ontogen"},

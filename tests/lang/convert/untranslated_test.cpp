@@ -68,9 +68,16 @@ TEST(Untranslated, LPyPredefinedModulesAreNeverLetters) {
   EXPECT_EQ(frame.line, 1);
   EXPECT_EQ(frame.column, 10);
   EXPECT_TRUE(frame.untranslatable);
+  // L-Py predefines no @Zq: it reads the modules @, Z and q(1) (lpy_parser.cpp's
+  // ModuleClassTable::parse takes the longest name it knows, else one character).
   auto unknown = convertText(Dialect::LPy, "a.lpy", "Axiom: A @Zq(1)\n");
-  EXPECT_EQ(unknown.column, 10);
-  EXPECT_NE(unknown.error.find("'@Zq' is none ontogen can translate"), std::string::npos) << unknown.error;
+  ASSERT_EQ(unknown.error, "");
+  EXPECT_EQ(body(unknown.program), "  #angle 60\n  #until 1\n  axiom A @ Z q(1)\n");
+  ASSERT_EQ(unknown.warnings.size(), 1u);
+  EXPECT_EQ(unknown.warnings[0].rfind("1:10: L-Py predefines no module '@Zq'", 0), 0u) << unknown.warnings[0];
+  auto cpfg = convertText(Dialect::Cpfg, "a.l", "Lsystem: 1\nAxiom: A @Zq(1)\nendlsystem\n");
+  EXPECT_EQ(cpfg.column, 10);
+  EXPECT_NE(cpfg.error.find("'@Zq' is none ontogen can translate"), std::string::npos) << cpfg.error;
 }
 
 TEST(Untranslated, ASurfaceIsOneModuleNotATildeAndALetter) {
