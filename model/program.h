@@ -94,6 +94,10 @@ struct StateCalculation {
   SourceSpan span;
 };
 
+/// The scale of a module without one (L-Py's default): finer than every declared scale,
+/// so that a multiscale context passes over it.
+inline constexpr int32_t kUnscaled = INT32_MAX;
+
 struct CompiledRule {
   std::string name;  ///< `p1`, or empty
   SourceSpan span;
@@ -122,6 +126,10 @@ struct CompiledRule {
   /// L-systems: which of SystemDefinition::ruleClasses its context matching sees (the
   /// `ignore:` / `consider:` line above it); -1: the system's symbolClass.
   int symbolClasses = -1;
+  /// L-systems with `scale N:` lines: the scale of every master (kUnscaled where none is
+  /// declared, brackets included), shared by the block's rules with a context, which then
+  /// match as a multiscale tree (core/multiscale_context.h); null: the ordinary matching.
+  std::shared_ptr<const std::vector<int32_t>> scaleOf;
   std::vector<SuccessorTemplate> successors;
   CompiledExpression probability;  ///< empty: not stochastic
   std::vector<AggregateQuery> aggregates;  ///< read by OpCode::Aggregate in this rule's expressions

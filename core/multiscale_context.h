@@ -1,0 +1,34 @@
+#pragma once
+// An L-system rule's context in a multiscale word (L-Py's multiscale modules, its string
+// matching "As Multiscale AxialTree"; docs/LANGUAGE.md 4.8). A `scale N:` line gives
+// labels a scale; a smaller number is a coarser scale (a plant 0, its axes 1, their
+// internodes 2), and a module without one is finer than all. Each pattern module is
+// looked for at its own scale:
+//  - on the left, among the module's ancestors on the path towards the root (branches
+//    passed over, `[` left behind, as in the ordinary matching), past the modules finer
+//    than the pattern's scale, and past the complexes of the module when the pattern is
+//    not coarser than it;
+//  - on the right, along the word: the modules finer than the pattern's scale are passed
+//    over, branches' brackets among them; a coarser module is entered through its
+//    components. A pattern's `[` and `]` (which have no scale) enter a branch and leave
+//    the rest of it as in the ordinary matching.
+// Ignored symbols are passed over on both sides.
+
+#include <cstdint>
+#include <span>
+
+#include "model/program.h"
+#include "pools/linear_pool.h"
+
+namespace ontogen {
+
+/// Matches `rule`'s left and right contexts around cell `index` of `pool` (whose branches
+/// are indexed) with the rule's scales (CompiledRule::scaleOf), seeing `classOf`; on
+/// success matched[k] is the cell of items[k] of the side last matched, as
+/// LinearPool::matchLeft and matchRight give them.
+bool matchMultiscaleLeft(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
+                         std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched);
+bool matchMultiscaleRight(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
+                          std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched);
+
+}  // namespace ontogen
