@@ -38,11 +38,15 @@ bool matchLinearContext(const Program& program, const CompiledRule& rule, const 
   auto inWritten = [&](uint32_t j) { return written.state + written.cells[j].state; };
   auto masterInPool = [&](uint32_t j) { return pool.masterAt(j); };
   auto masterInWritten = [&](uint32_t j) { return written.cells[j].master; };
-  if (rule.scaleOf) {  // a multiscale block, which has no new contexts (lang/compile_scales.cpp)
+  if (rule.scaleOf) {  // a multiscale block, which has no new right context (lang/compile_scales.cpp)
     const std::span<const int32_t> scales(*rule.scaleOf);
     if (!rule.leftItems.empty() &&
         !(matchMultiscaleLeft(pool, index, rule.leftItems, classOf, scales, matched) &&
           bindSide(program, rule.left, masterInPool, inPool, matched, frame)))
+      return false;
+    if (!rule.newLeftItems.empty() &&
+        !(matchMultiscaleNewLeft(written.cells, pool.masterAt(index), rule.newLeftItems, classOf, scales, matched) &&
+          bindSide(program, rule.newLeft, masterInWritten, inWritten, matched, frame)))
       return false;
     return rule.rightItems.empty() ||
            (matchMultiscaleRight(pool, index, rule.rightItems, classOf, scales, matched) &&

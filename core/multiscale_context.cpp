@@ -4,15 +4,41 @@ namespace ontogen {
 
 namespace {
 
-// A walk over the word, position by position; -1 (left) or size (right) is nowhere.
-struct ScaledWord {
+// The word a walk reads: the pool, whose brackets are indexed, or the word being
+// written, whose branches are found by depth.
+struct PoolWord {
   const LinearPool& pool;
+  uint32_t master(int64_t pos) const { return pool.masterAt(static_cast<size_t>(pos)); }
+  int64_t partner(int64_t pos, const std::span<const uint8_t>) const {
+    const uint32_t other = pool.partnerOf(static_cast<size_t>(pos));
+    return other == LinearPool::kNoPartner ? -1 : other;
+  }
+};
+
+struct WrittenCells {
+  std::span<const CellRecord> cells;
+  uint32_t master(int64_t pos) const { return cells[static_cast<size_t>(pos)].master; }
+  // The `[` of the `]` at pos (the walk goes left only).
+  int64_t partner(int64_t pos, const std::span<const uint8_t> classOf) const {
+    for (int depth = 1; depth > 0;) {
+      if (--pos < 0) return -1;
+      const uint8_t inner = classOf[cells[static_cast<size_t>(pos)].master];
+      depth += (inner & kSymbolBranchClose) ? 1 : (inner & kSymbolBranchOpen) ? -1 : 0;
+    }
+    return pos;
+  }
+};
+
+// A walk over the word, position by position; -1 (left) or size (right) is nowhere.
+template <typename Word>
+struct ScaledWord {
+  Word word;
   std::span<const uint8_t> classOf;
   std::span<const int32_t> scaleOf;
   int64_t size;
 
-  uint8_t symbol(int64_t pos) const { return classOf[pool.masterAt(static_cast<size_t>(pos))]; }
-  int32_t scale(int64_t pos) const { return scaleOf[pool.masterAt(static_cast<size_t>(pos))]; }
+  uint8_t symbol(int64_t pos) const { return classOf[word.master(pos)]; }
+  int32_t scale(int64_t pos) const { return scaleOf[word.master(pos)]; }
 
   // The module the one at pos grows from: complete branches to its left passed over, the
   // `[` of its own branch left behind, ignored symbols passed over.
@@ -21,9 +47,7 @@ struct ScaledWord {
       if (--pos < 0) return -1;
       const uint8_t s = symbol(pos);
       if (s & kSymbolBranchClose) {
-        const uint32_t open = pool.partnerOf(static_cast<size_t>(pos));
-        if (open == LinearPool::kNoPartner) return -1;
-        pos = open;
+        if ((pos = word.partner(pos, classOf)) < 0) return -1;
         continue;
       }
       if (s & (kSymbolBranchOpen | kSymbolIgnored)) continue;
@@ -31,10 +55,10 @@ struct ScaledWord {
     }
   }
 
-  // The nearest ancestor of pos at scale `target`: past the complexes of pos (coarser
-  // ancestors) when the target is not coarser than pos, then past finer modules.
-  int64_t ancestorAtScale(int64_t pos, int32_t target) const {
-    const int32_t from = scale(pos);
+  // The nearest ancestor at scale `target` of a module of scale `from` at pos: past its
+  // complexes (coarser ancestors) when the target is not coarser than it, then past finer
+  // modules.
+  int64_t ancestorAtScale(int64_t pos, int32_t from, int32_t target) const {
     pos = parent(pos);
     if (pos < 0) return -1;
     int32_t at = scale(pos);
@@ -87,9 +111,7 @@ struct ScaledWord {
   int64_t endOfBranch(int64_t pos) const {
     while (pos < size && !(symbol(pos) & kSymbolBranchClose)) {
       if (symbol(pos) & kSymbolBranchOpen) {
-        const uint32_t close = pool.partnerOf(static_cast<size_t>(pos));
-        if (close == LinearPool::kNoPartner) return size;
-        pos = close;
+        if ((pos = word.partner(pos, classOf)) < 0) return size;
       }
       ++pos;
     }
@@ -101,24 +123,39 @@ int32_t itemScale(const ContextItem& item, std::span<const int32_t> scaleOf) {
   return item.kind == ContextItem::Kind::Module ? scaleOf[item.master] : kUnscaled;
 }
 
-}  // namespace
-
-bool matchMultiscaleLeft(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
-                         std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched) {
-  const ScaledWord word{pool, classOf, scaleOf, static_cast<int64_t>(pool.size())};
-  int64_t pos = static_cast<int64_t>(index);
+// Matches a left context, nearest first, from a module of scale `from` at `pos`. The
+// compiler admits module patterns alone on this side (lang/compile_scales.cpp).
+template <typename Word>
+bool matchLeft(const ScaledWord<Word>& word, int64_t pos, int32_t from, std::span<const ContextItem> items,
+               std::span<const int32_t> scaleOf, uint32_t* matched) {
   for (size_t k = 0; k < items.size(); ++k) {
-    // The compiler admits module patterns alone on this side (lang/compile_scales.cpp).
-    pos = word.ancestorAtScale(pos, itemScale(items[k], scaleOf));
-    if (pos < 0 || pool.masterAt(static_cast<size_t>(pos)) != items[k].master) return false;
+    pos = word.ancestorAtScale(pos, from, itemScale(items[k], scaleOf));
+    if (pos < 0 || word.word.master(pos) != items[k].master) return false;
+    from = word.scale(pos);
     matched[k] = static_cast<uint32_t>(pos);
   }
   return true;
 }
 
+}  // namespace
+
+bool matchMultiscaleLeft(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
+                         std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched) {
+  const ScaledWord<PoolWord> word{PoolWord{pool}, classOf, scaleOf, static_cast<int64_t>(pool.size())};
+  const int64_t at = static_cast<int64_t>(index);
+  return matchLeft(word, at, word.scale(at), items, scaleOf, matched);
+}
+
+bool matchMultiscaleNewLeft(std::span<const CellRecord> written, uint32_t master, std::span<const ContextItem> items,
+                            std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched) {
+  // The module stands after what is written, as L-Py places it to read its scale.
+  const ScaledWord<WrittenCells> word{WrittenCells{written}, classOf, scaleOf, static_cast<int64_t>(written.size())};
+  return matchLeft(word, word.size, scaleOf[master], items, scaleOf, matched);
+}
+
 bool matchMultiscaleRight(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
                           std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched) {
-  const ScaledWord word{pool, classOf, scaleOf, static_cast<int64_t>(pool.size())};
+  const ScaledWord<PoolWord> word{PoolWord{pool}, classOf, scaleOf, static_cast<int64_t>(pool.size())};
   if (items.empty()) return true;
   int64_t pos = word.nextAtScale(static_cast<int64_t>(index) + 1, itemScale(items[0], scaleOf), true,
                                  word.scale(static_cast<int64_t>(index)));
@@ -137,9 +174,7 @@ bool matchMultiscaleRight(const LinearPool& pool, size_t index, std::span<const 
     } else if (symbol & kSymbolBranchOpen) {
       // A branch where a module is looked for (the pattern's scale is that of brackets):
       // passed over whole.
-      const uint32_t close = pool.partnerOf(static_cast<size_t>(pos));
-      if (close == LinearPool::kNoPartner) return false;
-      pos = close;
+      if ((pos = word.word.partner(pos, classOf)) < 0) return false;
       advance = false;
     } else if (pool.masterAt(static_cast<size_t>(pos)) != item.master) {
       return false;

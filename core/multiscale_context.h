@@ -4,7 +4,8 @@
 // labels a scale; a smaller number is a coarser scale (a plant 0, its axes 1, their
 // internodes 2), and a module without one is finer than all. Each pattern module is
 // looked for at its own scale:
-//  - on the left, among the module's ancestors on the path towards the root (branches
+//  - on the left, and in a new left context `<<` among what the step has written before
+//    the module, among the module's ancestors on the path towards the root (branches
 //    passed over, `[` left behind, as in the ordinary matching), past the modules finer
 //    than the pattern's scale, and past the complexes of the module when the pattern is
 //    not coarser than it;
@@ -28,6 +29,11 @@ namespace ontogen {
 /// LinearPool::matchLeft and matchRight give them.
 bool matchMultiscaleLeft(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
                          std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched);
+/// Matches a new left context `<<`, nearest first, against `written`, the word a forward
+/// pass has written so far, for a module of `master` written next (whose scale the walk
+/// starts from, as L-Py reads it); matched[k] indexes `written`.
+bool matchMultiscaleNewLeft(std::span<const CellRecord> written, uint32_t master, std::span<const ContextItem> items,
+                            std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched);
 bool matchMultiscaleRight(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
                           std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched);
 

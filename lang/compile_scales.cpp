@@ -15,7 +15,8 @@ namespace ontogen::detail {
 namespace {
 
 constexpr const char* kCovered =
-    " in a multiscale L-system (one with 'scale N:' lines): its contexts hold modules, and '[' ']' on the right";
+    " in a multiscale L-system (one with 'scale N:' lines): its contexts '<', '<<' and '>' hold modules, and "
+    "'[' ']' on the right";
 
 void checkSide(CompileContext& ctx, const std::vector<ast::Module>& side, bool left) {
   for (const ast::Module& module : side) {
@@ -34,8 +35,7 @@ void checkRules(CompileContext& ctx, const ast::System& system) {
   for (const ast::Rule& rule : system.productions) {
     checkSide(ctx, rule.left, true);
     checkSide(ctx, rule.right, false);
-    if (!rule.newLeft.empty())
-      ctx.sink.error(rule.newLeft.front().span, std::string("a new left context '<<'") + kCovered);
+    checkSide(ctx, rule.newLeft, true);
     if (!rule.newRight.empty()) ctx.sink.error(rule.newRightSpan, std::string("a new right context '>>'") + kCovered);
   }
 }
