@@ -38,8 +38,8 @@ bool matchLinearContext(const Program& program, const CompiledRule& rule, const 
   auto inWritten = [&](uint32_t j) { return written.state + written.cells[j].state; };
   auto masterInPool = [&](uint32_t j) { return pool.masterAt(j); };
   auto masterInWritten = [&](uint32_t j) { return written.cells[j].master; };
-  if (rule.scaleOf) {  // a multiscale block, which has no new right context (lang/compile_scales.cpp)
-    const std::span<const int32_t> scales(*rule.scaleOf);
+  if (rule.scales) {  // a multiscale block, which has no new right context (lang/compile_scales.cpp)
+    const ScaleTable& scales = *rule.scales;
     if (!rule.leftItems.empty() &&
         !(matchMultiscaleLeft(pool, index, rule.leftItems, classOf, scales, matched) &&
           bindSide(program, rule.left, masterInPool, inPool, matched, frame)))

@@ -35,6 +35,7 @@ struct ScaledWord {
   Word word;
   std::span<const uint8_t> classOf;
   std::span<const int32_t> scaleOf;
+  bool levels;  // L-Py's multi-level matching: only modules of the pattern's level count
   int64_t size;
 
   uint8_t symbol(int64_t pos) const { return classOf[word.master(pos)]; }
@@ -107,6 +108,23 @@ struct ScaledWord {
     return at == target ? pos : size;
   }
 
+  // The nearest ancestor of the pattern's scale or level.
+  int64_t ancestor(int64_t pos, int32_t from, int32_t target) const {
+    if (!levels) return ancestorAtScale(pos, from, target);
+    do pos = parent(pos);
+    while (pos >= 0 && scale(pos) != target);
+    return pos;
+  }
+
+  // The next module of the pattern's scale or level.
+  int64_t following(int64_t pos, int32_t target, bool here, int32_t from) const {
+    if (!levels) return nextAtScale(pos, target, here, from);
+    if (pos >= size) return size;
+    pos = next(pos, here);
+    while (pos < size && scale(pos) != target) pos = next(pos, false);
+    return pos;
+  }
+
   // The `]` that closes the branch holding pos (pos itself when it is one).
   int64_t endOfBranch(int64_t pos) const {
     while (pos < size && !(symbol(pos) & kSymbolBranchClose)) {
@@ -129,7 +147,7 @@ template <typename Word>
 bool matchLeft(const ScaledWord<Word>& word, int64_t pos, int32_t from, std::span<const ContextItem> items,
                std::span<const int32_t> scaleOf, uint32_t* matched) {
   for (size_t k = 0; k < items.size(); ++k) {
-    pos = word.ancestorAtScale(pos, from, itemScale(items[k], scaleOf));
+    pos = word.ancestor(pos, from, itemScale(items[k], scaleOf));
     if (pos < 0 || word.word.master(pos) != items[k].master) return false;
     from = word.scale(pos);
     matched[k] = static_cast<uint32_t>(pos);
@@ -140,25 +158,29 @@ bool matchLeft(const ScaledWord<Word>& word, int64_t pos, int32_t from, std::spa
 }  // namespace
 
 bool matchMultiscaleLeft(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
-                         std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched) {
-  const ScaledWord<PoolWord> word{PoolWord{pool}, classOf, scaleOf, static_cast<int64_t>(pool.size())};
+                         std::span<const uint8_t> classOf, const ScaleTable& scales, uint32_t* matched) {
+  const std::span<const int32_t> scaleOf(scales.of);
+  const ScaledWord<PoolWord> word{PoolWord{pool}, classOf, scaleOf, scales.levels, static_cast<int64_t>(pool.size())};
   const int64_t at = static_cast<int64_t>(index);
   return matchLeft(word, at, word.scale(at), items, scaleOf, matched);
 }
 
 bool matchMultiscaleNewLeft(std::span<const CellRecord> written, uint32_t master, std::span<const ContextItem> items,
-                            std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched) {
+                            std::span<const uint8_t> classOf, const ScaleTable& scales, uint32_t* matched) {
   // The module stands after what is written, as L-Py places it to read its scale.
-  const ScaledWord<WrittenCells> word{WrittenCells{written}, classOf, scaleOf, static_cast<int64_t>(written.size())};
+  const std::span<const int32_t> scaleOf(scales.of);
+  const ScaledWord<WrittenCells> word{WrittenCells{written}, classOf, scaleOf, scales.levels,
+                                      static_cast<int64_t>(written.size())};
   return matchLeft(word, word.size, scaleOf[master], items, scaleOf, matched);
 }
 
 bool matchMultiscaleRight(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
-                          std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched) {
-  const ScaledWord<PoolWord> word{PoolWord{pool}, classOf, scaleOf, static_cast<int64_t>(pool.size())};
+                          std::span<const uint8_t> classOf, const ScaleTable& scales, uint32_t* matched) {
+  const std::span<const int32_t> scaleOf(scales.of);
+  const ScaledWord<PoolWord> word{PoolWord{pool}, classOf, scaleOf, scales.levels, static_cast<int64_t>(pool.size())};
   if (items.empty()) return true;
-  int64_t pos = word.nextAtScale(static_cast<int64_t>(index) + 1, itemScale(items[0], scaleOf), true,
-                                 word.scale(static_cast<int64_t>(index)));
+  int64_t pos = word.following(static_cast<int64_t>(index) + 1, itemScale(items[0], scaleOf), true,
+                               word.scale(static_cast<int64_t>(index)));
   size_t k = 0;
   while (pos < word.size && k < items.size()) {
     const ContextItem& item = items[k];
@@ -180,7 +202,7 @@ bool matchMultiscaleRight(const LinearPool& pool, size_t index, std::span<const 
       return false;
     }
     if (advance) matched[k++] = static_cast<uint32_t>(pos);
-    if (k < items.size()) pos = word.nextAtScale(pos, itemScale(items[k], scaleOf), false, 0);
+    if (k < items.size()) pos = word.following(pos, itemScale(items[k], scaleOf), false, 0);
   }
   return k == items.size();
 }

@@ -13,7 +13,9 @@
 //    over, branches' brackets among them; a coarser module is entered through its
 //    components. A pattern's `[` and `]` (which have no scale) enter a branch and leave
 //    the rest of it as in the ordinary matching.
-// Ignored symbols are passed over on both sides.
+// Ignored symbols are passed over on both sides. With levels (`level N:` lines, L-Py's
+// multi-level matching, whose levels are not ordered) a pattern module is the nearest
+// ancestor, or the next module along the word, of its level, every other passed over.
 
 #include <cstdint>
 #include <span>
@@ -24,17 +26,17 @@
 namespace ontogen {
 
 /// Matches `rule`'s left and right contexts around cell `index` of `pool` (whose branches
-/// are indexed) with the rule's scales (CompiledRule::scaleOf), seeing `classOf`; on
+/// are indexed) with the rule's scales (CompiledRule::scales), seeing `classOf`; on
 /// success matched[k] is the cell of items[k] of the side last matched, as
 /// LinearPool::matchLeft and matchRight give them.
 bool matchMultiscaleLeft(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
-                         std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched);
+                         std::span<const uint8_t> classOf, const ScaleTable& scales, uint32_t* matched);
 /// Matches a new left context `<<`, nearest first, against `written`, the word a forward
 /// pass has written so far, for a module of `master` written next (whose scale the walk
 /// starts from, as L-Py reads it); matched[k] indexes `written`.
 bool matchMultiscaleNewLeft(std::span<const CellRecord> written, uint32_t master, std::span<const ContextItem> items,
-                            std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched);
+                            std::span<const uint8_t> classOf, const ScaleTable& scales, uint32_t* matched);
 bool matchMultiscaleRight(const LinearPool& pool, size_t index, std::span<const ContextItem> items,
-                          std::span<const uint8_t> classOf, std::span<const int32_t> scaleOf, uint32_t* matched);
+                          std::span<const uint8_t> classOf, const ScaleTable& scales, uint32_t* matched);
 
 }  // namespace ontogen

@@ -123,7 +123,7 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     for (const CompiledRule& rule : master.terminalRules) {
       // Multiscale contexts are matched by the serial pass alone (core/multiscale_context.h).
       if (!rule.newLeft.empty() || !rule.newRight.empty() || !rule.aggregates.empty() || rule.contextDimensions != 1 ||
-          rule.scaleOf)
+          rule.scales)
         atInstants_ = false;
       anyContext_ = anyContext_ || rule.hasContext() || !rule.leftItems.empty() || !rule.rightItems.empty();
       // A condition or a chance that is an expression is evaluated in the cell's frame

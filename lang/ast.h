@@ -182,6 +182,7 @@ struct Placement {
 struct ScaleLine {
   SourceSpan span;
   int scale = 0;
+  bool levels = false;  ///< `level N:` (L-Py's multi-level matching)
   std::vector<std::string> symbols;
   std::vector<SourceSpan> symbolSpans;
 };

@@ -15,8 +15,8 @@ namespace ontogen::detail {
 namespace {
 
 constexpr const char* kCovered =
-    " in a multiscale L-system (one with 'scale N:' lines): its contexts '<', '<<' and '>' hold modules, and "
-    "'[' ']' on the right";
+    " in a multiscale L-system (one with 'scale N:' or 'level N:' lines): its contexts '<', '<<' and '>' hold "
+    "modules, and '[' ']' on the right";
 
 void checkSide(CompileContext& ctx, const std::vector<ast::Module>& side, bool left) {
   for (const ast::Module& module : side) {
@@ -40,9 +40,9 @@ void checkRules(CompileContext& ctx, const ast::System& system) {
   }
 }
 
-void attach(std::vector<CompiledRule>& rules, const std::shared_ptr<const std::vector<int32_t>>& scales) {
+void attach(std::vector<CompiledRule>& rules, const std::shared_ptr<const ScaleTable>& scales) {
   for (CompiledRule& rule : rules)
-    if (rule.hasContext()) rule.scaleOf = scales;
+    if (rule.hasContext()) rule.scales = scales;
 }
 
 }  // namespace
@@ -61,11 +61,19 @@ void compileScales(CompileContext& ctx) {
                                                   std::to_string(at->second->span.line()) + ")");
       }
     checkRules(ctx, system);
-    auto scales = std::make_shared<std::vector<int32_t>>(ctx.program->masters.size(), kUnscaled);
+    for (const ast::ScaleLine& line : system.scales)
+      if (line.levels != system.scales.front().levels)
+        ctx.sink.error(line.span, std::string("a block gives its modules scales ('scale N:') or levels ('level N:'), "
+                                              "not both; the line at ") +
+                                      std::to_string(system.scales.front().span.line()) + " gives " +
+                                      (system.scales.front().levels ? "levels" : "scales"));
+    auto scales = std::make_shared<ScaleTable>();
+    scales->levels = system.scales.front().levels;
+    scales->of.assign(ctx.program->masters.size(), kUnscaled);
     for (size_t m = 0; m < ctx.program->masters.size(); ++m) {
       const MasterCell& master = ctx.program->masters[m];
       const auto found = scaleOf.find(master.label);
-      if (found != scaleOf.end() && master.symbolClass == kSymbolModule) (*scales)[m] = found->second->scale;
+      if (found != scaleOf.end() && master.symbolClass == kSymbolModule) scales->of[m] = found->second->scale;
     }
     for (MasterCell& master : ctx.program->masters) {
       if (master.scope != static_cast<int>(index)) continue;

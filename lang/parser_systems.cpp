@@ -175,7 +175,8 @@ void Parser::lsystemItem(System& system) {
     return system.functions.push_back(function());
   if (sectionLine()) return section(system);
   if (checkWord("group") && peek(1).kind == TokenKind::Number && peek(2).kind == TokenKind::Colon) return group();
-  if (checkWord("scale") && peek(1).kind == TokenKind::Number && peek(2).kind == TokenKind::Colon)
+  if ((checkWord("scale") || checkWord("level")) && peek(1).kind == TokenKind::Number &&
+      peek(2).kind == TokenKind::Colon)
     return scaleLine(system);
   if (checkWord("use") && peek(1).kind == TokenKind::Identifier && peek(1).text == "group" &&
       peek(2).kind == TokenKind::Colon)
@@ -204,20 +205,23 @@ void Parser::scaleLine(System& system) {
   const Token& number = advance();
   advance();
   ScaleLine line;
+  line.levels = keyword.text == "level";
   // L-Py's scales are small whole numbers (a plant, its axes, growth units, internodes):
   // 0 to 255 holds every level a description of a plant has.
   if (!(number.number >= 0) || number.number != std::floor(number.number) || number.number > 255)
-    fail(number.span, "a scale is a whole number from 0 to 255, as in 'scale 1: A'");
+    fail(number.span, "a " + keyword.text + " is a whole number from 0 to 255, as in '" + keyword.text + " 1: A'");
   line.scale = static_cast<int>(number.number);
   while (!atStatementEnd()) {
     if (letters_) splitLetterRun();
     if (!check(TokenKind::Identifier) && !isSymbolToken(peek().kind)) break;
     if (check(TokenKind::LBracket) || check(TokenKind::RBracket))
-      fail(peek().span, "brackets delimit branches and have no scale");
+      fail(peek().span, "brackets delimit branches and have no " + keyword.text);
     line.symbolSpans.push_back(peek().span);
     line.symbols.push_back(symbolSpelling(advance()));
   }
-  if (line.symbols.empty()) fail(previous().span, "a scale line names the modules of that scale, as in 'scale 1: A B'");
+  if (line.symbols.empty())
+    fail(previous().span, "a " + keyword.text + " line names the modules of that " + keyword.text + ", as in '" +
+                              keyword.text + " 1: A B'");
   line.span = keyword.span.to(previous().span);
   system.scales.push_back(std::move(line));
   endStatement();

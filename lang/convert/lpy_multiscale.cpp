@@ -60,8 +60,9 @@ void declareScaled(ForeignSyntax& syntax, std::string_view clean, uint32_t at, u
 }
 
 bool readsMultiscale(char value, LSystemFile& file) {
-  if (value != '3') return false;
+  if (value != '2' && value != '3') return false;
   file.multiscale = true;
+  file.levels = value == '2';
   return true;
 }
 

@@ -1,9 +1,10 @@
 #pragma once
 // L-Py's multiscale modules for `ontogen convert`: `module A, B : scale = N` declares
 // modules and their scale, and the option 'String matching' set to 'As Multiscale
-// AxialTree' (3) makes contexts match at those scales. The block gets `scale N: A B`
-// lines where the file matches so; with L-Py's default matching (an axial tree) scales
-// change no match, and only the names are declared.
+// AxialTree' (3) or 'As Multi-level AxialTree' (2) makes contexts match at those scales
+// or levels. The block gets `scale N: A B` or `level N: A B` lines where the file
+// matches so; with L-Py's default matching (an axial tree) scales change no match, and
+// only the names are declared.
 
 #include <cstdint>
 #include <string_view>
@@ -20,8 +21,8 @@ namespace ontogen::convert {
 void declareScaled(ForeignSyntax& syntax, std::string_view clean, uint32_t at, uint32_t colon, uint32_t end,
                    SourceRange line, LSystemFile& file);
 
-/// Whether `value`, the digit the option 'String matching' is set to, is 3 (multiscale):
-/// then `file` matches its contexts at the declared scales.
+/// Whether `value`, the digit the option 'String matching' is set to, is 3 (multiscale)
+/// or 2 (multi-level): then `file` matches its contexts at the declared scales or levels.
 bool readsMultiscale(char value, LSystemFile& file);
 
 }  // namespace ontogen::convert

@@ -894,15 +894,15 @@ class LPyReader {
       const size_t at = text.find(kMatching);
       if (at == std::string_view::npos || text.find("setSelection") == std::string_view::npos) continue;
       // 1, L-Py's default, matches contexts as an axial tree, as ontogen does; 3 as a
-      // multiscale tree (`scale N:` lines); 0 reads the word as a plain string, 2 as a
-      // multi-level tree.
+      // multiscale tree (`scale N:` lines), 2 as a multi-level tree (`level N:`); 0
+      // reads the word as a plain string.
       size_t value = at + kMatching.size();
       while (value < text.size() && (text[value] == ',' || text[value] == ' ')) ++value;
       if (value < text.size() && (text[value] == '1' || readsMultiscale(text[value], file_))) continue;
       const uint32_t begin = lines[k].begin + static_cast<uint32_t>(at);
       syntax_.fail(begin, begin + static_cast<uint32_t>(kMatching.size()),
-                   "L-Py's option 'String matching' other than 'As AxialTree' or 'As Multiscale AxialTree' "
-                   "(plain-string or multi-level matching of contexts) has no cell-language counterpart yet");
+                   "L-Py's option 'String matching' set to 'As String' (plain-string matching of contexts, "
+                   "branches read as modules) has no cell-language counterpart yet");
     }
   }
 

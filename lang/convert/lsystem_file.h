@@ -103,9 +103,11 @@ struct LSystemFile {
   std::vector<Statement> statements;
   std::vector<ConvertWarning> warnings;
   /// Module scales, written as `scale N:` lines where `multiscale` (L-Py's option
-  /// 'String matching' set to its multiscale tree); otherwise they change no match.
+  /// 'String matching' set to its multiscale tree), `level N:` lines where `levels` too
+  /// (its multi-level tree); otherwise they change no match.
   std::vector<ScaleDeclaration> scales;
   bool multiscale = false;
+  bool levels = false;
 };
 
 /// A converted program and, for each of its lines (index: line − 1), the range of the

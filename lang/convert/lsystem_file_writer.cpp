@@ -120,7 +120,7 @@ CellProgram writeCellProgram(const LSystemFile& file, std::string_view sourceNam
   if (!file.axiom.empty()) line("  axiom " + wordText(file.axiom), file.axiomOrigin);
   if (file.multiscale)
     for (const ScaleDeclaration& scale : file.scales) {
-      std::string text = "  scale " + scale.scale + ":";
+      std::string text = (file.levels ? "  level " : "  scale ") + scale.scale + ":";
       for (const std::string& label : scale.labels) text += " " + label;
       line(text, scale.origin);
     }

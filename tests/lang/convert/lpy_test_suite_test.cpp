@@ -26,13 +26,6 @@ TEST(LPyTestSuite, CasesTheCellLanguageCannotExpressAreRefusedAtTheirPlace) {
       {"wildcard predecessor", "Axiom: A(2)\nproduction:\n*(name, x) --> B(x)\n", 3, 1, "a wildcard predecessor"},
       // test_matching: test_match_mod_with_stararg, _for_two, _for_zero.
       {"*args", "Axiom: A(3, 4)\nproduction:\nA(*args) --> B\n", 3, 3, "'*args' takes any number of parameters"},
-      // L-Py's multi-level matching (option 2), under which test_tree_matching's
-      // test_ms_match, test_ms_match2 and test_axial_msmatch run too (they are carried
-      // over under its multiscale matching, option 3).
-      {"multi-level matching",
-       "module S : scale = 2\nAxiom: S\n###### INITIALISATION ######\n"
-       "def __initialiseContext__(context):\n  context.options.setSelection('String matching',2)\n",
-       5, 32, "multi-level matching"},
       // test_regexpmatching: test_match_left_regexp_to_none, test_match_right_regexp_to_none,
       // test_match_regexp_including_start.
       {"repetition", "Axiom: A\nproduction:\nx(I) < A --> B\n", 3, 1, "repetition x(...)"},

@@ -84,9 +84,9 @@ TEST(Untranslated, ASurfaceIsOneModuleNotATildeAndALetter) {
 }
 
 // L-Py's scales: `scale N:` lines where the file matches contexts as a multiscale tree
-// (option 3); with its default axial matching the scales change no match, and the names
-// are declared only. Base modules, plain-string (0) and multi-level (2) matching are
-// refused at their place.
+// (option 3), `level N:` lines as a multi-level one (2); with its default axial matching
+// the scales change no match, and the names are declared only. Base modules and
+// plain-string matching (0) are refused at their place.
 TEST(Untranslated, MultiscaleModulesConvertWhereTheFileMatchesAtScales) {
   const std::string init =
       "module U, E(x) : scale = 1\nmodule I : scale = 2\nAxiom: U I E(1)\n\n###### INITIALISATION ######\n\n"
@@ -99,6 +99,11 @@ TEST(Untranslated, MultiscaleModulesConvertWhereTheFileMatchesAtScales) {
   auto declared = convertText(Dialect::LPy, "a.lpy", axial);
   ASSERT_EQ(declared.error, "");
   EXPECT_EQ(body(declared.program), "  #angle 60\n  #until 1\n  axiom U I E(1)\n");
+  std::string levels = init;
+  levels.replace(levels.find("',3)"), 4, "',2)");
+  auto multilevel = convertText(Dialect::LPy, "a.lpy", levels);
+  ASSERT_EQ(multilevel.error, "");
+  EXPECT_EQ(body(multilevel.program), "  #angle 60\n  #until 1\n  axiom U I E(1)\n  level 1: U E\n  level 2: I\n");
   auto base = convertText(Dialect::LPy, "a.lpy", "module A\nmodule B : base = A\nAxiom: B\n");
   EXPECT_EQ(base.line, 2);
   EXPECT_EQ(base.column, 12);
@@ -108,16 +113,12 @@ TEST(Untranslated, MultiscaleModulesConvertWhereTheFileMatchesAtScales) {
   EXPECT_EQ(notWhole.line, 1);
   EXPECT_EQ(notWhole.column, 20);
   EXPECT_NE(notWhole.error.find("a whole number from 0 to 255"), std::string::npos) << notWhole.error;
-  for (const char* mode : {"',0)", "',2)"}) {
-    std::string other = init;
-    other.replace(other.find("',3)"), 4, mode);
-    auto matching = convertText(Dialect::LPy, "a.lpy", other);
-    EXPECT_EQ(matching.line, 8) << mode;
-    EXPECT_EQ(matching.column, 31) << mode;
-    EXPECT_NE(matching.error.find("'String matching' other than 'As AxialTree' or 'As Multiscale AxialTree'"),
-              std::string::npos)
-        << matching.error;
-  }
+  std::string plain = init;
+  plain.replace(plain.find("',3)"), 4, "',0)");
+  auto matching = convertText(Dialect::LPy, "a.lpy", plain);
+  EXPECT_EQ(matching.line, 8);
+  EXPECT_EQ(matching.column, 31);
+  EXPECT_NE(matching.error.find("'String matching' set to 'As String'"), std::string::npos) << matching.error;
 }
 
 TEST(Untranslated, AnAliasIsReadAsTheModuleItNames) {
