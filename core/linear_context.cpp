@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/multiscale_context.h"
+
 namespace ontogen {
 
 namespace {
@@ -36,6 +38,20 @@ bool matchLinearContext(const Program& program, const CompiledRule& rule, const 
   auto inWritten = [&](uint32_t j) { return written.state + written.cells[j].state; };
   auto masterInPool = [&](uint32_t j) { return pool.masterAt(j); };
   auto masterInWritten = [&](uint32_t j) { return written.cells[j].master; };
+  if (rule.scales) {  // a multiscale block, which has no new right context (lang/compile_scales.cpp)
+    const ScaleTable& scales = *rule.scales;
+    if (!rule.leftItems.empty() &&
+        !(matchMultiscaleLeft(pool, index, rule.leftItems, classOf, scales, matched) &&
+          bindSide(program, rule.left, masterInPool, inPool, matched, frame)))
+      return false;
+    if (!rule.newLeftItems.empty() &&
+        !(matchMultiscaleNewLeft(written.cells, pool.masterAt(index), rule.newLeftItems, classOf, scales, matched) &&
+          bindSide(program, rule.newLeft, masterInWritten, inWritten, matched, frame)))
+      return false;
+    return rule.rightItems.empty() ||
+           (matchMultiscaleRight(pool, index, rule.rightItems, classOf, scales, matched) &&
+            bindSide(program, rule.right, masterInPool, inPool, matched, frame));
+  }
   if (!rule.leftItems.empty()) {
     if (!pool.matchLeft(index, rule.leftItems, classOf, matched)) return false;
     if (!bindSide(program, rule.left, masterInPool, inPool, matched, frame)) return false;

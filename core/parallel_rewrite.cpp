@@ -121,7 +121,9 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     double shortest = master.lifetime;  // a renewal
     bool choosesInFrame = false;
     for (const CompiledRule& rule : master.terminalRules) {
-      if (!rule.newLeft.empty() || !rule.newRight.empty() || !rule.aggregates.empty() || rule.contextDimensions != 1)
+      // Multiscale contexts are matched by the serial pass alone (core/multiscale_context.h).
+      if (!rule.newLeft.empty() || !rule.newRight.empty() || !rule.aggregates.empty() || rule.contextDimensions != 1 ||
+          rule.scales)
         atInstants_ = false;
       anyContext_ = anyContext_ || rule.hasContext() || !rule.leftItems.empty() || !rule.rightItems.empty();
       // A condition or a chance that is an expression is evaluated in the cell's frame

@@ -176,6 +176,17 @@ struct Placement {
   Module module;
 };
 
+/// L-systems: `scale N: A B`, the scale of the modules labelled A and B (L-Py's
+/// `module A, B : scale = N`); a block with such lines matches contexts as a multiscale
+/// tree (docs/LANGUAGE.md 4.8).
+struct ScaleLine {
+  SourceSpan span;
+  int scale = 0;
+  bool levels = false;  ///< `level N:` (L-Py's multi-level matching)
+  std::vector<std::string> symbols;
+  std::vector<SourceSpan> symbolSpans;
+};
+
 struct System {
   SourceSpan span;
   SourceSpan nameSpan;
@@ -204,6 +215,7 @@ struct System {
   /// L-systems: every `ignore:` and `consider:` line in order; each applies to the
   /// productions after it, up to the next one.
   std::vector<SymbolList> filters;
+  std::vector<ScaleLine> scales;  ///< L-systems: `scale N:` lines, in order
 };
 
 /// `import "lib.cell";`: a file whose declarations join the program's.

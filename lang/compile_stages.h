@@ -45,6 +45,12 @@ void compileSystem(CompileContext& ctx, const ast::System& system, int index);
 /// Per system, the class of every master (brackets, ignored symbols), once every master exists.
 void classifySymbols(CompileContext& ctx);
 
+// ---- lang/compile_scales.cpp: multiscale L-systems ----
+
+/// The scales of each L-system with `scale N:` lines, given to its rules with a context;
+/// contexts the multiscale matching does not cover are errors at their place.
+void compileScales(CompileContext& ctx);
+
 // ---- lang/compile_rules.cpp: cells, rules, productions ----
 
 /// The declared cells' masters: state, defaults, lifetime.

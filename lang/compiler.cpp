@@ -45,6 +45,7 @@ std::unique_ptr<Program> run(CompileContext& ctx, std::vector<std::shared_ptr<co
   resolveCommands(ctx);
   warnLetterRuns(ctx);
   classifySymbols(ctx);
+  compileScales(ctx);
   summariseSystems(ctx);
   checkSystemTree(ctx);
   if (ctx.sink.hasErrors()) return nullptr;

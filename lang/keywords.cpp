@@ -35,6 +35,8 @@ constexpr std::array kKeywords = {
     Keyword{"depth", Kind::Statement, "maximum depth: N"},
     Keyword{"group", Kind::Statement, "group N: the productions that follow belong to group N"},
     Keyword{"use", Kind::Statement, "use group N: the group of productions in force"},
+    Keyword{"scale", Kind::Statement, "scale N: A B: the scale of modules A and B; contexts match at scales"},
+    Keyword{"level", Kind::Statement, "level N: A B: the level of modules A and B; contexts match at levels"},
     Keyword{"me", Kind::Reference, "the cell itself: me.x, me.age, me.parent"},
     Keyword{"parent", Kind::Reference, "the enclosing cell: parent.x"},
     Keyword{"root", Kind::Reference, "the outermost enclosing cell: root.x"},

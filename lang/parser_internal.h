@@ -295,6 +295,7 @@ class Parser {
 
   // `group N:` (L-Py): the rules that follow belong to group N; `group 0:` is the default.
   void group();
+  void scaleLine(System& system);
 
   // `use group: EXPR`: the active group, evaluated at the start of every step.
   void useGroup(System& system);

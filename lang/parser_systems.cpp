@@ -175,6 +175,9 @@ void Parser::lsystemItem(System& system) {
     return system.functions.push_back(function());
   if (sectionLine()) return section(system);
   if (checkWord("group") && peek(1).kind == TokenKind::Number && peek(2).kind == TokenKind::Colon) return group();
+  if ((checkWord("scale") || checkWord("level")) && peek(1).kind == TokenKind::Number &&
+      peek(2).kind == TokenKind::Colon)
+    return scaleLine(system);
   if (checkWord("use") && peek(1).kind == TokenKind::Identifier && peek(1).text == "group" &&
       peek(2).kind == TokenKind::Colon)
     return useGroup(system);
@@ -194,6 +197,33 @@ void Parser::group() {
   if (!(number.number >= 0) || number.number != std::floor(number.number) || number.number > 1e6)
     fail(number.span, "a group is a whole number from 0, as in 'group 1:'");
   group_ = static_cast<int>(number.number);
+  endStatement();
+}
+
+void Parser::scaleLine(System& system) {
+  const Token& keyword = advance();
+  const Token& number = advance();
+  advance();
+  ScaleLine line;
+  line.levels = keyword.text == "level";
+  // L-Py's scales are small whole numbers (a plant, its axes, growth units, internodes):
+  // 0 to 255 holds every level a description of a plant has.
+  if (!(number.number >= 0) || number.number != std::floor(number.number) || number.number > 255)
+    fail(number.span, "a " + keyword.text + " is a whole number from 0 to 255, as in '" + keyword.text + " 1: A'");
+  line.scale = static_cast<int>(number.number);
+  while (!atStatementEnd()) {
+    if (letters_) splitLetterRun();
+    if (!check(TokenKind::Identifier) && !isSymbolToken(peek().kind)) break;
+    if (check(TokenKind::LBracket) || check(TokenKind::RBracket))
+      fail(peek().span, "brackets delimit branches and have no " + keyword.text);
+    line.symbolSpans.push_back(peek().span);
+    line.symbols.push_back(symbolSpelling(advance()));
+  }
+  if (line.symbols.empty())
+    fail(previous().span, "a " + keyword.text + " line names the modules of that " + keyword.text + ", as in '" +
+                              keyword.text + " 1: A B'");
+  line.span = keyword.span.to(previous().span);
+  system.scales.push_back(std::move(line));
   endStatement();
 }
 

@@ -94,6 +94,16 @@ struct StateCalculation {
   SourceSpan span;
 };
 
+/// The scale of a module without one (L-Py's default): finer than every declared scale,
+/// so that a multiscale context passes over it.
+inline constexpr int32_t kUnscaled = INT32_MAX;
+
+/// An L-system's module scales (`scale N:` lines) or levels (`level N:` lines).
+struct ScaleTable {
+  std::vector<int32_t> of;  ///< per master: its scale or level, kUnscaled where none is declared (brackets too)
+  bool levels = false;      ///< levels: L-Py's multi-level matching, whose levels are not ordered
+};
+
 struct CompiledRule {
   std::string name;  ///< `p1`, or empty
   SourceSpan span;
@@ -122,6 +132,10 @@ struct CompiledRule {
   /// L-systems: which of SystemDefinition::ruleClasses its context matching sees (the
   /// `ignore:` / `consider:` line above it); -1: the system's symbolClass.
   int symbolClasses = -1;
+  /// L-systems with `scale N:` or `level N:` lines: the scale of every master, shared by
+  /// the block's rules with a context, which then match as a multiscale or multi-level
+  /// tree (core/multiscale_context.h); null: the ordinary matching.
+  std::shared_ptr<const ScaleTable> scales;
   std::vector<SuccessorTemplate> successors;
   CompiledExpression probability;  ///< empty: not stochastic
   std::vector<AggregateQuery> aggregates;  ///< read by OpCode::Aggregate in this rule's expressions

@@ -15,6 +15,7 @@
 #include "lang/convert/lpy_globals.h"
 #include "lang/convert/lpy_hooks.h"
 #include "lang/convert/lpy_imports.h"
+#include "lang/convert/lpy_multiscale.h"
 #include "lang/convert/python_block.h"
 #include "lang/convert/python_body.h"
 
@@ -889,10 +890,7 @@ class LPyReader {
   void declare(uint32_t at, uint32_t end) {
     // `module A, Apex(x), B`, `module A = F` (an alias), `module B : scale = 1`.
     const uint32_t colon = syntax_.find(at, end, ":");
-    if (colon < end)
-      syntax_.fail(colon, end,
-                   "L-Py's module attributes (scale = N: multiscale modules; base = A: a module that matches as "
-                   "another) have no cell-language counterpart yet");
+    if (colon < end) return declareScaled(syntax_, clean_, at, colon, end, line_, file_);
     const uint32_t equals = syntax_.find(at, end, "=");
     std::vector<std::string> names;
     for (uint32_t i = at; i < equals;) {
@@ -934,15 +932,16 @@ class LPyReader {
       }
       const size_t at = text.find(kMatching);
       if (at == std::string_view::npos || text.find("setSelection") == std::string_view::npos) continue;
-      // 1, L-Py's default, matches contexts as an axial tree, as ontogen does; 0 reads the
-      // word as a plain string, 2 and 3 as multiscale trees.
+      // 1, L-Py's default, matches contexts as an axial tree, as ontogen does; 3 as a
+      // multiscale tree (`scale N:` lines), 2 as a multi-level tree (`level N:`); 0
+      // reads the word as a plain string.
       size_t value = at + kMatching.size();
       while (value < text.size() && (text[value] == ',' || text[value] == ' ')) ++value;
-      if (value < text.size() && text[value] == '1') continue;
+      if (value < text.size() && (text[value] == '1' || readsMultiscale(text[value], file_))) continue;
       const uint32_t begin = lines[k].begin + static_cast<uint32_t>(at);
       syntax_.fail(begin, begin + static_cast<uint32_t>(kMatching.size()),
-                   "L-Py's option 'String matching' other than 'As AxialTree' (multiscale or plain-string "
-                   "matching of contexts) has no cell-language counterpart yet");
+                   "L-Py's option 'String matching' set to 'As String' (plain-string matching of contexts, "
+                   "branches read as modules) has no cell-language counterpart yet");
     }
   }
 

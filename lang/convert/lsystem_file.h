@@ -81,6 +81,13 @@ struct Define {
   SourceRange origin;
 };
 
+/// L-Py's `module A, B : scale = N`.
+struct ScaleDeclaration {
+  std::string scale;                ///< a whole number, 0 to 255
+  std::vector<std::string> labels;
+  SourceRange origin;
+};
+
 struct LSystemFile {
   Dialect dialect = Dialect::Cpfg;
   std::string name;                                          ///< the block's name, an identifier
@@ -95,6 +102,12 @@ struct LSystemFile {
   SourceRange axiomOrigin;
   std::vector<Statement> statements;
   std::vector<ConvertWarning> warnings;
+  /// Module scales, written as `scale N:` lines where `multiscale` (L-Py's option
+  /// 'String matching' set to its multiscale tree), `level N:` lines where `levels` too
+  /// (its multi-level tree); otherwise they change no match.
+  std::vector<ScaleDeclaration> scales;
+  bool multiscale = false;
+  bool levels = false;
 };
 
 /// A converted program and, for each of its lines (index: line − 1), the range of the

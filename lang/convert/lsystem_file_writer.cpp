@@ -118,6 +118,12 @@ CellProgram writeCellProgram(const LSystemFile& file, std::string_view sourceNam
   if (file.derivationLength) line("  #until " + *file.derivationLength, file.derivationLengthOrigin);
   if (file.useGroup) line("  use group: " + *file.useGroup, file.useGroupOrigin);
   if (!file.axiom.empty()) line("  axiom " + wordText(file.axiom), file.axiomOrigin);
+  if (file.multiscale)
+    for (const ScaleDeclaration& scale : file.scales) {
+      std::string text = (file.levels ? "  level " : "  scale ") + scale.scale + ":";
+      for (const std::string& label : scale.labels) text += " " + label;
+      line(text, scale.origin);
+    }
   for (const Statement& statement : file.statements)
     line("  " + statementText(letters ? statement : withoutAbsentDigits(statement)), statement.origin);
   line("}");

@@ -133,6 +133,8 @@ TEST(Convert, AbopChapterOneCasesGrowAsTheBookPrintsThem) {
        "t = 1: F(1.75) [ +(20) A(2) ] [ -(20) A(2) ]\n"
        "t = 2: F(1.75) [ +(20) F(1.5) [ +(10) A(3) ] [ -(10) A(3) ] ] [ -(20) F(1.5) [ +(10) A(3) ] [ -(10) A(3) ] ]\n"},
       {"new_contexts.lpy", "1", "t = 1: B A S B A S C(1) B(2) M(1, 2, 3) H(4) E(4) H(11) F(5) G(6) H(0) K\n"},
+      // Multiscale modules (L-Py's test_axial_msmatch): a = 1, c = 0, d = 5.
+      {"multiscale.lpy", "1", "t = 1: A(1) [ A(2) C(0) ] B(2) M(1, 0, 5) [ A(3) C(0) [ D(1) C(1) ] ] A(5) D(5)\n"},
   };
   for (const Case& c : cases) {
     Result result = ontogen(std::string("word ") + file(c.file) + " --at " + c.times);
@@ -264,6 +266,16 @@ TEST(Convert, ErrorsInTheConvertedTextAreShownAtTheFilesLine) {
   EXPECT_NE(result.err.find("(in the converted line 'A(x) -> A(nodelength(x))', column"), std::string::npos)
       << result.err;
   EXPECT_EQ(result.err.find("(converted):"), std::string::npos) << result.err;
+}
+
+// What a multiscale block does not match (a wildcard in its context) is refused at the
+// file's line, not matched otherwise than L-Py would.
+TEST(Convert, AMultiscaleContextItDoesNotMatchIsAnErrorAtTheFilesLine) {
+  Result result = ontogen("check " + file("multiscale_wildcard.lpy"));
+  EXPECT_EQ(result.exitCode, 1) << result.err;
+  EXPECT_NE(result.err.find("multiscale_wildcard.lpy:10:1: error: the wildcard '*' in a multiscale L-system"),
+            std::string::npos)
+      << result.err;
 }
 
 // A converted file never means something else: cpfg's macros are C's textual

@@ -26,9 +26,6 @@ TEST(LPyTestSuite, CasesTheCellLanguageCannotExpressAreRefusedAtTheirPlace) {
       {"wildcard predecessor", "Axiom: A(2)\nproduction:\n*(name, x) --> B(x)\n", 3, 1, "a wildcard predecessor"},
       // test_matching: test_match_mod_with_stararg, _for_two, _for_zero.
       {"*args", "Axiom: A(3, 4)\nproduction:\nA(*args) --> B\n", 3, 3, "'*args' takes any number of parameters"},
-      // test_tree_matching: test_ms_match, test_ms_match2, test_axial_msmatch;
-      // test_modnamespace: test_scale_declaration.
-      {"multiscale", "module S, T : scale = 2\nAxiom: S T\nproduction:\nS > T --> U\n", 1, 13, "scale = N"},
       // test_regexpmatching: test_match_left_regexp_to_none, test_match_right_regexp_to_none,
       // test_match_regexp_including_start.
       {"repetition", "Axiom: A\nproduction:\nx(I) < A --> B\n", 3, 1, "repetition x(...)"},

@@ -90,24 +90,42 @@ TEST(Untranslated, ASurfaceIsOneModuleNotATildeAndALetter) {
   }
 }
 
-TEST(Untranslated, MultiscaleModulesAndStringMatchingAreRefused) {
-  auto scale = convertText(Dialect::LPy, "a.lpy", "module U, E : scale = 1\nAxiom: U\n");
-  EXPECT_EQ(scale.line, 1);
-  EXPECT_EQ(scale.column, 13);
-  EXPECT_TRUE(scale.untranslatable);
-  EXPECT_NE(scale.error.find("scale = N: multiscale modules"), std::string::npos) << scale.error;
-  auto base = convertText(Dialect::LPy, "a.lpy", "module A\nmodule B : base = A\nAxiom: B\n");
-  EXPECT_EQ(base.line, 2);
+// L-Py's scales: `scale N:` lines where the file matches contexts as a multiscale tree
+// (option 3), `level N:` lines as a multi-level one (2); with its default axial matching
+// the scales change no match, and the names are declared only. Base modules and
+// plain-string matching (0) are refused at their place.
+TEST(Untranslated, MultiscaleModulesConvertWhereTheFileMatchesAtScales) {
   const std::string init =
-      "Axiom: A\n\n###### INITIALISATION ######\n\ndef __initialiseContext__(context):\n"
-      "\tcontext.options.setSelection('String matching',3)\n";
-  auto matching = convertText(Dialect::LPy, "a.lpy", init);
-  EXPECT_EQ(matching.line, 6);
-  EXPECT_EQ(matching.column, 31);
-  EXPECT_NE(matching.error.find("'String matching'"), std::string::npos) << matching.error;
+      "module U, E(x) : scale = 1\nmodule I : scale = 2\nAxiom: U I E(1)\n\n###### INITIALISATION ######\n\n"
+      "def __initialiseContext__(context):\n\tcontext.options.setSelection('String matching',3)\n";
+  auto multiscale = convertText(Dialect::LPy, "a.lpy", init);
+  ASSERT_EQ(multiscale.error, "");
+  EXPECT_EQ(body(multiscale.program), "  #angle 60\n  #until 1\n  axiom U I E(1)\n  scale 1: U E\n  scale 2: I\n");
   std::string axial = init;
   axial.replace(axial.find("',3)"), 4, "',1)");
-  EXPECT_EQ(convertText(Dialect::LPy, "a.lpy", axial).error, "");
+  auto declared = convertText(Dialect::LPy, "a.lpy", axial);
+  ASSERT_EQ(declared.error, "");
+  EXPECT_EQ(body(declared.program), "  #angle 60\n  #until 1\n  axiom U I E(1)\n");
+  std::string levels = init;
+  levels.replace(levels.find("',3)"), 4, "',2)");
+  auto multilevel = convertText(Dialect::LPy, "a.lpy", levels);
+  ASSERT_EQ(multilevel.error, "");
+  EXPECT_EQ(body(multilevel.program), "  #angle 60\n  #until 1\n  axiom U I E(1)\n  level 1: U E\n  level 2: I\n");
+  auto base = convertText(Dialect::LPy, "a.lpy", "module A\nmodule B : base = A\nAxiom: B\n");
+  EXPECT_EQ(base.line, 2);
+  EXPECT_EQ(base.column, 12);
+  EXPECT_TRUE(base.untranslatable);
+  EXPECT_NE(base.error.find("base = A"), std::string::npos) << base.error;
+  auto notWhole = convertText(Dialect::LPy, "a.lpy", "module A : scale = 1.5\nAxiom: A\n");
+  EXPECT_EQ(notWhole.line, 1);
+  EXPECT_EQ(notWhole.column, 20);
+  EXPECT_NE(notWhole.error.find("a whole number from 0 to 255"), std::string::npos) << notWhole.error;
+  std::string plain = init;
+  plain.replace(plain.find("',3)"), 4, "',0)");
+  auto matching = convertText(Dialect::LPy, "a.lpy", plain);
+  EXPECT_EQ(matching.line, 8);
+  EXPECT_EQ(matching.column, 31);
+  EXPECT_NE(matching.error.find("'String matching' set to 'As String'"), std::string::npos) << matching.error;
 }
 
 TEST(Untranslated, AnAliasIsReadAsTheModuleItNames) {
