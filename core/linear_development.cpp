@@ -412,14 +412,6 @@ void LinearDevelopment::expireContextFree(double t1) {
   if (!anyExpires(horizon)) return;
   auto cells = pool_.cells();
   findParents();
-  if (parallel_.appliesContextFree() &&
-      parallel_.rewriteContextFree(pool_, horizon, *context_, readsParents_ ? parentValues_.data() : nullptr,
-                                   eventsThisStep_, nextCells_, nextState_)) {
-    finishWord();
-    earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
-    earliestVersion_ = pool_.structureVersion();
-    return;
-  }
   beginWord();
   const auto& classOf = system_.symbolClass;
   BranchCut cut;
@@ -512,14 +504,6 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
     findParents();
     auto cells = pool_.cells();
     const auto& classOf = system_.symbolClass;
-    if (parallel_.appliesAtInstants() && parallel_.rewriteAtInstant(pool_, instant, activeGroup_, *context_,
-                                                                    readsParents_ ? parentValues_.data() : nullptr,
-                                                                    eventsThisStep_, nextCells_, nextState_)) {
-      finishWord();
-      earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
-      earliestVersion_ = pool_.structureVersion();
-      continue;
-    }
     beginWord();
     if (system_.backward) {
       expireBackward(instant);
