@@ -99,13 +99,18 @@ bool LinearDevelopment::anyExpires(double horizon) {
 }
 
 uint64_t LinearDevelopment::heldBytes() const {
-  return pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double) +
-         nextWord_.bytes() + scratchBytes();
+  // The compact words by capacity: a word written after a larger one keeps the larger
+  // one's pages, and the room reserved for a word is at most a sixteenth past what its
+  // growth foretold (ParallelRewrite's Growth::room).
+  const uint64_t wordRoom =
+      pool_.holdsCompactWord() ? pool_.compactWord().capacityBytes() - pool_.compactWord().bytes() : 0;
+  return pool_.bytes() + wordRoom + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double) +
+         nextWord_.capacityBytes() + parallel_.heldBytes() + scratchBytes();
 }
 
 // By capacity: these grow by appending, so what they once held was written, and stays
-// resident though they are emptied. (The previous word counts by its size: the room
-// reserved past it for the next word is not written until that word is.)
+// resident though they are emptied. (The previous word of records counts by its size:
+// the room reserved past it for the next word is not written until that word is.)
 uint64_t LinearDevelopment::scratchBytes() const {
   return (expandedCells_.capacity() + work_.capacity()) * sizeof(CellRecord) +
          (expandedState_.capacity() + workState_.capacity() + parentValues_.capacity()) * sizeof(double) +

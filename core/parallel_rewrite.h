@@ -100,6 +100,10 @@ class ParallelRewrite {
                                               CompactWord& next, const CompactFits& fits = {}, uint64_t seed = 0,
                                               const double* ancestors = nullptr);
 
+  /// Bytes kept from one rewrite to the next, by capacity: the parts of a word whose
+  /// choices vary (written apart, then copied in), the slices and the parts' places.
+  uint64_t heldBytes() const;
+
   /// The earliest terminal age (birth + lifetime) in the word rewriteCompact wrote last,
   /// found while writing it, so the development need not look for it again.
   double earliestDeath() const { return earliestDeath_; }
