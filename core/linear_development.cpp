@@ -99,13 +99,12 @@ bool LinearDevelopment::anyExpires(double horizon) {
 }
 
 uint64_t LinearDevelopment::heldBytes() const {
-  // The compact words by capacity: a word written after a larger one keeps the larger
-  // one's pages, and the room reserved for a word is at most a sixteenth past what its
-  // growth foretold (ParallelRewrite's Growth::room).
+  // The compact words by what they have written: a word written after a larger one keeps
+  // the larger one's pages (CompactWord::heldBytes).
   const uint64_t wordRoom =
-      pool_.holdsCompactWord() ? pool_.compactWord().capacityBytes() - pool_.compactWord().bytes() : 0;
+      pool_.holdsCompactWord() ? pool_.compactWord().heldBytes() - pool_.compactWord().bytes() : 0;
   return pool_.bytes() + wordRoom + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double) +
-         nextWord_.capacityBytes() + parallel_.heldBytes() + scratchBytes();
+         nextWord_.heldBytes() + parallel_.heldBytes() + scratchBytes();
 }
 
 // By capacity: these grow by appending, so what they once held was written, and stays

@@ -288,7 +288,7 @@ void ParallelRewrite::flushBatch(const CompiledRule& rule, Batch& batch, uint64_
 uint64_t ParallelRewrite::heldBytes() const {
   uint64_t bytes = parts_.capacity() * sizeof(Part) + compactSlices_.capacity() * sizeof(CompactWord::Slice) +
                    partPlaces_.capacity() * sizeof(CompactWord::PartPlace);
-  for (const Part& part : parts_) bytes += part.word.capacityBytes();
+  for (const Part& part : parts_) bytes += part.word.heldBytes();
   for (const CompactWord::Slice& slice : compactSlices_) bytes += slice.heldBytes();
   for (const CompactWord::PartPlace& place : partPlaces_)
     bytes += place.births.capacity() * sizeof(uint32_t) +

@@ -100,7 +100,7 @@ class ParallelRewrite {
                                               CompactWord& next, const CompactFits& fits = {}, uint64_t seed = 0,
                                               const double* ancestors = nullptr);
 
-  /// Bytes kept from one rewrite to the next, by capacity: the parts of a word whose
+  /// Bytes kept from one rewrite to the next: the parts of a word whose
   /// choices vary (written apart, then copied in), the slices and the parts' places.
   uint64_t heldBytes() const;
 

@@ -26,20 +26,13 @@ size_t CompactWord::bytes() const {
          wideK_.size() * sizeof(WideK) + births_.size() * sizeof(double) + values_.size() * sizeof(double);
 }
 
-size_t CompactWord::capacityBytes() const {
-  return labels8_.capacity() + labels16_.capacity() * sizeof(uint16_t) + runStarts_.capacity() * sizeof(uint64_t) +
-         (blockRuns_.capacity() + blockValues_.capacity()) * sizeof(uint32_t) + blockJ_.capacity() * sizeof(uint16_t) +
-         keys_.capacity() * sizeof(uint64_t) + firstK_.capacity() * sizeof(uint16_t) +
-         birthIndex_.capacity() * sizeof(uint32_t) + wideK_.capacity() * sizeof(WideK) +
-         births_.capacity() * sizeof(double) + values_.capacity() * sizeof(double);
-}
-
 size_t CompactWord::Slice::heldBytes() const {
   return births_.capacity() * sizeof(double) + wideK_.capacity() * sizeof(WideK) +
          sharedWords_.capacity() * sizeof(std::pair<size_t, uint64_t>);
 }
 
 void CompactWord::clear() {
+  largestBytes_ = std::max(largestBytes_, bytes());
   size_ = 0;
   labels8_.clear();
   labels16_.clear();

@@ -134,10 +134,10 @@ class CompactWord {
   /// Bytes the word's arrays take (their sizes, not their capacities: pages never
   /// written are never mapped).
   size_t bytes() const;
-  /// Bytes the word's arrays hold, by capacity: bytes() and the room past it, which a
-  /// word cleared after a larger one keeps written and the room reserved for the word
-  /// being written takes (the memory limit counts it: LinearDevelopment::heldBytes).
-  size_t capacityBytes() const;
+  /// Bytes the word's arrays have written and keep: bytes(), or more where the word was
+  /// cleared after a larger one, whose pages it keeps (the memory limit counts them:
+  /// LinearDevelopment::heldBytes). Room reserved and never written is not counted.
+  size_t heldBytes() const { return std::max(bytes(), largestBytes_); }
 
   // --- Writing, in word order ---
 
@@ -380,6 +380,7 @@ class CompactWord {
   uint32_t runJ_ = 0;         // its place in its run
   size_t writtenBlocks_ = 0;  // bitmap words written before placeParts
   bool withoutIds_ = false;   // markWithoutIds: the runs' keys and first k mean nothing
+  size_t largestBytes_ = 0;   // the largest bytes() the word had when cleared
   [[noreturn]] static void noIds();
 };
 

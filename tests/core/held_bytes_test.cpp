@@ -1,5 +1,6 @@
 // What a linear development holds between steps (LinearDevelopment::heldBytes, the
-// world's held() and the memory limit): its compact words by capacity, not by size, and
+// world's held() and the memory limit): its compact words by what they have written, not
+// by their size now, and
 // what the compact rewrite keeps from one rewrite to the next (ParallelRewrite::heldBytes).
 
 #include <gtest/gtest.h>
@@ -31,16 +32,18 @@ TEST(HeldBytes, ACompactWordWrittenAfterALargerOneHoldsTheLargerOnesBytes) {
   WorldDef def;
   def.wordsWithoutIds = false;  // the pool's bytes are the word's alone
   World world(compileOrFail(shrinkingProgram()), def);
-  world.advanceTo(16, 1);
+  world.advanceTo(15, 1);
   ASSERT_TRUE(world.rootPool().holdsCompactWord());
+  const uint64_t before = world.rootPool().compactWord().bytes();
+  world.advanceTo(16, 1);
   ASSERT_EQ(world.rootPool().size(), 65537u);
   const uint64_t largest = world.rootPool().compactWord().bytes();
   world.advanceTo(18, 1);
   ASSERT_EQ(world.rootPool().size(), 1u);
   ASSERT_TRUE(world.rootPool().holdsCompactWord());
   // Held: the word of t = 18, written where the word of t = 16 was, and the word of
-  // t = 17, written where the word of t = 15 was (half as large, and more).
-  EXPECT_GE(world.held().bytes, World::kWorldBytes + largest + largest / 2);
+  // t = 17, written where the word of t = 15 was.
+  EXPECT_GE(world.held().bytes, World::kWorldBytes + largest + before);
 }
 
 // The parts of a word whose choices vary (the Parts strategy on two threads) are kept
@@ -62,9 +65,8 @@ TEST(HeldBytes, ThePartsOfAWordWrittenInPartsAreHeld) {
   ASSERT_TRUE(world->rootPool().holdsCompactWord());
   ASSERT_GT(world->stats().rewrites[static_cast<size_t>(RewriteStrategy::Parts)], 0u);
   // The word, the word before (kept to write the next into; as the world grown to t = 11
-  // holds it), both by capacity, and, in the parts, a label a module at least.
-  const uint64_t words =
-      world->rootPool().compactWord().capacityBytes() + before->rootPool().compactWord().capacityBytes();
+  // holds it), both by what they have written, and, in the parts, a label a module at least.
+  const uint64_t words = world->rootPool().compactWord().heldBytes() + before->rootPool().compactWord().heldBytes();
   EXPECT_GE(world->held().bytes, World::kWorldBytes + words + world->rootPool().size());
 }
 
