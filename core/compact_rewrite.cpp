@@ -4,8 +4,7 @@
 // slices written one module for one (core/one_for_one_rewrite.cpp), parts copied in
 // (core/parts_rewrite.cpp), slices placed by the table's bounds or counted then written
 // (core/compact_slices_rewrite.cpp); what they share is here and in
-// core/compact_rewrite_range.h. The records' slices are in core/record_slices_rewrite.cpp,
-// what the rules allow in core/parallel_rewrite.cpp.
+// core/compact_rewrite_range.h. What the rules allow is in core/parallel_rewrite.cpp.
 
 #include <stdexcept>
 
@@ -32,7 +31,7 @@ std::optional<ParallelRewrite::CompactCounts> ParallelRewrite::rewriteCompact(co
   next.clearWithBirthsOf(word);
   const double expectedBirth = earliestDeath_;  // the last rewrite's, at this word's first death
   earliestDeath_ = kForever;
-  RewriteFacts known = facts(RewritePass::Compact, size, threads, nullptr);
+  RewriteFacts known = facts(size, threads);
   RewritePlan plan = planRewrite(known);
   // In place, its bounds being at most every module expiring and giving birth to one.
   // When they pass a limit, the strategies that count as they go decide.

@@ -241,7 +241,7 @@ template <class Out, class Labels, class Stop>
   return rewriteRange<true>(word, begin, end, horizon, group, labels, out, stop, soonest, evaluation);
 }
 
-// As writeBatched writes a cell in the records' pass: the same rule, ids, births and
+// As LinearDevelopment::expire writes a cell of records: the same rule, ids, births and
 // values. The id is hashed only where it is read: for a draw, and for the frame and the
 // lineage while writing.
 template <class Out>

@@ -99,13 +99,17 @@ bool LinearDevelopment::anyExpires(double horizon) {
 }
 
 uint64_t LinearDevelopment::heldBytes() const {
-  return pool_.bytes() + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double) +
-         nextWord_.bytes() + scratchBytes();
+  // The compact words by what they have written: a word written after a larger one keeps
+  // the larger one's pages (CompactWord::heldBytes).
+  const uint64_t wordRoom =
+      pool_.holdsCompactWord() ? pool_.compactWord().heldBytes() - pool_.compactWord().bytes() : 0;
+  return pool_.bytes() + wordRoom + nextCells_.size() * sizeof(CellRecord) + nextState_.size() * sizeof(double) +
+         nextWord_.heldBytes() + parallel_.heldBytes() + scratchBytes();
 }
 
 // By capacity: these grow by appending, so what they once held was written, and stays
-// resident though they are emptied. (The previous word counts by its size: the room
-// reserved past it for the next word is not written until that word is.)
+// resident though they are emptied. (The previous word of records counts by its size:
+// the room reserved past it for the next word is not written until that word is.)
 uint64_t LinearDevelopment::scratchBytes() const {
   return (expandedCells_.capacity() + work_.capacity()) * sizeof(CellRecord) +
          (expandedState_.capacity() + workState_.capacity() + parentValues_.capacity()) * sizeof(double) +
@@ -412,14 +416,6 @@ void LinearDevelopment::expireContextFree(double t1) {
   if (!anyExpires(horizon)) return;
   auto cells = pool_.cells();
   findParents();
-  if (parallel_.appliesContextFree() &&
-      parallel_.rewriteContextFree(pool_, horizon, *context_, readsParents_ ? parentValues_.data() : nullptr,
-                                   eventsThisStep_, nextCells_, nextState_)) {
-    finishWord();
-    earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
-    earliestVersion_ = pool_.structureVersion();
-    return;
-  }
   beginWord();
   const auto& classOf = system_.symbolClass;
   BranchCut cut;
@@ -512,14 +508,6 @@ void LinearDevelopment::expireInTimeOrder(double t, double t1) {
     findParents();
     auto cells = pool_.cells();
     const auto& classOf = system_.symbolClass;
-    if (parallel_.appliesAtInstants() && parallel_.rewriteAtInstant(pool_, instant, activeGroup_, *context_,
-                                                                    readsParents_ ? parentValues_.data() : nullptr,
-                                                                    eventsThisStep_, nextCells_, nextState_)) {
-      finishWord();
-      earliestDeath_ = parallel_.earliestDeath();  // found while writing the word
-      earliestVersion_ = pool_.structureVersion();
-      continue;
-    }
     beginWord();
     if (system_.backward) {
       expireBackward(instant);

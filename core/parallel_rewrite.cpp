@@ -1,7 +1,6 @@
-// What a system's rules allow the faster rewrites (ParallelRewrite's constructor, shape,
-// facts), and the batches in which both the records' slices and the compact word evaluate
-// successors' values. The strategies themselves are in core/record_slices_rewrite.cpp and
-// core/compact_rewrite.cpp with the files it names.
+// What a system's rules allow the compact word's rewrites (ParallelRewrite's constructor,
+// shape, facts), and the batches in which they evaluate successors' values. The strategies
+// themselves are in core/compact_rewrite.cpp with the files it names.
 
 #include "core/parallel_rewrite.h"
 
@@ -91,14 +90,13 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     : program_(program), system_(system), functions_(program.functionTable()), frameSize_(ruleFrameSize(program)) {
   for (const MasterCell& master : program.masters) lifetimes_.push_back(master.lifetime);
   for (uint8_t symbolClass : system.symbolClass)
-    if (symbolClass & kSymbolCut) contextFree_ = atInstants_ = false;
+    if (symbolClass & kSymbolCut) atInstants_ = false;
   if (system.backward || system.decomposes) atInstants_ = false;
   auto plain = [](const std::vector<uint8_t>& classes) {
     return std::all_of(classes.begin(), classes.end(), [](uint8_t c) { return c == kSymbolModule; });
   };
   plain_ = plain(system.symbolClass) && std::all_of(system.ruleClasses.begin(), system.ruleClasses.end(), plain);
   labelsOnly_.resize(program.masters.size());
-  shortestLife_.resize(program.masters.size());
   for (size_t m = 0; m < program.masters.size(); ++m) {
     const MasterCell& master = program.masters[m];
     labelsOnly_[m] = comparesLabelsOnly(program, master) && master.terminalRules.size() < UINT16_MAX;
@@ -116,9 +114,7 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
                                          !master.terminalRules.front().hasContext());
     fixedChoice_.push_back(labelsOnly_[m] && fixed);
     anyChoiceVaries_ = anyChoiceVaries_ || (labelsOnly_[m] && !fixed) || drawsByLabels;
-    allLabelsOnly_ = allLabelsOnly_ && labelsOnly_[m];
     for (const LabelRule& choice : choices) allByPosition_ = allByPosition_ && (!choice.context || choice.byPosition);
-    double shortest = master.lifetime;  // a renewal
     bool choosesInFrame = false;
     for (const CompiledRule& rule : master.terminalRules) {
       // Multiscale contexts are matched by the serial pass alone (core/multiscale_context.h).
@@ -126,16 +122,13 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
           rule.scales)
         atInstants_ = false;
       anyContext_ = anyContext_ || rule.hasContext() || !rule.leftItems.empty() || !rule.rightItems.empty();
-      // A condition or a chance that is an expression is evaluated in the cell's frame
-      // (choose), a constant chance drawn from the cell's stream alone (drawByChances).
-      if (rule.group != 0 || rule.hasContext() || !rule.aggregates.empty()) contextFree_ = false;
+      // A condition or a chance that is an expression is evaluated in the cell's frame, a
+      // constant chance drawn from the cell's stream alone (drawByChances).
       choosesInFrame =
           choosesInFrame || !rule.predicate.empty() || (!rule.probability.empty() && !rule.probability.isConstant());
       oneForOne_ = oneForOne_ && (!rule.hasAction || rule.successors.size() == 1);
-      for (const SuccessorTemplate& successor : rule.successors) {
-        if (!successor.birthAge.empty()) contextFree_ = atInstants_ = false;
-        shortest = std::min(shortest, successor.isMe ? master.lifetime : program.masters[successor.master].lifetime);
-      }
+      for (const SuccessorTemplate& successor : rule.successors)
+        if (!successor.birthAge.empty()) atInstants_ = false;
     }
     // Several rules: the first one, a draw among them when it has a chance, or a choice
     // in the cell's frame (also past kMostDrawn rules with a chance).
@@ -143,11 +136,8 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
     const bool draws =
         !choosesInFrame && !master.terminalRules.empty() && !master.terminalRules.front().probability.empty();
     drawsByChance_.push_back(draws);
-    choosesInFrame_.push_back(choosesInFrame);
-    shortestLife_[m] = shortest;
-    evaluatesInBatches_.push_back(!labelsOnly_[m] && evaluatesInBatches(program, master, draws));
-    const bool compactBatched =
-        evaluatesInBatches_[m] && !drawsByLabels && !master.readsPosition && !master.readsParent;
+    const bool compactBatched = !labelsOnly_[m] && evaluatesInBatches(program, master, draws) && !drawsByLabels &&
+                                !master.readsPosition && !master.readsParent;
     compactBatched_.push_back(compactBatched);
     anyCompactBatched_ = anyCompactBatched_ || compactBatched;
     allCompact_ = allCompact_ && (labelsOnly_[m] || drawsByLabels || compactBatched);
@@ -161,7 +151,6 @@ ParallelRewrite::ParallelRewrite(const Program& program, const SystemDefinition&
       batchedValues_.push_back(values);
       batchedRules_.push_back(compactBatched ? labelRule(program, static_cast<uint32_t>(m), rule) : LabelRule{});
     }
-    allInBatchesOrLabelsOnly_ = allInBatchesOrLabelsOnly_ && (labelsOnly_[m] || evaluatesInBatches_[m]);
   }
 
   byTable_ = program.masters.size() <= 256;  // one-byte labels
@@ -298,13 +287,20 @@ void ParallelRewrite::flushBatch(const CompiledRule& rule, Batch& batch, uint64_
   batch.lanes = 0;
 }
 
+uint64_t ParallelRewrite::heldBytes() const {
+  uint64_t bytes = parts_.capacity() * sizeof(Part) + compactSlices_.capacity() * sizeof(CompactWord::Slice) +
+                   partPlaces_.capacity() * sizeof(CompactWord::PartPlace);
+  for (const Part& part : parts_) bytes += part.word.heldBytes();
+  for (const CompactWord::Slice& slice : compactSlices_) bytes += slice.heldBytes();
+  for (const CompactWord::PartPlace& place : partPlaces_)
+    bytes += place.births.capacity() * sizeof(uint32_t) +
+             place.sharedWords.capacity() * sizeof(std::pair<size_t, uint64_t>);
+  return bytes;
+}
+
 RewriteShape ParallelRewrite::shape(bool compact) const {
   RewriteShape shape;
   shape.compact = compact && appliesToCompactWords();
-  shape.contextFreeSlices = contextFree_;
-  shape.atInstantSlices = atInstants_;
-  shape.labelsOnly = allLabelsOnly_;
-  shape.inBatchesOrLabelsOnly = allInBatchesOrLabelsOnly_;
   shape.byTable = byTable_;
   shape.choiceVaries = anyChoiceVaries_;
   shape.oneForOne = oneForOne_;
@@ -314,16 +310,12 @@ RewriteShape ParallelRewrite::shape(bool compact) const {
   return shape;
 }
 
-RewriteFacts ParallelRewrite::facts(RewritePass pass, size_t size, unsigned threads, const StepContext* context) const {
+RewriteFacts ParallelRewrite::facts(size_t size, unsigned threads) const {
   RewriteFacts facts;
   facts.shape = shape(true);
-  facts.pass = pass;
+  facts.pass = RewritePass::Compact;
   facts.size = size;
   facts.threads = threads;
-  if (context) {
-    facts.slices = context->rewriteBySlices;
-    facts.lineage = context->lineage != nullptr;
-  }
   facts.withoutIds = withoutIds_;
   facts.growthKnown = lastGrowth_.modules > 0;
   facts.boundsMissed = boundsMissed_;

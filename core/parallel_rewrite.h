@@ -1,39 +1,23 @@
 #pragma once
-// The production pass of a large linear word on every core. Each thread takes a slice of
-// the word; a first pass counts what each slice will write (the cells and state values
-// of the successors its cells' chosen rules make), prefix sums give each slice its place
-// in the next word, and a second pass writes every slice in place, choosing again. The
-// next word is bit for bit the one the serial pass writes, whatever the thread count: a
-// cell's choice, ids and random numbers derive from the cell and the old word alone.
+// The faster passes of a linear word kept compact (docs/COMPACT_WORDS.md): what a
+// system's rules allow, found once from the program, and the executors of the compact
+// strategies of core/rewrite_plan.h. Each writes, at one instant, the word the serial
+// pass of records writes, bit for bit, whatever the thread count: a cell's choice, ids
+// and random numbers derive from the cell and the old word alone.
 //
-// Two passes of the linear development come here:
-//  - the context-free pass (rewriteContextFree), when every master's rules are of group
-//    0 without context, neighbour aggregate or birth age (a condition or a chance is
-//    evaluated in the cell's frame, a constant chance drawn without it); in a step where
-//    no successor reaches its own terminal age before the step's end;
-//  - the pass of one instant with context (rewriteAtInstant), when no rule reads the
-//    word being written (`<<`, `>>`), aggregates neighbours or gives a birth age, and the
-//    system has no decomposition. Masters without state whose rules only compare labels
-//    (no condition, chance, calculation or bound value, successors without state) are
-//    rewritten without loading a frame or a random stream.
-// Neither applies with a cut symbol, with the lineage being logged, or when the new word
-// would pass a limit: then the development takes its serial pass, which reports the
-// limit as it always did. On one thread the slices are taken only when nothing is
-// evaluated cell by cell: every master compares labels only (Koch, Thue-Morse, a signal),
-// or, in the context-free pass, each master either compares labels only or has one rule
-// without choice or calculation whose successors' arguments are evaluated for many cells
-// at once (the benchmarks' parametric word). There two quick passes beat the general one;
-// other words with state keep the serial pass. A compact word whose labels each do one
-// thing when they expire (Koch, Thue-Morse) is walked run by run by a table
-// (pools/table_rewrite.h) and written without counting first: in one pass on one thread,
-// by slices placed by bounds on several. A compact word may hold values too, where every
-// master with state evaluates its successors' arguments in batches without reading its
-// place or parent (compactBatched_): its new successors go in one run, their values are
-// left in place and written when the batch is evaluated. A word whose choices vary with
-// the context is written in one pass too: where every rule writes one successor (a
-// signal), each thread's slice knows its place and is written in place; else each thread
-// writes a part of its own, copied into the word after. Which of these ways a word takes,
-// and on how many threads, planRewrite alone decides (core/rewrite_plan.h).
+// A word is kept compact where every master's rules compare labels only, draw among
+// rules of constant chances by labels, or evaluate their successors' arguments in batches
+// without reading their place or parent (compactBatched_); with context, only in a word
+// without brackets or ignored modules whose contexts compare a few modules by position.
+// A compact word whose labels each do one thing when they expire (Koch, Thue-Morse) is
+// walked run by run by a table (pools/table_rewrite.h) and written without counting
+// first: in one pass on one thread, by slices placed by bounds on several. A word whose
+// choices vary with the context is written in one pass too: where every rule writes one
+// successor (a signal), each thread's slice knows its place and is written in place; else
+// each thread writes a part of its own, copied into the word after. Other words are
+// counted, then written, by slices. Which of these ways a word takes, and on how many
+// threads, planRewrite alone decides (core/rewrite_plan.h); a word of records takes the
+// development's serial pass (core/linear_development.cpp).
 
 #include <algorithm>
 #include <cstdint>
@@ -57,9 +41,6 @@ class ParallelRewrite {
  public:
   ParallelRewrite(const Program& program, const SystemDefinition& system);
 
-  bool appliesContextFree() const { return contextFree_; }
-  bool appliesAtInstants() const { return atInstants_; }
-
   /// What the rules allow, for planRewrite (core/rewrite_plan.h). `compact`: the
   /// development may keep the word compact (appliesToCompactWords, and nothing else of
   /// the system needs the records).
@@ -68,18 +49,6 @@ class ParallelRewrite {
   void force(std::optional<RewriteStrategy> strategy) { forced_ = strategy; }
   /// The strategy that wrote the last compact word (rewriteCompact), after any fallback.
   RewriteStrategy lastStrategy() const { return ran_; }
-
-  /// The context-free pass of the step ending at `horizon`: rewrites `pool`'s word into
-  /// `cells` and `state` (emptied first), with `parents` the me.parent value of each cell
-  /// (null when no rule reads it). Returns false, leaving them empty, when the step needs
-  /// the serial pass; else adds the step's events to `events` and `context.stats`.
-  bool rewriteContextFree(const LinearPool& pool, double horizon, StepContext& context, const double* parents,
-                          uint64_t& events, CellArray& cells, StateArray& state);
-
-  /// The pass of the cells that expire by `instant` in a word with context (its branches
-  /// indexed), with rule group `group` active; as rewriteContextFree otherwise.
-  bool rewriteAtInstant(const LinearPool& pool, double instant, int group, StepContext& context, const double* parents,
-                        uint64_t& events, CellArray& cells, StateArray& state);
 
   /// Whether rewriteCompact applies: every master's rules compare labels only, or are
   /// evaluated in batches without reading the cell's place (compactBatched_), and give no
@@ -113,7 +82,7 @@ class ParallelRewrite {
   /// figures than it accepted; it may be asked from several threads at once.
   using CompactFits = std::function<bool(uint64_t modules, uint64_t events, uint64_t born, uint64_t heldModules)>;
 
-  /// The pass of rewriteAtInstant on a compact word (docs/COMPACT_WORDS.md), on at most
+  /// The pass of one instant on a compact word (docs/COMPACT_WORDS.md), on at most
   /// `threads` threads by the strategy planRewrite picks: writes `next` from `word`. Every cell whose
   /// terminal age is at most `horizon` fires the rule it chooses, rule group `group` active,
   /// its context read in `word`, or renews itself; its successors are born at its terminal
@@ -131,7 +100,11 @@ class ParallelRewrite {
                                               CompactWord& next, const CompactFits& fits = {}, uint64_t seed = 0,
                                               const double* ancestors = nullptr);
 
-  /// The earliest terminal age (birth + lifetime) in the word rewriteAtInstant wrote last,
+  /// Bytes kept from one rewrite to the next: the parts of a word whose
+  /// choices vary (written apart, then copied in), the slices and the parts' places.
+  uint64_t heldBytes() const;
+
+  /// The earliest terminal age (birth + lifetime) in the word rewriteCompact wrote last,
   /// found while writing it, so the development need not look for it again.
   double earliestDeath() const { return earliestDeath_; }
 
@@ -139,14 +112,6 @@ class ParallelRewrite {
   static constexpr size_t kMinimumCells = kMinimumSliceCells;
 
  private:
-  enum class Pass : uint8_t { ContextFree, AtInstant };
-  // On cache lines of its own: a thread updates its slice's counts cell by cell.
-  struct alignas(64) Slice {
-    size_t begin = 0, end = 0;  // cells of the word
-    uint64_t cells = 0, values = 0, events = 0, born = 0;
-    bool chained = false;             // the context-free pass: a successor expires within the step
-    double earliestDeath = kForever;  // of the cells it wrote
-  };
   // The cells that fired one rule waiting for their successors' values (evaluatesInBatches_):
   // each lane's frame, and where each of its successors' values go in the next word.
   struct Batch {
@@ -154,49 +119,15 @@ class ParallelRewrite {
     std::vector<double> frames;     // kBatchLanes frames of frameSize_
     std::vector<uint64_t> valueAt;  // per lane, per successor with values: its first value
   };
-  struct Worker {
-    explicit Worker(const Program& program) : successors(program) {}
-    SuccessorWriter successors;
-    std::vector<double> frame;
-    std::vector<std::pair<const CompiledRule*, double>> candidates;
-    uint32_t matched[kMaxContextItems];
-    std::vector<Batch> batches;  // per master, for the context-free pass
-  };
-  /// What one pass reads besides the word.
-  struct Step {
-    const LinearPool& pool;
-    double horizon;  // cells that die by it expire
-    int group;
-    const StepContext& context;
-    const double* parents;
-  };
-
-  /// The facts of a rewrite of a word of `size` modules by `pass`, `threads` being the
+  /// The facts of a rewrite of a compact word of `size` modules, `threads` being the
   /// world's (WorldDef::threads): how many the rewrite takes, planRewrite alone decides.
-  RewriteFacts facts(RewritePass pass, size_t size, unsigned threads, const StepContext* context) const;
-  bool rewrite(Pass pass, const Step& step, StepContext& context, uint64_t& events, CellArray& cells,
-               StateArray& state);
-  void count(Pass pass, const Step& step, Slice& slice, Worker& worker);
-  void write(Pass pass, const Step& step, Slice& slice, uint64_t firstCell, uint64_t firstValue, Worker& worker,
-             CellArray& cells, StateArray& state) const;
-  /// The rule cell i (whose values are `state`) chooses (null: it renews itself), with
-  /// its frame loaded and its context's values bound; as LinearDevelopment::expire chooses.
-  const CompiledRule* choose(Pass pass, const Step& step, size_t i, const double* state, double death, Worker& worker,
-                             RandomStream& random, const EvalContext& evaluation) const;
-
-  bool matchesLabels(const Step& step, const CompiledRule& rule, size_t i, Worker& worker) const;
+  RewriteFacts facts(size_t size, unsigned threads) const;
   /// The rule a cell of `master` (drawsByChance_) with id `id` draws at `death`, or null.
   static const CompiledRule* drawByChances(const MasterCell& master, uint64_t seed, uint64_t id, double death);
-  /// The rule a cell of `master` (label `label`), whose choice needs no frame, fires in the
-  /// context-free pass: none, the first, or drawn by chances.
+  /// The rule a cell of `master` (label `label`), whose choice needs no frame, fires
+  /// whatever its context: none, the first, or drawn by chances.
   const CompiledRule* contextFreeRule(const MasterCell& master, uint32_t label, uint64_t seed, uint64_t id,
                                       double death) const;
-  /// The context-free pass's write of a cell of a master that evaluates in batches: its
-  /// records now, at their places, and its frame in the master's batch, whose values are
-  /// written when it is full (flushBatch) or at the end of the slice.
-  template <class Put>
-  void writeBatched(const Step& step, const CellRecord& cell, const double* state, double death, size_t i,
-                    Worker& worker, double* outValues, uint64_t& valueAt, const Put& put) const;
   /// Evaluates the successors' arguments of every cell waiting in `batch` (master
   /// `master`), lane by lane over each argument's code, into `outValues`; `seed` and
   /// `ancestors` as StepContext's.
@@ -219,8 +150,7 @@ class ParallelRewrite {
 
   const Program& program_;
   const SystemDefinition& system_;
-  bool contextFree_ = true;
-  bool atInstants_ = true;
+  bool atInstants_ = true;  // the rules may be rewritten at an instant: no cut, decomposition, `<<`, birth age ...
   std::vector<uint8_t> labelsOnly_;  // per master: its rules compare labels only
   bool plain_ = false;               // no symbol is a bracket, a cut or ignored
   bool anyContext_ = false;          // some terminal rule has a context
@@ -257,7 +187,7 @@ class ParallelRewrite {
   static constexpr size_t kPositionItems = 4;
   static constexpr int32_t kAnyLabel = -1, kEndLabel = -2, kNoMatch = -3;
   LabelRule labelRule(const Program& program, uint32_t master, const CompiledRule& rule) const;
-  /// Whether the context-free pass evaluates `master`'s successors in batches.
+  /// Whether `master`'s successors' arguments may be evaluated in batches (compactBatched_).
   bool evaluatesInBatches(const Program& program, const MasterCell& master, bool draws) const;
   /// rewriteCompact on several threads for a word whose choices vary: each thread writes
   /// its share in one pass into a part of parts_, then copies it into the next word.
@@ -305,7 +235,7 @@ class ParallelRewrite {
                                        const Labels& labels, Out& out, const Stop& stop, double& soonest,
                                        CompactEvaluation& evaluation) const;
   /// rewriteRange's event of `cell`, of a master of compactBatched_, dying at `death`:
-  /// the rule it fires (or its renewal) written through `out` as writeBatched writes it,
+  /// the rule it fires (or its renewal) written through `out` as the serial pass writes it,
   /// the successors' values left to `evaluation`'s batches while writing.
   template <class Out>
   void expireBatched(const CompactWordCursor& cell, uint32_t label, double death, Out& out, CompactCounts& counts,
@@ -331,18 +261,16 @@ class ParallelRewrite {
   const LabelRule* fixedRule(uint32_t master) const {
     return labelRules_[master].empty() ? nullptr : &labelRules_[master].front();
   }
-  /// The rule a master whose rules compare labels only chooses for cell i (null: it renews
-  /// itself): no frame, no random stream.
-  const LabelRule* chooseByLabels(Pass pass, const Step& step, size_t i, Worker& worker) const;
   std::vector<std::vector<LabelRule>> labelRules_;
-  bool allLabelsOnly_ = true;
   bool allByPosition_ = true;  // every label-only rule with context compares by position
-  // Per master that evaluates in batches (evaluatesInBatches_) and reads neither its place
-  // nor its parent: a compact word holds its values, and rewriteCompact writes its
-  // successors as writeBatched does (the benchmarks' parametric word). Its place is left
-  // out because the context-free pass gives a successor that expires within the step its
-  // ancestor's place at the start of the step, which the compact pass, instant by
-  // instant, does not know.
+  // Per master with state whose terminal rules (one, or several drawn by constant chances)
+  // are of group 0 without condition, calculation or birth age, whose successors'
+  // arguments are straight-line code without a draw (CompiledExpression::batchable), and
+  // which reads neither its place nor its parent: a compact word holds its values, and
+  // rewriteCompact evaluates its successors' arguments for kBatchLanes cells of a rule at
+  // once (the benchmarks' parametric word). Its place is left out because the serial
+  // context-free pass gives a successor that expires within the step its ancestor's place
+  // at the start of the step, which the compact pass, instant by instant, does not know.
   std::vector<uint8_t> compactBatched_;
   bool anyCompactBatched_ = false;
   // Per terminal rule (firstRule_) of a master of compactBatched_: what it writes.
@@ -360,31 +288,14 @@ class ParallelRewrite {
   // of a word becomes one module, whichever rule it chooses, so a slice of the word knows
   // where its successors go before choosing (rewriteOneForOne).
   bool oneForOne_ = true;
-  // Per cell of the word, for a master whose rules compare labels only and whose choice
-  // varies: the rule the counting pass chose (1 + its index; 0: none), which the writing
-  // pass takes as it is. Left empty when no master's choice varies (Koch, Thue-Morse).
-  std::vector<uint16_t> chosen_;
-  std::vector<double> shortestLife_;  // per master: the shortest lifetime of what its rule writes
-  // Per master: its first rule has a chance, so the context-free pass draws among its rules
-  // (each of group 0, without condition or context, with a constant chance or none).
+  // Per master: its first rule has a chance, so its cells draw among its rules (each of
+  // group 0, without condition or context, with a constant chance or none).
   std::vector<uint8_t> drawsByChance_;
-  // Per master: a rule has a condition or a chance that is an expression, so even the
-  // context-free pass chooses in the cell's frame, as the serial pass does (choose).
-  std::vector<uint8_t> choosesInFrame_;
-  // Per master with state whose terminal rules (one, or several drawn by constant chances)
-  // are of group 0 without condition, calculation or birth age, and whose successors'
-  // arguments are straight-line code without a draw (CompiledExpression::batchable): the
-  // context-free pass evaluates those arguments for kBatchLanes cells of a rule at once.
-  // With every master so or label-only, the context-free pass takes the slices on one
-  // thread too: nothing is left to evaluate cell by cell.
-  std::vector<uint8_t> evaluatesInBatches_;
   // Per terminal rule of every master, masters in order (firstRule_: each master's first):
   // the values its successors take. Batches are kept per rule.
   std::vector<uint32_t> batchedValues_;
   std::vector<uint32_t> firstRule_;
-  bool allInBatchesOrLabelsOnly_ = true;
   FunctionTable functions_;
-  std::vector<Slice> slices_;
   std::vector<CompactWord::Slice> compactSlices_;
   // Parts of a word whose choices vary, written each by a thread of its own and copied
   // into the next word by it; kept from step to step. On cache lines of their own: a writer
@@ -425,7 +336,6 @@ class ParallelRewrite {
     }
   };
   Growth lastGrowth_;
-  std::vector<std::unique_ptr<Worker>> workers_;
   size_t frameSize_ = 0;
   double earliestDeath_ = kForever;
   std::optional<RewriteStrategy> forced_;

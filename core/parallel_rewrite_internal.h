@@ -1,15 +1,12 @@
 #pragma once
-// What the records' slices (core/record_slices_rewrite.cpp) and the compact word's strategies
-// (core/compact_rewrite.cpp and beside it) share, private to them: how many slices a thread takes, a
-// word's labels as they read them, and a rule's context of labels matched by position in
-// them (ParallelRewrite::LabelRule), the same way in both.
+// What the compact word's strategies (core/compact_rewrite.cpp and beside it) share,
+// private to them: how many slices a thread takes, a word's labels as they read them, and
+// a rule's context of labels matched by position in them (ParallelRewrite::LabelRule).
 
 #include <cstddef>
 #include <cstdint>
-#include <span>
 
 #include "core/parallel_rewrite.h"
-#include "pools/cell_record.h"
 #include "pools/compact_word.h"
 
 namespace ontogen {
@@ -18,11 +15,6 @@ namespace ontogen {
 /// rest, few enough that their bookkeeping costs nothing.
 inline constexpr size_t kSlicesPerThread = 4;
 
-/// The labels of a word of records.
-struct RecordLabels {
-  std::span<const CellRecord> cells;
-  uint32_t operator[](size_t i) const { return cells[i].master; }
-};
 /// The labels of a compact word.
 struct CompactLabels {
   const CompactWord& word;
@@ -34,7 +26,7 @@ struct ByteLabels {
   uint32_t operator[](size_t i) const { return labels[i]; }
 };
 
-// As matchesLabels in a plain word, from the codes labelRule made.
+// As LinearPool::matchLeft and matchRight match in a plain word, from the codes labelRule made.
 template <class Labels>
 inline bool ParallelRewrite::matchesByPosition(const Labels& labels, size_t size, const LabelRule& choice, size_t i) {
   for (size_t k = 0; k < choice.leftCount; ++k) {

@@ -8,8 +8,6 @@ std::string_view rewriteStrategyName(RewriteStrategy strategy) {
   switch (strategy) {
     case RewriteStrategy::Serial:
       return "serial";
-    case RewriteStrategy::RecordSlices:
-      return "record-slices";
     case RewriteStrategy::CompactSerial:
       return "compact-serial";
     case RewriteStrategy::TableAlone:
@@ -52,14 +50,8 @@ RewriteStrategy choose(const RewriteFacts& facts) {
   const RewriteShape& shape = facts.shape;
   const bool large = facts.size >= kMinimumSliceCells;
   const bool oneThread = !large || facts.threads <= 1;
-  if (facts.pass != RewritePass::Compact) {
-    // On one thread the slices pay where nothing is evaluated cell by cell (two quick
-    // passes beat the general one); other words keep the serial pass there.
-    const bool quickOnOne = shape.labelsOnly || (facts.pass == RewritePass::ContextFree && shape.inBatchesOrLabelsOnly);
-    if (!facts.slices || !large || (oneThread && !quickOnOne) || !rewriteApplies(RewriteStrategy::RecordSlices, facts))
-      return RewriteStrategy::Serial;
-    return RewriteStrategy::RecordSlices;
-  }
+  // A word of records has one pass; the words of bench/ that pay for more are kept compact.
+  if (facts.pass != RewritePass::Compact) return RewriteStrategy::Serial;
   // A word written without ids takes the table's walk at every size on one thread.
   if (facts.withoutIds && oneThread) return RewriteStrategy::TableAlone;
   // A large word whose modules each write one, on any number of threads: in place, in one pass.
@@ -83,9 +75,6 @@ bool rewriteApplies(RewriteStrategy strategy, const RewriteFacts& facts) {
   switch (strategy) {
     case RewriteStrategy::Serial:
       return !compact;
-    case RewriteStrategy::RecordSlices:
-      return !facts.lineage && ((facts.pass == RewritePass::ContextFree && shape.contextFreeSlices) ||
-                                (facts.pass == RewritePass::AtInstant && shape.atInstantSlices));
     case RewriteStrategy::CompactSerial:
       return compact && !facts.withoutIds;
     case RewriteStrategy::TableAlone:

@@ -19,7 +19,6 @@ namespace ontogen {
 /// One way of rewriting a linear word; the comment says why it exists.
 enum class RewriteStrategy : uint8_t {
   Serial,         ///< records, cell by cell: the reference, and every word the others cannot take
-  RecordSlices,   ///< records counted then written by slices: rules evaluated in frames, on many cores
   CompactSerial,  ///< compact word in one pass: small words, and choices that vary (counting would choose twice)
   TableAlone,     ///< compact word walked by its table in one pass without counting (Koch, Thue-Morse, one thread)
   OneForOne,      ///< compact word whose modules each write one: slices know their place without counting (a signal)
@@ -29,9 +28,9 @@ enum class RewriteStrategy : uint8_t {
 };
 
 /// The number of strategies (the size of WorldStats::rewrites).
-inline constexpr size_t kRewriteStrategyCount = 8;
+inline constexpr size_t kRewriteStrategyCount = 7;
 
-/// The strategy's name, as statistics print it ("serial", "record-slices", ...).
+/// The strategy's name, as statistics print it ("serial", "table-alone", ...).
 std::string_view rewriteStrategyName(RewriteStrategy strategy);
 
 /// Whether the strategy rewrites a compact word (docs/COMPACT_WORDS.md) rather than records.
@@ -48,34 +47,27 @@ std::string formatRewriteCounts(const RewriteCounts& counts);
 
 /// What a system's rules allow, found once from the program (ParallelRewrite).
 struct RewriteShape {
-  bool compact = false;                ///< the word may be kept compact between steps
-  bool contextFreeSlices = false;      ///< the records' context-free pass may go by slices
-  bool atInstantSlices = false;        ///< the records' pass of an instant may go by slices
-  bool labelsOnly = false;             ///< every master compares labels only (nothing evaluated cell by cell)
-  bool inBatchesOrLabelsOnly = false;  ///< every master compares labels only or evaluates in batches
-  bool byTable = false;                ///< every master does one thing when it expires (pools/table_rewrite.h)
-  bool choiceVaries = false;           ///< some label-only master's choice depends on the cell
-  bool oneForOne = false;              ///< every rule that acts writes one successor
-  bool withValues = false;             ///< the compact word holds state values
-  bool anyState = false;               ///< some master has state values
-  bool batched = false;                ///< some master's successors' values are evaluated in batches
+  bool compact = false;       ///< the word may be kept compact between steps
+  bool byTable = false;       ///< every master does one thing when it expires (pools/table_rewrite.h)
+  bool choiceVaries = false;  ///< some label-only master's choice depends on the cell
+  bool oneForOne = false;     ///< every rule that acts writes one successor
+  bool withValues = false;    ///< the compact word holds state values
+  bool anyState = false;      ///< some master has state values
+  bool batched = false;       ///< some master's successors' values are evaluated in batches
 };
 
 /// Which pass of the development asks.
 enum class RewritePass : uint8_t {
-  ContextFree,  ///< records, no context: each cell expands on its own through the step
-  AtInstant,    ///< records, with context: the cells expiring at one instant
-  Compact,      ///< a compact word at one instant
+  Records,  ///< a word of records: the serial pass, context-free or instant by instant
+  Compact,  ///< a compact word at one instant
 };
 
 /// The facts planRewrite decides by.
 struct RewriteFacts {
   RewriteShape shape;
-  RewritePass pass = RewritePass::ContextFree;
+  RewritePass pass = RewritePass::Records;
   size_t size = 0;              ///< modules of the word
   unsigned threads = 1;         ///< threads the world may use (WorldDef::threads)
-  bool slices = true;           ///< WorldDef::rewriteBySlices
-  bool lineage = false;         ///< births are logged
   bool withoutIds = false;      ///< the table's words are written without ids (ParallelRewrite::writesWithoutIds)
   bool growthKnown = false;     ///< a compact rewrite of this development grew a word already
   bool boundsMissed = false;    ///< slices placed by bounds once wrote less than the bounds

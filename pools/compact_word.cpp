@@ -26,7 +26,13 @@ size_t CompactWord::bytes() const {
          wideK_.size() * sizeof(WideK) + births_.size() * sizeof(double) + values_.size() * sizeof(double);
 }
 
+size_t CompactWord::Slice::heldBytes() const {
+  return births_.capacity() * sizeof(double) + wideK_.capacity() * sizeof(WideK) +
+         sharedWords_.capacity() * sizeof(std::pair<size_t, uint64_t>);
+}
+
 void CompactWord::clear() {
+  largestBytes_ = std::max(largestBytes_, bytes());
   size_ = 0;
   labels8_.clear();
   labels16_.clear();
@@ -463,6 +469,82 @@ uint32_t CompactWord::wideK(size_t run) const {
 CellView CompactWord::cellAt(size_t i) const {
   const Place place = locate(i);
   return {label(i), values_.data() + place.value, birthOf(place.run), keyOf(place.run, place.j).id(), i};
+}
+
+CompactWord::Slice::Slice(const CompactWord& from)
+    : from_(&from), stateCounts_(from.stateCounts_.data()), stateless_(from.stateless_) {}
+
+void CompactWord::Slice::restart(const CompactWord& from) {
+  from_ = &from;
+  stateCounts_ = from.stateCounts_.data();
+  stateless_ = from.stateless_;
+  word_ = nullptr;
+  knowsBirth_ = false;
+  modules_ = values_ = countedRuns_ = 0;
+  tail_ = RunTail{};
+}
+
+void CompactWord::Slice::appendKept(size_t first, uint32_t n, IdKey key, uint32_t birthIndex) {
+  const double birth = from_->births_[birthIndex];
+  const bool continues = tail_.continues(key, birth);
+  stretch(first, n, key, continues, birthIndex);
+  if (n > 1) tail_.continues(IdKey{key.key, key.k + n - 1}, birth);
+}
+
+void CompactWord::Slice::appendRenewed(size_t first, uint32_t n, IdKey key, double birth) {
+  const bool continues = tail_.continues(key, birth);
+  stretch(first, n, key, continues, word_ ? birthIndexOf(birth) : 0);
+  if (n > 1) tail_.continues(IdKey{key.key, key.k + n - 1}, birth);
+}
+
+void CompactWord::Slice::stretch(size_t first, uint32_t n, IdKey key, bool continues, uint32_t birthIndex) {
+  if (!word_) {
+    modules_ += n;
+    countedRuns_ += continues ? 0 : 1;
+    return;
+  }
+  put(from_->label(first), key, continues, birthIndex, nullptr);
+  for (uint32_t j = 1; j < n;) {
+    const size_t i = firstModule_ + written_;
+    if (i % kBlock == 0) startBlock(i);  // before runJ_ moves: the block's j is one more
+    const uint32_t room = std::min<uint32_t>(n - j, static_cast<uint32_t>(kBlock - i % kBlock));
+    if (out_.labels8)
+      std::memcpy(out_.labels8 + i, from_->labels8_.data() + first + j, room);
+    else
+      std::memcpy(out_.labels16 + i, from_->labels16_.data() + first + j, room * sizeof(uint16_t));
+    runJ_ += room;
+    written_ += room;
+    j += room;
+  }
+}
+
+CompactWordCursor::CompactWordCursor(const CompactWord& word, size_t first)
+    : word_(&word),
+      labels8_(word.wide_ ? nullptr : word.labels8_.data()),
+      labels16_(word.wide_ ? word.labels16_.data() : nullptr),
+      runStarts_(word.runStarts_.data()),
+      stateCounts_(word.stateCounts_.data()),
+      keys_(word.keys_.data()),
+      firstK_(word.firstK_.data()),
+      birthIndex_(word.birthIndex_.data()),
+      births_(word.births_.data()),
+      size_(word.size_),
+      stateless_(word.stateless_),
+      index_(first) {
+  if (word.withoutIds_) [[unlikely]]
+    CompactWord::noIds();
+  if (first >= size_) return;
+  if (first > 0) {
+    const CompactWord::Place place = word.locate(first);
+    run_ = place.run;
+    j_ = place.j;
+    value_ = place.value;
+  }
+  loadRun();
+}
+
+CompactWordCursor CompactWord::cursor() const {
+  return CompactWordCursor(*this);
 }
 
 }  // namespace ontogen

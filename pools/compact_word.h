@@ -18,6 +18,9 @@
 // a run otherwise, so the encoding of a word written serially is canonical, and a run
 // holds at most 65536 modules (its place j fits in two bytes). An id that cannot be
 // written as (key, k) is kept whole in a run of its own.
+//
+// What runs once a module stays inline here (an append, a slice's put, a cursor's step,
+// the run tail): a call there cost a fifth of a rewrite. The rest is in compact_word.cpp.
 
 #include <algorithm>
 #include <bit>
@@ -131,6 +134,10 @@ class CompactWord {
   /// Bytes the word's arrays take (their sizes, not their capacities: pages never
   /// written are never mapped).
   size_t bytes() const;
+  /// Bytes the word's arrays have written and keep: bytes(), or more where the word was
+  /// cleared after a larger one, whose pages it keeps (the memory limit counts them:
+  /// LinearDevelopment::heldBytes). Room reserved and never written is not counted.
+  size_t heldBytes() const { return std::max(bytes(), largestBytes_); }
 
   // --- Writing, in word order ---
 
@@ -373,6 +380,7 @@ class CompactWord {
   uint32_t runJ_ = 0;         // its place in its run
   size_t writtenBlocks_ = 0;  // bitmap words written before placeParts
   bool withoutIds_ = false;   // markWithoutIds: the runs' keys and first k mean nothing
+  size_t largestBytes_ = 0;   // the largest bytes() the word had when cleared
   [[noreturn]] static void noIds();
 };
 
@@ -390,18 +398,9 @@ class alignas(64) CompactWord::Slice {
  public:
   /// A slice of the word that starts with the birth table of `from`, the word it copies
   /// modules from (their birth indices stay valid).
-  explicit Slice(const CompactWord& from)
-      : from_(&from), stateCounts_(from.stateCounts_.data()), stateless_(from.stateless_) {}
+  explicit Slice(const CompactWord& from);
   /// Starts the slice again, counting, for a word copying from `from`.
-  void restart(const CompactWord& from) {
-    from_ = &from;
-    stateCounts_ = from.stateCounts_.data();
-    stateless_ = from.stateless_;
-    word_ = nullptr;
-    knowsBirth_ = false;
-    modules_ = values_ = countedRuns_ = 0;
-    tail_ = RunTail{};
-  }
+  void restart(const CompactWord& from);
   /// Whether the slice writes (after beginSlices) rather than counts.
   bool writing() const { return word_ != nullptr; }
   /// A module with id `key`, born at `birth` (a birth the slice may have to add to the table).
@@ -470,18 +469,9 @@ class alignas(64) CompactWord::Slice {
   /// Modules first .. first + n - 1 of the word the slice copies from, which lie in one
   /// run there, kept with their ids (the first's is `key`) and birth index: as n calls of
   /// appendCopy (CompactWord::appendStretch says why the later ones continue the first).
-  void appendKept(size_t first, uint32_t n, IdKey key, uint32_t birthIndex) {
-    const double birth = from_->births_[birthIndex];
-    const bool continues = tail_.continues(key, birth);
-    stretch(first, n, key, continues, birthIndex);
-    if (n > 1) tail_.continues(IdKey{key.key, key.k + n - 1}, birth);
-  }
+  void appendKept(size_t first, uint32_t n, IdKey key, uint32_t birthIndex);
   /// The same modules renewed, born again at `birth`: as n calls of append.
-  void appendRenewed(size_t first, uint32_t n, IdKey key, double birth) {
-    const bool continues = tail_.continues(key, birth);
-    stretch(first, n, key, continues, word_ ? birthIndexOf(birth) : 0);
-    if (n > 1) tail_.continues(IdKey{key.key, key.k + n - 1}, birth);
-  }
+  void appendRenewed(size_t first, uint32_t n, IdKey key, double birth);
   /// After the slice's last append of a pass.
   void finish();
   size_t modules() const { return modules_; }
@@ -528,6 +518,9 @@ class alignas(64) CompactWord::Slice {
   /// After CompactWord::joinSlices: gives the slice's runs born at its new births their
   /// index in the word's table. Slices place in any order, on any threads.
   void place();
+  /// Bytes the slice keeps from one pass to the next, by capacity: its own births, wide k
+  /// and shared bitmap words.
+  size_t heldBytes() const;
 
  private:
   friend class CompactWord;
@@ -577,26 +570,7 @@ class alignas(64) CompactWord::Slice {
   }
   // appendKept and appendRenewed once the first module's run is known. Words without
   // state values only.
-  void stretch(size_t first, uint32_t n, IdKey key, bool continues, uint32_t birthIndex) {
-    if (!word_) {
-      modules_ += n;
-      countedRuns_ += continues ? 0 : 1;
-      return;
-    }
-    put(from_->label(first), key, continues, birthIndex, nullptr);
-    for (uint32_t j = 1; j < n;) {
-      const size_t i = firstModule_ + written_;
-      if (i % kBlock == 0) startBlock(i);  // before runJ_ moves: the block's j is one more
-      const uint32_t room = std::min<uint32_t>(n - j, static_cast<uint32_t>(kBlock - i % kBlock));
-      if (out_.labels8)
-        std::memcpy(out_.labels8 + i, from_->labels8_.data() + first + j, room);
-      else
-        std::memcpy(out_.labels16 + i, from_->labels16_.data() + first + j, room * sizeof(uint16_t));
-      runJ_ += room;
-      written_ += room;
-      j += room;
-    }
-  }
+  void stretch(size_t first, uint32_t n, IdKey key, bool continues, uint32_t birthIndex);
   /// At module i: the block index entry of a block starting there, and a new bitmap word.
   void startBlock(size_t i);
   void flushBits();
@@ -639,30 +613,7 @@ class CompactWordCursor {
  public:
   /// A cursor over no word, done() at once.
   CompactWordCursor() = default;
-  explicit CompactWordCursor(const CompactWord& word, size_t first = 0)
-      : word_(&word),
-        labels8_(word.wide_ ? nullptr : word.labels8_.data()),
-        labels16_(word.wide_ ? word.labels16_.data() : nullptr),
-        runStarts_(word.runStarts_.data()),
-        stateCounts_(word.stateCounts_.data()),
-        keys_(word.keys_.data()),
-        firstK_(word.firstK_.data()),
-        birthIndex_(word.birthIndex_.data()),
-        births_(word.births_.data()),
-        size_(word.size_),
-        stateless_(word.stateless_),
-        index_(first) {
-    if (word.withoutIds_) [[unlikely]]
-      CompactWord::noIds();
-    if (first >= size_) return;
-    if (first > 0) {
-      const CompactWord::Place place = word.locate(first);
-      run_ = place.run;
-      j_ = place.j;
-      value_ = place.value;
-    }
-    loadRun();
-  }
+  explicit CompactWordCursor(const CompactWord& word, size_t first = 0);
 
   bool done() const { return index_ >= size_; }
   void next() {
@@ -720,9 +671,5 @@ class CompactWordCursor {
   size_t index_ = 0, run_ = 0, value_ = 0;
   uint32_t j_ = 0;
 };
-
-inline CompactWordCursor CompactWord::cursor() const {
-  return CompactWordCursor(*this);
-}
 
 }  // namespace ontogen

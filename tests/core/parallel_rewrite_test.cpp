@@ -73,7 +73,7 @@ void expectSameWords(const World& serial, const World& parallel, const std::stri
 }
 
 // The strategies that rewrote the word and how often (core/rewrite_plan.h), as --stats
-// prints them: "serial 3, record-slices 13".
+// prints them: "table-alone 5, table-bounds 3".
 std::string ran(const WorldStats& stats) {
   return formatRewriteCounts(stats.rewrites);
 }
@@ -109,22 +109,20 @@ TEST(ParallelRewrite, EveryKindOfSuccessorIsWrittenAsTheSerialPassWritesIt) {
   const Grown serial = grow(program, 16, 1, false);
   ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
   EXPECT_EQ(ran(serial), "serial 16");
-  // On one thread, a word whose rules draw and calculate keeps the serial pass.
-  EXPECT_EQ(ran(grow(program, 16, 1)), "serial 16");
-  expectTheSerialWordOnEveryThreadCount(
-      program, 16, serial,
-      {{2, "serial 14, record-slices 2"}, {3, "serial 14, record-slices 2"}, {7, "serial 14, record-slices 2"}});
+  // A word whose rules draw and calculate keeps its records: the serial pass on any thread count.
+  expectTheSerialWordOnEveryThreadCount(program, 16, serial,
+                                        {{1, "serial 16"}, {2, "serial 16"}, {3, "serial 16"}, {7, "serial 16"}});
 }
 
 // Masters whose one rule has no choice or calculation and whose successors' arguments are
-// straight-line code: the context-free pass evaluates those arguments for many cells at
-// once (ParallelRewrite::flushBatch), by slices on one thread too. Here with `me`, `=X`,
-// two values a module, arguments reading age, time, id, me.x and me.parent, a built-in
-// function, a stateless successor, and a master with state and no rule, interleaved so
-// that the batches of three masters fill and flush at different cells.
+// straight-line code: the compact word evaluates those arguments for many cells at once
+// (ParallelRewrite::flushBatch). Here with `me`, `=X`, two values a module, arguments
+// reading age, time and id, a built-in function, a stateless successor, and a master with
+// state and no rule, interleaved so that the batches of three masters fill and flush at
+// different cells.
 const char* kEvaluatedInBatches = R"(
-cell A(x = 1, w = 2) { lifetime 1; rules { terminal: -> A(x * 0.5 + sqrt(w), w + age) B(x - me.x, time) me C; } }
-cell B(y = 0, z = 0) { lifetime 1; rules { terminal: -> =B(y + me.parent, z * 0.25 + id % 7) C G(y); } }
+cell A(x = 1, w = 2) { lifetime 1; rules { terminal: -> A(x * 0.5 + sqrt(w), w + age) B(x - id % 3, time) me C; } }
+cell B(y = 0, z = 0) { lifetime 1; rules { terminal: -> =B(y + 0.5, z * 0.25 + id % 7) C G(y); } }
 cell G(g = 0) { lifetime 3; rules { terminal: -> G(g + 1 / (1 + age)); } }
 cell C { lifetime 2; }
 cell E(v = 3) { lifetime 1; }
@@ -139,7 +137,10 @@ TEST(ParallelRewrite, ArgumentsEvaluatedInBatchesEqualTheSerialPass) {
   EXPECT_EQ(ran(serial), "serial 15");
   expectTheSerialWordOnEveryThreadCount(
       program, 15, serial,
-      {{1, "serial 13, record-slices 2"}, {2, "serial 13, record-slices 2"}, {3, "serial 13, record-slices 2"}});
+      {{1, "compact-serial 15"},
+       {2, "compact-serial 13, compact-slices 2"},
+       {3, "compact-serial 13, compact-slices 2"},
+       {7, "compact-serial 13, compact-slices 2"}});
 }
 
 // Words with state kept compact (ParallelRewrite::appliesToCompactWords): masters whose
@@ -243,14 +244,14 @@ TEST(ParallelRewrite, ADrawAmongLabelOnlyRulesIsTheSerialPassesDraw) {
   }
 }
 
-// Context-free words whose masters choose, by slices, as the serial pass chooses: draws
+// Context-free words whose masters choose as the serial pass of records chooses: draws
 // among rules of constant chances (a stochastic tree with values, and a master whose rules
 // have no chance after the first); conditions, and chances that are expressions, in the
 // cell's frame (a draw in a condition among them).
 TEST(ParallelRewrite, AChoiceInAContextFreeWordIsTheSerialPassesChoice) {
   // The first draws by constant chances alone and evaluates its arguments in batches, so
-  // its word is kept compact; the second chooses in the cell's frame, by records' slices
-  // on several threads.
+  // its word is kept compact; the second chooses in the cell's frame, so its word keeps
+  // its records and the serial pass on every thread count.
   const std::vector<std::pair<std::string, std::vector<Route>>> programs{
       {"lsystem tree {\n  axiom A(1) B\n"
        "  A(s) -> F(s) [ + A(s * 0.8) ] [ - A(s * 0.8) ] : 0.6\n"
@@ -263,12 +264,11 @@ TEST(ParallelRewrite, AChoiceInAContextFreeWordIsTheSerialPassesChoice) {
       {"lsystem conditions {\n  axiom A(0) B(3)\n"
        "  A(t) : t < 3 -> A(t + 1) B(t)\n  A(t) : t >= 3 && uniform(0, 1) < 0.9 -> A(0) [ + A(1) ]\n"
        "  B(x) -> B(x + 1) : 0.3 + 0.1 * sin(x)\n  B(x) -> B(x) B(x * 0.5) : 0.7\n}\n",
-       {{1, "serial 22"}, {2, "serial 19, record-slices 3"}, {3, "serial 19, record-slices 3"}}}};
+       {{1, "serial 22"}, {2, "serial 22"}, {3, "serial 22"}}}};
   for (const auto& [text, routes] : programs) {
     SCOPED_TRACE(text);
     auto program = testing_support::compileOrFail(text);
     ASSERT_NE(program, nullptr);
-    ASSERT_TRUE(ParallelRewrite(*program, program->systems[program->root]).appliesContextFree());
     const Grown serial = grow(program, 22, 1, false);
     ASSERT_GT(serial.world->rootPool().size(), 2 * ParallelRewrite::kMinimumCells);
     expectTheSerialWordOnEveryThreadCount(program, 22, serial, routes);
@@ -486,7 +486,7 @@ TEST(ParallelRewrite, LabelContextsInPlainAndBranchedWordsAreWrittenAsTheSerialP
     ASSERT_GE(serial.world->rootPool().size(), ParallelRewrite::kMinimumCells);
     for (unsigned threads : {1u, 2u, 3u}) {
       const Grown parallel = grow(program, 12, threads);
-      EXPECT_EQ(ran(parallel), branches ? "record-slices 12" : "one-for-one 12") << threads << " threads";
+      EXPECT_EQ(ran(parallel), branches ? "serial 12" : "one-for-one 12") << threads << " threads";
       expectSameWords(
           *serial.world, *parallel.world,
           std::string(branches ? "branched" : "plain") + " word on " + std::to_string(threads) + " threads");
@@ -562,7 +562,7 @@ TEST(ParallelRewrite, ContextWithChoicesIsWrittenAsTheSerialPassWritesIt) {
   ASSERT_GT(serial.world->rootPool().size(), 4 * ParallelRewrite::kMinimumCells);
   for (unsigned threads : {1u, 2u, 3u}) {
     const Grown parallel = grow(program, 25, threads);
-    EXPECT_EQ(ran(parallel), threads == 1 ? "serial 25" : "serial 21, record-slices 4") << threads << " threads";
+    EXPECT_EQ(ran(parallel), "serial 25") << threads << " threads";
     expectSameWords(*serial.world, *parallel.world, "context with choices on " + std::to_string(threads) + " threads");
     EXPECT_EQ(parallel.stats.cellsBorn, serial.stats.cellsBorn);
   }

@@ -69,29 +69,29 @@ std::vector<Model> models() {
        "cell C { lifetime 2; }\ncell D(z = 0) { lifetime 1; rules { terminal: z += 1; } }\n"
        "system s { pool linear; axiom D A; }\n",
        9,
-       {S::Serial, S::RecordSlices}},
+       {S::Serial}},
       // Records with context, conditions and chances, rewritten instant by instant.
       {"records with context",
        "lsystem g {\n  axiom A(1) B(1)\n  A(x) -> A(x * 0.5) B(x)\n"
        "  A(x) < B(y) : y > 0.3 -> B(x + y) A(y) : 0.6\n  A(x) < B(y) -> B(y + uniform(0, 1)) : 0.4\n"
        "  B(y) > A(z) -> B(y - z)\n  B(y) -> B(y) A(y * 2)\n}\n",
        14,
-       {S::Serial, S::RecordSlices}},
+       {S::Serial}},
       // A compact word of labels walked by its table (words without ids where it may).
       {"Koch",
        "lsystem koch {\n  axiom F\n  F -> F + F - F - F + F\n}\n",
        5,
-       {S::Serial, S::RecordSlices, S::CompactSerial, S::TableAlone, S::TableBounds, S::CompactSlices}},
+       {S::Serial, S::CompactSerial, S::TableAlone, S::TableBounds, S::CompactSlices}},
       // A compact word with values, each successor's one operation on its cell's.
       {"parametric",
        testing_support::kParametric,
        12,
-       {S::Serial, S::RecordSlices, S::CompactSerial, S::TableAlone, S::TableBounds, S::CompactSlices}},
+       {S::Serial, S::CompactSerial, S::TableAlone, S::TableBounds, S::CompactSlices}},
       // A compact word whose choices vary with the context and by chance, one for one.
       {"signals by chance",
        "lsystem d {\n  axiom" + signals + "\n  b < a -> b : 0.9\n  b < a -> c : 0.1\n  b -> a\n  c -> a\n}\n",
        12,
-       {S::Serial, S::RecordSlices, S::CompactSerial, S::OneForOne, S::Parts, S::CompactSlices}},
+       {S::Serial, S::CompactSerial, S::OneForOne, S::Parts, S::CompactSlices}},
   };
 }
 
@@ -164,7 +164,6 @@ TEST(RewritePlan, TheUnforcedPlanFollowsTheFacts) {
   const size_t large = kMinimumSliceCells, small = kMinimumSliceCells - 1;
   RewriteFacts koch = compactFacts(large, 4);
   koch.shape.byTable = true;
-  koch.shape.labelsOnly = true;
   EXPECT_EQ(planRewrite(koch).strategy, S::TableBounds);
   EXPECT_EQ(planRewrite(koch).threads, 4u);
   koch.boundsMissed = true;
@@ -188,26 +187,16 @@ TEST(RewritePlan, TheUnforcedPlanFollowsTheFacts) {
   signal.threads = 1;
   EXPECT_EQ(planRewrite(signal).strategy, S::CompactSerial);
 
+  // A word of records has one pass, on one thread, whatever is forced or the size.
   RewriteFacts records;
-  records.pass = RewritePass::AtInstant;
+  records.pass = RewritePass::Records;
   records.size = large;
   records.threads = 3;
-  records.shape.atInstantSlices = true;
-  EXPECT_EQ(planRewrite(records).strategy, S::RecordSlices);
-  EXPECT_EQ(planRewrite(records).threads, 3u);
-  records.threads = 1;  // frames evaluated cell by cell: slices do not pay on one thread
   EXPECT_EQ(planRewrite(records).strategy, S::Serial);
-  records.shape.labelsOnly = true;
-  EXPECT_EQ(planRewrite(records).strategy, S::RecordSlices);
-  records.lineage = true;
+  EXPECT_EQ(planRewrite(records).threads, 1u);
+  records.forced = S::CompactSlices;
   EXPECT_EQ(planRewrite(records).strategy, S::Serial);
-  records.forced = S::RecordSlices;
-  EXPECT_EQ(planRewrite(records).strategy, S::Serial);  // forced, but lineage is logged
-  records.lineage = false;
-  records.size = 10;
-  records.threads = 7;
-  EXPECT_EQ(planRewrite(records).strategy, S::RecordSlices);  // forced at any size
-  EXPECT_EQ(planRewrite(records).threads, 7u);
+  EXPECT_EQ(planRewrite(records).threads, 1u);
 }
 
 // The threads are decided once, by the strategy, forced or chosen: a strategy of one pass
@@ -218,10 +207,7 @@ TEST(RewritePlan, AStrategyOfOneThreadTakesOneAndTheOthersTakeTheWorlds) {
     for (size_t k = 0; k < kRewriteStrategyCount; ++k) {
       const S strategy = static_cast<S>(k);
       RewriteFacts facts = compactFacts(10, threads);
-      if (!rewritesCompactWords(strategy)) {
-        facts.pass = RewritePass::ContextFree;
-        facts.shape.contextFreeSlices = true;
-      }
+      if (!rewritesCompactWords(strategy)) facts.pass = RewritePass::Records;
       facts.shape.byTable = facts.shape.choiceVaries = facts.shape.oneForOne = true;
       facts.growthKnown = true;
       facts.forced = strategy;

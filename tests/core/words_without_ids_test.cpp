@@ -141,6 +141,29 @@ TEST(WordsWithoutIds, AWordReadOnTheWayAndACopyReadAsTheWordGrownWithIds) {
   }
 }
 
+// A copy made while the word is held without ids shares the replay's instants; the world
+// and the copy then grow on apart, each appending its own (the copy's first rewrite finds
+// the world's already there and takes its own list), and each reads as the word grown
+// with ids, unread until the end.
+TEST(WordsWithoutIds, AWorldAndItsCopyGrowingApartReadAsTheWordGrownWithIds) {
+  auto program = testing_support::compileOrFail(timedTable());
+  ASSERT_NE(program, nullptr);
+  World reference = growing(program, 1, false);
+  World world = growing(program, 1, true);
+  world.advanceTo(3, 1.0);
+  ASSERT_FALSE(world.rootPool().holdsIds());
+  World copy = world;
+  world.advanceTo(5, 1.0);
+  copy.advanceTo(4, 1.0);
+  copy.advanceTo(6, 1.0);
+  world.advanceTo(6, 1.0);
+  reference.advanceTo(6, 1.0);
+  ASSERT_FALSE(world.rootPool().holdsIds());
+  ASSERT_FALSE(copy.rootPool().holdsIds());
+  expectSameCells(reference.rootPool(), copy.rootPool(), "the copy");
+  expectSameCells(reference.rootPool(), world.rootPool(), "the world");
+}
+
 // Every module of Thue-Morse expires at every step, so a step's word is one run a slice:
 // slices placed by bounds (a run a module) close the gaps between their runs. Its labels
 // share one lifetime, so a run goes by the walk's loop of a copy a module.
