@@ -535,6 +535,20 @@ char* writeFullCell(char* to, const WordCellView& cell, std::string_view prefix,
   return to;
 }
 
+// The words at their times as one JSON document, in either form.
+template <class Writer>
+void writeWordsAsJson(std::ostream& out, const std::vector<WordAtTime>& words) {
+  BufferedOutput buffered(out);
+  Writer writer(buffered);
+  writer.begin();
+  for (const WordAtTime& word : words) {
+    writer.beginTime(word.time, &word == words.data());
+    visitWord(word.cells, writer);
+    writer.endTime();
+  }
+  writer.end();
+}
+
 }  // namespace
 
 // Each cell is written in one piece: on the stack when it fits, as most do, else straight
@@ -566,15 +580,7 @@ void WordJsonWriter::leavePool() {
 }
 
 void writeWordJson(std::ostream& out, const std::vector<WordAtTime>& words) {
-  BufferedOutput buffered(out);
-  WordJsonWriter writer(buffered);
-  writer.begin();
-  for (const WordAtTime& word : words) {
-    writer.beginTime(word.time, &word == words.data());
-    visitWord(word.cells, writer);
-    writer.endTime();
-  }
-  writer.end();
+  writeWordsAsJson<WordJsonWriter>(out, words);
 }
 
 void CompactWordJsonWriter::begin() { out_.text() += "{\"form\": \"compact\", \"times\": ["; }
@@ -672,15 +678,7 @@ void CompactWordJsonWriter::leavePool() {
 }
 
 void writeCompactWordJson(std::ostream& out, const std::vector<WordAtTime>& words) {
-  BufferedOutput buffered(out);
-  CompactWordJsonWriter writer(buffered);
-  writer.begin();
-  for (const WordAtTime& word : words) {
-    writer.beginTime(word.time, &word == words.data());
-    visitWord(word.cells, writer);
-    writer.endTime();
-  }
-  writer.end();
+  writeWordsAsJson<CompactWordJsonWriter>(out, words);
 }
 
 }  // namespace ontogen

@@ -235,16 +235,10 @@ class CpfgReader {
       }
     }
     stamp();
-    if (zeroLength_) {
-      bool rewrites = false, homomorphism = false;
-      for (const Statement& s : file_.statements) {
-        if (s.kind == StatementKind::Section) homomorphism = s.word == "homomorphism";
-        rewrites = rewrites || (s.kind == StatementKind::Production && !homomorphism);
-      }
-      if (rewrites)
-        syntax_.fail(zeroLength_->begin, zeroLength_->end,
-                     "derivation length 0 (the word is the axiom) where productions or decompositions would "
-                     "rewrite it: ontogen's #until is at least 1; ask for the axiom with word --at 0");
+    if (zeroLength_ && rewritesTheAxiom(file_)) {
+      syntax_.fail(zeroLength_->begin, zeroLength_->end,
+                   "derivation length 0 (the word is the axiom) where productions or decompositions would "
+                   "rewrite it: ontogen's #until is at least 1; ask for the axiom with word --at 0");
     }
     file_.warnings = std::move(syntax_.warnings);
     return std::move(file_);

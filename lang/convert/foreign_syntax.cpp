@@ -625,6 +625,15 @@ std::set<std::string, std::less<>> parametersOf(const Statement& production) {
   return names;
 }
 
+bool rewritesTheAxiom(const LSystemFile& file) {
+  bool homomorphism = false;
+  for (const Statement& s : file.statements) {
+    if (s.kind == StatementKind::Section) homomorphism = s.word == "homomorphism";
+    if (s.kind == StatementKind::Production && !homomorphism) return true;
+  }
+  return false;
+}
+
 bool ForeignSyntax::bindsParameter(size_t at, std::string_view name) const {
   // The statement's first line: cpfg continues a statement on lines that start with a tab.
   size_t begin = text_.rfind('\n', at) == std::string_view::npos ? 0 : text_.rfind('\n', at) + 1;

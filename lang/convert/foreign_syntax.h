@@ -281,6 +281,10 @@ std::string cellName(std::string_view name);
 /// spells them).
 std::set<std::string, std::less<>> parametersOf(const Statement& production);
 
+/// Whether a production outside the homomorphism (cpfg's decompositions among them) would
+/// rewrite the axiom: with `derivation length: 0` it would not run, so the file is refused.
+bool rewritesTheAxiom(const LSystemFile& file);
+
 /// Levels of conditionals (`c ? a : b`, `a if c else b`) and of L-Py's `or(...)` the
 /// converter reads inside one another. The compiler takes 200 levels of nesting, and each
 /// conditional becomes two (a call and its arguments); no model nests a tenth as deep.

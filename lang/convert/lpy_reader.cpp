@@ -244,16 +244,10 @@ class LPyReader {
     writeFixedConstantsInPlace(syntax_, file_);
     loadedOnce();
     checkChoices();
-    if (zeroLength_) {
-      bool rewrites = false, homomorphism = false;
-      for (const Statement& s : file_.statements) {
-        if (s.kind == StatementKind::Section) homomorphism = s.word == "homomorphism";
-        rewrites = rewrites || (s.kind == StatementKind::Production && !homomorphism);
-      }
-      if (rewrites)
-        syntax_.fail(zeroLength_->begin, zeroLength_->end,
-                     "derivation length 0 (the word is the axiom) where productions would rewrite it: ontogen's "
-                     "#until is at least 1; ask for the axiom with word --at 0");
+    if (zeroLength_ && rewritesTheAxiom(file_)) {
+      syntax_.fail(zeroLength_->begin, zeroLength_->end,
+                   "derivation length 0 (the word is the axiom) where productions would rewrite it: ontogen's "
+                   "#until is at least 1; ask for the axiom with word --at 0");
     }
     // L-Py derives once unless the file says otherwise.
     if (!file_.derivationLength) file_.derivationLength = "1";
