@@ -218,6 +218,8 @@ std::vector<ModuleText> ForeignSyntax::modules(uint32_t begin, uint32_t end, boo
                  " before parameters: C's preprocessor puts its value in place of the name, so the parameters "
                  "would be its last module's; give the module another name than the macro");
       if (macro != macros.end()) {
+        // Macros of modules that name macros multiply as those in expressions do.
+        countInlined(macro->second.end - macro->second.begin, at, tokenEnd);
         const Nested nested(*this, at, tokenEnd);
         for (ModuleText& m : modules(macro->second.begin, macro->second.end, pattern)) result.push_back(std::move(m));
         at = tokenEnd;

@@ -332,5 +332,18 @@ TEST(CpfgReader, MacrosThatMultiplyAreBounded) {
   EXPECT_EQ(c.error, "the calls of helper functions or macros write more than 4 MiB (calls within calls multiply)");
 }
 
+// Among modules too: an axiom of M24 whose macros each name the one below twice would be
+// 2^24 modules (it ran for minutes and past 7 GB before the bound).
+TEST(CpfgReader, MacrosOfModulesThatMultiplyAreBounded) {
+  std::string text = "#define M0 F\n";
+  for (int k = 1; k <= 24; ++k)
+    text += "#define M" + std::to_string(k) + " M" + std::to_string(k - 1) + " M" + std::to_string(k - 1) + "\n";
+  auto c = convertText(Dialect::Cpfg, "a.l", text + "Lsystem: 1\nAxiom: M24\nF --> F\nendlsystem\n");
+  EXPECT_EQ(c.program, "");
+  EXPECT_GE(c.line, 2);  // at a macro's use within another's value, where the bound passes
+  EXPECT_LE(c.line, 27);
+  EXPECT_EQ(c.error, "the calls of helper functions or macros write more than 4 MiB (calls within calls multiply)");
+}
+
 }  // namespace
 }  // namespace ontogen::convert
